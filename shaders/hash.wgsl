@@ -1,0 +1,38 @@
+//! Hashes from lattice cells to pseudo-random numbers.
+
+// The sine hash of seed 000: cheap, but its value depends on the GPU's sin and it
+// loses all randomness once dot(p, k) is large (see `veneer report`).
+fn veneer_lattice_sine(cell: vec3f) -> f32 {
+    let h = dot(cell, vec3f(127.1, 311.7, 74.7));
+    return fract(sin(h) * 43758.5453);
+}
+
+// Integer coordinates of a lattice cell, clamped to the i32 range so that any finite
+// coordinate maps to a well-defined cell on every device.
+fn veneer_cell_bits(cell: vec3f) -> vec3u {
+    let limit = vec3f(2147483520.0);
+    return bitcast<vec3u>(vec3i(clamp(cell, -limit, limit)));
+}
+
+// PCG3D (Jarzynski and Olano 2020): three rounds of an LCG mixed across lanes.
+fn veneer_pcg3d(seed: vec3u) -> vec3u {
+    var v = seed * 1664525u + 1013904223u;
+    v.x += v.y * v.z;
+    v.y += v.z * v.x;
+    v.z += v.x * v.y;
+    v ^= v >> vec3u(16u);
+    v.x += v.y * v.z;
+    v.y += v.z * v.x;
+    v.z += v.x * v.y;
+    return v;
+}
+
+// Top 24 bits of each lane as floats in [0, 1): exact, so CPU and GPU agree bit for bit.
+fn veneer_unit_floats(bits: vec3u) -> vec3f {
+    return vec3f(bits >> vec3u(8u)) * (1.0 / 16777216.0);
+}
+
+// The PCG hash of a lattice cell, in [0, 1).
+fn veneer_lattice_pcg(cell: vec3f) -> f32 {
+    return veneer_unit_floats(veneer_pcg3d(veneer_cell_bits(cell))).x;
+}

@@ -1,0 +1,47 @@
+//! Periodic patterns: sine bands, triangle waves, tiles and rings.
+
+// Marble bands of seed 000: 0.5 + 0.5 sin(frequency x + distortion turbulence).
+fn veneer_sine_band(x: f32, frequency: f32, distortion: f32, turbulence: f32) -> f32 {
+    return 0.5 + 0.5 * sin(frequency * x + distortion * turbulence);
+}
+
+// 0 -> 1 -> 0 once per period of `x * frequency` (the ring profile of seed 001).
+fn veneer_triangle_wave(x: f32, frequency: f32) -> f32 {
+    let r = fract(x * frequency) * 2.0;
+    return select(r, 2.0 - r, r > 1.0);
+}
+
+// Length of tile (not gap) in [0, x] along each axis, for cells whose first `gap` is mortar.
+fn veneer_tile_integral(x: vec2f, gap: vec2f) -> vec2f {
+    return floor(x) * (1.0 - gap) + max(fract(x) - gap, vec2f(0.0));
+}
+
+// Share of [x, x + width] covered by tile: the box-filtered tile mask of seed 004,
+// a hard step where the width is 0.
+fn veneer_tile_coverage(x: vec2f, gap: vec2f, width: vec2f) -> vec2f {
+    let hard = step(gap, fract(x));
+    let soft = (veneer_tile_integral(x + width, gap) - veneer_tile_integral(x, gap)) / max(width, vec2f(1.0e-30));
+    return select(soft, hard, width <= vec2f(0.0));
+}
+
+struct veneer_tiles_result {
+    mask: f32,    // 1 on a tile, 0 in the mortar
+    cell: vec2f,  // integer id of the tile
+    local: vec2f, // position inside the tile, in [0, 1)
+}
+
+// Tiles of `size` over the xz plane; every other row (along x) shifted by `row_offset`
+// tiles in z; mortar takes the first `gap` of each tile; `blur` is the filter width.
+fn veneer_tiles(p: vec3f, size: vec2f, gap: vec2f, row_offset: f32, blur: f32) -> veneer_tiles_result {
+    let safe_size = select(size, vec2f(1.0), abs(size) < vec2f(1.0e-20));
+    var t = p.xz / safe_size;
+    t.y += select(0.0, row_offset, fract(t.x * 0.5) > 0.5);
+    let coverage = veneer_tile_coverage(t, gap, vec2f(blur) / abs(safe_size));
+    return veneer_tiles_result(coverage.x * coverage.y, ceil(t), fract(t));
+}
+
+// Concentric rings about an axis: 0.5 + 0.5 sin(2 pi frequency r).
+fn veneer_rings(p: vec3f, origin: vec3f, axis: vec3f, frequency: f32) -> f32 {
+    let r = veneer_cylindrical(p, origin, axis).y;
+    return 0.5 + 0.5 * sin(6.283185307 * frequency * r);
+}

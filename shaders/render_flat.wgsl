@@ -1,0 +1,28 @@
+//! Entry points of the flat render: the material's albedo over the plane y = Y, one
+//! sample per pixel centre (the `veneer render --flat` contract).
+
+struct VeneerFlatView {
+    rect: vec4f,          // x0, z0, x1, z1
+    pixel_offset: vec2f,  // of this tile within the whole image
+    plane_y: f32,
+    size: f32,            // the whole image's width and height in pixels
+    time: f32,
+}
+
+@group(0) @binding(0) var<uniform> veneer_flat_view: VeneerFlatView;
+
+@vertex
+fn veneer_flat_vertex(@builtin(vertex_index) index: u32) -> @builtin(position) vec4f {
+    let corner = vec2f(f32((index << 1u) & 2u), f32(index & 2u));
+    return vec4f(corner * 2.0 - 1.0, 0.0, 1.0);
+}
+
+@fragment
+fn veneer_flat_fragment(@builtin(position) pixel: vec4f) -> @location(0) vec4f {
+    let view = veneer_flat_view;
+    let t = (pixel.xy + view.pixel_offset) / view.size;
+    let position = vec3f(view.rect.x + (view.rect.z - view.rect.x) * t.x, view.plane_y, view.rect.y + (view.rect.w - view.rect.y) * t.y);
+    let surface = VeneerSurface(position, vec3f(0.0, 1.0, 0.0), vec2f(0.0), vec4f(0.0), view.time);
+    let material = veneer_material(surface);
+    return vec4f(material.albedo, material.alpha);
+}

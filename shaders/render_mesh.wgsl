@@ -1,0 +1,45 @@
+//! Entry points of the mesh preview: the material on a mesh with Blinn-Phong lighting.
+
+struct VeneerMeshView {
+    view_projection: mat4x4f,
+    eye: vec4f,            // camera position, mesh space
+    light_direction: vec4f, // towards the light, unit
+    placement: vec4f,      // texture-space centre (xyz) and size (w) of the mesh
+    time: f32,
+    ambient: f32,
+}
+
+@group(0) @binding(0) var<uniform> veneer_mesh_view: VeneerMeshView;
+
+struct VeneerVertexOut {
+    @builtin(position) clip: vec4f,
+    @location(0) position: vec3f,
+    @location(1) normal: vec3f,
+    @location(2) uv: vec2f,
+}
+
+@vertex
+fn veneer_mesh_vertex(@location(0) position: vec3f, @location(1) normal: vec3f, @location(2) uv: vec2f) -> VeneerVertexOut {
+    var out: VeneerVertexOut;
+    out.clip = veneer_mesh_view.view_projection * vec4f(position, 1.0);
+    out.position = position;
+    out.normal = normal;
+    out.uv = uv;
+    return out;
+}
+
+@fragment
+fn veneer_mesh_fragment(input: VeneerVertexOut) -> @location(0) vec4f {
+    let view = veneer_mesh_view;
+    let normal = normalize(input.normal);
+    let texture_position = input.position * view.placement.w + view.placement.xyz;
+    let material = veneer_material(VeneerSurface(texture_position, normal, input.uv, vec4f(0.0), view.time));
+    let n = normalize(normal + material.bump);
+    let l = view.light_direction.xyz;
+    let v = normalize(view.eye.xyz - input.position);
+    let h = normalize(l + v);
+    let lambert = max(dot(n, l), 0.0);
+    let highlight = select(0.0, pow(max(dot(n, h), 0.0), max(material.shininess, 1.0)), lambert > 0.0);
+    let color = material.albedo * (view.ambient + (1.0 - view.ambient) * lambert) + material.specular * highlight;
+    return vec4f(clamp(color, vec3f(0.0), vec3f(1.0)), 1.0);
+}

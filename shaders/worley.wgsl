@@ -1,0 +1,59 @@
+//! Cellular (Worley 1996) noise: distances to the nearest feature points.
+
+// Distance of offset `d` under metric 0 (Euclidean), 1 (Manhattan) or 2 (Chebyshev).
+fn veneer_metric(d: vec3f, metric: i32) -> f32 {
+    let a = abs(d);
+    switch metric {
+        case 1: { return a.x + a.y + a.z; }
+        case 2: { return max(a.x, max(a.y, a.z)); }
+        default: { return length(d); }
+    }
+}
+
+// The three smallest feature distances (F1, F2, F3) around `p`; one feature point per
+// cell, displaced from the cell centre by up to `jitter` / 2 per axis.
+fn veneer_worley(p: vec3f, jitter: f32, metric: i32) -> vec3f {
+    let cell = floor(p);
+    var f = vec3f(1.0e9);
+    for (var z = -1; z <= 1; z++) {
+        for (var y = -1; y <= 1; y++) {
+            for (var x = -1; x <= 1; x++) {
+                let c = cell + vec3f(f32(x), f32(y), f32(z));
+                let r = veneer_unit_floats(veneer_pcg3d(veneer_cell_bits(c)));
+                let feature = c + 0.5 + jitter * (r - 0.5);
+                let d = veneer_metric(p - feature, metric);
+                if d < f.x {
+                    f = vec3f(d, f.x, f.y);
+                } else if d < f.y {
+                    f = vec3f(f.x, d, f.y);
+                } else if d < f.z {
+                    f.z = d;
+                }
+            }
+        }
+    }
+    return f;
+}
+
+// Feature 0 = F1, 1 = F2, 2 = F3, 3 = F2 - F1.
+fn veneer_worley_feature(f: vec3f, feature: i32) -> f32 {
+    switch feature {
+        case 1: { return f.y; }
+        case 2: { return f.z; }
+        case 3: { return f.y - f.x; }
+        default: { return f.x; }
+    }
+}
+
+// Fractal Worley: `octaves` octaves of a feature, frequency times `lacunarity`, amplitude times `gain`.
+fn veneer_worley_fractal(p: vec3f, jitter: f32, metric: i32, feature: i32, octaves: i32, lacunarity: f32, gain: f32) -> f32 {
+    var sum = 0.0;
+    var amp = 1.0;
+    var freq = 1.0;
+    for (var i = 0; i < octaves; i++) {
+        sum += amp * veneer_worley_feature(veneer_worley(p * freq, jitter, metric), feature);
+        freq *= lacunarity;
+        amp *= gain;
+    }
+    return sum;
+}

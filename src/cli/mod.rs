@@ -1,0 +1,85 @@
+//! Command-line interface: argument parsing and one module per subcommand.
+
+mod check;
+mod compile;
+mod fmt;
+mod render;
+
+use clap::{Parser, Subcommand};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+/// Veneer: procedural material node graphs compiled to WGSL.
+#[derive(Parser)]
+#[command(name = "veneer", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Option<Command>,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Render a graph to a PNG: on a mesh with the preview lighting, or its albedo over a plane.
+    Render(render::RenderArgs),
+    /// Write the material as a validated shader module.
+    Compile(compile::CompileArgs),
+    /// Load, type-check, compile and validate graphs; exit 1 if any has an error.
+    Check(check::CheckArgs),
+    /// Rewrite graph files in canonical form (sorted, deterministic bytes).
+    Fmt(fmt::FmtArgs),
+}
+
+/// A failed command: the message to print (already prefixed with the file or node).
+pub struct Failure(pub String);
+
+impl<E: std::fmt::Display> From<E> for Failure {
+    fn from(error: E) -> Failure {
+        Failure(error.to_string())
+    }
+}
+
+/// Parses the arguments, runs the subcommand, and maps failures to exit code 1.
+pub fn run() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        None => {
+            println!("Veneer {}: the node editor is not part of this build yet.", env!("CARGO_PKG_VERSION"));
+            println!("Render the wood preset headless with:");
+            println!("  veneer render graphs/wood.ron -o wood.png");
+            println!("Run `veneer --help` for every command.");
+            Ok(())
+        }
+        Some(Command::Render(args)) => render::run(args),
+        Some(Command::Compile(args)) => compile::run(args),
+        Some(Command::Check(args)) => check::run(args),
+        Some(Command::Fmt(args)) => fmt::run(args),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(Failure(message)) => {
+            eprintln!("{message}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+/// Loads a graph, with errors as `path:line:col: message`.
+fn load_graph(path: &Path) -> Result<veneer::graph::Graph, Failure> {
+    veneer::graph::load(path).map_err(Failure::from)
+}
+
+/// Prefixes every line of a multi-line error with the file it concerns.
+fn in_file(path: &Path, error: impl std::fmt::Display) -> Failure {
+    let lines: Vec<String> = error.to_string().lines().map(|line| format!("{}: {line}", path.display())).collect();
+    Failure(lines.join("\n"))
+}
+
+/// Writes `bytes` atomically to `path`, or to stdout when `path` is `None` or `-`.
+fn write_output(path: Option<&PathBuf>, bytes: &[u8]) -> Result<(), Failure> {
+    use std::io::Write;
+    match path {
+        Some(path) if path.as_os_str() != "-" => veneer::fsutil::write_atomic(path, bytes)
+            .map_err(|error| Failure(format!("{}: cannot write: {error}", path.display()))),
+        _ => std::io::stdout().write_all(bytes).map_err(Failure::from),
+    }
+}

@@ -1,0 +1,75 @@
+//! `veneer render`: a graph to a PNG, lit on a mesh or flat over a plane.
+
+use super::{Failure, in_file, load_graph, write_output};
+use clap::Args;
+use std::path::PathBuf;
+use veneer::render::{FlatRect, FlatRenderer, GpuContext, MeshRenderer, MeshView};
+
+#[derive(Args)]
+pub struct RenderArgs {
+    /// The graph file.
+    graph: PathBuf,
+    /// Output PNG.
+    #[arg(short, long)]
+    output: PathBuf,
+    /// Width and height of the image in pixels.
+    #[arg(long, default_value_t = 512)]
+    size: u32,
+    /// Mesh to render on: sphere, cube, torus or plane (default: the graph's preview mesh).
+    #[arg(long, conflicts_with = "flat")]
+    mesh: Option<String>,
+    /// Render the albedo unlit over the plane y = Y, x from X0 to X1, z from Z0 to Z1.
+    #[arg(long, value_name = "X0,Z0,X1,Z1,Y", value_parser = parse_flat, allow_hyphen_values = true)]
+    flat: Option<FlatRect>,
+    /// Time in seconds.
+    #[arg(long, default_value_t = 0.0)]
+    time: f32,
+}
+
+fn parse_flat(text: &str) -> Result<FlatRect, String> {
+    let numbers: Vec<f64> = text
+        .split(',')
+        .map(|part| part.trim().parse::<f64>().map_err(|_| format!("'{part}' is not a number")))
+        .collect::<Result<_, _>>()?;
+    match numbers[..] {
+        [x0, z0, x1, z1, y] if numbers.iter().all(|n| n.is_finite()) => Ok(FlatRect { x0, z0, x1, z1, y }),
+        [_, _, _, _, _] => Err("the rectangle must be finite".into()),
+        _ => Err(format!("expected five numbers X0,Z0,X1,Z1,Y, got {}", numbers.len())),
+    }
+}
+
+pub fn run(args: RenderArgs) -> Result<(), Failure> {
+    let graph = load_graph(&args.graph)?;
+    let module = veneer::codegen::compile_graph(&graph).map_err(|error| in_file(&args.graph, error))?;
+    let gpu = GpuContext::new()?;
+    let size = args.size;
+    let png = match args.flat {
+        Some(rect) => {
+            let renderer = FlatRenderer::new(&gpu, &module.source)?;
+            let pixels = renderer.render(&gpu, rect, size, args.time)?;
+            encode_png(&veneer::render::albedo_to_rgb8(&pixels), size, image::ExtendedColorType::Rgb8)?
+        }
+        None => {
+            let mesh_name = args.mesh.as_deref().unwrap_or(&graph.preview.mesh);
+            let mesh = veneer::mesh::primitive(mesh_name).ok_or_else(|| {
+                Failure(format!(
+                    "unknown mesh '{mesh_name}' (expected one of: {})",
+                    veneer::mesh::PRIMITIVES.join(", ")
+                ))
+            })?;
+            let mut view = MeshView::for_preview(&graph.preview);
+            view.time = args.time;
+            let renderer = MeshRenderer::new(&gpu, &module.source)?;
+            let pixels = renderer.render(&gpu, &mesh, &view, size)?;
+            encode_png(&pixels, size, image::ExtendedColorType::Rgba8)?
+        }
+    };
+    write_output(Some(&args.output), &png)
+}
+
+fn encode_png(pixels: &[u8], size: u32, color: image::ExtendedColorType) -> Result<Vec<u8>, Failure> {
+    use image::ImageEncoder;
+    let mut bytes = Vec::new();
+    image::codecs::png::PngEncoder::new(&mut bytes).write_image(pixels, size, size, color)?;
+    Ok(bytes)
+}

@@ -1,0 +1,85 @@
+//! Readable, unique WGSL identifiers for nodes, named after their labels.
+
+use std::collections::BTreeSet;
+
+/// WGSL keywords and reserved words that a label could collide with, plus names the
+/// generated function uses itself.
+const RESERVED: &[&str] = &[
+    "alias", "break", "case", "const", "const_assert", "continue", "continuing", "default", "diagnostic",
+    "discard", "else", "enable", "false", "fn", "for", "if", "let", "loop", "override", "requires", "return",
+    "struct", "switch", "true", "var", "while", "array", "atomic", "bool", "f16", "f32", "i32", "mat2x2",
+    "mat3x3", "mat4x4", "ptr", "sampler", "texture", "u32", "vec2", "vec3", "vec4", "vec2f", "vec3f", "vec4f",
+    "abstract", "as", "async", "await", "become", "cast", "catch", "class", "co_await", "co_return",
+    "co_yield", "coherent", "do", "enum", "explicit", "export", "extends", "extern", "external", "final",
+    "finally", "friend", "from", "function", "fxgroup", "get", "goto", "handle", "highp", "impl", "implements",
+    "import", "inline", "instanceof", "interface", "layout", "lowp", "macro", "match", "mediump", "meta",
+    "mod", "module", "move", "mut", "namespace", "new", "nil", "noexcept", "noinline", "null", "of",
+    "operator", "package", "packoffset", "partition", "pass", "patch", "precise", "precision", "private",
+    "protected", "public", "readonly", "ref", "resource", "restrict", "self", "set", "shared", "signed",
+    "sizeof", "smooth", "static", "super", "target", "template", "this", "throw", "trait", "try", "type",
+    "typedef", "typeid", "typename", "typeof", "union", "unless", "unsigned", "use", "using", "varying",
+    "virtual", "volatile", "where", "with", "writeonly", "yield", "s", "material",
+];
+
+/// Hands out identifiers, each once.
+#[derive(Default)]
+pub struct Namer {
+    taken: BTreeSet<String>,
+}
+
+/// `label` as a snake_case identifier (ASCII letters, digits, underscores).
+fn sanitize(label: &str) -> String {
+    let mut out = String::new();
+    for c in label.chars() {
+        if c.is_ascii_alphanumeric() {
+            if c.is_ascii_uppercase() && out.chars().last().is_some_and(|last| last.is_ascii_lowercase()) {
+                out.push('_');
+            }
+            out.push(c.to_ascii_lowercase());
+        } else if !out.is_empty() && !out.ends_with('_') {
+            out.push('_');
+        }
+    }
+    let out = out.trim_matches('_').to_string();
+    let needs_prefix = out.is_empty() || out.starts_with(|c: char| c.is_ascii_digit()) || out.starts_with("veneer_");
+    if needs_prefix { if out.is_empty() { "n".to_string() } else { format!("n_{out}") } } else { out }
+}
+
+impl Namer {
+    /// A fresh identifier based on `label`; suffixed with `fallback_id` (then a counter)
+    /// when the plain name is reserved or already used.
+    pub fn name(&mut self, label: &str, fallback_id: u32) -> String {
+        let base = sanitize(label);
+        let clashes = |name: &str, taken: &BTreeSet<String>| {
+            RESERVED.contains(&name) || taken.contains(name)
+        };
+        let mut name = base.clone();
+        if clashes(&name, &self.taken) {
+            name = format!("{base}_{fallback_id}");
+        }
+        let mut counter = 2;
+        while clashes(&name, &self.taken) {
+            name = format!("{base}_{fallback_id}_{counter}");
+            counter += 1;
+        }
+        self.taken.insert(name.clone());
+        name
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn labels_become_unique_snake_case_identifiers() {
+        let mut namer = Namer::default();
+        assert_eq!(namer.name("Ring Phase", 3), "ring_phase");
+        assert_eq!(namer.name("ring phase", 4), "ring_phase_4");
+        assert_eq!(namer.name("loop", 5), "loop_5");
+        assert_eq!(namer.name("2nd warp", 6), "n_2nd_warp");
+        assert_eq!(namer.name("veneer_x", 7), "n_veneer_x");
+        assert_eq!(namer.name("", 8), "n");
+        assert_eq!(namer.name("grainContrast", 9), "grain_contrast");
+    }
+}

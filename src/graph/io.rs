@@ -1,0 +1,78 @@
+//! Reading and writing graph files (RON).
+
+use super::Graph;
+use crate::fsutil;
+use std::fmt;
+use std::path::{Path, PathBuf};
+
+/// The graph file format version this build writes.
+pub const CURRENT_VERSION: u32 = 1;
+
+/// A graph file that could not be read.
+#[derive(Debug)]
+pub struct LoadError {
+    /// The file, when the graph came from one.
+    pub path: Option<PathBuf>,
+    /// 1-based line and column, when the error has a position.
+    pub position: Option<(usize, usize)>,
+    pub message: String,
+}
+
+impl fmt::Display for LoadError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let path = self.path.as_ref().map(|p| p.display().to_string()).unwrap_or_else(|| "<graph>".into());
+        match self.position {
+            Some((line, col)) => write!(f, "{path}:{line}:{col}: {}", self.message),
+            None => write!(f, "{path}: {}", self.message),
+        }
+    }
+}
+
+impl std::error::Error for LoadError {}
+
+/// Parses a graph from RON text. Errors carry the line and column.
+pub fn from_ron(text: &str) -> Result<Graph, LoadError> {
+    let graph: Graph = ron::from_str(text).map_err(|err| LoadError {
+        path: None,
+        position: Some((err.span.start.line, err.span.start.col)),
+        message: err.code.to_string(),
+    })?;
+    if graph.version != CURRENT_VERSION {
+        let line = text.lines().position(|line| line.trim_start().starts_with("version")).map(|l| (l + 1, 5));
+        return Err(LoadError {
+            path: None,
+            position: line,
+            message: format!(
+                "unsupported graph version {} (this Veneer reads version {CURRENT_VERSION})",
+                graph.version
+            ),
+        });
+    }
+    Ok(graph)
+}
+
+/// Reads a graph file.
+pub fn load(path: &Path) -> Result<Graph, LoadError> {
+    let text = std::fs::read_to_string(path).map_err(|err| LoadError {
+        path: Some(path.to_path_buf()),
+        position: None,
+        message: format!("cannot read: {err}"),
+    })?;
+    from_ron(&text).map_err(|err| LoadError { path: Some(path.to_path_buf()), ..err })
+}
+
+/// The canonical RON text of a graph: nodes by id, wires sorted, so the same graph
+/// always gives the same bytes.
+pub fn to_ron(graph: &Graph) -> String {
+    let mut graph = graph.clone();
+    graph.canonicalize();
+    let config = ron::ser::PrettyConfig::new().depth_limit(2).indentor("    ").struct_names(false);
+    let mut text = ron::ser::to_string_pretty(&graph, config).expect("graphs always serialise");
+    text.push('\n');
+    text
+}
+
+/// Writes a graph atomically (temporary file, then rename).
+pub fn save(graph: &Graph, path: &Path) -> std::io::Result<()> {
+    fsutil::write_atomic(path, to_ron(graph).as_bytes())
+}

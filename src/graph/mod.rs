@@ -1,0 +1,171 @@
+//! The graph model: nodes, pins, wires, their checks and their file format.
+
+pub mod check;
+mod io;
+pub mod kind;
+pub mod signature;
+pub mod value;
+
+pub use check::{CheckError, CheckedGraph, check};
+pub use io::{CURRENT_VERSION, LoadError, from_ron, load, save, to_ron};
+pub use kind::{Basis, Category, FractalMode, MathOp, Metric, NodeKind, RampInterpolation, RampStop, UnaryOp, WorleyFeature};
+pub use signature::{InputPin, OutputPin, PinDefault, Signature};
+pub use value::{Value, ValueType};
+
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+use std::fmt;
+
+/// A node's stable identifier: unique in its graph, never reused while the node lives.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[serde(transparent)]
+pub struct NodeId(pub u32);
+
+impl fmt::Display for NodeId {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "#{}", self.0)
+    }
+}
+
+/// One node of a material graph.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Node {
+    pub id: NodeId,
+    /// The artist's name for the node; also names its variables in generated WGSL.
+    #[serde(default)]
+    pub label: String,
+    pub kind: NodeKind,
+    /// Constant values of unconnected inputs that differ from, or pin down, the defaults.
+    #[serde(default)]
+    pub inputs: BTreeMap<String, Value>,
+    /// Position in the editor canvas.
+    #[serde(default)]
+    pub position: (f32, f32),
+}
+
+impl Node {
+    /// A node of `kind` with default inputs.
+    pub fn new(id: NodeId, kind: NodeKind) -> Node {
+        Node { id, label: String::new(), kind, inputs: BTreeMap::new(), position: (0.0, 0.0) }
+    }
+
+    /// The label, or the kind's title when the label is empty.
+    pub fn display_name(&self) -> &str {
+        if self.label.is_empty() { self.kind.title() } else { &self.label }
+    }
+}
+
+impl fmt::Display for Node {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "node '{}' ({})", self.display_name(), self.id)
+    }
+}
+
+/// One end of a wire: a node and the name of one of its pins.
+#[derive(Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+pub struct PinRef {
+    pub node: NodeId,
+    pub pin: String,
+}
+
+impl PinRef {
+    /// A reference to `pin` of `node`.
+    pub fn new(node: NodeId, pin: &str) -> PinRef {
+        PinRef { node, pin: pin.to_string() }
+    }
+}
+
+/// A wire from an output pin to an input pin.
+#[derive(Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+pub struct Wire {
+    pub from: PinRef,
+    pub to: PinRef,
+}
+
+/// How the material is shown on a mesh: which mesh, and where the mesh sits in
+/// texture space (object-space position = mesh position * size + center).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Preview {
+    pub mesh: String,
+    pub center: (f64, f64, f64),
+    pub size: f64,
+}
+
+impl Default for Preview {
+    fn default() -> Preview {
+        Preview { mesh: "sphere".to_string(), center: (0.0, 0.0, 0.0), size: 1.0 }
+    }
+}
+
+/// A material graph as stored in a `.ron` file.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Graph {
+    /// File format version.
+    pub version: u32,
+    /// Human-readable name of the material.
+    #[serde(default)]
+    pub name: String,
+    #[serde(default)]
+    pub preview: Preview,
+    pub nodes: Vec<Node>,
+    #[serde(default)]
+    pub wires: Vec<Wire>,
+}
+
+impl Default for Graph {
+    fn default() -> Graph {
+        Graph { version: CURRENT_VERSION, name: String::new(), preview: Preview::default(), nodes: vec![], wires: vec![] }
+    }
+}
+
+impl Graph {
+    /// The node with `id`.
+    pub fn node(&self, id: NodeId) -> Option<&Node> {
+        self.nodes.iter().find(|node| node.id == id)
+    }
+
+    /// The node with `id`, mutably.
+    pub fn node_mut(&mut self, id: NodeId) -> Option<&mut Node> {
+        self.nodes.iter_mut().find(|node| node.id == id)
+    }
+
+    /// An id no node uses yet.
+    pub fn next_id(&self) -> NodeId {
+        NodeId(self.nodes.iter().map(|node| node.id.0 + 1).max().unwrap_or(1))
+    }
+
+    /// Adds a node and returns its id.
+    pub fn add(&mut self, label: &str, kind: NodeKind) -> NodeId {
+        let id = self.next_id();
+        let mut node = Node::new(id, kind);
+        node.label = label.to_string();
+        self.nodes.push(node);
+        id
+    }
+
+    /// Sets the constant of an unconnected input.
+    pub fn set_input(&mut self, id: NodeId, pin: &str, value: Value) {
+        if let Some(node) = self.node_mut(id) {
+            node.inputs.insert(pin.to_string(), value);
+        }
+    }
+
+    /// Connects an output pin to an input pin, replacing any wire into that input.
+    pub fn connect(&mut self, from: NodeId, from_pin: &str, to: NodeId, to_pin: &str) {
+        let to = PinRef::new(to, to_pin);
+        self.wires.retain(|wire| wire.to != to);
+        self.wires.push(Wire { from: PinRef::new(from, from_pin), to });
+    }
+
+    /// The wire feeding an input pin, if any.
+    pub fn wire_into(&self, node: NodeId, pin: &str) -> Option<&Wire> {
+        self.wires.iter().find(|wire| wire.to.node == node && wire.to.pin == pin)
+    }
+
+    /// Puts nodes and wires in their canonical order, so that saving is deterministic.
+    pub fn canonicalize(&mut self) {
+        self.nodes.sort_by_key(|node| node.id);
+        self.wires.sort();
+        self.wires.dedup();
+    }
+}

@@ -1,0 +1,9 @@
+//! Veneer: procedural material node graphs compiled to WGSL, checked by naga, evaluated
+//! on the CPU as a reference, and rendered through wgpu.
+
+pub mod codegen;
+pub mod eval;
+pub mod fsutil;
+pub mod graph;
+pub mod mesh;
+pub mod render;

@@ -1,0 +1,105 @@
+//! Procedural primitives: sphere, cube, torus and plane, each about unit size at the origin.
+
+use super::Mesh;
+use std::f32::consts::{PI, TAU};
+
+/// Names accepted by [`primitive`].
+pub const PRIMITIVES: [&str; 4] = ["sphere", "cube", "torus", "plane"];
+
+/// The primitive called `name`, if there is one.
+pub fn primitive(name: &str) -> Option<Mesh> {
+    match name {
+        "sphere" => Some(sphere(96, 48)),
+        "cube" => Some(cube()),
+        "torus" => Some(torus(0.7, 0.3, 96, 48)),
+        "plane" => Some(plane()),
+        _ => None,
+    }
+}
+
+/// A unit sphere of latitude-longitude quads.
+fn sphere(segments: u32, rings: u32) -> Mesh {
+    let mut mesh = Mesh::default();
+    mesh.push_grid(segments, rings, |u, v| {
+        let (theta, phi) = (u * TAU, v * PI);
+        let p = [phi.sin() * theta.cos(), phi.cos(), -phi.sin() * theta.sin()];
+        (p, p)
+    });
+    mesh
+}
+
+/// A torus about the y axis.
+fn torus(major: f32, minor: f32, segments: u32, sides: u32) -> Mesh {
+    let mut mesh = Mesh::default();
+    mesh.push_grid(segments, sides, |u, v| {
+        let (theta, phi) = (u * TAU, v * TAU);
+        let normal = [phi.cos() * theta.cos(), phi.sin(), -phi.cos() * theta.sin()];
+        let ring = major + minor * phi.cos();
+        ([ring * theta.cos(), minor * phi.sin(), -ring * theta.sin()], normal)
+    });
+    mesh
+}
+
+/// A cube from -0.7 to 0.7, one grid per face so the edges stay sharp.
+fn cube() -> Mesh {
+    let mut mesh = Mesh::default();
+    let half = 0.7;
+    // (normal, a, b) per face with a × b = normal; the grid runs v along a and u along b
+    // so that its triangles wind counter-clockwise seen from outside.
+    let faces: [([f32; 3], [f32; 3], [f32; 3]); 6] = [
+        ([1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]),
+        ([-1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, 1.0, 0.0]),
+        ([0.0, 1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, -1.0]),
+        ([0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]),
+        ([0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]),
+        ([0.0, 0.0, -1.0], [-1.0, 0.0, 0.0], [0.0, 1.0, 0.0]),
+    ];
+    for (n, a, b) in faces {
+        mesh.push_grid(8, 8, |u, v| {
+            let (s, t) = ((v * 2.0 - 1.0) * half, (u * 2.0 - 1.0) * half);
+            let p = [0, 1, 2].map(|k| n[k] * half + a[k] * s + b[k] * t);
+            (p, n)
+        });
+    }
+    mesh
+}
+
+/// A 2×2 plane in y = 0 facing up.
+fn plane() -> Mesh {
+    let mut mesh = Mesh::default();
+    mesh.push_grid(16, 16, |u, v| ([u * 2.0 - 1.0, 0.0, v * 2.0 - 1.0], [0.0, 1.0, 0.0]));
+    mesh
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn signed_volume(mesh: &Mesh) -> f32 {
+        mesh.indices
+            .chunks(3)
+            .map(|t| {
+                let [a, b, c] = [0, 1, 2].map(|k| glam::Vec3::from(mesh.positions[t[k] as usize]));
+                a.dot(b.cross(c)) / 6.0
+            })
+            .sum()
+    }
+
+    #[test]
+    fn closed_primitives_wind_outwards_with_the_expected_volume() {
+        let sphere = primitive("sphere").unwrap();
+        assert!((signed_volume(&sphere) - 4.0 / 3.0 * PI).abs() < 0.02);
+        let cube = primitive("cube").unwrap();
+        assert!((signed_volume(&cube) - 1.4f32.powi(3)).abs() < 1e-3);
+        let torus = primitive("torus").unwrap();
+        assert!((signed_volume(&torus) - 2.0 * PI * PI * 0.7 * 0.09).abs() < 0.01);
+    }
+
+    #[test]
+    fn normals_are_unit_length() {
+        for name in PRIMITIVES {
+            let mesh = primitive(name).unwrap();
+            assert!(mesh.normals.iter().all(|n| (glam::Vec3::from(*n).length() - 1.0).abs() < 1e-4), "{name}");
+        }
+    }
+}

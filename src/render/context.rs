@@ -1,0 +1,74 @@
+//! A headless wgpu device on whatever adapter the machine has.
+
+use std::fmt;
+
+/// A failure to set up the GPU or to run a render.
+#[derive(Debug)]
+pub struct RenderError(pub String);
+
+impl fmt::Display for RenderError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for RenderError {}
+
+/// A wgpu device and queue without a window.
+pub struct GpuContext {
+    pub adapter: wgpu::Adapter,
+    pub device: wgpu::Device,
+    pub queue: wgpu::Queue,
+}
+
+impl GpuContext {
+    /// Opens the best adapter of the backends in `WGPU_BACKEND` (default: all): a real
+    /// GPU when there is one, otherwise a software rasteriser (lavapipe, llvmpipe).
+    pub fn new() -> Result<GpuContext, RenderError> {
+        let descriptor = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
+        let instance = wgpu::Instance::new(descriptor);
+        let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
+            power_preference: wgpu::PowerPreference::HighPerformance,
+            force_fallback_adapter: false,
+            compatible_surface: None,
+            apply_limit_buckets: false,
+        }))
+        .map_err(|error| RenderError(format!("no GPU adapter available: {error}")))?;
+        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+            label: Some("veneer"),
+            required_limits: wgpu::Limits::downlevel_defaults().using_resolution(adapter.limits()),
+            ..Default::default()
+        }))
+        .map_err(|error| RenderError(format!("cannot open the GPU device: {error}")))?;
+        Ok(GpuContext { adapter, device, queue })
+    }
+
+    /// "name (backend)" of the adapter, as recorded next to golden images.
+    pub fn adapter_description(&self) -> String {
+        let info = self.adapter.get_info();
+        format!("{} ({:?})", info.name, info.backend)
+    }
+
+    /// Compiles WGSL into a shader module, turning validation errors into a `RenderError`.
+    pub fn shader(&self, label: &str, source: &str) -> Result<wgpu::ShaderModule, RenderError> {
+        let scope = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let module = self.device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some(label),
+            source: wgpu::ShaderSource::Wgsl(source.into()),
+        });
+        match pollster::block_on(scope.pop()) {
+            Some(error) => Err(RenderError(format!("shader '{label}' rejected by wgpu: {error}"))),
+            None => Ok(module),
+        }
+    }
+
+    /// Runs `f`, returning any validation error wgpu raised meanwhile.
+    pub fn checked<T>(&self, what: &str, f: impl FnOnce() -> T) -> Result<T, RenderError> {
+        let scope = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let value = f();
+        match pollster::block_on(scope.pop()) {
+            Some(error) => Err(RenderError(format!("{what}: {error}"))),
+            None => Ok(value),
+        }
+    }
+}
