@@ -1,5 +1,6 @@
 //! Entry points of the flat render: the material's albedo over the plane y = Y, one
-//! sample per pixel centre (the `veneer render --flat` contract).
+//! sample per pixel centre (the `veneer render --flat` contract). The f32 bits go to an
+//! integer target, which every backend can render to and which reads back exactly.
 
 struct VeneerFlatView {
     rect: vec4f,          // x0, z0, x1, z1
@@ -18,11 +19,11 @@ fn veneer_flat_vertex(@builtin(vertex_index) index: u32) -> @builtin(position) v
 }
 
 @fragment
-fn veneer_flat_fragment(@builtin(position) pixel: vec4f) -> @location(0) vec4f {
+fn veneer_flat_fragment(@builtin(position) pixel: vec4f) -> @location(0) vec4u {
     let view = veneer_flat_view;
     let t = (pixel.xy + view.pixel_offset) / view.size;
     let position = vec3f(view.rect.x + (view.rect.z - view.rect.x) * t.x, view.plane_y, view.rect.y + (view.rect.w - view.rect.y) * t.y);
     let surface = VeneerSurface(position, vec3f(0.0, 1.0, 0.0), vec2f(0.0), vec4f(0.0), view.time);
     let material = veneer_material(surface);
-    return vec4f(material.albedo, material.alpha);
+    return bitcast<vec4u>(vec4f(material.albedo, material.alpha));
 }

@@ -16,11 +16,17 @@ pub fn run(args: CheckArgs) -> Result<(), Failure> {
     for path in &args.graphs {
         let result = veneer::graph::load(path)
             .map_err(Failure::from)
-            .and_then(|graph| veneer::codegen::compile_graph(&graph).map_err(|error| in_file(path, error)));
+            .and_then(|graph| {
+                veneer::codegen::compile_graph(&graph).map_err(|error| in_file(path, error))
+            });
         match result {
             Ok(_) => println!("{}: ok", path.display()),
             Err(Failure(message)) => failures.push(message),
         }
     }
-    if failures.is_empty() { Ok(()) } else { Err(Failure(failures.join("\n"))) }
+    if failures.is_empty() {
+        Ok(())
+    } else {
+        Err(Failure(failures.join("\n")))
+    }
 }

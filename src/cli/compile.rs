@@ -24,7 +24,8 @@ pub struct CompileArgs {
 
 pub fn run(args: CompileArgs) -> Result<(), Failure> {
     let graph = load_graph(&args.graph)?;
-    let module = veneer::codegen::compile_graph(&graph).map_err(|error| in_file(&args.graph, error))?;
+    let module =
+        veneer::codegen::compile_graph(&graph).map_err(|error| in_file(&args.graph, error))?;
     match args.target {
         Target::Wgsl => write_output(args.output.as_ref(), module.source.as_bytes()),
     }

@@ -14,7 +14,8 @@ pub struct FmtArgs {
 pub fn run(args: FmtArgs) -> Result<(), Failure> {
     for path in &args.graphs {
         let graph = load_graph(path)?;
-        veneer::graph::save(&graph, path).map_err(|error| Failure(format!("{}: cannot write: {error}", path.display())))?;
+        veneer::graph::save(&graph, path)
+            .map_err(|error| Failure(format!("{}: cannot write: {error}", path.display())))?;
     }
     Ok(())
 }

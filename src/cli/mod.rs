@@ -43,7 +43,10 @@ pub fn run() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         None => {
-            println!("Veneer {}: the node editor is not part of this build yet.", env!("CARGO_PKG_VERSION"));
+            println!(
+                "Veneer {}: the node editor is not part of this build yet.",
+                env!("CARGO_PKG_VERSION")
+            );
             println!("Render the wood preset headless with:");
             println!("  veneer render graphs/wood.ron -o wood.png");
             println!("Run `veneer --help` for every command.");
@@ -70,7 +73,11 @@ fn load_graph(path: &Path) -> Result<veneer::graph::Graph, Failure> {
 
 /// Prefixes every line of a multi-line error with the file it concerns.
 fn in_file(path: &Path, error: impl std::fmt::Display) -> Failure {
-    let lines: Vec<String> = error.to_string().lines().map(|line| format!("{}: {line}", path.display())).collect();
+    let lines: Vec<String> = error
+        .to_string()
+        .lines()
+        .map(|line| format!("{}: {line}", path.display()))
+        .collect();
     Failure(lines.join("\n"))
 }
 

@@ -29,25 +29,39 @@ pub struct RenderArgs {
 fn parse_flat(text: &str) -> Result<FlatRect, String> {
     let numbers: Vec<f64> = text
         .split(',')
-        .map(|part| part.trim().parse::<f64>().map_err(|_| format!("'{part}' is not a number")))
+        .map(|part| {
+            part.trim()
+                .parse::<f64>()
+                .map_err(|_| format!("'{part}' is not a number"))
+        })
         .collect::<Result<_, _>>()?;
     match numbers[..] {
-        [x0, z0, x1, z1, y] if numbers.iter().all(|n| n.is_finite()) => Ok(FlatRect { x0, z0, x1, z1, y }),
+        [x0, z0, x1, z1, y] if numbers.iter().all(|n| n.is_finite()) => {
+            Ok(FlatRect { x0, z0, x1, z1, y })
+        }
         [_, _, _, _, _] => Err("the rectangle must be finite".into()),
-        _ => Err(format!("expected five numbers X0,Z0,X1,Z1,Y, got {}", numbers.len())),
+        _ => Err(format!(
+            "expected five numbers X0,Z0,X1,Z1,Y, got {}",
+            numbers.len()
+        )),
     }
 }
 
 pub fn run(args: RenderArgs) -> Result<(), Failure> {
     let graph = load_graph(&args.graph)?;
-    let module = veneer::codegen::compile_graph(&graph).map_err(|error| in_file(&args.graph, error))?;
+    let module =
+        veneer::codegen::compile_graph(&graph).map_err(|error| in_file(&args.graph, error))?;
     let gpu = GpuContext::new()?;
     let size = args.size;
     let png = match args.flat {
         Some(rect) => {
             let renderer = FlatRenderer::new(&gpu, &module.source)?;
             let pixels = renderer.render(&gpu, rect, size, args.time)?;
-            encode_png(&veneer::render::albedo_to_rgb8(&pixels), size, image::ExtendedColorType::Rgb8)?
+            encode_png(
+                &veneer::render::albedo_to_rgb8(&pixels),
+                size,
+                image::ExtendedColorType::Rgb8,
+            )?
         }
         None => {
             let mesh_name = args.mesh.as_deref().unwrap_or(&graph.preview.mesh);
@@ -67,7 +81,11 @@ pub fn run(args: RenderArgs) -> Result<(), Failure> {
     write_output(Some(&args.output), &png)
 }
 
-fn encode_png(pixels: &[u8], size: u32, color: image::ExtendedColorType) -> Result<Vec<u8>, Failure> {
+fn encode_png(
+    pixels: &[u8],
+    size: u32,
+    color: image::ExtendedColorType,
+) -> Result<Vec<u8>, Failure> {
     use image::ImageEncoder;
     let mut bytes = Vec::new();
     image::codecs::png::PngEncoder::new(&mut bytes).write_image(pixels, size, size, color)?;

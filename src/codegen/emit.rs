@@ -2,12 +2,18 @@
 //! items it calls.
 
 use crate::graph::check::{CheckedNode, InputSource};
-use crate::graph::{MathOp, NodeKind, RampInterpolation, UnaryOp, Value, ValueType, WorleyFeature, Metric};
+use crate::graph::{
+    MathOp, Metric, NodeKind, RampInterpolation, UnaryOp, Value, ValueType, WorleyFeature,
+};
 
 /// A WGSL float literal for `x` (always with a decimal point or exponent).
 pub fn float_literal(x: f64) -> String {
     let text = format!("{x:?}");
-    if text.contains(['.', 'e', 'E']) || text.contains("inf") || text.contains("NaN") { text } else { format!("{text}.0") }
+    if text.contains(['.', 'e', 'E']) || text.contains("inf") || text.contains("NaN") {
+        text
+    } else {
+        format!("{text}.0")
+    }
 }
 
 /// A WGSL literal for a constant.
@@ -16,7 +22,12 @@ pub fn value_literal(value: &Value) -> String {
         Value::Float(x) => float_literal(x),
         Value::Vec2(x, y) => format!("vec2f({}, {})", float_literal(x), float_literal(y)),
         Value::Vec3(x, y, z) | Value::Color(x, y, z) => {
-            format!("vec3f({}, {}, {})", float_literal(x), float_literal(y), float_literal(z))
+            format!(
+                "vec3f({}, {}, {})",
+                float_literal(x),
+                float_literal(y),
+                float_literal(z)
+            )
         }
     }
 }
@@ -53,7 +64,9 @@ pub fn emit_node(checked: &CheckedNode, inputs: &[String], name: &str) -> NodeCo
         Normal => code.outputs = vec!["s.normal".into()],
         Uv => code.outputs = vec!["s.uv".into()],
         Time => code.outputs = vec!["s.time".into()],
-        Field { slot } => code.outputs = vec![format!("s.fields.{}", ["x", "y", "z", "w"][*slot as usize])],
+        Field { slot } => {
+            code.outputs = vec![format!("s.fields.{}", ["x", "y", "z", "w"][*slot as usize])]
+        }
         Constant { .. } => single(&mut code, i[0].clone()),
         Transform => {
             let no_rotation = checked.inputs[2] == InputSource::Const(Value::Vec3(0.0, 0.0, 0.0));
@@ -61,21 +74,36 @@ pub fn emit_node(checked: &CheckedNode, inputs: &[String], name: &str) -> NodeCo
                 single(&mut code, format!("{} * {} + {}", i[0], i[1], i[3]));
             } else {
                 code.library.push("veneer_transform".into());
-                single(&mut code, format!("veneer_transform({}, {}, {}, {})", i[0], i[1], i[2], i[3]));
+                single(
+                    &mut code,
+                    format!("veneer_transform({}, {}, {}, {})", i[0], i[1], i[2], i[3]),
+                );
             }
         }
         Project => {
             code.library.push("veneer_project".into());
-            single(&mut code, format!("veneer_project({}, {}, {})", i[0], i[1], i[2]));
+            single(
+                &mut code,
+                format!("veneer_project({}, {}, {})", i[0], i[1], i[2]),
+            );
         }
         Cylindrical => {
             code.library.push("veneer_cylindrical".into());
-            code.bind(name, format!("veneer_cylindrical({}, {}, {})", i[0], i[1], i[2]));
-            code.outputs = ["x", "y", "z"].iter().map(|c| format!("{name}.{c}")).collect();
+            code.bind(
+                name,
+                format!("veneer_cylindrical({}, {}, {})", i[0], i[1], i[2]),
+            );
+            code.outputs = ["x", "y", "z"]
+                .iter()
+                .map(|c| format!("{name}.{c}"))
+                .collect();
         }
         DomainWarp { basis } => {
             let function = format!("veneer_warp_{}", basis.suffix());
-            single(&mut code, format!("{function}({}, {}, {})", i[0], i[1], i[2]));
+            single(
+                &mut code,
+                format!("{function}({}, {}, {})", i[0], i[1], i[2]),
+            );
             code.library.push(function);
         }
         Noise { basis } => {
@@ -84,20 +112,32 @@ pub fn emit_node(checked: &CheckedNode, inputs: &[String], name: &str) -> NodeCo
             code.library.push(function);
         }
         Fbm { .. } | Turbulence { .. } | FractalSum { .. } => {
-            let (mode, basis, octaves, normalize) = checked.node.kind.fractal().expect("a fractal kind");
+            let (mode, basis, octaves, normalize) =
+                checked.node.kind.fractal().expect("a fractal kind");
             let function = format!("veneer_{}_{}", mode.name(), basis.suffix());
             single(
                 &mut code,
-                format!("{function}({} * {}, {octaves}, {}, {}, {}, {normalize})", i[0], i[1], i[2], i[3], i[4]),
+                format!(
+                    "{function}({} * {}, {octaves}, {}, {}, {}, {normalize})",
+                    i[0], i[1], i[2], i[3], i[4]
+                ),
             );
             code.library.push(function);
         }
-        Worley { feature, metric, octaves } => {
+        Worley {
+            feature,
+            metric,
+            octaves,
+        } => {
             let feature = worley_feature_index(*feature);
             let metric = metric_index(*metric);
             let expression = if *octaves == 1 {
-                code.library.extend(["veneer_worley".into(), "veneer_worley_feature".into()]);
-                format!("veneer_worley_feature(veneer_worley({} * {}, {}, {metric}), {feature})", i[0], i[1], i[2])
+                code.library
+                    .extend(["veneer_worley".into(), "veneer_worley_feature".into()]);
+                format!(
+                    "veneer_worley_feature(veneer_worley({} * {}, {}, {metric}), {feature})",
+                    i[0], i[1], i[2]
+                )
             } else {
                 code.library.push("veneer_worley_fractal".into());
                 format!(
@@ -112,7 +152,10 @@ pub fn emit_node(checked: &CheckedNode, inputs: &[String], name: &str) -> NodeCo
         Tiles => {
             code.library.push("veneer_tiles".into());
             code.bind(name, format!("veneer_tiles({})", i.join(", ")));
-            code.outputs = ["mask", "cell", "local"].iter().map(|c| format!("{name}.{c}")).collect();
+            code.outputs = ["mask", "cell", "local"]
+                .iter()
+                .map(|c| format!("{name}.{c}"))
+                .collect();
         }
         Rings => call(&mut code, name, "veneer_rings", i),
         Math { op, ty } => {
@@ -124,7 +167,11 @@ pub fn emit_node(checked: &CheckedNode, inputs: &[String], name: &str) -> NodeCo
                 MathOp::Minimum => format!("min({}, {})", i[0], i[1]),
                 MathOp::Maximum => format!("max({}, {})", i[0], i[1]),
                 MathOp::Divide | MathOp::Power => {
-                    let stem = if *op == MathOp::Divide { "safe_div" } else { "safe_pow" };
+                    let stem = if *op == MathOp::Divide {
+                        "safe_div"
+                    } else {
+                        "safe_pow"
+                    };
                     let function = format!("veneer_{stem}_{t}");
                     let expression = format!("{function}({}, {})", i[0], i[1]);
                     code.library.push(function);
@@ -149,9 +196,15 @@ pub fn emit_node(checked: &CheckedNode, inputs: &[String], name: &str) -> NodeCo
         Mix { .. } => single(&mut code, format!("mix({}, {}, {})", i[0], i[1], i[2])),
         Clamp { ty } => {
             let t = ty.wgsl();
-            single(&mut code, format!("min(max({}, {t}({})), {t}({}))", i[0], i[1], i[2]));
+            single(
+                &mut code,
+                format!("min(max({}, {t}({})), {t}({}))", i[0], i[1], i[2]),
+            );
         }
-        Step { ty } => single(&mut code, format!("step({}({}), {})", ty.wgsl(), i[0], i[1])),
+        Step { ty } => single(
+            &mut code,
+            format!("step({}({}), {})", ty.wgsl(), i[0], i[1]),
+        ),
         Smoothstep => call(&mut code, name, "veneer_smoothstep", i),
         Remap => call(&mut code, name, "veneer_remap", i),
         Length { .. } => single(&mut code, format!("length({})", i[0])),
@@ -163,23 +216,46 @@ pub fn emit_node(checked: &CheckedNode, inputs: &[String], name: &str) -> NodeCo
         }
         Split { ty } => {
             code.bind(name, i[0].clone());
-            code.outputs = ["x", "y", "z"][..ty.width()].iter().map(|c| format!("{name}.{c}")).collect();
+            code.outputs = ["x", "y", "z"][..ty.width()]
+                .iter()
+                .map(|c| format!("{name}.{c}"))
+                .collect();
         }
         Combine { ty } => single(&mut code, format!("{}({})", ty.wgsl(), i.join(", "))),
-        ColorRamp { stops, interpolation } => {
-            let color = |k: usize| value_literal(&Value::Color(stops[k].color.0, stops[k].color.1, stops[k].color.2));
+        ColorRamp {
+            stops,
+            interpolation,
+        } => {
+            let color = |k: usize| {
+                value_literal(&Value::Color(
+                    stops[k].color.0,
+                    stops[k].color.1,
+                    stops[k].color.2,
+                ))
+            };
             if stops.len() == 1 {
                 single(&mut code, color(0));
             } else {
                 code.statements.push(format!("var {name} = {};", color(0)));
                 for k in 1..stops.len() {
-                    let (p0, p1) = (float_literal(stops[k - 1].position), float_literal(stops[k].position));
+                    let (p0, p1) = (
+                        float_literal(stops[k - 1].position),
+                        float_literal(stops[k].position),
+                    );
                     code.statements.push(match interpolation {
                         RampInterpolation::Linear => {
-                            format!("{name} = veneer_ramp_linear({name}, {}, {}, {p0}, {p1});", color(k), i[0])
+                            format!(
+                                "{name} = veneer_ramp_linear({name}, {}, {}, {p0}, {p1});",
+                                color(k),
+                                i[0]
+                            )
                         }
                         RampInterpolation::Constant => {
-                            format!("{name} = veneer_ramp_constant({name}, {}, {}, {p1});", color(k), i[0])
+                            format!(
+                                "{name} = veneer_ramp_constant({name}, {}, {}, {p1});",
+                                color(k),
+                                i[0]
+                            )
                         }
                     });
                 }
@@ -193,7 +269,8 @@ pub fn emit_node(checked: &CheckedNode, inputs: &[String], name: &str) -> NodeCo
         Material => {
             code.statements.push("return VeneerMaterial(".into());
             for (pin, expression) in checked.signature.inputs.iter().zip(i) {
-                code.statements.push(format!("    {expression}, // {}", pin.name));
+                code.statements
+                    .push(format!("    {expression}, // {}", pin.name));
             }
             code.statements.push(");".into());
         }
@@ -228,5 +305,9 @@ pub fn metric_index(metric: Metric) -> i32 {
 
 /// `expression` of type `from` converted to `to` (a float broadcasts).
 pub fn convert(expression: String, from: ValueType, to: ValueType) -> String {
-    if from == ValueType::Float && to != ValueType::Float { format!("{}({expression})", to.wgsl()) } else { expression }
+    if from == ValueType::Float && to != ValueType::Float {
+        format!("{}({expression})", to.wgsl())
+    } else {
+        expression
+    }
 }

@@ -55,15 +55,24 @@ fn parse(family: &'static str, source: &str) -> Vec<Item> {
             text.push_str(line);
             text.push('\n');
             if line == "}" {
-                items.push(Item { name: std::mem::take(name), text: std::mem::take(text), family });
+                items.push(Item {
+                    name: std::mem::take(name),
+                    text: std::mem::take(text),
+                    family,
+                });
                 current = None;
             }
             continue;
         }
-        let header = line.strip_prefix("fn ").or_else(|| line.strip_prefix("struct "));
+        let header = line
+            .strip_prefix("fn ")
+            .or_else(|| line.strip_prefix("struct "));
         match header {
             Some(rest) => {
-                let name: String = rest.chars().take_while(|c| c.is_alphanumeric() || *c == '_').collect();
+                let name: String = rest
+                    .chars()
+                    .take_while(|c| c.is_alphanumeric() || *c == '_')
+                    .collect();
                 current = Some((name, std::mem::take(&mut comment) + line + "\n"));
             }
             None if line.starts_with("//!") => {}
@@ -79,7 +88,12 @@ fn parse(family: &'static str, source: &str) -> Vec<Item> {
 
 fn items() -> &'static [Item] {
     static ITEMS: OnceLock<Vec<Item>> = OnceLock::new();
-    ITEMS.get_or_init(|| SOURCES.iter().flat_map(|(family, source)| parse(family, source)).collect())
+    ITEMS.get_or_init(|| {
+        SOURCES
+            .iter()
+            .flat_map(|(family, source)| parse(family, source))
+            .collect()
+    })
 }
 
 /// Every substitution of the placeholders that occur in `template`'s name.
@@ -104,14 +118,24 @@ fn substitutions(template: &str) -> Vec<Vec<(&'static str, &'static str)>> {
 }
 
 fn apply(text: &str, substitution: &[(&str, &str)]) -> String {
-    substitution.iter().fold(text.to_string(), |text, (placeholder, value)| text.replace(placeholder, value))
+    substitution
+        .iter()
+        .fold(text.to_string(), |text, (placeholder, value)| {
+            text.replace(placeholder, value)
+        })
 }
 
 /// The library item called `name`, instantiating a template when needed.
 pub fn instance(name: &str) -> Option<Instance> {
     items().iter().find_map(|item| {
-        let substitution = substitutions(&item.name).into_iter().find(|s| apply(&item.name, s) == name)?;
-        Some(Instance { name: name.to_string(), text: apply(&item.text, &substitution), family: item.family })
+        let substitution = substitutions(&item.name)
+            .into_iter()
+            .find(|s| apply(&item.name, s) == name)?;
+        Some(Instance {
+            name: name.to_string(),
+            text: apply(&item.text, &substitution),
+            family: item.family,
+        })
     })
 }
 
@@ -122,8 +146,12 @@ fn veneer_identifiers(text: &str) -> BTreeSet<String> {
     let mut start = 0;
     while let Some(offset) = text[start..].find("veneer_") {
         let begin = start + offset;
-        let preceded = begin > 0 && (bytes[begin - 1].is_ascii_alphanumeric() || bytes[begin - 1] == b'_');
-        let end = begin + text[begin..].find(|c: char| !(c.is_ascii_alphanumeric() || c == '_')).unwrap_or(text.len() - begin);
+        let preceded =
+            begin > 0 && (bytes[begin - 1].is_ascii_alphanumeric() || bytes[begin - 1] == b'_');
+        let end = begin
+            + text[begin..]
+                .find(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
+                .unwrap_or(text.len() - begin);
         if !preceded {
             found.insert(text[begin..end].to_string());
         }
@@ -167,7 +195,12 @@ mod tests {
         let names: Vec<&str> = items.iter().map(|i| i.name.as_str()).collect();
         assert_eq!(
             names,
-            ["veneer_lattice_sine", "veneer_noise_value_sine", "veneer_octave_fbm_value_sine", "veneer_fbm_value_sine"]
+            [
+                "veneer_lattice_sine",
+                "veneer_noise_value_sine",
+                "veneer_octave_fbm_value_sine",
+                "veneer_fbm_value_sine"
+            ]
         );
         assert!(!items[3].text.contains("BASIS") && !items[3].text.contains("MODE"));
     }

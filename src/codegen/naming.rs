@@ -5,20 +5,151 @@ use std::collections::BTreeSet;
 /// WGSL keywords and reserved words that a label could collide with, plus names the
 /// generated function uses itself.
 const RESERVED: &[&str] = &[
-    "alias", "break", "case", "const", "const_assert", "continue", "continuing", "default", "diagnostic",
-    "discard", "else", "enable", "false", "fn", "for", "if", "let", "loop", "override", "requires", "return",
-    "struct", "switch", "true", "var", "while", "array", "atomic", "bool", "f16", "f32", "i32", "mat2x2",
-    "mat3x3", "mat4x4", "ptr", "sampler", "texture", "u32", "vec2", "vec3", "vec4", "vec2f", "vec3f", "vec4f",
-    "abstract", "as", "async", "await", "become", "cast", "catch", "class", "co_await", "co_return",
-    "co_yield", "coherent", "do", "enum", "explicit", "export", "extends", "extern", "external", "final",
-    "finally", "friend", "from", "function", "fxgroup", "get", "goto", "handle", "highp", "impl", "implements",
-    "import", "inline", "instanceof", "interface", "layout", "lowp", "macro", "match", "mediump", "meta",
-    "mod", "module", "move", "mut", "namespace", "new", "nil", "noexcept", "noinline", "null", "of",
-    "operator", "package", "packoffset", "partition", "pass", "patch", "precise", "precision", "private",
-    "protected", "public", "readonly", "ref", "resource", "restrict", "self", "set", "shared", "signed",
-    "sizeof", "smooth", "static", "super", "target", "template", "this", "throw", "trait", "try", "type",
-    "typedef", "typeid", "typename", "typeof", "union", "unless", "unsigned", "use", "using", "varying",
-    "virtual", "volatile", "where", "with", "writeonly", "yield", "s", "material",
+    "alias",
+    "break",
+    "case",
+    "const",
+    "const_assert",
+    "continue",
+    "continuing",
+    "default",
+    "diagnostic",
+    "discard",
+    "else",
+    "enable",
+    "false",
+    "fn",
+    "for",
+    "if",
+    "let",
+    "loop",
+    "override",
+    "requires",
+    "return",
+    "struct",
+    "switch",
+    "true",
+    "var",
+    "while",
+    "array",
+    "atomic",
+    "bool",
+    "f16",
+    "f32",
+    "i32",
+    "mat2x2",
+    "mat3x3",
+    "mat4x4",
+    "ptr",
+    "sampler",
+    "texture",
+    "u32",
+    "vec2",
+    "vec3",
+    "vec4",
+    "vec2f",
+    "vec3f",
+    "vec4f",
+    "abstract",
+    "as",
+    "async",
+    "await",
+    "become",
+    "cast",
+    "catch",
+    "class",
+    "co_await",
+    "co_return",
+    "co_yield",
+    "coherent",
+    "do",
+    "enum",
+    "explicit",
+    "export",
+    "extends",
+    "extern",
+    "external",
+    "final",
+    "finally",
+    "friend",
+    "from",
+    "function",
+    "fxgroup",
+    "get",
+    "goto",
+    "handle",
+    "highp",
+    "impl",
+    "implements",
+    "import",
+    "inline",
+    "instanceof",
+    "interface",
+    "layout",
+    "lowp",
+    "macro",
+    "match",
+    "mediump",
+    "meta",
+    "mod",
+    "module",
+    "move",
+    "mut",
+    "namespace",
+    "new",
+    "nil",
+    "noexcept",
+    "noinline",
+    "null",
+    "of",
+    "operator",
+    "package",
+    "packoffset",
+    "partition",
+    "pass",
+    "patch",
+    "precise",
+    "precision",
+    "private",
+    "protected",
+    "public",
+    "readonly",
+    "ref",
+    "resource",
+    "restrict",
+    "self",
+    "set",
+    "shared",
+    "signed",
+    "sizeof",
+    "smooth",
+    "static",
+    "super",
+    "target",
+    "template",
+    "this",
+    "throw",
+    "trait",
+    "try",
+    "type",
+    "typedef",
+    "typeid",
+    "typename",
+    "typeof",
+    "union",
+    "unless",
+    "unsigned",
+    "use",
+    "using",
+    "varying",
+    "virtual",
+    "volatile",
+    "where",
+    "with",
+    "writeonly",
+    "yield",
+    "s",
+    "material",
 ];
 
 /// Hands out identifiers, each once.
@@ -32,7 +163,12 @@ fn sanitize(label: &str) -> String {
     let mut out = String::new();
     for c in label.chars() {
         if c.is_ascii_alphanumeric() {
-            if c.is_ascii_uppercase() && out.chars().last().is_some_and(|last| last.is_ascii_lowercase()) {
+            if c.is_ascii_uppercase()
+                && out
+                    .chars()
+                    .last()
+                    .is_some_and(|last| last.is_ascii_lowercase())
+            {
                 out.push('_');
             }
             out.push(c.to_ascii_lowercase());
@@ -41,8 +177,18 @@ fn sanitize(label: &str) -> String {
         }
     }
     let out = out.trim_matches('_').to_string();
-    let needs_prefix = out.is_empty() || out.starts_with(|c: char| c.is_ascii_digit()) || out.starts_with("veneer_");
-    if needs_prefix { if out.is_empty() { "n".to_string() } else { format!("n_{out}") } } else { out }
+    let needs_prefix = out.is_empty()
+        || out.starts_with(|c: char| c.is_ascii_digit())
+        || out.starts_with("veneer_");
+    if needs_prefix {
+        if out.is_empty() {
+            "n".to_string()
+        } else {
+            format!("n_{out}")
+        }
+    } else {
+        out
+    }
 }
 
 impl Namer {
@@ -50,9 +196,8 @@ impl Namer {
     /// when the plain name is reserved or already used.
     pub fn name(&mut self, label: &str, fallback_id: u32) -> String {
         let base = sanitize(label);
-        let clashes = |name: &str, taken: &BTreeSet<String>| {
-            RESERVED.contains(&name) || taken.contains(name)
-        };
+        let clashes =
+            |name: &str, taken: &BTreeSet<String>| RESERVED.contains(&name) || taken.contains(name);
         let mut name = base.clone();
         if clashes(&name, &self.taken) {
             name = format!("{base}_{fallback_id}");

@@ -29,7 +29,11 @@ impl fmt::Display for CheckError {
 #[derive(Clone, Debug, PartialEq)]
 pub enum InputSource {
     /// An output of an earlier node: its id, output index and type.
-    Wire { node: NodeId, output: usize, ty: ValueType },
+    Wire {
+        node: NodeId,
+        output: usize,
+        ty: ValueType,
+    },
     /// A constant, already converted to the pin's type.
     Const(Value),
     /// The surface position.
@@ -63,7 +67,9 @@ impl CheckedGraph {
 
     /// The material output node.
     pub fn material(&self) -> &CheckedNode {
-        self.order.last().expect("a checked graph ends with its material node")
+        self.order
+            .last()
+            .expect("a checked graph ends with its material node")
     }
 }
 
@@ -95,20 +101,41 @@ impl<'g> Checker<'g> {
         use NodeKind::*;
         let vector_only = |ty: &ValueType| *ty != ValueType::Float;
         let problem = match &node.kind {
-            Field { slot } if *slot > 3 => Some(format!("field slot {slot} is out of range (expected 0 to 3)")),
-            Fbm { octaves, .. } | Turbulence { octaves, .. } | FractalSum { octaves, .. } | Worley { octaves, .. }
+            Field { slot } if *slot > 3 => Some(format!(
+                "field slot {slot} is out of range (expected 0 to 3)"
+            )),
+            Fbm { octaves, .. }
+            | Turbulence { octaves, .. }
+            | FractalSum { octaves, .. }
+            | Worley { octaves, .. }
                 if *octaves == 0 || *octaves > MAX_OCTAVES =>
             {
-                Some(format!("octaves {octaves} is out of range (expected 1 to {MAX_OCTAVES})"))
+                Some(format!(
+                    "octaves {octaves} is out of range (expected 1 to {MAX_OCTAVES})"
+                ))
             }
-            Length { ty } | Dot { ty } | Normalize { ty } | Split { ty } | Combine { ty } if !vector_only(ty) => {
-                Some(format!("type {ty} is not a vector (expected vec2, vec3 or color)"))
+            Length { ty } | Dot { ty } | Normalize { ty } | Split { ty } | Combine { ty }
+                if !vector_only(ty) =>
+            {
+                Some(format!(
+                    "type {ty} is not a vector (expected vec2, vec3 or color)"
+                ))
             }
-            ColorRamp { stops, .. } if stops.is_empty() => Some("a colour ramp needs at least one stop".into()),
+            ColorRamp { stops, .. } if stops.is_empty() => {
+                Some("a colour ramp needs at least one stop".into())
+            }
             ColorRamp { stops, .. } => {
-                if stops.iter().any(|s| !s.position.is_finite() || ![s.color.0, s.color.1, s.color.2].iter().all(|c| c.is_finite())) {
+                if stops.iter().any(|s| {
+                    !s.position.is_finite()
+                        || ![s.color.0, s.color.1, s.color.2]
+                            .iter()
+                            .all(|c| c.is_finite())
+                }) {
                     Some("colour ramp stops must be finite".into())
-                } else if stops.windows(2).any(|pair| pair[1].position < pair[0].position) {
+                } else if stops
+                    .windows(2)
+                    .any(|pair| pair[1].position < pair[0].position)
+                {
                     Some("colour ramp stops must be sorted by position".into())
                 } else {
                     None
@@ -126,11 +153,18 @@ impl<'g> Checker<'g> {
             match signature.input(pin) {
                 None => {
                     let names: Vec<_> = signature.inputs.iter().map(|p| p.name).collect();
-                    self.error(Some(node), format!("no input named '{pin}' (inputs: {})", names.join(", ")));
+                    self.error(
+                        Some(node),
+                        format!("no input named '{pin}' (inputs: {})", names.join(", ")),
+                    );
                 }
                 Some((_, input)) if !value.ty().converts_to(input.ty) => self.error(
                     Some(node),
-                    format!("input '{pin}' expects {} but the file gives a {}", input.ty, value.ty()),
+                    format!(
+                        "input '{pin}' expects {} but the file gives a {}",
+                        input.ty,
+                        value.ty()
+                    ),
                 ),
                 Some(_) if !value.is_finite() => {
                     self.error(Some(node), format!("input '{pin}' is not finite"))
@@ -143,22 +177,44 @@ impl<'g> Checker<'g> {
     fn check_wires(&mut self) {
         let mut fed = BTreeSet::new();
         for wire in &self.graph.wires {
-            let (Some(from), Some(to)) = (self.by_id.get(&wire.from.node).copied(), self.by_id.get(&wire.to.node).copied())
-            else {
-                let missing = if self.by_id.contains_key(&wire.from.node) { wire.to.node } else { wire.from.node };
-                self.error(None, format!("a wire refers to node {missing}, which does not exist"));
+            let (Some(from), Some(to)) = (
+                self.by_id.get(&wire.from.node).copied(),
+                self.by_id.get(&wire.to.node).copied(),
+            ) else {
+                let missing = if self.by_id.contains_key(&wire.from.node) {
+                    wire.to.node
+                } else {
+                    wire.from.node
+                };
+                self.error(
+                    None,
+                    format!("a wire refers to node {missing}, which does not exist"),
+                );
                 continue;
             };
-            let Some((_, output)) = from.kind.signature().output(&wire.from.pin).map(|(i, p)| (i, *p)) else {
+            let Some((_, output)) = from
+                .kind
+                .signature()
+                .output(&wire.from.pin)
+                .map(|(i, p)| (i, *p))
+            else {
                 self.error(Some(from), format!("no output named '{}'", wire.from.pin));
                 continue;
             };
-            let Some((_, input)) = to.kind.signature().input(&wire.to.pin).map(|(i, p)| (i, *p)) else {
+            let Some((_, input)) = to
+                .kind
+                .signature()
+                .input(&wire.to.pin)
+                .map(|(i, p)| (i, *p))
+            else {
                 self.error(Some(to), format!("no input named '{}'", wire.to.pin));
                 continue;
             };
             if !fed.insert((wire.to.node, wire.to.pin.clone())) {
-                self.error(Some(to), format!("input '{}' has more than one wire", wire.to.pin));
+                self.error(
+                    Some(to),
+                    format!("input '{}' has more than one wire", wire.to.pin),
+                );
             }
             if !output.ty.converts_to(input.ty) {
                 self.error(
@@ -173,8 +229,12 @@ impl<'g> Checker<'g> {
     }
 
     fn material_node(&mut self) -> Option<&'g Node> {
-        let materials: Vec<&Node> =
-            self.graph.nodes.iter().filter(|node| node.kind == NodeKind::Material).collect();
+        let materials: Vec<&Node> = self
+            .graph
+            .nodes
+            .iter()
+            .filter(|node| node.kind == NodeKind::Material)
+            .collect();
         match materials.as_slice() {
             [] => {
                 self.error(None, "the graph has no Material output node".into());
@@ -183,7 +243,10 @@ impl<'g> Checker<'g> {
             [one] => Some(one),
             [_, more @ ..] => {
                 for extra in more {
-                    self.error(Some(extra), "a graph has exactly one Material output node".into());
+                    self.error(
+                        Some(extra),
+                        "a graph has exactly one Material output node".into(),
+                    );
                 }
                 None
             }
@@ -210,14 +273,31 @@ impl<'g> Checker<'g> {
                 continue;
             }
             stack.push((node, next + 1));
-            let Some(wire) = self.graph.wire_into(node.id, inputs[next].name) else { continue };
-            let Some(source) = self.by_id.get(&wire.from.node).copied() else { continue };
+            let Some(wire) = self.graph.wire_into(node.id, inputs[next].name) else {
+                continue;
+            };
+            let Some(source) = self.by_id.get(&wire.from.node).copied() else {
+                continue;
+            };
             match marks.get(&source.id) {
                 Some(Mark::Done) => {}
                 Some(Mark::Visiting) => {
-                    let start = stack.iter().position(|(n, _)| n.id == source.id).unwrap_or(0);
-                    let names: Vec<String> = stack[start..].iter().map(|(n, _)| format!("'{}'", n.display_name())).collect();
-                    self.error(Some(source), format!("cycle: {} -> '{}'", names.join(" -> "), source.display_name()));
+                    let start = stack
+                        .iter()
+                        .position(|(n, _)| n.id == source.id)
+                        .unwrap_or(0);
+                    let names: Vec<String> = stack[start..]
+                        .iter()
+                        .map(|(n, _)| format!("'{}'", n.display_name()))
+                        .collect();
+                    self.error(
+                        Some(source),
+                        format!(
+                            "cycle: {} -> '{}'",
+                            names.join(" -> "),
+                            source.display_name()
+                        ),
+                    );
                 }
                 None => {
                     marks.insert(source.id, Mark::Visiting);
@@ -233,8 +313,17 @@ impl<'g> Checker<'g> {
         for pin in &signature.inputs {
             let source = if let Some(wire) = self.graph.wire_into(node.id, pin.name) {
                 let from = self.by_id[&wire.from.node];
-                let (output, out_pin) = from.kind.signature().output(&wire.from.pin).map(|(i, p)| (i, *p)).expect("wires were checked before resolution");
-                InputSource::Wire { node: from.id, output, ty: out_pin.ty }
+                let (output, out_pin) = from
+                    .kind
+                    .signature()
+                    .output(&wire.from.pin)
+                    .map(|(i, p)| (i, *p))
+                    .expect("wires were checked before resolution");
+                InputSource::Wire {
+                    node: from.id,
+                    output,
+                    ty: out_pin.ty,
+                }
             } else if let Some(value) = node.inputs.get(pin.name) {
                 InputSource::Const(value.convert(pin.ty))
             } else {
@@ -242,7 +331,10 @@ impl<'g> Checker<'g> {
                     PinDefault::Const(value) => InputSource::Const(value),
                     PinDefault::Position => InputSource::Position,
                     PinDefault::Required => {
-                        self.error(Some(node), format!("input '{}' ({}) must be connected", pin.name, pin.ty));
+                        self.error(
+                            Some(node),
+                            format!("input '{}' ({}) must be connected", pin.name, pin.ty),
+                        );
                         InputSource::Const(Value::Float(0.0).convert(pin.ty))
                     }
                 }
@@ -258,7 +350,11 @@ impl<'g> Checker<'g> {
 /// Reports unknown pins, bad constants and settings, type mismatches, missing required
 /// inputs and cycles, each naming its node. Nodes the output does not reach are pruned.
 pub fn check(graph: &Graph) -> Result<CheckedGraph, Vec<CheckError>> {
-    let mut checker = Checker { graph, by_id: BTreeMap::new(), errors: Vec::new() };
+    let mut checker = Checker {
+        graph,
+        by_id: BTreeMap::new(),
+        errors: Vec::new(),
+    };
     checker.check_ids();
     for node in &graph.nodes {
         checker.by_id.entry(node.id).or_insert(node);
@@ -266,7 +362,9 @@ pub fn check(graph: &Graph) -> Result<CheckedGraph, Vec<CheckError>> {
         checker.check_constants(node, &node.kind.signature());
     }
     checker.check_wires();
-    let Some(material) = checker.material_node() else { return Err(checker.errors) };
+    let Some(material) = checker.material_node() else {
+        return Err(checker.errors);
+    };
     let needed = checker.order_from(material);
     if !checker.errors.is_empty() {
         return Err(checker.errors);
@@ -276,12 +374,21 @@ pub fn check(graph: &Graph) -> Result<CheckedGraph, Vec<CheckError>> {
         let signature = node.kind.signature();
         let inputs = checker.resolve(node, &signature);
         let used_outputs = vec![false; signature.outputs.len()];
-        order.push(CheckedNode { node: node.clone(), signature, inputs, used_outputs });
+        order.push(CheckedNode {
+            node: node.clone(),
+            signature,
+            inputs,
+            used_outputs,
+        });
     }
     if !checker.errors.is_empty() {
         return Err(checker.errors);
     }
-    let index: BTreeMap<NodeId, usize> = order.iter().enumerate().map(|(i, c)| (c.node.id, i)).collect();
+    let index: BTreeMap<NodeId, usize> = order
+        .iter()
+        .enumerate()
+        .map(|(i, c)| (c.node.id, i))
+        .collect();
     for i in 0..order.len() {
         for source in order[i].inputs.clone() {
             if let InputSource::Wire { node, output, .. } = source {
@@ -289,5 +396,8 @@ pub fn check(graph: &Graph) -> Result<CheckedGraph, Vec<CheckError>> {
             }
         }
     }
-    Ok(CheckedGraph { name: graph.name.clone(), order })
+    Ok(CheckedGraph {
+        name: graph.name.clone(),
+        order,
+    })
 }

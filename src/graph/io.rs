@@ -20,7 +20,11 @@ pub struct LoadError {
 
 impl fmt::Display for LoadError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let path = self.path.as_ref().map(|p| p.display().to_string()).unwrap_or_else(|| "<graph>".into());
+        let path = self
+            .path
+            .as_ref()
+            .map(|p| p.display().to_string())
+            .unwrap_or_else(|| "<graph>".into());
         match self.position {
             Some((line, col)) => write!(f, "{path}:{line}:{col}: {}", self.message),
             None => write!(f, "{path}: {}", self.message),
@@ -38,7 +42,10 @@ pub fn from_ron(text: &str) -> Result<Graph, LoadError> {
         message: err.code.to_string(),
     })?;
     if graph.version != CURRENT_VERSION {
-        let line = text.lines().position(|line| line.trim_start().starts_with("version")).map(|l| (l + 1, 5));
+        let line = text
+            .lines()
+            .position(|line| line.trim_start().starts_with("version"))
+            .map(|l| (l + 1, 5));
         return Err(LoadError {
             path: None,
             position: line,
@@ -58,7 +65,10 @@ pub fn load(path: &Path) -> Result<Graph, LoadError> {
         position: None,
         message: format!("cannot read: {err}"),
     })?;
-    from_ron(&text).map_err(|err| LoadError { path: Some(path.to_path_buf()), ..err })
+    from_ron(&text).map_err(|err| LoadError {
+        path: Some(path.to_path_buf()),
+        ..err
+    })
 }
 
 /// The canonical RON text of a graph: nodes by id, wires sorted, so the same graph
@@ -66,7 +76,10 @@ pub fn load(path: &Path) -> Result<Graph, LoadError> {
 pub fn to_ron(graph: &Graph) -> String {
     let mut graph = graph.clone();
     graph.canonicalize();
-    let config = ron::ser::PrettyConfig::new().depth_limit(2).indentor("    ").struct_names(false);
+    let config = ron::ser::PrettyConfig::new()
+        .depth_limit(2)
+        .indentor("    ")
+        .struct_names(false);
     let mut text = ron::ser::to_string_pretty(&graph, config).expect("graphs always serialise");
     text.push('\n');
     text

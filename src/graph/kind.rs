@@ -23,7 +23,12 @@ pub enum Basis {
 
 impl Basis {
     /// All bases, in menu order.
-    pub const ALL: [Basis; 4] = [Basis::ValueSine, Basis::ValuePcg, Basis::Gradient, Basis::Simplex];
+    pub const ALL: [Basis; 4] = [
+        Basis::ValueSine,
+        Basis::ValuePcg,
+        Basis::Gradient,
+        Basis::Simplex,
+    ];
 
     /// The suffix of this basis' WGSL library function (`veneer_noise_<suffix>`).
     pub fn suffix(self) -> &'static str {
@@ -140,13 +145,29 @@ pub enum NodeKind {
     /// A single octave of lattice noise.
     Noise { basis: Basis },
     /// Fractal Brownian motion.
-    Fbm { basis: Basis, octaves: u32, normalize: bool },
+    Fbm {
+        basis: Basis,
+        octaves: u32,
+        normalize: bool,
+    },
     /// Sum of |noise| over octaves.
-    Turbulence { basis: Basis, octaves: u32, normalize: bool },
+    Turbulence {
+        basis: Basis,
+        octaves: u32,
+        normalize: bool,
+    },
     /// Sum of signed noise over octaves.
-    FractalSum { basis: Basis, octaves: u32, normalize: bool },
+    FractalSum {
+        basis: Basis,
+        octaves: u32,
+        normalize: bool,
+    },
     /// Cellular (Worley) noise; more than one octave makes it fractal.
-    Worley { feature: WorleyFeature, metric: Metric, octaves: u32 },
+    Worley {
+        feature: WorleyFeature,
+        metric: Metric,
+        octaves: u32,
+    },
     /// `0.5 + 0.5 * sin(frequency * x + distortion * turbulence)`.
     SineBand,
     /// A triangle wave of `x * frequency` going 0 → 1 → 0 each period.
@@ -180,7 +201,10 @@ pub enum NodeKind {
     /// A vector from components.
     Combine { ty: ValueType },
     /// A colour ramp over a factor, with several stops.
-    ColorRamp { stops: Vec<RampStop>, interpolation: RampInterpolation },
+    ColorRamp {
+        stops: Vec<RampStop>,
+        interpolation: RampInterpolation,
+    },
     /// The material output.
     Material,
 }
@@ -256,13 +280,21 @@ impl NodeKind {
     /// For the three fractal kinds: their mode, basis, octave count and normalisation.
     pub fn fractal(&self) -> Option<(FractalMode, Basis, u32, bool)> {
         match *self {
-            NodeKind::Fbm { basis, octaves, normalize } => Some((FractalMode::Fbm, basis, octaves, normalize)),
-            NodeKind::Turbulence { basis, octaves, normalize } => {
-                Some((FractalMode::Turbulence, basis, octaves, normalize))
-            }
-            NodeKind::FractalSum { basis, octaves, normalize } => {
-                Some((FractalMode::FractalSum, basis, octaves, normalize))
-            }
+            NodeKind::Fbm {
+                basis,
+                octaves,
+                normalize,
+            } => Some((FractalMode::Fbm, basis, octaves, normalize)),
+            NodeKind::Turbulence {
+                basis,
+                octaves,
+                normalize,
+            } => Some((FractalMode::Turbulence, basis, octaves, normalize)),
+            NodeKind::FractalSum {
+                basis,
+                octaves,
+                normalize,
+            } => Some((FractalMode::FractalSum, basis, octaves, normalize)),
             _ => None,
         }
     }

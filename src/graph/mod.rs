@@ -8,7 +8,10 @@ pub mod value;
 
 pub use check::{CheckError, CheckedGraph, check};
 pub use io::{CURRENT_VERSION, LoadError, from_ron, load, save, to_ron};
-pub use kind::{Basis, Category, FractalMode, MathOp, Metric, NodeKind, RampInterpolation, RampStop, UnaryOp, WorleyFeature};
+pub use kind::{
+    Basis, Category, FractalMode, MathOp, Metric, NodeKind, RampInterpolation, RampStop, UnaryOp,
+    WorleyFeature,
+};
 pub use signature::{InputPin, OutputPin, PinDefault, Signature};
 pub use value::{Value, ValueType};
 
@@ -46,12 +49,22 @@ pub struct Node {
 impl Node {
     /// A node of `kind` with default inputs.
     pub fn new(id: NodeId, kind: NodeKind) -> Node {
-        Node { id, label: String::new(), kind, inputs: BTreeMap::new(), position: (0.0, 0.0) }
+        Node {
+            id,
+            label: String::new(),
+            kind,
+            inputs: BTreeMap::new(),
+            position: (0.0, 0.0),
+        }
     }
 
     /// The label, or the kind's title when the label is empty.
     pub fn display_name(&self) -> &str {
-        if self.label.is_empty() { self.kind.title() } else { &self.label }
+        if self.label.is_empty() {
+            self.kind.title()
+        } else {
+            &self.label
+        }
     }
 }
 
@@ -71,7 +84,10 @@ pub struct PinRef {
 impl PinRef {
     /// A reference to `pin` of `node`.
     pub fn new(node: NodeId, pin: &str) -> PinRef {
-        PinRef { node, pin: pin.to_string() }
+        PinRef {
+            node,
+            pin: pin.to_string(),
+        }
     }
 }
 
@@ -93,7 +109,11 @@ pub struct Preview {
 
 impl Default for Preview {
     fn default() -> Preview {
-        Preview { mesh: "sphere".to_string(), center: (0.0, 0.0, 0.0), size: 1.0 }
+        Preview {
+            mesh: "sphere".to_string(),
+            center: (0.0, 0.0, 0.0),
+            size: 1.0,
+        }
     }
 }
 
@@ -114,7 +134,13 @@ pub struct Graph {
 
 impl Default for Graph {
     fn default() -> Graph {
-        Graph { version: CURRENT_VERSION, name: String::new(), preview: Preview::default(), nodes: vec![], wires: vec![] }
+        Graph {
+            version: CURRENT_VERSION,
+            name: String::new(),
+            preview: Preview::default(),
+            nodes: vec![],
+            wires: vec![],
+        }
     }
 }
 
@@ -131,7 +157,13 @@ impl Graph {
 
     /// An id no node uses yet.
     pub fn next_id(&self) -> NodeId {
-        NodeId(self.nodes.iter().map(|node| node.id.0 + 1).max().unwrap_or(1))
+        NodeId(
+            self.nodes
+                .iter()
+                .map(|node| node.id.0 + 1)
+                .max()
+                .unwrap_or(1),
+        )
     }
 
     /// Adds a node and returns its id.
@@ -154,12 +186,17 @@ impl Graph {
     pub fn connect(&mut self, from: NodeId, from_pin: &str, to: NodeId, to_pin: &str) {
         let to = PinRef::new(to, to_pin);
         self.wires.retain(|wire| wire.to != to);
-        self.wires.push(Wire { from: PinRef::new(from, from_pin), to });
+        self.wires.push(Wire {
+            from: PinRef::new(from, from_pin),
+            to,
+        });
     }
 
     /// The wire feeding an input pin, if any.
     pub fn wire_into(&self, node: NodeId, pin: &str) -> Option<&Wire> {
-        self.wires.iter().find(|wire| wire.to.node == node && wire.to.pin == pin)
+        self.wires
+            .iter()
+            .find(|wire| wire.to.node == node && wire.to.pin == pin)
     }
 
     /// Puts nodes and wires in their canonical order, so that saving is deterministic.

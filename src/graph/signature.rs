@@ -39,12 +39,18 @@ pub struct Signature {
 impl Signature {
     /// The input pin called `name` and its index.
     pub fn input(&self, name: &str) -> Option<(usize, &InputPin)> {
-        self.inputs.iter().enumerate().find(|(_, pin)| pin.name == name)
+        self.inputs
+            .iter()
+            .enumerate()
+            .find(|(_, pin)| pin.name == name)
     }
 
     /// The output pin called `name` and its index.
     pub fn output(&self, name: &str) -> Option<(usize, &OutputPin)> {
-        self.outputs.iter().enumerate().find(|(_, pin)| pin.name == name)
+        self.outputs
+            .iter()
+            .enumerate()
+            .find(|(_, pin)| pin.name == name)
     }
 }
 
@@ -87,7 +93,10 @@ impl NodeKind {
             Uv => (vec![], vec![output("uv", VEC2)]),
             Time => (vec![], vec![output("time", FLOAT)]),
             Field { .. } => (vec![], vec![output("distance", FLOAT)]),
-            Constant { ty } => (vec![input("value", *ty, splat(*ty, 0.0))], vec![output("value", *ty)]),
+            Constant { ty } => (
+                vec![input("value", *ty, splat(*ty, 0.0))],
+                vec![output("value", *ty)],
+            ),
             Transform => (
                 vec![
                     input("p", VEC3, POSITION),
@@ -111,10 +120,18 @@ impl NodeKind {
                     input("origin", VEC3, v3(0.0, 0.0, 0.0)),
                     input("axis", VEC3, v3(0.0, 1.0, 0.0)),
                 ],
-                vec![output("t", FLOAT), output("r", FLOAT), output("theta", FLOAT)],
+                vec![
+                    output("t", FLOAT),
+                    output("r", FLOAT),
+                    output("theta", FLOAT),
+                ],
             ),
             DomainWarp { .. } => (
-                vec![input("p", VEC3, POSITION), input("strength", FLOAT, f(1.0)), input("scale", FLOAT, f(1.0))],
+                vec![
+                    input("p", VEC3, POSITION),
+                    input("strength", FLOAT, f(1.0)),
+                    input("scale", FLOAT, f(1.0)),
+                ],
                 vec![output("p", VEC3)],
             ),
             Noise { .. } => (
@@ -154,7 +171,10 @@ impl NodeKind {
                 vec![output("band", FLOAT)],
             ),
             TriangleWave => (
-                vec![input("x", FLOAT, REQUIRED), input("frequency", FLOAT, f(1.0))],
+                vec![
+                    input("x", FLOAT, REQUIRED),
+                    input("frequency", FLOAT, f(1.0)),
+                ],
                 vec![output("value", FLOAT)],
             ),
             Tiles => (
@@ -165,7 +185,11 @@ impl NodeKind {
                     input("row_offset", FLOAT, f(0.5)),
                     input("blur", FLOAT, f(0.0)),
                 ],
-                vec![output("mask", FLOAT), output("cell", VEC2), output("local", VEC2)],
+                vec![
+                    output("mask", FLOAT),
+                    output("cell", VEC2),
+                    output("local", VEC2),
+                ],
             ),
             Rings => (
                 vec![
@@ -182,17 +206,28 @@ impl NodeKind {
                     _ => 0.0,
                 };
                 (
-                    vec![input("a", *ty, splat(*ty, 0.0)), input("b", *ty, splat(*ty, identity))],
+                    vec![
+                        input("a", *ty, splat(*ty, 0.0)),
+                        input("b", *ty, splat(*ty, identity)),
+                    ],
                     vec![output("result", *ty)],
                 )
             }
             Unary { ty, .. } => (vec![input("x", *ty, REQUIRED)], vec![output("result", *ty)]),
             Mix { ty } => (
-                vec![input("a", *ty, splat(*ty, 0.0)), input("b", *ty, splat(*ty, 1.0)), input("factor", FLOAT, f(0.5))],
+                vec![
+                    input("a", *ty, splat(*ty, 0.0)),
+                    input("b", *ty, splat(*ty, 1.0)),
+                    input("factor", FLOAT, f(0.5)),
+                ],
                 vec![output("result", *ty)],
             ),
             Clamp { ty } => (
-                vec![input("x", *ty, REQUIRED), input("min", FLOAT, f(0.0)), input("max", FLOAT, f(1.0))],
+                vec![
+                    input("x", *ty, REQUIRED),
+                    input("min", FLOAT, f(0.0)),
+                    input("max", FLOAT, f(1.0)),
+                ],
                 vec![output("result", *ty)],
             ),
             Step { ty } => (
@@ -200,7 +235,11 @@ impl NodeKind {
                 vec![output("result", *ty)],
             ),
             Smoothstep => (
-                vec![input("edge0", FLOAT, f(0.0)), input("edge1", FLOAT, f(1.0)), input("x", FLOAT, REQUIRED)],
+                vec![
+                    input("edge0", FLOAT, f(0.0)),
+                    input("edge1", FLOAT, f(1.0)),
+                    input("x", FLOAT, REQUIRED),
+                ],
                 vec![output("result", FLOAT)],
             ),
             Remap => (
@@ -213,18 +252,33 @@ impl NodeKind {
                 ],
                 vec![output("result", FLOAT)],
             ),
-            Length { ty } => (vec![input("v", *ty, REQUIRED)], vec![output("length", FLOAT)]),
-            Dot { ty } => (vec![input("a", *ty, REQUIRED), input("b", *ty, REQUIRED)], vec![output("dot", FLOAT)]),
+            Length { ty } => (
+                vec![input("v", *ty, REQUIRED)],
+                vec![output("length", FLOAT)],
+            ),
+            Dot { ty } => (
+                vec![input("a", *ty, REQUIRED), input("b", *ty, REQUIRED)],
+                vec![output("dot", FLOAT)],
+            ),
             Normalize { ty } => (vec![input("v", *ty, REQUIRED)], vec![output("unit", *ty)]),
             Split { ty } => (
                 vec![input("v", *ty, REQUIRED)],
-                COMPONENTS[..ty.width()].iter().map(|name| output(name, FLOAT)).collect(),
+                COMPONENTS[..ty.width()]
+                    .iter()
+                    .map(|name| output(name, FLOAT))
+                    .collect(),
             ),
             Combine { ty } => (
-                COMPONENTS[..ty.width()].iter().map(|name| input(name, FLOAT, f(0.0))).collect(),
+                COMPONENTS[..ty.width()]
+                    .iter()
+                    .map(|name| input(name, FLOAT, f(0.0)))
+                    .collect(),
                 vec![output("v", *ty)],
             ),
-            ColorRamp { .. } => (vec![input("factor", FLOAT, REQUIRED)], vec![output("color", COLOR)]),
+            ColorRamp { .. } => (
+                vec![input("factor", FLOAT, REQUIRED)],
+                vec![output("color", COLOR)],
+            ),
             Material => (
                 vec![
                     input("albedo", COLOR, rgb(0.8, 0.8, 0.8)),

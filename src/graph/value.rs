@@ -36,9 +36,7 @@ impl ValueType {
     /// A float broadcasts to any vector (as in Blender's shader nodes), and vec3 and
     /// colour are interchangeable; everything else is a type mismatch.
     pub fn converts_to(self, to: ValueType) -> bool {
-        self == to
-            || self == ValueType::Float
-            || (self.width() == 3 && to.width() == 3)
+        self == to || self == ValueType::Float || (self.width() == 3 && to.width() == 3)
     }
 }
 

@@ -32,10 +32,13 @@ fn sphere(segments: u32, rings: u32) -> Mesh {
 fn torus(major: f32, minor: f32, segments: u32, sides: u32) -> Mesh {
     let mut mesh = Mesh::default();
     mesh.push_grid(segments, sides, |u, v| {
-        let (theta, phi) = (u * TAU, v * TAU);
+        let (theta, phi) = (u * TAU, -v * TAU);
         let normal = [phi.cos() * theta.cos(), phi.sin(), -phi.cos() * theta.sin()];
         let ring = major + minor * phi.cos();
-        ([ring * theta.cos(), minor * phi.sin(), -ring * theta.sin()], normal)
+        (
+            [ring * theta.cos(), minor * phi.sin(), -ring * theta.sin()],
+            normal,
+        )
     });
     mesh
 }
@@ -67,7 +70,9 @@ fn cube() -> Mesh {
 /// A 2×2 plane in y = 0 facing up.
 fn plane() -> Mesh {
     let mut mesh = Mesh::default();
-    mesh.push_grid(16, 16, |u, v| ([u * 2.0 - 1.0, 0.0, v * 2.0 - 1.0], [0.0, 1.0, 0.0]));
+    mesh.push_grid(16, 16, |u, v| {
+        ([u * 2.0 - 1.0, 0.0, v * 2.0 - 1.0], [0.0, 1.0, 0.0])
+    });
     mesh
 }
 
@@ -99,7 +104,12 @@ mod tests {
     fn normals_are_unit_length() {
         for name in PRIMITIVES {
             let mesh = primitive(name).unwrap();
-            assert!(mesh.normals.iter().all(|n| (glam::Vec3::from(*n).length() - 1.0).abs() < 1e-4), "{name}");
+            assert!(
+                mesh.normals
+                    .iter()
+                    .all(|n| (glam::Vec3::from(*n).length() - 1.0).abs() < 1e-4),
+                "{name}"
+            );
         }
     }
 }

@@ -40,7 +40,11 @@ impl GpuContext {
             ..Default::default()
         }))
         .map_err(|error| RenderError(format!("cannot open the GPU device: {error}")))?;
-        Ok(GpuContext { adapter, device, queue })
+        Ok(GpuContext {
+            adapter,
+            device,
+            queue,
+        })
     }
 
     /// "name (backend)" of the adapter, as recorded next to golden images.
@@ -52,12 +56,16 @@ impl GpuContext {
     /// Compiles WGSL into a shader module, turning validation errors into a `RenderError`.
     pub fn shader(&self, label: &str, source: &str) -> Result<wgpu::ShaderModule, RenderError> {
         let scope = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let module = self.device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some(label),
-            source: wgpu::ShaderSource::Wgsl(source.into()),
-        });
+        let module = self
+            .device
+            .create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some(label),
+                source: wgpu::ShaderSource::Wgsl(source.into()),
+            });
         match pollster::block_on(scope.pop()) {
-            Some(error) => Err(RenderError(format!("shader '{label}' rejected by wgpu: {error}"))),
+            Some(error) => Err(RenderError(format!(
+                "shader '{label}' rejected by wgpu: {error}"
+            ))),
             None => Ok(module),
         }
     }

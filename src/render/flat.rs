@@ -17,8 +17,15 @@ pub struct FlatRect {
 impl FlatRect {
     /// The surface position sampled at the centre of pixel (i, j) of an n×n image.
     pub fn sample_position(&self, i: u32, j: u32, n: u32) -> [f64; 3] {
-        let (u, v) = ((f64::from(i) + 0.5) / f64::from(n), (f64::from(j) + 0.5) / f64::from(n));
-        [self.x0 + (self.x1 - self.x0) * u, self.y, self.z0 + (self.z1 - self.z0) * v]
+        let (u, v) = (
+            (f64::from(i) + 0.5) / f64::from(n),
+            (f64::from(j) + 0.5) / f64::from(n),
+        );
+        [
+            self.x0 + (self.x1 - self.x0) * u,
+            self.y,
+            self.z0 + (self.z1 - self.z0) * v,
+        ]
     }
 }
 
@@ -33,7 +40,8 @@ struct FlatViewUniform {
     padding: [f32; 3],
 }
 
-const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
+/// f32 bits in an integer target: renderable on every backend (GL has no float targets).
+const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
 const ENTRY_POINTS: &str = include_str!("../../shaders/render_flat.wgsl");
 
 /// A pipeline that renders one material flat; build once, render many times.
@@ -54,39 +62,53 @@ impl FlatRenderer {
             mapped_at_creation: false,
         });
         let pipeline = gpu.checked("flat render pipeline", || {
-            gpu.device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                label: Some("flat render"),
-                layout: None,
-                vertex: wgpu::VertexState {
-                    module: &module,
-                    entry_point: Some("veneer_flat_vertex"),
-                    compilation_options: Default::default(),
-                    buffers: &[],
-                },
-                primitive: wgpu::PrimitiveState::default(),
-                depth_stencil: None,
-                multisample: wgpu::MultisampleState::default(),
-                fragment: Some(wgpu::FragmentState {
-                    module: &module,
-                    entry_point: Some("veneer_flat_fragment"),
-                    compilation_options: Default::default(),
-                    targets: &[Some(FORMAT.into())],
-                }),
-                multiview_mask: None,
-                cache: None,
-            })
+            gpu.device
+                .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                    label: Some("flat render"),
+                    layout: None,
+                    vertex: wgpu::VertexState {
+                        module: &module,
+                        entry_point: Some("veneer_flat_vertex"),
+                        compilation_options: Default::default(),
+                        buffers: &[],
+                    },
+                    primitive: wgpu::PrimitiveState::default(),
+                    depth_stencil: None,
+                    multisample: wgpu::MultisampleState::default(),
+                    fragment: Some(wgpu::FragmentState {
+                        module: &module,
+                        entry_point: Some("veneer_flat_fragment"),
+                        compilation_options: Default::default(),
+                        targets: &[Some(FORMAT.into())],
+                    }),
+                    multiview_mask: None,
+                    cache: None,
+                })
         })?;
         let bind_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("flat view"),
             layout: &pipeline.get_bind_group_layout(0),
-            entries: &[wgpu::BindGroupEntry { binding: 0, resource: uniform.as_entire_binding() }],
+            entries: &[wgpu::BindGroupEntry {
+                binding: 0,
+                resource: uniform.as_entire_binding(),
+            }],
         });
-        Ok(FlatRenderer { pipeline, uniform, bind_group })
+        Ok(FlatRenderer {
+            pipeline,
+            uniform,
+            bind_group,
+        })
     }
 
     /// Renders an n×n image of RGBA (albedo, alpha) in f32, row by row from the top-left,
     /// in tiles no larger than the adapter allows.
-    pub fn render(&self, gpu: &GpuContext, rect: FlatRect, size: u32, time: f32) -> Result<Vec<[f32; 4]>, RenderError> {
+    pub fn render(
+        &self,
+        gpu: &GpuContext,
+        rect: FlatRect,
+        size: u32,
+        time: f32,
+    ) -> Result<Vec<[f32; 4]>, RenderError> {
         if size == 0 {
             return Err(RenderError("image size must be at least 1 pixel".into()));
         }
@@ -95,7 +117,8 @@ impl FlatRenderer {
         for tile_y in (0..size).step_by(tile as usize) {
             for tile_x in (0..size).step_by(tile as usize) {
                 let (width, height) = (tile.min(size - tile_x), tile.min(size - tile_y));
-                let pixels = self.render_tile(gpu, rect, size, time, (tile_x, tile_y), (width, height))?;
+                let pixels =
+                    self.render_tile(gpu, rect, size, time, (tile_x, tile_y), (width, height))?;
                 for (row, chunk) in pixels.chunks(width as usize).enumerate() {
                     let start = (tile_y as usize + row) * size as usize + tile_x as usize;
                     image[start..start + width as usize].copy_from_slice(chunk);
@@ -115,17 +138,27 @@ impl FlatRenderer {
         extent: (u32, u32),
     ) -> Result<Vec<[f32; 4]>, RenderError> {
         let view = FlatViewUniform {
-            rect: [rect.x0 as f32, rect.z0 as f32, rect.x1 as f32, rect.z1 as f32],
+            rect: [
+                rect.x0 as f32,
+                rect.z0 as f32,
+                rect.x1 as f32,
+                rect.z1 as f32,
+            ],
             pixel_offset: [offset.0 as f32, offset.1 as f32],
             plane_y: rect.y as f32,
             size: size as f32,
             time,
             padding: [0.0; 3],
         };
-        gpu.queue.write_buffer(&self.uniform, 0, bytemuck::bytes_of(&view));
+        gpu.queue
+            .write_buffer(&self.uniform, 0, bytemuck::bytes_of(&view));
         let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
             label: Some("flat target"),
-            size: wgpu::Extent3d { width: extent.0, height: extent.1, depth_or_array_layers: 1 },
+            size: wgpu::Extent3d {
+                width: extent.0,
+                height: extent.1,
+                depth_or_array_layers: 1,
+            },
             mip_level_count: 1,
             sample_count: 1,
             dimension: wgpu::TextureDimension::D2,
@@ -134,7 +167,11 @@ impl FlatRenderer {
             view_formats: &[],
         });
         let target = texture.create_view(&Default::default());
-        let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("flat") });
+        let mut encoder = gpu
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("flat"),
+            });
         {
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("flat"),
@@ -142,7 +179,10 @@ impl FlatRenderer {
                     view: &target,
                     depth_slice: None,
                     resolve_target: None,
-                    ops: wgpu::Operations { load: wgpu::LoadOp::Clear(wgpu::Color::BLACK), store: wgpu::StoreOp::Store },
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                        store: wgpu::StoreOp::Store,
+                    },
                 })],
                 ..Default::default()
             });
@@ -158,5 +198,9 @@ impl FlatRenderer {
 
 /// The contract's 8-bit encoding of the albedo: round(255 · clamp(v, 0, 1)) per channel, RGB.
 pub fn albedo_to_rgb8(pixels: &[[f32; 4]]) -> Vec<u8> {
-    pixels.iter().flat_map(|p| [p[0], p[1], p[2]]).map(|v| (255.0 * v.clamp(0.0, 1.0)).round() as u8).collect()
+    pixels
+        .iter()
+        .flat_map(|p| [p[0], p[1], p[2]])
+        .map(|v| (255.0 * v.clamp(0.0, 1.0)).round() as u8)
+        .collect()
 }

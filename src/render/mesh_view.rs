@@ -39,7 +39,11 @@ impl MeshView {
             light: [-0.4, 0.8, 0.6],
             ambient: 0.25,
             background: [0.12, 0.13, 0.15],
-            center: [preview.center.0 as f32, preview.center.1 as f32, preview.center.2 as f32],
+            center: [
+                preview.center.0 as f32,
+                preview.center.1 as f32,
+                preview.center.2 as f32,
+            ],
             size: preview.size as f32,
             time: 0.0,
         }
@@ -47,7 +51,11 @@ impl MeshView {
 
     fn eye(&self) -> Vec3 {
         let (yaw, pitch) = (self.yaw.to_radians(), self.pitch.to_radians());
-        Vec3::new(pitch.cos() * yaw.sin(), pitch.sin(), pitch.cos() * yaw.cos()) * self.distance
+        Vec3::new(
+            pitch.cos() * yaw.sin(),
+            pitch.sin(),
+            pitch.cos() * yaw.cos(),
+        ) * self.distance
     }
 }
 
@@ -95,81 +103,122 @@ impl MeshRenderer {
         });
         let attributes = wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x2];
         let pipeline = gpu.checked("mesh render pipeline", || {
-            gpu.device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                label: Some("mesh render"),
-                layout: None,
-                vertex: wgpu::VertexState {
-                    module: &module,
-                    entry_point: Some("veneer_mesh_vertex"),
-                    compilation_options: Default::default(),
-                    buffers: &[Some(wgpu::VertexBufferLayout {
-                        array_stride: std::mem::size_of::<Vertex>() as u64,
-                        step_mode: wgpu::VertexStepMode::Vertex,
-                        attributes: &attributes,
-                    })],
-                },
-                primitive: wgpu::PrimitiveState { cull_mode: Some(wgpu::Face::Back), ..Default::default() },
-                depth_stencil: Some(wgpu::DepthStencilState {
-                    format: DEPTH_FORMAT,
-                    depth_write_enabled: Some(true),
-                    depth_compare: Some(wgpu::CompareFunction::Less),
-                    stencil: Default::default(),
-                    bias: Default::default(),
-                }),
-                multisample: wgpu::MultisampleState { count: SAMPLES, ..Default::default() },
-                fragment: Some(wgpu::FragmentState {
-                    module: &module,
-                    entry_point: Some("veneer_mesh_fragment"),
-                    compilation_options: Default::default(),
-                    targets: &[Some(COLOR_FORMAT.into())],
-                }),
-                multiview_mask: None,
-                cache: None,
-            })
+            gpu.device
+                .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                    label: Some("mesh render"),
+                    layout: None,
+                    vertex: wgpu::VertexState {
+                        module: &module,
+                        entry_point: Some("veneer_mesh_vertex"),
+                        compilation_options: Default::default(),
+                        buffers: &[Some(wgpu::VertexBufferLayout {
+                            array_stride: std::mem::size_of::<Vertex>() as u64,
+                            step_mode: wgpu::VertexStepMode::Vertex,
+                            attributes: &attributes,
+                        })],
+                    },
+                    primitive: wgpu::PrimitiveState {
+                        cull_mode: Some(wgpu::Face::Back),
+                        ..Default::default()
+                    },
+                    depth_stencil: Some(wgpu::DepthStencilState {
+                        format: DEPTH_FORMAT,
+                        depth_write_enabled: Some(true),
+                        depth_compare: Some(wgpu::CompareFunction::Less),
+                        stencil: Default::default(),
+                        bias: Default::default(),
+                    }),
+                    multisample: wgpu::MultisampleState {
+                        count: SAMPLES,
+                        ..Default::default()
+                    },
+                    fragment: Some(wgpu::FragmentState {
+                        module: &module,
+                        entry_point: Some("veneer_mesh_fragment"),
+                        compilation_options: Default::default(),
+                        targets: &[Some(COLOR_FORMAT.into())],
+                    }),
+                    multiview_mask: None,
+                    cache: None,
+                })
         })?;
         let bind_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("mesh view"),
             layout: &pipeline.get_bind_group_layout(0),
-            entries: &[wgpu::BindGroupEntry { binding: 0, resource: uniform.as_entire_binding() }],
+            entries: &[wgpu::BindGroupEntry {
+                binding: 0,
+                resource: uniform.as_entire_binding(),
+            }],
         });
-        Ok(MeshRenderer { pipeline, uniform, bind_group })
+        Ok(MeshRenderer {
+            pipeline,
+            uniform,
+            bind_group,
+        })
     }
 
     /// Renders `mesh` into a size×size RGBA8 image (rows from the top).
-    pub fn render(&self, gpu: &GpuContext, mesh: &Mesh, view: &MeshView, size: u32) -> Result<Vec<u8>, RenderError> {
+    pub fn render(
+        &self,
+        gpu: &GpuContext,
+        mesh: &Mesh,
+        view: &MeshView,
+        size: u32,
+    ) -> Result<Vec<u8>, RenderError> {
         let limit = gpu.device.limits().max_texture_dimension_2d;
         if size == 0 || size > limit {
-            return Err(RenderError(format!("mesh render size {size} is outside 1..={limit} on this adapter")));
+            return Err(RenderError(format!(
+                "mesh render size {size} is outside 1..={limit} on this adapter"
+            )));
         }
         let eye = view.eye();
-        let projection = glam::camera::rh::proj::directx::perspective(view.fov.to_radians(), 1.0, 0.05, 100.0);
+        let projection =
+            glam::camera::rh::proj::directx::perspective(view.fov.to_radians(), 1.0, 0.05, 100.0);
         let uniform = MeshViewUniform {
-            view_projection: (projection * glam::camera::rh::view::look_at_mat4(eye, Vec3::ZERO, Vec3::Y)).to_cols_array_2d(),
+            view_projection: (projection
+                * glam::camera::rh::view::look_at_mat4(eye, Vec3::ZERO, Vec3::Y))
+            .to_cols_array_2d(),
             eye: eye.extend(1.0).to_array(),
-            light_direction: Vec3::from(view.light).normalize_or(Vec3::Y).extend(0.0).to_array(),
+            light_direction: Vec3::from(view.light)
+                .normalize_or(Vec3::Y)
+                .extend(0.0)
+                .to_array(),
             placement: Vec3::from(view.center).extend(view.size).to_array(),
             time: view.time,
             ambient: view.ambient,
             padding: [0.0; 2],
         };
-        gpu.queue.write_buffer(&self.uniform, 0, bytemuck::bytes_of(&uniform));
+        gpu.queue
+            .write_buffer(&self.uniform, 0, bytemuck::bytes_of(&uniform));
         let vertices: Vec<Vertex> = (0..mesh.positions.len())
-            .map(|i| Vertex { position: mesh.positions[i], normal: mesh.normals[i], uv: mesh.uvs[i] })
+            .map(|i| Vertex {
+                position: mesh.positions[i],
+                normal: mesh.normals[i],
+                uv: mesh.uvs[i],
+            })
             .collect();
-        let vertex_buffer = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("mesh vertices"),
-            contents: bytemuck::cast_slice(&vertices),
-            usage: wgpu::BufferUsages::VERTEX,
-        });
-        let index_buffer = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("mesh indices"),
-            contents: bytemuck::cast_slice(&mesh.indices),
-            usage: wgpu::BufferUsages::INDEX,
-        });
+        let vertex_buffer = gpu
+            .device
+            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("mesh vertices"),
+                contents: bytemuck::cast_slice(&vertices),
+                usage: wgpu::BufferUsages::VERTEX,
+            });
+        let index_buffer = gpu
+            .device
+            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("mesh indices"),
+                contents: bytemuck::cast_slice(&mesh.indices),
+                usage: wgpu::BufferUsages::INDEX,
+            });
         let target = |label, format, samples, usage| {
             gpu.device.create_texture(&wgpu::TextureDescriptor {
                 label: Some(label),
-                size: wgpu::Extent3d { width: size, height: size, depth_or_array_layers: 1 },
+                size: wgpu::Extent3d {
+                    width: size,
+                    height: size,
+                    depth_or_array_layers: 1,
+                },
                 mip_level_count: 1,
                 sample_count: samples,
                 dimension: wgpu::TextureDimension::D2,
@@ -180,7 +229,12 @@ impl MeshRenderer {
         };
         let attachment = wgpu::TextureUsages::RENDER_ATTACHMENT;
         let multisampled = target("mesh colour", COLOR_FORMAT, SAMPLES, attachment);
-        let resolved = target("mesh resolved", COLOR_FORMAT, 1, attachment | wgpu::TextureUsages::COPY_SRC);
+        let resolved = target(
+            "mesh resolved",
+            COLOR_FORMAT,
+            1,
+            attachment | wgpu::TextureUsages::COPY_SRC,
+        );
         let depth = target("mesh depth", DEPTH_FORMAT, SAMPLES, attachment);
         let (multisampled_view, resolved_view, depth_view) = (
             multisampled.create_view(&Default::default()),
@@ -188,7 +242,11 @@ impl MeshRenderer {
             depth.create_view(&Default::default()),
         );
         let [r, g, b] = view.background.map(f64::from);
-        let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("mesh") });
+        let mut encoder = gpu
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("mesh"),
+            });
         {
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("mesh"),
@@ -203,7 +261,10 @@ impl MeshRenderer {
                 })],
                 depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
                     view: &depth_view,
-                    depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(1.0), store: wgpu::StoreOp::Discard }),
+                    depth_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(1.0),
+                        store: wgpu::StoreOp::Discard,
+                    }),
                     stencil_ops: None,
                 }),
                 ..Default::default()

@@ -10,14 +10,19 @@ pub fn read_texture(
 ) -> Result<Vec<u8>, RenderError> {
     let (width, height) = (texture.width(), texture.height());
     let unpadded = width * bytes_per_pixel;
-    let padded = unpadded.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+    let padded =
+        unpadded.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
     let buffer = gpu.device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("veneer readback"),
         size: u64::from(padded) * u64::from(height),
         usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
         mapped_at_creation: false,
     });
-    let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("readback") });
+    let mut encoder = gpu
+        .device
+        .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("readback"),
+        });
     encoder.copy_texture_to_buffer(
         wgpu::TexelCopyTextureInfo {
             texture,
@@ -27,15 +32,25 @@ pub fn read_texture(
         },
         wgpu::TexelCopyBufferInfo {
             buffer: &buffer,
-            layout: wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(padded), rows_per_image: Some(height) },
+            layout: wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(padded),
+                rows_per_image: Some(height),
+            },
         },
-        wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
+        wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        },
     );
     gpu.queue.submit([encoder.finish()]);
     let (sender, receiver) = std::sync::mpsc::channel();
-    buffer.slice(..).map_async(wgpu::MapMode::Read, move |result| {
-        let _ = sender.send(result);
-    });
+    buffer
+        .slice(..)
+        .map_async(wgpu::MapMode::Read, move |result| {
+            let _ = sender.send(result);
+        });
     gpu.device
         .poll(wgpu::PollType::wait_indefinitely())
         .map_err(|error| RenderError(format!("waiting for the GPU failed: {error}")))?;
@@ -43,7 +58,9 @@ pub fn read_texture(
         .recv()
         .map_err(|_| RenderError("the GPU dropped the readback".into()))?
         .map_err(|error| RenderError(format!("cannot map the readback buffer: {error}")))?;
-    let view = buffer.get_mapped_range(..).map_err(|error| RenderError(format!("cannot read back: {error}")))?;
+    let view = buffer
+        .get_mapped_range(..)
+        .map_err(|error| RenderError(format!("cannot read back: {error}")))?;
     let mut pixels = Vec::with_capacity((unpadded * height) as usize);
     for row in view.chunks(padded as usize) {
         pixels.extend_from_slice(&row[..unpadded as usize]);

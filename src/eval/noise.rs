@@ -1,0 +1,179 @@
+//! Hashes and lattice noises, formula for formula as in shaders/hash.wgsl, value.wgsl,
+//! gradient.wgsl, simplex.wgsl and worley.wgsl.
+
+use super::real::{Real, V3, add, dot, length, map, splat, sub, zip};
+use crate::graph::{Basis, Metric};
+
+/// The sine hash of a lattice cell (`veneer_lattice_sine`).
+pub fn lattice_sine<R: Real>(cell: V3<R>) -> R {
+    let h = dot(cell, [R::c(127.1), R::c(311.7), R::c(74.7)], 3);
+    (h.sin() * R::c(43758.5453)).fract()
+}
+
+/// Integer coordinates of a lattice cell, clamped to the i32 range (`veneer_cell_bits`).
+pub fn cell_bits<R: Real>(cell: V3<R>) -> [u32; 3] {
+    let limit = 2147483520.0;
+    cell.map(|c| (c.to_f64().clamp(-limit, limit) as i32) as u32)
+}
+
+/// PCG3D (`veneer_pcg3d`).
+pub fn pcg3d(seed: [u32; 3]) -> [u32; 3] {
+    let mut v = seed.map(|x| x.wrapping_mul(1664525).wrapping_add(1013904223));
+    let mix = |v: &mut [u32; 3]| {
+        v[0] = v[0].wrapping_add(v[1].wrapping_mul(v[2]));
+        v[1] = v[1].wrapping_add(v[2].wrapping_mul(v[0]));
+        v[2] = v[2].wrapping_add(v[0].wrapping_mul(v[1]));
+    };
+    mix(&mut v);
+    v = v.map(|x| x ^ (x >> 16));
+    mix(&mut v);
+    v
+}
+
+/// Top 24 bits of each lane in [0, 1) (`veneer_unit_floats`).
+pub fn unit_floats<R: Real>(bits: [u32; 3]) -> V3<R> {
+    bits.map(|b| R::c(f64::from(b >> 8) / 16777216.0))
+}
+
+/// The PCG hash of a lattice cell (`veneer_lattice_pcg`).
+pub fn lattice_pcg<R: Real>(cell: V3<R>) -> R {
+    unit_floats::<R>(pcg3d(cell_bits(cell)))[0]
+}
+
+const CORNERS: [[f64; 3]; 8] = [
+    [0.0, 0.0, 0.0],
+    [1.0, 0.0, 0.0],
+    [0.0, 1.0, 0.0],
+    [1.0, 1.0, 0.0],
+    [0.0, 0.0, 1.0],
+    [1.0, 0.0, 1.0],
+    [0.0, 1.0, 1.0],
+    [1.0, 1.0, 1.0],
+];
+
+/// Trilinear blend of eight corner values (in `CORNERS` order) with weights `u`.
+fn trilinear<R: Real>(n: [R; 8], u: V3<R>) -> R {
+    let nx00 = R::mix(n[0], n[1], u[0]);
+    let nx10 = R::mix(n[2], n[3], u[0]);
+    let nx01 = R::mix(n[4], n[5], u[0]);
+    let nx11 = R::mix(n[6], n[7], u[0]);
+    R::mix(R::mix(nx00, nx10, u[1]), R::mix(nx01, nx11, u[1]), u[2])
+}
+
+fn corner<R: Real>(k: usize) -> V3<R> {
+    CORNERS[k].map(R::c)
+}
+
+/// Value noise in [0, 1] (`veneer_noise_value_sine` / `_pcg`).
+pub fn value<R: Real>(p: V3<R>, lattice: fn(V3<R>) -> R) -> R {
+    let i = map(p, R::floor);
+    let f = map(p, R::fract);
+    let u = map(f, |f| f * f * (R::c(3.0) - R::c(2.0) * f));
+    trilinear(std::array::from_fn(|k| lattice(add(i, corner(k)))), u)
+}
+
+/// Hashed edge gradient of `cell` dotted with `d` (`veneer_gradient_dot`).
+pub fn gradient_dot<R: Real>(cell: V3<R>, d: V3<R>) -> R {
+    let h = pcg3d(cell_bits(cell))[0] & 15;
+    let u = if h < 8 { d[0] } else { d[1] };
+    let v = if h < 4 {
+        d[1]
+    } else if h == 12 || h == 14 {
+        d[0]
+    } else {
+        d[2]
+    };
+    (if h & 1 == 0 { u } else { -u }) + (if h & 2 == 0 { v } else { -v })
+}
+
+/// Gradient noise in [0, 1] (`veneer_noise_gradient`).
+pub fn gradient<R: Real>(p: V3<R>) -> R {
+    let i = map(p, R::floor);
+    let f = sub(p, i);
+    let u = map(f, |f| {
+        f * f * f * (f * (f * R::c(6.0) - R::c(15.0)) + R::c(10.0))
+    });
+    let n = trilinear(
+        std::array::from_fn(|k| gradient_dot(add(i, corner(k)), sub(f, corner(k)))),
+        u,
+    );
+    R::c(0.5) + R::c(0.5) * n.clamp(R::c(-1.0), R::c(1.0))
+}
+
+fn simplex_corner<R: Real>(cell: V3<R>, d: V3<R>) -> R {
+    let falloff = (R::c(0.6) - dot(d, d, 3)).max(R::c(0.0));
+    let f2 = falloff * falloff;
+    f2 * f2 * gradient_dot(cell, d)
+}
+
+/// Simplex noise in [0, 1] (`veneer_noise_simplex`).
+pub fn simplex<R: Real>(p: V3<R>) -> R {
+    let skew = (p[0] + p[1] + p[2]) * R::c(1.0 / 3.0);
+    let i = map(add(p, splat(skew)), R::floor);
+    let unskew = (i[0] + i[1] + i[2]) * R::c(1.0 / 6.0);
+    let x0 = sub(p, sub(i, splat(unskew)));
+    let g = zip([x0[1], x0[2], x0[0]], x0, R::step);
+    let l = map(g, |g| R::c(1.0) - g);
+    let l_zxy = [l[2], l[0], l[1]];
+    let i1 = zip(g, l_zxy, R::min);
+    let i2 = zip(g, l_zxy, R::max);
+    let x1 = add(sub(x0, i1), splat(R::c(1.0 / 6.0)));
+    let x2 = add(sub(x0, i2), splat(R::c(2.0 / 6.0)));
+    let x3 = add(sub(x0, splat(R::c(1.0))), splat(R::c(0.5)));
+    let n = simplex_corner(i, x0)
+        + simplex_corner(add(i, i1), x1)
+        + simplex_corner(add(i, i2), x2)
+        + simplex_corner(add(i, splat(R::c(1.0))), x3);
+    R::c(0.5) + R::c(0.5) * (R::c(32.0) * n).clamp(R::c(-1.0), R::c(1.0))
+}
+
+/// A basis in its natural range [0, 1] (`veneer_noise_<basis>`).
+pub fn basis<R: Real>(basis: Basis, p: V3<R>) -> R {
+    match basis {
+        Basis::ValueSine => value(p, lattice_sine),
+        Basis::ValuePcg => value(p, lattice_pcg),
+        Basis::Gradient => gradient(p),
+        Basis::Simplex => simplex(p),
+    }
+}
+
+/// A basis in [-1, 1] (`veneer_noise_<basis>_signed`).
+pub fn signed<R: Real>(b: Basis, p: V3<R>) -> R {
+    R::c(2.0) * basis(b, p) - R::c(1.0)
+}
+
+fn metric<R: Real>(d: V3<R>, metric: Metric) -> R {
+    let a = map(d, R::abs);
+    match metric {
+        Metric::Euclidean => length(d, 3),
+        Metric::Manhattan => a[0] + a[1] + a[2],
+        Metric::Chebyshev => a[0].max(a[1].max(a[2])),
+    }
+}
+
+/// The three smallest feature distances F1, F2, F3 (`veneer_worley`).
+pub fn worley<R: Real>(p: V3<R>, jitter: R, m: Metric) -> V3<R> {
+    let cell = map(p, R::floor);
+    let mut f = splat(R::c(1.0e9));
+    for z in -1..=1 {
+        for y in -1..=1 {
+            for x in -1..=1 {
+                let c = add(cell, [R::c(x as f64), R::c(y as f64), R::c(z as f64)]);
+                let r = unit_floats::<R>(pcg3d(cell_bits(c)));
+                let feature = add(
+                    add(c, splat(R::c(0.5))),
+                    map(r, |r| jitter * (r - R::c(0.5))),
+                );
+                let d = metric(sub(p, feature), m);
+                if d < f[0] {
+                    f = [d, f[0], f[1]];
+                } else if d < f[1] {
+                    f = [f[0], d, f[1]];
+                } else if d < f[2] {
+                    f[2] = d;
+                }
+            }
+        }
+    }
+    f
+}

@@ -1,0 +1,197 @@
+//! Coordinates, patterns and safe arithmetic, as in shaders/coords.wgsl, patterns.wgsl
+//! and math.wgsl.
+
+use super::noise;
+use super::real::{Real, V3, add, cross, dot, length, map, mul, safe_normalize, scale, sub};
+use crate::graph::{Basis, FractalMode};
+
+/// `rotate(p * scale) + offset`, rotation in degrees about x, then y, then z.
+pub fn transform<R: Real>(p: V3<R>, scale_by: V3<R>, rotation: V3<R>, offset: V3<R>) -> V3<R> {
+    let a = map(rotation, |d| d * R::c(std::f64::consts::PI / 180.0));
+    let (c, s) = (map(a, R::cos), map(a, R::sin));
+    let q = mul(p, scale_by);
+    let q = [q[0], c[0] * q[1] - s[0] * q[2], s[0] * q[1] + c[0] * q[2]];
+    let q = [c[1] * q[0] + s[1] * q[2], q[1], -s[1] * q[0] + c[1] * q[2]];
+    let q = [c[2] * q[0] - s[2] * q[1], s[2] * q[0] + c[2] * q[1], q[2]];
+    add(q, offset)
+}
+
+/// Coordinate along a direction.
+pub fn project<R: Real>(p: V3<R>, origin: V3<R>, direction: V3<R>) -> R {
+    dot(sub(p, origin), safe_normalize(direction, 3), 3)
+}
+
+/// (t, r, theta) about an axis, with seed 000's choice of reference up vector.
+pub fn cylindrical<R: Real>(p: V3<R>, origin: V3<R>, axis: V3<R>) -> V3<R> {
+    let (zero, one) = (R::c(0.0), R::c(1.0));
+    let d = safe_normalize(axis, 3);
+    let up = if d[1].abs() > R::c(0.95) {
+        [one, zero, zero]
+    } else {
+        [zero, one, zero]
+    };
+    let u = safe_normalize(cross(up, d), 3);
+    let v = cross(d, u);
+    let t = dot(sub(p, origin), d, 3);
+    let radial = sub(p, add(origin, scale(d, t)));
+    [
+        t,
+        length(radial, 3),
+        dot(radial, v, 3).atan2(dot(radial, u, 3)),
+    ]
+}
+
+/// Domain warp by signed noise per axis.
+pub fn warp<R: Real>(basis: Basis, p: V3<R>, strength: R, scale_by: R) -> V3<R> {
+    let q = scale(p, scale_by);
+    let offset = |o: [f64; 3]| add(q, o.map(R::c));
+    let w = [
+        noise::signed(basis, q),
+        noise::signed(basis, offset([31.4, 47.2, 12.9])),
+        noise::signed(basis, offset([-23.7, 8.3, 51.1])),
+    ];
+    add(p, scale(w, strength))
+}
+
+/// Fractal sum of octaves (`veneer_<mode>_<basis>`).
+pub fn fractal<R: Real>(
+    mode: FractalMode,
+    basis: Basis,
+    p: V3<R>,
+    octaves: u32,
+    [lacunarity, gain, amplitude]: [R; 3],
+    normalize: bool,
+) -> R {
+    let octave = |q: V3<R>| match mode {
+        FractalMode::Fbm => noise::basis(basis, q),
+        FractalMode::Turbulence => noise::signed(basis, q).abs(),
+        FractalMode::FractalSum => noise::signed(basis, q),
+    };
+    let (mut sum, mut amp, mut freq, mut total) = (R::c(0.0), amplitude, R::c(1.0), R::c(0.0));
+    for _ in 0..octaves {
+        sum = sum + amp * octave(scale(p, freq));
+        total = total + amp.abs();
+        freq = freq * lacunarity;
+        amp = amp * gain;
+    }
+    if normalize && total > R::c(0.0) {
+        sum / total
+    } else {
+        sum
+    }
+}
+
+/// Worley feature 0..3 of (F1, F2, F3).
+pub fn worley_feature<R: Real>(f: V3<R>, feature: i32) -> R {
+    match feature {
+        1 => f[1],
+        2 => f[2],
+        3 => f[1] - f[0],
+        _ => f[0],
+    }
+}
+
+/// 0.5 + 0.5 sin(frequency x + distortion turbulence).
+pub fn sine_band<R: Real>(x: R, frequency: R, distortion: R, turbulence: R) -> R {
+    R::c(0.5) + R::c(0.5) * (frequency * x + distortion * turbulence).sin()
+}
+
+/// 0 → 1 → 0 once per period.
+pub fn triangle_wave<R: Real>(x: R, frequency: R) -> R {
+    let r = (x * frequency).fract() * R::c(2.0);
+    if r > R::c(1.0) { R::c(2.0) - r } else { r }
+}
+
+fn tile_integral<R: Real>(x: R, gap: R) -> R {
+    x.floor() * (R::c(1.0) - gap) + (x.fract() - gap).max(R::c(0.0))
+}
+
+fn tile_coverage<R: Real>(x: R, gap: R, width: R) -> R {
+    if width <= R::c(0.0) {
+        R::step(gap, x.fract())
+    } else {
+        (tile_integral(x + width, gap) - tile_integral(x, gap)) / width.max(R::c(1.0e-30))
+    }
+}
+
+/// Tiles over the xz plane: (mask, cell, local) as in `veneer_tiles`.
+pub fn tiles<R: Real>(
+    p: V3<R>,
+    size: V3<R>,
+    gap: V3<R>,
+    row_offset: R,
+    blur: R,
+) -> (R, [R; 2], [R; 2]) {
+    let safe = |s: R| {
+        if s.abs() < R::c(1.0e-20) {
+            R::c(1.0)
+        } else {
+            s
+        }
+    };
+    let size = [safe(size[0]), safe(size[1])];
+    let mut t = [p[0] / size[0], p[2] / size[1]];
+    if (t[0] * R::c(0.5)).fract() > R::c(0.5) {
+        t[1] = t[1] + row_offset;
+    }
+    let coverage: [R; 2] =
+        std::array::from_fn(|k| tile_coverage(t[k], gap[k], blur / size[k].abs()));
+    let ceil = |x: R| -((-x).floor());
+    (coverage[0] * coverage[1], t.map(ceil), t.map(R::fract))
+}
+
+/// Concentric rings about an axis.
+pub fn rings<R: Real>(p: V3<R>, origin: V3<R>, axis: V3<R>, frequency: R) -> R {
+    let r = cylindrical(p, origin, axis)[1];
+    R::c(0.5) + R::c(0.5) * (R::c(6.283185307) * frequency * r).sin()
+}
+
+/// a / b; 0 where b is 0; clamped to the finite range.
+pub fn safe_div<R: Real>(a: R, b: R) -> R {
+    let q = if b == R::c(0.0) { R::c(0.0) } else { a / b };
+    q.clamp(-R::c(3.0e38), R::c(3.0e38))
+}
+
+/// pow for a > 0, else 0; clamped to the finite range.
+pub fn safe_pow<R: Real>(a: R, b: R) -> R {
+    if a <= R::c(0.0) {
+        R::c(0.0)
+    } else {
+        a.max(R::c(1.0e-30)).powf(b).min(R::c(3.0e38))
+    }
+}
+
+/// Clamped linear ramp, a step when the edges are equal.
+pub fn linearstep<R: Real>(edge0: R, edge1: R, x: R) -> R {
+    let span = edge1 - edge0;
+    if span == R::c(0.0) {
+        R::step(edge0, x)
+    } else {
+        ((x - edge0) / span).clamp(R::c(0.0), R::c(1.0))
+    }
+}
+
+/// Safe Hermite smoothstep.
+pub fn smoothstep<R: Real>(edge0: R, edge1: R, x: R) -> R {
+    let t = linearstep(edge0, edge1, x);
+    t * t * (R::c(3.0) - R::c(2.0) * t)
+}
+
+/// Linear remap with a safe division.
+pub fn remap<R: Real>(x: R, from_min: R, from_max: R, to_min: R, to_max: R) -> R {
+    to_min + safe_div(x - from_min, from_max - from_min) * (to_max - to_min)
+}
+
+/// A colour as three lanes.
+pub fn color<R: Real>(c: (f64, f64, f64)) -> V3<R> {
+    [R::c(c.0), R::c(c.1), R::c(c.2)]
+}
+
+/// Lane-wise mix of two values by a scalar.
+pub fn mix3<R: Real>(a: V3<R>, b: V3<R>, t: R) -> V3<R> {
+    [
+        R::mix(a[0], b[0], t),
+        R::mix(a[1], b[1], t),
+        R::mix(a[2], b[2], t),
+    ]
+}

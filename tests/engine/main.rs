@@ -1,0 +1,9 @@
+//! Integration tests of the engine: presets, codegen, CPU evaluator, renders and the CLI.
+//! One binary so that wgpu and the rest link once.
+
+mod cli;
+mod cpu_gpu;
+mod graph_files;
+mod presets;
+mod seed_reference;
+mod support;

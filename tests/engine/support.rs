@@ -1,0 +1,135 @@
+//! Shared helpers: one GPU context per test binary, preset paths, image comparison.
+
+use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
+use veneer::render::{FlatRect, FlatRenderer, GpuContext};
+
+/// The GPU context shared by all tests (a software adapter on CI).
+pub fn gpu() -> &'static GpuContext {
+    static GPU: OnceLock<GpuContext> = OnceLock::new();
+    GPU.get_or_init(|| GpuContext::new().expect("tests need a wgpu adapter (lavapipe or llvmpipe)"))
+}
+
+/// Path of a file relative to the crate root.
+pub fn root(relative: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join(relative)
+}
+
+/// Every preset graph in `graphs/`, sorted by name.
+pub fn presets() -> Vec<PathBuf> {
+    let mut paths: Vec<PathBuf> = std::fs::read_dir(root("graphs"))
+        .expect("graphs/ exists")
+        .map(|entry| entry.expect("readable entry").path())
+        .filter(|path| path.extension().is_some_and(|ext| ext == "ron"))
+        .collect();
+    paths.sort();
+    paths
+}
+
+/// The preset's file stem (`wood` for `graphs/wood.ron`).
+pub fn stem(path: &Path) -> String {
+    path.file_stem()
+        .expect("a file name")
+        .to_string_lossy()
+        .into_owned()
+}
+
+/// Folder name for golden images made on the current adapter, e.g. `llvmpipe-vulkan`:
+/// the sine hash gives different bits on different adapters, so goldens are per adapter.
+pub fn adapter_slug() -> String {
+    let info = gpu().adapter.get_info();
+    let device = info
+        .name
+        .split_whitespace()
+        .next()
+        .unwrap_or("unknown")
+        .to_lowercase();
+    format!("{device}-{:?}", info.backend).to_lowercase()
+}
+
+/// Whether golden files should be rewritten instead of compared.
+pub fn updating() -> bool {
+    std::env::var("VENEER_UPDATE_GOLDEN").is_ok_and(|value| value == "1")
+}
+
+/// The contract's flat render of a material module as 8-bit RGB.
+pub fn flat_rgb8(material_wgsl: &str, rect: FlatRect, size: u32) -> Vec<u8> {
+    let renderer = FlatRenderer::new(gpu(), material_wgsl).expect("the flat pipeline builds");
+    let pixels = renderer
+        .render(gpu(), rect, size, 0.0)
+        .expect("the flat render runs");
+    veneer::render::albedo_to_rgb8(&pixels)
+}
+
+/// How two 8-bit images differ.
+#[derive(Debug)]
+pub struct Difference {
+    pub max: u8,
+    pub mean: f64,
+    /// Share of pixels with any channel differing by more than the tolerance.
+    pub share_outside: f64,
+}
+
+impl std::fmt::Display for Difference {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "max {}/255, mean {:.3}/255, {:.3}% of pixels outside tolerance",
+            self.max,
+            self.mean,
+            100.0 * self.share_outside
+        )
+    }
+}
+
+/// Compares two images of `channels` channels per pixel, with a per-channel tolerance.
+pub fn difference(a: &[u8], b: &[u8], channels: usize, tolerance: u8) -> Difference {
+    assert_eq!(a.len(), b.len(), "images differ in size");
+    let mut outside = 0usize;
+    let mut total = 0u64;
+    let mut max = 0u8;
+    for (pa, pb) in a.chunks(channels).zip(b.chunks(channels)) {
+        let worst = pa
+            .iter()
+            .zip(pb)
+            .map(|(x, y)| x.abs_diff(*y))
+            .max()
+            .unwrap_or(0);
+        total += pa
+            .iter()
+            .zip(pb)
+            .map(|(x, y)| u64::from(x.abs_diff(*y)))
+            .sum::<u64>();
+        max = max.max(worst);
+        if worst > tolerance {
+            outside += 1;
+        }
+    }
+    let pixels = a.len() / channels;
+    Difference {
+        max,
+        mean: total as f64 / a.len() as f64,
+        share_outside: outside as f64 / pixels as f64,
+    }
+}
+
+/// Decodes a PNG into raw 8-bit channels.
+pub fn read_png(path: &Path) -> (u32, u32, Vec<u8>) {
+    let image = image::open(path).unwrap_or_else(|error| panic!("{}: {error}", path.display()));
+    let (width, height) = (image.width(), image.height());
+    let bytes = match image {
+        image::DynamicImage::ImageRgb8(rgb) => rgb.into_raw(),
+        other => other.to_rgba8().into_raw(),
+    };
+    (width, height, bytes)
+}
+
+/// Writes raw 8-bit pixels as a PNG.
+pub fn write_png(path: &Path, pixels: &[u8], size: u32, channels: usize) {
+    let color = if channels == 3 {
+        image::ColorType::Rgb8
+    } else {
+        image::ColorType::Rgba8
+    };
+    image::save_buffer(path, pixels, size, size, color).expect("golden image written");
+}
