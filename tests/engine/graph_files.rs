@@ -136,3 +136,81 @@ fn future_versions_are_rejected_with_a_position() {
         error.message
     );
 }
+
+#[test]
+fn every_preset_module_defines_exactly_the_contract_and_prefixes_the_rest() {
+    for path in crate::support::presets() {
+        let graph = veneer::graph::load(&path).expect("preset loads");
+        let module = compile_graph(&graph).expect("preset compiles").module;
+        let types: Vec<&str> = module
+            .types
+            .iter()
+            .filter_map(|(_, ty)| ty.name.as_deref())
+            .collect();
+        for contract in ["VeneerSurface", "VeneerMaterial"] {
+            assert_eq!(
+                types.iter().filter(|name| **name == contract).count(),
+                1,
+                "{}: {contract}",
+                path.display()
+            );
+        }
+        let named = types.iter().copied().chain(
+            module
+                .functions
+                .iter()
+                .filter_map(|(_, f)| f.name.as_deref()),
+        );
+        for name in named {
+            let allowed =
+                name.starts_with("veneer_") || name == "VeneerSurface" || name == "VeneerMaterial";
+            assert!(
+                allowed,
+                "{}: '{name}' is not prefixed veneer_",
+                path.display()
+            );
+        }
+        let entry = module
+            .functions
+            .iter()
+            .find(|(_, f)| f.name.as_deref() == Some("veneer_material"));
+        let (_, entry) = entry.unwrap_or_else(|| panic!("{}: no veneer_material", path.display()));
+        assert_eq!(entry.arguments.len(), 1);
+        let result = entry
+            .result
+            .as_ref()
+            .expect("veneer_material returns a value");
+        assert_eq!(
+            module.types[result.ty].name.as_deref(),
+            Some("VeneerMaterial")
+        );
+        assert_eq!(
+            module.types[entry.arguments[0].ty].name.as_deref(),
+            Some("VeneerSurface")
+        );
+        assert_eq!(
+            struct_fields(&module, "VeneerSurface"),
+            ["position", "normal", "uv", "fields", "time"]
+        );
+        let material = struct_fields(&module, "VeneerMaterial");
+        assert_eq!(
+            material,
+            ["albedo", "alpha", "specular", "shininess", "bump", "height"]
+        );
+    }
+}
+
+/// Member names of the struct called `name`, in order.
+fn struct_fields(module: &naga::Module, name: &str) -> Vec<String> {
+    let (_, ty) = module
+        .types
+        .iter()
+        .find(|(_, ty)| ty.name.as_deref() == Some(name))
+        .expect("struct defined");
+    match &ty.inner {
+        naga::TypeInner::Struct { members, .. } => {
+            members.iter().filter_map(|m| m.name.clone()).collect()
+        }
+        other => panic!("{name} is not a struct: {other:?}"),
+    }
+}

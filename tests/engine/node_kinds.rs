@@ -1,0 +1,280 @@
+//! Every node kind on its own, its main inputs driven by position, evaluated by the CPU
+//! evaluator (f32) and by the GPU flat render: the two implementations of each node
+//! must agree (within 2/255 on 99.5% of pixels).
+
+use crate::support::{difference, flat_rgb8};
+use veneer::eval::{Evaluator, Surface};
+use veneer::graph::{
+    Basis, Graph, MathOp, Metric, NodeId, NodeKind, PinDefault, RampInterpolation, RampStop,
+    UnaryOp, Value, ValueType, WorleyFeature,
+};
+use veneer::render::FlatRect;
+
+const SIZE: u32 = 48;
+const RECT: FlatRect = FlatRect {
+    x0: -3.0,
+    z0: -2.0,
+    x1: 5.0,
+    z1: 6.0,
+    y: 0.25,
+};
+
+fn kinds() -> Vec<NodeKind> {
+    use ValueType::*;
+    let mut kinds = vec![
+        NodeKind::Constant { ty: Float },
+        NodeKind::Transform,
+        NodeKind::Project,
+        NodeKind::Cylindrical,
+        NodeKind::SineBand,
+        NodeKind::TriangleWave,
+        NodeKind::Tiles,
+        NodeKind::Rings,
+        NodeKind::Smoothstep,
+        NodeKind::Remap,
+        NodeKind::Worley {
+            feature: WorleyFeature::F1,
+            metric: Metric::Euclidean,
+            octaves: 1,
+        },
+        NodeKind::Worley {
+            feature: WorleyFeature::F2,
+            metric: Metric::Manhattan,
+            octaves: 1,
+        },
+        NodeKind::Worley {
+            feature: WorleyFeature::F3,
+            metric: Metric::Chebyshev,
+            octaves: 1,
+        },
+        NodeKind::Worley {
+            feature: WorleyFeature::F2MinusF1,
+            metric: Metric::Euclidean,
+            octaves: 3,
+        },
+        NodeKind::ColorRamp {
+            stops: vec![
+                RampStop {
+                    position: 0.2,
+                    color: (0.9, 0.1, 0.1),
+                },
+                RampStop {
+                    position: 0.5,
+                    color: (0.1, 0.8, 0.2),
+                },
+                RampStop {
+                    position: 0.5,
+                    color: (0.2, 0.2, 0.9),
+                },
+                RampStop {
+                    position: 0.9,
+                    color: (1.0, 1.0, 0.3),
+                },
+            ],
+            interpolation: RampInterpolation::Linear,
+        },
+        NodeKind::ColorRamp {
+            stops: vec![
+                RampStop {
+                    position: 0.3,
+                    color: (0.1, 0.2, 0.3),
+                },
+                RampStop {
+                    position: 0.6,
+                    color: (0.7, 0.5, 0.1),
+                },
+            ],
+            interpolation: RampInterpolation::Constant,
+        },
+    ];
+    for basis in [Basis::ValuePcg, Basis::Gradient, Basis::Simplex] {
+        kinds.push(NodeKind::Noise { basis });
+        kinds.push(NodeKind::DomainWarp { basis });
+        kinds.push(NodeKind::Fbm {
+            basis,
+            octaves: 4,
+            normalize: true,
+        });
+        kinds.push(NodeKind::Turbulence {
+            basis,
+            octaves: 3,
+            normalize: false,
+        });
+        kinds.push(NodeKind::FractalSum {
+            basis,
+            octaves: 3,
+            normalize: true,
+        });
+    }
+    for ty in [Float, Vec2, Vec3, Color] {
+        for op in [
+            MathOp::Add,
+            MathOp::Subtract,
+            MathOp::Multiply,
+            MathOp::Divide,
+            MathOp::Power,
+            MathOp::Minimum,
+            MathOp::Maximum,
+        ] {
+            kinds.push(NodeKind::Math { op, ty });
+        }
+        for op in [
+            UnaryOp::Abs,
+            UnaryOp::Fract,
+            UnaryOp::Floor,
+            UnaryOp::Sin,
+            UnaryOp::Cos,
+            UnaryOp::Negate,
+            UnaryOp::OneMinus,
+        ] {
+            kinds.push(NodeKind::Unary { op, ty });
+        }
+        kinds.extend([
+            NodeKind::Mix { ty },
+            NodeKind::Clamp { ty },
+            NodeKind::Step { ty },
+        ]);
+        if ty != Float {
+            kinds.extend([
+                NodeKind::Length { ty },
+                NodeKind::Dot { ty },
+                NodeKind::Normalize { ty },
+            ]);
+            kinds.extend([NodeKind::Split { ty }, NodeKind::Combine { ty }]);
+        }
+    }
+    kinds
+}
+
+/// Varying sources in about [-0.3, 1.3]: a scalar, a second scalar, a vec2 and a point.
+struct Sources {
+    scalar: NodeId,
+    other: NodeId,
+    pair: NodeId,
+    point: NodeId,
+}
+
+fn sources(graph: &mut Graph) -> Sources {
+    let point = graph.add("point", NodeKind::Transform);
+    graph.set_input(point, "scale", Value::Vec3(0.2, 0.2, 0.2));
+    graph.set_input(point, "offset", Value::Vec3(0.3, 0.1, 0.3));
+    let scalar = graph.add("scalar", NodeKind::Project);
+    graph.connect(point, "p", scalar, "p");
+    graph.set_input(scalar, "direction", Value::Vec3(0.6, 0.0, 0.8));
+    let other = graph.add("other", NodeKind::Project);
+    graph.connect(point, "p", other, "p");
+    graph.set_input(other, "direction", Value::Vec3(-0.8, 0.0, 0.6));
+    graph.set_input(other, "origin", Value::Vec3(-0.8, 0.0, 0.0));
+    let pair = graph.add(
+        "pair",
+        NodeKind::Combine {
+            ty: ValueType::Vec2,
+        },
+    );
+    graph.connect(other, "x", pair, "y");
+    graph.connect(scalar, "x", pair, "x");
+    Sources {
+        scalar,
+        other,
+        pair,
+        point,
+    }
+}
+
+/// A graph showing `kind`'s outputs as the albedo.
+fn graph_for(kind: &NodeKind) -> Graph {
+    let mut graph = Graph::default();
+    let sources = sources(&mut graph);
+    let signature = kind.signature();
+    let node = graph.add("under test", kind.clone());
+    if *kind == NodeKind::Transform {
+        graph.set_input(node, "rotation", Value::Vec3(30.0, 45.0, 60.0));
+    }
+    for (index, pin) in signature.inputs.iter().enumerate() {
+        let driven = matches!(pin.default, PinDefault::Required | PinDefault::Position)
+            || ["a", "b", "factor", "value"].contains(&pin.name)
+            || matches!(kind, NodeKind::Combine { .. });
+        if !driven {
+            continue;
+        }
+        let (source, output) = match pin.ty {
+            ValueType::Float if index % 2 == 1 => (sources.other, "x"),
+            ValueType::Float => (sources.scalar, "x"),
+            ValueType::Vec2 => (sources.pair, "v"),
+            ValueType::Vec3 | ValueType::Color => (sources.point, "p"),
+        };
+        graph.connect(source, output, node, pin.name);
+    }
+    let material = graph.add("material", NodeKind::Material);
+    let outputs = &signature.outputs;
+    if outputs.len() == 1 && outputs[0].ty != ValueType::Vec2 {
+        graph.connect(node, outputs[0].name, material, "albedo");
+    } else {
+        let color = graph.add(
+            "shown",
+            NodeKind::Combine {
+                ty: ValueType::Color,
+            },
+        );
+        let mut channels = Vec::new();
+        for output in outputs {
+            if output.ty == ValueType::Vec2 {
+                let split = graph.add(
+                    &format!("{} parts", output.name),
+                    NodeKind::Split {
+                        ty: ValueType::Vec2,
+                    },
+                );
+                graph.connect(node, output.name, split, "v");
+                channels.extend([(split, "x"), (split, "y")]);
+            } else {
+                channels.push((node, output.name));
+            }
+        }
+        for ((from, pin), channel) in channels.into_iter().zip(["x", "y", "z"]) {
+            graph.connect(from, pin, color, channel);
+        }
+        graph.connect(color, "v", material, "albedo");
+    }
+    graph
+}
+
+fn cpu_rgb8(graph: &Graph) -> Vec<u8> {
+    let evaluator = Evaluator::new(graph).expect("graph checks");
+    let mut pixels = Vec::new();
+    for j in 0..SIZE {
+        for i in 0..SIZE {
+            let t = [
+                (i as f32 + 0.5) / SIZE as f32,
+                (j as f32 + 0.5) / SIZE as f32,
+            ];
+            let x = RECT.x0 as f32 + (RECT.x1 as f32 - RECT.x0 as f32) * t[0];
+            let z = RECT.z0 as f32 + (RECT.z1 as f32 - RECT.z0 as f32) * t[1];
+            let albedo = evaluator
+                .eval(&Surface::<f32>::at([x as f64, RECT.y, z as f64]))
+                .albedo;
+            pixels.extend(albedo.map(|v| (255.0 * v.clamp(0.0, 1.0)).round() as u8));
+        }
+    }
+    pixels
+}
+
+#[test]
+fn every_node_kind_agrees_between_cpu_and_gpu() {
+    let mut failures = Vec::new();
+    for kind in kinds() {
+        let graph = graph_for(&kind);
+        let source = veneer::codegen::compile_graph(&graph)
+            .unwrap_or_else(|e| panic!("{kind:?}: {e}"))
+            .source;
+        let diff = difference(&cpu_rgb8(&graph), &flat_rgb8(&source, RECT, SIZE), 3, 2);
+        if diff.share_outside > 0.005 {
+            failures.push(format!("{kind:?}: {diff}"));
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "CPU and GPU disagree:\n{}",
+        failures.join("\n")
+    );
+}
