@@ -10,26 +10,47 @@ use veneer::eval::{Evaluator, Surface};
 use veneer::render::{FlatRect, FlatRenderer, GpuContext};
 
 const WOOD: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/graphs/wood.ron");
-const HAND_WRITTEN_WOOD: &str = include_str!("../tests/engine/reference/wood_seed000.wgsl");
+const HAND_WRITTEN_WOOD: &str = concat!(
+    include_str!("../tests/engine/reference/seed000_noise.wgsl"),
+    include_str!("../tests/engine/reference/wood_seed000.wgsl")
+);
 
 fn flat_render(c: &mut Criterion) {
     let gpu = GpuContext::new().expect("a wgpu adapter");
     let graph = veneer::graph::load(std::path::Path::new(WOOD)).expect("wood preset");
-    let generated = veneer::codegen::compile_graph(&graph).expect("compiles").source;
+    let generated = veneer::codegen::compile_graph(&graph)
+        .expect("compiles")
+        .source;
     let hand_written = format!("{}\n{HAND_WRITTEN_WOOD}", veneer::codegen::library::SURFACE);
-    let rect = FlatRect { x0: 0.0, z0: 0.0, x1: 50.0, z1: 50.0, y: 0.5 };
-    let mut group = c.benchmark_group(format!("flat render 256² of wood on {}", gpu.adapter_description()));
+    let rect = FlatRect {
+        x0: 0.0,
+        z0: 0.0,
+        x1: 50.0,
+        z1: 50.0,
+        y: 0.5,
+    };
+    let mut group = c.benchmark_group(format!(
+        "flat render 256² of wood on {}",
+        gpu.adapter_description()
+    ));
     group.sample_size(20);
-    for (name, source) in [("hand-written seed shader", &hand_written), ("generated from the graph", &generated)] {
+    for (name, source) in [
+        ("hand-written seed shader", &hand_written),
+        ("generated from the graph", &generated),
+    ] {
         let renderer = FlatRenderer::new(&gpu, source).expect("pipeline builds");
-        group.bench_function(name, |b| b.iter(|| renderer.render(&gpu, rect, 256, 0.0).expect("renders")));
+        group.bench_function(name, |b| {
+            b.iter(|| renderer.render(&gpu, rect, 256, 0.0).expect("renders"))
+        });
     }
     group.finish();
 }
 
 fn compile(c: &mut Criterion) {
     let graph = veneer::graph::load(std::path::Path::new(WOOD)).expect("wood preset");
-    let source = veneer::codegen::compile_graph(&graph).expect("compiles").source;
+    let source = veneer::codegen::compile_graph(&graph)
+        .expect("compiles")
+        .source;
     let mut group = c.benchmark_group("compile wood");
     group.bench_function("naga parse + validate only (baseline)", |b| {
         b.iter(|| veneer::codegen::validate(black_box(&source)).expect("valid"))
@@ -43,13 +64,25 @@ fn compile(c: &mut Criterion) {
 fn cpu_eval(c: &mut Criterion) {
     let graph = veneer::graph::load(std::path::Path::new(WOOD)).expect("wood preset");
     let evaluator = Evaluator::new(&graph).expect("checks");
-    let points: Vec<[f64; 3]> = (0..4096).map(|k| [(k % 64) as f64 * 0.78, 0.5, (k / 64) as f64 * 0.78]).collect();
+    let points: Vec<[f64; 3]> = (0..4096)
+        .map(|k| [(k % 64) as f64 * 0.78, 0.5, (k / 64) as f64 * 0.78])
+        .collect();
     let mut group = c.benchmark_group("CPU evaluator, 4096 points of wood");
     group.bench_function("f32", |b| {
-        b.iter(|| points.iter().map(|p| evaluator.eval(&Surface::<f32>::at(*p)).albedo[0]).sum::<f32>())
+        b.iter(|| {
+            points
+                .iter()
+                .map(|p| evaluator.eval(&Surface::<f32>::at(*p)).albedo[0])
+                .sum::<f32>()
+        })
     });
     group.bench_function("f64 (reference)", |b| {
-        b.iter(|| points.iter().map(|p| evaluator.eval(&Surface::<f64>::at(*p)).albedo[0]).sum::<f64>())
+        b.iter(|| {
+            points
+                .iter()
+                .map(|p| evaluator.eval(&Surface::<f64>::at(*p)).albedo[0])
+                .sum::<f64>()
+        })
     });
     group.finish();
 }

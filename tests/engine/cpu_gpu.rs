@@ -1,7 +1,7 @@
 //! The CPU evaluator (f32) against the GPU flat render for graphs built on the PCG hash,
 //! whose lattice values are bit-identical on both: within 2/255 on 99.9% of pixels.
 
-use crate::support::{difference, flat_rgb8};
+use crate::support::{cpu_flat_rgb8, difference, flat_rgb8};
 use veneer::eval::{Evaluator, Surface};
 use veneer::graph::{Basis, Graph, MathOp, Metric, NodeKind, Value, ValueType, WorleyFeature};
 use veneer::render::FlatRect;
@@ -100,23 +100,7 @@ fn cpu_f32_evaluation_matches_the_gpu_flat_render() {
         },
     );
     let gpu = flat_rgb8(&source, rect, size);
-    let evaluator = Evaluator::new(&graph).expect("test graph checks");
-    let mut cpu = Vec::with_capacity(gpu.len());
-    for j in 0..size {
-        for i in 0..size {
-            // The same f32 arithmetic as shaders/render_flat.wgsl.
-            let t = [
-                (i as f32 + 0.5) / size as f32,
-                (j as f32 + 0.5) / size as f32,
-            ];
-            let x = rect.x0 as f32 + (rect.x1 as f32 - rect.x0 as f32) * t[0];
-            let z = rect.z0 as f32 + (rect.z1 as f32 - rect.z0 as f32) * t[1];
-            let albedo = evaluator
-                .eval(&Surface::<f32>::at([x as f64, rect.y, z as f64]))
-                .albedo;
-            cpu.extend(albedo.map(|v| (255.0 * v.clamp(0.0, 1.0)).round() as u8));
-        }
-    }
+    let cpu = cpu_flat_rgb8(&graph, rect, size);
     let diff = difference(&cpu, &gpu, 3, 2);
     assert!(diff.share_outside <= 0.001, "CPU f32 against GPU: {diff}");
 }

@@ -2,8 +2,7 @@
 //! evaluator (f32) and by the GPU flat render: the two implementations of each node
 //! must agree (within 2/255 on 99.5% of pixels).
 
-use crate::support::{difference, flat_rgb8};
-use veneer::eval::{Evaluator, Surface};
+use crate::support::{cpu_flat_rgb8, difference, flat_rgb8};
 use veneer::graph::{
     Basis, Graph, MathOp, Metric, NodeId, NodeKind, PinDefault, RampInterpolation, RampStop,
     UnaryOp, Value, ValueType, WorleyFeature,
@@ -239,26 +238,6 @@ fn graph_for(kind: &NodeKind) -> Graph {
     graph
 }
 
-fn cpu_rgb8(graph: &Graph) -> Vec<u8> {
-    let evaluator = Evaluator::new(graph).expect("graph checks");
-    let mut pixels = Vec::new();
-    for j in 0..SIZE {
-        for i in 0..SIZE {
-            let t = [
-                (i as f32 + 0.5) / SIZE as f32,
-                (j as f32 + 0.5) / SIZE as f32,
-            ];
-            let x = RECT.x0 as f32 + (RECT.x1 as f32 - RECT.x0 as f32) * t[0];
-            let z = RECT.z0 as f32 + (RECT.z1 as f32 - RECT.z0 as f32) * t[1];
-            let albedo = evaluator
-                .eval(&Surface::<f32>::at([x as f64, RECT.y, z as f64]))
-                .albedo;
-            pixels.extend(albedo.map(|v| (255.0 * v.clamp(0.0, 1.0)).round() as u8));
-        }
-    }
-    pixels
-}
-
 #[test]
 fn every_node_kind_agrees_between_cpu_and_gpu() {
     let mut failures = Vec::new();
@@ -267,7 +246,12 @@ fn every_node_kind_agrees_between_cpu_and_gpu() {
         let source = veneer::codegen::compile_graph(&graph)
             .unwrap_or_else(|e| panic!("{kind:?}: {e}"))
             .source;
-        let diff = difference(&cpu_rgb8(&graph), &flat_rgb8(&source, RECT, SIZE), 3, 2);
+        let diff = difference(
+            &cpu_flat_rgb8(&graph, RECT, SIZE),
+            &flat_rgb8(&source, RECT, SIZE),
+            3,
+            2,
+        );
         if diff.share_outside > 0.005 {
             failures.push(format!("{kind:?}: {diff}"));
         }

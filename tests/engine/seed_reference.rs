@@ -4,12 +4,18 @@
 use crate::support::{difference, flat_rgb8, root};
 use veneer::render::FlatRect;
 
+/// Seed 000's hash, value noise and fBm, shared by both references.
+pub const SEED_NOISE: &str = include_str!("reference/seed000_noise.wgsl");
+
 fn compare_with_seed(preset: &str, reference: &str, rect: FlatRect) {
     let graph = veneer::graph::load(&root(&format!("graphs/{preset}.ron"))).expect("preset loads");
     let ours = veneer::codegen::compile_graph(&graph)
         .expect("preset compiles")
         .source;
-    let seed = format!("{}\n{reference}", veneer::codegen::library::SURFACE);
+    let seed = format!(
+        "{}\n{SEED_NOISE}\n{reference}",
+        veneer::codegen::library::SURFACE
+    );
     let (a, b) = (flat_rgb8(&ours, rect, 256), flat_rgb8(&seed, rect, 256));
     let diff = difference(&a, &b, 3, 2);
     assert!(
