@@ -7,3 +7,4 @@ pub mod fsutil;
 pub mod graph;
 pub mod mesh;
 pub mod render;
+pub mod snapshot;

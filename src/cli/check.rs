@@ -21,12 +21,12 @@ pub fn run(args: CheckArgs) -> Result<(), Failure> {
             });
         match result {
             Ok(_) => println!("{}: ok", path.display()),
-            Err(Failure(message)) => failures.push(message),
+            Err(Failure(message, _)) => failures.push(message),
         }
     }
     if failures.is_empty() {
         Ok(())
     } else {
-        Err(Failure(failures.join("\n")))
+        Err(Failure::new(failures.join("\n")))
     }
 }

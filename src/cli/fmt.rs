@@ -15,7 +15,7 @@ pub fn run(args: FmtArgs) -> Result<(), Failure> {
     for path in &args.graphs {
         let graph = load_graph(path)?;
         veneer::graph::save(&graph, path)
-            .map_err(|error| Failure(format!("{}: cannot write: {error}", path.display())))?;
+            .map_err(|error| Failure::new(format!("{}: cannot write: {error}", path.display())))?;
     }
     Ok(())
 }

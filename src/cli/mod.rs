@@ -4,6 +4,7 @@ mod check;
 mod compile;
 mod fmt;
 mod render;
+mod snapshot;
 
 use clap::{Parser, Subcommand};
 use std::path::{Path, PathBuf};
@@ -27,14 +28,24 @@ enum Command {
     Check(check::CheckArgs),
     /// Rewrite graph files in canonical form (sorted, deterministic bytes).
     Fmt(fmt::FmtArgs),
+    /// Render graphs and compare them with approved golden images (exit 1 on a difference).
+    Snapshot(snapshot::SnapshotArgs),
 }
 
-/// A failed command: the message to print (already prefixed with the file or node).
-pub struct Failure(pub String);
+/// A failed command: the message to print (already prefixed with the file or node) and
+/// the exit code (1 unless a command documents otherwise).
+pub struct Failure(pub String, pub u8);
 
 impl<E: std::fmt::Display> From<E> for Failure {
     fn from(error: E) -> Failure {
-        Failure(error.to_string())
+        Failure(error.to_string(), 1)
+    }
+}
+
+impl Failure {
+    /// A failure with exit code 1.
+    pub fn new(message: impl Into<String>) -> Failure {
+        Failure(message.into(), 1)
     }
 }
 
@@ -56,12 +67,15 @@ pub fn run() -> ExitCode {
         Some(Command::Compile(args)) => compile::run(args),
         Some(Command::Check(args)) => check::run(args),
         Some(Command::Fmt(args)) => fmt::run(args),
+        Some(Command::Snapshot(args)) => snapshot::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
-        Err(Failure(message)) => {
-            eprintln!("{message}");
-            ExitCode::FAILURE
+        Err(Failure(message, code)) => {
+            if !message.is_empty() {
+                eprintln!("{message}");
+            }
+            ExitCode::from(code)
         }
     }
 }
@@ -78,7 +92,7 @@ fn in_file(path: &Path, error: impl std::fmt::Display) -> Failure {
         .lines()
         .map(|line| format!("{}: {line}", path.display()))
         .collect();
-    Failure(lines.join("\n"))
+    Failure::new(lines.join("\n"))
 }
 
 /// Writes `bytes` atomically to `path`, or to stdout when `path` is `None` or `-`.
@@ -86,7 +100,7 @@ fn write_output(path: Option<&PathBuf>, bytes: &[u8]) -> Result<(), Failure> {
     use std::io::Write;
     match path {
         Some(path) if path.as_os_str() != "-" => veneer::fsutil::write_atomic(path, bytes)
-            .map_err(|error| Failure(format!("{}: cannot write: {error}", path.display()))),
+            .map_err(|error| Failure::new(format!("{}: cannot write: {error}", path.display()))),
         _ => std::io::stdout().write_all(bytes).map_err(Failure::from),
     }
 }

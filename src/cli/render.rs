@@ -3,7 +3,7 @@
 use super::{Failure, in_file, load_graph, write_output};
 use clap::Args;
 use std::path::PathBuf;
-use veneer::render::{FlatRect, FlatRenderer, GpuContext, MeshRenderer, MeshView};
+use veneer::render::{FlatRect, GpuContext, View, render_graph};
 
 #[derive(Args)]
 pub struct RenderArgs {
@@ -26,7 +26,7 @@ pub struct RenderArgs {
     time: f32,
 }
 
-fn parse_flat(text: &str) -> Result<FlatRect, String> {
+pub fn parse_flat(text: &str) -> Result<FlatRect, String> {
     let numbers: Vec<f64> = text
         .split(',')
         .map(|part| {
@@ -49,45 +49,12 @@ fn parse_flat(text: &str) -> Result<FlatRect, String> {
 
 pub fn run(args: RenderArgs) -> Result<(), Failure> {
     let graph = load_graph(&args.graph)?;
-    let module =
-        veneer::codegen::compile_graph(&graph).map_err(|error| in_file(&args.graph, error))?;
-    let gpu = GpuContext::new()?;
-    let size = args.size;
-    let png = match args.flat {
-        Some(rect) => {
-            let renderer = FlatRenderer::new(&gpu, &module.source)?;
-            let pixels = renderer.render(&gpu, rect, size, args.time)?;
-            encode_png(
-                &veneer::render::albedo_to_rgb8(&pixels),
-                size,
-                image::ExtendedColorType::Rgb8,
-            )?
-        }
-        None => {
-            let mesh_name = args.mesh.as_deref().unwrap_or(&graph.preview.mesh);
-            let mesh = veneer::mesh::primitive(mesh_name).ok_or_else(|| {
-                Failure(format!(
-                    "unknown mesh '{mesh_name}' (expected one of: {})",
-                    veneer::mesh::PRIMITIVES.join(", ")
-                ))
-            })?;
-            let mut view = MeshView::for_preview(&graph.preview);
-            view.time = args.time;
-            let renderer = MeshRenderer::new(&gpu, &module.source)?;
-            let pixels = renderer.render(&gpu, &mesh, &view, size)?;
-            encode_png(&pixels, size, image::ExtendedColorType::Rgba8)?
-        }
+    veneer::codegen::compile_graph(&graph).map_err(|error| in_file(&args.graph, error))?;
+    let view = match args.flat {
+        Some(rect) => View::Flat(rect),
+        None => View::Mesh(args.mesh),
     };
-    write_output(Some(&args.output), &png)
-}
-
-fn encode_png(
-    pixels: &[u8],
-    size: u32,
-    color: image::ExtendedColorType,
-) -> Result<Vec<u8>, Failure> {
-    use image::ImageEncoder;
-    let mut bytes = Vec::new();
-    image::codecs::png::PngEncoder::new(&mut bytes).write_image(pixels, size, size, color)?;
-    Ok(bytes)
+    let gpu = GpuContext::new()?;
+    let image = render_graph(&gpu, &graph, &view, args.size, args.time)?;
+    write_output(Some(&args.output), &image.to_png()?)
 }

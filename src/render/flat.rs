@@ -5,7 +5,7 @@ use super::{GpuContext, RenderError, shader_source};
 
 /// The part of the plane y = `y` that the image covers: x from `x0` to `x1` left to
 /// right, z from `z0` to `z1` top to bottom.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct FlatRect {
     pub x0: f64,
     pub z0: f64,

@@ -3,11 +3,13 @@
 
 mod context;
 mod flat;
+mod image;
 mod mesh_view;
 mod readback;
 
 pub use context::{GpuContext, RenderError};
 pub use flat::{FlatRect, FlatRenderer, albedo_to_rgb8};
+pub use image::{Image, View, preview_rect, render_graph};
 pub use mesh_view::{MeshRenderer, MeshView};
 
 /// WGSL of a material module combined with a renderer's entry points.

@@ -7,4 +7,5 @@ mod graph_files;
 mod node_kinds;
 mod presets;
 mod seed_reference;
+mod snapshots;
 mod support;

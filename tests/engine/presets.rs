@@ -1,39 +1,9 @@
 //! Every preset loads, checks, compiles to its golden WGSL, saves byte-identically, and
-//! renders (flat and on its mesh) to its golden images within the stated tolerance.
+//! renders (flat and on its mesh) like its snapshot, through `veneer::snapshot`.
 
-use crate::support::{
-    adapter_slug, difference, flat_rgb8, gpu, presets, read_png, root, stem, updating, write_png,
-};
-use veneer::render::{FlatRect, MeshRenderer, MeshView};
-
-/// Golden images may differ from a render by this much per channel...
-const TOLERANCE: u8 = 8;
-/// ...in at most this share of pixels. Goldens are per adapter (tests/golden/images/<adapter>/),
-/// so this only absorbs driver-version noise.
-const SHARE: f64 = 0.01;
-const IMAGE_SIZE: u32 = 160;
-
-fn compare_or_update_image(name: &str, pixels: &[u8], channels: usize) {
-    let folder = root(&format!("tests/golden/images/{}", adapter_slug()));
-    let path = folder.join(format!("{name}.png"));
-    if updating() {
-        std::fs::create_dir_all(&folder).expect("golden folder");
-        write_png(&path, pixels, IMAGE_SIZE, channels);
-        return;
-    }
-    assert!(
-        path.exists(),
-        "no golden {} for this adapter: make them with VENEER_UPDATE_GOLDEN=1",
-        path.display()
-    );
-    let (_, _, golden) = read_png(&path);
-    let diff = difference(pixels, &golden, channels, TOLERANCE);
-    assert!(
-        diff.share_outside <= SHARE,
-        "{name}: {diff} against {}",
-        path.display()
-    );
-}
+use crate::support::{flat_rgb8, presets, root, snapshot_folder, stem, updating};
+use veneer::render::{FlatRect, View};
+use veneer::snapshot::{Settings, assert_matches};
 
 #[test]
 fn presets_load_check_and_match_their_golden_wgsl() {
@@ -75,46 +45,20 @@ fn presets_save_byte_identically() {
 }
 
 #[test]
-fn presets_render_flat_like_their_golden_images() {
+fn presets_render_like_their_snapshots_flat_and_on_their_mesh() {
+    let folder = snapshot_folder();
     for path in presets() {
-        let graph = veneer::graph::load(&path).expect("preset loads");
-        let source = veneer::codegen::compile_graph(&graph)
-            .expect("preset compiles")
-            .source;
-        let (c, size) = (graph.preview.center, graph.preview.size);
-        let rect = FlatRect {
-            x0: c.0 - size,
-            z0: c.2 - size,
-            x1: c.0 + size,
-            z1: c.2 + size,
-            y: c.1 + 0.5,
-        };
-        compare_or_update_image(
-            &format!("{}_flat", stem(&path)),
-            &flat_rgb8(&source, rect, IMAGE_SIZE),
-            3,
+        let name = stem(&path);
+        assert_matches(
+            &path,
+            folder.join(format!("{name}.png")),
+            &Settings::default(),
         );
-    }
-}
-
-#[test]
-fn presets_render_on_their_mesh_like_their_golden_images() {
-    for path in presets() {
-        let graph = veneer::graph::load(&path).expect("preset loads");
-        let source = veneer::codegen::compile_graph(&graph)
-            .expect("preset compiles")
-            .source;
-        let mesh = veneer::mesh::primitive(&graph.preview.mesh).expect("preset names a primitive");
-        let renderer = MeshRenderer::new(gpu(), &source).expect("mesh pipeline builds");
-        let pixels = renderer
-            .render(
-                gpu(),
-                &mesh,
-                &MeshView::for_preview(&graph.preview),
-                IMAGE_SIZE,
-            )
-            .expect("renders");
-        compare_or_update_image(&format!("{}_mesh", stem(&path)), &pixels, 4);
+        let flat = Settings {
+            view: View::PreviewFlat,
+            ..Settings::default()
+        };
+        assert_matches(&path, folder.join(format!("flat/{name}.png")), &flat);
     }
 }
 

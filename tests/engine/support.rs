@@ -34,9 +34,10 @@ pub fn stem(path: &Path) -> String {
         .into_owned()
 }
 
-/// Folder name for golden images made on the current adapter, e.g. `llvmpipe-vulkan`:
-/// the sine hash gives different bits on different adapters, so goldens are per adapter.
-pub fn adapter_slug() -> String {
+/// Where this adapter's snapshots live: `tests/snapshots/` holds those of CI's adapter
+/// (Vulkan/lavapipe); any other adapter keeps its own in `tests/snapshots/<device>-<backend>/`,
+/// because the sine hash gives different bits on different adapters.
+pub fn snapshot_folder() -> PathBuf {
     let info = gpu().adapter.get_info();
     let device = info
         .name
@@ -44,10 +45,15 @@ pub fn adapter_slug() -> String {
         .next()
         .unwrap_or("unknown")
         .to_lowercase();
-    format!("{device}-{:?}", info.backend).to_lowercase()
+    let slug = format!("{device}-{:?}", info.backend).to_lowercase();
+    if slug == "llvmpipe-vulkan" {
+        root("tests/snapshots")
+    } else {
+        root(&format!("tests/snapshots/{slug}"))
+    }
 }
 
-/// Whether golden files should be rewritten instead of compared.
+/// Whether golden WGSL files should be rewritten instead of compared.
 pub fn updating() -> bool {
     std::env::var("VENEER_UPDATE_GOLDEN").is_ok_and(|value| value == "1")
 }
@@ -136,25 +142,4 @@ pub fn difference(a: &[u8], b: &[u8], channels: usize, tolerance: u8) -> Differe
         mean: total as f64 / a.len() as f64,
         share_outside: outside as f64 / pixels as f64,
     }
-}
-
-/// Decodes a PNG into raw 8-bit channels.
-pub fn read_png(path: &Path) -> (u32, u32, Vec<u8>) {
-    let image = image::open(path).unwrap_or_else(|error| panic!("{}: {error}", path.display()));
-    let (width, height) = (image.width(), image.height());
-    let bytes = match image {
-        image::DynamicImage::ImageRgb8(rgb) => rgb.into_raw(),
-        other => other.to_rgba8().into_raw(),
-    };
-    (width, height, bytes)
-}
-
-/// Writes raw 8-bit pixels as a PNG.
-pub fn write_png(path: &Path, pixels: &[u8], size: u32, channels: usize) {
-    let color = if channels == 3 {
-        image::ColorType::Rgb8
-    } else {
-        image::ColorType::Rgba8
-    };
-    image::save_buffer(path, pixels, size, size, color).expect("golden image written");
 }

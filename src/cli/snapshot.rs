@@ -1,0 +1,133 @@
+//! `veneer snapshot`: render graphs and compare them with approved golden images.
+//! Exit 0 when all match, 1 when any differs, 2 on bad input.
+
+use super::Failure;
+use super::render::parse_flat;
+use clap::Args;
+use std::path::PathBuf;
+use veneer::render::{GpuContext, View};
+use veneer::snapshot::{
+    Outcome, Report, Settings, Tolerance, UPDATE_VARIABLE, check, update_requested,
+};
+
+#[derive(Args)]
+pub struct SnapshotArgs {
+    /// Graph files; each is compared with DIR/<graph>.png.
+    #[arg(required = true)]
+    graphs: Vec<PathBuf>,
+    /// Folder of golden images and their .snap.ron sidecars.
+    #[arg(long, value_name = "DIR")]
+    golden: PathBuf,
+    /// Write the renders as the new goldens (also with VENEER_UPDATE_SNAPSHOTS=1).
+    #[arg(long)]
+    update: bool,
+    /// Override the goldens' tolerance: channel=N,share=S[,ssim=M].
+    #[arg(long, value_name = "SPEC")]
+    tolerance: Option<String>,
+    /// Render the albedo flat over X0,Z0,X1,Z1,Y, or over each graph's preview square with `preview`.
+    #[arg(
+        long,
+        value_name = "X0,Z0,X1,Z1,Y|preview",
+        allow_hyphen_values = true,
+        conflicts_with = "mesh"
+    )]
+    flat: Option<String>,
+    /// Render on this mesh (default: each graph's preview mesh).
+    #[arg(long)]
+    mesh: Option<String>,
+    /// Image width and height in pixels.
+    #[arg(long, default_value_t = 256)]
+    size: u32,
+    /// Time in seconds.
+    #[arg(long, default_value_t = 0.0)]
+    time: f32,
+    /// Print a JSON summary on stdout instead of one line per graph.
+    #[arg(long)]
+    json: bool,
+}
+
+fn bad_input(message: String) -> Failure {
+    Failure(message, 2)
+}
+
+fn json_entry(report: &Report) -> serde_json::Value {
+    let (status, comparison, tolerance, reasons) = match &report.outcome {
+        Outcome::Matched(comparison) => (
+            "matched",
+            Some(*comparison),
+            Some(comparison.tolerance),
+            vec![],
+        ),
+        Outcome::Updated => ("updated", None, None, vec![]),
+        Outcome::Mismatched {
+            comparison,
+            tolerance,
+            reasons,
+        } => ("differs", *comparison, Some(*tolerance), reasons.clone()),
+    };
+    serde_json::json!({
+        "graph": report.graph.display().to_string(),
+        "golden": report.golden.display().to_string(),
+        "status": status,
+        "max": comparison.map(|c| c.max),
+        "mean": comparison.map(|c| c.mean),
+        "share_outside": comparison.map(|c| c.share_outside),
+        "psnr": comparison.map(|c| if c.psnr.is_finite() { serde_json::json!(c.psnr) } else { serde_json::json!("inf") }),
+        "ssim": comparison.and_then(|c| c.ssim),
+        "tolerance": tolerance.map(|t| t.to_string()),
+        "reasons": reasons,
+    })
+}
+
+pub fn run(args: SnapshotArgs) -> Result<(), Failure> {
+    let tolerance = args
+        .tolerance
+        .as_deref()
+        .map(|spec| Tolerance::parse(spec, Tolerance::SAME_ADAPTER))
+        .transpose()
+        .map_err(|error| bad_input(format!("--tolerance: {error}")))?;
+    let view = match args.flat.as_deref() {
+        Some("preview") => View::PreviewFlat,
+        Some(rect) => {
+            View::Flat(parse_flat(rect).map_err(|error| bad_input(format!("--flat: {error}")))?)
+        }
+        None => View::Mesh(args.mesh.clone()),
+    };
+    let settings = Settings {
+        view,
+        size: args.size,
+        time: args.time,
+        tolerance,
+    };
+    let update = args.update || update_requested();
+    let gpu = GpuContext::new().map_err(|error| bad_input(error.to_string()))?;
+    let mut reports = Vec::new();
+    for graph in &args.graphs {
+        let stem = graph
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        let golden = args.golden.join(format!("{stem}.png"));
+        let report = check(&gpu, graph, &golden, &settings, update)
+            .map_err(|error| bad_input(error.to_string()))?;
+        if !args.json {
+            println!("{}", report.summary());
+        }
+        reports.push(report);
+    }
+    if args.json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&reports.iter().map(json_entry).collect::<Vec<_>>())?
+        );
+    }
+    let failed = reports.iter().filter(|r| !r.passed()).count();
+    if failed == 0 {
+        return Ok(());
+    }
+    let hint = format!(
+        "{failed} of {} snapshots differ; approve with --update or {UPDATE_VARIABLE}=1",
+        reports.len()
+    );
+    Err(Failure(if args.json { String::new() } else { hint }, 1))
+}

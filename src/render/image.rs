@@ -1,0 +1,122 @@
+//! Rendering a graph to an 8-bit image, as `veneer render` and snapshots do.
+
+use super::{
+    FlatRect, FlatRenderer, GpuContext, MeshRenderer, MeshView, RenderError, albedo_to_rgb8,
+};
+use crate::graph::Graph;
+use serde::{Deserialize, Serialize};
+
+/// How a graph is shown in an image.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub enum View {
+    /// Lit, on a primitive mesh (`None`: the graph's preview mesh), as in the preview.
+    Mesh(Option<String>),
+    /// Albedo, unlit, over a rectangle of a plane (`veneer render --flat`).
+    Flat(FlatRect),
+    /// Albedo, unlit, over the square the graph's preview covers (centre ± size, y = centre + 0.5).
+    PreviewFlat,
+}
+
+/// An 8-bit image, rows from the top.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Image {
+    pub width: u32,
+    pub height: u32,
+    /// 3 (RGB, flat renders) or 4 (RGBA, mesh renders).
+    pub channels: usize,
+    pub pixels: Vec<u8>,
+}
+
+impl Image {
+    /// PNG bytes of the image.
+    pub fn to_png(&self) -> Result<Vec<u8>, RenderError> {
+        use image::ImageEncoder;
+        let color = if self.channels == 3 {
+            image::ExtendedColorType::Rgb8
+        } else {
+            image::ExtendedColorType::Rgba8
+        };
+        let mut bytes = Vec::new();
+        image::codecs::png::PngEncoder::new(&mut bytes)
+            .write_image(&self.pixels, self.width, self.height, color)
+            .map_err(|error| RenderError(format!("cannot encode PNG: {error}")))?;
+        Ok(bytes)
+    }
+
+    /// Decodes a PNG (RGB stays RGB; anything else becomes RGBA).
+    pub fn from_png(bytes: &[u8]) -> Result<Image, String> {
+        let decoded = image::load_from_memory_with_format(bytes, image::ImageFormat::Png)
+            .map_err(|e| e.to_string())?;
+        let (width, height) = (decoded.width(), decoded.height());
+        Ok(match decoded {
+            image::DynamicImage::ImageRgb8(rgb) => Image {
+                width,
+                height,
+                channels: 3,
+                pixels: rgb.into_raw(),
+            },
+            other => Image {
+                width,
+                height,
+                channels: 4,
+                pixels: other.to_rgba8().into_raw(),
+            },
+        })
+    }
+}
+
+/// The flat rectangle a graph's preview covers.
+pub fn preview_rect(graph: &Graph) -> FlatRect {
+    let (c, size) = (graph.preview.center, graph.preview.size);
+    FlatRect {
+        x0: c.0 - size,
+        z0: c.2 - size,
+        x1: c.0 + size,
+        z1: c.2 + size,
+        y: c.1 + 0.5,
+    }
+}
+
+/// Compiles `graph` and renders it as `view` at size×size pixels and time `time`.
+pub fn render_graph(
+    gpu: &GpuContext,
+    graph: &Graph,
+    view: &View,
+    size: u32,
+    time: f32,
+) -> Result<Image, RenderError> {
+    let module =
+        crate::codegen::compile_graph(graph).map_err(|error| RenderError(error.to_string()))?;
+    let flat = |rect: FlatRect| -> Result<Image, RenderError> {
+        let pixels = FlatRenderer::new(gpu, &module.source)?.render(gpu, rect, size, time)?;
+        Ok(Image {
+            width: size,
+            height: size,
+            channels: 3,
+            pixels: albedo_to_rgb8(&pixels),
+        })
+    };
+    match view {
+        View::Flat(rect) => flat(*rect),
+        View::PreviewFlat => flat(preview_rect(graph)),
+        View::Mesh(name) => {
+            let name = name.as_deref().unwrap_or(&graph.preview.mesh);
+            let mesh = crate::mesh::primitive(name).ok_or_else(|| {
+                RenderError(format!(
+                    "unknown mesh '{name}' (expected one of: {})",
+                    crate::mesh::PRIMITIVES.join(", ")
+                ))
+            })?;
+            let mut mesh_view = MeshView::for_preview(&graph.preview);
+            mesh_view.time = time;
+            let pixels =
+                MeshRenderer::new(gpu, &module.source)?.render(gpu, &mesh, &mesh_view, size)?;
+            Ok(Image {
+                width: size,
+                height: size,
+                channels: 4,
+                pixels,
+            })
+        }
+    }
+}

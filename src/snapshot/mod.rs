@@ -1,0 +1,305 @@
+//! Graph-to-image snapshot testing: render a graph, compare it with an approved golden
+//! image, and explain any difference. Used by `veneer snapshot`, by Veneer's own tests,
+//! and by other crates' tests through [`assert_matches`].
+
+mod compare;
+mod record;
+
+pub use compare::{Comparison, Tolerance, compare, heat_map, ssim};
+pub use record::{SnapshotRecord, fnv1a};
+
+use crate::graph::{Basis, Graph, NodeKind};
+use crate::render::{GpuContext, Image, View, render_graph};
+use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
+
+/// The environment variable that makes snapshots rewrite their goldens.
+pub const UPDATE_VARIABLE: &str = "VENEER_UPDATE_SNAPSHOTS";
+
+/// How to render a graph for a snapshot, and how close it must be.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Settings {
+    pub view: View,
+    pub size: u32,
+    pub time: f32,
+    /// Overrides the tolerance the golden's sidecar declares.
+    pub tolerance: Option<Tolerance>,
+}
+
+impl Default for Settings {
+    /// The graph's preview mesh at 256×256, time 0, the golden's own tolerance.
+    fn default() -> Settings {
+        Settings {
+            view: View::Mesh(None),
+            size: 256,
+            time: 0.0,
+            tolerance: None,
+        }
+    }
+}
+
+/// What became of one snapshot.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Outcome {
+    /// The render matches the golden.
+    Matched(Comparison),
+    /// The golden (and its sidecar) were written.
+    Updated,
+    /// The render does not match; `actual` and `diff` images were written next to the golden.
+    Mismatched {
+        comparison: Option<Comparison>,
+        tolerance: Tolerance,
+        reasons: Vec<String>,
+    },
+}
+
+/// The result of checking one graph against its golden.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Report {
+    pub graph: PathBuf,
+    pub golden: PathBuf,
+    pub outcome: Outcome,
+}
+
+impl Report {
+    /// Whether the snapshot passed (matched or was updated).
+    pub fn passed(&self) -> bool {
+        !matches!(self.outcome, Outcome::Mismatched { .. })
+    }
+
+    /// One human-readable line (plus reasons on mismatch).
+    pub fn summary(&self) -> String {
+        let name = self.graph.display();
+        match &self.outcome {
+            Outcome::Matched(comparison) => format!("{name}: ok ({comparison})"),
+            Outcome::Updated => format!("{name}: golden written to {}", self.golden.display()),
+            Outcome::Mismatched {
+                comparison,
+                tolerance,
+                reasons,
+            } => {
+                let measured = comparison
+                    .map(|c| format!(" ({c}; tolerance {tolerance})"))
+                    .unwrap_or_default();
+                let mut text = format!("{name}: DIFFERS from {}{measured}", self.golden.display());
+                for reason in reasons {
+                    text.push_str("\n  - ");
+                    text.push_str(reason);
+                }
+                text
+            }
+        }
+    }
+}
+
+/// A snapshot that could not be taken at all (bad graph, unreadable golden, no GPU).
+#[derive(Debug)]
+pub struct SnapshotError(pub String);
+
+impl std::fmt::Display for SnapshotError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for SnapshotError {}
+
+/// Whether `VENEER_UPDATE_SNAPSHOTS=1` asks for goldens to be rewritten.
+pub fn update_requested() -> bool {
+    std::env::var(UPDATE_VARIABLE)
+        .is_ok_and(|value| value == "1" || value.eq_ignore_ascii_case("true"))
+}
+
+/// `golden` with its extension replaced: `marble.png` → `marble.<suffix>`.
+pub fn beside(golden: &Path, suffix: &str) -> PathBuf {
+    let stem = golden
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    golden.with_file_name(format!("{stem}.{suffix}"))
+}
+
+fn uses_sine_hash(graph: &Graph) -> bool {
+    let reachable = crate::graph::check(graph)
+        .map(|checked| checked.order)
+        .unwrap_or_default();
+    reachable.iter().any(|checked| match checked.node.kind {
+        NodeKind::Noise { basis } | NodeKind::DomainWarp { basis } => basis == Basis::ValueSine,
+        ref kind => kind
+            .fractal()
+            .is_some_and(|(_, basis, _, _)| basis == Basis::ValueSine),
+    })
+}
+
+fn write(path: &Path, bytes: &[u8]) -> Result<(), SnapshotError> {
+    crate::fsutil::write_atomic(path, bytes)
+        .map_err(|error| SnapshotError(format!("{}: cannot write: {error}", path.display())))
+}
+
+/// Why a render and its golden may differ, read from the golden's sidecar.
+fn explain(recorded: &SnapshotRecord, current: &SnapshotRecord) -> Vec<String> {
+    let mut reasons = Vec::new();
+    if recorded.graph_hash != current.graph_hash {
+        reasons.push("the graph changed since the golden was made".to_string());
+    } else if recorded.shader_hash != current.shader_hash {
+        reasons.push(format!(
+            "the graph is unchanged but its generated shader differs: the golden was made by Veneer {}, this is {}",
+            recorded.veneer, current.veneer
+        ));
+    }
+    if (&recorded.view, recorded.size, recorded.time) != (&current.view, current.size, current.time)
+    {
+        reasons.push(format!(
+            "render settings differ: golden {:?} at {} px, t = {}; now {:?} at {} px, t = {}",
+            recorded.view, recorded.size, recorded.time, current.view, current.size, current.time
+        ));
+    }
+    if (&recorded.adapter, &recorded.backend) != (&current.adapter, &current.backend) {
+        reasons.push(format!(
+            "the golden was made on {} ({}), this run is on {} ({})",
+            recorded.adapter, recorded.backend, current.adapter, current.backend
+        ));
+        if recorded.adapter_dependent {
+            reasons.push("the graph uses the sine hash, whose bits differ between adapters: keep one golden per adapter".into());
+        }
+    }
+    reasons
+}
+
+/// Renders `graph_path` and compares it with `golden` (a PNG with a `.snap.ron` sidecar
+/// beside it), or writes both when `update` is set. On a mismatch, writes
+/// `<golden>.actual.png` and `<golden>.diff.png` beside the golden.
+pub fn check(
+    gpu: &GpuContext,
+    graph_path: &Path,
+    golden: &Path,
+    settings: &Settings,
+    update: bool,
+) -> Result<Report, SnapshotError> {
+    let graph = crate::graph::load(graph_path).map_err(|error| SnapshotError(error.to_string()))?;
+    let module = crate::codegen::compile_graph(&graph)
+        .map_err(|error| SnapshotError(format!("{}: {error}", graph_path.display())))?;
+    let image = render_graph(gpu, &graph, &settings.view, settings.size, settings.time)
+        .map_err(|error| SnapshotError(format!("{}: {error}", graph_path.display())))?;
+    let info = gpu.adapter.get_info();
+    let current = SnapshotRecord {
+        veneer: env!("CARGO_PKG_VERSION").to_string(),
+        adapter: info.name.clone(),
+        backend: format!("{:?}", info.backend),
+        graph_hash: fnv1a(crate::graph::to_ron(&graph).as_bytes()),
+        shader_hash: fnv1a(module.source.as_bytes()),
+        view: settings.view.clone(),
+        size: settings.size,
+        time: settings.time,
+        tolerance: settings.tolerance.unwrap_or(Tolerance::SAME_ADAPTER),
+        cross_adapter: Tolerance::CROSS_ADAPTER,
+        adapter_dependent: uses_sine_hash(&graph),
+    };
+    let sidecar = beside(golden, "snap.ron");
+    let report = |outcome| Report {
+        graph: graph_path.to_path_buf(),
+        golden: golden.to_path_buf(),
+        outcome,
+    };
+    if update {
+        let png = image
+            .to_png()
+            .map_err(|error| SnapshotError(error.to_string()))?;
+        let config = ron::ser::PrettyConfig::new().struct_names(false);
+        let record =
+            ron::ser::to_string_pretty(&current, config).expect("records serialise") + "\n";
+        if let Some(folder) = golden.parent().filter(|f| !f.as_os_str().is_empty()) {
+            std::fs::create_dir_all(folder)
+                .map_err(|e| SnapshotError(format!("{}: {e}", folder.display())))?;
+        }
+        write(golden, &png)?;
+        write(&sidecar, record.as_bytes())?;
+        remove_leftovers(golden);
+        return Ok(report(Outcome::Updated));
+    }
+    let mismatch = |comparison, tolerance, reasons: Vec<String>| -> Result<Report, SnapshotError> {
+        write(
+            &beside(golden, "actual.png"),
+            &image.to_png().map_err(|e| SnapshotError(e.to_string()))?,
+        )?;
+        Ok(report(Outcome::Mismatched {
+            comparison,
+            tolerance,
+            reasons,
+        }))
+    };
+    let Ok(golden_bytes) = std::fs::read(golden) else {
+        let reason = format!(
+            "no golden at {}: approve this render with --update or {UPDATE_VARIABLE}=1",
+            golden.display()
+        );
+        return mismatch(None, current.tolerance, vec![reason]);
+    };
+    let expected = Image::from_png(&golden_bytes)
+        .map_err(|error| SnapshotError(format!("{}: {error}", golden.display())))?;
+    let recorded: Option<SnapshotRecord> = std::fs::read_to_string(&sidecar)
+        .ok()
+        .and_then(|text| ron::from_str(&text).ok());
+    let same_adapter = recorded
+        .as_ref()
+        .is_none_or(|r| (&r.adapter, &r.backend) == (&current.adapter, &current.backend));
+    let tolerance = settings.tolerance.unwrap_or(match &recorded {
+        Some(record) if same_adapter => record.tolerance,
+        Some(record) => record.cross_adapter,
+        None => Tolerance::SAME_ADAPTER,
+    });
+    let mut reasons = match &recorded {
+        Some(record) => explain(record, &current),
+        None => vec![format!(
+            "no sidecar {} records how the golden was made",
+            sidecar.display()
+        )],
+    };
+    match compare(&image, &expected, &tolerance) {
+        Ok(comparison) if comparison.passes() => {
+            remove_leftovers(golden);
+            Ok(report(Outcome::Matched(comparison)))
+        }
+        Ok(comparison) => {
+            let diff = heat_map(&image, &expected)
+                .to_png()
+                .map_err(|e| SnapshotError(e.to_string()))?;
+            write(&beside(golden, "diff.png"), &diff)?;
+            mismatch(Some(comparison), tolerance, reasons)
+        }
+        Err(shape) => {
+            reasons.insert(0, shape);
+            mismatch(None, tolerance, reasons)
+        }
+    }
+}
+
+fn remove_leftovers(golden: &Path) {
+    for suffix in ["actual.png", "diff.png"] {
+        let _ = std::fs::remove_file(beside(golden, suffix));
+    }
+}
+
+/// The GPU context snapshot assertions share within one process.
+fn shared_gpu() -> &'static GpuContext {
+    static GPU: OnceLock<GpuContext> = OnceLock::new();
+    GPU.get_or_init(|| {
+        GpuContext::new()
+            .unwrap_or_else(|error| panic!("snapshot tests need a wgpu adapter: {error}"))
+    })
+}
+
+/// For `cargo test`: renders `graph` and panics unless it matches `golden` (writing the
+/// golden instead when `VENEER_UPDATE_SNAPSHOTS=1`). On a mismatch the panic message
+/// explains why, and `<golden>.actual.png` and `<golden>.diff.png` are left beside it.
+pub fn assert_matches(graph: impl AsRef<Path>, golden: impl AsRef<Path>, settings: &Settings) {
+    let report = check(
+        shared_gpu(),
+        graph.as_ref(),
+        golden.as_ref(),
+        settings,
+        update_requested(),
+    )
+    .unwrap_or_else(|error| panic!("snapshot of {} failed: {error}", graph.as_ref().display()));
+    assert!(report.passed(), "{}", report.summary());
+}
