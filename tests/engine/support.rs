@@ -92,54 +92,25 @@ pub fn cpu_flat_rgb8(graph: &veneer::graph::Graph, rect: FlatRect, size: u32) ->
     pixels
 }
 
-/// How two 8-bit images differ.
-#[derive(Debug)]
-pub struct Difference {
-    pub max: u8,
-    pub mean: f64,
-    /// Share of pixels with any channel differing by more than the tolerance.
-    pub share_outside: f64,
-}
-
-impl std::fmt::Display for Difference {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(
-            f,
-            "max {}/255, mean {:.3}/255, {:.3}% of pixels outside tolerance",
-            self.max,
-            self.mean,
-            100.0 * self.share_outside
-        )
-    }
-}
-
-/// Compares two images of `channels` channels per pixel, with a per-channel tolerance.
-pub fn difference(a: &[u8], b: &[u8], channels: usize, tolerance: u8) -> Difference {
-    assert_eq!(a.len(), b.len(), "images differ in size");
-    let mut outside = 0usize;
-    let mut total = 0u64;
-    let mut max = 0u8;
-    for (pa, pb) in a.chunks(channels).zip(b.chunks(channels)) {
-        let worst = pa
-            .iter()
-            .zip(pb)
-            .map(|(x, y)| x.abs_diff(*y))
-            .max()
-            .unwrap_or(0);
-        total += pa
-            .iter()
-            .zip(pb)
-            .map(|(x, y)| u64::from(x.abs_diff(*y)))
-            .sum::<u64>();
-        max = max.max(worst);
-        if worst > tolerance {
-            outside += 1;
-        }
-    }
-    let pixels = a.len() / channels;
-    Difference {
-        max,
-        mean: total as f64 / a.len() as f64,
-        share_outside: outside as f64 / pixels as f64,
-    }
+/// How two square 8-bit images of `channels` channels differ, with a per-channel tolerance
+/// (through the snapshot module's comparison, as users get it).
+pub fn difference(
+    a: &[u8],
+    b: &[u8],
+    channels: usize,
+    tolerance: u8,
+) -> veneer::snapshot::Comparison {
+    let side = ((a.len() / channels) as f64).sqrt() as u32;
+    let image = |pixels: &[u8]| veneer::render::Image {
+        width: side,
+        height: side,
+        channels,
+        pixels: pixels.to_vec(),
+    };
+    let tolerance = veneer::snapshot::Tolerance {
+        channel: tolerance,
+        share: 0.0,
+        ssim: None,
+    };
+    veneer::snapshot::compare(&image(a), &image(b), &tolerance).expect("images of the same size")
 }
