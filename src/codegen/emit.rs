@@ -1,7 +1,7 @@
 //! WGSL for each node: the statements it adds to `veneer_material` and the library
 //! items it calls.
 
-use crate::graph::check::{CheckedNode, InputSource};
+use crate::graph::check::CheckedNode;
 use crate::graph::{
     MathOp, Metric, NodeKind, RampInterpolation, UnaryOp, Value, ValueType, WorleyFeature,
 };
@@ -69,7 +69,7 @@ pub fn emit_node(checked: &CheckedNode, inputs: &[String], name: &str) -> NodeCo
         }
         Constant { .. } => single(&mut code, i[0].clone()),
         Transform => {
-            let no_rotation = checked.inputs[2] == InputSource::Const(Value::Vec3(0.0, 0.0, 0.0));
+            let no_rotation = i[2] == value_literal(&Value::Vec3(0.0, 0.0, 0.0));
             if no_rotation {
                 single(&mut code, format!("{} * {} + {}", i[0], i[1], i[3]));
             } else {

@@ -16,6 +16,46 @@ use std::collections::BTreeMap;
 use std::fmt;
 use std::ops::Range;
 
+/// How unconnected inputs appear in generated WGSL.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ParamMode {
+    /// As literal constants: a self-contained module with no bindings (exports, renders).
+    Baked,
+    /// As slots of one uniform block, `veneer_params` at `@group(1) @binding(0)`: every
+    /// parameter is one `vec4f` (a float in `.x`, a vec2 in `.xy`, a vec3 or colour in
+    /// `.xyz`), in the order of [`WgslModule::params`]. Editing a value then only means
+    /// rewriting the buffer (the editor's live preview).
+    Uniform,
+}
+
+/// One parameter slot of a uniform-mode module.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ParamSlot {
+    pub node: NodeId,
+    pub pin: &'static str,
+    pub ty: graph::ValueType,
+}
+
+/// The values of a uniform-mode module's parameters for `graph`, one `vec4f` per slot:
+/// the node's constant for the pin, or the pin's default.
+pub fn param_values(graph: &Graph, slots: &[ParamSlot]) -> Vec<[f32; 4]> {
+    slots
+        .iter()
+        .map(|slot| {
+            let value = graph.node(slot.node).and_then(|node| {
+                let pin = node.kind.signature().input(slot.pin).map(|(_, pin)| *pin)?;
+                match (node.inputs.get(slot.pin), pin.default) {
+                    (Some(value), _) => Some(value.convert(slot.ty)),
+                    (None, graph::PinDefault::Const(value)) => Some(value),
+                    (None, _) => None,
+                }
+            });
+            let [x, y, z] = value.map(|v| v.components()).unwrap_or([0.0; 3]);
+            [x as f32, y as f32, z as f32, 0.0]
+        })
+        .collect()
+}
+
 /// A generated WGSL module and where each node's code sits in it.
 #[derive(Clone, Debug)]
 pub struct WgslModule {
@@ -26,6 +66,8 @@ pub struct WgslModule {
     pub library: Vec<String>,
     /// The validated naga module.
     pub module: naga::Module,
+    /// Parameter slots (uniform mode only; empty when baked).
+    pub params: Vec<ParamSlot>,
 }
 
 impl WgslModule {
@@ -61,28 +103,72 @@ impl fmt::Display for CompileError {
 
 impl std::error::Error for CompileError {}
 
-/// Checks and compiles a graph.
+/// Checks and compiles a graph with baked parameters.
 pub fn compile_graph(graph: &Graph) -> Result<WgslModule, CompileError> {
+    compile_graph_with(graph, ParamMode::Baked)
+}
+
+/// Checks and compiles a graph with parameters in `mode`.
+pub fn compile_graph_with(graph: &Graph, mode: ParamMode) -> Result<WgslModule, CompileError> {
     let checked = graph::check(graph).map_err(CompileError::Check)?;
-    compile(&checked)
+    compile_with(&checked, mode)
 }
 
 fn input_expression(
     source: &InputSource,
-    pin_ty: graph::ValueType,
+    pin: &graph::InputPin,
+    node: NodeId,
     outputs: &BTreeMap<NodeId, Vec<String>>,
+    params: Option<&mut Vec<ParamSlot>>,
 ) -> String {
-    match source {
-        InputSource::Wire { node, output, ty } => {
-            emit::convert(outputs[node][*output].clone(), *ty, pin_ty)
+    match (source, params) {
+        (InputSource::Wire { node, output, ty }, _) => {
+            emit::convert(outputs[node][*output].clone(), *ty, pin.ty)
         }
-        InputSource::Const(value) => value_literal(value),
-        InputSource::Position => "s.position".into(),
+        (InputSource::Const(_), Some(params)) => {
+            let swizzle = ["x", "xy", "xyz"][pin.ty.width() - 1];
+            params.push(ParamSlot {
+                node,
+                pin: pin.name,
+                ty: pin.ty,
+            });
+            format!("veneer_params.values[{}].{swizzle}", params.len() - 1)
+        }
+        (InputSource::Const(value), None) => value_literal(value),
+        (InputSource::Position, _) => "s.position".into(),
     }
 }
 
-/// Compiles a checked graph to a validated WGSL module.
+/// The uniform block of a uniform-mode module, with its layout spelled out.
+fn params_block(graph: &CheckedGraph, params: &[ParamSlot]) -> String {
+    let mut text = String::from(
+        "\n// Parameters: one vec4f per slot (float in .x, vec2 in .xy, vec3/colour in .xyz).\n",
+    );
+    for (slot, param) in params.iter().enumerate() {
+        let node = graph
+            .index_of(param.node)
+            .map(|i| graph.order[i].node.to_string())
+            .unwrap_or_default();
+        text.push_str(&format!(
+            "//   slot {slot}: {node} input '{}' ({})\n",
+            param.pin, param.ty
+        ));
+    }
+    text.push_str(&format!(
+        "struct veneer_parameters {{\n    values: array<vec4f, {}>,\n}}\n\n@group(1) @binding(0) var<uniform> veneer_params: veneer_parameters;\n",
+        params.len()
+    ));
+    text
+}
+
+/// Compiles a checked graph to a validated WGSL module with baked parameters.
 pub fn compile(graph: &CheckedGraph) -> Result<WgslModule, CompileError> {
+    compile_with(graph, ParamMode::Baked)
+}
+
+/// Compiles a checked graph to a validated WGSL module with parameters in `mode`.
+pub fn compile_with(graph: &CheckedGraph, mode: ParamMode) -> Result<WgslModule, CompileError> {
+    let mut params = Vec::new();
     let mut namer = Namer::default();
     let mut outputs: BTreeMap<NodeId, Vec<String>> = BTreeMap::new();
     let mut body: Vec<(NodeId, String)> = Vec::new();
@@ -93,7 +179,10 @@ pub fn compile(graph: &CheckedGraph) -> Result<WgslModule, CompileError> {
             .inputs
             .iter()
             .zip(&checked.signature.inputs)
-            .map(|(source, pin)| input_expression(source, pin.ty, &outputs))
+            .map(|(source, pin)| {
+                let slots = (mode == ParamMode::Uniform).then_some(&mut params);
+                input_expression(source, pin, node.id, &outputs, slots)
+            })
             .collect();
         let name = match node.kind {
             NodeKind::Material => String::new(),
@@ -138,6 +227,9 @@ pub fn compile(graph: &CheckedGraph) -> Result<WgslModule, CompileError> {
         source.push_str(line);
         source.push('\n');
     }
+    if !params.is_empty() {
+        source.push_str(&params_block(graph, &params));
+    }
     let mut family = "";
     for item in &items {
         if item.family != family {
@@ -162,6 +254,7 @@ pub fn compile(graph: &CheckedGraph) -> Result<WgslModule, CompileError> {
         node_spans,
         library,
         module: naga::Module::default(),
+        params,
     };
     module.module = validate(&module.source).map_err(|mut error| {
         if let Some(offset) = error.offset {

@@ -1,21 +1,32 @@
-//! The lit mesh render: a material on a mesh with Blinn-Phong lighting, as in the preview.
+//! The lit mesh render: a material on a mesh with Blinn-Phong lighting. The pieces
+//! (uploaded mesh, pipeline, offscreen target) are shared by headless renders and the
+//! editor's live preview.
 
 use super::readback::read_texture;
 use super::{GpuContext, RenderError, shader_source};
 use crate::graph::Preview;
 use crate::mesh::Mesh;
-use glam::Vec3;
+use glam::{Mat4, Vec3};
 use wgpu::util::DeviceExt;
+
+/// How the camera looks at the mesh.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Projection {
+    /// A perspective orbit camera (vertical field of view in degrees).
+    Perspective { fov: f32 },
+    /// Straight down the y axis at a square of half-width `extent` (the flat 2D view).
+    TopDown { extent: f32 },
+}
 
 /// Camera, light and placement of a mesh render.
 #[derive(Clone, Debug, PartialEq)]
 pub struct MeshView {
-    /// Camera orbit angles in degrees and distance from the origin.
+    /// Camera orbit angles in degrees, distance from the target, and the target.
     pub yaw: f32,
     pub pitch: f32,
     pub distance: f32,
-    /// Vertical field of view in degrees.
-    pub fov: f32,
+    pub target: [f32; 3],
+    pub projection: Projection,
     /// Direction towards the light (need not be unit).
     pub light: [f32; 3],
     /// Share of the albedo lit regardless of the light.
@@ -26,6 +37,8 @@ pub struct MeshView {
     pub center: [f32; 3],
     pub size: f32,
     pub time: f32,
+    /// Show the albedo only, without lighting.
+    pub unlit: bool,
 }
 
 impl MeshView {
@@ -35,7 +48,8 @@ impl MeshView {
             yaw: 30.0,
             pitch: 25.0,
             distance: 3.6,
-            fov: 40.0,
+            target: [0.0; 3],
+            projection: Projection::Perspective { fov: 40.0 },
             light: [-0.4, 0.8, 0.6],
             ambient: 0.25,
             background: [0.12, 0.13, 0.15],
@@ -46,16 +60,66 @@ impl MeshView {
             ],
             size: preview.size as f32,
             time: 0.0,
+            unlit: false,
         }
     }
 
-    fn eye(&self) -> Vec3 {
+    /// The camera position.
+    pub fn eye(&self) -> Vec3 {
         let (yaw, pitch) = (self.yaw.to_radians(), self.pitch.to_radians());
-        Vec3::new(
+        let offset = Vec3::new(
             pitch.cos() * yaw.sin(),
             pitch.sin(),
             pitch.cos() * yaw.cos(),
-        ) * self.distance
+        ) * self.distance;
+        Vec3::from(self.target) + offset
+    }
+
+    fn view_projection(&self, aspect: f32) -> Mat4 {
+        match self.projection {
+            Projection::Perspective { fov } => {
+                let projection = glam::camera::rh::proj::directx::perspective(
+                    fov.to_radians(),
+                    aspect,
+                    0.05,
+                    200.0,
+                );
+                projection
+                    * glam::camera::rh::view::look_at_mat4(
+                        self.eye(),
+                        Vec3::from(self.target),
+                        Vec3::Y,
+                    )
+            }
+            Projection::TopDown { extent } => {
+                let (w, h) = (extent * aspect.max(1.0), extent / aspect.min(1.0));
+                let projection =
+                    glam::camera::rh::proj::directx::orthographic(-w, w, -h, h, 0.05, 200.0);
+                let eye = Vec3::from(self.target) + Vec3::Y * 10.0;
+                projection
+                    * glam::camera::rh::view::look_at_mat4(
+                        eye,
+                        Vec3::from(self.target),
+                        Vec3::NEG_Z,
+                    )
+            }
+        }
+    }
+
+    fn uniform(&self, aspect: f32) -> MeshViewUniform {
+        MeshViewUniform {
+            view_projection: self.view_projection(aspect).to_cols_array_2d(),
+            eye: self.eye().extend(1.0).to_array(),
+            light_direction: Vec3::from(self.light)
+                .normalize_or(Vec3::Y)
+                .extend(0.0)
+                .to_array(),
+            placement: Vec3::from(self.center).extend(self.size).to_array(),
+            time: self.time,
+            ambient: self.ambient,
+            unlit: u32::from(self.unlit),
+            padding: 0,
+        }
     }
 }
 
@@ -68,7 +132,8 @@ struct MeshViewUniform {
     placement: [f32; 4],
     time: f32,
     ambient: f32,
-    padding: [f32; 2],
+    unlit: u32,
+    padding: u32,
 }
 
 #[repr(C)]
@@ -79,81 +144,263 @@ struct Vertex {
     uv: [f32; 2],
 }
 
-const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
+/// Colour format of offscreen mesh renders.
+pub const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 const SAMPLES: u32 = 4;
 const ENTRY_POINTS: &str = include_str!("../../shaders/render_mesh.wgsl");
 
-/// A pipeline that renders one material on meshes.
-pub struct MeshRenderer {
+/// A mesh uploaded to the GPU.
+pub struct GpuMesh {
+    vertices: wgpu::Buffer,
+    indices: wgpu::Buffer,
+    index_count: u32,
+}
+
+impl GpuMesh {
+    /// Uploads `mesh`.
+    pub fn new(device: &wgpu::Device, mesh: &Mesh) -> GpuMesh {
+        let vertices: Vec<Vertex> = (0..mesh.positions.len())
+            .map(|i| Vertex {
+                position: mesh.positions[i],
+                normal: mesh.normals[i],
+                uv: mesh.uvs[i],
+            })
+            .collect();
+        let buffer = |label, contents: &[u8], usage| {
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents,
+                usage,
+            })
+        };
+        GpuMesh {
+            vertices: buffer(
+                "mesh vertices",
+                bytemuck::cast_slice(&vertices),
+                wgpu::BufferUsages::VERTEX,
+            ),
+            indices: buffer(
+                "mesh indices",
+                bytemuck::cast_slice(&mesh.indices),
+                wgpu::BufferUsages::INDEX,
+            ),
+            index_count: mesh.indices.len() as u32,
+        }
+    }
+}
+
+/// Multisampled colour and depth targets plus the resolved image, of one size.
+pub struct MeshTarget {
+    multisampled: wgpu::TextureView,
+    depth: wgpu::TextureView,
+    /// The resolved image (sampled by the editor, read back by headless renders).
+    pub resolved: wgpu::Texture,
+    pub resolved_view: wgpu::TextureView,
+}
+
+impl MeshTarget {
+    /// Targets of `width`×`height` pixels.
+    pub fn new(device: &wgpu::Device, width: u32, height: u32) -> MeshTarget {
+        let texture = |label, format, samples, usage| {
+            device.create_texture(&wgpu::TextureDescriptor {
+                label: Some(label),
+                size: wgpu::Extent3d {
+                    width,
+                    height,
+                    depth_or_array_layers: 1,
+                },
+                mip_level_count: 1,
+                sample_count: samples,
+                dimension: wgpu::TextureDimension::D2,
+                format,
+                usage,
+                view_formats: &[],
+            })
+        };
+        let attachment = wgpu::TextureUsages::RENDER_ATTACHMENT;
+        let readable =
+            attachment | wgpu::TextureUsages::COPY_SRC | wgpu::TextureUsages::TEXTURE_BINDING;
+        let resolved = texture("mesh resolved", COLOR_FORMAT, 1, readable);
+        MeshTarget {
+            multisampled: texture("mesh colour", COLOR_FORMAT, SAMPLES, attachment)
+                .create_view(&Default::default()),
+            depth: texture("mesh depth", DEPTH_FORMAT, SAMPLES, attachment)
+                .create_view(&Default::default()),
+            resolved_view: resolved.create_view(&Default::default()),
+            resolved,
+        }
+    }
+
+    /// Width and height in pixels.
+    pub fn size(&self) -> (u32, u32) {
+        (self.resolved.width(), self.resolved.height())
+    }
+}
+
+/// The render pipeline of one material on meshes, with its view (and parameter) uniforms.
+pub struct MeshPipeline {
     pipeline: wgpu::RenderPipeline,
-    uniform: wgpu::Buffer,
-    bind_group: wgpu::BindGroup,
+    view: wgpu::Buffer,
+    view_group: wgpu::BindGroup,
+    params: Option<(wgpu::Buffer, wgpu::BindGroup)>,
+}
+
+impl MeshPipeline {
+    /// Builds the pipeline for a material module; `param_slots` is the number of slots
+    /// of a uniform-mode module (0 when its parameters are baked).
+    pub fn new(
+        device: &wgpu::Device,
+        material_wgsl: &str,
+        param_slots: usize,
+    ) -> Result<MeshPipeline, RenderError> {
+        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("mesh render"),
+            source: wgpu::ShaderSource::Wgsl(shader_source(material_wgsl, ENTRY_POINTS).into()),
+        });
+        let attributes = wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x2];
+        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("mesh render"),
+            layout: None,
+            vertex: wgpu::VertexState {
+                module: &module,
+                entry_point: Some("veneer_mesh_vertex"),
+                compilation_options: Default::default(),
+                buffers: &[Some(wgpu::VertexBufferLayout {
+                    array_stride: std::mem::size_of::<Vertex>() as u64,
+                    step_mode: wgpu::VertexStepMode::Vertex,
+                    attributes: &attributes,
+                })],
+            },
+            primitive: wgpu::PrimitiveState {
+                cull_mode: Some(wgpu::Face::Back),
+                ..Default::default()
+            },
+            depth_stencil: Some(wgpu::DepthStencilState {
+                format: DEPTH_FORMAT,
+                depth_write_enabled: Some(true),
+                depth_compare: Some(wgpu::CompareFunction::Less),
+                stencil: Default::default(),
+                bias: Default::default(),
+            }),
+            multisample: wgpu::MultisampleState {
+                count: SAMPLES,
+                ..Default::default()
+            },
+            fragment: Some(wgpu::FragmentState {
+                module: &module,
+                entry_point: Some("veneer_mesh_fragment"),
+                compilation_options: Default::default(),
+                targets: &[Some(COLOR_FORMAT.into())],
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+        if let Some(error) = pollster::block_on(scope.pop()) {
+            return Err(RenderError(format!("mesh render pipeline: {error}")));
+        }
+        let uniform = |label, size: usize| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: size as u64,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            })
+        };
+        let group = |index, buffer: &wgpu::Buffer| {
+            device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("mesh uniforms"),
+                layout: &pipeline.get_bind_group_layout(index),
+                entries: &[wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: buffer.as_entire_binding(),
+                }],
+            })
+        };
+        let view = uniform("mesh view", std::mem::size_of::<MeshViewUniform>());
+        let view_group = group(0, &view);
+        let params = (param_slots > 0).then(|| {
+            let buffer = uniform("material parameters", param_slots * 16);
+            let bind_group = group(1, &buffer);
+            (buffer, bind_group)
+        });
+        Ok(MeshPipeline {
+            pipeline,
+            view,
+            view_group,
+            params,
+        })
+    }
+
+    /// Writes the camera, light and time for the next draw into a target of `aspect` (w / h).
+    pub fn write_view(&self, queue: &wgpu::Queue, view: &MeshView, aspect: f32) {
+        queue.write_buffer(&self.view, 0, bytemuck::bytes_of(&view.uniform(aspect)));
+    }
+
+    /// Writes the parameter values of a uniform-mode material (ignored when baked).
+    pub fn write_params(&self, queue: &wgpu::Queue, values: &[[f32; 4]]) {
+        if let Some((buffer, _)) = &self.params {
+            let fits = (buffer.size() / 16) as usize;
+            queue.write_buffer(
+                buffer,
+                0,
+                bytemuck::cast_slice(&values[..values.len().min(fits)]),
+            );
+        }
+    }
+
+    /// Records a pass that clears `target` to `background` and draws `mesh` into it.
+    pub fn encode(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        target: &MeshTarget,
+        mesh: &GpuMesh,
+        background: [f32; 3],
+    ) {
+        let [r, g, b] = background.map(f64::from);
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("mesh"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: &target.multisampled,
+                depth_slice: None,
+                resolve_target: Some(&target.resolved_view),
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(wgpu::Color { r, g, b, a: 1.0 }),
+                    store: wgpu::StoreOp::Discard,
+                },
+            })],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: &target.depth,
+                depth_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(1.0),
+                    store: wgpu::StoreOp::Discard,
+                }),
+                stencil_ops: None,
+            }),
+            ..Default::default()
+        });
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, &self.view_group, &[]);
+        if let Some((_, group)) = &self.params {
+            pass.set_bind_group(1, group, &[]);
+        }
+        pass.set_vertex_buffer(0, mesh.vertices.slice(..));
+        pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
+        pass.draw_indexed(0..mesh.index_count, 0, 0..1);
+    }
+}
+
+/// A headless renderer of one (baked) material on meshes.
+pub struct MeshRenderer {
+    pipeline: MeshPipeline,
 }
 
 impl MeshRenderer {
-    /// Builds the pipeline for a material module.
+    /// Builds the pipeline for a material module with baked parameters.
     pub fn new(gpu: &GpuContext, material_wgsl: &str) -> Result<MeshRenderer, RenderError> {
-        let module = gpu.shader("mesh render", &shader_source(material_wgsl, ENTRY_POINTS))?;
-        let uniform = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("mesh view"),
-            size: std::mem::size_of::<MeshViewUniform>() as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        let attributes = wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x2];
-        let pipeline = gpu.checked("mesh render pipeline", || {
-            gpu.device
-                .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                    label: Some("mesh render"),
-                    layout: None,
-                    vertex: wgpu::VertexState {
-                        module: &module,
-                        entry_point: Some("veneer_mesh_vertex"),
-                        compilation_options: Default::default(),
-                        buffers: &[Some(wgpu::VertexBufferLayout {
-                            array_stride: std::mem::size_of::<Vertex>() as u64,
-                            step_mode: wgpu::VertexStepMode::Vertex,
-                            attributes: &attributes,
-                        })],
-                    },
-                    primitive: wgpu::PrimitiveState {
-                        cull_mode: Some(wgpu::Face::Back),
-                        ..Default::default()
-                    },
-                    depth_stencil: Some(wgpu::DepthStencilState {
-                        format: DEPTH_FORMAT,
-                        depth_write_enabled: Some(true),
-                        depth_compare: Some(wgpu::CompareFunction::Less),
-                        stencil: Default::default(),
-                        bias: Default::default(),
-                    }),
-                    multisample: wgpu::MultisampleState {
-                        count: SAMPLES,
-                        ..Default::default()
-                    },
-                    fragment: Some(wgpu::FragmentState {
-                        module: &module,
-                        entry_point: Some("veneer_mesh_fragment"),
-                        compilation_options: Default::default(),
-                        targets: &[Some(COLOR_FORMAT.into())],
-                    }),
-                    multiview_mask: None,
-                    cache: None,
-                })
-        })?;
-        let bind_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("mesh view"),
-            layout: &pipeline.get_bind_group_layout(0),
-            entries: &[wgpu::BindGroupEntry {
-                binding: 0,
-                resource: uniform.as_entire_binding(),
-            }],
-        });
         Ok(MeshRenderer {
-            pipeline,
-            uniform,
-            bind_group,
+            pipeline: MeshPipeline::new(&gpu.device, material_wgsl, 0)?,
         })
     }
 
@@ -171,111 +418,17 @@ impl MeshRenderer {
                 "mesh render size {size} is outside 1..={limit} on this adapter"
             )));
         }
-        let eye = view.eye();
-        let projection =
-            glam::camera::rh::proj::directx::perspective(view.fov.to_radians(), 1.0, 0.05, 100.0);
-        let uniform = MeshViewUniform {
-            view_projection: (projection
-                * glam::camera::rh::view::look_at_mat4(eye, Vec3::ZERO, Vec3::Y))
-            .to_cols_array_2d(),
-            eye: eye.extend(1.0).to_array(),
-            light_direction: Vec3::from(view.light)
-                .normalize_or(Vec3::Y)
-                .extend(0.0)
-                .to_array(),
-            placement: Vec3::from(view.center).extend(view.size).to_array(),
-            time: view.time,
-            ambient: view.ambient,
-            padding: [0.0; 2],
-        };
-        gpu.queue
-            .write_buffer(&self.uniform, 0, bytemuck::bytes_of(&uniform));
-        let vertices: Vec<Vertex> = (0..mesh.positions.len())
-            .map(|i| Vertex {
-                position: mesh.positions[i],
-                normal: mesh.normals[i],
-                uv: mesh.uvs[i],
-            })
-            .collect();
-        let vertex_buffer = gpu
-            .device
-            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("mesh vertices"),
-                contents: bytemuck::cast_slice(&vertices),
-                usage: wgpu::BufferUsages::VERTEX,
-            });
-        let index_buffer = gpu
-            .device
-            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("mesh indices"),
-                contents: bytemuck::cast_slice(&mesh.indices),
-                usage: wgpu::BufferUsages::INDEX,
-            });
-        let target = |label, format, samples, usage| {
-            gpu.device.create_texture(&wgpu::TextureDescriptor {
-                label: Some(label),
-                size: wgpu::Extent3d {
-                    width: size,
-                    height: size,
-                    depth_or_array_layers: 1,
-                },
-                mip_level_count: 1,
-                sample_count: samples,
-                dimension: wgpu::TextureDimension::D2,
-                format,
-                usage,
-                view_formats: &[],
-            })
-        };
-        let attachment = wgpu::TextureUsages::RENDER_ATTACHMENT;
-        let multisampled = target("mesh colour", COLOR_FORMAT, SAMPLES, attachment);
-        let resolved = target(
-            "mesh resolved",
-            COLOR_FORMAT,
-            1,
-            attachment | wgpu::TextureUsages::COPY_SRC,
-        );
-        let depth = target("mesh depth", DEPTH_FORMAT, SAMPLES, attachment);
-        let (multisampled_view, resolved_view, depth_view) = (
-            multisampled.create_view(&Default::default()),
-            resolved.create_view(&Default::default()),
-            depth.create_view(&Default::default()),
-        );
-        let [r, g, b] = view.background.map(f64::from);
+        let target = MeshTarget::new(&gpu.device, size, size);
+        let mesh = GpuMesh::new(&gpu.device, mesh);
+        self.pipeline.write_view(&gpu.queue, view, 1.0);
         let mut encoder = gpu
             .device
             .create_command_encoder(&wgpu::CommandEncoderDescriptor {
                 label: Some("mesh"),
             });
-        {
-            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("mesh"),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: &multisampled_view,
-                    depth_slice: None,
-                    resolve_target: Some(&resolved_view),
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(wgpu::Color { r, g, b, a: 1.0 }),
-                        store: wgpu::StoreOp::Discard,
-                    },
-                })],
-                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                    view: &depth_view,
-                    depth_ops: Some(wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(1.0),
-                        store: wgpu::StoreOp::Discard,
-                    }),
-                    stencil_ops: None,
-                }),
-                ..Default::default()
-            });
-            pass.set_pipeline(&self.pipeline);
-            pass.set_bind_group(0, &self.bind_group, &[]);
-            pass.set_vertex_buffer(0, vertex_buffer.slice(..));
-            pass.set_index_buffer(index_buffer.slice(..), wgpu::IndexFormat::Uint32);
-            pass.draw_indexed(0..mesh.indices.len() as u32, 0, 0..1);
-        }
+        self.pipeline
+            .encode(&mut encoder, &target, &mesh, view.background);
         gpu.queue.submit([encoder.finish()]);
-        read_texture(gpu, &resolved, 4)
+        read_texture(gpu, &target.resolved, 4)
     }
 }

@@ -214,3 +214,33 @@ fn struct_fields(module: &naga::Module, name: &str) -> Vec<String> {
         other => panic!("{name} is not a struct: {other:?}"),
     }
 }
+
+#[test]
+fn uniform_mode_turns_every_constant_into_a_slot_and_validates() {
+    for path in crate::support::presets() {
+        let graph = veneer::graph::load(&path).expect("preset loads");
+        let module =
+            veneer::codegen::compile_graph_with(&graph, veneer::codegen::ParamMode::Uniform)
+                .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        assert!(!module.params.is_empty());
+        assert!(
+            module
+                .source
+                .contains(&format!("values: array<vec4f, {}>", module.params.len()))
+        );
+        let values = veneer::codegen::param_values(&graph, &module.params);
+        assert_eq!(values.len(), module.params.len());
+    }
+    let graph = veneer::graph::load(&crate::support::root("graphs/marble.ron")).expect("marble");
+    let module = veneer::codegen::compile_graph_with(&graph, veneer::codegen::ParamMode::Uniform)
+        .expect("compiles");
+    let slot = module
+        .params
+        .iter()
+        .position(|p| p.pin == "frequency")
+        .expect("the bands' frequency is a slot");
+    assert_eq!(
+        veneer::codegen::param_values(&graph, &module.params)[slot][0],
+        3.0
+    );
+}
