@@ -1,6 +1,8 @@
 //! Veneer: procedural material node graphs compiled to WGSL, checked by naga, evaluated
 //! on the CPU as a reference, and rendered through wgpu.
 
+#[cfg(feature = "gui")]
+pub mod app;
 pub mod codegen;
 pub mod eval;
 pub mod fsutil;

@@ -20,6 +20,11 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
+    /// Open a graph in the node editor.
+    Edit {
+        /// The graph file.
+        graph: PathBuf,
+    },
     /// Render a graph to a PNG: on a mesh with the preview lighting, or its albedo over a plane.
     Render(render::RenderArgs),
     /// Write the material as a validated shader module.
@@ -53,16 +58,8 @@ impl Failure {
 pub fn run() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
-        None => {
-            println!(
-                "Veneer {}: the node editor is not part of this build yet.",
-                env!("CARGO_PKG_VERSION")
-            );
-            println!("Render the wood preset headless with:");
-            println!("  veneer render graphs/wood.ron -o wood.png");
-            println!("Run `veneer --help` for every command.");
-            Ok(())
-        }
+        None => editor(None),
+        Some(Command::Edit { graph }) => editor(Some(graph)),
         Some(Command::Render(args)) => render::run(args),
         Some(Command::Compile(args)) => compile::run(args),
         Some(Command::Check(args)) => check::run(args),
@@ -77,6 +74,21 @@ pub fn run() -> ExitCode {
             }
             ExitCode::from(code)
         }
+    }
+}
+
+/// Opens the node editor (or explains how to run headless when it was left out of the build).
+fn editor(graph: Option<PathBuf>) -> Result<(), Failure> {
+    #[cfg(feature = "gui")]
+    {
+        veneer::app::run(graph).map_err(Failure::new)
+    }
+    #[cfg(not(feature = "gui"))]
+    {
+        let _ = graph;
+        Err(Failure::new(
+            "this build has no editor (built without the `gui` feature); render headless with\n  veneer render graphs/wood.ron -o wood.png",
+        ))
     }
 }
 

@@ -302,3 +302,6 @@ impl NodeKind {
 
 /// The most octaves a fractal node accepts.
 pub const MAX_OCTAVES: u32 = 64;
+
+/// The most octaves the editor's slider offers (more are allowed in files, up to `MAX_OCTAVES`).
+pub const MAX_OCTAVES_UI: u32 = 16;

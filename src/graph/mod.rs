@@ -3,14 +3,15 @@
 pub mod check;
 mod io;
 pub mod kind;
+pub mod layout;
 pub mod signature;
 pub mod value;
 
 pub use check::{CheckError, CheckedGraph, check};
 pub use io::{CURRENT_VERSION, LoadError, from_ron, load, save, to_ron};
 pub use kind::{
-    Basis, Category, FractalMode, MathOp, Metric, NodeKind, RampInterpolation, RampStop, UnaryOp,
-    WorleyFeature,
+    Basis, Category, FractalMode, MAX_OCTAVES, MAX_OCTAVES_UI, MathOp, Metric, NodeKind,
+    RampInterpolation, RampStop, UnaryOp, WorleyFeature,
 };
 pub use signature::{InputPin, OutputPin, PinDefault, Signature};
 pub use value::{Value, ValueType};

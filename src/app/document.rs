@@ -1,0 +1,97 @@
+//! The graph being edited: where it lives on disk, whether it has unsaved changes, and
+//! its undo history.
+
+use super::history::History;
+use crate::graph::{Graph, to_ron};
+use std::path::{Path, PathBuf};
+
+/// The presets shipped inside the binary, by file stem.
+pub const PRESETS: [(&str, &str); 4] = [
+    ("wood", include_str!("../../graphs/wood.ron")),
+    ("marble", include_str!("../../graphs/marble.ron")),
+    (
+        "wood_classic",
+        include_str!("../../graphs/wood_classic.ron"),
+    ),
+    (
+        "marble_tiles",
+        include_str!("../../graphs/marble_tiles.ron"),
+    ),
+];
+
+/// The embedded preset called `name`.
+pub fn preset(name: &str) -> Option<Graph> {
+    PRESETS
+        .iter()
+        .find(|(stem, _)| *stem == name)
+        .and_then(|(_, text)| crate::graph::from_ron(text).ok())
+}
+
+/// A graph open in the editor.
+pub struct Document {
+    pub graph: Graph,
+    /// The file it was opened from or saved to (`None`: a preset or a new graph).
+    pub path: Option<PathBuf>,
+    /// Canonical text of the graph as last loaded or saved, to tell whether it is dirty.
+    saved: String,
+    pub history: History,
+}
+
+impl Document {
+    /// A document for `graph`, clean, as loaded from `path`.
+    pub fn new(graph: Graph, path: Option<PathBuf>) -> Document {
+        Document {
+            saved: to_ron(&graph),
+            history: History::new(graph.clone()),
+            graph,
+            path,
+        }
+    }
+
+    /// A document that starts dirty (recovered work, never saved as such).
+    pub fn recovered(graph: Graph, path: Option<PathBuf>) -> Document {
+        Document {
+            saved: String::new(),
+            history: History::new(graph.clone()),
+            graph,
+            path,
+        }
+    }
+
+    /// Whether the graph differs from what was last loaded or saved.
+    pub fn is_dirty(&self) -> bool {
+        to_ron(&self.graph) != self.saved
+    }
+
+    /// Writes the graph to its file (atomically).
+    pub fn save(&mut self) -> Result<PathBuf, String> {
+        let path = self
+            .path
+            .clone()
+            .ok_or("the graph has no file yet: use Save as")?;
+        self.save_as(&path)?;
+        Ok(path)
+    }
+
+    /// Writes the graph to `path` (atomically) and makes that its file.
+    pub fn save_as(&mut self, path: &Path) -> Result<(), String> {
+        crate::graph::save(&self.graph, path)
+            .map_err(|error| format!("{}: cannot save: {error}", path.display()))?;
+        self.saved = to_ron(&self.graph);
+        self.path = Some(path.to_path_buf());
+        Ok(())
+    }
+
+    /// The window title: file name (or graph name), with a star when dirty.
+    pub fn title(&self) -> String {
+        let name = match &self.path {
+            Some(path) => path
+                .file_name()
+                .map(|n| n.to_string_lossy().into_owned())
+                .unwrap_or_default(),
+            None if self.graph.name.is_empty() => "untitled".to_string(),
+            None => self.graph.name.clone(),
+        };
+        format!("{}{name} — Veneer", if self.is_dirty() { "* " } else { "" })
+    }
+}

@@ -1,0 +1,407 @@
+//! The node graph panel: our `Graph` shown and edited through egui-snarl. The `Graph`
+//! stays the saved, ordered truth; the `Snarl` is rebuilt from it when it is replaced
+//! (open, undo) and read back after every frame of editing.
+
+use super::catalogue::{self, CATEGORIES, Dangling};
+use super::widgets::{input_editor, type_color};
+use crate::graph::{Graph, Node, NodeId, PinDefault, PinRef, Wire};
+use egui::{Color32, Pos2, RichText, Ui};
+use egui_snarl::ui::{AnyPins, PinInfo, SnarlPin, SnarlViewer};
+use egui_snarl::{InPin, InPinId, OutPin, OutPinId, Snarl};
+use std::collections::BTreeMap;
+
+/// A snarl showing `graph`, nodes at their saved positions.
+pub fn snarl_from_graph(graph: &Graph) -> Snarl<Node> {
+    let mut snarl = Snarl::new();
+    let mut ids = BTreeMap::new();
+    for node in &graph.nodes {
+        let position = Pos2::new(node.position.0, node.position.1);
+        ids.insert(node.id, snarl.insert_node(position, node.clone()));
+    }
+    for wire in &graph.wires {
+        let (Some(from), Some(to)) = (graph.node(wire.from.node), graph.node(wire.to.node)) else {
+            continue;
+        };
+        let output = from.kind.signature().output(&wire.from.pin).map(|(i, _)| i);
+        let input = to.kind.signature().input(&wire.to.pin).map(|(i, _)| i);
+        if let (Some(output), Some(input)) = (output, input) {
+            snarl.connect(
+                OutPinId {
+                    node: ids[&wire.from.node],
+                    output,
+                },
+                InPinId {
+                    node: ids[&wire.to.node],
+                    input,
+                },
+            );
+        }
+    }
+    snarl
+}
+
+/// The graph a snarl shows, with `meta`'s name, version and preview settings.
+pub fn graph_from_snarl(snarl: &Snarl<Node>, meta: &Graph) -> Graph {
+    let mut graph = Graph {
+        nodes: Vec::new(),
+        wires: Vec::new(),
+        ..meta.clone()
+    };
+    for (position, node) in snarl.nodes_pos() {
+        let mut node = node.clone();
+        node.position = (position.x.round(), position.y.round());
+        graph.nodes.push(node);
+    }
+    for (from, to) in snarl.wires() {
+        let (source, target) = (&snarl[from.node], &snarl[to.node]);
+        let output = source
+            .kind
+            .signature()
+            .outputs
+            .get(from.output)
+            .map(|pin| pin.name);
+        let input = target
+            .kind
+            .signature()
+            .inputs
+            .get(to.input)
+            .map(|pin| pin.name);
+        if let (Some(output), Some(input)) = (output, input) {
+            graph.wires.push(Wire {
+                from: PinRef::new(source.id, output),
+                to: PinRef::new(target.id, input),
+            });
+        }
+    }
+    graph.canonicalize();
+    graph
+}
+
+/// The id a new node gets: one past the largest in use.
+pub fn next_node_id(snarl: &Snarl<Node>) -> NodeId {
+    NodeId(snarl.nodes().map(|node| node.id.0 + 1).max().unwrap_or(1))
+}
+
+/// Whether a wire from `from` to `to` would close a cycle (`from` already depends on `to`).
+fn would_cycle(snarl: &Snarl<Node>, from: egui_snarl::NodeId, to: egui_snarl::NodeId) -> bool {
+    let mut stack = vec![from];
+    let mut seen = std::collections::BTreeSet::new();
+    while let Some(node) = stack.pop() {
+        if node == to {
+            return true;
+        }
+        if seen.insert(node) {
+            stack.extend(
+                snarl
+                    .wires()
+                    .filter(|(_, input)| input.node == node)
+                    .map(|(output, _)| output.node),
+            );
+        }
+    }
+    false
+}
+
+/// How to place the view when a graph is opened or F is pressed.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Framing {
+    /// Fit every node (F).
+    All,
+    /// Readable size, the material output near the right edge (on open).
+    Output,
+}
+
+/// The snarl viewer: how nodes, pins and menus look and what edits do.
+pub struct Viewer<'a> {
+    /// Compile errors by node, shown on the nodes.
+    pub errors: &'a BTreeMap<Option<NodeId>, String>,
+    /// A message for the status bar (e.g. why a wire was refused).
+    pub hint: &'a mut Option<String>,
+    /// The add-node menu's search text.
+    pub search: &'a mut String,
+    /// When set, move the view this frame to show these nodes in this screen rectangle.
+    pub frame: Option<(egui::Rect, Framing)>,
+}
+
+impl Viewer<'_> {
+    fn insert(
+        &mut self,
+        snarl: &mut Snarl<Node>,
+        pos: Pos2,
+        kind: crate::graph::NodeKind,
+    ) -> egui_snarl::NodeId {
+        let node = Node::new(next_node_id(snarl), kind);
+        snarl.insert_node(pos, node)
+    }
+
+    /// The add-node menu: a search box, then matches (or categories when it is empty).
+    /// `dangling` limits the offer to nodes a dropped wire can attach to.
+    pub fn add_node_menu(
+        &mut self,
+        ui: &mut Ui,
+        dangling: Option<Dangling>,
+    ) -> Option<catalogue::Entry> {
+        let search = ui.add(
+            egui::TextEdit::singleline(self.search)
+                .hint_text("search nodes…")
+                .desired_width(180.0),
+        );
+        if !search.has_focus() && self.search.is_empty() {
+            search.request_focus();
+        }
+        let usable = |entry: &catalogue::Entry| {
+            dangling.is_none_or(|d| catalogue::compatible_pin(&entry.kind, d).is_some())
+        };
+        let mut chosen = None;
+        if self.search.trim().is_empty() {
+            for (category, name) in CATEGORIES {
+                let entries: Vec<_> = catalogue::entries()
+                    .into_iter()
+                    .filter(|e| e.kind.category() == category && usable(e))
+                    .collect();
+                if entries.is_empty() {
+                    continue;
+                }
+                ui.menu_button(name, |ui| {
+                    for entry in entries {
+                        if ui.button(&entry.name).clicked() {
+                            chosen = Some(entry);
+                        }
+                    }
+                });
+            }
+        } else {
+            egui::ScrollArea::vertical()
+                .max_height(320.0)
+                .show(ui, |ui| {
+                    for entry in catalogue::search(self.search)
+                        .into_iter()
+                        .filter(|e| usable(e))
+                    {
+                        if ui.button(&entry.name).clicked() {
+                            chosen = Some(entry);
+                        }
+                    }
+                });
+        }
+        if chosen.is_some() {
+            self.search.clear();
+            ui.close();
+        }
+        chosen
+    }
+}
+
+impl SnarlViewer<Node> for Viewer<'_> {
+    fn current_transform(
+        &mut self,
+        to_global: &mut egui::emath::TSTransform,
+        snarl: &mut Snarl<Node>,
+    ) {
+        let Some((viewport, framing)) = self.frame.take() else {
+            return;
+        };
+        let positions: Vec<Pos2> = snarl.nodes_pos().map(|(pos, _)| pos).collect();
+        if positions.is_empty() {
+            return;
+        }
+        // Positions are nodes' top-left corners: leave room for a node's size.
+        let node_size = egui::vec2(260.0, 200.0);
+        let bounds =
+            egui::Rect::from_points(&positions)
+                .expand(40.0)
+                .union(egui::Rect::from_min_size(
+                    positions
+                        .iter()
+                        .fold(Pos2::new(f32::MIN, f32::MIN), |a, p| a.max(*p)),
+                    node_size,
+                ));
+        let fit = (viewport.width() / bounds.width()).min(viewport.height() / bounds.height());
+        let (scale, focus) = match framing {
+            Framing::All => (fit.clamp(0.1, 1.5), bounds.center()),
+            Framing::Output => {
+                let output = snarl
+                    .nodes_pos()
+                    .find(|(_, node)| node.kind == crate::graph::NodeKind::Material);
+                let anchor = output
+                    .map(|(pos, _)| pos + node_size * 0.5)
+                    .unwrap_or(bounds.center());
+                let scale = fit.max(0.65).min(1.2);
+                let shift = (viewport.width() * 0.5 - node_size.x * scale).max(0.0) / scale;
+                (scale, Pos2::new(anchor.x - shift, anchor.y))
+            }
+        };
+        to_global.scaling = scale;
+        to_global.translation = viewport.center().to_vec2() - focus.to_vec2() * scale;
+    }
+
+    fn title(&mut self, node: &Node) -> String {
+        node.display_name().to_string()
+    }
+
+    fn show_header(
+        &mut self,
+        node: egui_snarl::NodeId,
+        _: &[InPin],
+        _: &[OutPin],
+        ui: &mut Ui,
+        snarl: &mut Snarl<Node>,
+    ) {
+        let node = &snarl[node];
+        ui.horizontal(|ui| {
+            ui.label(RichText::new(node.display_name()).strong());
+            if let Some(error) = self.errors.get(&Some(node.id)) {
+                ui.label(RichText::new("⚠").color(Color32::from_rgb(240, 80, 60)))
+                    .on_hover_text(error);
+            }
+        });
+    }
+
+    fn inputs(&mut self, node: &Node) -> usize {
+        node.kind.signature().inputs.len()
+    }
+
+    fn outputs(&mut self, node: &Node) -> usize {
+        node.kind.signature().outputs.len()
+    }
+
+    fn show_input(
+        &mut self,
+        pin: &InPin,
+        ui: &mut Ui,
+        snarl: &mut Snarl<Node>,
+    ) -> impl SnarlPin + 'static {
+        let node = &mut snarl[pin.id.node];
+        let spec = node.kind.signature().inputs[pin.id.input];
+        ui.label(spec.name);
+        if pin.remotes.is_empty() {
+            match spec.default {
+                PinDefault::Const(_) => {
+                    input_editor(ui, node, spec.name);
+                }
+                PinDefault::Position => {
+                    ui.weak("position");
+                }
+                PinDefault::Required => {
+                    ui.colored_label(Color32::from_rgb(240, 120, 60), "connect");
+                }
+            }
+        }
+        PinInfo::circle()
+            .with_fill(type_color(spec.ty))
+            .with_wire_color(type_color(spec.ty))
+    }
+
+    fn show_output(
+        &mut self,
+        pin: &OutPin,
+        ui: &mut Ui,
+        snarl: &mut Snarl<Node>,
+    ) -> impl SnarlPin + 'static {
+        let spec = snarl[pin.id.node].kind.signature().outputs[pin.id.output];
+        ui.label(spec.name);
+        PinInfo::circle()
+            .with_fill(type_color(spec.ty))
+            .with_wire_color(type_color(spec.ty))
+    }
+
+    fn connect(&mut self, from: &OutPin, to: &InPin, snarl: &mut Snarl<Node>) {
+        let output = snarl[from.id.node].kind.signature().outputs[from.id.output];
+        let input = snarl[to.id.node].kind.signature().inputs[to.id.input];
+        if !output.ty.converts_to(input.ty) {
+            *self.hint = Some(format!(
+                "cannot connect: '{}' gives {} but '{}' expects {}",
+                output.name, output.ty, input.name, input.ty
+            ));
+            return;
+        }
+        if would_cycle(snarl, from.id.node, to.id.node) {
+            *self.hint = Some("cannot connect: the wire would make a cycle".into());
+            return;
+        }
+        snarl.drop_inputs(to.id);
+        snarl.connect(from.id, to.id);
+    }
+
+    fn has_graph_menu(&mut self, _: Pos2, _: &mut Snarl<Node>) -> bool {
+        true
+    }
+
+    fn show_graph_menu(&mut self, pos: Pos2, ui: &mut Ui, snarl: &mut Snarl<Node>) {
+        ui.label("Add node");
+        if let Some(entry) = self.add_node_menu(ui, None) {
+            self.insert(snarl, pos, entry.kind);
+        }
+    }
+
+    fn has_dropped_wire_menu(&mut self, _: AnyPins, _: &mut Snarl<Node>) -> bool {
+        true
+    }
+
+    fn show_dropped_wire_menu(
+        &mut self,
+        pos: Pos2,
+        ui: &mut Ui,
+        src_pins: AnyPins,
+        snarl: &mut Snarl<Node>,
+    ) {
+        let dangling = match src_pins {
+            AnyPins::Out([pin, ..]) => {
+                Dangling::FromOutput(snarl[pin.node].kind.signature().outputs[pin.output].ty)
+            }
+            AnyPins::In([pin, ..]) => {
+                Dangling::IntoInput(snarl[pin.node].kind.signature().inputs[pin.input].ty)
+            }
+            _ => return,
+        };
+        ui.label("Add and connect");
+        let Some(entry) = self.add_node_menu(ui, Some(dangling)) else {
+            return;
+        };
+        let pin = catalogue::compatible_pin(&entry.kind, dangling)
+            .expect("only compatible entries are offered");
+        let node = self.insert(snarl, pos, entry.kind);
+        match src_pins {
+            AnyPins::Out(pins) => {
+                for from in pins {
+                    snarl.connect(*from, InPinId { node, input: pin });
+                }
+            }
+            AnyPins::In(pins) => {
+                for to in pins {
+                    snarl.drop_inputs(*to);
+                    snarl.connect(OutPinId { node, output: pin }, *to);
+                }
+            }
+        }
+    }
+
+    fn has_node_menu(&mut self, _: &Node) -> bool {
+        true
+    }
+
+    fn show_node_menu(
+        &mut self,
+        node: egui_snarl::NodeId,
+        _: &[InPin],
+        _: &[OutPin],
+        ui: &mut Ui,
+        snarl: &mut Snarl<Node>,
+    ) {
+        if ui.button("Duplicate").clicked() {
+            let mut copy = snarl[node].clone();
+            copy.id = next_node_id(snarl);
+            let position = snarl
+                .get_node_info(node)
+                .map(|info| info.pos)
+                .unwrap_or_default()
+                + egui::vec2(30.0, 30.0);
+            snarl.insert_node(position, copy);
+            ui.close();
+        }
+        if ui.button("Delete").clicked() {
+            snarl.remove_node(node);
+            ui.close();
+        }
+    }
+}

@@ -1,0 +1,283 @@
+//! The inspector: every setting and input of the selected node, with sliders, drag
+//! values, colour pickers, enum choices, colour-ramp stops, and a "connect from" choice
+//! per input.
+
+use super::widgets::{input_editor, type_color};
+use crate::graph::{
+    Basis, MAX_OCTAVES_UI, MathOp, Metric, Node, NodeKind, PinDefault, RampInterpolation, RampStop,
+    UnaryOp, ValueType, WorleyFeature,
+};
+use egui::{ComboBox, RichText, Ui};
+use egui_snarl::{InPinId, OutPinId, Snarl};
+
+fn choice<T: PartialEq + Copy + std::fmt::Debug>(
+    ui: &mut Ui,
+    label: &str,
+    value: &mut T,
+    options: &[T],
+) -> bool {
+    let before = *value;
+    ComboBox::from_label(label)
+        .selected_text(format!("{value:?}"))
+        .show_ui(ui, |ui| {
+            for option in options {
+                ui.selectable_value(value, *option, format!("{option:?}"));
+            }
+        });
+    *value != before
+}
+
+const TYPES: [ValueType; 4] = [
+    ValueType::Float,
+    ValueType::Vec2,
+    ValueType::Vec3,
+    ValueType::Color,
+];
+const VECTORS: [ValueType; 3] = [ValueType::Vec2, ValueType::Vec3, ValueType::Color];
+
+/// Editors for the structural settings of a node kind.
+fn settings(ui: &mut Ui, kind: &mut NodeKind) {
+    use NodeKind::*;
+    match kind {
+        Field { slot } => {
+            ui.add(egui::Slider::new(slot, 0..=3).text("field slot"));
+        }
+        Constant { ty } | Mix { ty } | Clamp { ty } | Step { ty } => {
+            choice(ui, "type", ty, &TYPES);
+        }
+        Math { op, ty } => {
+            let ops = [
+                MathOp::Add,
+                MathOp::Subtract,
+                MathOp::Multiply,
+                MathOp::Divide,
+                MathOp::Power,
+                MathOp::Minimum,
+                MathOp::Maximum,
+            ];
+            choice(ui, "operation", op, &ops);
+            choice(ui, "type", ty, &TYPES);
+        }
+        Unary { op, ty } => {
+            let ops = [
+                UnaryOp::Abs,
+                UnaryOp::Fract,
+                UnaryOp::Floor,
+                UnaryOp::Sin,
+                UnaryOp::Cos,
+                UnaryOp::Negate,
+                UnaryOp::OneMinus,
+            ];
+            choice(ui, "operation", op, &ops);
+            choice(ui, "type", ty, &TYPES);
+        }
+        Length { ty } | Dot { ty } | Normalize { ty } | Split { ty } | Combine { ty } => {
+            choice(ui, "type", ty, &VECTORS);
+        }
+        DomainWarp { basis } | Noise { basis } => {
+            choice(ui, "basis", basis, &Basis::ALL);
+        }
+        Fbm {
+            basis,
+            octaves,
+            normalize,
+        }
+        | Turbulence {
+            basis,
+            octaves,
+            normalize,
+        }
+        | FractalSum {
+            basis,
+            octaves,
+            normalize,
+        } => {
+            choice(ui, "basis", basis, &Basis::ALL);
+            ui.add(egui::Slider::new(octaves, 1..=MAX_OCTAVES_UI).text("octaves"));
+            ui.checkbox(normalize, "normalize");
+        }
+        Worley {
+            feature,
+            metric,
+            octaves,
+        } => {
+            choice(
+                ui,
+                "feature",
+                feature,
+                &[
+                    WorleyFeature::F1,
+                    WorleyFeature::F2,
+                    WorleyFeature::F3,
+                    WorleyFeature::F2MinusF1,
+                ],
+            );
+            choice(
+                ui,
+                "metric",
+                metric,
+                &[Metric::Euclidean, Metric::Manhattan, Metric::Chebyshev],
+            );
+            ui.add(egui::Slider::new(octaves, 1..=8).text("octaves"));
+        }
+        ColorRamp {
+            stops,
+            interpolation,
+        } => ramp_editor(ui, stops, interpolation),
+        _ => {}
+    }
+}
+
+fn ramp_editor(ui: &mut Ui, stops: &mut Vec<RampStop>, interpolation: &mut RampInterpolation) {
+    choice(
+        ui,
+        "interpolation",
+        interpolation,
+        &[RampInterpolation::Linear, RampInterpolation::Constant],
+    );
+    let mut remove = None;
+    for (index, stop) in stops.iter_mut().enumerate() {
+        ui.horizontal(|ui| {
+            ui.add(
+                egui::DragValue::new(&mut stop.position)
+                    .range(0.0..=1.0)
+                    .speed(0.005)
+                    .max_decimals(3),
+            );
+            let mut rgb = [
+                stop.color.0 as f32,
+                stop.color.1 as f32,
+                stop.color.2 as f32,
+            ];
+            if ui.color_edit_button_rgb(&mut rgb).changed() {
+                stop.color = (f64::from(rgb[0]), f64::from(rgb[1]), f64::from(rgb[2]));
+            }
+            if ui.small_button("✕").on_hover_text("remove stop").clicked() {
+                remove = Some(index);
+            }
+        });
+    }
+    if let Some(index) = remove.filter(|_| stops.len() > 1) {
+        stops.remove(index);
+    }
+    if ui.button("Add stop").clicked() {
+        let last = stops.last().copied().unwrap_or(RampStop {
+            position: 0.0,
+            color: (0.5, 0.5, 0.5),
+        });
+        stops.push(RampStop {
+            position: (last.position + 0.1).min(1.0),
+            ..last
+        });
+    }
+    stops.sort_by(|a, b| a.position.total_cmp(&b.position));
+}
+
+/// Outputs of other nodes that could feed an input of type `ty` (never closing a cycle).
+fn candidates(
+    snarl: &Snarl<Node>,
+    target: egui_snarl::NodeId,
+    ty: ValueType,
+) -> Vec<(OutPinId, String)> {
+    let mut found = Vec::new();
+    for (id, node) in snarl.node_ids() {
+        if id == target || depends_on(snarl, id, target) {
+            continue;
+        }
+        for (index, pin) in node.kind.signature().outputs.iter().enumerate() {
+            if pin.ty.converts_to(ty) {
+                found.push((
+                    OutPinId {
+                        node: id,
+                        output: index,
+                    },
+                    format!("{} → {}", node.display_name(), pin.name),
+                ));
+            }
+        }
+    }
+    found
+}
+
+/// Whether `node` (transitively) reads from `source`.
+fn depends_on(snarl: &Snarl<Node>, node: egui_snarl::NodeId, source: egui_snarl::NodeId) -> bool {
+    let mut stack = vec![node];
+    let mut seen = std::collections::BTreeSet::new();
+    while let Some(current) = stack.pop() {
+        if current == source {
+            return true;
+        }
+        if seen.insert(current) {
+            stack.extend(
+                snarl
+                    .wires()
+                    .filter(|(_, to)| to.node == current)
+                    .map(|(from, _)| from.node),
+            );
+        }
+    }
+    false
+}
+
+/// Shows the inspector for node `id` of `snarl`.
+pub fn show(ui: &mut Ui, snarl: &mut Snarl<Node>, id: egui_snarl::NodeId, error: Option<&String>) {
+    let Some(node) = snarl.get_node_mut(id) else {
+        return;
+    };
+    ui.horizontal(|ui| {
+        ui.label(RichText::new(node.kind.title()).strong());
+        ui.weak(format!("{}", node.id));
+    });
+    ui.horizontal(|ui| {
+        ui.label("label");
+        ui.text_edit_singleline(&mut node.label);
+    });
+    if let Some(error) = error {
+        ui.colored_label(egui::Color32::from_rgb(240, 80, 60), error);
+    }
+    settings(ui, &mut node.kind);
+    ui.separator();
+    let inputs = node.kind.signature().inputs;
+    for (index, pin) in inputs.iter().enumerate() {
+        let pin_id = InPinId {
+            node: id,
+            input: index,
+        };
+        let source = snarl.in_pin(pin_id).remotes.first().copied();
+        let options = candidates(snarl, id, pin.ty);
+        ui.horizontal(|ui| {
+            ui.colored_label(type_color(pin.ty), "●");
+            ui.label(pin.name);
+            let current = match source {
+                Some(from) => options
+                    .iter()
+                    .find(|(o, _)| *o == from)
+                    .map(|(_, name)| name.clone())
+                    .unwrap_or_default(),
+                None => match pin.default {
+                    PinDefault::Const(_) => "constant".to_string(),
+                    PinDefault::Position => "position".to_string(),
+                    PinDefault::Required => "(not connected)".to_string(),
+                },
+            };
+            let mut chosen = source;
+            ComboBox::from_id_salt(("connect", index))
+                .selected_text(current)
+                .show_ui(ui, |ui| {
+                    ui.selectable_value(&mut chosen, None, "no wire");
+                    for (option, name) in &options {
+                        ui.selectable_value(&mut chosen, Some(*option), name);
+                    }
+                });
+            if chosen != source {
+                snarl.drop_inputs(pin_id);
+                if let Some(from) = chosen {
+                    snarl.connect(from, pin_id);
+                }
+            }
+            if chosen.is_none() && matches!(pin.default, PinDefault::Const(_)) {
+                input_editor(ui, &mut snarl[id], pin.name);
+            }
+        });
+    }
+}

@@ -1,0 +1,144 @@
+//! The live compile loop: a structural edit recompiles the material (parameters as
+//! uniforms), a parameter edit does not; a failed compile keeps the last good material.
+
+use crate::codegen::{CompileError, ParamMode, WgslModule, compile_graph_with, param_values};
+use crate::graph::{Graph, NodeId};
+use std::collections::BTreeMap;
+
+/// The material the preview shows, kept in step with the edited graph.
+#[derive(Default)]
+pub struct LiveMaterial {
+    /// Structure of the graph last compiled (nodes, kinds and settings, wires).
+    structure: Option<String>,
+    /// The last module that compiled, in uniform mode.
+    pub module: Option<WgslModule>,
+    /// Errors of the last compile, by node (`None`: not tied to a node).
+    pub errors: BTreeMap<Option<NodeId>, String>,
+    /// How many times the graph was compiled (parameter edits never count).
+    pub compiles: u64,
+    /// Bumped whenever `module` is replaced, so the preview knows to rebuild its pipeline.
+    pub generation: u64,
+}
+
+/// What decides the generated code: nodes with their kinds and settings, and the wires.
+/// Labels, positions and constant values are left out: they never need a recompile.
+fn structure_key(graph: &Graph) -> String {
+    let mut skeleton = graph.clone();
+    skeleton.name.clear();
+    for node in &mut skeleton.nodes {
+        node.label.clear();
+        node.inputs.clear();
+        node.position = (0.0, 0.0);
+    }
+    crate::graph::to_ron(&skeleton)
+}
+
+impl LiveMaterial {
+    /// Recompiles if the graph's structure changed since the last call; returns whether it did.
+    pub fn update(&mut self, graph: &Graph) -> bool {
+        let key = structure_key(graph);
+        if self.structure.as_ref() == Some(&key) {
+            return false;
+        }
+        self.structure = Some(key);
+        self.compiles += 1;
+        self.errors.clear();
+        match compile_graph_with(graph, ParamMode::Uniform) {
+            Ok(module) => {
+                self.module = Some(module);
+                self.generation += 1;
+            }
+            Err(CompileError::Check(errors)) => {
+                for error in errors {
+                    let entry = self.errors.entry(error.node).or_default();
+                    if !entry.is_empty() {
+                        entry.push('\n');
+                    }
+                    entry.push_str(&error.message);
+                }
+            }
+            Err(CompileError::Validation(error)) => {
+                self.errors.insert(error.node, error.message);
+            }
+        }
+        true
+    }
+
+    /// The uniform values of the current module for `graph`.
+    pub fn params(&self, graph: &Graph) -> Vec<[f32; 4]> {
+        self.module
+            .as_ref()
+            .map(|module| param_values(graph, &module.params))
+            .unwrap_or_default()
+    }
+
+    /// One line for the status bar: the first error, or `None` when the graph compiles.
+    pub fn status(&self, graph: &Graph) -> Option<String> {
+        let (node, message) = self.errors.iter().next()?;
+        let first_line = message.lines().next().unwrap_or_default();
+        Some(match (*node).and_then(|id| graph.node(id)) {
+            Some(node) => format!("{node}: {first_line}"),
+            None => first_line.to_string(),
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::graph::{NodeKind, Value};
+
+    fn graph() -> (Graph, NodeId, NodeId) {
+        let mut graph = Graph::default();
+        let noise = graph.add(
+            "noise",
+            NodeKind::Noise {
+                basis: crate::graph::Basis::Gradient,
+            },
+        );
+        let material = graph.add("material", NodeKind::Material);
+        graph.connect(noise, "value", material, "albedo");
+        (graph, noise, material)
+    }
+
+    #[test]
+    fn parameter_edits_never_recompile_and_structural_edits_do() {
+        let (mut graph, noise, material) = graph();
+        let mut live = LiveMaterial::default();
+        assert!(live.update(&graph));
+        let slot = live
+            .module
+            .as_ref()
+            .unwrap()
+            .params
+            .iter()
+            .position(|p| p.pin == "scale")
+            .unwrap();
+        graph.set_input(noise, "scale", Value::Float(7.5));
+        graph.node_mut(noise).unwrap().label = "renamed".into();
+        assert!(!live.update(&graph));
+        assert_eq!(live.params(&graph)[slot][0], 7.5);
+        graph.wires.clear();
+        graph.connect(noise, "value", material, "alpha");
+        assert!(live.update(&graph));
+        assert_eq!(live.compiles, 2);
+    }
+
+    #[test]
+    fn a_failed_compile_keeps_the_last_good_material_and_names_the_node() {
+        let (mut graph, _, material) = graph();
+        let mut live = LiveMaterial::default();
+        live.update(&graph);
+        let good = live.generation;
+        let smooth = graph.add("edge", NodeKind::Smoothstep);
+        graph.connect(smooth, "result", material, "alpha");
+        live.update(&graph);
+        assert_eq!(live.generation, good);
+        assert!(live.module.is_some());
+        assert!(live.errors.contains_key(&Some(smooth)));
+        assert_eq!(
+            live.status(&graph).unwrap(),
+            "node 'edge' (#3): input 'x' (float) must be connected"
+        );
+    }
+}

@@ -1,0 +1,557 @@
+//! The node editor: an egui-snarl graph on the left, the live material on a mesh and
+//! the inspector on the right, a status bar below. Behind the default `gui` feature.
+
+mod catalogue;
+mod clipboard;
+mod dialogs;
+mod document;
+mod graph_view;
+mod history;
+mod inspector;
+mod live;
+mod preview;
+mod recovery;
+mod widgets;
+
+pub use document::{Document, PRESETS, preset};
+pub use live::LiveMaterial;
+
+use crate::graph::{Graph, Node};
+use dialogs::{Dialog, Pending};
+use egui::{Key, KeyboardShortcut, Modifiers, Ui};
+use egui_snarl::Snarl;
+use egui_snarl::ui::SnarlWidget;
+use graph_view::{Framing, Viewer, graph_from_snarl, snarl_from_graph};
+use preview::{MaterialFrame, PreviewResources, PreviewState};
+use std::path::PathBuf;
+use std::sync::Arc;
+
+/// Opens the editor window on `path`, or on the wood preset.
+pub fn run(path: Option<PathBuf>) -> Result<(), String> {
+    let options = eframe::NativeOptions {
+        viewport: egui::ViewportBuilder::default()
+            .with_inner_size([1400.0, 860.0])
+            .with_title("Veneer"),
+        renderer: eframe::Renderer::Wgpu,
+        ..Default::default()
+    };
+    eframe::run_native(
+        "Veneer",
+        options,
+        Box::new(move |cc| Ok(Box::new(VeneerApp::new(cc, path)))),
+    )
+    .map_err(|error| format!("cannot open the editor window: {error}"))
+}
+
+/// Seconds between autosaves of unsaved work.
+const AUTOSAVE_SECONDS: f64 = 5.0;
+
+/// The editor's state.
+pub struct VeneerApp {
+    pub document: Document,
+    snarl: Snarl<Node>,
+    pub live: LiveMaterial,
+    preview: PreviewState,
+    /// Nodes selected in the graph (snarl ids).
+    selection: Vec<egui_snarl::NodeId>,
+    /// A message for the status bar (saved, exported, refused wire…).
+    pub message: Option<String>,
+    search: String,
+    dialog: Option<Dialog>,
+    /// The add-node search opened by Space or Tab.
+    quick_add: bool,
+    frame: Option<Framing>,
+    recent: Vec<PathBuf>,
+    last_autosave: f64,
+    /// The material code handed to the preview, shared between frames.
+    wgsl: Option<(u64, Arc<str>)>,
+    render_state: Option<eframe::egui_wgpu::RenderState>,
+    allowed_to_close: bool,
+}
+
+impl VeneerApp {
+    /// The editor on `path` (or the wood preset), with the preview's GPU resources installed.
+    pub fn new(cc: &eframe::CreationContext<'_>, path: Option<PathBuf>) -> VeneerApp {
+        let render_state = cc.wgpu_render_state.clone();
+        if let Some(state) = &render_state {
+            let resources = PreviewResources::new(&state.device, state.target_format);
+            state.renderer.write().callback_resources.insert(resources);
+        }
+        let wood = preset("wood").expect("the wood preset is embedded");
+        let mut app = VeneerApp {
+            preview: PreviewState::for_graph(&wood.preview),
+            snarl: snarl_from_graph(&wood),
+            document: Document::new(wood, None),
+            live: LiveMaterial::default(),
+            selection: Vec::new(),
+            message: None,
+            search: String::new(),
+            dialog: None,
+            quick_add: false,
+            frame: Some(Framing::Output),
+            recent: Vec::new(),
+            last_autosave: 0.0,
+            wgsl: None,
+            render_state,
+            allowed_to_close: false,
+        };
+        if let Some(path) = path {
+            app.open(path);
+        }
+        if let Some(recovery) = recovery::pending() {
+            app.dialog = Some(Dialog::Recover(recovery));
+        }
+        app.live.update(&app.document.graph);
+        app
+    }
+
+    /// Replaces the document (after open, new, preset or recovery).
+    fn load(&mut self, document: Document) {
+        self.preview.follow(&document.graph.preview);
+        self.preview.mesh = document.graph.preview.mesh.clone();
+        self.snarl = snarl_from_graph(&document.graph);
+        self.document = document;
+        self.selection.clear();
+        self.frame = Some(Framing::Output);
+        self.live.update(&self.document.graph);
+    }
+
+    /// Opens a graph file; a bad file is refused with a message and loses nothing.
+    pub fn open(&mut self, path: PathBuf) {
+        match crate::graph::load(&path) {
+            Ok(graph) => {
+                self.recent.retain(|p| *p != path);
+                self.recent.insert(0, path.clone());
+                self.recent.truncate(8);
+                self.load(Document::new(graph, Some(path)));
+                self.message = None;
+            }
+            Err(error) => self.dialog = Some(Dialog::Message(error.to_string())),
+        }
+    }
+
+    /// Runs `action` now, or after asking what to do with unsaved changes.
+    fn guard(&mut self, action: Pending) {
+        if self.document.is_dirty() {
+            self.dialog = Some(Dialog::Discard(action));
+        } else {
+            self.perform(action);
+        }
+    }
+
+    fn perform(&mut self, action: Pending) {
+        match action {
+            Pending::New => {
+                let mut graph = Graph {
+                    name: "Untitled".into(),
+                    ..Graph::default()
+                };
+                graph.add("material", crate::graph::NodeKind::Material);
+                self.load(Document::new(graph, None));
+            }
+            Pending::Open(path) => self.open(path),
+            Pending::Preset(name) => {
+                if let Some(graph) = preset(name) {
+                    self.load(Document::new(graph, None));
+                }
+            }
+            Pending::Quit => {
+                self.allowed_to_close = true;
+                recovery::clear();
+            }
+        }
+    }
+
+    /// Saves to the document's file, or asks for one.
+    pub fn save(&mut self) {
+        match self.document.save() {
+            Ok(path) => {
+                self.message = Some(format!("saved {}", path.display()));
+                recovery::clear();
+            }
+            Err(_) if self.document.path.is_none() => {
+                self.dialog = Some(Dialog::save_as(&self.document))
+            }
+            Err(error) => self.dialog = Some(Dialog::Message(error)),
+        }
+    }
+
+    /// Undoes the last edit.
+    pub fn undo(&mut self) {
+        if let Some(graph) = self.document.history.undo() {
+            self.snarl = snarl_from_graph(&graph);
+            self.document.graph = graph;
+        }
+    }
+
+    /// Redoes the last undone edit.
+    pub fn redo(&mut self) {
+        if let Some(graph) = self.document.history.redo() {
+            self.snarl = snarl_from_graph(&graph);
+            self.document.graph = graph;
+        }
+    }
+
+    /// Number of material pipelines the preview has built (0 without a GPU).
+    pub fn pipelines_built(&self) -> u64 {
+        let Some(state) = &self.render_state else {
+            return 0;
+        };
+        state
+            .renderer
+            .read()
+            .callback_resources
+            .get::<PreviewResources>()
+            .map(|r| r.pipelines_built)
+            .unwrap_or(0)
+    }
+
+    fn shortcuts(&mut self, ctx: &egui::Context) {
+        let typing = ctx.memory(|memory| memory.focused().is_some());
+        let pressed = |modifiers, key| {
+            ctx.input_mut(|input| input.consume_shortcut(&KeyboardShortcut::new(modifiers, key)))
+        };
+        let command = Modifiers::COMMAND;
+        if pressed(command | Modifiers::SHIFT, Key::Z) {
+            self.redo();
+        } else if pressed(command, Key::Z) {
+            self.undo();
+        }
+        if pressed(command, Key::S) {
+            self.save();
+        }
+        if pressed(command, Key::O) {
+            self.dialog = Some(Dialog::Open {
+                path: String::new(),
+            });
+        }
+        if pressed(command, Key::N) {
+            self.guard(Pending::New);
+        }
+        if pressed(command, Key::D) {
+            clipboard::duplicate(&mut self.snarl, &self.selection);
+        }
+        if typing {
+            return;
+        }
+        if pressed(Modifiers::NONE, Key::Delete) || pressed(Modifiers::NONE, Key::Backspace) {
+            for node in self.selection.drain(..) {
+                if self.snarl.get_node(node).is_some() {
+                    self.snarl.remove_node(node);
+                }
+            }
+        }
+        if pressed(Modifiers::NONE, Key::F) {
+            self.frame = Some(Framing::All);
+        }
+        if pressed(Modifiers::NONE, Key::Space) || pressed(Modifiers::NONE, Key::Tab) {
+            self.quick_add = true;
+            self.search.clear();
+        }
+    }
+
+    /// Copy and paste travel as events (the platform clipboard holds RON text).
+    fn clipboard(&mut self, ctx: &egui::Context) {
+        let events = ctx.input(|input| input.events.clone());
+        for event in events {
+            match event {
+                egui::Event::Copy if !self.selection.is_empty() => {
+                    ctx.copy_text(clipboard::copy(&self.snarl, &self.selection));
+                }
+                egui::Event::Paste(text) if ctx.memory(|m| m.focused().is_none()) => {
+                    if let Err(error) = clipboard::paste(&mut self.snarl, &text) {
+                        self.message = Some(format!("nothing pasted: {error}"));
+                    }
+                }
+                _ => {}
+            }
+        }
+    }
+
+    fn menu_bar(&mut self, ui: &mut Ui) {
+        egui::MenuBar::new().ui(ui, |ui| {
+            ui.menu_button("File", |ui| {
+                if ui.button("New").clicked() {
+                    self.guard(Pending::New);
+                }
+                if ui.button("Open…").clicked() {
+                    self.dialog = Some(Dialog::Open {
+                        path: String::new(),
+                    });
+                }
+                ui.menu_button("Open preset", |ui| {
+                    for (name, _) in PRESETS {
+                        if ui.button(name).clicked() {
+                            self.guard(Pending::Preset(name));
+                        }
+                    }
+                });
+                ui.menu_button("Open recent", |ui| {
+                    for path in self.recent.clone() {
+                        if ui.button(path.display().to_string()).clicked() {
+                            self.guard(Pending::Open(path));
+                        }
+                    }
+                });
+                if ui.button("Save").clicked() {
+                    self.save();
+                }
+                if ui.button("Save as…").clicked() {
+                    self.dialog = Some(Dialog::save_as(&self.document));
+                }
+                ui.separator();
+                if ui.button("Export WGSL…").clicked() {
+                    self.dialog = Some(Dialog::export_wgsl(&self.document));
+                }
+                if ui.button("Export PNG…").clicked() {
+                    self.dialog = Some(Dialog::export_png(&self.document));
+                }
+            });
+            ui.menu_button("Edit", |ui| {
+                if ui
+                    .add_enabled(self.document.history.can_undo(), egui::Button::new("Undo"))
+                    .clicked()
+                {
+                    self.undo();
+                }
+                if ui
+                    .add_enabled(self.document.history.can_redo(), egui::Button::new("Redo"))
+                    .clicked()
+                {
+                    self.redo();
+                }
+                if ui.button("Add node…").clicked() {
+                    self.quick_add = true;
+                }
+                if ui.button("Duplicate").clicked() {
+                    clipboard::duplicate(&mut self.snarl, &self.selection);
+                }
+                if ui.button("Frame all").clicked() {
+                    self.frame = Some(Framing::All);
+                }
+                if ui.button("Arrange nodes").clicked() {
+                    let mut graph = graph_from_snarl(&self.snarl, &self.document.graph);
+                    crate::graph::layout::arrange(&mut graph);
+                    self.snarl = snarl_from_graph(&graph);
+                    self.frame = Some(Framing::All);
+                }
+            });
+        });
+    }
+
+    fn status_bar(&mut self, ui: &mut Ui) {
+        ui.horizontal(|ui| {
+            match self.live.status(&self.document.graph) {
+                Some(error) => {
+                    ui.colored_label(egui::Color32::from_rgb(240, 80, 60), format!("⚠ {error}"));
+                }
+                None => {
+                    ui.label("✔ material compiles");
+                }
+            }
+            if let Some(message) = &self.message {
+                ui.separator();
+                ui.label(message);
+            }
+            ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
+                ui.weak(format!(
+                    "{} nodes · {} compiles",
+                    self.document.graph.nodes.len(),
+                    self.live.compiles
+                ));
+            });
+        });
+    }
+
+    fn material_frame(&mut self) -> Option<MaterialFrame> {
+        let module = self.live.module.as_ref()?;
+        let generation = self.live.generation;
+        if self.wgsl.as_ref().is_none_or(|(g, _)| *g != generation) {
+            self.wgsl = Some((generation, Arc::from(module.source.as_str())));
+        }
+        let wgsl = self.wgsl.as_ref().map(|(_, code)| code.clone())?;
+        Some(MaterialFrame {
+            generation,
+            wgsl,
+            slots: module.params.len(),
+            params: self.live.params(&self.document.graph),
+        })
+    }
+
+    fn preview_panel(&mut self, ui: &mut Ui) {
+        ui.horizontal(|ui| {
+            egui::ComboBox::from_id_salt("mesh")
+                .selected_text(&self.preview.mesh)
+                .show_ui(ui, |ui| {
+                    for name in crate::mesh::PRIMITIVES {
+                        ui.selectable_value(&mut self.preview.mesh, name.to_string(), name);
+                    }
+                });
+            ui.checkbox(&mut self.preview.flat, "flat albedo");
+            ui.label("background");
+            ui.color_edit_button_rgb(&mut self.preview.view.background);
+        });
+        let width = ui.available_width();
+        let material = if self.render_state.is_some() {
+            self.material_frame()
+        } else {
+            None
+        };
+        if self.render_state.is_some() {
+            preview::show(
+                ui,
+                &mut self.preview,
+                material,
+                egui::vec2(width, width.min(ui.available_height() * 0.55)),
+            );
+        } else {
+            ui.label("(no GPU: preview unavailable)");
+        }
+        ui.horizontal(|ui| {
+            let label = if self.preview.playing { "⏸" } else { "▶" };
+            if ui
+                .button(label)
+                .on_hover_text("play / pause time")
+                .clicked()
+            {
+                self.preview.playing = !self.preview.playing;
+            }
+            ui.add(egui::Slider::new(&mut self.preview.view.time, 0.0..=20.0).text("time (s)"));
+        });
+        ui.horizontal(|ui| {
+            ui.label("light");
+            let light = &mut self.preview.view.light;
+            ui.add(
+                egui::DragValue::new(&mut light[0])
+                    .speed(0.02)
+                    .range(-1.0..=1.0),
+            );
+            ui.add(
+                egui::DragValue::new(&mut light[1])
+                    .speed(0.02)
+                    .range(-1.0..=1.0),
+            );
+            ui.add(
+                egui::DragValue::new(&mut light[2])
+                    .speed(0.02)
+                    .range(-1.0..=1.0),
+            );
+        });
+        if self.preview.playing {
+            let dt = ui.input(|input| input.stable_dt).min(0.1);
+            self.preview.view.time = (self.preview.view.time + dt) % 20.0;
+            ui.ctx().request_repaint();
+        }
+    }
+
+    fn graph_panel(&mut self, ui: &mut Ui) {
+        let mut hint = None;
+        let frame = self.frame.take().map(|framing| (ui.max_rect(), framing));
+        let mut viewer = Viewer {
+            errors: &self.live.errors,
+            hint: &mut hint,
+            search: &mut self.search,
+            frame,
+        };
+        let widget = SnarlWidget::new().id_salt("graph");
+        widget.show(&mut self.snarl, &mut viewer, ui);
+        self.selection = widget.get_selected_nodes(ui);
+        if hint.is_some() {
+            self.message = hint;
+        }
+        if self.quick_add {
+            let mut open = true;
+            egui::Window::new("Add node")
+                .open(&mut open)
+                .collapsible(false)
+                .show(ui.ctx(), |ui| {
+                    let mut viewer = Viewer {
+                        errors: &self.live.errors,
+                        hint: &mut None,
+                        search: &mut self.search,
+                        frame: None,
+                    };
+                    if let Some(entry) = viewer.add_node_menu(ui, None) {
+                        let position = clipboard::free_position(&self.snarl);
+                        let id = graph_view::next_node_id(&self.snarl);
+                        self.snarl.insert_node(position, Node::new(id, entry.kind));
+                        self.quick_add = false;
+                    }
+                });
+            self.quick_add &= open;
+        }
+    }
+
+    /// After the panels: read the edited graph back, recompile if needed, commit undo steps, autosave.
+    fn after_edits(&mut self, ctx: &egui::Context) {
+        let graph = graph_from_snarl(&self.snarl, &self.document.graph);
+        if graph != self.document.graph {
+            self.document.graph = graph;
+        }
+        self.live.update(&self.document.graph);
+        if !ctx.input(|input| input.pointer.any_down()) {
+            self.document.history.commit(&self.document.graph);
+        }
+        ctx.send_viewport_cmd(egui::ViewportCommand::Title(self.document.title()));
+        let now = ctx.input(|input| input.time);
+        if self.document.is_dirty() && now - self.last_autosave > AUTOSAVE_SECONDS {
+            self.last_autosave = now;
+            let saved = recovery::Recovery {
+                original: self.document.path.clone(),
+                graph: self.document.graph.clone(),
+            };
+            if let Err(error) = recovery::autosave(&saved) {
+                self.message = Some(format!("autosave failed: {error}"));
+            }
+        }
+    }
+
+    fn handle_close(&mut self, ctx: &egui::Context) {
+        if ctx.input(|input| input.viewport().close_requested()) && !self.allowed_to_close {
+            if self.document.is_dirty() {
+                ctx.send_viewport_cmd(egui::ViewportCommand::CancelClose);
+                self.dialog = Some(Dialog::Discard(Pending::Quit));
+            } else {
+                recovery::clear();
+            }
+        }
+        if self.allowed_to_close {
+            ctx.send_viewport_cmd(egui::ViewportCommand::Close);
+        }
+    }
+}
+
+impl eframe::App for VeneerApp {
+    fn ui(&mut self, ui: &mut Ui, _frame: &mut eframe::Frame) {
+        let ctx = ui.ctx().clone();
+        self.shortcuts(&ctx);
+        self.clipboard(&ctx);
+        egui::Panel::top("menu").show(ui, |ui| self.menu_bar(ui));
+        egui::Panel::bottom("status").show(ui, |ui| self.status_bar(ui));
+        egui::Panel::right("side").default_size(460.0).show(ui, |ui| {
+            self.preview_panel(ui);
+            ui.separator();
+            egui::ScrollArea::vertical().show(ui, |ui| match self.selection.first().copied() {
+                Some(node) if self.snarl.get_node(node).is_some() => {
+                    let error = self.live.errors.get(&Some(self.snarl[node].id));
+                    inspector::show(ui, &mut self.snarl, node, error);
+                }
+                _ => {
+                    ui.weak("Select a node to edit it. Right-click the graph (or press Space) to add one.");
+                }
+            });
+        });
+        egui::CentralPanel::default().show(ui, |ui| self.graph_panel(ui));
+        self.after_edits(&ctx);
+        if let Some(dialog) = self.dialog.take() {
+            self.dialog = dialog.show(&ctx, self);
+        }
+        self.handle_close(&ctx);
+    }
+
+    fn on_exit(&mut self) {
+        if !self.document.is_dirty() {
+            recovery::clear();
+        }
+    }
+}

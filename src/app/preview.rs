@@ -1,0 +1,269 @@
+//! The preview panel: the live material on a mesh (or flat, unlit, from above), drawn
+//! through an egui_wgpu paint callback. The pipeline is rebuilt only when the material's
+//! code changes; camera, time and parameters are uniforms written every frame.
+
+use crate::graph::Preview;
+use crate::render::{GpuMesh, MeshPipeline, MeshTarget, MeshView, Projection};
+use eframe::egui_wgpu::{self, wgpu};
+use egui::{Sense, Ui};
+use std::sync::Arc;
+
+/// What the preview shows and from where; kept by the app between frames.
+pub struct PreviewState {
+    pub mesh: String,
+    pub view: MeshView,
+    /// Show the albedo flat from above instead of lit on the mesh.
+    pub flat: bool,
+    pub playing: bool,
+}
+
+impl PreviewState {
+    /// The default preview of a graph.
+    pub fn for_graph(preview: &Preview) -> PreviewState {
+        PreviewState {
+            mesh: preview.mesh.clone(),
+            view: MeshView::for_preview(preview),
+            flat: false,
+            playing: false,
+        }
+    }
+
+    /// Takes the placement (centre and size in texture space) of `preview`, keeping the camera.
+    pub fn follow(&mut self, preview: &Preview) {
+        self.view.center = [
+            preview.center.0 as f32,
+            preview.center.1 as f32,
+            preview.center.2 as f32,
+        ];
+        self.view.size = preview.size as f32;
+    }
+}
+
+/// The material the callback draws: its code (uniform mode) and parameter values.
+#[derive(Clone)]
+pub struct MaterialFrame {
+    /// Changes whenever the code does.
+    pub generation: u64,
+    pub wgsl: Arc<str>,
+    pub slots: usize,
+    pub params: Vec<[f32; 4]>,
+}
+
+/// GPU objects that live across frames, kept in egui_wgpu's callback resources.
+pub struct PreviewResources {
+    pipeline: Option<(u64, MeshPipeline)>,
+    /// An error from building the newest pipeline; the previous one stays in use.
+    pub pipeline_error: Option<String>,
+    mesh: Option<(String, GpuMesh)>,
+    target: Option<(MeshTarget, wgpu::BindGroup)>,
+    blit: wgpu::RenderPipeline,
+    sampler: wgpu::Sampler,
+    /// How many pipelines have been built (for tests and the status bar).
+    pub pipelines_built: u64,
+}
+
+impl PreviewResources {
+    /// Creates the blit pipeline for egui's target format.
+    pub fn new(device: &wgpu::Device, target_format: wgpu::TextureFormat) -> PreviewResources {
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("preview blit"),
+            source: wgpu::ShaderSource::Wgsl(include_str!("../../shaders/render_blit.wgsl").into()),
+        });
+        let fragment = if target_format.is_srgb() {
+            "veneer_blit_fragment_srgb"
+        } else {
+            "veneer_blit_fragment"
+        };
+        let blit = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("preview blit"),
+            layout: None,
+            vertex: wgpu::VertexState {
+                module: &module,
+                entry_point: Some("veneer_blit_vertex"),
+                compilation_options: Default::default(),
+                buffers: &[],
+            },
+            primitive: wgpu::PrimitiveState::default(),
+            depth_stencil: None,
+            multisample: wgpu::MultisampleState::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &module,
+                entry_point: Some(fragment),
+                compilation_options: Default::default(),
+                targets: &[Some(target_format.into())],
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+        let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("preview"),
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            ..Default::default()
+        });
+        PreviewResources {
+            pipeline: None,
+            pipeline_error: None,
+            mesh: None,
+            target: None,
+            blit,
+            sampler,
+            pipelines_built: 0,
+        }
+    }
+
+    fn sync(&mut self, device: &wgpu::Device, frame: &PreviewCallback) {
+        if let Some(material) = &frame.material {
+            let current = self.pipeline.as_ref().map(|(generation, _)| *generation);
+            if current != Some(material.generation) {
+                match MeshPipeline::new(device, &material.wgsl, material.slots) {
+                    Ok(pipeline) => {
+                        self.pipeline = Some((material.generation, pipeline));
+                        self.pipeline_error = None;
+                        self.pipelines_built += 1;
+                    }
+                    Err(error) => self.pipeline_error = Some(error.to_string()),
+                }
+            }
+        }
+        let mesh_name = if frame.flat {
+            "plane"
+        } else {
+            frame.mesh.as_str()
+        };
+        if self.mesh.as_ref().is_none_or(|(name, _)| name != mesh_name) {
+            let mesh = crate::mesh::primitive(mesh_name)
+                .or_else(|| crate::mesh::primitive("sphere"))
+                .expect("sphere exists");
+            self.mesh = Some((mesh_name.to_string(), GpuMesh::new(device, &mesh)));
+        }
+        if self
+            .target
+            .as_ref()
+            .is_none_or(|(target, _)| target.size() != frame.size)
+        {
+            let target = MeshTarget::new(device, frame.size.0, frame.size.1);
+            let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("preview blit"),
+                layout: &self.blit.get_bind_group_layout(0),
+                entries: &[
+                    wgpu::BindGroupEntry {
+                        binding: 0,
+                        resource: wgpu::BindingResource::TextureView(&target.resolved_view),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 1,
+                        resource: wgpu::BindingResource::Sampler(&self.sampler),
+                    },
+                ],
+            });
+            self.target = Some((target, group));
+        }
+    }
+}
+
+/// One frame of the preview.
+pub struct PreviewCallback {
+    material: Option<MaterialFrame>,
+    mesh: String,
+    view: MeshView,
+    flat: bool,
+    size: (u32, u32),
+}
+
+impl egui_wgpu::CallbackTrait for PreviewCallback {
+    fn prepare(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        _screen: &egui_wgpu::ScreenDescriptor,
+        encoder: &mut wgpu::CommandEncoder,
+        resources: &mut egui_wgpu::CallbackResources,
+    ) -> Vec<wgpu::CommandBuffer> {
+        let Some(state) = resources.get_mut::<PreviewResources>() else {
+            return Vec::new();
+        };
+        state.sync(device, self);
+        let (Some((_, pipeline)), Some((_, mesh)), Some((target, _))) =
+            (&state.pipeline, &state.mesh, &state.target)
+        else {
+            return Vec::new();
+        };
+        let aspect = self.size.0 as f32 / self.size.1.max(1) as f32;
+        pipeline.write_view(queue, &self.view, aspect);
+        if let Some(material) = &self.material {
+            pipeline.write_params(queue, &material.params);
+        }
+        pipeline.encode(encoder, target, mesh, self.view.background);
+        Vec::new()
+    }
+
+    fn paint(
+        &self,
+        _info: egui::PaintCallbackInfo,
+        pass: &mut wgpu::RenderPass<'static>,
+        resources: &egui_wgpu::CallbackResources,
+    ) {
+        let Some(state) = resources.get::<PreviewResources>() else {
+            return;
+        };
+        if let (Some(_), Some((_, group))) = (&state.pipeline, &state.target) {
+            pass.set_pipeline(&state.blit);
+            pass.set_bind_group(0, group, &[]);
+            pass.draw(0..3, 0..1);
+        }
+    }
+}
+
+/// Shows the preview in `ui`, filling `size`, with orbit (drag), zoom (scroll) and pan
+/// (right drag) on the mesh, or zoom and pan on the flat view.
+pub fn show(
+    ui: &mut Ui,
+    state: &mut PreviewState,
+    material: Option<MaterialFrame>,
+    size: egui::Vec2,
+) -> egui::Response {
+    let (rect, response) = ui.allocate_exact_size(size, Sense::click_and_drag());
+    let view = &mut state.view;
+    if response.dragged_by(egui::PointerButton::Primary) && !state.flat {
+        let delta = response.drag_delta();
+        view.yaw -= delta.x * 0.4;
+        view.pitch = (view.pitch + delta.y * 0.4).clamp(-89.0, 89.0);
+    }
+    if response.dragged_by(egui::PointerButton::Secondary)
+        || (state.flat && response.dragged_by(egui::PointerButton::Primary))
+    {
+        let delta = response.drag_delta() / rect.height().max(1.0) * view.distance;
+        let yaw = view.yaw.to_radians();
+        let (right, up) = if state.flat {
+            ([1.0, 0.0, 0.0], [0.0, 0.0, -1.0])
+        } else {
+            ([yaw.cos(), 0.0, -yaw.sin()], [0.0, 1.0, 0.0])
+        };
+        for k in 0..3 {
+            view.target[k] -= right[k] * delta.x - up[k] * delta.y;
+        }
+    }
+    if response.hovered() {
+        let scroll = ui.input(|input| input.smooth_scroll_delta.y);
+        view.distance = (view.distance * (-scroll * 0.002).exp()).clamp(0.3, 50.0);
+    }
+    let mut frame_view = view.clone();
+    if state.flat {
+        frame_view.projection = Projection::TopDown {
+            extent: view.distance / 3.6,
+        };
+        frame_view.unlit = true;
+    }
+    let pixels = (rect.size() * ui.ctx().pixels_per_point()).round();
+    let callback = PreviewCallback {
+        material,
+        mesh: state.mesh.clone(),
+        view: frame_view,
+        flat: state.flat,
+        size: (pixels.x.max(1.0) as u32, pixels.y.max(1.0) as u32),
+    };
+    ui.painter()
+        .add(egui_wgpu::Callback::new_paint_callback(rect, callback));
+    response
+}

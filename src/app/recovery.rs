@@ -1,0 +1,47 @@
+//! Autosave to a recovery file, offered on the next start if Veneer did not exit cleanly.
+
+use crate::graph::Graph;
+use serde::{Deserialize, Serialize};
+use std::path::PathBuf;
+
+/// What the recovery file holds.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Recovery {
+    /// The file the unsaved graph belongs to, if it had one.
+    pub original: Option<PathBuf>,
+    pub graph: Graph,
+}
+
+/// The recovery file: `$VENEER_RECOVERY_FILE`, else `$XDG_STATE_HOME/veneer/recovery.ron`,
+/// else `~/.local/state/veneer/recovery.ron`.
+pub fn recovery_path() -> PathBuf {
+    if let Some(path) = std::env::var_os("VENEER_RECOVERY_FILE") {
+        return PathBuf::from(path);
+    }
+    let state = std::env::var_os("XDG_STATE_HOME")
+        .map(PathBuf::from)
+        .or_else(|| std::env::var_os("HOME").map(|home| PathBuf::from(home).join(".local/state")))
+        .unwrap_or_else(std::env::temp_dir);
+    state.join("veneer/recovery.ron")
+}
+
+/// Writes the unsaved graph to the recovery file (atomically).
+pub fn autosave(recovery: &Recovery) -> std::io::Result<()> {
+    let path = recovery_path();
+    if let Some(folder) = path.parent() {
+        std::fs::create_dir_all(folder)?;
+    }
+    let text = ron::ser::to_string_pretty(recovery, ron::ser::PrettyConfig::new().depth_limit(2))
+        .map_err(std::io::Error::other)?;
+    crate::fsutil::write_atomic(&path, text.as_bytes())
+}
+
+/// The recovery file's content, if there is a readable one.
+pub fn pending() -> Option<Recovery> {
+    ron::from_str(&std::fs::read_to_string(recovery_path()).ok()?).ok()
+}
+
+/// Removes the recovery file (after a clean exit, or once the user has decided).
+pub fn clear() {
+    let _ = std::fs::remove_file(recovery_path());
+}

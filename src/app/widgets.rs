@@ -1,0 +1,62 @@
+//! Editors for pin values, shared by the node bodies and the inspector.
+
+use crate::graph::{Node, PinDefault, Value, ValueType};
+use egui::{Color32, DragValue, Ui};
+
+/// The colour of a pin (and its wires) by type.
+pub fn type_color(ty: ValueType) -> Color32 {
+    match ty {
+        ValueType::Float => Color32::from_rgb(160, 160, 160),
+        ValueType::Vec2 => Color32::from_rgb(90, 200, 120),
+        ValueType::Vec3 => Color32::from_rgb(100, 140, 230),
+        ValueType::Color => Color32::from_rgb(230, 200, 60),
+    }
+}
+
+/// An editor for one value; returns whether it changed.
+pub fn value_editor(ui: &mut Ui, value: &mut Value, speed: f64) -> bool {
+    let drag = |ui: &mut Ui, x: &mut f64| {
+        ui.add(DragValue::new(x).speed(speed).max_decimals(4))
+            .changed()
+    };
+    match value {
+        Value::Float(x) => drag(ui, x),
+        Value::Vec2(x, y) => drag(ui, x) | drag(ui, y),
+        Value::Vec3(x, y, z) => drag(ui, x) | drag(ui, y) | drag(ui, z),
+        Value::Color(r, g, b) => {
+            let mut rgb = [*r as f32, *g as f32, *b as f32];
+            let changed = ui.color_edit_button_rgb(&mut rgb).changed();
+            if changed {
+                (*r, *g, *b) = (f64::from(rgb[0]), f64::from(rgb[1]), f64::from(rgb[2]));
+            }
+            changed
+        }
+    }
+}
+
+/// The constant an unconnected input of `node` currently has (its own or the default).
+pub fn input_value(node: &Node, pin: &str) -> Option<Value> {
+    let (_, spec) = node.kind.signature().input(pin).map(|(i, p)| (i, *p))?;
+    match (node.inputs.get(pin), spec.default) {
+        (Some(value), _) => Some(value.convert(spec.ty)),
+        (None, PinDefault::Const(value)) => Some(value),
+        _ => None,
+    }
+}
+
+/// An editor for the constant of input `pin` of `node`; stores the value only when edited.
+pub fn input_editor(ui: &mut Ui, node: &mut Node, pin: &str) -> bool {
+    let Some(mut value) = input_value(node, pin) else {
+        return false;
+    };
+    let magnitude = value
+        .components()
+        .iter()
+        .fold(0.0f64, |m, c| m.max(c.abs()));
+    let speed = (magnitude * 0.01).clamp(0.001, 10.0);
+    let changed = value_editor(ui, &mut value, speed);
+    if changed {
+        node.inputs.insert(pin.to_string(), value);
+    }
+    changed
+}
