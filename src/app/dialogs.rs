@@ -98,7 +98,7 @@ impl Dialog {
                             next = Some(match app.document.save_as(&target) {
                                 Ok(()) => {
                                     app.message = Some(format!("saved {}", target.display()));
-                                    recovery::clear();
+                                    recovery::clear(&app.recovery_file);
                                     None
                                 }
                                 Err(error) => Some(Dialog::Message(error)),
@@ -166,7 +166,7 @@ impl Dialog {
                             next = Some(None);
                         }
                         if ui.button("Discard").clicked() {
-                            recovery::clear();
+                            recovery::clear(&app.recovery_file);
                             next = Some(None);
                         }
                     });

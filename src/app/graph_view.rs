@@ -121,6 +121,9 @@ pub struct Viewer<'a> {
     pub search: &'a mut String,
     /// When set, move the view this frame to show these nodes in this screen rectangle.
     pub frame: Option<(egui::Rect, Framing)>,
+    /// The node selected by a plain click (snarl itself selects only with Shift or a
+    /// rectangle); set here when a node is clicked this frame.
+    pub clicked: &'a mut Option<egui_snarl::NodeId>,
 }
 
 impl Viewer<'_> {
@@ -239,17 +242,42 @@ impl SnarlViewer<Node> for Viewer<'_> {
         node.display_name().to_string()
     }
 
-    fn show_header(
+    fn final_node_rect(
         &mut self,
         node: egui_snarl::NodeId,
+        rect: egui::Rect,
+        ui: &mut Ui,
+        _: &mut Snarl<Node>,
+    ) {
+        let clicked = ui.input(|input| {
+            input.pointer.primary_clicked()
+                && input
+                    .pointer
+                    .interact_pos()
+                    .is_some_and(|pos| rect.contains(pos))
+        });
+        if clicked {
+            *self.clicked = Some(node);
+        }
+    }
+
+    fn show_header(
+        &mut self,
+        id: egui_snarl::NodeId,
         _: &[InPin],
         _: &[OutPin],
         ui: &mut Ui,
         snarl: &mut Snarl<Node>,
     ) {
-        let node = &snarl[node];
+        let node = &snarl[id];
+        let selected = *self.clicked == Some(id);
         ui.horizontal(|ui| {
-            ui.label(RichText::new(node.display_name()).strong());
+            let title = RichText::new(node.display_name()).strong();
+            ui.label(if selected {
+                title.color(Color32::from_rgb(255, 190, 80))
+            } else {
+                title
+            });
             if let Some(error) = self.errors.get(&Some(node.id)) {
                 ui.label(RichText::new("⚠").color(Color32::from_rgb(240, 80, 60)))
                     .on_hover_text(error);

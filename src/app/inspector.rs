@@ -191,7 +191,7 @@ fn candidates(
                         node: id,
                         output: index,
                     },
-                    format!("{} → {}", node.display_name(), pin.name),
+                    format!("{} · {}", node.display_name(), pin.name),
                 ));
             }
         }
@@ -246,8 +246,7 @@ pub fn show(ui: &mut Ui, snarl: &mut Snarl<Node>, id: egui_snarl::NodeId, error:
         let source = snarl.in_pin(pin_id).remotes.first().copied();
         let options = candidates(snarl, id, pin.ty);
         ui.horizontal(|ui| {
-            ui.colored_label(type_color(pin.ty), "●");
-            ui.label(pin.name);
+            ui.colored_label(type_color(pin.ty), pin.name);
             let current = match source {
                 Some(from) => options
                     .iter()

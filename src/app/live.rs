@@ -16,7 +16,7 @@ pub struct LiveMaterial {
     pub errors: BTreeMap<Option<NodeId>, String>,
     /// How many times the graph was compiled (parameter edits never count).
     pub compiles: u64,
-    /// Bumped whenever `module` is replaced, so the preview knows to rebuild its pipeline.
+    /// Bumped whenever the module's code changes, so the preview knows to rebuild its pipeline.
     pub generation: u64,
 }
 
@@ -45,8 +45,15 @@ impl LiveMaterial {
         self.errors.clear();
         match compile_graph_with(graph, ParamMode::Uniform) {
             Ok(module) => {
+                // Nodes the output does not reach are pruned: the code may well be unchanged.
+                if self
+                    .module
+                    .as_ref()
+                    .is_none_or(|old| old.source != module.source)
+                {
+                    self.generation += 1;
+                }
                 self.module = Some(module);
-                self.generation += 1;
             }
             Err(CompileError::Check(errors)) => {
                 for error in errors {
@@ -122,6 +129,20 @@ mod tests {
         graph.connect(noise, "value", material, "alpha");
         assert!(live.update(&graph));
         assert_eq!(live.compiles, 2);
+        let generation = live.generation;
+        graph.add(
+            "unused",
+            NodeKind::Worley {
+                feature: crate::graph::WorleyFeature::F1,
+                metric: crate::graph::Metric::Euclidean,
+                octaves: 1,
+            },
+        );
+        assert!(live.update(&graph), "a new node is a structural edit");
+        assert_eq!(
+            live.generation, generation,
+            "but an unconnected one leaves the code, and the pipeline, as they were"
+        );
     }
 
     #[test]

@@ -54,6 +54,8 @@ pub struct VeneerApp {
     preview: PreviewState,
     /// Nodes selected in the graph (snarl ids).
     selection: Vec<egui_snarl::NodeId>,
+    /// The node picked by a plain click.
+    clicked: Option<egui_snarl::NodeId>,
     /// A message for the status bar (saved, exported, refused wire…).
     pub message: Option<String>,
     search: String,
@@ -67,11 +69,25 @@ pub struct VeneerApp {
     wgsl: Option<(u64, Arc<str>)>,
     render_state: Option<eframe::egui_wgpu::RenderState>,
     allowed_to_close: bool,
+    /// Where unsaved work is autosaved.
+    recovery_file: PathBuf,
+    /// The window title last sent.
+    title: String,
 }
 
 impl VeneerApp {
-    /// The editor on `path` (or the wood preset), with the preview's GPU resources installed.
+    /// The editor on `path` (or the wood preset), autosaving to the default recovery file.
     pub fn new(cc: &eframe::CreationContext<'_>, path: Option<PathBuf>) -> VeneerApp {
+        VeneerApp::with_recovery_file(cc, path, recovery::default_path())
+    }
+
+    /// The editor on `path` (or the wood preset), autosaving to `recovery_file`, with the
+    /// preview's GPU resources installed. Offers the recovery file's content if there is one.
+    pub fn with_recovery_file(
+        cc: &eframe::CreationContext<'_>,
+        path: Option<PathBuf>,
+        recovery_file: PathBuf,
+    ) -> VeneerApp {
         let render_state = cc.wgpu_render_state.clone();
         if let Some(state) = &render_state {
             let resources = PreviewResources::new(&state.device, state.target_format);
@@ -84,6 +100,7 @@ impl VeneerApp {
             document: Document::new(wood, None),
             live: LiveMaterial::default(),
             selection: Vec::new(),
+            clicked: None,
             message: None,
             search: String::new(),
             dialog: None,
@@ -94,11 +111,13 @@ impl VeneerApp {
             wgsl: None,
             render_state,
             allowed_to_close: false,
+            recovery_file,
+            title: String::new(),
         };
         if let Some(path) = path {
             app.open(path);
         }
-        if let Some(recovery) = recovery::pending() {
+        if let Some(recovery) = recovery::pending(&app.recovery_file) {
             app.dialog = Some(Dialog::Recover(recovery));
         }
         app.live.update(&app.document.graph);
@@ -112,6 +131,7 @@ impl VeneerApp {
         self.snarl = snarl_from_graph(&document.graph);
         self.document = document;
         self.selection.clear();
+        self.clicked = None;
         self.frame = Some(Framing::Output);
         self.live.update(&self.document.graph);
     }
@@ -157,7 +177,7 @@ impl VeneerApp {
             }
             Pending::Quit => {
                 self.allowed_to_close = true;
-                recovery::clear();
+                recovery::clear(&self.recovery_file);
             }
         }
     }
@@ -167,7 +187,7 @@ impl VeneerApp {
         match self.document.save() {
             Ok(path) => {
                 self.message = Some(format!("saved {}", path.display()));
-                recovery::clear();
+                recovery::clear(&self.recovery_file);
             }
             Err(_) if self.document.path.is_none() => {
                 self.dialog = Some(Dialog::save_as(&self.document))
@@ -179,6 +199,7 @@ impl VeneerApp {
     /// Undoes the last edit.
     pub fn undo(&mut self) {
         if let Some(graph) = self.document.history.undo() {
+            self.clicked = None;
             self.snarl = snarl_from_graph(&graph);
             self.document.graph = graph;
         }
@@ -187,6 +208,7 @@ impl VeneerApp {
     /// Redoes the last undone edit.
     pub fn redo(&mut self) {
         if let Some(graph) = self.document.history.redo() {
+            self.clicked = None;
             self.snarl = snarl_from_graph(&graph);
             self.document.graph = graph;
         }
@@ -447,15 +469,23 @@ impl VeneerApp {
     fn graph_panel(&mut self, ui: &mut Ui) {
         let mut hint = None;
         let frame = self.frame.take().map(|framing| (ui.max_rect(), framing));
+        let before = self.clicked.take();
         let mut viewer = Viewer {
             errors: &self.live.errors,
             hint: &mut hint,
             search: &mut self.search,
             frame,
+            clicked: &mut self.clicked,
         };
         let widget = SnarlWidget::new().id_salt("graph");
-        widget.show(&mut self.snarl, &mut viewer, ui);
+        let response = widget.show(&mut self.snarl, &mut viewer, ui);
+        if self.clicked.is_none() && !response.clicked() {
+            self.clicked = before.filter(|node| self.snarl.get_node(*node).is_some());
+        }
         self.selection = widget.get_selected_nodes(ui);
+        if self.selection.is_empty() {
+            self.selection.extend(self.clicked);
+        }
         if hint.is_some() {
             self.message = hint;
         }
@@ -470,6 +500,7 @@ impl VeneerApp {
                         hint: &mut None,
                         search: &mut self.search,
                         frame: None,
+                        clicked: &mut None,
                     };
                     if let Some(entry) = viewer.add_node_menu(ui, None) {
                         let position = clipboard::free_position(&self.snarl);
@@ -492,7 +523,11 @@ impl VeneerApp {
         if !ctx.input(|input| input.pointer.any_down()) {
             self.document.history.commit(&self.document.graph);
         }
-        ctx.send_viewport_cmd(egui::ViewportCommand::Title(self.document.title()));
+        let title = self.document.title();
+        if title != self.title {
+            ctx.send_viewport_cmd(egui::ViewportCommand::Title(title.clone()));
+            self.title = title;
+        }
         let now = ctx.input(|input| input.time);
         if self.document.is_dirty() && now - self.last_autosave > AUTOSAVE_SECONDS {
             self.last_autosave = now;
@@ -500,7 +535,7 @@ impl VeneerApp {
                 original: self.document.path.clone(),
                 graph: self.document.graph.clone(),
             };
-            if let Err(error) = recovery::autosave(&saved) {
+            if let Err(error) = recovery::autosave(&self.recovery_file, &saved) {
                 self.message = Some(format!("autosave failed: {error}"));
             }
         }
@@ -512,7 +547,7 @@ impl VeneerApp {
                 ctx.send_viewport_cmd(egui::ViewportCommand::CancelClose);
                 self.dialog = Some(Dialog::Discard(Pending::Quit));
             } else {
-                recovery::clear();
+                recovery::clear(&self.recovery_file);
             }
         }
         if self.allowed_to_close {
@@ -544,14 +579,17 @@ impl eframe::App for VeneerApp {
         egui::CentralPanel::default().show(ui, |ui| self.graph_panel(ui));
         self.after_edits(&ctx);
         if let Some(dialog) = self.dialog.take() {
-            self.dialog = dialog.show(&ctx, self);
+            // A dialog's action may open another dialog (an open that fails shows a
+            // message): that one wins over the dialog staying open.
+            let still_open = dialog.show(&ctx, self);
+            self.dialog = self.dialog.take().or(still_open);
         }
         self.handle_close(&ctx);
     }
 
     fn on_exit(&mut self) {
         if !self.document.is_dirty() {
-            recovery::clear();
+            recovery::clear(&self.recovery_file);
         }
     }
 }

@@ -2,7 +2,7 @@
 
 use crate::graph::Graph;
 use serde::{Deserialize, Serialize};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// What the recovery file holds.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -12,12 +12,9 @@ pub struct Recovery {
     pub graph: Graph,
 }
 
-/// The recovery file: `$VENEER_RECOVERY_FILE`, else `$XDG_STATE_HOME/veneer/recovery.ron`,
-/// else `~/.local/state/veneer/recovery.ron`.
-pub fn recovery_path() -> PathBuf {
-    if let Some(path) = std::env::var_os("VENEER_RECOVERY_FILE") {
-        return PathBuf::from(path);
-    }
+/// The default recovery file: `$XDG_STATE_HOME/veneer/recovery.ron`, else
+/// `~/.local/state/veneer/recovery.ron`.
+pub fn default_path() -> PathBuf {
     let state = std::env::var_os("XDG_STATE_HOME")
         .map(PathBuf::from)
         .or_else(|| std::env::var_os("HOME").map(|home| PathBuf::from(home).join(".local/state")))
@@ -25,23 +22,22 @@ pub fn recovery_path() -> PathBuf {
     state.join("veneer/recovery.ron")
 }
 
-/// Writes the unsaved graph to the recovery file (atomically).
-pub fn autosave(recovery: &Recovery) -> std::io::Result<()> {
-    let path = recovery_path();
+/// Writes the unsaved graph to the recovery file `path` (atomically).
+pub fn autosave(path: &Path, recovery: &Recovery) -> std::io::Result<()> {
     if let Some(folder) = path.parent() {
         std::fs::create_dir_all(folder)?;
     }
     let text = ron::ser::to_string_pretty(recovery, ron::ser::PrettyConfig::new().depth_limit(2))
         .map_err(std::io::Error::other)?;
-    crate::fsutil::write_atomic(&path, text.as_bytes())
+    crate::fsutil::write_atomic(path, text.as_bytes())
 }
 
-/// The recovery file's content, if there is a readable one.
-pub fn pending() -> Option<Recovery> {
-    ron::from_str(&std::fs::read_to_string(recovery_path()).ok()?).ok()
+/// The content of the recovery file `path`, if there is a readable one.
+pub fn pending(path: &Path) -> Option<Recovery> {
+    ron::from_str(&std::fs::read_to_string(path).ok()?).ok()
 }
 
 /// Removes the recovery file (after a clean exit, or once the user has decided).
-pub fn clear() {
-    let _ = std::fs::remove_file(recovery_path());
+pub fn clear(path: &Path) {
+    let _ = std::fs::remove_file(path);
 }

@@ -1,0 +1,177 @@
+//! Editing in the real editor: the preset loads and renders, nodes are added through the
+//! search menu and wired, parameters change the preview without recompiling, undo
+//! restores it, and compile errors land on the node that caused them.
+
+use crate::support::{editor, press, preview_pixels, scratch, screen, select_node, shows};
+use egui_kittest::kittest::Queryable;
+use veneer::graph::NodeKind;
+
+#[test]
+fn opens_on_the_wood_preset_with_the_material_on_a_sphere() {
+    let dir = scratch("open");
+    let mut harness = editor(&dir, None);
+    let image = screen(&mut harness);
+    let app = harness.state();
+    assert_eq!(app.document.graph.name, "Wood");
+    assert!(app.live.errors.is_empty() && app.live.module.is_some());
+    assert_eq!(
+        app.pipelines_built(),
+        1,
+        "the preview built the material's pipeline once"
+    );
+    assert!(shows(&harness, "material compiles"));
+    // The sphere is lit wood: brownish pixels in the middle of the preview.
+    let centre = image.get_pixel(1170, 250).0;
+    assert!(
+        centre[0] > centre[2] + 20 && centre[0] > 60,
+        "not wood-coloured: {centre:?}"
+    );
+    harness.snapshot_options(
+        "editor_wood",
+        &egui_kittest::SnapshotOptions::new()
+            .output_path("tests/editor/snapshots")
+            .threshold(2.0)
+            .max_failed_pixels(800),
+    );
+}
+
+#[test]
+fn adds_a_node_through_the_search_menu_and_wires_it_from_the_inspector() {
+    let dir = scratch("add");
+    let mut harness = editor(&dir, None);
+    let before = harness.state().document.graph.nodes.len();
+    press(&mut harness, egui::Key::Space, false);
+    harness
+        .get_by_role(egui::accesskit::Role::TextInput)
+        .type_text("worley");
+    harness.run();
+    harness.get_by_label("Worley").click();
+    harness.run();
+    let graph = &harness.state().document.graph;
+    assert_eq!(graph.nodes.len(), before + 1);
+    let worley = graph
+        .nodes
+        .iter()
+        .find(|n| matches!(n.kind, NodeKind::Worley { .. }))
+        .expect("a Worley node")
+        .id;
+
+    // Wire the new node into the material's alpha through the inspector's connect choice.
+    select_node(&mut harness, "material");
+    harness
+        .get_all_by_value("constant")
+        .next()
+        .expect("alpha's connect choice")
+        .click_accesskit();
+    harness.run();
+    harness.get_by_label("Worley · value").click_accesskit();
+    harness.run();
+    let graph = &harness.state().document.graph;
+    let wire = graph.wire_into(
+        graph
+            .nodes
+            .iter()
+            .find(|n| n.kind == NodeKind::Material)
+            .unwrap()
+            .id,
+        "alpha",
+    );
+    assert_eq!(wire.map(|w| w.from.node), Some(worley));
+    assert_eq!(
+        harness.state().live.compiles,
+        3,
+        "adding and wiring are structural edits"
+    );
+}
+
+#[test]
+fn a_parameter_edit_changes_the_preview_without_recompiling_and_undo_restores_it() {
+    let dir = scratch("parameter");
+    let mut harness = editor(&dir, None);
+    let original = preview_pixels(&screen(&mut harness));
+    let compiles = harness.state().live.compiles;
+    select_node(&mut harness, "material");
+    // Type a much lower shininess into the inspector's drag value: a broad highlight.
+    harness
+        .get_all_by_value("24.0")
+        .last()
+        .expect("shininess in the inspector")
+        .focus();
+    harness.run();
+    harness.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::A);
+    harness.run();
+    harness.get_by(|n| n.is_focused()).type_text("2");
+    press(&mut harness, egui::Key::Enter, false);
+    assert!(harness.state().document.is_dirty());
+    let edited = preview_pixels(&screen(&mut harness));
+    assert_ne!(original, edited, "the preview shows the new colour");
+    assert_eq!(
+        harness.state().live.compiles,
+        compiles,
+        "a parameter edit never recompiles"
+    );
+    assert_eq!(harness.state().pipelines_built(), 1);
+
+    press(&mut harness, egui::Key::Z, true);
+    let undone = preview_pixels(&screen(&mut harness));
+    assert_eq!(undone, original, "undo restores the preview");
+    assert!(!harness.state().document.is_dirty());
+}
+
+#[test]
+fn a_compile_error_is_shown_on_the_node_that_caused_it() {
+    let dir = scratch("error");
+    let mut harness = editor(&dir, None);
+    let before = preview_pixels(&screen(&mut harness));
+    press(&mut harness, egui::Key::Space, false);
+    harness
+        .get_by_role(egui::accesskit::Role::TextInput)
+        .type_text("smoothstep");
+    harness.run();
+    harness.get_by_label("Smoothstep").click();
+    harness.run();
+    select_node(&mut harness, "material");
+    harness
+        .get_all_by_value("constant")
+        .next()
+        .expect("alpha's connect choice")
+        .click_accesskit();
+    harness.run();
+    harness
+        .get_by_label("Smoothstep · result")
+        .click_accesskit();
+    harness.run();
+    let app = harness.state();
+    let smoothstep = app
+        .document
+        .graph
+        .nodes
+        .iter()
+        .map(|n| n.id)
+        .max()
+        .expect("the new node has the largest id");
+    assert_eq!(
+        app.document.graph.node(smoothstep).unwrap().kind,
+        NodeKind::Smoothstep
+    );
+    assert!(
+        app.live.errors.contains_key(&Some(smoothstep)),
+        "{:?}",
+        app.live.errors
+    );
+    assert!(shows(
+        &harness,
+        &format!("node 'Smoothstep' ({smoothstep}): input 'x' (float) must be connected")
+    ));
+    assert!(app.live.module.is_some(), "the last good material stays");
+    let after = preview_pixels(&screen(&mut harness));
+    assert_eq!(
+        harness.state().pipelines_built(),
+        1,
+        "no pipeline for the broken graph"
+    );
+    assert_eq!(
+        before, after,
+        "the preview keeps showing the last good material"
+    );
+}

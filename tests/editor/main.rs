@@ -1,0 +1,6 @@
+//! The editor driven for real through egui_kittest, rendering through wgpu on the
+//! machine's adapter (lavapipe or llvmpipe on CI).
+
+mod editing;
+mod files;
+mod support;

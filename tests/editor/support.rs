@@ -1,0 +1,70 @@
+//! Building the editor in a test harness, and reading what it shows.
+
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
+use std::path::{Path, PathBuf};
+use veneer::app::VeneerApp;
+
+/// A scratch folder unique to one test.
+pub fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("veneer-editor-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("scratch folder");
+    dir
+}
+
+/// The editor in a 1400×900 window, rendering through wgpu, on `graph` (or the wood
+/// preset), autosaving into `dir`.
+pub fn editor(dir: &Path, graph: Option<PathBuf>) -> Harness<'static, VeneerApp> {
+    let recovery = dir.join("recovery.ron");
+    let mut harness = Harness::builder()
+        .with_size(egui::vec2(1400.0, 900.0))
+        .wgpu()
+        .build_eframe(move |cc| VeneerApp::with_recovery_file(cc, graph, recovery));
+    harness.run();
+    harness
+}
+
+/// The rendered window.
+pub fn screen(harness: &mut Harness<'static, VeneerApp>) -> image::RgbaImage {
+    harness.render().expect("the window renders")
+}
+
+/// Pixels of the preview panel (the right side, above the controls).
+pub fn preview_pixels(image: &image::RgbaImage) -> Vec<u8> {
+    let mut pixels = Vec::new();
+    for y in 60..440 {
+        for x in 960..1380 {
+            pixels.extend_from_slice(&image.get_pixel(x, y).0);
+        }
+    }
+    pixels
+}
+
+/// Presses a key, optionally with Ctrl, and lets the app react.
+pub fn press(harness: &mut Harness<'static, VeneerApp>, key: egui::Key, command: bool) {
+    let modifiers = if command {
+        egui::Modifiers::COMMAND
+    } else {
+        egui::Modifiers::NONE
+    };
+    harness.key_press_modifiers(modifiers, key);
+    harness.run();
+}
+
+/// Clicks the node whose title is `title` in the graph panel, selecting it.
+pub fn select_node(harness: &mut Harness<'static, VeneerApp>, title: &str) {
+    harness.get_by_label(title).click();
+    harness.run();
+}
+
+/// Whether some label on screen contains `text`.
+pub fn shows(harness: &Harness<'static, VeneerApp>, text: &str) -> bool {
+    harness
+        .query_all_by(|node| {
+            node.value().is_some_and(|v| v.contains(text))
+                || node.label().is_some_and(|l| l.contains(text))
+        })
+        .next()
+        .is_some()
+}
