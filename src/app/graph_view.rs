@@ -124,6 +124,8 @@ pub struct Viewer<'a> {
     /// The node selected by a plain click (snarl itself selects only with Shift or a
     /// rectangle); set here when a node is clicked this frame.
     pub clicked: &'a mut Option<egui_snarl::NodeId>,
+    /// Receives the view's graph-to-screen transform each frame.
+    pub transform: &'a mut egui::emath::TSTransform,
 }
 
 impl Viewer<'_> {
@@ -201,41 +203,8 @@ impl SnarlViewer<Node> for Viewer<'_> {
         to_global: &mut egui::emath::TSTransform,
         snarl: &mut Snarl<Node>,
     ) {
-        let Some((viewport, framing)) = self.frame.take() else {
-            return;
-        };
-        let positions: Vec<Pos2> = snarl.nodes_pos().map(|(pos, _)| pos).collect();
-        if positions.is_empty() {
-            return;
-        }
-        // Positions are nodes' top-left corners: leave room for a node's size.
-        let node_size = egui::vec2(260.0, 200.0);
-        let bounds =
-            egui::Rect::from_points(&positions)
-                .expand(40.0)
-                .union(egui::Rect::from_min_size(
-                    positions
-                        .iter()
-                        .fold(Pos2::new(f32::MIN, f32::MIN), |a, p| a.max(*p)),
-                    node_size,
-                ));
-        let fit = (viewport.width() / bounds.width()).min(viewport.height() / bounds.height());
-        let (scale, focus) = match framing {
-            Framing::All => (fit.clamp(0.1, 1.5), bounds.center()),
-            Framing::Output => {
-                let output = snarl
-                    .nodes_pos()
-                    .find(|(_, node)| node.kind == crate::graph::NodeKind::Material);
-                let anchor = output
-                    .map(|(pos, _)| pos + node_size * 0.5)
-                    .unwrap_or(bounds.center());
-                let scale = fit.max(0.65).min(1.2);
-                let shift = (viewport.width() * 0.5 - node_size.x * scale).max(0.0) / scale;
-                (scale, Pos2::new(anchor.x - shift, anchor.y))
-            }
-        };
-        to_global.scaling = scale;
-        to_global.translation = viewport.center().to_vec2() - focus.to_vec2() * scale;
+        self.apply_framing(to_global, snarl);
+        *self.transform = *to_global;
     }
 
     fn title(&mut self, node: &Node) -> String {
@@ -249,15 +218,22 @@ impl SnarlViewer<Node> for Viewer<'_> {
         ui: &mut Ui,
         _: &mut Snarl<Node>,
     ) {
+        // Nodes live in a zoomed and panned layer; the pointer is in screen space.
+        let to_screen = ui
+            .ctx()
+            .layer_transform_to_global(ui.layer_id())
+            .unwrap_or_default();
+        let on_screen = to_screen * rect;
         let clicked = ui.input(|input| {
             input.pointer.primary_clicked()
                 && input
                     .pointer
                     .interact_pos()
-                    .is_some_and(|pos| rect.contains(pos))
+                    .is_some_and(|pos| on_screen.contains(pos))
         });
         if clicked {
             *self.clicked = Some(node);
+            ui.ctx().request_repaint();
         }
     }
 
@@ -431,5 +407,46 @@ impl SnarlViewer<Node> for Viewer<'_> {
             snarl.remove_node(node);
             ui.close();
         }
+    }
+}
+
+impl Viewer<'_> {
+    /// Moves the view as `frame` asks, once.
+    fn apply_framing(&mut self, to_global: &mut egui::emath::TSTransform, snarl: &Snarl<Node>) {
+        let Some((viewport, framing)) = self.frame.take() else {
+            return;
+        };
+        let positions: Vec<Pos2> = snarl.nodes_pos().map(|(pos, _)| pos).collect();
+        if positions.is_empty() {
+            return;
+        }
+        // Positions are nodes' top-left corners: leave room for a node's size.
+        let node_size = egui::vec2(260.0, 200.0);
+        let bounds =
+            egui::Rect::from_points(&positions)
+                .expand(40.0)
+                .union(egui::Rect::from_min_size(
+                    positions
+                        .iter()
+                        .fold(Pos2::new(f32::MIN, f32::MIN), |a, p| a.max(*p)),
+                    node_size,
+                ));
+        let fit = (viewport.width() / bounds.width()).min(viewport.height() / bounds.height());
+        let (scale, focus) = match framing {
+            Framing::All => (fit.clamp(0.1, 1.5), bounds.center()),
+            Framing::Output => {
+                let output = snarl
+                    .nodes_pos()
+                    .find(|(_, node)| node.kind == crate::graph::NodeKind::Material);
+                let anchor = output
+                    .map(|(pos, _)| pos + node_size * 0.5)
+                    .unwrap_or(bounds.center());
+                let scale = fit.max(0.65).min(1.2);
+                let shift = (viewport.width() * 0.5 - node_size.x * scale).max(0.0) / scale;
+                (scale, Pos2::new(anchor.x - shift, anchor.y))
+            }
+        };
+        to_global.scaling = scale;
+        to_global.translation = viewport.center().to_vec2() - focus.to_vec2() * scale;
     }
 }

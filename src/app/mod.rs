@@ -56,6 +56,8 @@ pub struct VeneerApp {
     selection: Vec<egui_snarl::NodeId>,
     /// The node picked by a plain click.
     clicked: Option<egui_snarl::NodeId>,
+    /// The graph view's transform from graph to screen coordinates.
+    graph_transform: egui::emath::TSTransform,
     /// A message for the status bar (saved, exported, refused wire…).
     pub message: Option<String>,
     search: String,
@@ -101,6 +103,7 @@ impl VeneerApp {
             live: LiveMaterial::default(),
             selection: Vec::new(),
             clicked: None,
+            graph_transform: Default::default(),
             message: None,
             search: String::new(),
             dialog: None,
@@ -212,6 +215,12 @@ impl VeneerApp {
             self.snarl = snarl_from_graph(&graph);
             self.document.graph = graph;
         }
+    }
+
+    /// The graph view's transform from graph to screen coordinates (node widgets are laid
+    /// out in graph coordinates).
+    pub fn graph_to_screen(&self) -> egui::emath::TSTransform {
+        self.graph_transform
     }
 
     /// Number of material pipelines the preview has built (0 without a GPU).
@@ -476,6 +485,7 @@ impl VeneerApp {
             search: &mut self.search,
             frame,
             clicked: &mut self.clicked,
+            transform: &mut self.graph_transform,
         };
         let widget = SnarlWidget::new().id_salt("graph");
         let response = widget.show(&mut self.snarl, &mut viewer, ui);
@@ -501,6 +511,7 @@ impl VeneerApp {
                         search: &mut self.search,
                         frame: None,
                         clicked: &mut None,
+                        transform: &mut Default::default(),
                     };
                     if let Some(entry) = viewer.add_node_menu(ui, None) {
                         let position = clipboard::free_position(&self.snarl);

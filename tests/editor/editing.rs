@@ -56,6 +56,9 @@ fn adds_a_node_through_the_search_menu_and_wires_it_from_the_inspector() {
         .expect("a Worley node")
         .id;
 
+    // Selection follows clicks from node to node.
+    select_node(&mut harness, "ring colour");
+    select_node(&mut harness, "wood colour");
     // Wire the new node into the material's alpha through the inspector's connect choice.
     select_node(&mut harness, "material");
     harness
