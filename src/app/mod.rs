@@ -10,6 +10,7 @@ mod history;
 mod inspector;
 mod live;
 mod preview;
+mod probe;
 mod recovery;
 mod widgets;
 
@@ -22,7 +23,7 @@ use egui::{Key, KeyboardShortcut, Modifiers, Ui};
 use egui_snarl::Snarl;
 use egui_snarl::ui::SnarlWidget;
 use graph_view::{Framing, Viewer, graph_from_snarl, snarl_from_graph};
-use preview::{MaterialFrame, PreviewResources, PreviewState};
+use preview::{MaterialFrame, PreviewState, PreviewTargets, Slot};
 use std::path::PathBuf;
 use std::sync::Arc;
 
@@ -51,6 +52,8 @@ pub struct VeneerApp {
     pub document: Document,
     snarl: Snarl<Node>,
     pub live: LiveMaterial,
+    /// The selected node's output, compiled for its thumbnail.
+    pub thumbnail: LiveMaterial,
     preview: PreviewState,
     /// Nodes selected in the graph (snarl ids).
     selection: Vec<egui_snarl::NodeId>,
@@ -67,8 +70,8 @@ pub struct VeneerApp {
     frame: Option<Framing>,
     recent: Vec<PathBuf>,
     last_autosave: f64,
-    /// The material code handed to the preview, shared between frames.
-    wgsl: Option<(u64, Arc<str>)>,
+    /// The material code handed to each preview slot, shared between frames.
+    wgsl: [Option<(u64, Arc<str>)>; 2],
     render_state: Option<eframe::egui_wgpu::RenderState>,
     allowed_to_close: bool,
     /// Where unsaved work is autosaved.
@@ -92,7 +95,7 @@ impl VeneerApp {
     ) -> VeneerApp {
         let render_state = cc.wgpu_render_state.clone();
         if let Some(state) = &render_state {
-            let resources = PreviewResources::new(&state.device, state.target_format);
+            let resources = PreviewTargets::new(&state.device, state.target_format);
             state.renderer.write().callback_resources.insert(resources);
         }
         let wood = preset("wood").expect("the wood preset is embedded");
@@ -101,6 +104,7 @@ impl VeneerApp {
             snarl: snarl_from_graph(&wood),
             document: Document::new(wood, None),
             live: LiveMaterial::default(),
+            thumbnail: LiveMaterial::default(),
             selection: Vec::new(),
             clicked: None,
             graph_transform: Default::default(),
@@ -111,7 +115,7 @@ impl VeneerApp {
             frame: Some(Framing::Output),
             recent: Vec::new(),
             last_autosave: 0.0,
-            wgsl: None,
+            wgsl: [None, None],
             render_state,
             allowed_to_close: false,
             recovery_file,
@@ -228,12 +232,10 @@ impl VeneerApp {
         let Some(state) = &self.render_state else {
             return 0;
         };
-        state
-            .renderer
-            .read()
-            .callback_resources
-            .get::<PreviewResources>()
-            .map(|r| r.pipelines_built)
+        let renderer = state.renderer.read();
+        let targets = renderer.callback_resources.get::<PreviewTargets>();
+        targets
+            .map(|PreviewTargets(slots)| slots[Slot::Main as usize].pipelines_built)
             .unwrap_or(0)
     }
 
@@ -394,19 +396,47 @@ impl VeneerApp {
         });
     }
 
-    fn material_frame(&mut self) -> Option<MaterialFrame> {
-        let module = self.live.module.as_ref()?;
-        let generation = self.live.generation;
-        if self.wgsl.as_ref().is_none_or(|(g, _)| *g != generation) {
-            self.wgsl = Some((generation, Arc::from(module.source.as_str())));
+    /// What preview `slot` should draw for `graph` this frame.
+    fn material_frame(&mut self, slot: Slot, graph: &Graph) -> Option<MaterialFrame> {
+        let live = match slot {
+            Slot::Main => &self.live,
+            Slot::Thumbnail => &self.thumbnail,
+        };
+        let module = live.module.as_ref()?;
+        let cached = &mut self.wgsl[slot as usize];
+        if cached
+            .as_ref()
+            .is_none_or(|(generation, _)| *generation != live.generation)
+        {
+            *cached = Some((live.generation, Arc::from(module.source.as_str())));
         }
-        let wgsl = self.wgsl.as_ref().map(|(_, code)| code.clone())?;
+        let wgsl = cached.as_ref().map(|(_, code)| code.clone())?;
         Some(MaterialFrame {
-            generation,
+            generation: live.generation,
             wgsl,
             slots: module.params.len(),
-            params: self.live.params(&self.document.graph),
+            params: live.params(graph),
         })
+    }
+
+    /// The selected node's output, flat, above the inspector.
+    fn node_thumbnail(&mut self, ui: &mut Ui, node: egui_snarl::NodeId) {
+        let Some(probe) = probe::probe_graph(&self.document.graph, self.snarl[node].id) else {
+            return;
+        };
+        if self.render_state.is_none() {
+            return;
+        }
+        self.thumbnail.update(&probe);
+        let material = if self.thumbnail.errors.is_empty() {
+            self.material_frame(Slot::Thumbnail, &probe)
+        } else {
+            None
+        };
+        ui.horizontal(|ui| {
+            preview::thumbnail(ui, &self.preview, material, egui::vec2(160.0, 160.0));
+            ui.weak("this node's output,\nflat over the preview square");
+        });
     }
 
     fn preview_panel(&mut self, ui: &mut Ui) {
@@ -423,8 +453,9 @@ impl VeneerApp {
             ui.color_edit_button_rgb(&mut self.preview.view.background);
         });
         let width = ui.available_width();
+        let graph = self.document.graph.clone();
         let material = if self.render_state.is_some() {
-            self.material_frame()
+            self.material_frame(Slot::Main, &graph)
         } else {
             None
         };
@@ -579,6 +610,7 @@ impl eframe::App for VeneerApp {
             ui.separator();
             egui::ScrollArea::vertical().show(ui, |ui| match self.selection.first().copied() {
                 Some(node) if self.snarl.get_node(node).is_some() => {
+                    self.node_thumbnail(ui, node);
                     let error = self.live.errors.get(&Some(self.snarl[node].id));
                     inspector::show(ui, &mut self.snarl, node, error);
                 }

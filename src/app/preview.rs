@@ -49,7 +49,27 @@ pub struct MaterialFrame {
     pub params: Vec<[f32; 4]>,
 }
 
-/// GPU objects that live across frames, kept in egui_wgpu's callback resources.
+/// Which preview a callback draws: the big one or the selected node's thumbnail.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Slot {
+    Main = 0,
+    Thumbnail = 1,
+}
+
+/// The GPU objects of both previews, kept in egui_wgpu's callback resources.
+pub struct PreviewTargets(pub [PreviewResources; 2]);
+
+impl PreviewTargets {
+    /// Both previews' resources for egui's target format.
+    pub fn new(device: &wgpu::Device, target_format: wgpu::TextureFormat) -> PreviewTargets {
+        PreviewTargets([
+            PreviewResources::new(device, target_format),
+            PreviewResources::new(device, target_format),
+        ])
+    }
+}
+
+/// GPU objects of one preview that live across frames.
 pub struct PreviewResources {
     pipeline: Option<(u64, MeshPipeline)>,
     /// An error from building the newest pipeline; the previous one stays in use.
@@ -164,6 +184,7 @@ impl PreviewResources {
 
 /// One frame of the preview.
 pub struct PreviewCallback {
+    slot: Slot,
     material: Option<MaterialFrame>,
     mesh: String,
     view: MeshView,
@@ -180,9 +201,10 @@ impl egui_wgpu::CallbackTrait for PreviewCallback {
         encoder: &mut wgpu::CommandEncoder,
         resources: &mut egui_wgpu::CallbackResources,
     ) -> Vec<wgpu::CommandBuffer> {
-        let Some(state) = resources.get_mut::<PreviewResources>() else {
+        let Some(PreviewTargets(slots)) = resources.get_mut::<PreviewTargets>() else {
             return Vec::new();
         };
+        let state = &mut slots[self.slot as usize];
         state.sync(device, self);
         let (Some((_, pipeline)), Some((_, mesh)), Some((target, _))) =
             (&state.pipeline, &state.mesh, &state.target)
@@ -204,9 +226,10 @@ impl egui_wgpu::CallbackTrait for PreviewCallback {
         pass: &mut wgpu::RenderPass<'static>,
         resources: &egui_wgpu::CallbackResources,
     ) {
-        let Some(state) = resources.get::<PreviewResources>() else {
+        let Some(PreviewTargets(slots)) = resources.get::<PreviewTargets>() else {
             return;
         };
+        let state = &slots[self.slot as usize];
         if let (Some(_), Some((_, group))) = (&state.pipeline, &state.target) {
             pass.set_pipeline(&state.blit);
             pass.set_bind_group(0, group, &[]);
@@ -223,7 +246,41 @@ pub fn show(
     material: Option<MaterialFrame>,
     size: egui::Vec2,
 ) -> egui::Response {
-    let (rect, response) = ui.allocate_exact_size(size, Sense::click_and_drag());
+    draw(ui, state, material, size, Slot::Main, true)
+}
+
+/// Shows a node's thumbnail: the flat view of `state`'s placement, not interactive.
+pub fn thumbnail(
+    ui: &mut Ui,
+    state: &PreviewState,
+    material: Option<MaterialFrame>,
+    size: egui::Vec2,
+) -> egui::Response {
+    let mut flat = PreviewState {
+        mesh: state.mesh.clone(),
+        view: state.view.clone(),
+        flat: true,
+        playing: false,
+    };
+    flat.view.distance = 3.6;
+    flat.view.target = [0.0; 3];
+    draw(ui, &mut flat, material, size, Slot::Thumbnail, false)
+}
+
+fn draw(
+    ui: &mut Ui,
+    state: &mut PreviewState,
+    material: Option<MaterialFrame>,
+    size: egui::Vec2,
+    slot: Slot,
+    interactive: bool,
+) -> egui::Response {
+    let sense = if interactive {
+        Sense::click_and_drag()
+    } else {
+        Sense::hover()
+    };
+    let (rect, response) = ui.allocate_exact_size(size, sense);
     let view = &mut state.view;
     if response.dragged_by(egui::PointerButton::Primary) && !state.flat {
         let delta = response.drag_delta();
@@ -257,6 +314,7 @@ pub fn show(
     }
     let pixels = (rect.size() * ui.ctx().pixels_per_point()).round();
     let callback = PreviewCallback {
+        slot,
         material,
         mesh: state.mesh.clone(),
         view: frame_view,

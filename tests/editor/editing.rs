@@ -56,8 +56,16 @@ fn adds_a_node_through_the_search_menu_and_wires_it_from_the_inspector() {
         .expect("a Worley node")
         .id;
 
-    // Selection follows clicks from node to node.
+    // Selection follows clicks from node to node, and the selected node's output shows
+    // in a thumbnail: the bare rings, brown.
     select_node(&mut harness, "ring colour");
+    let image = crate::support::screen(&mut harness);
+    assert!(harness.state().thumbnail.module.is_some());
+    let rings = image.get_pixel(1030, 615).0;
+    assert!(
+        rings[0] > rings[2] + 30,
+        "the thumbnail shows the ring colours: {rings:?}"
+    );
     select_node(&mut harness, "wood colour");
     // Wire the new node into the material's alpha through the inspector's connect choice.
     select_node(&mut harness, "material");
