@@ -126,6 +126,8 @@ pub struct Viewer<'a> {
     pub clicked: &'a mut Option<egui_snarl::NodeId>,
     /// Receives the view's graph-to-screen transform each frame.
     pub transform: &'a mut egui::emath::TSTransform,
+    /// Comment frames to draw behind the nodes.
+    pub frames: &'a [crate::graph::Frame],
 }
 
 impl Viewer<'_> {
@@ -198,6 +200,43 @@ impl Viewer<'_> {
 }
 
 impl SnarlViewer<Node> for Viewer<'_> {
+    fn draw_background(
+        &mut self,
+        background: Option<&egui_snarl::ui::BackgroundPattern>,
+        viewport: &egui::Rect,
+        snarl_style: &egui_snarl::ui::SnarlStyle,
+        style: &egui::Style,
+        painter: &egui::Painter,
+        _: &Snarl<Node>,
+    ) {
+        if let Some(background) = background {
+            background.draw(viewport, snarl_style, style, painter);
+        }
+        for frame in self.frames {
+            let rect = egui::Rect::from_min_max(
+                Pos2::new(frame.min.0, frame.min.1),
+                Pos2::new(frame.max.0, frame.max.1),
+            );
+            let [r, g, b] = [frame.color.0, frame.color.1, frame.color.2]
+                .map(|c| (c.clamp(0.0, 1.0) * 255.0) as u8);
+            painter.rect_filled(rect, 8.0, Color32::from_rgba_unmultiplied(r, g, b, 40));
+            painter.rect_stroke(
+                rect,
+                8.0,
+                egui::Stroke::new(1.5, Color32::from_rgb(r, g, b)),
+                egui::StrokeKind::Inside,
+            );
+            let title = egui::FontId::proportional(18.0);
+            painter.text(
+                rect.min + egui::vec2(10.0, 8.0),
+                egui::Align2::LEFT_TOP,
+                &frame.title,
+                title,
+                Color32::from_rgb(r, g, b),
+            );
+        }
+    }
+
     fn current_transform(
         &mut self,
         to_global: &mut egui::emath::TSTransform,
@@ -449,4 +488,34 @@ impl Viewer<'_> {
         to_global.scaling = scale;
         to_global.translation = viewport.center().to_vec2() - focus.to_vec2() * scale;
     }
+}
+
+/// A frame around the nodes `selection`, titled `title` (node sizes are estimated).
+pub fn frame_around(
+    snarl: &Snarl<Node>,
+    selection: &[egui_snarl::NodeId],
+    title: &str,
+) -> Option<crate::graph::Frame> {
+    let positions: Vec<Pos2> = selection
+        .iter()
+        .filter_map(|id| snarl.get_node_info(*id))
+        .map(|info| info.pos)
+        .collect();
+    let first = *positions.first()?;
+    let bounds = positions.iter().fold(
+        egui::Rect::from_min_size(first, egui::vec2(220.0, 180.0)),
+        |rect, pos| rect.union(egui::Rect::from_min_size(*pos, egui::vec2(220.0, 180.0))),
+    );
+    let bounds = bounds
+        .expand2(egui::vec2(30.0, 30.0))
+        .union(egui::Rect::from_min_size(
+            bounds.min - egui::vec2(30.0, 70.0),
+            egui::Vec2::ZERO,
+        ));
+    Some(crate::graph::Frame {
+        title: title.to_string(),
+        min: (bounds.min.x, bounds.min.y),
+        max: (bounds.max.x, bounds.max.y),
+        color: (0.45, 0.65, 0.95),
+    })
 }

@@ -21,10 +21,13 @@ pub struct LiveMaterial {
 }
 
 /// What decides the generated code: nodes with their kinds and settings, and the wires.
-/// Labels, positions and constant values are left out: they never need a recompile.
+/// Labels, positions, constant values, frames and preview settings are left out: they
+/// never need a recompile.
 fn structure_key(graph: &Graph) -> String {
     let mut skeleton = graph.clone();
     skeleton.name.clear();
+    skeleton.frames.clear();
+    skeleton.preview = Default::default();
     for node in &mut skeleton.nodes {
         node.label.clear();
         node.inputs.clear();

@@ -362,6 +362,19 @@ impl VeneerApp {
                 if ui.button("Frame all").clicked() {
                     self.frame = Some(Framing::All);
                 }
+                if ui
+                    .add_enabled(
+                        !self.selection.is_empty(),
+                        egui::Button::new("Frame selected nodes"),
+                    )
+                    .clicked()
+                {
+                    if let Some(frame) =
+                        graph_view::frame_around(&self.snarl, &self.selection, "Comment")
+                    {
+                        self.document.graph.frames.push(frame);
+                    }
+                }
                 if ui.button("Arrange nodes").clicked() {
                     let mut graph = graph_from_snarl(&self.snarl, &self.document.graph);
                     crate::graph::layout::arrange(&mut graph);
@@ -517,6 +530,7 @@ impl VeneerApp {
             frame,
             clicked: &mut self.clicked,
             transform: &mut self.graph_transform,
+            frames: &self.document.graph.frames,
         };
         let widget = SnarlWidget::new().id_salt("graph");
         let response = widget.show(&mut self.snarl, &mut viewer, ui);
@@ -543,6 +557,7 @@ impl VeneerApp {
                         frame: None,
                         clicked: &mut None,
                         transform: &mut Default::default(),
+                        frames: &[],
                     };
                     if let Some(entry) = viewer.add_node_menu(ui, None) {
                         let position = clipboard::free_position(&self.snarl);
@@ -598,6 +613,31 @@ impl VeneerApp {
     }
 }
 
+/// Titles, colours and removal of the graph's comment frames.
+fn frames_editor(ui: &mut Ui, frames: &mut Vec<crate::graph::Frame>) {
+    if frames.is_empty() {
+        return;
+    }
+    ui.separator();
+    ui.label("Frames");
+    let mut remove = None;
+    for (index, frame) in frames.iter_mut().enumerate() {
+        ui.horizontal(|ui| {
+            ui.text_edit_singleline(&mut frame.title);
+            let mut rgb = [frame.color.0, frame.color.1, frame.color.2];
+            if ui.color_edit_button_rgb(&mut rgb).changed() {
+                frame.color = (rgb[0], rgb[1], rgb[2]);
+            }
+            if ui.small_button("✕").on_hover_text("remove frame").clicked() {
+                remove = Some(index);
+            }
+        });
+    }
+    if let Some(index) = remove {
+        frames.remove(index);
+    }
+}
+
 impl eframe::App for VeneerApp {
     fn ui(&mut self, ui: &mut Ui, _frame: &mut eframe::Frame) {
         let ctx = ui.ctx().clone();
@@ -616,6 +656,7 @@ impl eframe::App for VeneerApp {
                 }
                 _ => {
                     ui.weak("Select a node to edit it. Right-click the graph (or press Space) to add one.");
+                    frames_editor(ui, &mut self.document.graph.frames);
                 }
             });
         });

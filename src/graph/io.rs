@@ -89,3 +89,25 @@ pub fn to_ron(graph: &Graph) -> String {
 pub fn save(graph: &Graph, path: &Path) -> std::io::Result<()> {
     fsutil::write_atomic(path, to_ron(graph).as_bytes())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::graph::{Frame, NodeKind};
+
+    #[test]
+    fn frames_round_trip_and_are_left_out_when_there_are_none() {
+        let mut graph = Graph::default();
+        graph.add("material", NodeKind::Material);
+        assert!(!to_ron(&graph).contains("frames"));
+        graph.frames.push(Frame {
+            title: "grain".into(),
+            min: (-10.0, -50.0),
+            max: (400.0, 300.0),
+            color: (0.4, 0.6, 0.9),
+        });
+        let text = to_ron(&graph);
+        assert_eq!(from_ron(&text).unwrap(), graph);
+        assert_eq!(to_ron(&from_ron(&text).unwrap()), text);
+    }
+}

@@ -131,6 +131,21 @@ pub struct Graph {
     pub nodes: Vec<Node>,
     #[serde(default)]
     pub wires: Vec<Wire>,
+    /// Comment frames drawn behind groups of nodes in the editor.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub frames: Vec<Frame>,
+}
+
+/// A titled, coloured box behind a group of nodes: a comment in the editor, no effect
+/// on the material.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Frame {
+    pub title: String,
+    /// Canvas corners (top-left and bottom-right).
+    pub min: (f32, f32),
+    pub max: (f32, f32),
+    /// Tint (sRGB, 0–1).
+    pub color: (f32, f32, f32),
 }
 
 impl Default for Graph {
@@ -141,6 +156,7 @@ impl Default for Graph {
             preview: Preview::default(),
             nodes: vec![],
             wires: vec![],
+            frames: vec![],
         }
     }
 }

@@ -186,3 +186,44 @@ fn a_compile_error_is_shown_on_the_node_that_caused_it() {
         "the preview keeps showing the last good material"
     );
 }
+
+#[test]
+fn a_comment_frame_is_drawn_around_the_selected_nodes_and_undone() {
+    let dir = scratch("frame");
+    let mut harness = editor(&dir, None);
+    select_node(&mut harness, "wood colour");
+    harness.get_by_label("Edit").click_accesskit();
+    harness.run();
+    harness
+        .get_by_label("Frame selected nodes")
+        .click_accesskit();
+    harness.run();
+    let frames = &harness.state().document.graph.frames;
+    assert_eq!(frames.len(), 1);
+    assert_eq!(
+        harness.state().live.compiles,
+        1,
+        "a comment frame never recompiles"
+    );
+    let node = harness
+        .state()
+        .document
+        .graph
+        .nodes
+        .iter()
+        .find(|n| n.label == "wood colour")
+        .unwrap();
+    let (x, y) = node.position;
+    assert!(
+        frames[0].min.0 < x && frames[0].min.1 < y && frames[0].max.0 > x && frames[0].max.1 > y
+    );
+    screen(&mut harness)
+        .save(dir.join("frame.png"))
+        .expect("screenshot");
+    press(&mut harness, egui::Key::Escape, false);
+    press(&mut harness, egui::Key::Z, true);
+    assert!(
+        harness.state().document.graph.frames.is_empty(),
+        "undo removes the frame"
+    );
+}
