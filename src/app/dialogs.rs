@@ -21,6 +21,7 @@ pub enum Dialog {
     SaveAs { path: String },
     ExportWgsl { path: String },
     ExportPng { path: String, size: u32, flat: bool },
+    LoadMesh { path: String },
     Discard(Pending),
     Recover(Recovery),
     Message(String),
@@ -130,6 +131,19 @@ impl Dialog {
                     ui.horizontal(|ui| {
                         if ui.button("Export").clicked() {
                             next = Some(export_png(app, PathBuf::from(path.trim()), *size, *flat));
+                        }
+                        if ui.button("Cancel").clicked() {
+                            next = Some(None);
+                        }
+                    });
+                }
+                Dialog::LoadMesh { path } => {
+                    ui.heading("Preview on a mesh file");
+                    ui.label(format!("OBJ, STL, PLY or glTF ({})", crate::mesh::EXTENSIONS.join(", ")));
+                    ui.text_edit_singleline(path);
+                    ui.horizontal(|ui| {
+                        if ui.button("Load").clicked() {
+                            next = Some(app.load_mesh(path.trim()).err().map(Dialog::Message));
                         }
                         if ui.button("Cancel").clicked() {
                             next = Some(None);

@@ -131,10 +131,22 @@ impl VeneerApp {
         app
     }
 
+    /// Shows a mesh file (OBJ, STL, PLY, glTF) in the preview; a bad file is refused with a message.
+    pub fn load_mesh(&mut self, path: &str) -> Result<(), String> {
+        let mesh = crate::mesh::preview_mesh(path).map_err(|error| error.to_string())?;
+        self.preview.mesh = path.to_string();
+        self.preview.file = Some(Arc::new(mesh));
+        Ok(())
+    }
+
     /// Replaces the document (after open, new, preset or recovery).
     fn load(&mut self, document: Document) {
         self.preview.follow(&document.graph.preview);
-        self.preview.mesh = document.graph.preview.mesh.clone();
+        let mesh = document.graph.preview.mesh.clone();
+        if crate::mesh::primitive(&mesh).is_some() || self.load_mesh(&mesh).is_err() {
+            self.preview.mesh = mesh;
+            self.preview.file = None;
+        }
         self.snarl = snarl_from_graph(&document.graph);
         self.document = document;
         self.selection.clear();
@@ -454,11 +466,25 @@ impl VeneerApp {
 
     fn preview_panel(&mut self, ui: &mut Ui) {
         ui.horizontal(|ui| {
+            let shown = std::path::Path::new(&self.preview.mesh)
+                .file_name()
+                .map(|n| n.to_string_lossy().into_owned());
             egui::ComboBox::from_id_salt("mesh")
-                .selected_text(&self.preview.mesh)
+                .selected_text(shown.unwrap_or_default())
                 .show_ui(ui, |ui| {
                     for name in crate::mesh::PRIMITIVES {
-                        ui.selectable_value(&mut self.preview.mesh, name.to_string(), name);
+                        if ui
+                            .selectable_label(self.preview.mesh == name, name)
+                            .clicked()
+                        {
+                            self.preview.mesh = name.to_string();
+                            self.preview.file = None;
+                        }
+                    }
+                    if ui.button("Mesh file…").clicked() {
+                        self.dialog = Some(Dialog::LoadMesh {
+                            path: String::new(),
+                        });
                     }
                 });
             ui.checkbox(&mut self.preview.flat, "flat albedo");

@@ -10,7 +10,10 @@ use std::sync::Arc;
 
 /// What the preview shows and from where; kept by the app between frames.
 pub struct PreviewState {
+    /// A primitive's name or a mesh file's path.
     pub mesh: String,
+    /// The loaded mesh when `mesh` is a file (fitted to the unit sphere).
+    pub file: Option<Arc<crate::mesh::Mesh>>,
     pub view: MeshView,
     /// Show the albedo flat from above instead of lit on the mesh.
     pub flat: bool,
@@ -21,6 +24,7 @@ impl PreviewState {
     /// The default preview of a graph.
     pub fn for_graph(preview: &Preview) -> PreviewState {
         PreviewState {
+            file: None,
             mesh: preview.mesh.clone(),
             view: MeshView::for_preview(preview),
             flat: false,
@@ -152,9 +156,12 @@ impl PreviewResources {
             frame.mesh.as_str()
         };
         if self.mesh.as_ref().is_none_or(|(name, _)| name != mesh_name) {
-            let mesh = crate::mesh::primitive(mesh_name)
-                .or_else(|| crate::mesh::primitive("sphere"))
-                .expect("sphere exists");
+            let file = frame.file.as_deref().filter(|_| !frame.flat);
+            let mesh = match (crate::mesh::primitive(mesh_name), file) {
+                (Some(primitive), _) => primitive,
+                (None, Some(loaded)) => loaded.clone(),
+                (None, None) => crate::mesh::primitive("sphere").expect("sphere exists"),
+            };
             self.mesh = Some((mesh_name.to_string(), GpuMesh::new(device, &mesh)));
         }
         if self
@@ -187,6 +194,7 @@ pub struct PreviewCallback {
     slot: Slot,
     material: Option<MaterialFrame>,
     mesh: String,
+    file: Option<Arc<crate::mesh::Mesh>>,
     view: MeshView,
     flat: bool,
     size: (u32, u32),
@@ -258,6 +266,7 @@ pub fn thumbnail(
 ) -> egui::Response {
     let mut flat = PreviewState {
         mesh: state.mesh.clone(),
+        file: None,
         view: state.view.clone(),
         flat: true,
         playing: false,
@@ -317,6 +326,7 @@ fn draw(
         slot,
         material,
         mesh: state.mesh.clone(),
+        file: state.file.clone(),
         view: frame_view,
         flat: state.flat,
         size: (pixels.x.max(1.0) as u32, pixels.y.max(1.0) as u32),

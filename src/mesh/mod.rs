@@ -1,8 +1,26 @@
-//! Triangle meshes: the procedural primitives the preview and the CLI use.
+//! Triangle meshes: procedural primitives and mesh files, for the preview and the CLI.
 
+mod load;
 mod primitives;
 
+pub use load::{EXTENSIONS, MeshError, load, vertex_normals};
 pub use primitives::{PRIMITIVES, primitive};
+
+/// The mesh a preview or render shows for `name`: a primitive, or else a mesh file
+/// fitted to the unit sphere.
+pub fn preview_mesh(name: &str) -> Result<Mesh, MeshError> {
+    if let Some(mesh) = primitive(name) {
+        return Ok(mesh);
+    }
+    if std::path::Path::new(name).extension().is_none() {
+        let known = PRIMITIVES.join(", ");
+        return Err(MeshError {
+            path: name.to_string(),
+            message: format!("unknown mesh (expected one of: {known}, or a mesh file)"),
+        });
+    }
+    Ok(load(std::path::Path::new(name))?.fitted_to_unit_sphere())
+}
 
 /// An indexed triangle mesh with per-vertex normals and texture coordinates.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -15,6 +33,47 @@ pub struct Mesh {
 }
 
 impl Mesh {
+    /// A primitive by name, or else a mesh file.
+    pub fn named(name: &str) -> Result<Mesh, MeshError> {
+        match primitive(name) {
+            Some(mesh) => Ok(mesh),
+            None if std::path::Path::new(name).extension().is_some() => {
+                load(std::path::Path::new(name))
+            }
+            None => Err(MeshError {
+                path: name.to_string(),
+                message: format!(
+                    "not a primitive ({}) nor a mesh file",
+                    PRIMITIVES.join(", ")
+                ),
+            }),
+        }
+    }
+
+    /// The mesh moved and scaled uniformly to fit the unit sphere at the origin, as the
+    /// preview expects (the graph's preview placement then applies).
+    pub fn fitted_to_unit_sphere(mut self) -> Mesh {
+        let (min, max) = self.positions.iter().fold(
+            (glam::Vec3::splat(f32::MAX), glam::Vec3::splat(f32::MIN)),
+            |(lo, hi), p| (lo.min(glam::Vec3::from(*p)), hi.max(glam::Vec3::from(*p))),
+        );
+        let center = (min + max) * 0.5;
+        let radius = self
+            .positions
+            .iter()
+            .map(|p| (glam::Vec3::from(*p) - center).length())
+            .fold(0.0f32, f32::max);
+        let scale = if radius > 0.0 && radius.is_finite() {
+            1.0 / radius
+        } else {
+            1.0
+        };
+        for p in &mut self.positions {
+            *p = ((glam::Vec3::from(*p) - center) * scale).to_array();
+        }
+        self
+    }
+
     /// Number of triangles.
     pub fn triangle_count(&self) -> usize {
         self.indices.len() / 3

@@ -101,12 +101,8 @@ pub fn render_graph(
         View::PreviewFlat => flat(preview_rect(graph)),
         View::Mesh(name) => {
             let name = name.as_deref().unwrap_or(&graph.preview.mesh);
-            let mesh = crate::mesh::primitive(name).ok_or_else(|| {
-                RenderError(format!(
-                    "unknown mesh '{name}' (expected one of: {})",
-                    crate::mesh::PRIMITIVES.join(", ")
-                ))
-            })?;
+            let mesh =
+                crate::mesh::preview_mesh(name).map_err(|error| RenderError(error.to_string()))?;
             let mut mesh_view = MeshView::for_preview(&graph.preview);
             mesh_view.time = time;
             let pixels =

@@ -126,3 +126,40 @@ fn unsaved_work_is_offered_back_after_a_crash() {
         "recovered work is not saved yet"
     );
 }
+
+/// Opens the mesh choice and loads `path` through the dialog.
+fn load_mesh(
+    harness: &mut egui_kittest::Harness<'static, veneer::app::VeneerApp>,
+    path: &std::path::Path,
+) {
+    harness.get_by_value("sphere").click_accesskit();
+    harness.run();
+    harness.get_by_label("Mesh file…").click_accesskit();
+    harness.run();
+    harness
+        .get_by_role(egui::accesskit::Role::TextInput)
+        .focus();
+    harness.run();
+    harness
+        .get_by_role(egui::accesskit::Role::TextInput)
+        .type_text(&path.display().to_string());
+    harness.run();
+    harness.get_by_label("Load").click();
+    harness.run();
+}
+
+#[test]
+fn the_preview_shows_a_mesh_file_and_refuses_a_broken_one() {
+    let dir = scratch("mesh");
+    let mut harness = editor(&dir, None);
+    let sphere = crate::support::preview_pixels(&crate::support::screen(&mut harness));
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    load_mesh(&mut harness, &root.join("tests/meshes/cube_quads.ply"));
+    assert!(harness.state().message.is_none());
+    let cube = crate::support::preview_pixels(&crate::support::screen(&mut harness));
+    assert_ne!(sphere, cube, "the preview now shows the cube");
+
+    let mut harness = editor(&dir, None);
+    load_mesh(&mut harness, &root.join("tests/meshes/bad_index.obj"));
+    assert!(shows(&harness, "index out of bounds"), "the error is shown");
+}

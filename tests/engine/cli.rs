@@ -119,7 +119,7 @@ fn bad_render_arguments_exit_1_without_writing() {
     ]);
     assert_eq!(output.status.code(), Some(1));
     assert!(
-        stderr(&output).contains("unknown mesh 'teapot'"),
+        stderr(&output).contains("teapot: unknown mesh"),
         "{}",
         stderr(&output)
     );

@@ -4,6 +4,7 @@
 mod cli;
 mod cpu_gpu;
 mod graph_files;
+mod meshes;
 mod node_kinds;
 mod presets;
 mod seed_reference;

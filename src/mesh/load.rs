@@ -1,0 +1,272 @@
+//! Reading meshes from OBJ, STL, PLY and glTF/GLB files. Every loader checks its indices
+//! and coordinates, so a broken file is an error naming the file, never a panic.
+
+use super::Mesh;
+use std::path::Path;
+
+/// A mesh file that could not be read.
+#[derive(Debug, thiserror::Error)]
+#[error("{path}: {message}")]
+pub struct MeshError {
+    pub path: String,
+    pub message: String,
+}
+
+/// File extensions [`load`] reads.
+pub const EXTENSIONS: [&str; 5] = ["obj", "stl", "ply", "gltf", "glb"];
+
+/// Triangles as positions and indices, before normals and texture coordinates are settled.
+struct Soup {
+    positions: Vec<[f32; 3]>,
+    normals: Option<Vec<[f32; 3]>>,
+    uvs: Option<Vec<[f32; 2]>>,
+    indices: Vec<u32>,
+}
+
+/// Reads a mesh file, by extension. Missing normals are computed (area-weighted), missing
+/// texture coordinates are zero.
+pub fn load(path: &Path) -> Result<Mesh, MeshError> {
+    let fail = |message: String| MeshError {
+        path: path.display().to_string(),
+        message,
+    };
+    let extension = path
+        .extension()
+        .map(|e| e.to_string_lossy().to_lowercase())
+        .unwrap_or_default();
+    let soup = match extension.as_str() {
+        "obj" => obj(path),
+        "stl" => stl(path),
+        "ply" => ply(path),
+        "gltf" | "glb" => gltf(path),
+        _ => Err(format!(
+            "unknown mesh format '{extension}' (expected one of: {})",
+            EXTENSIONS.join(", ")
+        )),
+    }
+    .map_err(fail)?;
+    finish(soup).map_err(fail)
+}
+
+fn finish(soup: Soup) -> Result<Mesh, String> {
+    let count = soup.positions.len();
+    if soup.indices.is_empty() {
+        return Err("the file has no triangles".into());
+    }
+    if soup.indices.len() % 3 != 0 {
+        return Err(format!(
+            "{} indices do not make whole triangles",
+            soup.indices.len()
+        ));
+    }
+    if let Some(bad) = soup.indices.iter().find(|&&i| i as usize >= count) {
+        return Err(format!(
+            "a triangle refers to vertex {bad}, but there are only {count}"
+        ));
+    }
+    if let Some(k) = soup
+        .positions
+        .iter()
+        .position(|p| p.iter().any(|c| !c.is_finite()))
+    {
+        return Err(format!(
+            "vertex {k} has a coordinate that is not a finite number"
+        ));
+    }
+    let normals = match soup.normals {
+        Some(normals)
+            if normals.len() == count
+                && normals.iter().all(|n| n.iter().all(|c| c.is_finite())) =>
+        {
+            normals
+        }
+        _ => vertex_normals(&soup.positions, &soup.indices),
+    };
+    let uvs = soup
+        .uvs
+        .filter(|uvs| uvs.len() == count)
+        .unwrap_or_else(|| vec![[0.0; 2]; count]);
+    Ok(Mesh {
+        positions: soup.positions,
+        normals,
+        uvs,
+        indices: soup.indices,
+    })
+}
+
+/// Area-weighted vertex normals; +y where a vertex touches only degenerate triangles.
+pub fn vertex_normals(positions: &[[f32; 3]], indices: &[u32]) -> Vec<[f32; 3]> {
+    let mut sums = vec![glam::Vec3::ZERO; positions.len()];
+    for triangle in indices.chunks_exact(3) {
+        let [a, b, c] = [0, 1, 2].map(|k| glam::Vec3::from(positions[triangle[k] as usize]));
+        let weighted = (b - a).cross(c - a);
+        for &index in triangle {
+            sums[index as usize] += weighted;
+        }
+    }
+    sums.into_iter()
+        .map(|n| n.try_normalize().unwrap_or(glam::Vec3::Y).to_array())
+        .collect()
+}
+
+fn obj(path: &Path) -> Result<Soup, String> {
+    let options = tobj::LoadOptions {
+        triangulate: true,
+        single_index: true,
+        ..Default::default()
+    };
+    let (models, _) = tobj::load_obj(path, &options).map_err(|e| e.to_string())?;
+    let mut soup = Soup {
+        positions: vec![],
+        normals: Some(vec![]),
+        uvs: Some(vec![]),
+        indices: vec![],
+    };
+    for model in models {
+        let mesh = model.mesh;
+        let base = soup.positions.len() as u32;
+        let count = mesh.positions.len() / 3;
+        soup.positions
+            .extend(mesh.positions.chunks_exact(3).map(|p| [p[0], p[1], p[2]]));
+        soup.indices.extend(mesh.indices.iter().map(|i| base + i));
+        match (&mut soup.normals, mesh.normals.len() == count * 3) {
+            (Some(normals), true) => {
+                normals.extend(mesh.normals.chunks_exact(3).map(|n| [n[0], n[1], n[2]]))
+            }
+            (normals, _) => *normals = None,
+        }
+        match (&mut soup.uvs, mesh.texcoords.len() == count * 2) {
+            (Some(uvs), true) => uvs.extend(mesh.texcoords.chunks_exact(2).map(|t| [t[0], t[1]])),
+            (uvs, _) => *uvs = None,
+        }
+    }
+    Ok(soup)
+}
+
+fn stl(path: &Path) -> Result<Soup, String> {
+    let mut file = std::fs::File::open(path).map_err(|e| e.to_string())?;
+    let mesh = stl_io::read_stl(&mut file).map_err(|e| e.to_string())?;
+    let indices = mesh
+        .faces
+        .iter()
+        .flat_map(|f| f.vertices)
+        .map(|i| u32::try_from(i).unwrap_or(u32::MAX))
+        .collect();
+    Ok(Soup {
+        positions: mesh.vertices.iter().map(|v| v.0).collect(),
+        normals: None,
+        uvs: None,
+        indices,
+    })
+}
+
+fn ply(path: &Path) -> Result<Soup, String> {
+    use ply_rs_bw::ply::{DefaultElement, Property};
+    let mut file = std::io::BufReader::new(std::fs::File::open(path).map_err(|e| e.to_string())?);
+    let ply = ply_rs_bw::parser::Parser::<DefaultElement>::new()
+        .read_ply(&mut file)
+        .map_err(|e| e.to_string())?;
+    let vertices = ply.payload.get("vertex").ok_or("no 'vertex' element")?;
+    let scalar =
+        |element: &DefaultElement, key: &str| element.get(key).and_then(Property::to_f32_lossy);
+    let mut positions = Vec::with_capacity(vertices.len());
+    let mut normals = Vec::with_capacity(vertices.len());
+    for (k, vertex) in vertices.iter().enumerate() {
+        let coordinate =
+            |key| scalar(vertex, key).ok_or_else(|| format!("vertex {k} has no '{key}'"));
+        positions.push([coordinate("x")?, coordinate("y")?, coordinate("z")?]);
+        if let (Some(x), Some(y), Some(z)) = (
+            scalar(vertex, "nx"),
+            scalar(vertex, "ny"),
+            scalar(vertex, "nz"),
+        ) {
+            normals.push([x, y, z]);
+        }
+    }
+    let faces = ply.payload.get("face").ok_or("no 'face' element")?;
+    let mut indices = Vec::new();
+    for (k, face) in faces.iter().enumerate() {
+        let list = face
+            .get("vertex_indices")
+            .or_else(|| face.get("vertex_index"))
+            .ok_or_else(|| format!("face {k} has no vertex_indices"))?;
+        let polygon: Vec<i64> = match list {
+            Property::ListChar(v) => v.iter().map(|&i| i64::from(i)).collect(),
+            Property::ListUChar(v) => v.iter().map(|&i| i64::from(i)).collect(),
+            Property::ListShort(v) => v.iter().map(|&i| i64::from(i)).collect(),
+            Property::ListUShort(v) => v.iter().map(|&i| i64::from(i)).collect(),
+            Property::ListInt(v) => v.iter().map(|&i| i64::from(i)).collect(),
+            Property::ListUInt(v) => v.iter().map(|&i| i64::from(i)).collect(),
+            _ => return Err(format!("face {k}: vertex indices are not an integer list")),
+        };
+        let polygon: Vec<u32> = polygon
+            .into_iter()
+            .map(|i| u32::try_from(i).unwrap_or(u32::MAX))
+            .collect();
+        for corner in 1..polygon.len().saturating_sub(1) {
+            indices.extend([polygon[0], polygon[corner], polygon[corner + 1]]);
+        }
+    }
+    let normals = (normals.len() == positions.len()).then_some(normals);
+    Ok(Soup {
+        positions,
+        normals,
+        uvs: None,
+        indices,
+    })
+}
+
+fn gltf(path: &Path) -> Result<Soup, String> {
+    let (document, buffers, _) = gltf::import(path).map_err(|e| e.to_string())?;
+    let mut soup = Soup {
+        positions: vec![],
+        normals: Some(vec![]),
+        uvs: Some(vec![]),
+        indices: vec![],
+    };
+    let scene = document
+        .default_scene()
+        .or_else(|| document.scenes().next())
+        .ok_or("the file has no scene")?;
+    let mut stack: Vec<(gltf::Node, glam::Mat4)> =
+        scene.nodes().map(|n| (n, glam::Mat4::IDENTITY)).collect();
+    while let Some((node, parent)) = stack.pop() {
+        let transform = parent * glam::Mat4::from_cols_array_2d(&node.transform().matrix());
+        stack.extend(node.children().map(|child| (child, transform)));
+        let Some(mesh) = node.mesh() else { continue };
+        let normal_matrix = glam::Mat3::from_mat4(transform).inverse().transpose();
+        for primitive in mesh
+            .primitives()
+            .filter(|p| p.mode() == gltf::mesh::Mode::Triangles)
+        {
+            let reader =
+                primitive.reader(|buffer| buffers.get(buffer.index()).map(|data| &data.0[..]));
+            let Some(positions) = reader.read_positions() else {
+                continue;
+            };
+            let base = soup.positions.len() as u32;
+            let positions: Vec<[f32; 3]> = positions
+                .map(|p| transform.transform_point3(p.into()).to_array())
+                .collect();
+            let count = positions.len() as u32;
+            match reader.read_indices() {
+                Some(indices) => soup.indices.extend(indices.into_u32().map(|i| base + i)),
+                None => soup.indices.extend((0..count).map(|i| base + i)),
+            }
+            match (&mut soup.normals, reader.read_normals()) {
+                (Some(normals), Some(read)) => normals.extend(read.map(|n| {
+                    (normal_matrix * glam::Vec3::from(n))
+                        .normalize_or(glam::Vec3::Y)
+                        .to_array()
+                })),
+                (normals, _) => *normals = None,
+            }
+            match (&mut soup.uvs, reader.read_tex_coords(0)) {
+                (Some(uvs), Some(read)) => uvs.extend(read.into_f32()),
+                (uvs, _) => *uvs = None,
+            }
+            soup.positions.extend(positions);
+        }
+    }
+    Ok(soup)
+}

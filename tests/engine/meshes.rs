@@ -1,0 +1,100 @@
+//! Mesh files: every format loads with outward triangles and unit normals, broken files
+//! are errors naming the file, and `veneer render --mesh FILE` draws them.
+
+use crate::support::root;
+use veneer::mesh::{Mesh, load};
+
+fn signed_volume(mesh: &Mesh) -> f32 {
+    mesh.indices
+        .chunks(3)
+        .map(|t| {
+            let [a, b, c] = [0, 1, 2].map(|k| glam::Vec3::from(mesh.positions[t[k] as usize]));
+            a.dot(b.cross(c)) / 6.0
+        })
+        .sum()
+}
+
+#[test]
+fn every_format_loads_closed_outward_meshes_with_unit_normals() {
+    // A regular tetrahedron of edge 2√2 has volume 8/3; the cube of side 2 has 8.
+    for (file, triangles, volume) in [
+        ("tetrahedron.obj", 4, 8.0 / 3.0),
+        ("tetrahedron.stl", 4, 8.0 / 3.0),
+        ("tetrahedron.gltf", 4, 8.0 / 3.0),
+        ("cube_quads.ply", 12, 8.0),
+    ] {
+        let mesh = load(&root(&format!("tests/meshes/{file}"))).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(mesh.triangle_count(), triangles, "{file}");
+        assert!(
+            (signed_volume(&mesh) - volume).abs() < 1e-4,
+            "{file}: volume {}",
+            signed_volume(&mesh)
+        );
+        assert!(
+            mesh.normals
+                .iter()
+                .all(|n| (glam::Vec3::from(*n).length() - 1.0).abs() < 1e-5),
+            "{file}"
+        );
+    }
+}
+
+#[test]
+fn gltf_node_transforms_are_applied_and_fitting_undoes_them() {
+    let mesh = load(&root("tests/meshes/tetrahedron.gltf")).expect("loads");
+    let mean_x = mesh.positions.iter().map(|p| p[0]).sum::<f32>() / mesh.positions.len() as f32;
+    assert!(
+        (mean_x - 5.0).abs() < 1e-5,
+        "the node's translation moves it to x = 5"
+    );
+    let fitted = mesh.fitted_to_unit_sphere();
+    let radius = fitted
+        .positions
+        .iter()
+        .map(|p| glam::Vec3::from(*p).length())
+        .fold(0.0f32, f32::max);
+    assert!((radius - 1.0).abs() < 1e-5);
+}
+
+#[test]
+fn broken_files_are_errors_that_name_the_file() {
+    for (file, expected) in [
+        ("bad_index.obj", "index out of bounds"),
+        ("truncated.stl", ""),
+        ("missing.obj", ""),
+        ("tetrahedron.xyz", "unknown mesh format 'xyz'"),
+    ] {
+        let path = root(&format!("tests/meshes/{file}"));
+        let error = load(&path).expect_err(file).to_string();
+        assert!(error.starts_with(&path.display().to_string()), "{error}");
+        assert!(error.contains(expected), "{error}");
+    }
+}
+
+#[test]
+fn render_draws_a_mesh_file() {
+    let dir = std::env::temp_dir().join(format!("veneer-mesh-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let out = dir.join("tetra.png");
+    let status = std::process::Command::new(env!("CARGO_BIN_EXE_veneer"))
+        .current_dir(root(""))
+        .args([
+            "render",
+            "graphs/marble.ron",
+            "--mesh",
+            "tests/meshes/tetrahedron.obj",
+            "--size",
+            "64",
+            "-o",
+        ])
+        .arg(&out)
+        .status()
+        .expect("veneer runs");
+    assert!(status.success());
+    let image = image::open(&out).expect("a PNG").to_rgba8();
+    let background = *image.get_pixel(0, 0);
+    assert!(
+        image.pixels().filter(|p| **p != background).count() > 500,
+        "the tetrahedron covers the middle"
+    );
+}
