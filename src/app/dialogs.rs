@@ -98,6 +98,7 @@ impl Dialog {
                             let target = PathBuf::from(path.trim());
                             next = Some(match app.document.save_as(&target) {
                                 Ok(()) => {
+                                    app.remember(&target);
                                     app.message = Some(format!("saved {}", target.display()));
                                     recovery::clear(&app.recovery_file);
                                     None

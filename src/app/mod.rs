@@ -113,7 +113,7 @@ impl VeneerApp {
             dialog: None,
             quick_add: false,
             frame: Some(Framing::Output),
-            recent: Vec::new(),
+            recent: recovery::load_recent(&recovery_file),
             last_autosave: 0.0,
             wgsl: [None, None],
             render_state,
@@ -159,13 +159,21 @@ impl VeneerApp {
     pub fn open(&mut self, path: PathBuf) {
         match crate::graph::load(&path) {
             Ok(graph) => {
-                self.recent.retain(|p| *p != path);
-                self.recent.insert(0, path.clone());
-                self.recent.truncate(8);
+                self.remember(&path);
                 self.load(Document::new(graph, Some(path)));
                 self.message = None;
             }
             Err(error) => self.dialog = Some(Dialog::Message(error.to_string())),
+        }
+    }
+
+    /// Puts `path` first in the recent files, kept across sessions.
+    pub(crate) fn remember(&mut self, path: &std::path::Path) {
+        self.recent.retain(|p| p != path);
+        self.recent.insert(0, path.to_path_buf());
+        self.recent.truncate(8);
+        if let Err(error) = recovery::save_recent(&self.recovery_file, &self.recent) {
+            self.message = Some(format!("cannot remember recent files: {error}"));
         }
     }
 
@@ -205,6 +213,7 @@ impl VeneerApp {
     pub fn save(&mut self) {
         match self.document.save() {
             Ok(path) => {
+                self.remember(&path);
                 self.message = Some(format!("saved {}", path.display()));
                 recovery::clear(&self.recovery_file);
             }

@@ -41,3 +41,27 @@ pub fn pending(path: &Path) -> Option<Recovery> {
 pub fn clear(path: &Path) {
     let _ = std::fs::remove_file(path);
 }
+
+/// The recent-files list kept beside the recovery file.
+pub fn recent_path(recovery_file: &Path) -> PathBuf {
+    recovery_file.with_file_name("recent.ron")
+}
+
+/// The recent files saved by an earlier session (none if unreadable).
+pub fn load_recent(recovery_file: &Path) -> Vec<PathBuf> {
+    std::fs::read_to_string(recent_path(recovery_file))
+        .ok()
+        .and_then(|text| ron::from_str(&text).ok())
+        .unwrap_or_default()
+}
+
+/// Saves the recent-files list (atomically).
+pub fn save_recent(recovery_file: &Path, recent: &[PathBuf]) -> std::io::Result<()> {
+    let path = recent_path(recovery_file);
+    if let Some(folder) = path.parent() {
+        std::fs::create_dir_all(folder)?;
+    }
+    let text = ron::ser::to_string_pretty(&recent, ron::ser::PrettyConfig::new())
+        .map_err(std::io::Error::other)?;
+    crate::fsutil::write_atomic(&path, text.as_bytes())
+}

@@ -31,6 +31,18 @@ fn save_as_then_reload_is_byte_identical() {
 
     let mut reopened = editor(&dir, Some(target.clone()));
     reopened.run();
+    reopened.get_by_label("File").click_accesskit();
+    reopened.run();
+    reopened
+        .get_by_label_contains("Open recent")
+        .click_accesskit();
+    reopened.run();
+    assert!(
+        reopened
+            .query_by_label(&target.display().to_string())
+            .is_some(),
+        "the saved file is a recent file in the next session"
+    );
     assert_eq!(
         veneer::graph::to_ron(&reopened.state().document.graph),
         saved
