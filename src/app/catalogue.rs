@@ -129,15 +129,7 @@ pub fn entries() -> Vec<Entry> {
     ] {
         add(kind.title().to_string(), kind);
     }
-    for op in [
-        MathOp::Add,
-        MathOp::Subtract,
-        MathOp::Multiply,
-        MathOp::Divide,
-        MathOp::Power,
-        MathOp::Minimum,
-        MathOp::Maximum,
-    ] {
+    for op in MathOp::ALL {
         add(
             format!("{op:?}"),
             NodeKind::Math {
@@ -146,15 +138,7 @@ pub fn entries() -> Vec<Entry> {
             },
         );
     }
-    for op in [
-        UnaryOp::Abs,
-        UnaryOp::Fract,
-        UnaryOp::Floor,
-        UnaryOp::Sin,
-        UnaryOp::Cos,
-        UnaryOp::Negate,
-        UnaryOp::OneMinus,
-    ] {
+    for op in UnaryOp::ALL {
         add(
             format!("{op:?}"),
             NodeKind::Unary {

@@ -1,11 +1,11 @@
 //! Copy, paste and duplicate: selected nodes travel as a RON graph fragment, so they can
 //! be pasted into another window (or a text editor) and back.
 
-use super::graph_view::{graph_from_snarl, next_node_id};
+use super::graph_view::{graph_from_snarl, insert_graph, next_node_id};
 use crate::graph::{Graph, Node, NodeId};
+
 use egui::Pos2;
-use egui_snarl::{InPinId, OutPinId, Snarl};
-use std::collections::BTreeMap;
+use egui_snarl::Snarl;
 
 /// The selected nodes and the wires between them, as RON text.
 pub fn copy(snarl: &Snarl<Node>, selection: &[egui_snarl::NodeId]) -> String {
@@ -26,33 +26,14 @@ pub fn copy(snarl: &Snarl<Node>, selection: &[egui_snarl::NodeId]) -> String {
 /// the originals, wires between them kept. Returns how many nodes were added.
 pub fn paste(snarl: &mut Snarl<Node>, text: &str) -> Result<usize, String> {
     let fragment = crate::graph::from_ron(text).map_err(|error| error.to_string())?;
-    let mut placed: BTreeMap<NodeId, egui_snarl::NodeId> = BTreeMap::new();
-    for node in &fragment.nodes {
+    let placed = insert_graph(snarl, &fragment, |snarl, node| {
         let mut copy = node.clone();
         copy.id = next_node_id(snarl);
-        let position = Pos2::new(node.position.0 + 40.0, node.position.1 + 40.0);
-        placed.insert(node.id, snarl.insert_node(position, copy));
-    }
-    for wire in &fragment.wires {
-        let (Some(from), Some(to)) = (fragment.node(wire.from.node), fragment.node(wire.to.node))
-        else {
-            continue;
-        };
-        let output = from.kind.signature().output(&wire.from.pin).map(|(i, _)| i);
-        let input = to.kind.signature().input(&wire.to.pin).map(|(i, _)| i);
-        if let (Some(output), Some(input)) = (output, input) {
-            snarl.connect(
-                OutPinId {
-                    node: placed[&wire.from.node],
-                    output,
-                },
-                InPinId {
-                    node: placed[&wire.to.node],
-                    input,
-                },
-            );
-        }
-    }
+        (
+            copy,
+            Pos2::new(node.position.0 + 40.0, node.position.1 + 40.0),
+        )
+    });
     Ok(placed.len())
 }
 

@@ -13,10 +13,23 @@ use std::collections::BTreeMap;
 /// A snarl showing `graph`, nodes at their saved positions.
 pub fn snarl_from_graph(graph: &Graph) -> Snarl<Node> {
     let mut snarl = Snarl::new();
+    insert_graph(&mut snarl, graph, |_, node| {
+        (node.clone(), Pos2::new(node.position.0, node.position.1))
+    });
+    snarl
+}
+
+/// Inserts the nodes of `graph` into `snarl`, each as `place` makes it (the node to
+/// insert and where), then the wires between them. Returns the snarl id of every node.
+pub fn insert_graph(
+    snarl: &mut Snarl<Node>,
+    graph: &Graph,
+    mut place: impl FnMut(&Snarl<Node>, &Node) -> (Node, Pos2),
+) -> BTreeMap<NodeId, egui_snarl::NodeId> {
     let mut ids = BTreeMap::new();
     for node in &graph.nodes {
-        let position = Pos2::new(node.position.0, node.position.1);
-        ids.insert(node.id, snarl.insert_node(position, node.clone()));
+        let (inserted, position) = place(snarl, node);
+        ids.insert(node.id, snarl.insert_node(position, inserted));
     }
     for wire in &graph.wires {
         let (Some(from), Some(to)) = (graph.node(wire.from.node), graph.node(wire.to.node)) else {
@@ -37,7 +50,7 @@ pub fn snarl_from_graph(graph: &Graph) -> Snarl<Node> {
             );
         }
     }
-    snarl
+    ids
 }
 
 /// The graph a snarl shows, with `meta`'s name, version and preview settings.

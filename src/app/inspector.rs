@@ -46,28 +46,12 @@ fn settings(ui: &mut Ui, kind: &mut NodeKind) {
             choice(ui, "type", ty, &TYPES);
         }
         Math { op, ty } => {
-            let ops = [
-                MathOp::Add,
-                MathOp::Subtract,
-                MathOp::Multiply,
-                MathOp::Divide,
-                MathOp::Power,
-                MathOp::Minimum,
-                MathOp::Maximum,
-            ];
+            let ops = MathOp::ALL;
             choice(ui, "operation", op, &ops);
             choice(ui, "type", ty, &TYPES);
         }
         Unary { op, ty } => {
-            let ops = [
-                UnaryOp::Abs,
-                UnaryOp::Fract,
-                UnaryOp::Floor,
-                UnaryOp::Sin,
-                UnaryOp::Cos,
-                UnaryOp::Negate,
-                UnaryOp::OneMinus,
-            ];
+            let ops = UnaryOp::ALL;
             choice(ui, "operation", op, &ops);
             choice(ui, "type", ty, &TYPES);
         }

@@ -92,6 +92,19 @@ pub enum MathOp {
     Maximum,
 }
 
+impl MathOp {
+    /// All operators, in menu order.
+    pub const ALL: [MathOp; 7] = [
+        MathOp::Add,
+        MathOp::Subtract,
+        MathOp::Multiply,
+        MathOp::Divide,
+        MathOp::Power,
+        MathOp::Minimum,
+        MathOp::Maximum,
+    ];
+}
+
 /// Unary operators, applied per component.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub enum UnaryOp {
@@ -102,6 +115,19 @@ pub enum UnaryOp {
     Cos,
     Negate,
     OneMinus,
+}
+
+impl UnaryOp {
+    /// All operators, in menu order.
+    pub const ALL: [UnaryOp; 7] = [
+        UnaryOp::Abs,
+        UnaryOp::Fract,
+        UnaryOp::Floor,
+        UnaryOp::Sin,
+        UnaryOp::Cos,
+        UnaryOp::Negate,
+        UnaryOp::OneMinus,
+    ];
 }
 
 /// How a colour ramp blends between stops.

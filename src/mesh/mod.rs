@@ -74,6 +74,18 @@ impl Mesh {
         self
     }
 
+    /// The enclosed volume (positive when triangles wind counter-clockwise seen from
+    /// outside; meaningful for closed meshes).
+    pub fn signed_volume(&self) -> f32 {
+        self.indices
+            .chunks_exact(3)
+            .map(|t| {
+                let [a, b, c] = [0, 1, 2].map(|k| glam::Vec3::from(self.positions[t[k] as usize]));
+                a.dot(b.cross(c)) / 6.0
+            })
+            .sum()
+    }
+
     /// Number of triangles.
     pub fn triangle_count(&self) -> usize {
         self.indices.len() / 3

@@ -80,24 +80,14 @@ fn plane() -> Mesh {
 mod tests {
     use super::*;
 
-    fn signed_volume(mesh: &Mesh) -> f32 {
-        mesh.indices
-            .chunks(3)
-            .map(|t| {
-                let [a, b, c] = [0, 1, 2].map(|k| glam::Vec3::from(mesh.positions[t[k] as usize]));
-                a.dot(b.cross(c)) / 6.0
-            })
-            .sum()
-    }
-
     #[test]
     fn closed_primitives_wind_outwards_with_the_expected_volume() {
         let sphere = primitive("sphere").unwrap();
-        assert!((signed_volume(&sphere) - 4.0 / 3.0 * PI).abs() < 0.02);
+        assert!((sphere.signed_volume() - 4.0 / 3.0 * PI).abs() < 0.02);
         let cube = primitive("cube").unwrap();
-        assert!((signed_volume(&cube) - 1.4f32.powi(3)).abs() < 1e-3);
+        assert!((cube.signed_volume() - 1.4f32.powi(3)).abs() < 1e-3);
         let torus = primitive("torus").unwrap();
-        assert!((signed_volume(&torus) - 2.0 * PI * PI * 0.7 * 0.09).abs() < 0.01);
+        assert!((torus.signed_volume() - 2.0 * PI * PI * 0.7 * 0.09).abs() < 0.01);
     }
 
     #[test]

@@ -2,7 +2,9 @@
 //! search menu and wired, parameters change the preview without recompiling, undo
 //! restores it, and compile errors land on the node that caused them.
 
-use crate::support::{editor, press, preview_pixels, scratch, screen, select_node, shows};
+use crate::support::{
+    add_node, editor, press, preview_pixels, scratch, screen, select_node, shows, wire_into_alpha,
+};
 use egui_kittest::kittest::Queryable;
 use veneer::graph::NodeKind;
 
@@ -40,13 +42,7 @@ fn adds_a_node_through_the_search_menu_and_wires_it_from_the_inspector() {
     let dir = scratch("add");
     let mut harness = editor(&dir, None);
     let before = harness.state().document.graph.nodes.len();
-    press(&mut harness, egui::Key::Space, false);
-    harness
-        .get_by_role(egui::accesskit::Role::TextInput)
-        .type_text("worley");
-    harness.run();
-    harness.get_by_label("Worley").click();
-    harness.run();
+    add_node(&mut harness, "worley", "Worley");
     let graph = &harness.state().document.graph;
     assert_eq!(graph.nodes.len(), before + 1);
     let worley = graph
@@ -68,15 +64,7 @@ fn adds_a_node_through_the_search_menu_and_wires_it_from_the_inspector() {
     );
     select_node(&mut harness, "wood colour");
     // Wire the new node into the material's alpha through the inspector's connect choice.
-    select_node(&mut harness, "material");
-    harness
-        .get_all_by_value("constant")
-        .next()
-        .expect("alpha's connect choice")
-        .click_accesskit();
-    harness.run();
-    harness.get_by_label("Worley · value").click_accesskit();
-    harness.run();
+    wire_into_alpha(&mut harness, "Worley · value");
     let graph = &harness.state().document.graph;
     let wire = graph.wire_into(
         graph
@@ -134,24 +122,8 @@ fn a_compile_error_is_shown_on_the_node_that_caused_it() {
     let dir = scratch("error");
     let mut harness = editor(&dir, None);
     let before = preview_pixels(&screen(&mut harness));
-    press(&mut harness, egui::Key::Space, false);
-    harness
-        .get_by_role(egui::accesskit::Role::TextInput)
-        .type_text("smoothstep");
-    harness.run();
-    harness.get_by_label("Smoothstep").click();
-    harness.run();
-    select_node(&mut harness, "material");
-    harness
-        .get_all_by_value("constant")
-        .next()
-        .expect("alpha's connect choice")
-        .click_accesskit();
-    harness.run();
-    harness
-        .get_by_label("Smoothstep · result")
-        .click_accesskit();
-    harness.run();
+    add_node(&mut harness, "smoothstep", "Smoothstep");
+    wire_into_alpha(&mut harness, "Smoothstep · result");
     let app = harness.state();
     let smoothstep = app
         .document

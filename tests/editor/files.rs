@@ -1,7 +1,7 @@
 //! Files in the real editor: save and reload byte-identically, bad files refused with a
 //! message, presets from the menu, and unsaved work recovered after a crash.
 
-use crate::support::{editor, press, scratch, select_node, shows};
+use crate::support::{editor, press, scratch, select_node, shows, type_into_field};
 use egui_kittest::kittest::Queryable;
 
 #[test]
@@ -61,14 +61,7 @@ fn an_invalid_file_is_rejected_with_a_message_and_the_graph_is_kept() {
     .unwrap();
     let mut harness = editor(&dir, None);
     press(&mut harness, egui::Key::O, true);
-    harness
-        .get_by_role(egui::accesskit::Role::TextInput)
-        .focus();
-    harness.run();
-    harness
-        .get_by_role(egui::accesskit::Role::TextInput)
-        .type_text(&bad.display().to_string());
-    harness.run();
+    type_into_field(&mut harness, &bad.display().to_string());
     harness.get_by_label("Open").click();
     harness.run();
     assert!(
@@ -148,14 +141,7 @@ fn load_mesh(
     harness.run();
     harness.get_by_label("Mesh file…").click_accesskit();
     harness.run();
-    harness
-        .get_by_role(egui::accesskit::Role::TextInput)
-        .focus();
-    harness.run();
-    harness
-        .get_by_role(egui::accesskit::Role::TextInput)
-        .type_text(&path.display().to_string());
-    harness.run();
+    type_into_field(harness, &path.display().to_string());
     harness.get_by_label("Load").click();
     harness.run();
 }

@@ -87,3 +87,37 @@ pub fn shows(harness: &Harness<'static, VeneerApp>, text: &str) -> bool {
         .next()
         .is_some()
 }
+
+/// Types `text` into the only text field on screen (focusing it first).
+pub fn type_into_field(harness: &mut Harness<'static, VeneerApp>, text: &str) {
+    harness
+        .get_by_role(egui::accesskit::Role::TextInput)
+        .focus();
+    harness.run();
+    harness
+        .get_by_role(egui::accesskit::Role::TextInput)
+        .type_text(text);
+    harness.run();
+}
+
+/// Adds a node through the Space search: types `query`, clicks the entry `entry`.
+pub fn add_node(harness: &mut Harness<'static, VeneerApp>, query: &str, entry: &str) {
+    press(harness, egui::Key::Space, false);
+    type_into_field(harness, query);
+    harness.get_by_label(entry).click();
+    harness.run();
+}
+
+/// With the material selected, wires `source` (as the inspector names it, "node · pin")
+/// into its alpha, the first input left at a constant.
+pub fn wire_into_alpha(harness: &mut Harness<'static, VeneerApp>, source: &str) {
+    select_node(harness, "material");
+    harness
+        .get_all_by_value("constant")
+        .next()
+        .expect("alpha's connect choice")
+        .click_accesskit();
+    harness.run();
+    harness.get_by_label(source).click_accesskit();
+    harness.run();
+}

@@ -2,17 +2,7 @@
 //! are errors naming the file, and `veneer render --mesh FILE` draws them.
 
 use crate::support::root;
-use veneer::mesh::{Mesh, load};
-
-fn signed_volume(mesh: &Mesh) -> f32 {
-    mesh.indices
-        .chunks(3)
-        .map(|t| {
-            let [a, b, c] = [0, 1, 2].map(|k| glam::Vec3::from(mesh.positions[t[k] as usize]));
-            a.dot(b.cross(c)) / 6.0
-        })
-        .sum()
-}
+use veneer::mesh::load;
 
 #[test]
 fn every_format_loads_closed_outward_meshes_with_unit_normals() {
@@ -26,9 +16,9 @@ fn every_format_loads_closed_outward_meshes_with_unit_normals() {
         let mesh = load(&root(&format!("tests/meshes/{file}"))).unwrap_or_else(|e| panic!("{e}"));
         assert_eq!(mesh.triangle_count(), triangles, "{file}");
         assert!(
-            (signed_volume(&mesh) - volume).abs() < 1e-4,
+            (mesh.signed_volume() - volume).abs() < 1e-4,
             "{file}: volume {}",
-            signed_volume(&mesh)
+            mesh.signed_volume()
         );
         assert!(
             mesh.normals

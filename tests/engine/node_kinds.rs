@@ -106,26 +106,10 @@ fn kinds() -> Vec<NodeKind> {
         });
     }
     for ty in [Float, Vec2, Vec3, Color] {
-        for op in [
-            MathOp::Add,
-            MathOp::Subtract,
-            MathOp::Multiply,
-            MathOp::Divide,
-            MathOp::Power,
-            MathOp::Minimum,
-            MathOp::Maximum,
-        ] {
+        for op in MathOp::ALL {
             kinds.push(NodeKind::Math { op, ty });
         }
-        for op in [
-            UnaryOp::Abs,
-            UnaryOp::Fract,
-            UnaryOp::Floor,
-            UnaryOp::Sin,
-            UnaryOp::Cos,
-            UnaryOp::Negate,
-            UnaryOp::OneMinus,
-        ] {
+        for op in UnaryOp::ALL {
             kinds.push(NodeKind::Unary { op, ty });
         }
         kinds.extend([
