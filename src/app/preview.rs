@@ -98,27 +98,14 @@ impl PreviewResources {
         } else {
             "veneer_blit_fragment"
         };
-        let blit = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("preview blit"),
-            layout: None,
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("veneer_blit_vertex"),
-                compilation_options: Default::default(),
-                buffers: &[],
-            },
-            primitive: wgpu::PrimitiveState::default(),
-            depth_stencil: None,
-            multisample: wgpu::MultisampleState::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some(fragment),
-                compilation_options: Default::default(),
-                targets: &[Some(target_format.into())],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        let entry_points = ("veneer_blit_vertex", fragment);
+        let blit = crate::render::fullscreen_pipeline(
+            device,
+            "preview blit",
+            &module,
+            entry_points,
+            target_format,
+        );
         let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
             label: Some("preview"),
             mag_filter: wgpu::FilterMode::Linear,

@@ -61,29 +61,9 @@ impl FlatRenderer {
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
+        let entry_points = ("veneer_flat_vertex", "veneer_flat_fragment");
         let pipeline = gpu.checked("flat render pipeline", || {
-            gpu.device
-                .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                    label: Some("flat render"),
-                    layout: None,
-                    vertex: wgpu::VertexState {
-                        module: &module,
-                        entry_point: Some("veneer_flat_vertex"),
-                        compilation_options: Default::default(),
-                        buffers: &[],
-                    },
-                    primitive: wgpu::PrimitiveState::default(),
-                    depth_stencil: None,
-                    multisample: wgpu::MultisampleState::default(),
-                    fragment: Some(wgpu::FragmentState {
-                        module: &module,
-                        entry_point: Some("veneer_flat_fragment"),
-                        compilation_options: Default::default(),
-                        targets: &[Some(FORMAT.into())],
-                    }),
-                    multiview_mask: None,
-                    cache: None,
-                })
+            super::fullscreen_pipeline(&gpu.device, "flat render", &module, entry_points, FORMAT)
         })?;
         let bind_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("flat view"),
