@@ -3,6 +3,8 @@
 
 use super::recovery::{self, Recovery};
 use super::{Document, VeneerApp};
+use crate::codegen::ParamMode;
+use crate::codegen::export::Target;
 use egui::{Context, Id, Modal};
 use std::path::PathBuf;
 
@@ -17,11 +19,25 @@ pub enum Pending {
 
 /// An open dialog.
 pub enum Dialog {
-    Open { path: String },
-    SaveAs { path: String },
-    ExportWgsl { path: String },
-    ExportPng { path: String, size: u32, flat: bool },
-    LoadMesh { path: String },
+    Open {
+        path: String,
+    },
+    SaveAs {
+        path: String,
+    },
+    ExportShader {
+        path: String,
+        target: Target,
+        uniform: bool,
+    },
+    ExportPng {
+        path: String,
+        size: u32,
+        flat: bool,
+    },
+    LoadMesh {
+        path: String,
+    },
     Discard(Pending),
     Recover(Recovery),
     Message(String),
@@ -54,10 +70,12 @@ impl Dialog {
                 .unwrap_or_else(|| default_path(document, "ron")),
         }
     }
-    /// Export the material as WGSL.
-    pub fn export_wgsl(document: &Document) -> Dialog {
-        Dialog::ExportWgsl {
+    /// Export the material as a shader (WGSL by default).
+    pub fn export_shader(document: &Document) -> Dialog {
+        Dialog::ExportShader {
             path: default_path(document, "wgsl"),
+            target: Target::Wgsl,
+            uniform: false,
         }
     }
     /// Export a PNG of the preview or of the flat albedo.
@@ -111,13 +129,25 @@ impl Dialog {
                         }
                     });
                 }
-                Dialog::ExportWgsl { path } => {
-                    ui.heading("Export WGSL");
-                    ui.label("A self-contained module defining VeneerSurface, VeneerMaterial and veneer_material, parameters baked.");
+                Dialog::ExportShader { path, target, uniform } => {
+                    ui.heading("Export shader");
+                    ui.label("veneer_material for another engine; non-WGSL targets add the veneer_fragment entry point.");
+                    let before = *target;
+                    let selected = Target::ALL.iter().find(|(t, _)| t == target).map(|(_, n)| *n).unwrap_or_default();
+                    egui::ComboBox::from_label("language").selected_text(selected).show_ui(ui, |ui| {
+                        for (option, name) in Target::ALL {
+                            ui.selectable_value(target, option, name);
+                        }
+                    });
+                    if *target != before {
+                        *path = std::path::Path::new(path.trim()).with_extension(target.extension()).display().to_string();
+                    }
+                    ui.checkbox(uniform, "parameters as a uniform block (instead of baked constants)");
                     ui.text_edit_singleline(path);
                     ui.horizontal(|ui| {
                         if ui.button("Export").clicked() {
-                            next = Some(export_wgsl(app, PathBuf::from(path.trim())));
+                            let params = if *uniform { ParamMode::Uniform } else { ParamMode::Baked };
+                            next = Some(export_shader(app, PathBuf::from(path.trim()), *target, params));
                         }
                         if ui.button("Cancel").clicked() {
                             next = Some(None);
@@ -202,11 +232,16 @@ impl Dialog {
     }
 }
 
-fn export_wgsl(app: &mut VeneerApp, path: PathBuf) -> Option<Dialog> {
-    let result = crate::codegen::compile_graph(&app.document.graph)
+fn export_shader(
+    app: &mut VeneerApp,
+    path: PathBuf,
+    target: Target,
+    params: ParamMode,
+) -> Option<Dialog> {
+    let result = crate::codegen::export::export(&app.document.graph, target, params)
         .map_err(|error| error.to_string())
-        .and_then(|module| {
-            crate::fsutil::write_atomic(&path, module.source.as_bytes())
+        .and_then(|bytes| {
+            crate::fsutil::write_atomic(&path, &bytes)
                 .map_err(|e| format!("{}: {e}", path.display()))
         });
     match result {

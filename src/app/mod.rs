@@ -354,8 +354,8 @@ impl VeneerApp {
                     self.dialog = Some(Dialog::save_as(&self.document));
                 }
                 ui.separator();
-                if ui.button("Export WGSL…").clicked() {
-                    self.dialog = Some(Dialog::export_wgsl(&self.document));
+                if ui.button("Export shader…").clicked() {
+                    self.dialog = Some(Dialog::export_shader(&self.document));
                 }
                 if ui.button("Export PNG…").clicked() {
                     self.dialog = Some(Dialog::export_png(&self.document));

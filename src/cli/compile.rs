@@ -1,13 +1,35 @@
-//! `veneer compile`: the material as a shader module.
+//! `veneer compile`: the material as a shader module for WGSL or another engine's language.
 
 use super::{Failure, in_file, load_graph, write_output};
 use clap::{Args, ValueEnum};
 use std::path::PathBuf;
+use veneer::codegen::ParamMode;
+use veneer::codegen::export::{Target, export};
 
 /// Shader languages `veneer compile` writes.
 #[derive(Clone, Copy, ValueEnum)]
-pub enum Target {
+pub enum TargetArg {
+    /// WGSL module (the DESIGN contract).
     Wgsl,
+    /// GLSL 450 core fragment shader.
+    Glsl,
+    /// GLSL ES 3.00 fragment shader.
+    GlslEs,
+    /// HLSL, shader model 5.1.
+    Hlsl,
+    /// Metal Shading Language 2.0.
+    Msl,
+    /// SPIR-V binary.
+    Spv,
+}
+
+/// How parameters appear in the output.
+#[derive(Clone, Copy, ValueEnum)]
+pub enum ParamsArg {
+    /// As literal constants: no bindings needed.
+    Baked,
+    /// As one uniform block (`veneer_params`, group 1 binding 0, one vec4 per slot).
+    Uniform,
 }
 
 #[derive(Args)]
@@ -16,7 +38,10 @@ pub struct CompileArgs {
     graph: PathBuf,
     /// Shader language of the output.
     #[arg(long, value_enum, default_value = "wgsl")]
-    target: Target,
+    target: TargetArg,
+    /// Parameters baked as constants or gathered in a uniform block.
+    #[arg(long, value_enum, default_value = "baked")]
+    params: ParamsArg,
     /// Output file (stdout when absent or `-`).
     #[arg(short, long)]
     output: Option<PathBuf>,
@@ -24,9 +49,18 @@ pub struct CompileArgs {
 
 pub fn run(args: CompileArgs) -> Result<(), Failure> {
     let graph = load_graph(&args.graph)?;
-    let module =
-        veneer::codegen::compile_graph(&graph).map_err(|error| in_file(&args.graph, error))?;
-    match args.target {
-        Target::Wgsl => write_output(args.output.as_ref(), module.source.as_bytes()),
-    }
+    let target = match args.target {
+        TargetArg::Wgsl => Target::Wgsl,
+        TargetArg::Glsl => Target::Glsl,
+        TargetArg::GlslEs => Target::GlslEs,
+        TargetArg::Hlsl => Target::Hlsl,
+        TargetArg::Msl => Target::Msl,
+        TargetArg::Spv => Target::Spirv,
+    };
+    let params = match args.params {
+        ParamsArg::Baked => ParamMode::Baked,
+        ParamsArg::Uniform => ParamMode::Uniform,
+    };
+    let bytes = export(&graph, target, params).map_err(|error| in_file(&args.graph, error))?;
+    write_output(args.output.as_ref(), &bytes)
 }

@@ -2,6 +2,7 @@
 //! items it uses, then validates the module with naga.
 
 mod emit;
+pub mod export;
 pub mod library;
 mod naming;
 mod validate;

@@ -161,3 +161,35 @@ fn the_preview_shows_a_mesh_file_and_refuses_a_broken_one() {
     load_mesh(&mut harness, &root.join("tests/meshes/bad_index.obj"));
     assert!(shows(&harness, "index out of bounds"), "the error is shown");
 }
+
+#[test]
+fn the_export_menu_writes_a_validated_shader_for_the_chosen_language() {
+    let dir = scratch("export");
+    let mut harness = editor(&dir, None);
+    harness.get_by_label("File").click_accesskit();
+    harness.run();
+    harness.get_by_label("Export shader…").click_accesskit();
+    harness.run();
+    harness.get_by_value("wgsl").click_accesskit();
+    harness.run();
+    harness.get_by_label("spv").click_accesskit();
+    harness.run();
+    let target = dir.join("wood.spv");
+    harness
+        .get_by_role(egui::accesskit::Role::TextInput)
+        .focus();
+    harness.run();
+    harness.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::A);
+    harness
+        .get_by_role(egui::accesskit::Role::TextInput)
+        .type_text(&target.display().to_string());
+    harness.run();
+    harness.get_by_label("Export").click_accesskit();
+    harness.run();
+    let bytes = std::fs::read(&target).expect("the SPIR-V was written");
+    assert_eq!(
+        &bytes[..4],
+        &0x0723_0203u32.to_le_bytes(),
+        "SPIR-V magic number"
+    );
+}

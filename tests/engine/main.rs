@@ -3,6 +3,7 @@
 
 mod cli;
 mod cpu_gpu;
+mod export;
 mod graph_files;
 mod meshes;
 mod node_kinds;

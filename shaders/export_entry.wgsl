@@ -1,0 +1,22 @@
+//! The fragment entry point every non-WGSL export carries: evaluates veneer_material from
+//! interpolated inputs and writes (albedo, alpha). Time comes from a uniform block.
+
+struct VeneerFragmentInput {
+    @location(0) position: vec3f,  // object-space position
+    @location(1) normal: vec3f,    // unit object-space normal
+    @location(2) uv: vec2f,
+    @location(3) fields: vec4f,    // distance fields, 0 when unused
+}
+
+struct VeneerFrame {
+    time: f32,  // seconds
+}
+
+@group(0) @binding(0) var<uniform> veneer_frame: VeneerFrame;
+
+@fragment
+fn veneer_fragment(input: VeneerFragmentInput) -> @location(0) vec4f {
+    let surface = VeneerSurface(input.position, input.normal, input.uv, input.fields, veneer_frame.time);
+    let material = veneer_material(surface);
+    return vec4f(material.albedo, material.alpha);
+}

@@ -1,0 +1,203 @@
+//! Shader exports for other engines through naga's back-ends: GLSL (450 core and ES 300),
+//! HLSL (SM 5.1), MSL and SPIR-V, next to the WGSL module itself. Every non-WGSL export
+//! carries the fragment entry point of `shaders/export_entry.wgsl`; `veneer_material`
+//! keeps its name. Each export is validated before it is returned: the module by naga's
+//! validator, and GLSL 450 and SPIR-V once more by parsing the output back with naga
+//! (naga reads only Vulkan-style GLSL, so GLSL ES 3.00 is checked by glslangValidator in
+//! the tests instead).
+
+use super::{CompileError, ParamMode, compile_graph_with, validate};
+use crate::graph::Graph;
+use std::fmt;
+
+/// A shader language Veneer exports to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Target {
+    Wgsl,
+    /// GLSL 450 core: a complete fragment shader.
+    Glsl,
+    /// GLSL ES 3.00 (WebGL 2 and mobile): a complete fragment shader.
+    GlslEs,
+    /// HLSL shader model 5.1.
+    Hlsl,
+    /// Metal Shading Language 2.0.
+    Msl,
+    /// SPIR-V 1.0 binary.
+    Spirv,
+}
+
+impl Target {
+    /// Every target, as named on the command line.
+    pub const ALL: [(Target, &str); 6] = [
+        (Target::Wgsl, "wgsl"),
+        (Target::Glsl, "glsl"),
+        (Target::GlslEs, "glsl-es"),
+        (Target::Hlsl, "hlsl"),
+        (Target::Msl, "msl"),
+        (Target::Spirv, "spv"),
+    ];
+
+    /// The usual file extension.
+    pub fn extension(self) -> &'static str {
+        match self {
+            Target::Wgsl => "wgsl",
+            Target::Glsl | Target::GlslEs => "frag",
+            Target::Hlsl => "hlsl",
+            Target::Msl => "metal",
+            Target::Spirv => "spv",
+        }
+    }
+}
+
+/// Why an export failed.
+#[derive(Debug)]
+pub enum ExportError {
+    /// The graph does not compile.
+    Compile(CompileError),
+    /// A back-end (or the check of its output) failed: a bug in Veneer or naga.
+    Backend { target: Target, message: String },
+}
+
+impl fmt::Display for ExportError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ExportError::Compile(error) => error.fmt(f),
+            ExportError::Backend { target, message } => {
+                write!(f, "{target:?} export failed: {message}")
+            }
+        }
+    }
+}
+
+impl std::error::Error for ExportError {}
+
+/// The name of the fragment entry point in non-WGSL exports (GLSL calls it `main`).
+pub const FRAGMENT_ENTRY: &str = "veneer_fragment";
+const ENTRY_SOURCE: &str = include_str!("../../shaders/export_entry.wgsl");
+
+/// The graph as a shader for `target`, parameters baked or in a uniform block: text for
+/// the text languages, bytes for SPIR-V.
+pub fn export(graph: &Graph, target: Target, params: ParamMode) -> Result<Vec<u8>, ExportError> {
+    let module = compile_graph_with(graph, params).map_err(ExportError::Compile)?;
+    if target == Target::Wgsl {
+        return Ok(module.source.into_bytes());
+    }
+    let fail = |message: String| ExportError::Backend { target, message };
+    let source = format!("{}\n{ENTRY_SOURCE}", module.source);
+    validate(&source).map_err(|error| fail(error.to_string()))?;
+    let naga_module = naga::front::wgsl::parse_str(&source)
+        .map_err(|error| fail(error.emit_to_string(&source)))?;
+    let info = naga::valid::Validator::new(
+        naga::valid::ValidationFlags::all(),
+        naga::valid::Capabilities::default(),
+    )
+    .validate(&naga_module)
+    .map_err(|error| fail(error.emit_to_string(&source)))?;
+    match target {
+        Target::Wgsl => unreachable!("handled above"),
+        Target::Glsl | Target::GlslEs => {
+            let version = if target == Target::Glsl {
+                naga::back::glsl::Version::Desktop(450)
+            } else {
+                naga::back::glsl::Version::Embedded {
+                    version: 300,
+                    is_webgl: false,
+                }
+            };
+            // Explicit block bindings where the version has them (450): the frame block at
+            // 0, the parameter block at 1. ES 3.00 binds blocks by name instead.
+            let binding = |group, binding| naga::ResourceBinding { group, binding };
+            let binding_map = [(binding(0, 0), 0u8), (binding(1, 0), 1u8)]
+                .into_iter()
+                .collect();
+            let options = naga::back::glsl::Options {
+                version,
+                writer_flags: naga::back::glsl::WriterFlags::empty(),
+                binding_map,
+                ..Default::default()
+            };
+            let pipeline = naga::back::glsl::PipelineOptions {
+                shader_stage: naga::ShaderStage::Fragment,
+                entry_point: FRAGMENT_ENTRY.to_string(),
+                multiview: None,
+            };
+            let mut text = String::new();
+            let mut writer = naga::back::glsl::Writer::new(
+                &mut text,
+                &naga_module,
+                &info,
+                &options,
+                &pipeline,
+                naga::proc::BoundsCheckPolicies::default(),
+            )
+            .map_err(|e| fail(e.to_string()))?;
+            writer.write().map_err(|e| fail(e.to_string()))?;
+            if target == Target::Glsl {
+                check_glsl(&text).map_err(fail)?;
+            }
+            Ok(text.into_bytes())
+        }
+        Target::Hlsl => {
+            let options = naga::back::hlsl::Options::default();
+            let pipeline = naga::back::hlsl::PipelineOptions::default();
+            let mut text = String::new();
+            let mut writer = naga::back::hlsl::Writer::new(&mut text, &options, &pipeline);
+            writer
+                .write(&naga_module, &info, None)
+                .map_err(|e| fail(e.to_string()))?;
+            Ok(text.into_bytes())
+        }
+        Target::Msl => {
+            let options = naga::back::msl::Options {
+                lang_version: (2, 0),
+                fake_missing_bindings: true,
+                ..Default::default()
+            };
+            let pipeline = naga::back::msl::PipelineOptions::default();
+            let (text, _) = naga::back::msl::write_string(&naga_module, &info, &options, &pipeline)
+                .map_err(|e| fail(e.to_string()))?;
+            Ok(text.into_bytes())
+        }
+        Target::Spirv => {
+            let options = naga::back::spv::Options::default();
+            let words = naga::back::spv::write_vec(&naga_module, &info, &options, None)
+                .map_err(|e| fail(e.to_string()))?;
+            let bytes: Vec<u8> = words.iter().flat_map(|word| word.to_le_bytes()).collect();
+            check_spirv(&bytes).map_err(fail)?;
+            Ok(bytes)
+        }
+    }
+}
+
+/// GLSL output parsed back and validated by naga.
+fn check_glsl(text: &str) -> Result<(), String> {
+    let options = naga::front::glsl::Options::from(naga::ShaderStage::Fragment);
+    let module = naga::front::glsl::Frontend::default()
+        .parse(&options, text)
+        .map_err(|error| {
+            format!(
+                "the GLSL does not parse back: {}",
+                error.emit_to_string(text)
+            )
+        })?;
+    naga::valid::Validator::new(
+        naga::valid::ValidationFlags::all(),
+        naga::valid::Capabilities::all(),
+    )
+    .validate(&module)
+    .map(|_| ())
+    .map_err(|error| format!("the GLSL does not validate back: {error}"))
+}
+
+/// SPIR-V output parsed back and validated by naga.
+fn check_spirv(bytes: &[u8]) -> Result<(), String> {
+    let module = naga::front::spv::parse_u8_slice(bytes, &naga::front::spv::Options::default())
+        .map_err(|error| format!("the SPIR-V does not parse back: {error}"))?;
+    naga::valid::Validator::new(
+        naga::valid::ValidationFlags::all(),
+        naga::valid::Capabilities::all(),
+    )
+    .validate(&module)
+    .map(|_| ())
+    .map_err(|error| format!("the SPIR-V does not validate back: {error}"))
+}
