@@ -10,6 +10,7 @@ use veneer::eval::{Evaluator, Surface};
 use veneer::render::{FlatRect, FlatRenderer, GpuContext};
 
 const WOOD: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/graphs/wood.ron");
+const MARBLE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/graphs/marble.ron");
 const HAND_WRITTEN_WOOD: &str = concat!(
     include_str!("../tests/engine/reference/seed000_noise.wgsl"),
     include_str!("../tests/engine/reference/wood_seed000.wgsl")
@@ -151,5 +152,62 @@ fn live_edit(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, flat_render, compile, cpu_eval, live_edit);
+/// `veneer bake graphs/marble.ron --size 8192 --maps albedo,normal,height --format exr`
+/// against rendering the three passes alone (no conversion, no encoding).
+fn bake_marble(c: &mut Criterion) {
+    use veneer::bake::{BakeSettings, Format, Map, NormalConvention, bake};
+    use veneer::render::FlatChannels;
+    let gpu = GpuContext::new().expect("a wgpu adapter");
+    let graph = veneer::graph::load(std::path::Path::new(MARBLE)).expect("marble preset");
+    let size = 8192;
+    let rect = veneer::render::preview_rect(&graph);
+    let source = veneer::codegen::compile_graph(&graph)
+        .expect("compiles")
+        .source;
+    let renderer = FlatRenderer::new(&gpu, &source).expect("pipeline builds");
+    let dir = std::env::temp_dir().join(format!("veneer-bench-bake-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("scratch folder");
+    let mut group = c.benchmark_group(format!(
+        "bake marble 8192² on {}",
+        gpu.adapter_description()
+    ));
+    group.sample_size(10);
+    group.bench_function("render the three passes only (baseline)", |b| {
+        b.iter(|| {
+            for channels in [
+                FlatChannels::AlbedoAlpha,
+                FlatChannels::HeightBump,
+                FlatChannels::HeightBump,
+            ] {
+                black_box(
+                    renderer
+                        .render_channels(&gpu, rect, size, 0.0, channels, |_, _| {})
+                        .expect("renders"),
+                );
+            }
+        })
+    });
+    let settings = BakeSettings {
+        rect: None,
+        size,
+        maps: vec![Map::Albedo, Map::Normal, Map::Height],
+        format: Format::Exr,
+        normal: NormalConvention::OpenGl,
+        time: 0.0,
+    };
+    group.bench_function("bake albedo, normal, height to EXR", |b| {
+        b.iter(|| bake(&gpu, &graph, &settings, &dir.join("marble"), |_, _| {}).expect("bakes"))
+    });
+    group.finish();
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+criterion_group!(
+    benches,
+    flat_render,
+    compile,
+    cpu_eval,
+    live_edit,
+    bake_marble
+);
 criterion_main!(benches);

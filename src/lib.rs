@@ -3,6 +3,7 @@
 
 #[cfg(feature = "gui")]
 pub mod app;
+pub mod bake;
 pub mod codegen;
 pub mod eval;
 pub mod fsutil;

@@ -1,5 +1,6 @@
 //! Command-line interface: argument parsing and one module per subcommand.
 
+mod bake;
 mod check;
 mod compile;
 mod fmt;
@@ -27,6 +28,8 @@ enum Command {
     },
     /// Render a graph to a PNG: on a mesh with the preview lighting, or its albedo over a plane.
     Render(render::RenderArgs),
+    /// Bake texture maps (albedo, normal, height, …) as PNG or EXR.
+    Bake(bake::BakeArgs),
     /// Write the material as a validated shader module.
     Compile(compile::CompileArgs),
     /// Load, type-check, compile and validate graphs; exit 1 if any has an error.
@@ -61,6 +64,7 @@ pub fn run() -> ExitCode {
         None => editor(None),
         Some(Command::Edit { graph }) => editor(Some(graph)),
         Some(Command::Render(args)) => render::run(args),
+        Some(Command::Bake(args)) => bake::run(args),
         Some(Command::Compile(args)) => compile::run(args),
         Some(Command::Check(args)) => check::run(args),
         Some(Command::Fmt(args)) => fmt::run(args),

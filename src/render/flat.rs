@@ -1,4 +1,4 @@
-//! The flat render: a material's albedo over a rectangle of the plane y = Y.
+//! The flat render: a material's outputs over a rectangle of the plane y = Y.
 
 use super::readback::read_texture;
 use super::{GpuContext, RenderError, shader_source};
@@ -29,6 +29,17 @@ impl FlatRect {
     }
 }
 
+/// Which material outputs a flat render reads back, as four floats per pixel.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FlatChannels {
+    /// (albedo r, g, b, alpha): the `--flat` contract.
+    AlbedoAlpha = 0,
+    /// (specular r, g, b, shininess).
+    SpecularShininess = 1,
+    /// (height, bump x, y, z).
+    HeightBump = 2,
+}
+
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
 struct FlatViewUniform {
@@ -37,7 +48,8 @@ struct FlatViewUniform {
     plane_y: f32,
     size: f32,
     time: f32,
-    padding: [f32; 3],
+    channels: u32,
+    padding: [f32; 2],
 }
 
 /// f32 bits in an integer target: renderable on every backend (GL has no float targets).
@@ -89,20 +101,51 @@ impl FlatRenderer {
         size: u32,
         time: f32,
     ) -> Result<Vec<[f32; 4]>, RenderError> {
+        self.render_channels(gpu, rect, size, time, FlatChannels::AlbedoAlpha, |_, _| {})
+    }
+
+    /// Renders an n×n image of `channels` in tiles of at most 2048², calling
+    /// `progress(tiles done, tiles in all)` after each.
+    pub fn render_channels(
+        &self,
+        gpu: &GpuContext,
+        rect: FlatRect,
+        size: u32,
+        time: f32,
+        channels: FlatChannels,
+        mut progress: impl FnMut(u32, u32),
+    ) -> Result<Vec<[f32; 4]>, RenderError> {
         if size == 0 {
             return Err(RenderError("image size must be at least 1 pixel".into()));
         }
         let tile = gpu.device.limits().max_texture_dimension_2d.min(2048);
+        let tiles_per_side = size.div_ceil(tile);
         let mut image = vec![[0.0f32; 4]; size as usize * size as usize];
+        let mut done = 0;
         for tile_y in (0..size).step_by(tile as usize) {
             for tile_x in (0..size).step_by(tile as usize) {
                 let (width, height) = (tile.min(size - tile_x), tile.min(size - tile_y));
-                let pixels =
-                    self.render_tile(gpu, rect, size, time, (tile_x, tile_y), (width, height))?;
+                let view = FlatViewUniform {
+                    rect: [
+                        rect.x0 as f32,
+                        rect.z0 as f32,
+                        rect.x1 as f32,
+                        rect.z1 as f32,
+                    ],
+                    pixel_offset: [tile_x as f32, tile_y as f32],
+                    plane_y: rect.y as f32,
+                    size: size as f32,
+                    time,
+                    channels: channels as u32,
+                    padding: [0.0; 2],
+                };
+                let pixels = self.render_tile(gpu, &view, (width, height))?;
                 for (row, chunk) in pixels.chunks(width as usize).enumerate() {
                     let start = (tile_y as usize + row) * size as usize + tile_x as usize;
                     image[start..start + width as usize].copy_from_slice(chunk);
                 }
+                done += 1;
+                progress(done, tiles_per_side * tiles_per_side);
             }
         }
         Ok(image)
@@ -111,27 +154,11 @@ impl FlatRenderer {
     fn render_tile(
         &self,
         gpu: &GpuContext,
-        rect: FlatRect,
-        size: u32,
-        time: f32,
-        offset: (u32, u32),
+        view: &FlatViewUniform,
         extent: (u32, u32),
     ) -> Result<Vec<[f32; 4]>, RenderError> {
-        let view = FlatViewUniform {
-            rect: [
-                rect.x0 as f32,
-                rect.z0 as f32,
-                rect.x1 as f32,
-                rect.z1 as f32,
-            ],
-            pixel_offset: [offset.0 as f32, offset.1 as f32],
-            plane_y: rect.y as f32,
-            size: size as f32,
-            time,
-            padding: [0.0; 3],
-        };
         gpu.queue
-            .write_buffer(&self.uniform, 0, bytemuck::bytes_of(&view));
+            .write_buffer(&self.uniform, 0, bytemuck::bytes_of(view));
         let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
             label: Some("flat target"),
             size: wgpu::Extent3d {

@@ -8,7 +8,7 @@ mod mesh_view;
 mod readback;
 
 pub use context::{GpuContext, RenderError};
-pub use flat::{FlatRect, FlatRenderer, albedo_to_rgb8};
+pub use flat::{FlatChannels, FlatRect, FlatRenderer, albedo_to_rgb8};
 pub use image::{Image, View, preview_rect, render_graph};
 pub use mesh_view::{
     COLOR_FORMAT, GpuMesh, MeshPipeline, MeshRenderer, MeshTarget, MeshView, Projection,

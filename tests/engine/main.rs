@@ -1,6 +1,7 @@
 //! Integration tests of the engine: presets, codegen, CPU evaluator, renders and the CLI.
 //! One binary so that wgpu and the rest link once.
 
+mod bake;
 mod cli;
 mod cpu_gpu;
 mod export;

@@ -1,0 +1,165 @@
+//! `veneer bake`: texture maps of one or more graphs, baked in parallel with a progress bar.
+
+use super::Failure;
+use super::render::parse_flat;
+use clap::{Args, ValueEnum};
+use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
+use std::path::PathBuf;
+use veneer::bake::{BakeSettings, BakedMap, Format, Map, NormalConvention, bake};
+use veneer::render::{FlatRect, GpuContext};
+
+#[derive(Clone, Copy, ValueEnum)]
+enum FormatArg {
+    /// 8-bit PNG.
+    Png,
+    /// 16-bit PNG.
+    Png16,
+    /// 32-bit float OpenEXR.
+    Exr,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum NormalArg {
+    /// Green up (OpenGL, Blender, Godot, Unity).
+    Gl,
+    /// Green down (DirectX, Unreal).
+    Dx,
+}
+
+#[derive(Args)]
+pub struct BakeArgs {
+    /// Graph files to bake (in parallel).
+    #[arg(required = true)]
+    graphs: Vec<PathBuf>,
+    /// Width and height of every map in pixels (up to 8192 and beyond; rendered in tiles).
+    #[arg(long, default_value_t = 1024)]
+    size: u32,
+    /// Maps to write: albedo, alpha, height, normal, specular, roughness.
+    #[arg(long, value_delimiter = ',', default_value = "albedo,normal,height", value_parser = parse_map)]
+    maps: Vec<Map>,
+    /// File format of the maps.
+    #[arg(long, value_enum, default_value = "png")]
+    format: FormatArg,
+    /// Green-channel convention of normal maps.
+    #[arg(long, value_enum, default_value = "gl")]
+    normal: NormalArg,
+    /// The plane rectangle X0,Z0,X1,Z1,Y to bake (default: each graph's preview square).
+    #[arg(long, value_name = "X0,Z0,X1,Z1,Y", value_parser = parse_flat, allow_hyphen_values = true)]
+    flat: Option<FlatRect>,
+    /// Time in seconds.
+    #[arg(long, default_value_t = 0.0)]
+    time: f32,
+    /// Folder for the maps (`<graph>_<map>.<ext>`); default: next to each graph.
+    #[arg(short, long)]
+    out_dir: Option<PathBuf>,
+    /// Print a JSON summary of what was written on stdout.
+    #[arg(long)]
+    json: bool,
+}
+
+fn parse_map(text: &str) -> Result<Map, String> {
+    Map::ALL
+        .iter()
+        .copied()
+        .find(|map| map.name() == text.trim())
+        .ok_or_else(|| {
+            let names: Vec<&str> = Map::ALL.iter().map(|m| m.name()).collect();
+            format!(
+                "unknown map '{text}' (expected one of: {})",
+                names.join(", ")
+            )
+        })
+}
+
+pub fn run(args: BakeArgs) -> Result<(), Failure> {
+    let settings = BakeSettings {
+        rect: args.flat,
+        size: args.size,
+        maps: args.maps.clone(),
+        format: match args.format {
+            FormatArg::Png => Format::Png8,
+            FormatArg::Png16 => Format::Png16,
+            FormatArg::Exr => Format::Exr,
+        },
+        normal: match args.normal {
+            NormalArg::Gl => NormalConvention::OpenGl,
+            NormalArg::Dx => NormalConvention::DirectX,
+        },
+        time: args.time,
+    };
+    if settings.size == 0 {
+        return Err(Failure::new("--size must be at least 1"));
+    }
+    let graphs = args
+        .graphs
+        .iter()
+        .map(|path| {
+            veneer::graph::load(path)
+                .map(|graph| (path, graph))
+                .map_err(Failure::from)
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let gpu = GpuContext::new()?;
+    let bars = MultiProgress::new();
+    let style = ProgressStyle::with_template("{prefix:>16} [{bar:40}] {pos}/{len} tiles {elapsed}")
+        .expect("valid template");
+    let results: Vec<Result<Vec<BakedMap>, Failure>> = std::thread::scope(|scope| {
+        let tasks: Vec<_> = graphs
+            .iter()
+            .map(|(path, graph)| {
+                let bar = bars.add(ProgressBar::new(0).with_style(style.clone()));
+                bar.set_prefix(
+                    path.file_stem()
+                        .map(|s| s.to_string_lossy().into_owned())
+                        .unwrap_or_default(),
+                );
+                let stem = match &args.out_dir {
+                    Some(dir) => dir.join(path.file_stem().unwrap_or_default()),
+                    None => path.with_extension(""),
+                };
+                let (gpu, settings) = (&gpu, &settings);
+                scope.spawn(move || {
+                    let result = bake(gpu, graph, settings, &stem, |done, total| {
+                        bar.set_length(total);
+                        bar.set_position(done);
+                    });
+                    bar.finish();
+                    result.map_err(|error| Failure::new(format!("{}: {error}", path.display())))
+                })
+            })
+            .collect();
+        tasks
+            .into_iter()
+            .map(|task| {
+                task.join()
+                    .unwrap_or_else(|_| Err(Failure::new("a bake thread panicked")))
+            })
+            .collect()
+    });
+    let mut written = Vec::new();
+    let mut failures = Vec::new();
+    for result in results {
+        match result {
+            Ok(maps) => written.extend(maps),
+            Err(Failure(message, _)) => failures.push(message),
+        }
+    }
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&written)?);
+    } else {
+        for map in &written {
+            eprintln!(
+                "wrote {} ({}×{}, {} bytes)",
+                map.path.display(),
+                map.size,
+                map.size,
+                map.bytes
+            );
+        }
+    }
+    if failures.is_empty() {
+        Ok(())
+    } else {
+        Err(Failure::new(failures.join("\n")))
+    }
+}

@@ -1,0 +1,185 @@
+//! Baking: a baked albedo equals the flat render, 16-bit maps keep smooth ramps smooth,
+//! normal maps follow the height field in both conventions, and an interrupted bake
+//! leaves no partial file.
+
+use crate::support::{difference, flat_rgb8, gpu, root};
+use veneer::bake::{BakeSettings, Format, Map, NormalConvention, bake};
+use veneer::graph::{Graph, NodeKind, Value};
+use veneer::render::FlatRect;
+
+fn scratch(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("veneer-bake-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("scratch folder");
+    dir
+}
+
+fn settings(size: u32, maps: Vec<Map>, format: Format, rect: FlatRect) -> BakeSettings {
+    BakeSettings {
+        rect: Some(rect),
+        size,
+        maps,
+        format,
+        normal: NormalConvention::OpenGl,
+        time: 0.0,
+    }
+}
+
+#[test]
+fn a_baked_4096_albedo_equals_the_flat_render() {
+    let graph = veneer::graph::load(&root("graphs/marble_tiles.ron")).expect("preset");
+    let rect = FlatRect {
+        x0: -3.0,
+        z0: -3.0,
+        x1: 3.0,
+        z1: 3.0,
+        y: 0.0,
+    };
+    let dir = scratch("albedo");
+    let maps = bake(
+        gpu(),
+        &graph,
+        &settings(4096, vec![Map::Albedo], Format::Png8, rect),
+        &dir.join("tiles"),
+        |_, _| {},
+    )
+    .expect("bakes");
+    let baked = image::open(&maps[0].path)
+        .expect("a PNG")
+        .to_rgb8()
+        .into_raw();
+    let source = veneer::codegen::compile_graph(&graph)
+        .expect("compiles")
+        .source;
+    let diff = difference(&baked, &flat_rgb8(&source, rect, 4096), 3, 0);
+    assert_eq!(diff.max, 0, "the bake is the flat render, tiled: {diff}");
+}
+
+/// A graph whose albedo and height are both x mapped from [-1, 1] to [0, 1]: a smooth ramp.
+fn ramp() -> Graph {
+    let mut graph = Graph::default();
+    let x = graph.add("x", NodeKind::Project);
+    let ramp = graph.add("ramp", NodeKind::Remap);
+    graph.connect(x, "x", ramp, "x");
+    graph.set_input(ramp, "from_min", Value::Float(-1.0));
+    let material = graph.add("material", NodeKind::Material);
+    graph.connect(ramp, "result", material, "albedo");
+    graph.connect(ramp, "result", material, "height");
+    graph
+}
+
+#[test]
+fn sixteen_bit_maps_keep_a_smooth_ramp_free_of_8_bit_banding() {
+    let rect = FlatRect {
+        x0: -1.0,
+        z0: -1.0,
+        x1: 1.0,
+        z1: 1.0,
+        y: 0.0,
+    };
+    let dir = scratch("ramp");
+    let maps = bake(
+        gpu(),
+        &ramp(),
+        &settings(2048, vec![Map::Albedo], Format::Png16, rect),
+        &dir.join("ramp"),
+        |_, _| {},
+    )
+    .expect("bakes");
+    let image = image::open(&maps[0].path).expect("a PNG").to_rgb16();
+    let row: Vec<u16> = (0..2048).map(|x| image.get_pixel(x, 1000)[0]).collect();
+    let levels = row.windows(2).filter(|pair| pair[0] != pair[1]).count() + 1;
+    assert!(
+        levels > 1500,
+        "only {levels} distinct levels across 2048 pixels"
+    );
+    assert!(
+        row.windows(2)
+            .all(|pair| pair[1] >= pair[0] && pair[1] - pair[0] < 100),
+        "monotonic, no steps"
+    );
+}
+
+#[test]
+fn normal_maps_tilt_with_the_height_field_and_flip_green_for_directx() {
+    // Height grows with x: normals lean towards -x (red below 0.5), green stays 0.5.
+    let rect = FlatRect {
+        x0: -1.0,
+        z0: -1.0,
+        x1: 1.0,
+        z1: 1.0,
+        y: 0.0,
+    };
+    let dir = scratch("normal");
+    let graph = ramp();
+    let gl = bake(
+        gpu(),
+        &graph,
+        &settings(64, vec![Map::Normal], Format::Exr, rect),
+        &dir.join("gl"),
+        |_, _| {},
+    )
+    .unwrap();
+    let texel = image::open(&gl[0].path)
+        .expect("an EXR")
+        .to_rgba32f()
+        .get_pixel(32, 32)
+        .0;
+    let slope = 0.5f32; // d(height)/dx of the ramp
+    let expected = glam::Vec3::new(-slope, 1.0, 0.0).normalize();
+    assert!(
+        (texel[0] - (0.5 + 0.5 * expected.x)).abs() < 1e-3,
+        "{texel:?}"
+    );
+    assert!(
+        (texel[1] - 0.5).abs() < 1e-4 && (texel[2] - (0.5 + 0.5 * expected.y)).abs() < 1e-3,
+        "{texel:?}"
+    );
+
+    // Height grows with z (down the image): normals lean towards the top of the image, so
+    // OpenGL's green (up) rises above 0.5 and DirectX's (down) falls below.
+    let mut graph = ramp();
+    let x = graph.nodes.iter().find(|n| n.label == "x").unwrap().id;
+    graph.set_input(x, "direction", Value::Vec3(0.0, 0.0, 1.0));
+    let mut dx = settings(64, vec![Map::Normal], Format::Exr, rect);
+    let gl = bake(gpu(), &graph, &dx, &dir.join("z-gl"), |_, _| {}).unwrap();
+    dx.normal = NormalConvention::DirectX;
+    let directx = bake(gpu(), &graph, &dx, &dir.join("z-dx"), |_, _| {}).unwrap();
+    let green =
+        |path: &std::path::Path| image::open(path).unwrap().to_rgba32f().get_pixel(32, 32).0[1];
+    assert!(green(&gl[0].path) > 0.55 && green(&directx[0].path) < 0.45);
+}
+
+#[test]
+fn an_interrupted_bake_leaves_no_partial_file() {
+    let dir = scratch("interrupted");
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_veneer"))
+        .current_dir(root(""))
+        .args([
+            "bake",
+            "graphs/marble.ron",
+            "--size",
+            "4096",
+            "--maps",
+            "albedo,normal,height",
+            "--format",
+            "exr",
+            "-o",
+        ])
+        .arg(&dir)
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .expect("veneer runs");
+    std::thread::sleep(std::time::Duration::from_millis(1500));
+    child.kill().expect("killed");
+    child.wait().expect("reaped");
+    for entry in std::fs::read_dir(&dir).expect("folder") {
+        let path = entry.expect("entry").path();
+        let name = path.file_name().unwrap().to_string_lossy().into_owned();
+        if name.starts_with('.') {
+            continue; // the hidden temporary file of the map being written
+        }
+        // Any map present is complete: it decodes.
+        image::open(&path).unwrap_or_else(|error| panic!("{name} is partial: {error}"));
+    }
+}
