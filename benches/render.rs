@@ -155,7 +155,7 @@ fn live_edit(c: &mut Criterion) {
 /// `veneer bake graphs/marble.ron --size 8192 --maps albedo,normal,height --format exr`
 /// against rendering the three passes alone (no conversion, no encoding).
 fn bake_marble(c: &mut Criterion) {
-    use veneer::bake::{BakeSettings, Format, Map, NormalConvention, bake};
+    use veneer::bake::{BakeSettings, BakeSurface, Format, Map, NormalConvention, bake};
     use veneer::render::FlatChannels;
     let gpu = GpuContext::new().expect("a wgpu adapter");
     let graph = veneer::graph::load(std::path::Path::new(MARBLE)).expect("marble preset");
@@ -188,7 +188,7 @@ fn bake_marble(c: &mut Criterion) {
         })
     });
     let settings = BakeSettings {
-        rect: None,
+        surface: veneer::bake::BakeSurface::Plane(None),
         size,
         maps: vec![Map::Albedo, Map::Normal, Map::Height],
         format: Format::Exr,

@@ -119,6 +119,51 @@ pub fn normal_map(
     }
 }
 
+/// Grows covered texels (not NaN) into uncovered ones, `passes` texels outwards, each
+/// uncovered texel taking the mean of its covered 4-neighbours; what stays uncovered
+/// becomes 0.
+pub fn fill_uncovered(pixels: &mut [[f32; 4]], size: u32, passes: u32) {
+    let n = size as usize;
+    let covered = |p: &[f32; 4]| !p[0].is_nan();
+    for _ in 0..passes {
+        let mut grown = Vec::new();
+        for j in 0..n {
+            for i in 0..n {
+                if covered(&pixels[j * n + i]) {
+                    continue;
+                }
+                let neighbours = [
+                    (i.wrapping_sub(1), j),
+                    (i + 1, j),
+                    (i, j.wrapping_sub(1)),
+                    (i, j + 1),
+                ];
+                let (mut sum, mut count) = ([0.0f32; 4], 0.0f32);
+                for (x, y) in neighbours.into_iter().filter(|&(x, y)| x < n && y < n) {
+                    let p = pixels[y * n + x];
+                    if covered(&p) {
+                        (0..4).for_each(|k| sum[k] += p[k]);
+                        count += 1.0;
+                    }
+                }
+                if count > 0.0 {
+                    grown.push((j * n + i, sum.map(|s| s / count)));
+                }
+            }
+        }
+        if grown.is_empty() {
+            break;
+        }
+        for (index, value) in grown {
+            pixels[index] = value;
+        }
+    }
+    pixels
+        .iter_mut()
+        .filter(|p| p[0].is_nan())
+        .for_each(|p| *p = [0.0; 4]);
+}
+
 /// Writes a converted map (atomically, streaming into the temporary file).
 pub fn write(path: &Path, pixels: Vec<[f32; 4]>, size: u32, format: Format) -> std::io::Result<()> {
     let error = |e: image::ImageError| std::io::Error::other(e.to_string());

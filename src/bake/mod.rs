@@ -1,14 +1,16 @@
 //! Baking: a material's outputs rendered into texture maps (albedo, alpha, height,
-//! normal, specular, roughness) over a rectangle of the plane, as 8- or 16-bit PNG or
-//! 32-bit float EXR. Maps are baked one at a time and converted in place, so an
-//! 8192² bake stays near 1.3 GiB however many maps it writes.
+//! normal, specular, roughness) over a rectangle of the plane or into a mesh's UV
+//! layout, as 8- or 16-bit PNG or 32-bit float EXR. Maps are baked one at a time and
+//! converted in place, so an 8192² bake stays near 1.4 GiB however many maps it writes.
 
 mod maps;
 
-pub use maps::{Map, NormalConvention, normal_map};
+pub use maps::{Map, NormalConvention, fill_uncovered, normal_map};
 
 use crate::graph::Graph;
-use crate::render::{FlatChannels, FlatRect, FlatRenderer, GpuContext};
+use crate::render::{
+    FlatChannels, FlatRect, FlatRenderer, GpuContext, GpuMesh, RenderError, UvRenderer,
+};
 use std::path::{Path, PathBuf};
 
 /// File format of baked maps.
@@ -30,11 +32,24 @@ impl Format {
     }
 }
 
+/// Where a bake samples the material.
+#[derive(Clone, Debug, PartialEq)]
+pub enum BakeSurface {
+    /// Over a rectangle of a plane (`None`: the graph's preview square); tileable when the
+    /// graph is periodic over the rectangle.
+    Plane(Option<FlatRect>),
+    /// Into the UV layout of a primitive or a mesh file, placed as the graph's preview
+    /// places it. Seams are padded by growing covered texels outwards.
+    MeshUv(String),
+}
+
+/// How many texels a UV bake grows its islands by, so filtering never reaches the background.
+const UV_PADDING: u32 = 8;
+
 /// What to bake and how.
 #[derive(Clone, Debug, PartialEq)]
 pub struct BakeSettings {
-    /// The plane rectangle covered (`None`: the graph's preview square).
-    pub rect: Option<FlatRect>,
+    pub surface: BakeSurface,
     pub size: u32,
     pub maps: Vec<Map>,
     pub format: Format,
@@ -57,6 +72,18 @@ pub struct BakedMap {
 #[error("{0}")]
 pub struct BakeError(pub String);
 
+impl From<RenderError> for BakeError {
+    fn from(error: RenderError) -> BakeError {
+        BakeError(error.to_string())
+    }
+}
+
+/// The renderer of a bake's surface.
+enum Surface {
+    Plane(FlatRenderer, FlatRect),
+    Uv(UvRenderer, GpuMesh),
+}
+
 /// Bakes `graph` into `<stem>_<map>.<ext>` files, calling `progress(done, total)` as
 /// tiles finish. Every file is written atomically: an interrupted bake leaves no
 /// partial map.
@@ -69,13 +96,40 @@ pub fn bake(
 ) -> Result<Vec<BakedMap>, BakeError> {
     let module =
         crate::codegen::compile_graph(graph).map_err(|error| BakeError(error.to_string()))?;
-    let renderer =
-        FlatRenderer::new(gpu, &module.source).map_err(|error| BakeError(error.to_string()))?;
-    let rect = settings
-        .rect
-        .unwrap_or_else(|| crate::render::preview_rect(graph));
+    let size = settings.size;
+    let (surface, spacing) = match &settings.surface {
+        BakeSurface::Plane(rect) => {
+            let rect = rect.unwrap_or_else(|| crate::render::preview_rect(graph));
+            let spacing = (
+                (rect.x1 - rect.x0) / f64::from(size),
+                (rect.z1 - rect.z0) / f64::from(size),
+            );
+            (
+                Surface::Plane(FlatRenderer::new(gpu, &module.source)?, rect),
+                spacing,
+            )
+        }
+        BakeSurface::MeshUv(name) => {
+            let mesh =
+                crate::mesh::preview_mesh(name).map_err(|error| BakeError(error.to_string()))?;
+            // The UV square is taken to span the preview square: normals are approximate.
+            let texel = 2.0 * graph.preview.size / f64::from(size);
+            (
+                Surface::Uv(
+                    UvRenderer::new(gpu, &module.source)?,
+                    GpuMesh::new(&gpu.device, &mesh),
+                ),
+                (texel, texel),
+            )
+        }
+    };
+    let center = graph.preview.center;
+    let placement = (
+        [center.0 as f32, center.1 as f32, center.2 as f32],
+        graph.preview.size as f32,
+    );
     let tile = u64::from(gpu.device.limits().max_texture_dimension_2d.min(2048));
-    let tiles_per_pass = u64::from(settings.size).div_ceil(tile).pow(2);
+    let tiles_per_pass = u64::from(size).div_ceil(tile).pow(2);
     let total = tiles_per_pass * settings.maps.len() as u64;
     let mut written = Vec::new();
     for (index, map) in settings.maps.iter().enumerate() {
@@ -85,37 +139,42 @@ pub fn bake(
             Map::Height | Map::Normal => FlatChannels::HeightBump,
         };
         let base = index as u64 * tiles_per_pass;
-        let pixels = renderer
-            .render_channels(
-                gpu,
-                rect,
-                settings.size,
-                settings.time,
-                channels,
-                |done, _| progress(base + u64::from(done), total),
-            )
-            .map_err(|error| BakeError(error.to_string()))?;
-        let name = format!(
-            "{}_{}.{}",
-            stem.file_name()
-                .map(|n| n.to_string_lossy())
-                .unwrap_or_default(),
+        let report = |done: u32, _| progress(base + u64::from(done), total);
+        let pixels = match &surface {
+            Surface::Plane(flat, rect) => {
+                flat.render_channels(gpu, *rect, size, settings.time, channels, report)?
+            }
+            Surface::Uv(uv, mesh) => {
+                let mut pixels = uv.render_channels(
+                    gpu,
+                    mesh,
+                    placement,
+                    size,
+                    settings.time,
+                    channels,
+                    report,
+                )?;
+                fill_uncovered(&mut pixels, size, UV_PADDING);
+                pixels
+            }
+        };
+        let stem_name = stem
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        let path = stem.with_file_name(format!(
+            "{stem_name}_{}.{}",
             map.name(),
             settings.format.extension()
-        );
-        let path = stem.with_file_name(name);
-        let spacing = (
-            (rect.x1 - rect.x0) / f64::from(settings.size),
-            (rect.z1 - rect.z0) / f64::from(settings.size),
-        );
-        let pixels = maps::convert(*map, pixels, settings.size, spacing, settings.normal);
-        maps::write(&path, pixels, settings.size, settings.format)
+        ));
+        let pixels = maps::convert(*map, pixels, size, spacing, settings.normal);
+        maps::write(&path, pixels, size, settings.format)
             .map_err(|error| BakeError(format!("{}: {error}", path.display())))?;
         let bytes = std::fs::metadata(&path).map(|m| m.len()).unwrap_or(0);
         written.push(BakedMap {
             map: *map,
             path,
-            size: settings.size,
+            size,
             format: settings.format,
             bytes,
         });

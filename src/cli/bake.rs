@@ -5,7 +5,7 @@ use super::render::parse_flat;
 use clap::{Args, ValueEnum};
 use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
 use std::path::PathBuf;
-use veneer::bake::{BakeSettings, BakedMap, Format, Map, NormalConvention, bake};
+use veneer::bake::{BakeSettings, BakeSurface, BakedMap, Format, Map, NormalConvention, bake};
 use veneer::render::{FlatRect, GpuContext};
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -44,8 +44,11 @@ pub struct BakeArgs {
     #[arg(long, value_enum, default_value = "gl")]
     normal: NormalArg,
     /// The plane rectangle X0,Z0,X1,Z1,Y to bake (default: each graph's preview square).
-    #[arg(long, value_name = "X0,Z0,X1,Z1,Y", value_parser = parse_flat, allow_hyphen_values = true)]
+    #[arg(long, value_name = "X0,Z0,X1,Z1,Y", value_parser = parse_flat, allow_hyphen_values = true, conflicts_with = "mesh")]
     flat: Option<FlatRect>,
+    /// Bake into the UV layout of this primitive or mesh file instead of over a plane.
+    #[arg(long, value_name = "NAME|FILE")]
+    mesh: Option<String>,
     /// Time in seconds.
     #[arg(long, default_value_t = 0.0)]
     time: f32,
@@ -73,7 +76,10 @@ fn parse_map(text: &str) -> Result<Map, String> {
 
 pub fn run(args: BakeArgs) -> Result<(), Failure> {
     let settings = BakeSettings {
-        rect: args.flat,
+        surface: match &args.mesh {
+            Some(mesh) => BakeSurface::MeshUv(mesh.clone()),
+            None => BakeSurface::Plane(args.flat),
+        },
         size: args.size,
         maps: args.maps.clone(),
         format: match args.format {

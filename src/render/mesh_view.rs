@@ -158,6 +158,25 @@ pub struct GpuMesh {
 }
 
 impl GpuMesh {
+    const ATTRIBUTES: [wgpu::VertexAttribute; 3] =
+        wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x2];
+
+    /// The vertex layout of every mesh pipeline: position (location 0), normal (1), uv (2).
+    pub fn layout() -> wgpu::VertexBufferLayout<'static> {
+        wgpu::VertexBufferLayout {
+            array_stride: std::mem::size_of::<Vertex>() as u64,
+            step_mode: wgpu::VertexStepMode::Vertex,
+            attributes: &Self::ATTRIBUTES,
+        }
+    }
+
+    /// Binds the buffers and draws every triangle.
+    pub fn draw(&self, pass: &mut wgpu::RenderPass<'_>) {
+        pass.set_vertex_buffer(0, self.vertices.slice(..));
+        pass.set_index_buffer(self.indices.slice(..), wgpu::IndexFormat::Uint32);
+        pass.draw_indexed(0..self.index_count, 0, 0..1);
+    }
+
     /// Uploads `mesh`.
     pub fn new(device: &wgpu::Device, mesh: &Mesh) -> GpuMesh {
         let vertices: Vec<Vertex> = (0..mesh.positions.len())
@@ -259,7 +278,6 @@ impl MeshPipeline {
             label: Some("mesh render"),
             source: wgpu::ShaderSource::Wgsl(shader_source(material_wgsl, ENTRY_POINTS).into()),
         });
-        let attributes = wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x2];
         let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
             label: Some("mesh render"),
             layout: None,
@@ -267,11 +285,7 @@ impl MeshPipeline {
                 module: &module,
                 entry_point: Some("veneer_mesh_vertex"),
                 compilation_options: Default::default(),
-                buffers: &[Some(wgpu::VertexBufferLayout {
-                    array_stride: std::mem::size_of::<Vertex>() as u64,
-                    step_mode: wgpu::VertexStepMode::Vertex,
-                    attributes: &attributes,
-                })],
+                buffers: &[Some(GpuMesh::layout())],
             },
             primitive: wgpu::PrimitiveState {
                 cull_mode: Some(wgpu::Face::Back),
@@ -385,9 +399,7 @@ impl MeshPipeline {
         if let Some((_, group)) = &self.params {
             pass.set_bind_group(1, group, &[]);
         }
-        pass.set_vertex_buffer(0, mesh.vertices.slice(..));
-        pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
-        pass.draw_indexed(0..mesh.index_count, 0, 0..1);
+        mesh.draw(&mut pass);
     }
 }
 

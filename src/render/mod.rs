@@ -6,6 +6,7 @@ mod flat;
 mod image;
 mod mesh_view;
 mod readback;
+mod uv_bake;
 
 pub use context::{GpuContext, RenderError};
 pub use flat::{FlatChannels, FlatRect, FlatRenderer, albedo_to_rgb8};
@@ -13,6 +14,7 @@ pub use image::{Image, View, preview_rect, render_graph};
 pub use mesh_view::{
     COLOR_FORMAT, GpuMesh, MeshPipeline, MeshRenderer, MeshTarget, MeshView, Projection,
 };
+pub use uv_bake::UvRenderer;
 
 /// WGSL of a material module combined with a renderer's entry points.
 fn shader_source(material_wgsl: &str, entry_points: &str) -> String {

@@ -3,7 +3,7 @@
 //! leaves no partial file.
 
 use crate::support::{difference, flat_rgb8, gpu, root};
-use veneer::bake::{BakeSettings, Format, Map, NormalConvention, bake};
+use veneer::bake::{BakeSettings, BakeSurface, Format, Map, NormalConvention, bake};
 use veneer::graph::{Graph, NodeKind, Value};
 use veneer::render::FlatRect;
 
@@ -16,7 +16,7 @@ fn scratch(name: &str) -> std::path::PathBuf {
 
 fn settings(size: u32, maps: Vec<Map>, format: Format, rect: FlatRect) -> BakeSettings {
     BakeSettings {
-        rect: Some(rect),
+        surface: BakeSurface::Plane(Some(rect)),
         size,
         maps,
         format,
@@ -182,4 +182,54 @@ fn an_interrupted_bake_leaves_no_partial_file() {
         // Any map present is complete: it decodes.
         image::open(&path).unwrap_or_else(|error| panic!("{name} is partial: {error}"));
     }
+}
+
+#[test]
+fn a_uv_bake_fills_the_layout_and_pads_its_seams() {
+    let graph = veneer::graph::load(&root("graphs/marble.ron")).expect("preset");
+    let dir = scratch("uv");
+    let mut uv = settings(
+        256,
+        vec![Map::Albedo],
+        Format::Png8,
+        FlatRect {
+            x0: 0.0,
+            z0: 0.0,
+            x1: 1.0,
+            z1: 1.0,
+            y: 0.0,
+        },
+    );
+    uv.surface = veneer::bake::BakeSurface::MeshUv("tests/meshes/cube_quads.ply".to_string());
+    let error = bake(gpu(), &graph, &uv, &dir.join("no-uv"), |_, _| {});
+    assert!(
+        error.is_ok(),
+        "a mesh without UVs bakes (into texel 0): {error:?}"
+    );
+    uv.surface = veneer::bake::BakeSurface::MeshUv("sphere".to_string());
+    let maps = bake(gpu(), &graph, &uv, &dir.join("sphere"), |_, _| {}).expect("bakes");
+    let image = image::open(&maps[0].path).expect("a PNG").to_rgb8();
+    // The sphere's latitude-longitude layout covers the whole square: no black texels,
+    // and marble's two colours both appear.
+    assert!(
+        image.pixels().all(|p| p.0.iter().any(|&c| c > 20)),
+        "uncovered texels left"
+    );
+    let dark = image.pixels().filter(|p| p.0[0] < 100).count();
+    let light = image.pixels().filter(|p| p.0[0] > 200).count();
+    assert!(dark > 1000 && light > 1000, "{dark} dark, {light} light");
+}
+
+#[test]
+fn fill_uncovered_grows_islands_by_the_padding() {
+    let nan = [f32::NAN; 4];
+    let mut pixels = vec![nan; 25];
+    pixels[12] = [1.0, 0.5, 0.25, 1.0];
+    veneer::bake::fill_uncovered(&mut pixels, 5, 1);
+    assert_eq!(
+        pixels[7],
+        [1.0, 0.5, 0.25, 1.0],
+        "the texel above took its neighbour's value"
+    );
+    assert_eq!(pixels[0], [0.0; 4], "beyond the padding stays empty (0)");
 }

@@ -1,0 +1,46 @@
+//! Entry points of UV-layout baking: each triangle drawn at its texture coordinates, the
+//! material evaluated at its object-space position. Texels no triangle covers keep the
+//! clear value (all bits set: NaN), so the baker can fill them in.
+
+struct VeneerUvView {
+    placement: vec4f,  // texture-space centre (xyz) and size (w) of the mesh
+    tile: vec4f,       // this tile's first texel (xy) and size in texels (zw)
+    size: f32,         // the whole map's width and height in texels
+    time: f32,
+    channels: u32,     // 0: albedo, alpha; 1: specular, shininess; 2: height, bump
+}
+
+@group(0) @binding(0) var<uniform> veneer_uv_view: VeneerUvView;
+
+struct VeneerUvOut {
+    @builtin(position) clip: vec4f,
+    @location(0) position: vec3f,
+    @location(1) normal: vec3f,
+    @location(2) uv: vec2f,
+}
+
+@vertex
+fn veneer_uv_vertex(@location(0) position: vec3f, @location(1) normal: vec3f, @location(2) uv: vec2f) -> VeneerUvOut {
+    let view = veneer_uv_view;
+    let texel = (uv * view.size - view.tile.xy) / view.tile.zw;
+    var out: VeneerUvOut;
+    out.clip = vec4f(texel.x * 2.0 - 1.0, 1.0 - texel.y * 2.0, 0.0, 1.0);
+    out.position = position;
+    out.normal = normal;
+    out.uv = uv;
+    return out;
+}
+
+@fragment
+fn veneer_uv_fragment(input: VeneerUvOut) -> @location(0) vec4u {
+    let view = veneer_uv_view;
+    let position = input.position * view.placement.w + view.placement.xyz;
+    let material = veneer_material(VeneerSurface(position, normalize(input.normal), input.uv, vec4f(0.0), view.time));
+    var channels = vec4f(material.albedo, material.alpha);
+    if view.channels == 1u {
+        channels = vec4f(material.specular, material.shininess);
+    } else if view.channels == 2u {
+        channels = vec4f(material.height, material.bump);
+    }
+    return bitcast<vec4u>(channels);
+}
