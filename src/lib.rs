@@ -8,6 +8,7 @@ pub mod codegen;
 pub mod eval;
 pub mod fsutil;
 pub mod graph;
+pub mod lint;
 pub mod mesh;
 pub mod render;
 pub mod snapshot;

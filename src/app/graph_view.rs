@@ -128,6 +128,8 @@ pub enum Framing {
 pub struct Viewer<'a> {
     /// Compile errors by node, shown on the nodes.
     pub errors: &'a BTreeMap<Option<NodeId>, String>,
+    /// Numerical hazards by node, shown on the nodes.
+    pub warnings: &'a BTreeMap<NodeId, String>,
     /// A message for the status bar (e.g. why a wire was refused).
     pub hint: &'a mut Option<String>,
     /// The add-node menu's search text.
@@ -306,6 +308,10 @@ impl SnarlViewer<Node> for Viewer<'_> {
             } else {
                 title
             });
+            if let Some(warning) = self.warnings.get(&node.id) {
+                ui.label(RichText::new("⚠").color(Color32::from_rgb(230, 180, 60)))
+                    .on_hover_text(warning);
+            }
             if let Some(error) = self.errors.get(&Some(node.id)) {
                 ui.label(RichText::new("⚠").color(Color32::from_rgb(240, 80, 60)))
                     .on_hover_text(error);

@@ -204,7 +204,13 @@ fn depends_on(snarl: &Snarl<Node>, node: egui_snarl::NodeId, source: egui_snarl:
 }
 
 /// Shows the inspector for node `id` of `snarl`.
-pub fn show(ui: &mut Ui, snarl: &mut Snarl<Node>, id: egui_snarl::NodeId, error: Option<&String>) {
+pub fn show(
+    ui: &mut Ui,
+    snarl: &mut Snarl<Node>,
+    id: egui_snarl::NodeId,
+    error: Option<&String>,
+    warning: Option<&String>,
+) {
     let Some(node) = snarl.get_node_mut(id) else {
         return;
     };
@@ -218,6 +224,12 @@ pub fn show(ui: &mut Ui, snarl: &mut Snarl<Node>, id: egui_snarl::NodeId, error:
     });
     if let Some(error) = error {
         ui.colored_label(egui::Color32::from_rgb(240, 80, 60), error);
+    }
+    if let Some(warning) = warning {
+        ui.colored_label(
+            egui::Color32::from_rgb(230, 180, 60),
+            format!("⚠ {warning}"),
+        );
     }
     settings(ui, &mut node.kind);
     ui.separator();

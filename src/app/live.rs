@@ -18,6 +18,10 @@ pub struct LiveMaterial {
     pub compiles: u64,
     /// Bumped whenever the module's code changes, so the preview knows to rebuild its pipeline.
     pub generation: u64,
+    /// Numerical hazards of the graph, by node (one message per line).
+    pub warnings: BTreeMap<NodeId, String>,
+    /// The graph the warnings were found for.
+    linted: Option<Graph>,
 }
 
 /// What decides the generated code: nodes with their kinds and settings, and the wires.
@@ -72,6 +76,25 @@ impl LiveMaterial {
             }
         }
         true
+    }
+
+    /// Finds the numerical hazards of `graph` if it changed since the last call (constants
+    /// matter here, unlike for compiling).
+    pub fn lint(&mut self, graph: &Graph) {
+        if self.linted.as_ref() == Some(graph) {
+            return;
+        }
+        self.linted = Some(graph.clone());
+        self.warnings.clear();
+        if let Ok(checked) = crate::graph::check(graph) {
+            for lint in crate::lint::lint(&checked, crate::lint::preview_positions(graph)) {
+                let entry = self.warnings.entry(lint.node).or_default();
+                if !entry.is_empty() {
+                    entry.push('\n');
+                }
+                entry.push_str(&lint.message);
+            }
+        }
     }
 
     /// The uniform values of the current module for `graph`.

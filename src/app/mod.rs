@@ -412,8 +412,21 @@ impl VeneerApp {
                 Some(error) => {
                     ui.colored_label(egui::Color32::from_rgb(240, 80, 60), format!("⚠ {error}"));
                 }
-                None => {
+                None if self.live.warnings.is_empty() => {
                     ui.label("✔ material compiles");
+                }
+                None => {
+                    let count = self
+                        .live
+                        .warnings
+                        .values()
+                        .map(|w| w.lines().count())
+                        .sum::<usize>();
+                    ui.label("✔ material compiles");
+                    ui.colored_label(
+                        egui::Color32::from_rgb(230, 180, 60),
+                        format!("⚠ {count} numerical warnings (see the marked nodes)"),
+                    );
                 }
             }
             if let Some(message) = &self.message {
@@ -560,6 +573,7 @@ impl VeneerApp {
         let before = self.clicked.take();
         let mut viewer = Viewer {
             errors: &self.live.errors,
+            warnings: &self.live.warnings,
             hint: &mut hint,
             search: &mut self.search,
             frame,
@@ -587,6 +601,7 @@ impl VeneerApp {
                 .show(ui.ctx(), |ui| {
                     let mut viewer = Viewer {
                         errors: &self.live.errors,
+                        warnings: &self.live.warnings,
                         hint: &mut None,
                         search: &mut self.search,
                         frame: None,
@@ -612,6 +627,7 @@ impl VeneerApp {
             self.document.graph = graph;
         }
         self.live.update(&self.document.graph);
+        self.live.lint(&self.document.graph);
         if !ctx.input(|input| input.pointer.any_down()) {
             self.document.history.commit(&self.document.graph);
         }
@@ -686,8 +702,9 @@ impl eframe::App for VeneerApp {
             egui::ScrollArea::vertical().show(ui, |ui| match self.selection.first().copied() {
                 Some(node) if self.snarl.get_node(node).is_some() => {
                     self.node_thumbnail(ui, node);
-                    let error = self.live.errors.get(&Some(self.snarl[node].id));
-                    inspector::show(ui, &mut self.snarl, node, error);
+                    let id = self.snarl[node].id;
+                    let (error, warning) = (self.live.errors.get(&Some(id)), self.live.warnings.get(&id));
+                    inspector::show(ui, &mut self.snarl, node, error, warning);
                 }
                 _ => {
                     ui.weak("Select a node to edit it. Right-click the graph (or press Space) to add one.");

@@ -1,4 +1,4 @@
-//! `veneer check`: load, type-check, compile and validate graph files.
+//! `veneer check`: load, type-check, compile, validate and lint graph files.
 
 use super::{Failure, in_file};
 use clap::Args;
@@ -6,21 +6,38 @@ use std::path::PathBuf;
 
 #[derive(Args)]
 pub struct CheckArgs {
-    /// Graph files to check.
+    /// Graph files to check; numerical hazards are printed as warnings (they do not fail the check).
     #[arg(required = true)]
     graphs: Vec<PathBuf>,
+}
+
+/// The lints of a graph that compiles.
+fn check_one(path: &PathBuf) -> Result<Vec<veneer::lint::Lint>, Failure> {
+    let graph = veneer::graph::load(path)?;
+    let checked = veneer::graph::check(&graph)
+        .map_err(|errors| in_file(path, veneer::codegen::CompileError::Check(errors)))?;
+    veneer::codegen::compile(&checked).map_err(|error| in_file(path, error))?;
+    Ok(veneer::lint::lint(
+        &checked,
+        veneer::lint::preview_positions(&graph),
+    ))
 }
 
 pub fn run(args: CheckArgs) -> Result<(), Failure> {
     let mut failures = Vec::new();
     for path in &args.graphs {
-        let result = veneer::graph::load(path)
-            .map_err(Failure::from)
-            .and_then(|graph| {
-                veneer::codegen::compile_graph(&graph).map_err(|error| in_file(path, error))
-            });
-        match result {
-            Ok(_) => println!("{}: ok", path.display()),
+        match check_one(path) {
+            Ok(lints) => {
+                for lint in &lints {
+                    eprintln!("{}: warning: {lint}", path.display());
+                }
+                let warnings = if lints.is_empty() {
+                    String::new()
+                } else {
+                    format!(" ({} warnings)", lints.len())
+                };
+                println!("{}: ok{warnings}", path.display());
+            }
             Err(Failure(message, _)) => failures.push(message),
         }
     }

@@ -199,3 +199,40 @@ fn a_comment_frame_is_drawn_around_the_selected_nodes_and_undone() {
         "undo removes the frame"
     );
 }
+
+#[test]
+fn a_numerical_hazard_is_marked_on_its_node_without_blocking_the_material() {
+    let dir = scratch("lint");
+    let mut harness = editor(&dir, None);
+    select_node(&mut harness, "ring sharp");
+    // Make the smoothstep's edges equal by typing 0.85 into edge0 (0.25 in the inspector).
+    harness
+        .get_all_by_value("0.250")
+        .last()
+        .expect("edge0 in the inspector")
+        .focus();
+    harness.run();
+    harness.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::A);
+    harness.run();
+    harness.get_by(|n| n.is_focused()).type_text("0.85");
+    press(&mut harness, egui::Key::Enter, false);
+    let app = harness.state();
+    let node = app
+        .document
+        .graph
+        .nodes
+        .iter()
+        .find(|n| n.label == "ring sharp")
+        .unwrap()
+        .id;
+    assert!(
+        app.live
+            .warnings
+            .get(&node)
+            .is_some_and(|w| w.contains("a hard step")),
+        "{:?}",
+        app.live.warnings
+    );
+    assert!(app.live.errors.is_empty(), "a warning is not an error");
+    assert!(shows(&harness, "numerical warnings"));
+}

@@ -6,6 +6,7 @@ mod cli;
 mod cpu_gpu;
 mod export;
 mod graph_files;
+mod lint;
 mod meshes;
 mod node_kinds;
 mod presets;
