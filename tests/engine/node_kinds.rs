@@ -246,3 +246,96 @@ fn every_node_kind_agrees_between_cpu_and_gpu() {
         failures.join("\n")
     );
 }
+
+/// Every node kind at coordinates from 1e-6 to 1e7: the CPU evaluator in f32 and f64 and
+/// the GPU give finite results everywhere (precision runs out far out, values do not).
+#[test]
+fn every_node_kind_stays_finite_at_extreme_coordinates() {
+    use veneer::eval::{Evaluator, Surface};
+    let mut failures = Vec::new();
+    for kind in kinds() {
+        let graph = graph_for(&kind);
+        let evaluator = Evaluator::new(&graph).expect("graph checks");
+        for scale in [1.0e-6, 1.0e-3, 1.0, 1.0e3, 1.0e5, 1.0e7] {
+            for p in [
+                [scale, 0.0, 0.0],
+                [-scale, scale, 0.5 * scale],
+                [0.0, 0.0, 0.0],
+            ] {
+                let wide = evaluator.eval(&Surface::<f64>::at(p)).albedo;
+                let narrow = evaluator.eval(&Surface::<f32>::at(p)).albedo;
+                if !wide.iter().all(|v| v.is_finite()) || !narrow.iter().all(|v| v.is_finite()) {
+                    failures.push(format!("{kind:?} at {p:?}: {wide:?} / {narrow:?}"));
+                }
+            }
+        }
+        let source = veneer::codegen::compile_graph(&graph)
+            .expect("compiles")
+            .source;
+        let renderer =
+            veneer::render::FlatRenderer::new(crate::support::gpu(), &source).expect("pipeline");
+        let far = FlatRect {
+            x0: -1.0e7,
+            z0: -1.0e7,
+            x1: 1.0e7,
+            z1: 1.0e7,
+            y: 1.0e7,
+        };
+        let pixels = renderer
+            .render(crate::support::gpu(), far, 8, 0.0)
+            .expect("renders");
+        if !pixels.iter().flatten().all(|v| v.is_finite()) {
+            failures.push(format!("{kind:?} on the GPU near 1e7"));
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "non-finite results:\n{}",
+        failures.join("\n")
+    );
+}
+
+/// The cases issue 5 names: points exactly on the wood's axis, an axis parallel to the
+/// reference up vector, a zero axis, and a 64-octave fBm, all finite in f32 and f64.
+#[test]
+fn named_degenerate_cases_stay_finite() {
+    use veneer::eval::{Evaluator, Surface};
+    let finite = |graph: &Graph, p: [f64; 3]| {
+        let evaluator = Evaluator::new(graph).expect("checks");
+        let wide = evaluator.eval(&Surface::<f64>::at(p)).albedo;
+        let narrow = evaluator.eval(&Surface::<f32>::at(p)).albedo;
+        wide.iter().all(|v| v.is_finite()) && narrow.iter().all(|v| v.is_finite())
+    };
+    let wood = veneer::graph::load(&crate::support::root("graphs/wood.ron")).expect("wood");
+    let axis = glam::DVec3::new(0.2, 1.0, -0.1).normalize();
+    for t in [-1.0e4, -3.0, 0.0, 7.5, 1.0e4] {
+        let p = glam::DVec3::new(25.0, 0.0, 25.0) + axis * t;
+        assert!(finite(&wood, p.to_array()), "on the wood's axis at t = {t}");
+    }
+    for axis in [
+        Value::Vec3(0.0, 1.0, 0.0),
+        Value::Vec3(0.0, -1.0, 0.0),
+        Value::Vec3(0.0, 0.0, 0.0),
+        Value::Vec3(1e-30, 0.0, 0.0),
+    ] {
+        let mut graph = graph_for(&NodeKind::Cylindrical);
+        let node = graph
+            .nodes
+            .iter()
+            .find(|n| n.label == "under test")
+            .unwrap()
+            .id;
+        graph.set_input(node, "axis", axis);
+        for p in [[0.0, 0.0, 0.0], [0.0, 5.0, 0.0], [1.0, 2.0, 3.0]] {
+            assert!(finite(&graph, p), "axis {axis:?} at {p:?}");
+        }
+    }
+    let graph = graph_for(&NodeKind::Fbm {
+        basis: Basis::Gradient,
+        octaves: 64,
+        normalize: true,
+    });
+    for p in [[0.3, 0.1, 0.7], [1.0e3, 0.0, -1.0e3], [1.0e7, 1.0e7, 1.0e7]] {
+        assert!(finite(&graph, p), "64-octave fBm at {p:?}");
+    }
+}
