@@ -32,7 +32,11 @@ fn veneer_cylindrical(p: vec3f, origin: vec3f, axis: vec3f) -> vec3f {
     let v = cross(d, u);
     let t = dot(p - origin, d);
     let radial = p - (origin + t * d);
-    let theta = atan2(dot(radial, v), dot(radial, u));
+    // On the axis the angle is undefined (WGSL's atan2(0, 0) is), and within 1e-5 of
+    // |p - origin| from it the radial vector is rounding noise: call the angle 0 there.
+    let across = vec2f(dot(radial, u), dot(radial, v));
+    let on_axis = dot(across, across) <= 1.0e-10 * dot(p - origin, p - origin);
+    let theta = select(atan2(across.y, across.x), 0.0, on_axis);
     return vec3f(t, length(radial), theta);
 }
 

@@ -6,14 +6,16 @@ use crate::graph::{
     MathOp, Metric, NodeKind, RampInterpolation, UnaryOp, Value, ValueType, WorleyFeature,
 };
 
-/// A WGSL float literal for `x` (always with a decimal point or exponent).
+/// A WGSL f32 literal for `x` (`0.35f`): typed, so that expressions of constants only
+/// are never abstract (naga rejects builtins of abstract arguments outside constants).
 pub fn float_literal(x: f64) -> String {
     let text = format!("{x:?}");
-    if text.contains(['.', 'e', 'E']) || text.contains("inf") || text.contains("NaN") {
+    let text = if text.contains(['.', 'e', 'E']) {
         text
     } else {
         format!("{text}.0")
-    }
+    };
+    format!("{text}f")
 }
 
 /// A WGSL literal for a constant.
@@ -55,8 +57,16 @@ pub fn emit_node(checked: &CheckedNode, inputs: &[String], name: &str) -> NodeCo
     use NodeKind::*;
     let mut code = NodeCode::default();
     let i = inputs;
+    // Typed, so that an expression of constants only (abstract in WGSL) becomes f32.
+    let output_type = checked
+        .signature
+        .outputs
+        .first()
+        .map(|pin| pin.ty.wgsl())
+        .unwrap_or("f32");
     let single = |code: &mut NodeCode, expression: String| {
-        code.bind(name, expression);
+        code.statements
+            .push(format!("let {name}: {output_type} = {expression};"));
         code.outputs = vec![name.to_string()];
     };
     match &checked.node.kind {
@@ -279,7 +289,10 @@ pub fn emit_node(checked: &CheckedNode, inputs: &[String], name: &str) -> NodeCo
 }
 
 fn call(code: &mut NodeCode, name: &str, function: &str, inputs: &[String]) {
-    code.bind(name, format!("{function}({})", inputs.join(", ")));
+    code.statements.push(format!(
+        "let {name}: f32 = {function}({});",
+        inputs.join(", ")
+    ));
     code.outputs = vec![name.to_string()];
     code.library.push(function.to_string());
 }

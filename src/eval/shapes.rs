@@ -34,10 +34,19 @@ pub fn cylindrical<R: Real>(p: V3<R>, origin: V3<R>, axis: V3<R>) -> V3<R> {
     let v = cross(d, u);
     let t = dot(sub(p, origin), d, 3);
     let radial = sub(p, add(origin, scale(d, t)));
+    // On (or within rounding noise of) the axis the angle is undefined: 0, as in the WGSL.
+    let across = [dot(radial, u, 3), dot(radial, v, 3)];
+    let relative = sub(p, origin);
+    let on_axis =
+        across[0] * across[0] + across[1] * across[1] <= R::c(1.0e-10) * dot(relative, relative, 3);
     [
         t,
         length(radial, 3),
-        dot(radial, v, 3).atan2(dot(radial, u, 3)),
+        if on_axis {
+            R::c(0.0)
+        } else {
+            across[1].atan2(across[0])
+        },
     ]
 }
 

@@ -3,7 +3,8 @@
 //! restores it, and compile errors land on the node that caused them.
 
 use crate::support::{
-    add_node, editor, press, preview_pixels, scratch, screen, select_node, shows, wire_into_alpha,
+    add_node, editor, press, preview_pixels, retype_drag_value, scratch, screen, select_node,
+    shows, wire_into_alpha,
 };
 use egui_kittest::kittest::Queryable;
 use veneer::graph::NodeKind;
@@ -91,16 +92,7 @@ fn a_parameter_edit_changes_the_preview_without_recompiling_and_undo_restores_it
     let compiles = harness.state().live.compiles;
     select_node(&mut harness, "material");
     // Type a much lower shininess into the inspector's drag value: a broad highlight.
-    harness
-        .get_all_by_value("24.0")
-        .last()
-        .expect("shininess in the inspector")
-        .focus();
-    harness.run();
-    harness.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::A);
-    harness.run();
-    harness.get_by(|n| n.is_focused()).type_text("2");
-    press(&mut harness, egui::Key::Enter, false);
+    retype_drag_value(&mut harness, "24.0", "2");
     assert!(harness.state().document.is_dirty());
     let edited = preview_pixels(&screen(&mut harness));
     assert_ne!(original, edited, "the preview shows the new colour");
@@ -206,16 +198,7 @@ fn a_numerical_hazard_is_marked_on_its_node_without_blocking_the_material() {
     let mut harness = editor(&dir, None);
     select_node(&mut harness, "ring sharp");
     // Make the smoothstep's edges equal by typing 0.85 into edge0 (0.25 in the inspector).
-    harness
-        .get_all_by_value("0.250")
-        .last()
-        .expect("edge0 in the inspector")
-        .focus();
-    harness.run();
-    harness.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::A);
-    harness.run();
-    harness.get_by(|n| n.is_focused()).type_text("0.85");
-    press(&mut harness, egui::Key::Enter, false);
+    retype_drag_value(&mut harness, "0.250", "0.85");
     let app = harness.state();
     let node = app
         .document
@@ -225,6 +208,10 @@ fn a_numerical_hazard_is_marked_on_its_node_without_blocking_the_material() {
         .find(|n| n.label == "ring sharp")
         .unwrap()
         .id;
+    eprintln!(
+        "inputs: {:?}",
+        app.document.graph.node(node).unwrap().inputs
+    );
     assert!(
         app.live
             .warnings

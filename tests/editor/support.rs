@@ -121,3 +121,23 @@ pub fn wire_into_alpha(harness: &mut Harness<'static, VeneerApp>, source: &str) 
     harness.get_by_label(source).click_accesskit();
     harness.run();
 }
+
+/// Types `text` over the value of the drag value currently showing `shown` (the first one
+/// in the window: the inspector's, as the side panel comes before the graph) and presses
+/// Enter. A focused drag value is a text
+/// field with its text selected; it commits when it loses focus.
+pub fn retype_drag_value(harness: &mut Harness<'static, VeneerApp>, shown: &str, text: &str) {
+    harness
+        .get_all_by_value(shown)
+        .next()
+        .expect("a drag value shows the value")
+        .focus();
+    harness.run();
+    harness
+        .get_all_by_value(shown)
+        .next()
+        .expect("the focused field shows it too")
+        .type_text(text);
+    harness.run();
+    press(harness, egui::Key::Enter, false);
+}

@@ -10,6 +10,7 @@ mod lint;
 mod meshes;
 mod node_kinds;
 mod presets;
+mod properties;
 mod seed_reference;
 mod snapshots;
 mod support;

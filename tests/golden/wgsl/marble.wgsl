@@ -126,28 +126,28 @@ fn veneer_smoothstep(edge0: f32, edge1: f32, x: f32) -> f32 {
 
 fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     // Project 'vein axis' (#1)
-    let vein_axis = veneer_project(s.position, vec3f(0.0, 0.0, 0.0), vec3f(0.2, 0.6, 0.77));
+    let vein_axis: f32 = veneer_project(s.position, vec3f(0.0f, 0.0f, 0.0f), vec3f(0.2f, 0.6f, 0.77f));
     // Transform 'marble space' (#2)
-    let marble_space = s.position * vec3f(0.15, 0.15, 0.15) + vec3f(0.0, 0.0, 0.0);
+    let marble_space: vec3f = s.position * vec3f(0.15f, 0.15f, 0.15f) + vec3f(0.0f, 0.0f, 0.0f);
     // Transform 'turbulence space' (#3)
-    let turbulence_space = marble_space * vec3f(2.0, 2.0, 2.0) + vec3f(0.0, 0.0, 0.0);
+    let turbulence_space: vec3f = marble_space * vec3f(2.0f, 2.0f, 2.0f) + vec3f(0.0f, 0.0f, 0.0f);
     // fBm 'turbulence' (#4)
-    let turbulence = veneer_fbm_value_sine(turbulence_space * 1.0, 5, 2.0, 0.5, 0.5, false);
+    let turbulence: f32 = veneer_fbm_value_sine(turbulence_space * 1.0f, 5, 2.0f, 0.5f, 0.5f, false);
     // Remap 'warp' (#5)
-    let warp = veneer_remap(turbulence, 0.0, 1.0, -1.0, 1.0);
+    let warp: f32 = veneer_remap(turbulence, 0.0f, 1.0f, -1.0f, 1.0f);
     // Sine band 'bands' (#6)
-    let bands = veneer_sine_band(vein_axis, 3.0, 10.0, warp);
+    let bands: f32 = veneer_sine_band(vein_axis, 3.0f, 10.0f, warp);
     // Smoothstep 'veins' (#7)
-    let veins = veneer_smoothstep(0.25, 0.75, bands);
+    let veins: f32 = veneer_smoothstep(0.25f, 0.75f, bands);
     // Mix 'stone colour' (#8)
-    let stone_colour = mix(vec3f(0.2, 0.2, 0.25), vec3f(0.92, 0.92, 0.94), veins);
+    let stone_colour: vec3f = mix(vec3f(0.2f, 0.2f, 0.25f), vec3f(0.92f, 0.92f, 0.94f), veins);
     // Material 'material' (#9)
     return VeneerMaterial(
         stone_colour, // albedo
-        1.0, // alpha
-        vec3f(0.3, 0.3, 0.3), // specular
-        64.0, // shininess
-        vec3f(0.0, 0.0, 0.0), // bump
-        0.0, // height
+        1.0f, // alpha
+        vec3f(0.3f, 0.3f, 0.3f), // specular
+        64.0f, // shininess
+        vec3f(0.0f, 0.0f, 0.0f), // bump
+        0.0f, // height
     );
 }

@@ -166,38 +166,38 @@ fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     // Split 'position parts' (#7)
     let position_parts = s.position;
     // Tiles 'flagstones' (#2)
-    let flagstones = veneer_tiles(s.position, vec2f(1.1, 1.1), vec2f(0.02, 0.02), 0.5, 0.01);
+    let flagstones = veneer_tiles(s.position, vec2f(1.1f, 1.1f), vec2f(0.02f, 0.02f), 0.5f, 0.01f);
     // Split 'tile cell' (#3)
     let tile_cell = flagstones.cell;
     // Combine 'tile id' (#4)
-    let tile_id = vec3f(tile_cell.x, 0.0, tile_cell.y);
+    let tile_id: vec3f = vec3f(tile_cell.x, 0.0f, tile_cell.y);
     // Noise 'tile noise' (#5)
-    let tile_noise = veneer_noise_gradient(tile_id * 2.3);
+    let tile_noise: f32 = veneer_noise_gradient(tile_id * 2.3f);
     // Remap 'vein slope' (#6)
-    let vein_slope = veneer_remap(tile_noise, 0.0, 1.0, -3.0, 3.0);
+    let vein_slope: f32 = veneer_remap(tile_noise, 0.0f, 1.0f, -3.0f, 3.0f);
     // Math 'slope offset' (#8)
-    let slope_offset = vein_slope * position_parts.z;
+    let slope_offset: f32 = vein_slope * position_parts.z;
     // Math 'vein coordinate' (#9)
-    let vein_coordinate = position_parts.x + slope_offset;
+    let vein_coordinate: f32 = position_parts.x + slope_offset;
     // Turbulence 'turbulence' (#10)
-    let turbulence = veneer_turbulence_gradient(s.position * 1.0, 4, 2.07, 0.4830917874396135, 1.0, false);
+    let turbulence: f32 = veneer_turbulence_gradient(s.position * 1.0f, 4, 2.07f, 0.4830917874396135f, 1.0f, false);
     // Sine band 'veins' (#11)
-    let veins = veneer_sine_band(vein_coordinate, 5.711818181818182, 6.0, turbulence);
+    let veins: f32 = veneer_sine_band(vein_coordinate, 5.711818181818182f, 6.0f, turbulence);
     // Math 'vein falloff' (#12)
-    let vein_falloff = veneer_safe_pow_f32(veins, 0.125);
+    let vein_falloff: f32 = veneer_safe_pow_f32(veins, 0.125f);
     // Remap 'vein shade' (#13)
-    let vein_shade = veneer_remap(vein_falloff, 0.0, 1.0, 0.2, 0.95);
+    let vein_shade: f32 = veneer_remap(vein_falloff, 0.0f, 1.0f, 0.2f, 0.95f);
     // Math 'warm marble' (#14)
-    let warm_marble = vec3f(vein_shade) * vec3f(1.0, 1.0, 0.95);
+    let warm_marble: vec3f = vec3f(vein_shade) * vec3f(1.0f, 1.0f, 0.95f);
     // Mix 'floor colour' (#15)
-    let floor_colour = mix(vec3f(0.2, 0.2, 0.2), warm_marble, flagstones.mask);
+    let floor_colour: vec3f = mix(vec3f(0.2f, 0.2f, 0.2f), warm_marble, flagstones.mask);
     // Material 'material' (#16)
     return VeneerMaterial(
         floor_colour, // albedo
-        1.0, // alpha
-        vec3f(0.5, 0.5, 0.5), // specular
-        80.0, // shininess
-        vec3f(0.0, 0.0, 0.0), // bump
-        0.0, // height
+        1.0f, // alpha
+        vec3f(0.5f, 0.5f, 0.5f), // specular
+        80.0f, // shininess
+        vec3f(0.0f, 0.0f, 0.0f), // bump
+        0.0f, // height
     );
 }

@@ -35,7 +35,11 @@ fn veneer_cylindrical(p: vec3f, origin: vec3f, axis: vec3f) -> vec3f {
     let v = cross(d, u);
     let t = dot(p - origin, d);
     let radial = p - (origin + t * d);
-    let theta = atan2(dot(radial, v), dot(radial, u));
+    // On the axis the angle is undefined (WGSL's atan2(0, 0) is), and within 1e-5 of
+    // |p - origin| from it the radial vector is rounding noise: call the angle 0 there.
+    let across = vec2f(dot(radial, u), dot(radial, v));
+    let on_axis = dot(across, across) <= 1.0e-10 * dot(p - origin, p - origin);
+    let theta = select(atan2(across.y, across.x), 0.0, on_axis);
     return vec3f(t, length(radial), theta);
 }
 
@@ -135,76 +139,76 @@ fn veneer_smoothstep(edge0: f32, edge1: f32, x: f32) -> f32 {
 
 fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     // Cylindrical 'trunk' (#1)
-    let trunk = veneer_cylindrical(s.position, vec3f(25.0, 0.0, 25.0), vec3f(0.2, 1.0, -0.1));
+    let trunk = veneer_cylindrical(s.position, vec3f(25.0f, 0.0f, 25.0f), vec3f(0.2f, 1.0f, -0.1f));
     // Transform 'warp space' (#2)
-    let warp_space = s.position * vec3f(0.2, 0.2, 0.2) + vec3f(0.0, 0.0, 0.0);
+    let warp_space: vec3f = s.position * vec3f(0.2f, 0.2f, 0.2f) + vec3f(0.0f, 0.0f, 0.0f);
     // Transform 'coarse warp space' (#3)
-    let coarse_warp_space = warp_space * vec3f(2.0, 2.0, 2.0) + vec3f(0.0, 0.0, 0.0);
+    let coarse_warp_space: vec3f = warp_space * vec3f(2.0f, 2.0f, 2.0f) + vec3f(0.0f, 0.0f, 0.0f);
     // fBm 'coarse warp' (#4)
-    let coarse_warp = veneer_fbm_value_sine(coarse_warp_space * 1.0, 5, 2.0, 0.5, 0.5, false);
+    let coarse_warp: f32 = veneer_fbm_value_sine(coarse_warp_space * 1.0f, 5, 2.0f, 0.5f, 0.5f, false);
     // Remap 'coarse warp signed' (#5)
-    let coarse_warp_signed = veneer_remap(coarse_warp, 0.0, 1.0, -1.0, 1.0);
+    let coarse_warp_signed: f32 = veneer_remap(coarse_warp, 0.0f, 1.0f, -1.0f, 1.0f);
     // Math 'coarse warp amount' (#9)
-    let coarse_warp_amount = coarse_warp_signed * 0.35;
+    let coarse_warp_amount: f32 = coarse_warp_signed * 0.35f;
     // Math 'radius coarse' (#11)
-    let radius_coarse = trunk.y + coarse_warp_amount;
+    let radius_coarse: f32 = trunk.y + coarse_warp_amount;
     // Transform 'fine warp space' (#6)
-    let fine_warp_space = warp_space * vec3f(6.0, 6.0, 6.0) + vec3f(13.7, 13.7, 13.7);
+    let fine_warp_space: vec3f = warp_space * vec3f(6.0f, 6.0f, 6.0f) + vec3f(13.7f, 13.7f, 13.7f);
     // fBm 'fine warp' (#7)
-    let fine_warp = veneer_fbm_value_sine(fine_warp_space * 1.0, 5, 2.0, 0.5, 0.5, false);
+    let fine_warp: f32 = veneer_fbm_value_sine(fine_warp_space * 1.0f, 5, 2.0f, 0.5f, 0.5f, false);
     // Remap 'fine warp signed' (#8)
-    let fine_warp_signed = veneer_remap(fine_warp, 0.0, 1.0, -1.0, 1.0);
+    let fine_warp_signed: f32 = veneer_remap(fine_warp, 0.0f, 1.0f, -1.0f, 1.0f);
     // Math 'fine warp amount' (#10)
-    let fine_warp_amount = fine_warp_signed * 0.1;
+    let fine_warp_amount: f32 = fine_warp_signed * 0.1f;
     // Math 'warped radius' (#12)
-    let warped_radius = radius_coarse + fine_warp_amount;
+    let warped_radius: f32 = radius_coarse + fine_warp_amount;
     // Math 'taper' (#13)
-    let taper = warped_radius * 0.25;
+    let taper: f32 = warped_radius * 0.25f;
     // Math 'taper squared' (#14)
-    let taper_squared = taper * warped_radius;
+    let taper_squared: f32 = taper * warped_radius;
     // Math 'tapered radius' (#15)
-    let tapered_radius = warped_radius + taper_squared;
+    let tapered_radius: f32 = warped_radius + taper_squared;
     // Math 'ring phase' (#16)
-    let ring_phase = tapered_radius * 0.5;
+    let ring_phase: f32 = tapered_radius * 0.5f;
     // Sine band 'rings' (#17)
-    let rings = veneer_sine_band(ring_phase, 1.0, 0.0, 0.0);
+    let rings: f32 = veneer_sine_band(ring_phase, 1.0f, 0.0f, 0.0f);
     // Smoothstep 'ring sharp' (#18)
-    let ring_sharp = veneer_smoothstep(0.25, 0.85, rings);
+    let ring_sharp: f32 = veneer_smoothstep(0.25f, 0.85f, rings);
     // Mix 'ring colour' (#26)
-    let ring_colour = mix(vec3f(0.33, 0.17, 0.08), vec3f(0.62, 0.42, 0.22), ring_sharp);
+    let ring_colour: vec3f = mix(vec3f(0.33f, 0.17f, 0.08f), vec3f(0.62f, 0.42f, 0.22f), ring_sharp);
     // Math 'grain along' (#19)
-    let grain_along = trunk.x * 0.6;
+    let grain_along: f32 = trunk.x * 0.6f;
     // Combine 'grain coords' (#20)
-    let grain_coords = vec3f(grain_along, trunk.z, 0.0);
+    let grain_coords: vec3f = vec3f(grain_along, trunk.z, 0.0f);
     // Transform 'grain drift' (#21)
-    let grain_drift = s.position * vec3f(0.05, 0.05, 0.05) + vec3f(0.0, 0.0, 0.0);
+    let grain_drift: vec3f = s.position * vec3f(0.05f, 0.05f, 0.05f) + vec3f(0.0f, 0.0f, 0.0f);
     // Math 'grain space' (#22)
-    let grain_space = grain_coords + grain_drift;
+    let grain_space: vec3f = grain_coords + grain_drift;
     // fBm 'grain' (#23)
-    let grain = veneer_fbm_value_sine(grain_space * 1.0, 5, 2.0, 0.5, 0.5, false);
+    let grain: f32 = veneer_fbm_value_sine(grain_space * 1.0f, 5, 2.0f, 0.5f, 0.5f, false);
     // Smoothstep 'grain contrast' (#24)
-    let grain_contrast = veneer_smoothstep(0.35, 0.75, grain);
+    let grain_contrast: f32 = veneer_smoothstep(0.35f, 0.75f, grain);
     // Mix 'grain shade' (#25)
-    let grain_shade = mix(0.85, 1.05, grain_contrast);
+    let grain_shade: f32 = mix(0.85f, 1.05f, grain_contrast);
     // Math 'grained colour' (#27)
-    let grained_colour = ring_colour * vec3f(grain_shade);
+    let grained_colour: vec3f = ring_colour * vec3f(grain_shade);
     // Transform 'tint space' (#28)
-    let tint_space = s.position * vec3f(0.08, 0.08, 0.08) + vec3f(4.2, 4.2, 4.2);
+    let tint_space: vec3f = s.position * vec3f(0.08f, 0.08f, 0.08f) + vec3f(4.2f, 4.2f, 4.2f);
     // fBm 'tint' (#29)
-    let tint = veneer_fbm_value_sine(tint_space * 1.0, 5, 2.0, 0.5, 0.5, false);
+    let tint: f32 = veneer_fbm_value_sine(tint_space * 1.0f, 5, 2.0f, 0.5f, 0.5f, false);
     // Math 'tint amount' (#30)
-    let tint_amount = tint * 0.1;
+    let tint_amount: f32 = tint * 0.1f;
     // Math 'tint shade' (#31)
-    let tint_shade = tint_amount + 0.95;
+    let tint_shade: f32 = tint_amount + 0.95f;
     // Math 'wood colour' (#32)
-    let wood_colour = grained_colour * vec3f(tint_shade);
+    let wood_colour: vec3f = grained_colour * vec3f(tint_shade);
     // Material 'material' (#33)
     return VeneerMaterial(
         wood_colour, // albedo
-        1.0, // alpha
-        vec3f(0.08, 0.07, 0.06), // specular
-        24.0, // shininess
-        vec3f(0.0, 0.0, 0.0), // bump
-        0.0, // height
+        1.0f, // alpha
+        vec3f(0.08f, 0.07f, 0.06f), // specular
+        24.0f, // shininess
+        vec3f(0.0f, 0.0f, 0.0f), // bump
+        0.0f, // height
     );
 }

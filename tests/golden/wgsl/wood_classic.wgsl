@@ -83,76 +83,76 @@ fn veneer_triangle_wave(x: f32, frequency: f32) -> f32 {
 
 fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     // Transform 'noise space' (#2)
-    let noise_space = s.position * vec3f(0.5, 0.1, 0.1) + vec3f(0.0, 0.0, 0.0);
+    let noise_space: vec3f = s.position * vec3f(0.5f, 0.1f, 0.1f) + vec3f(0.0f, 0.0f, 0.0f);
     // Noise 'octave 1' (#3)
-    let octave_1 = veneer_noise_gradient(noise_space * 4.0);
+    let octave_1: f32 = veneer_noise_gradient(noise_space * 4.0f);
     // Noise 'octave 2' (#4)
-    let octave_2 = veneer_noise_gradient(noise_space * 8.0);
+    let octave_2: f32 = veneer_noise_gradient(noise_space * 8.0f);
     // Noise 'octave 3' (#5)
-    let octave_3 = veneer_noise_gradient(noise_space * 16.0);
+    let octave_3: f32 = veneer_noise_gradient(noise_space * 16.0f);
     // Combine 'noise vector' (#6)
-    let noise_vector = vec3f(octave_1, octave_2, octave_3);
+    let noise_vector: vec3f = vec3f(octave_1, octave_2, octave_3);
     // Math 'noisiness' (#7)
-    let noisiness = noise_vector * vec3f(1.5, 0.75, 0.375);
+    let noisiness: vec3f = noise_vector * vec3f(1.5f, 0.75f, 0.375f);
     // Math 'location' (#8)
-    let location = s.position + noisiness;
+    let location: vec3f = s.position + noisiness;
     // Split 'location parts' (#9)
     let location_parts = location;
     // Combine 'trunk plane' (#10)
-    let trunk_plane = vec2f(location_parts.x, location_parts.z);
+    let trunk_plane: vec2f = vec2f(location_parts.x, location_parts.z);
     // Length 'distance' (#11)
-    let distance = length(trunk_plane);
+    let distance_11: f32 = length(trunk_plane);
     // Math 'ring distance' (#12)
-    let ring_distance = distance * 4.0;
+    let ring_distance: f32 = distance_11 * 4.0f;
     // Split 'noise parts' (#13)
     let noise_parts = noisiness;
     // Math 'noise sum xy' (#14)
-    let noise_sum_xy = noise_parts.x + noise_parts.y;
+    let noise_sum_xy: f32 = noise_parts.x + noise_parts.y;
     // Math 'noise sum' (#15)
-    let noise_sum = noise_sum_xy + noise_parts.z;
+    let noise_sum: f32 = noise_sum_xy + noise_parts.z;
     // Math 'ring input' (#16)
-    let ring_input = ring_distance + noise_sum;
+    let ring_input: f32 = ring_distance + noise_sum;
     // Triangle wave 'rings' (#17)
-    let rings = veneer_triangle_wave(ring_input, 1.0);
+    let rings: f32 = veneer_triangle_wave(ring_input, 1.0f);
     // Mix 'ring colour' (#18)
-    let ring_colour = mix(vec3f(0.6, 0.3, 0.1), vec3f(0.4, 0.2, 0.07), rings);
+    let ring_colour: vec3f = mix(vec3f(0.6f, 0.3f, 0.1f), vec3f(0.4f, 0.2f, 0.07f), rings);
     // Split 'position parts' (#19)
     let position_parts = s.position;
     // Math 'diagonal' (#20)
-    let diagonal = position_parts.x + position_parts.z;
+    let diagonal: f32 = position_parts.x + position_parts.z;
     // Math 'grain phase' (#21)
-    let grain_phase = diagonal * 27.0;
+    let grain_phase: f32 = diagonal * 27.0f;
     // Math 'grain offset' (#22)
-    let grain_offset = grain_phase + 0.5;
+    let grain_offset: f32 = grain_phase + 0.5f;
     // Unary 'grain' (#23)
-    let grain = fract(grain_offset);
+    let grain: f32 = fract(grain_offset);
     // Math 'grain noise' (#24)
-    let grain_noise = noise_parts.z * grain;
+    let grain_noise: f32 = noise_parts.z * grain;
     // Step 'dark side' (#25)
-    let dark_side = step(f32(0.5), grain);
+    let dark_side: f32 = step(f32(0.5f), grain);
     // Unary 'light side' (#26)
-    let light_side = 1.0 - dark_side;
+    let light_side: f32 = 1.0 - dark_side;
     // Math 'light grain' (#27)
-    let light_grain = grain_noise * light_side;
+    let light_grain: f32 = grain_noise * light_side;
     // Math 'light grain amount' (#28)
-    let light_grain_amount = light_grain * 1.0;
+    let light_grain_amount: f32 = light_grain * 1.0f;
     // Math 'dark grain' (#29)
-    let dark_grain = grain_noise * dark_side;
+    let dark_grain: f32 = grain_noise * dark_side;
     // Math 'dark grain amount' (#30)
-    let dark_grain_amount = dark_grain * 0.0;
+    let dark_grain_amount: f32 = dark_grain * 0.0f;
     // Math 'grain delta' (#31)
-    let grain_delta = light_grain_amount - dark_grain_amount;
+    let grain_delta: f32 = light_grain_amount - dark_grain_amount;
     // Math 'grain colour' (#32)
-    let grain_colour = vec3f(0.6, 0.3, 0.1) * vec3f(grain_delta);
+    let grain_colour: vec3f = vec3f(0.6f, 0.3f, 0.1f) * vec3f(grain_delta);
     // Math 'wood colour' (#33)
-    let wood_colour = ring_colour + grain_colour;
+    let wood_colour: vec3f = ring_colour + grain_colour;
     // Material 'material' (#34)
     return VeneerMaterial(
         wood_colour, // albedo
-        1.0, // alpha
-        vec3f(0.05, 0.04, 0.03), // specular
-        16.0, // shininess
-        vec3f(0.0, 0.0, 0.0), // bump
-        0.0, // height
+        1.0f, // alpha
+        vec3f(0.05f, 0.04f, 0.03f), // specular
+        16.0f, // shininess
+        vec3f(0.0f, 0.0f, 0.0f), // bump
+        0.0f, // height
     );
 }
