@@ -75,7 +75,7 @@ fn generated_wgsl_is_deterministic_and_named_after_labels() {
     assert_eq!(a.source, b.source);
     assert!(
         a.source
-            .contains("let grain = veneer_noise_value_pcg(s.position * 1.0);"),
+            .contains("let grain: f32 = veneer_noise_value_pcg(s.position * 1.0f);"),
         "{}",
         a.source
     );
