@@ -155,7 +155,7 @@ fn live_edit(c: &mut Criterion) {
 /// `veneer bake graphs/marble.ron --size 8192 --maps albedo,normal,height --format exr`
 /// against rendering the three passes alone (no conversion, no encoding).
 fn bake_marble(c: &mut Criterion) {
-    use veneer::bake::{BakeSettings, BakeSurface, Format, Map, NormalConvention, bake};
+    use veneer::bake::{BakeSettings, Format, Map, NormalConvention, bake};
     use veneer::render::FlatChannels;
     let gpu = GpuContext::new().expect("a wgpu adapter");
     let graph = veneer::graph::load(std::path::Path::new(MARBLE)).expect("marble preset");
@@ -202,12 +202,66 @@ fn bake_marble(c: &mut Criterion) {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// A graph of `nodes` nodes: a long chain of noises and arithmetic, every node reached.
+fn large_graph(nodes: usize) -> veneer::graph::Graph {
+    use veneer::graph::{Basis, MathOp, NodeKind, ValueType};
+    let mut graph = veneer::graph::Graph::default();
+    let mut previous = (
+        graph.add(
+            "start",
+            NodeKind::Noise {
+                basis: Basis::ValuePcg,
+            },
+        ),
+        "value",
+    );
+    for k in 1..nodes - 1 {
+        previous = if k % 3 == 0 {
+            let noise = graph.add(
+                &format!("noise {k}"),
+                NodeKind::Noise {
+                    basis: Basis::Gradient,
+                },
+            );
+            graph.connect(previous.0, previous.1, noise, "scale");
+            (noise, "value")
+        } else {
+            let math = graph.add(
+                &format!("step {k}"),
+                NodeKind::Math {
+                    op: MathOp::ALL[k % 7],
+                    ty: ValueType::Float,
+                },
+            );
+            graph.connect(previous.0, previous.1, math, "a");
+            (math, "result")
+        };
+    }
+    let material = graph.add("material", NodeKind::Material);
+    graph.connect(previous.0, previous.1, material, "alpha");
+    graph
+}
+
+/// Checking and compiling graphs of growing size (the target: 5,000 nodes under 2 s).
+fn large_graphs(c: &mut Criterion) {
+    let mut group = c.benchmark_group("check + compile a chain graph");
+    group.sample_size(10);
+    for nodes in [500, 5000] {
+        let graph = large_graph(nodes);
+        group.bench_function(format!("{nodes} nodes"), |b| {
+            b.iter(|| veneer::codegen::compile_graph(black_box(&graph)).expect("compiles"))
+        });
+    }
+    group.finish();
+}
+
 criterion_group!(
     benches,
     flat_render,
     compile,
     cpu_eval,
     live_edit,
-    bake_marble
+    bake_marble,
+    large_graphs
 );
 criterion_main!(benches);
