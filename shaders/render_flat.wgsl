@@ -26,11 +26,5 @@ fn veneer_flat_fragment(@builtin(position) pixel: vec4f) -> @location(0) vec4u {
     let position = vec3f(view.rect.x + (view.rect.z - view.rect.x) * t.x, view.plane_y, view.rect.y + (view.rect.w - view.rect.y) * t.y);
     let surface = VeneerSurface(position, vec3f(0.0, 1.0, 0.0), vec2f(0.0), vec4f(0.0), view.time);
     let material = veneer_material(surface);
-    var channels = vec4f(material.albedo, material.alpha);
-    if view.channels == 1u {
-        channels = vec4f(material.specular, material.shininess);
-    } else if view.channels == 2u {
-        channels = vec4f(material.height, material.bump);
-    }
-    return bitcast<vec4u>(channels);
+    return veneer_bake_channels(material, view.channels);
 }

@@ -36,11 +36,5 @@ fn veneer_uv_fragment(input: VeneerUvOut) -> @location(0) vec4u {
     let view = veneer_uv_view;
     let position = input.position * view.placement.w + view.placement.xyz;
     let material = veneer_material(VeneerSurface(position, normalize(input.normal), input.uv, vec4f(0.0), view.time));
-    var channels = vec4f(material.albedo, material.alpha);
-    if view.channels == 1u {
-        channels = vec4f(material.specular, material.shininess);
-    } else if view.channels == 2u {
-        channels = vec4f(material.height, material.bump);
-    }
-    return bitcast<vec4u>(channels);
+    return veneer_bake_channels(material, view.channels);
 }

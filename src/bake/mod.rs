@@ -128,7 +128,7 @@ pub fn bake(
         [center.0 as f32, center.1 as f32, center.2 as f32],
         graph.preview.size as f32,
     );
-    let tile = u64::from(gpu.device.limits().max_texture_dimension_2d.min(2048));
+    let tile = u64::from(crate::render::tile_size(gpu));
     let tiles_per_pass = u64::from(size).div_ceil(tile).pow(2);
     let total = tiles_per_pass * settings.maps.len() as u64;
     let mut written = Vec::new();

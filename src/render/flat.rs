@@ -1,6 +1,6 @@
 //! The flat render: a material's outputs over a rectangle of the plane y = Y.
 
-use super::readback::read_texture;
+use super::tiles::{FORMAT, render_tiled};
 use super::{GpuContext, RenderError, shader_source};
 
 /// The part of the plane y = `y` that the image covers: x from `x0` to `x1` left to
@@ -52,9 +52,10 @@ struct FlatViewUniform {
     padding: [f32; 2],
 }
 
-/// f32 bits in an integer target: renderable on every backend (GL has no float targets).
-const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
-const ENTRY_POINTS: &str = include_str!("../../shaders/render_flat.wgsl");
+const ENTRY_POINTS: &str = concat!(
+    include_str!("../../shaders/render_channels.wgsl"),
+    include_str!("../../shaders/render_flat.wgsl")
+);
 
 /// A pipeline that renders one material flat; build once, render many times.
 pub struct FlatRenderer {
@@ -113,93 +114,32 @@ impl FlatRenderer {
         size: u32,
         time: f32,
         channels: FlatChannels,
-        mut progress: impl FnMut(u32, u32),
+        progress: impl FnMut(u32, u32),
     ) -> Result<Vec<[f32; 4]>, RenderError> {
-        if size == 0 {
-            return Err(RenderError("image size must be at least 1 pixel".into()));
-        }
-        let tile = gpu.device.limits().max_texture_dimension_2d.min(2048);
-        let tiles_per_side = size.div_ceil(tile);
-        let mut image = vec![[0.0f32; 4]; size as usize * size as usize];
-        let mut done = 0;
-        for tile_y in (0..size).step_by(tile as usize) {
-            for tile_x in (0..size).step_by(tile as usize) {
-                let (width, height) = (tile.min(size - tile_x), tile.min(size - tile_y));
-                let view = FlatViewUniform {
-                    rect: [
-                        rect.x0 as f32,
-                        rect.z0 as f32,
-                        rect.x1 as f32,
-                        rect.z1 as f32,
-                    ],
-                    pixel_offset: [tile_x as f32, tile_y as f32],
-                    plane_y: rect.y as f32,
-                    size: size as f32,
-                    time,
-                    channels: channels as u32,
-                    padding: [0.0; 2],
-                };
-                let pixels = self.render_tile(gpu, &view, (width, height))?;
-                for (row, chunk) in pixels.chunks(width as usize).enumerate() {
-                    let start = (tile_y as usize + row) * size as usize + tile_x as usize;
-                    image[start..start + width as usize].copy_from_slice(chunk);
-                }
-                done += 1;
-                progress(done, tiles_per_side * tiles_per_side);
-            }
-        }
-        Ok(image)
-    }
-
-    fn render_tile(
-        &self,
-        gpu: &GpuContext,
-        view: &FlatViewUniform,
-        extent: (u32, u32),
-    ) -> Result<Vec<[f32; 4]>, RenderError> {
-        gpu.queue
-            .write_buffer(&self.uniform, 0, bytemuck::bytes_of(view));
-        let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("flat target"),
-            size: wgpu::Extent3d {
-                width: extent.0,
-                height: extent.1,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: FORMAT,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-            view_formats: &[],
-        });
-        let target = texture.create_view(&Default::default());
-        let mut encoder = gpu
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                label: Some("flat"),
-            });
-        {
-            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("flat"),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: &target,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
-                        store: wgpu::StoreOp::Store,
-                    },
-                })],
-                ..Default::default()
-            });
+        let prepare = |offset: (u32, u32), _| {
+            let view = FlatViewUniform {
+                rect: [
+                    rect.x0 as f32,
+                    rect.z0 as f32,
+                    rect.x1 as f32,
+                    rect.z1 as f32,
+                ],
+                pixel_offset: [offset.0 as f32, offset.1 as f32],
+                plane_y: rect.y as f32,
+                size: size as f32,
+                time,
+                channels: channels as u32,
+                padding: [0.0; 2],
+            };
+            gpu.queue
+                .write_buffer(&self.uniform, 0, bytemuck::bytes_of(&view));
+        };
+        let draw = |pass: &mut wgpu::RenderPass<'_>| {
             pass.set_pipeline(&self.pipeline);
             pass.set_bind_group(0, &self.bind_group, &[]);
             pass.draw(0..3, 0..1);
-        }
-        gpu.queue.submit([encoder.finish()]);
-        let bytes = read_texture(gpu, &texture, 16)?;
-        Ok(bytemuck::pod_collect_to_vec(&bytes))
+        };
+        render_tiled(gpu, size, wgpu::Color::TRANSPARENT, prepare, draw, progress)
     }
 }
 

@@ -6,6 +6,7 @@ mod flat;
 mod image;
 mod mesh_view;
 mod readback;
+mod tiles;
 mod uv_bake;
 
 pub use context::{GpuContext, RenderError};
@@ -14,6 +15,7 @@ pub use image::{Image, View, preview_rect, render_graph};
 pub use mesh_view::{
     COLOR_FORMAT, GpuMesh, MeshPipeline, MeshRenderer, MeshTarget, MeshView, Projection,
 };
+pub use tiles::tile_size;
 pub use uv_bake::UvRenderer;
 
 /// WGSL of a material module combined with a renderer's entry points.

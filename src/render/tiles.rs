@@ -1,0 +1,93 @@
+//! Rendering a large square image of four f32 per pixel in tiles, so memory on the GPU
+//! stays bounded: the shared loop of the flat and UV-layout renders.
+
+use super::readback::read_texture;
+use super::{GpuContext, RenderError};
+
+/// f32 bits in an integer target: renderable on every backend (GL has no float targets).
+pub const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
+
+/// Clear value whose bits read back as NaN in every lane.
+pub const NAN_BITS: wgpu::Color = wgpu::Color {
+    r: 4294967295.0,
+    g: 4294967295.0,
+    b: 4294967295.0,
+    a: 4294967295.0,
+};
+
+/// The largest tile side.
+pub fn tile_size(gpu: &GpuContext) -> u32 {
+    gpu.device.limits().max_texture_dimension_2d.min(2048)
+}
+
+/// Renders a `size`² image tile by tile: `prepare(first texel, tile extent)` writes the
+/// tile's uniforms, `draw` records its draw calls into a pass cleared to `clear`, and
+/// `progress(tiles done, tiles in all)` follows each tile. Rows run from the top.
+pub fn render_tiled(
+    gpu: &GpuContext,
+    size: u32,
+    clear: wgpu::Color,
+    mut prepare: impl FnMut((u32, u32), (u32, u32)),
+    mut draw: impl FnMut(&mut wgpu::RenderPass<'_>),
+    mut progress: impl FnMut(u32, u32),
+) -> Result<Vec<[f32; 4]>, RenderError> {
+    if size == 0 {
+        return Err(RenderError("image size must be at least 1 pixel".into()));
+    }
+    let tile = tile_size(gpu);
+    let tiles_per_side = size.div_ceil(tile);
+    let mut image = vec![[0.0f32; 4]; size as usize * size as usize];
+    let mut done = 0;
+    for tile_y in (0..size).step_by(tile as usize) {
+        for tile_x in (0..size).step_by(tile as usize) {
+            let (width, height) = (tile.min(size - tile_x), tile.min(size - tile_y));
+            prepare((tile_x, tile_y), (width, height));
+            let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
+                label: Some("tile"),
+                size: wgpu::Extent3d {
+                    width,
+                    height,
+                    depth_or_array_layers: 1,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format: FORMAT,
+                usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+                view_formats: &[],
+            });
+            let target = texture.create_view(&Default::default());
+            let mut encoder = gpu
+                .device
+                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                    label: Some("tile"),
+                });
+            {
+                let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                    label: Some("tile"),
+                    color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                        view: &target,
+                        depth_slice: None,
+                        resolve_target: None,
+                        ops: wgpu::Operations {
+                            load: wgpu::LoadOp::Clear(clear),
+                            store: wgpu::StoreOp::Store,
+                        },
+                    })],
+                    ..Default::default()
+                });
+                draw(&mut pass);
+            }
+            gpu.queue.submit([encoder.finish()]);
+            let pixels: Vec<[f32; 4]> =
+                bytemuck::pod_collect_to_vec(&read_texture(gpu, &texture, 16)?);
+            for (row, chunk) in pixels.chunks(width as usize).enumerate() {
+                let start = (tile_y as usize + row) * size as usize + tile_x as usize;
+                image[start..start + width as usize].copy_from_slice(chunk);
+            }
+            done += 1;
+            progress(done, tiles_per_side * tiles_per_side);
+        }
+    }
+    Ok(image)
+}
