@@ -139,6 +139,8 @@ pub struct Viewer<'a> {
     /// The node selected by a plain click (snarl itself selects only with Shift or a
     /// rectangle); set here when a node is clicked this frame.
     pub clicked: &'a mut Option<egui_snarl::NodeId>,
+    /// The node selected before this frame, drawn highlighted.
+    pub selected: Option<egui_snarl::NodeId>,
     /// Receives the view's graph-to-screen transform each frame.
     pub transform: &'a mut egui::emath::TSTransform,
     /// Comment frames to draw behind the nodes.
@@ -300,7 +302,7 @@ impl SnarlViewer<Node> for Viewer<'_> {
         snarl: &mut Snarl<Node>,
     ) {
         let node = &snarl[id];
-        let selected = *self.clicked == Some(id);
+        let selected = self.selected == Some(id);
         ui.horizontal(|ui| {
             let title = RichText::new(node.display_name()).strong();
             ui.label(if selected {

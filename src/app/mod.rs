@@ -578,6 +578,7 @@ impl VeneerApp {
             search: &mut self.search,
             frame,
             clicked: &mut self.clicked,
+            selected: before,
             transform: &mut self.graph_transform,
             frames: &self.document.graph.frames,
         };
@@ -606,6 +607,7 @@ impl VeneerApp {
                         search: &mut self.search,
                         frame: None,
                         clicked: &mut None,
+                        selected: None,
                         transform: &mut Default::default(),
                         frames: &[],
                     };
