@@ -4,6 +4,7 @@ mod bake;
 mod check;
 mod compile;
 mod fmt;
+mod mesh;
 mod render;
 mod snapshot;
 
@@ -34,6 +35,8 @@ enum Command {
     Compile(compile::CompileArgs),
     /// Load, type-check, compile and validate graphs; exit 1 if any has an error.
     Check(check::CheckArgs),
+    /// Report a mesh's vertices, triangles and defects (degenerate, boundary, non-manifold, components).
+    Mesh(mesh::MeshArgs),
     /// Rewrite graph files in canonical form (sorted, deterministic bytes).
     Fmt(fmt::FmtArgs),
     /// Render graphs and compare them with approved golden images (exit 1 on a difference).
@@ -68,6 +71,7 @@ pub fn run() -> ExitCode {
         Some(Command::Compile(args)) => compile::run(args),
         Some(Command::Check(args)) => check::run(args),
         Some(Command::Fmt(args)) => fmt::run(args),
+        Some(Command::Mesh(args)) => mesh::run(args),
         Some(Command::Snapshot(args)) => snapshot::run(args),
     };
     match result {

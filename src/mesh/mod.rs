@@ -1,8 +1,10 @@
 //! Triangle meshes: procedural primitives and mesh files, for the preview and the CLI.
 
+mod analysis;
 mod load;
 mod primitives;
 
+pub use analysis::{MeshReport, analyse, weld};
 pub use load::{EXTENSIONS, MeshError, load, vertex_normals};
 pub use primitives::{PRIMITIVES, primitive};
 

@@ -88,3 +88,22 @@ fn render_draws_a_mesh_file() {
         "the tetrahedron covers the middle"
     );
 }
+
+#[test]
+fn the_mesh_command_reports_defects_before_and_after_welding() {
+    let output = std::process::Command::new(env!("CARGO_BIN_EXE_veneer"))
+        .current_dir(root(""))
+        .args(["mesh", "tests/meshes/cube_quads.ply", "--weld", "0.001"])
+        .output()
+        .expect("veneer runs");
+    assert!(output.status.success());
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(stdout.contains("8 vertices, 12 triangles, 0 degenerate, 0 boundary edges, 0 non-manifold edges, 1 components"), "{stdout}");
+    let bad = std::process::Command::new(env!("CARGO_BIN_EXE_veneer"))
+        .current_dir(root(""))
+        .args(["mesh", "tests/meshes/truncated.stl"])
+        .output()
+        .expect("veneer runs");
+    assert_eq!(bad.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("truncated.stl"));
+}

@@ -1,0 +1,47 @@
+//! `veneer mesh`: what a mesh file (or primitive) is made of and what is wrong with it.
+
+use super::Failure;
+use clap::Args;
+
+#[derive(Args)]
+pub struct MeshArgs {
+    /// A mesh file (OBJ, STL, PLY, glTF) or a primitive name.
+    mesh: String,
+    /// Also report the mesh after welding vertices closer than this distance.
+    #[arg(long, value_name = "TOLERANCE")]
+    weld: Option<f32>,
+    /// Print the report as JSON.
+    #[arg(long)]
+    json: bool,
+}
+
+pub fn run(args: MeshArgs) -> Result<(), Failure> {
+    let mesh = match veneer::mesh::primitive(&args.mesh) {
+        Some(primitive) => primitive,
+        None => veneer::mesh::load(std::path::Path::new(&args.mesh))?,
+    };
+    let mut reports = vec![("as loaded", veneer::mesh::analyse(&mesh))];
+    if let Some(tolerance) = args.weld {
+        if !(tolerance.is_finite() && tolerance >= 0.0) {
+            return Err(Failure::new(format!(
+                "--weld {tolerance}: expected a distance ≥ 0"
+            )));
+        }
+        reports.push((
+            "welded",
+            veneer::mesh::analyse(&veneer::mesh::weld(&mesh, tolerance).0),
+        ));
+    }
+    if args.json {
+        let entries: Vec<_> = reports
+            .iter()
+            .map(|(state, report)| serde_json::json!({ "state": state, "report": report }))
+            .collect();
+        println!("{}", serde_json::to_string_pretty(&entries)?);
+    } else {
+        for (state, report) in &reports {
+            println!("{} ({state}): {report}", args.mesh);
+        }
+    }
+    Ok(())
+}
