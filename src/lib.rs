@@ -7,6 +7,7 @@ pub mod bake;
 pub mod codegen;
 pub mod eval;
 pub mod fsutil;
+pub mod geodesic;
 pub mod graph;
 pub mod lint;
 pub mod mesh;

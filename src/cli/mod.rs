@@ -4,6 +4,7 @@ mod bake;
 mod check;
 mod compile;
 mod fmt;
+mod geodesic;
 mod mesh;
 mod render;
 mod snapshot;
@@ -35,6 +36,8 @@ enum Command {
     Compile(compile::CompileArgs),
     /// Load, type-check, compile and validate graphs; exit 1 if any has an error.
     Check(check::CheckArgs),
+    /// Geodesic distances from source vertices to every vertex of a mesh, as CSV.
+    Geodesic(geodesic::GeodesicArgs),
     /// Report a mesh's vertices, triangles and defects (degenerate, boundary, non-manifold, components).
     Mesh(mesh::MeshArgs),
     /// Rewrite graph files in canonical form (sorted, deterministic bytes).
@@ -72,6 +75,7 @@ pub fn run() -> ExitCode {
         Some(Command::Check(args)) => check::run(args),
         Some(Command::Fmt(args)) => fmt::run(args),
         Some(Command::Mesh(args)) => mesh::run(args),
+        Some(Command::Geodesic(args)) => geodesic::run(args),
         Some(Command::Snapshot(args)) => snapshot::run(args),
     };
     match result {

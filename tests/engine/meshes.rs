@@ -107,3 +107,63 @@ fn the_mesh_command_reports_defects_before_and_after_welding() {
     assert_eq!(bad.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&bad.stderr).contains("truncated.stl"));
 }
+
+#[test]
+fn geodesic_writes_one_distance_per_file_vertex_with_inf_where_unreached() {
+    let dir = std::env::temp_dir().join(format!("veneer-geodesic-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("folder");
+    // Two tetrahedra apart: the second is never reached from vertex 0 of the first.
+    let tetrahedron =
+        std::fs::read_to_string(root("tests/meshes/tetrahedron.obj")).expect("fixture");
+    let moved: String = tetrahedron
+        .lines()
+        .filter(|l| l.starts_with("v "))
+        .map(|l| {
+            let c: Vec<f32> = l[2..]
+                .split_whitespace()
+                .map(|x| x.parse().unwrap())
+                .collect();
+            format!("v {} {} {}\n", c[0] + 10.0, c[1], c[2])
+        })
+        .collect();
+    let faces: String = tetrahedron
+        .lines()
+        .filter(|l| l.starts_with("f "))
+        .map(|l| {
+            let i: Vec<u32> = l[2..]
+                .split_whitespace()
+                .map(|x| x.parse().unwrap())
+                .collect();
+            format!("f {} {} {}\n", i[0] + 4, i[1] + 4, i[2] + 4)
+        })
+        .collect();
+    let file = dir.join("two.obj");
+    std::fs::write(&file, format!("{tetrahedron}{moved}{faces}")).expect("written");
+    let csv = dir.join("field.csv");
+    let status = std::process::Command::new(env!("CARGO_BIN_EXE_veneer"))
+        .args([
+            "geodesic",
+            file.to_str().unwrap(),
+            "--sources",
+            "0",
+            "--normalize",
+            "-o",
+            csv.to_str().unwrap(),
+        ])
+        .status()
+        .expect("veneer runs");
+    assert!(status.success());
+    let lines: Vec<String> = std::fs::read_to_string(&csv)
+        .expect("csv")
+        .lines()
+        .map(String::from)
+        .collect();
+    assert_eq!(lines.len(), 8, "one line per vertex of the file");
+    assert_eq!(lines[0], "0");
+    let near: Vec<f64> = lines[1..4].iter().map(|l| l.parse().unwrap()).collect();
+    assert!(
+        near.iter().all(|&d| (d - 1.0).abs() < 1e-9),
+        "every edge of a regular tetrahedron is equally long: {near:?}"
+    );
+    assert!(lines[4..].iter().all(|l| l == "inf"), "{lines:?}");
+}
