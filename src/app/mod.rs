@@ -443,29 +443,6 @@ impl VeneerApp {
         });
     }
 
-    /// What preview `slot` should draw for `graph` this frame.
-    fn material_frame(&mut self, slot: Slot, graph: &Graph) -> Option<MaterialFrame> {
-        let live = match slot {
-            Slot::Main => &self.live,
-            Slot::Thumbnail => &self.thumbnail,
-        };
-        let module = live.module.as_ref()?;
-        let cached = &mut self.wgsl[slot as usize];
-        if cached
-            .as_ref()
-            .is_none_or(|(generation, _)| *generation != live.generation)
-        {
-            *cached = Some((live.generation, Arc::from(module.source.as_str())));
-        }
-        let wgsl = cached.as_ref().map(|(_, code)| code.clone())?;
-        Some(MaterialFrame {
-            generation: live.generation,
-            wgsl,
-            slots: module.params.len(),
-            params: live.params(graph),
-        })
-    }
-
     /// The selected node's output, flat, above the inspector.
     fn node_thumbnail(&mut self, ui: &mut Ui, node: egui_snarl::NodeId) {
         let Some(probe) = probe::probe_graph(&self.document.graph, self.snarl[node].id) else {
@@ -476,7 +453,11 @@ impl VeneerApp {
         }
         self.thumbnail.update(&probe);
         let material = if self.thumbnail.errors.is_empty() {
-            self.material_frame(Slot::Thumbnail, &probe)
+            material_frame(
+                &self.thumbnail,
+                &mut self.wgsl[Slot::Thumbnail as usize],
+                &probe,
+            )
         } else {
             None
         };
@@ -514,9 +495,12 @@ impl VeneerApp {
             ui.color_edit_button_rgb(&mut self.preview.view.background);
         });
         let width = ui.available_width();
-        let graph = self.document.graph.clone();
         let material = if self.render_state.is_some() {
-            self.material_frame(Slot::Main, &graph)
+            material_frame(
+                &self.live,
+                &mut self.wgsl[Slot::Main as usize],
+                &self.document.graph,
+            )
         } else {
             None
         };
@@ -664,6 +648,29 @@ impl VeneerApp {
             ctx.send_viewport_cmd(egui::ViewportCommand::Close);
         }
     }
+}
+
+/// What a preview should draw this frame: `live`'s code (shared through `cache` until it
+/// changes) and its parameter values for `graph`.
+fn material_frame(
+    live: &LiveMaterial,
+    cache: &mut Option<(u64, Arc<str>)>,
+    graph: &Graph,
+) -> Option<MaterialFrame> {
+    let module = live.module.as_ref()?;
+    if cache
+        .as_ref()
+        .is_none_or(|(generation, _)| *generation != live.generation)
+    {
+        *cache = Some((live.generation, Arc::from(module.source.as_str())));
+    }
+    let wgsl = cache.as_ref().map(|(_, code)| code.clone())?;
+    Some(MaterialFrame {
+        generation: live.generation,
+        wgsl,
+        slots: module.params.len(),
+        params: live.params(graph),
+    })
 }
 
 /// Titles, colours and removal of the graph's comment frames.
