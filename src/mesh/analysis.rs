@@ -35,6 +35,39 @@ impl std::fmt::Display for MeshReport {
     }
 }
 
+impl MeshReport {
+    /// What a geodesic solver should warn about, one sentence each (empty for a clean,
+    /// closed, connected mesh).
+    pub fn problems(&self) -> Vec<String> {
+        let mut problems = Vec::new();
+        if self.degenerate_triangles > 0 {
+            problems.push(format!(
+                "{} degenerate (zero-area) triangles; paths cannot cross them (the robust heat method mollifies them)",
+                self.degenerate_triangles
+            ));
+        }
+        if self.boundary_edges > 0 {
+            problems.push(format!(
+                "{} boundary edges: the surface is open",
+                self.boundary_edges
+            ));
+        }
+        if self.non_manifold_edges > 0 {
+            problems.push(format!(
+                "{} non-manifold edges, treated as boundaries",
+                self.non_manifold_edges
+            ));
+        }
+        if self.components > 1 {
+            problems.push(format!(
+                "{} separate components: vertices of components without a source stay unreached (inf)",
+                self.components
+            ));
+        }
+        problems
+    }
+}
+
 /// Whether a triangle is degenerate: a repeated index, or an area below `1e-12` of the
 /// squared size of the mesh (`scale²`).
 fn degenerate(mesh: &Mesh, triangle: &[u32], scale: f32) -> bool {

@@ -1,12 +1,14 @@
 //! Triangle meshes: procedural primitives and mesh files, for the preview and the CLI.
 
 mod analysis;
+mod implicit;
 mod load;
 mod primitives;
 
 pub use analysis::{MeshReport, analyse, weld};
+pub use implicit::{double_torus, polygonize};
 pub use load::{EXTENSIONS, MeshError, load, vertex_normals};
-pub use primitives::{PRIMITIVES, primitive};
+pub use primitives::{PRIMITIVES, primitive, sphere, torus};
 
 /// The mesh a preview or render shows for `name`: a primitive, or else a mesh file
 /// fitted to the unit sphere.

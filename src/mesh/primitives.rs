@@ -1,10 +1,11 @@
-//! Procedural primitives: sphere, cube, torus and plane, each about unit size at the origin.
+//! Procedural primitives: sphere, cube, torus, plane and a genus-2 double torus, each
+//! about unit size at the origin.
 
 use super::Mesh;
 use std::f32::consts::{PI, TAU};
 
 /// Names accepted by [`primitive`].
-pub const PRIMITIVES: [&str; 4] = ["sphere", "cube", "torus", "plane"];
+pub const PRIMITIVES: [&str; 5] = ["sphere", "cube", "torus", "plane", "genus2"];
 
 /// The primitive called `name`, if there is one.
 pub fn primitive(name: &str) -> Option<Mesh> {
@@ -13,12 +14,14 @@ pub fn primitive(name: &str) -> Option<Mesh> {
         "cube" => Some(cube()),
         "torus" => Some(torus(0.7, 0.3, 96, 48)),
         "plane" => Some(plane()),
+        "genus2" => Some(super::implicit::double_torus(0.025)),
         _ => None,
     }
 }
 
-/// A unit sphere of latitude-longitude quads.
-fn sphere(segments: u32, rings: u32) -> Mesh {
+/// A unit sphere of latitude-longitude quads (`segments` round, `rings` pole to pole;
+/// the seam and pole vertices repeat, as a UV-mapped file would).
+pub fn sphere(segments: u32, rings: u32) -> Mesh {
     let mut mesh = Mesh::default();
     mesh.push_grid(segments, rings, |u, v| {
         let (theta, phi) = (u * TAU, v * PI);
@@ -28,8 +31,9 @@ fn sphere(segments: u32, rings: u32) -> Mesh {
     mesh
 }
 
-/// A torus about the y axis.
-fn torus(major: f32, minor: f32, segments: u32, sides: u32) -> Mesh {
+/// A torus about the y axis with `segments` steps round the axis and `sides` round the
+/// tube (the seam vertices repeat, as a UV-mapped file would).
+pub fn torus(major: f32, minor: f32, segments: u32, sides: u32) -> Mesh {
     let mut mesh = Mesh::default();
     mesh.push_grid(segments, sides, |u, v| {
         let (theta, phi) = (u * TAU, -v * TAU);

@@ -5,6 +5,7 @@ mod bake;
 mod cli;
 mod cpu_gpu;
 mod export;
+mod geodesic;
 mod graph_files;
 mod lint;
 mod meshes;

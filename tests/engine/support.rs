@@ -114,3 +114,15 @@ pub fn difference(
     };
     veneer::snapshot::compare(&image(a), &image(b), &tolerance).expect("images of the same size")
 }
+
+/// A fresh folder for one test's files, under the system's temporary folder.
+pub fn temp_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("veneer-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temporary folder");
+    dir
+}
+
+/// The `veneer` binary under test, ready for arguments.
+pub fn veneer() -> std::process::Command {
+    std::process::Command::new(env!("CARGO_BIN_EXE_veneer"))
+}

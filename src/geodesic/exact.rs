@@ -1,0 +1,354 @@
+//! The exact polyhedral distance, by window propagation in the style of Chen & Han as
+//! improved by Xin & Wang (ICH, 2009). A window is an interval of an edge lit by one
+//! (pseudo-)source unfolded into the plane of the next triangle; windows are taken
+//! in order of their nearest point and pushed across triangles. Saddle and boundary
+//! vertices, where shortest paths may bend, become pseudo-sources of their own.
+//! Two prunings keep the count of windows down without losing exactness: "one angle,
+//! one split" (of the windows lighting a triangle's far vertex through the same edge,
+//! only the nearest may send children to both sides of it) and ICH's test against the
+//! distances already known at the window edge's two vertices.
+
+use super::triangulation::{NO_TWIN, Triangulation, half_edge, split};
+use glam::DVec2;
+use std::cmp::Ordering;
+use std::collections::BinaryHeap;
+
+/// Relative slack in comparisons of path lengths.
+const SLACK: f64 = 1.0e-12;
+
+/// An interval `[b0, b1]` of half-edge `edge`, lit from `source`: coordinates in the
+/// half-edge's frame (its tail at the origin, its head on the positive x axis, its
+/// triangle above), the source below the axis, `sigma` further back along the path.
+#[derive(Clone, Copy)]
+struct Window {
+    edge: u32,
+    b0: f64,
+    b1: f64,
+    source: DVec2,
+    sigma: f64,
+}
+
+impl Window {
+    /// The distance along this window's paths to the point `(x, 0)`.
+    fn distance_at(&self, x: f64) -> f64 {
+        self.sigma + self.source.distance(DVec2::new(x, 0.0))
+    }
+
+    /// The smallest distance to any point of the interval.
+    fn nearest(&self) -> f64 {
+        let x = self.source.x.clamp(self.b0, self.b1);
+        self.distance_at(x)
+    }
+}
+
+/// Work waiting in the queue, ordered by the distance it starts from.
+enum Event {
+    Window(Window),
+    Vertex(u32),
+}
+
+struct Queued {
+    key: f64,
+    event: Event,
+}
+
+impl PartialEq for Queued {
+    fn eq(&self, other: &Self) -> bool {
+        self.key == other.key
+    }
+}
+impl Eq for Queued {}
+impl PartialOrd for Queued {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+impl Ord for Queued {
+    fn cmp(&self, other: &Self) -> Ordering {
+        other.key.total_cmp(&self.key)
+    }
+}
+
+/// The best path found so far to the far vertex of a half-edge's triangle through that
+/// half-edge: its length and where it crosses the edge.
+#[derive(Clone, Copy)]
+struct Split {
+    distance: f64,
+    x: f64,
+}
+
+/// Exact distances from `sources` over `surface`; `progress(settled, vertices)` is
+/// called as vertices are settled. Vertices no source reaches are `inf`.
+pub fn exact_distances(
+    surface: &Triangulation,
+    sources: &[u32],
+    progress: impl FnMut(usize, usize),
+) -> Vec<f64> {
+    Propagation::new(surface).run(sources, progress)
+}
+
+struct Propagation<'a> {
+    surface: &'a Triangulation,
+    /// For each vertex, the half-edges leaving it (one per triangle corner).
+    around: Vec<Vec<u32>>,
+    /// Whether shortest paths may bend at the vertex.
+    bends: Vec<bool>,
+    distance: Vec<f64>,
+    splits: Vec<Option<Split>>,
+    queue: BinaryHeap<Queued>,
+}
+
+impl<'a> Propagation<'a> {
+    fn new(surface: &'a Triangulation) -> Self {
+        let n = surface.vertex_count;
+        let mut around = vec![Vec::new(); n];
+        let mut bends = surface.boundary_vertices();
+        let angle_sums = surface.angle_sums();
+        for (f, face) in surface.faces.iter().enumerate() {
+            let flat = surface.area(f)
+                <= 1.0e-14
+                    * surface.lengths[f]
+                        .iter()
+                        .fold(0.0, |m: f64, l| m.max(l * l));
+            for k in 0..3 {
+                around[face[k] as usize].push(half_edge(f, k));
+                bends[face[k] as usize] |= flat;
+            }
+        }
+        for (bend, sum) in bends.iter_mut().zip(angle_sums) {
+            *bend |= sum > std::f64::consts::TAU * (1.0 + 1.0e-9);
+        }
+        Propagation {
+            surface,
+            around,
+            bends,
+            distance: vec![f64::INFINITY; n],
+            splits: vec![None; surface.faces.len() * 3],
+            queue: BinaryHeap::new(),
+        }
+    }
+
+    fn run(mut self, sources: &[u32], mut progress: impl FnMut(usize, usize)) -> Vec<f64> {
+        let n = self.surface.vertex_count;
+        let mut is_source = vec![false; n];
+        for &s in sources.iter().filter(|&&s| (s as usize) < n) {
+            is_source[s as usize] = true;
+            self.lower(s, 0.0);
+        }
+        let mut settled = 0;
+        while let Some(Queued { key, event }) = self.queue.pop() {
+            match event {
+                Event::Vertex(v) => {
+                    if key > self.distance[v as usize] {
+                        continue;
+                    }
+                    settled += 1;
+                    if settled % 4096 == 0 {
+                        progress(settled.min(n), n);
+                    }
+                    if is_source[v as usize] || self.bends[v as usize] {
+                        self.emit_from_vertex(v);
+                    }
+                }
+                Event::Window(window) => {
+                    if self.useful(&window) {
+                        self.propagate(&window);
+                    }
+                }
+            }
+        }
+        progress(n, n);
+        self.distance
+    }
+
+    /// Records a path of length `d` to `v` if it is shorter than the known one.
+    fn lower(&mut self, v: u32, d: f64) {
+        if d < self.distance[v as usize] {
+            self.distance[v as usize] = d;
+            self.queue.push(Queued {
+                key: d,
+                event: Event::Vertex(v),
+            });
+        }
+    }
+
+    fn push(&mut self, window: Window) {
+        let wide = window.b1 - window.b0 > 1.0e-10 * self.surface.length(window.edge);
+        if wide && self.useful(&window) {
+            self.queue.push(Queued {
+                key: window.nearest(),
+                event: Event::Window(window),
+            });
+        }
+    }
+
+    /// ICH's test: a window is useless when a known path to one end of its edge, followed
+    /// along the edge, reaches the far end of the window sooner than the window does (then
+    /// it does so for every point of the window).
+    fn useful(&self, w: &Window) -> bool {
+        let length = self.surface.length(w.edge);
+        let tail = self.distance[self.surface.tail(w.edge) as usize];
+        let head = self.distance[self.surface.head(w.edge) as usize];
+        let beaten = |by: f64, window: f64| window > by * (1.0 + SLACK) + SLACK * length;
+        !(beaten(tail + w.b1, w.distance_at(w.b1))
+            || beaten(head + length - w.b0, w.distance_at(w.b0)))
+    }
+
+    /// A vertex where paths bend lights the far edge of every triangle around it, and
+    /// its neighbours along the edges.
+    fn emit_from_vertex(&mut self, v: u32) {
+        let d = self.distance[v as usize];
+        for i in 0..self.around[v as usize].len() {
+            let h = self.around[v as usize][i];
+            let (f, k) = split(h);
+            let l = self.surface.lengths[f];
+            let (next, previous) = (
+                self.surface.faces[f][(k + 1) % 3],
+                self.surface.faces[f][(k + 2) % 3],
+            );
+            self.lower(next, d + l[k]);
+            self.lower(previous, d + l[(k + 2) % 3]);
+            let far = half_edge(f, k + 1);
+            let across = self.surface.twins[far as usize];
+            if across == NO_TWIN {
+                continue;
+            }
+            // In the frame of `across` (tail = previous, head = next), v lies below.
+            let length = l[(k + 1) % 3];
+            let (to_tail, to_head) = (l[(k + 2) % 3], l[k]);
+            let x = (length * length + to_tail * to_tail - to_head * to_head) / (2.0 * length);
+            let y = -(to_tail * to_tail - x * x).max(0.0).sqrt();
+            self.push(Window {
+                edge: across,
+                b0: 0.0,
+                b1: length,
+                source: DVec2::new(x, y),
+                sigma: d,
+            });
+        }
+    }
+
+    /// Pushes a window across its triangle onto the two far edges.
+    fn propagate(&mut self, w: &Window) {
+        let (f, k) = split(w.edge);
+        let length = self.surface.lengths[f][k];
+        let (l_bc, l_ca) = (
+            self.surface.lengths[f][(k + 1) % 3],
+            self.surface.lengths[f][(k + 2) % 3],
+        );
+        let cx = (length * length + l_ca * l_ca - l_bc * l_bc) / (2.0 * length);
+        let cy = (l_ca * l_ca - cx * cx).max(0.0).sqrt();
+        let (a, b, c) = (DVec2::ZERO, DVec2::new(length, 0.0), DVec2::new(cx, cy));
+        let s = w.source;
+        if cy <= 1.0e-12 * length || s.y >= -1.0e-12 * length {
+            return; // a flat triangle or a grazing source: its vertices bend paths instead
+        }
+        let cross = s.x + (c.x - s.x) * (-s.y) / (c.y - s.y);
+        // Paths through the window to the triangle's corners: exact where a corner is in
+        // sight, valid upper bounds (bending at the window's end) everywhere.
+        let corners = self.surface.faces[f];
+        let seen = DVec2::new(cross.clamp(w.b0, w.b1), 0.0);
+        let far_vertex = corners[(k + 2) % 3];
+        self.lower(far_vertex, w.distance_at(seen.x) + seen.distance(c));
+        self.lower(corners[k], w.distance_at(w.b0) + w.b0);
+        self.lower(corners[(k + 1) % 3], w.distance_at(w.b1) + length - w.b1);
+        let (mut left, mut right) = (cross > w.b0, cross < w.b1);
+        if left && right {
+            let through_c = w.sigma + s.distance(c);
+            match self.splits[w.edge as usize] {
+                Some(best) if through_c > best.distance * (1.0 + SLACK) => {
+                    // A shorter path to c crosses the edge on one side: the children on
+                    // that side would cross it and lose.
+                    left = best.x > cross;
+                    right = !left;
+                }
+                _ => {
+                    self.splits[w.edge as usize] = Some(Split {
+                        distance: through_c,
+                        x: cross,
+                    });
+                }
+            }
+        }
+        let ray = |x: f64, p: DVec2, q: DVec2| ray_hit(s, DVec2::new(x, 0.0), p, q);
+        if right {
+            // Onto edge b→c (half-edge k + 1): from where the ray through max(b0, cross)
+            // lands (c itself on a split) to where the ray through b1 lands.
+            let start = if left { 1.0 } else { ray(w.b0, b, c) };
+            let end = ray(w.b1, b, c);
+            self.child(w, half_edge(f, k + 1), b, c, end, start);
+        }
+        if left {
+            let start = ray(w.b0, c, a);
+            let end = if right { 0.0 } else { ray(w.b1, c, a) };
+            self.child(w, half_edge(f, k + 2), c, a, end, start);
+        }
+    }
+
+    /// The child window on half-edge `edge` (from `p` to `q` in the parent's frame), over
+    /// the parameters `[t0, t1]` of `p + t(q − p)`, moved into the frame of the triangle
+    /// across.
+    fn child(&mut self, w: &Window, edge: u32, p: DVec2, q: DVec2, t0: f64, t1: f64) {
+        let (t0, t1) = (t0.clamp(0.0, 1.0), t1.clamp(0.0, 1.0));
+        let (t0, t1) = (t0.min(t1), t0.max(t1));
+        let across = self.surface.twins[edge as usize];
+        if across == NO_TWIN {
+            return;
+        }
+        // The triangle across runs the edge from q to p, with this triangle below.
+        let length = p.distance(q);
+        let along = (p - q) / length;
+        let relative = w.source - q;
+        self.push(Window {
+            edge: across,
+            b0: (1.0 - t1) * length,
+            b1: (1.0 - t0) * length,
+            source: DVec2::new(relative.dot(along), relative.dot(along.perp())),
+            sigma: w.sigma,
+        });
+    }
+}
+
+/// Where the ray from `from` through `through` meets the line `p + t(q − p)`, as `t`.
+fn ray_hit(from: DVec2, through: DVec2, p: DVec2, q: DVec2) -> f64 {
+    let direction = through - from;
+    let edge = q - p;
+    let denominator = direction.perp_dot(edge);
+    if denominator.abs() < f64::MIN_POSITIVE {
+        return 0.5;
+    }
+    (p - from).perp_dot(direction) / denominator
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::Mesh;
+
+    #[test]
+    fn a_flat_grid_gives_straight_line_distances() {
+        let mut mesh = Mesh::default();
+        mesh.push_grid(12, 9, |u, v| ([u * 4.0, 0.0, v * 3.0], [0.0, 1.0, 0.0]));
+        let surface = Triangulation::from_mesh(&mesh);
+        let d = exact_distances(&surface, &[0], |_, _| {});
+        for (v, p) in mesh.positions.iter().enumerate() {
+            let expected = (p[0] * p[0] + p[2] * p[2]).sqrt() as f64;
+            assert!(
+                (d[v] - expected).abs() < 1e-5,
+                "vertex {v}: {} vs {expected}",
+                d[v]
+            );
+        }
+    }
+
+    #[test]
+    fn ray_hits_are_parameters_along_the_edge() {
+        let t = ray_hit(
+            DVec2::new(0.0, -1.0),
+            DVec2::new(0.0, 0.0),
+            DVec2::new(-1.0, 1.0),
+            DVec2::new(1.0, 1.0),
+        );
+        assert!((t - 0.5).abs() < 1e-12);
+    }
+}

@@ -1,0 +1,370 @@
+//! The heat method (Crane, Weischedel & Wardetzky 2013/2017): diffuse heat from the
+//! sources for a short time with one backward-Euler step, normalise its gradient
+//! into unit vectors pointing away from the sources, and recover the distance whose
+//! gradient best matches them with a Poisson solve. Both linear systems are factored
+//! once per mesh (sparse Cholesky from faer), so a new set of sources costs two pairs of
+//! triangular solves and two passes over the triangles.
+
+use super::triangulation::Triangulation;
+use faer::linalg::solvers::Solve;
+use faer::sparse::{SparseColMat, Triplet, linalg::solvers::Llt};
+use glam::DVec2;
+use std::time::{Duration, Instant};
+
+/// Choices of the heat method.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(default)]
+pub struct HeatOptions {
+    /// The diffusion time as a multiple of the mean edge length squared (1 is the
+    /// paper's choice; smaller is sharper but stiffer, larger is smoother).
+    pub time_factor: f64,
+    /// Mollify the edge lengths and retriangulate to the intrinsic Delaunay
+    /// triangulation first, for meshes with slivers and degenerate triangles.
+    pub robust: bool,
+}
+
+impl Default for HeatOptions {
+    fn default() -> Self {
+        HeatOptions {
+            time_factor: 1.0,
+            robust: false,
+        }
+    }
+}
+
+/// Why a heat solver could not be set up.
+#[derive(Debug, thiserror::Error)]
+pub enum HeatError {
+    #[error("the {0} matrix could not be factored ({1}); the robust option handles poor triangles")]
+    Factorisation(&'static str, String),
+}
+
+/// What setting up the solver did and cost.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct HeatSetup {
+    /// The diffusion time used.
+    pub time_step: f64,
+    /// How much every edge was lengthened by mollification (robust only).
+    pub mollified_by: f64,
+    /// How many intrinsic edge flips the Delaunay retriangulation took (robust only).
+    pub flips: usize,
+    /// Time spent building and factoring the matrices.
+    pub factor_time: Duration,
+}
+
+/// The per-triangle quantities the gradient and divergence need.
+struct Corner {
+    layout: [DVec2; 3],
+    /// The cotangent of the angle at each corner.
+    cotans: [f64; 3],
+    /// The length of the edge from each corner to the next.
+    lengths: [f64; 3],
+    area: f64,
+}
+
+/// A factored system restricted to some of the vertices.
+struct Restricted {
+    llt: Llt<usize, f64>,
+    /// Original vertex of each row.
+    rows: Vec<u32>,
+}
+
+/// A heat-method solver for one mesh, reusable for any set of sources.
+pub struct HeatSolver {
+    vertex_count: usize,
+    faces: Vec<[u32; 3]>,
+    corners: Vec<Corner>,
+    /// Vertices with no area around them (in no triangle, or only degenerate ones).
+    dead: Vec<bool>,
+    components: Vec<u32>,
+    heat: Llt<usize, f64>,
+    /// The heat system with zero heat held on the boundary, when there is one.
+    dirichlet: Option<Restricted>,
+    poisson: Llt<usize, f64>,
+    setup: HeatSetup,
+}
+
+impl HeatSolver {
+    /// Builds and factors the heat and Poisson systems of `triangulation`.
+    pub fn new(mut triangulation: Triangulation, options: HeatOptions) -> Result<Self, HeatError> {
+        let started = Instant::now();
+        let mut setup = HeatSetup::default();
+        if options.robust {
+            setup.mollified_by = triangulation.mollify(1.0e-5);
+            setup.flips = triangulation.flip_to_delaunay();
+        }
+        let n = triangulation.vertex_count;
+        let corners: Vec<Corner> = (0..triangulation.faces.len())
+            .map(|f| Corner {
+                layout: triangulation.layout(f),
+                cotans: [1, 2, 0].map(|k| triangulation.cotan_across(f, k).unwrap_or(0.0)),
+                lengths: triangulation.lengths[f],
+                area: triangulation.area(f),
+            })
+            .collect();
+        let mut mass = vec![0.0; n];
+        let mut laplacian = Vec::with_capacity(triangulation.faces.len() * 6);
+        for (face, corner) in triangulation.faces.iter().zip(&corners) {
+            if corner.area <= 0.0 {
+                continue;
+            }
+            for k in 0..3 {
+                mass[face[k] as usize] += corner.area / 3.0;
+                let weight = 0.5 * corner.cotans[(k + 2) % 3];
+                let (a, b) = (face[k] as usize, face[(k + 1) % 3] as usize);
+                laplacian.extend([
+                    (a, a, weight),
+                    (b, b, weight),
+                    (a.max(b), a.min(b), -weight),
+                ]);
+            }
+        }
+        let dead: Vec<bool> = mass.iter().map(|&m| m <= 0.0).collect();
+        let h = triangulation.mean_edge_length();
+        setup.time_step = options.time_factor * h * h;
+        let t = setup.time_step;
+        let heat = factor("heat", n, combine(&laplacian, t, &mass, 1.0, &dead))?;
+        let regularisation = 1.0e-8 / (h * h).max(f64::MIN_POSITIVE);
+        let poisson = factor(
+            "Poisson",
+            n,
+            combine(&laplacian, 1.0, &mass, regularisation, &dead),
+        )?;
+        let boundary = triangulation.boundary_vertices();
+        let dirichlet = if boundary.iter().zip(&dead).any(|(&b, &d)| b && !d) {
+            let keep: Vec<bool> = boundary.iter().map(|&b| !b).collect();
+            Some(restricted(
+                &combine(&laplacian, t, &mass, 1.0, &dead),
+                &keep,
+            )?)
+        } else {
+            None
+        };
+        setup.factor_time = started.elapsed();
+        Ok(HeatSolver {
+            vertex_count: n,
+            components: triangulation.components(),
+            faces: triangulation.faces,
+            corners,
+            dead,
+            heat,
+            dirichlet,
+            poisson,
+            setup,
+        })
+    }
+
+    /// What setting up cost and changed.
+    pub fn setup(&self) -> HeatSetup {
+        self.setup
+    }
+
+    /// The distance from the nearest of `sources` to every vertex; `inf` for vertices no
+    /// source reaches. Sources out of range are ignored.
+    pub fn distances(&self, sources: &[u32]) -> Vec<f64> {
+        let n = self.vertex_count;
+        let sources: Vec<usize> = sources
+            .iter()
+            .map(|&s| s as usize)
+            .filter(|&s| s < n)
+            .collect();
+        let mut heat = vec![0.0; n];
+        for &s in &sources {
+            heat[s] = 1.0;
+        }
+        let initial = heat.clone();
+        solve(&self.heat, &mut heat);
+        if let Some(dirichlet) = &self.dirichlet {
+            let mut held: Vec<f64> = dirichlet
+                .rows
+                .iter()
+                .map(|&v| initial[v as usize])
+                .collect();
+            solve(&dirichlet.llt, &mut held);
+            let mut averaged = vec![0.0; n];
+            for (&v, &value) in dirichlet.rows.iter().zip(&held) {
+                averaged[v as usize] = value;
+            }
+            for (u, held) in heat.iter_mut().zip(averaged) {
+                *u = 0.5 * (*u + held);
+            }
+        }
+        let mut potential = self.divergence_of_normalised_gradient(&heat);
+        solve(&self.poisson, &mut potential);
+        self.shift_to_sources(potential, &sources)
+    }
+
+    /// `−∇·X` at each vertex, where `X = −∇u/|∇u|` on each triangle (zero where the
+    /// heat is flat to rounding).
+    fn divergence_of_normalised_gradient(&self, heat: &[f64]) -> Vec<f64> {
+        let mut divergence = vec![0.0; self.vertex_count];
+        for (face, corner) in self.faces.iter().zip(&self.corners) {
+            if corner.area <= 0.0 {
+                continue;
+            }
+            let p = corner.layout;
+            let u = face.map(|v| heat[v as usize]);
+            let gradient = (0..3)
+                .map(|i| {
+                    let edge = p[(i + 2) % 3] - p[(i + 1) % 3];
+                    u[i] * edge.perp()
+                })
+                .fold(DVec2::ZERO, |sum, g| sum + g)
+                / (2.0 * corner.area);
+            // A gradient within rounding of the face's own values has no direction.
+            let length = gradient.length();
+            let scale = u.iter().fold(0.0f64, |m, v| m.max(v.abs()))
+                / corner.lengths.iter().fold(0.0f64, |m, &l| m.max(l));
+            if !(length > 1.0e-9 * scale && length.is_finite()) {
+                continue;
+            }
+            let x = -gradient / length;
+            for i in 0..3 {
+                let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+                let flux = corner.cotans[k] * (p[j] - p[i]).dot(x)
+                    + corner.cotans[j] * (p[k] - p[i]).dot(x);
+                divergence[face[i] as usize] -= 0.5 * flux;
+            }
+        }
+        divergence
+    }
+
+    /// Moves each component's potential so its sources sit at 0, clamps the rest at 0,
+    /// and marks components without a source (and dead vertices) as unreached.
+    fn shift_to_sources(&self, potential: Vec<f64>, sources: &[usize]) -> Vec<f64> {
+        let mut offsets: std::collections::HashMap<u32, (f64, usize)> = Default::default();
+        for &s in sources.iter().filter(|&&s| !self.dead[s]) {
+            let entry = offsets.entry(self.components[s]).or_default();
+            entry.0 += potential[s];
+            entry.1 += 1;
+        }
+        let mut distances: Vec<f64> = potential
+            .iter()
+            .enumerate()
+            .map(|(v, &phi)| match offsets.get(&self.components[v]) {
+                Some(&(sum, count)) if !self.dead[v] => (phi - sum / count as f64).max(0.0),
+                _ => f64::INFINITY,
+            })
+            .collect();
+        for &s in sources {
+            distances[s] = 0.0;
+        }
+        self.reach_dead_vertices(&mut distances);
+        distances
+    }
+
+    /// Vertices with no area around them (only in degenerate triangles) take the
+    /// shortest edge path from the reached vertices of their triangles.
+    fn reach_dead_vertices(&self, distances: &mut [f64]) {
+        let mut changed = self.dead.iter().any(|&d| d);
+        while changed {
+            changed = false;
+            for (face, corner) in self.faces.iter().zip(&self.corners) {
+                for i in 0..3 {
+                    let v = face[i] as usize;
+                    if !self.dead[v] {
+                        continue;
+                    }
+                    // The edges to the next and to the previous corner.
+                    for (j, length) in [
+                        ((i + 1) % 3, corner.lengths[i]),
+                        ((i + 2) % 3, corner.lengths[(i + 2) % 3]),
+                    ] {
+                        let via = distances[face[j] as usize] + length;
+                        if via < distances[v] {
+                            distances[v] = via;
+                            changed = true;
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// `a·L + b·M` as lower-triangle triplets, with 1 on the diagonal of dead vertices.
+fn combine(
+    laplacian: &[(usize, usize, f64)],
+    a: f64,
+    mass: &[f64],
+    b: f64,
+    dead: &[bool],
+) -> Vec<Triplet<usize, usize, f64>> {
+    laplacian
+        .iter()
+        .map(|&(row, col, value)| Triplet::new(row, col, a * value))
+        .chain(mass.iter().enumerate().map(|(v, &m)| {
+            let diagonal = if dead[v] { 1.0 } else { b * m };
+            Triplet::new(v, v, diagonal)
+        }))
+        .collect()
+}
+
+/// Sparse Cholesky factorisation of the symmetric matrix given by its lower triangle.
+fn factor(
+    name: &'static str,
+    n: usize,
+    triplets: Vec<Triplet<usize, usize, f64>>,
+) -> Result<Llt<usize, f64>, HeatError> {
+    let matrix = SparseColMat::<usize, f64>::try_new_from_triplets(n, n, &triplets)
+        .map_err(|e| HeatError::Factorisation(name, format!("{e:?}")))?;
+    matrix
+        .sp_cholesky(faer::Side::Lower)
+        .map_err(|e| HeatError::Factorisation(name, e.to_string()))
+}
+
+/// The system of `triplets` restricted to the vertices marked `keep`, factored.
+fn restricted(
+    triplets: &[Triplet<usize, usize, f64>],
+    keep: &[bool],
+) -> Result<Restricted, HeatError> {
+    let mut index = vec![usize::MAX; keep.len()];
+    let mut rows = Vec::new();
+    for (v, _) in keep.iter().enumerate().filter(|(_, k)| **k) {
+        index[v] = rows.len();
+        rows.push(v as u32);
+    }
+    let kept = triplets
+        .iter()
+        .filter(|t| keep[t.row] && keep[t.col])
+        .map(|t| Triplet::new(index[t.row], index[t.col], t.val))
+        .collect();
+    let llt = factor("boundary heat", rows.len(), kept)?;
+    Ok(Restricted { llt, rows })
+}
+
+/// Solves in place with a factored matrix.
+fn solve(llt: &Llt<usize, f64>, values: &mut [f64]) {
+    if values.is_empty() {
+        return;
+    }
+    let n = values.len();
+    llt.solve_in_place(faer::MatMut::from_column_major_slice_mut(values, n, 1));
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::Mesh;
+
+    #[test]
+    fn a_regular_tetrahedron_gives_its_three_neighbours_one_distance() {
+        let mut mesh = Mesh::default();
+        for p in [
+            [1.0, 1.0, 1.0],
+            [-1.0, -1.0, 1.0],
+            [-1.0, 1.0, -1.0],
+            [1.0, -1.0, -1.0],
+        ] {
+            mesh.push_vertex(p, [0.0, 1.0, 0.0], [0.0, 0.0]);
+        }
+        mesh.indices = vec![0, 1, 3, 0, 2, 1, 0, 3, 2, 1, 2, 3];
+        let solver =
+            HeatSolver::new(Triangulation::from_mesh(&mesh), HeatOptions::default()).unwrap();
+        let d = solver.distances(&[0]);
+        assert!(
+            (d[1] - d[2]).abs() < 1e-9 && (d[2] - d[3]).abs() < 1e-9,
+            "{d:?}"
+        );
+    }
+}

@@ -1,0 +1,317 @@
+//! Geodesic distances against closed forms and against each other: the exact method on
+//! flat and spherical surfaces, the heat method and the edge baseline against the exact
+//! one on a torus and a genus-2 surface, several sources, and broken meshes.
+
+use veneer::geodesic::{self, HeatOptions, HeatSolver, Method, Triangulation};
+use veneer::mesh::{self, Mesh};
+
+/// Mean and largest relative error of `field` against `reference` over the vertices the
+/// reference puts farther than `near` from the sources.
+fn relative_error(field: &[f64], reference: &[f64], near: f64) -> (f64, f64) {
+    let errors: Vec<f64> = field
+        .iter()
+        .zip(reference)
+        .filter(|(_, r)| r.is_finite() && **r > near)
+        .map(|(f, r)| (f - r).abs() / r)
+        .collect();
+    let mean = errors.iter().sum::<f64>() / errors.len() as f64;
+    (mean, errors.iter().copied().fold(0.0, f64::max))
+}
+
+fn welded(mesh: &Mesh) -> Mesh {
+    geodesic::welded_for_distances(mesh).0
+}
+
+fn solve(mesh: &Mesh, sources: &[u32], method: Method) -> Vec<f64> {
+    geodesic::distances(mesh, sources, method, |_, _| {}).expect("solvable")
+}
+
+const HEAT: Method = Method::Heat(HeatOptions {
+    time_factor: 1.0,
+    robust: false,
+});
+const ROBUST: Method = Method::Heat(HeatOptions {
+    time_factor: 1.0,
+    robust: true,
+});
+
+#[test]
+fn distances_on_a_sphere_follow_great_circles() {
+    let sphere = welded(&mesh::sphere(64, 32));
+    let source = 0u32; // the north pole
+    let north = glam::DVec3::from(sphere.positions[0].map(f64::from));
+    let great_circle: Vec<f64> = sphere
+        .positions
+        .iter()
+        .map(|p| {
+            glam::DVec3::from(p.map(f64::from))
+                .normalize()
+                .dot(north.normalize())
+                .clamp(-1.0, 1.0)
+                .acos()
+        })
+        .collect();
+    // The mesh is inscribed, so even exact polyhedral distances run short of the sphere's.
+    for (method, bound) in [
+        (Method::Exact, 0.01),
+        (HEAT, 0.02),
+        (Method::Dijkstra, 0.05),
+    ] {
+        let field = solve(&sphere, &[source], method);
+        let (mean, _) = relative_error(&field, &great_circle, 0.2);
+        assert!(
+            mean < bound,
+            "{}: mean relative error {mean}",
+            method.name()
+        );
+    }
+}
+
+#[test]
+fn the_exact_method_is_exact_on_a_plane_with_uneven_triangles() {
+    let mut mesh = Mesh::default();
+    mesh.push_grid(20, 13, |u, v| {
+        // Irregular spacing: the grid lines bunch towards two sides.
+        ([u * u * 3.0, 0.0, v.powf(1.5) * 2.0], [0.0, 1.0, 0.0])
+    });
+    let source = 7 * 21 + 10;
+    let at = |v: usize| glam::DVec2::new(mesh.positions[v][0] as f64, mesh.positions[v][2] as f64);
+    let exact = solve(&mesh, &[source as u32], Method::Exact);
+    for v in 0..mesh.positions.len() {
+        let straight = at(v).distance(at(source));
+        assert!(
+            (exact[v] - straight).abs() < 1e-5,
+            "vertex {v}: {} vs {straight}",
+            exact[v]
+        );
+    }
+}
+
+#[test]
+fn heat_and_baseline_stay_within_their_bounds_of_the_exact_distance() {
+    let torus = welded(&mesh::torus(0.7, 0.3, 96, 48));
+    let genus2 = mesh::double_torus(0.04);
+    for (name, mesh, heat_bound, robust_bound) in [
+        ("torus", &torus, 0.025, 0.025),
+        ("genus 2", &genus2, 0.05, 0.03),
+    ] {
+        let exact = solve(mesh, &[3], Method::Exact);
+        let near = 0.1 * geodesic::max_finite(&exact);
+        let (heat, _) = relative_error(&solve(mesh, &[3], HEAT), &exact, near);
+        let (robust, _) = relative_error(&solve(mesh, &[3], ROBUST), &exact, near);
+        let (edges, _) = relative_error(&solve(mesh, &[3], Method::Dijkstra), &exact, near);
+        println!("{name}: heat {heat:.4}, robust {robust:.4}, dijkstra {edges:.4}");
+        assert!(heat < heat_bound, "{name}: heat {heat}");
+        assert!(robust < robust_bound, "{name}: robust heat {robust}");
+        assert!(edges > 0.0 && edges < 0.15, "{name}: dijkstra {edges}");
+    }
+}
+
+#[test]
+fn several_sources_give_the_minimum_of_their_fields() {
+    let torus = welded(&mesh::torus(0.7, 0.3, 48, 24));
+    let sources = [5u32, 400, 777];
+    for (method, tolerance) in [
+        (Method::Exact, 1e-9),
+        (Method::Dijkstra, 1e-12),
+        (HEAT, 0.06),
+    ] {
+        let together = solve(&torus, &sources, method);
+        let apart: Vec<Vec<f64>> = sources
+            .iter()
+            .map(|&s| solve(&torus, &[s], method))
+            .collect();
+        let scale = geodesic::max_finite(&together);
+        for v in 0..torus.positions.len() {
+            let minimum = apart.iter().map(|f| f[v]).fold(f64::INFINITY, f64::min);
+            assert!(
+                (together[v] - minimum).abs() <= tolerance * scale,
+                "{}: vertex {v}: {} vs {minimum}",
+                method.name(),
+                together[v]
+            );
+        }
+    }
+}
+
+#[test]
+fn re_solving_with_new_sources_reuses_the_factorisation() {
+    let torus = welded(&mesh::torus(0.7, 0.3, 48, 24));
+    let solver = HeatSolver::new(Triangulation::from_mesh(&torus), HeatOptions::default()).unwrap();
+    let first = solver.distances(&[0]);
+    let second = solver.distances(&[100]);
+    assert_eq!(first[0], 0.0);
+    assert_eq!(second[100], 0.0);
+    assert!(
+        first[100] > 0.0 && (first[100] - second[0]).abs() < 0.05 * first[100],
+        "symmetric"
+    );
+}
+
+/// A flat square grid whose interior vertices are pushed about by up to `jitter` of a
+/// cell (deterministically), making obtuse triangles and slivers.
+fn jittered_grid(n: u32, jitter: f32) -> Mesh {
+    let mut mesh = Mesh::default();
+    mesh.push_grid(n, n, |u, v| ([u, 0.0, v], [0.0, 1.0, 0.0]));
+    let mut state = 0x2545_f491u32;
+    let mut random = move || {
+        state ^= state << 13;
+        state ^= state >> 17;
+        state ^= state << 5;
+        state as f32 / u32::MAX as f32 - 0.5
+    };
+    for p in &mut mesh.positions {
+        let interior = p[0] > 0.0 && p[0] < 1.0 && p[2] > 0.0 && p[2] < 1.0;
+        if interior {
+            p[0] += random() * 2.0 * jitter / n as f32;
+            p[2] += random() * 2.0 * jitter / n as f32;
+        }
+    }
+    mesh
+}
+
+#[test]
+fn the_robust_heat_method_repairs_what_obtuse_triangles_spoil() {
+    let grid = jittered_grid(40, 0.3);
+    let center = (20 * 41 + 20) as u32;
+    let exact = solve(&grid, &[center], Method::Exact);
+    let (plain, _) = relative_error(&solve(&grid, &[center], HEAT), &exact, 0.1);
+    let (robust, _) = relative_error(&solve(&grid, &[center], ROBUST), &exact, 0.1);
+    println!("jittered grid: plain heat {plain:.4}, robust {robust:.4}");
+    assert!(robust < 0.75 * plain, "plain {plain}, robust {robust}");
+}
+
+#[test]
+fn stiff_and_slack_time_steps_stay_finite_and_bounded() {
+    let torus = welded(&mesh::torus(0.7, 0.3, 64, 32));
+    let exact = solve(&torus, &[0], Method::Exact);
+    let farthest = geodesic::max_finite(&exact);
+    for exponent in -3..=3 {
+        let time_factor = 10f64.powi(exponent);
+        for robust in [false, true] {
+            let method = Method::Heat(HeatOptions {
+                time_factor,
+                robust,
+            });
+            let field = solve(&torus, &[0], method);
+            assert!(
+                field
+                    .iter()
+                    .all(|d| d.is_finite() && *d >= 0.0 && *d <= 3.0 * farthest),
+                "t = {time_factor}·h²"
+            );
+            let (mean, _) = relative_error(&field, &exact, 0.1 * farthest);
+            println!("t = 1e{exponent}·h², robust {robust}: mean relative error {mean:.4}");
+        }
+    }
+}
+
+#[test]
+fn far_from_the_origin_the_field_is_the_same() {
+    let mut near = welded(&mesh::torus(0.7, 0.3, 48, 24));
+    for p in &mut near.positions {
+        *p = p.map(|c| c * 1000.0);
+    }
+    let mut far = near.clone();
+    for p in &mut far.positions {
+        p[0] += 1.0e6;
+    }
+    for method in [HEAT, Method::Exact] {
+        let (a, b) = (solve(&near, &[7], method), solve(&far, &[7], method));
+        let scale = geodesic::max_finite(&a);
+        let worst = a
+            .iter()
+            .zip(&b)
+            .map(|(x, y)| (x - y).abs())
+            .fold(0.0, f64::max);
+        assert!(
+            worst < 1e-3 * scale,
+            "{}: {worst} of {scale}",
+            method.name()
+        );
+    }
+}
+
+#[test]
+fn a_broken_mesh_gets_finite_distances_where_reached_and_warnings_naming_its_defects() {
+    // An open grid, a zero-area triangle hanging off its corner, and a second grid apart.
+    let mut mesh = Mesh::default();
+    mesh.push_grid(8, 8, |u, v| ([u, 0.0, v], [0.0, 1.0, 0.0]));
+    let a = mesh.push_vertex([-0.5, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0]);
+    let b = mesh.push_vertex([-1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0]);
+    mesh.indices.extend([0, a, b]);
+    let apart = mesh.positions.len();
+    mesh.push_grid(4, 4, |u, v| ([u + 5.0, 0.0, v], [0.0, 1.0, 0.0]));
+    let obj = crate::support::temp_dir("broken-mesh").join("broken.obj");
+    std::fs::write(&obj, obj_text(&mesh)).unwrap();
+    for method in ["heat", "exact", "dijkstra"] {
+        for robust in [false, true] {
+            let csv = obj.with_extension(format!("{method}{robust}.csv"));
+            let mut command = crate::support::veneer();
+            command
+                .args([
+                    "geodesic",
+                    obj.to_str().unwrap(),
+                    "--sources",
+                    "40",
+                    "--method",
+                    method,
+                    "-o",
+                ])
+                .arg(&csv);
+            if robust {
+                command.arg("--robust");
+            }
+            let output = command.output().unwrap();
+            assert!(
+                output.status.success(),
+                "{}",
+                String::from_utf8_lossy(&output.stderr)
+            );
+            let stderr = String::from_utf8_lossy(&output.stderr);
+            for defect in [
+                "1 degenerate",
+                "boundary edges",
+                "2 separate components",
+                "unreached",
+            ] {
+                assert!(
+                    stderr.contains(defect),
+                    "{method}: no `{defect}` in {stderr}"
+                );
+            }
+            let values: Vec<f64> = std::fs::read_to_string(&csv)
+                .unwrap()
+                .lines()
+                .map(|l| l.parse().unwrap())
+                .collect();
+            assert_eq!(values.len(), mesh.positions.len());
+            assert!(
+                values[..apart].iter().all(|d| d.is_finite()),
+                "{method}: reached vertices are finite"
+            );
+            assert!(
+                values[apart..].iter().all(|d| d.is_infinite()),
+                "{method}: the far grid is unreached"
+            );
+            let along = values[b as usize] - values[0];
+            assert!(
+                (along - 1.0).abs() < 1e-4,
+                "{method}: along the flat triangle's edge {along}"
+            );
+        }
+    }
+}
+
+/// `mesh` as Wavefront OBJ text.
+fn obj_text(mesh: &Mesh) -> String {
+    let vertices = mesh
+        .positions
+        .iter()
+        .map(|p| format!("v {} {} {}\n", p[0], p[1], p[2]));
+    let faces = mesh
+        .indices
+        .chunks_exact(3)
+        .map(|t| format!("f {} {} {}\n", t[0] + 1, t[1] + 1, t[2] + 1));
+    vertices.chain(faces).collect()
+}
