@@ -78,9 +78,9 @@ pub fn run(args: GeodesicArgs) -> Result<(), Failure> {
         }
     })
     .map_err(|e| Failure::new(format!("{}: {e}", args.mesh)))?;
-    let solved_setup = solved.setup_time;
-    let (fields, setup) = (solved.fields, loaded + solved_setup);
-    let solve_time = solving.elapsed().saturating_sub(solved_setup);
+    let setup = solved.setup_time;
+    let solve_time = solving.elapsed().saturating_sub(setup);
+    let fields = solved.fields;
     if let Some(bar) = bar {
         bar.finish_and_clear();
     }
@@ -110,12 +110,13 @@ pub fn run(args: GeodesicArgs) -> Result<(), Failure> {
     write_output(Some(&args.output), csv.as_bytes())?;
     let unreached = fields[0].iter().filter(|d| d.is_infinite()).count();
     eprintln!(
-        "{}: {} vertices ({} after welding), {} triangles; {}; set-up {:.1} ms, solve {:.1} ms{}",
+        "{}: {} vertices ({} after welding), {} triangles; {}; load {:.1} ms, set-up {:.1} ms, solve {:.1} ms{}",
         args.mesh,
         remap.len(),
         welded.positions.len(),
         welded.triangle_count(),
         args.method_name(),
+        loaded.as_secs_f64() * 1e3,
         setup.as_secs_f64() * 1e3,
         solve_time.as_secs_f64() * 1e3,
         if unreached > 0 {

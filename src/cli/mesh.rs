@@ -13,10 +13,14 @@ pub struct MeshArgs {
     /// Print the report as JSON.
     #[arg(long)]
     json: bool,
+    /// Also write the mesh (welded when --weld is given) as an OBJ file, e.g. to feed a
+    /// primitive such as `torus:320` to other tools.
+    #[arg(long, value_name = "FILE.obj")]
+    write: Option<std::path::PathBuf>,
 }
 
 pub fn run(args: MeshArgs) -> Result<(), Failure> {
-    let mesh = match veneer::mesh::primitive(&args.mesh) {
+    let mut mesh = match veneer::mesh::primitive(&args.mesh) {
         Some(primitive) => primitive,
         None => veneer::mesh::load(std::path::Path::new(&args.mesh))?,
     };
@@ -27,10 +31,11 @@ pub fn run(args: MeshArgs) -> Result<(), Failure> {
                 "--weld {tolerance}: expected a distance ≥ 0"
             )));
         }
-        reports.push((
-            "welded",
-            veneer::mesh::analyse(&veneer::mesh::weld(&mesh, tolerance).0),
-        ));
+        mesh = veneer::mesh::weld(&mesh, tolerance).0;
+        reports.push(("welded", veneer::mesh::analyse(&mesh)));
+    }
+    if let Some(path) = &args.write {
+        super::write_output(Some(path), mesh.to_obj().as_bytes())?;
     }
     if args.json {
         let entries: Vec<_> = reports

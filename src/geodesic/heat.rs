@@ -7,7 +7,10 @@
 
 use super::triangulation::Triangulation;
 use faer::linalg::solvers::Solve;
-use faer::sparse::{SparseColMat, Triplet, linalg::solvers::Llt};
+use faer::sparse::{
+    SparseColMat, Triplet,
+    linalg::solvers::{Llt, SymbolicLlt},
+};
 use glam::DVec2;
 use std::time::{Duration, Instant};
 
@@ -64,7 +67,7 @@ struct Corner {
 
 /// A factored system restricted to some of the vertices.
 struct Restricted {
-    llt: Llt<usize, f64>,
+    llt: Llt<u32, f64>,
     /// Original vertex of each row.
     rows: Vec<u32>,
 }
@@ -77,10 +80,10 @@ pub struct HeatSolver {
     /// Vertices with no area around them (in no triangle, or only degenerate ones).
     dead: Vec<bool>,
     components: Vec<u32>,
-    heat: Llt<usize, f64>,
+    heat: Llt<u32, f64>,
     /// The heat system with zero heat held on the boundary, when there is one.
     dirichlet: Option<Restricted>,
-    poisson: Llt<usize, f64>,
+    poisson: Llt<u32, f64>,
     setup: HeatSetup,
 }
 
@@ -123,12 +126,14 @@ impl HeatSolver {
         let h = triangulation.mean_edge_length();
         setup.time_step = options.time_factor * h * h;
         let t = setup.time_step;
-        let heat = factor("heat", n, combine(&laplacian, t, &mass, 1.0, &dead))?;
         let regularisation = 1.0e-8 / (h * h).max(f64::MIN_POSITIVE);
-        let poisson = factor(
-            "Poisson",
+        let [heat, poisson] = factor_alike(
+            ["heat", "Poisson"],
             n,
-            combine(&laplacian, 1.0, &mass, regularisation, &dead),
+            [
+                combine(&laplacian, t, &mass, 1.0, &dead),
+                combine(&laplacian, 1.0, &mass, regularisation, &dead),
+            ],
         )?;
         let boundary = triangulation.boundary_vertices();
         let dirichlet = if boundary.iter().zip(&dead).any(|(&b, &d)| b && !d) {
@@ -289,13 +294,13 @@ fn combine(
     mass: &[f64],
     b: f64,
     dead: &[bool],
-) -> Vec<Triplet<usize, usize, f64>> {
+) -> Vec<Triplet<u32, u32, f64>> {
     laplacian
         .iter()
-        .map(|&(row, col, value)| Triplet::new(row, col, a * value))
+        .map(|&(row, col, value)| Triplet::new(row as u32, col as u32, a * value))
         .chain(mass.iter().enumerate().map(|(v, &m)| {
             let diagonal = if dead[v] { 1.0 } else { b * m };
-            Triplet::new(v, v, diagonal)
+            Triplet::new(v as u32, v as u32, diagonal)
         }))
         .collect()
 }
@@ -304,37 +309,60 @@ fn combine(
 fn factor(
     name: &'static str,
     n: usize,
-    triplets: Vec<Triplet<usize, usize, f64>>,
-) -> Result<Llt<usize, f64>, HeatError> {
-    let matrix = SparseColMat::<usize, f64>::try_new_from_triplets(n, n, &triplets)
-        .map_err(|e| HeatError::Factorisation(name, format!("{e:?}")))?;
+    triplets: Vec<Triplet<u32, u32, f64>>,
+) -> Result<Llt<u32, f64>, HeatError> {
+    let matrix = assemble(name, n, &triplets)?;
     matrix
         .sp_cholesky(faer::Side::Lower)
         .map_err(|e| HeatError::Factorisation(name, e.to_string()))
 }
 
+/// Factors two matrices with the same pattern of non-zeros, analysing the pattern once.
+fn factor_alike(
+    names: [&'static str; 2],
+    n: usize,
+    triplets: [Vec<Triplet<u32, u32, f64>>; 2],
+) -> Result<[Llt<u32, f64>; 2], HeatError> {
+    let [first, second] = [0, 1].map(|i| assemble(names[i], n, &triplets[i]));
+    let (first, second) = (first?, second?);
+    let symbolic = SymbolicLlt::try_new(first.symbolic(), faer::Side::Lower)
+        .map_err(|e| HeatError::Factorisation(names[0], format!("{e:?}")))?;
+    let numeric = |name: &'static str, matrix: &SparseColMat<u32, f64>| {
+        Llt::try_new_with_symbolic(symbolic.clone(), matrix.as_ref(), faer::Side::Lower)
+            .map_err(|e| HeatError::Factorisation(name, e.to_string()))
+    };
+    Ok([numeric(names[0], &first)?, numeric(names[1], &second)?])
+}
+
+/// A sparse matrix from triplets (repeated positions add up).
+fn assemble(
+    name: &'static str,
+    n: usize,
+    triplets: &[Triplet<u32, u32, f64>],
+) -> Result<SparseColMat<u32, f64>, HeatError> {
+    SparseColMat::<u32, f64>::try_new_from_triplets(n, n, triplets)
+        .map_err(|e| HeatError::Factorisation(name, format!("{e:?}")))
+}
+
 /// The system of `triplets` restricted to the vertices marked `keep`, factored.
-fn restricted(
-    triplets: &[Triplet<usize, usize, f64>],
-    keep: &[bool],
-) -> Result<Restricted, HeatError> {
-    let mut index = vec![usize::MAX; keep.len()];
+fn restricted(triplets: &[Triplet<u32, u32, f64>], keep: &[bool]) -> Result<Restricted, HeatError> {
+    let mut index = vec![u32::MAX; keep.len()];
     let mut rows = Vec::new();
     for (v, _) in keep.iter().enumerate().filter(|(_, k)| **k) {
-        index[v] = rows.len();
+        index[v] = rows.len() as u32;
         rows.push(v as u32);
     }
     let kept = triplets
         .iter()
-        .filter(|t| keep[t.row] && keep[t.col])
-        .map(|t| Triplet::new(index[t.row], index[t.col], t.val))
+        .filter(|t| keep[t.row as usize] && keep[t.col as usize])
+        .map(|t| Triplet::new(index[t.row as usize], index[t.col as usize], t.val))
         .collect();
     let llt = factor("boundary heat", rows.len(), kept)?;
     Ok(Restricted { llt, rows })
 }
 
 /// Solves in place with a factored matrix.
-fn solve(llt: &Llt<usize, f64>, values: &mut [f64]) {
+fn solve(llt: &Llt<u32, f64>, values: &mut [f64]) {
     if values.is_empty() {
         return;
     }

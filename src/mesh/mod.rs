@@ -90,6 +90,27 @@ impl Mesh {
             .sum()
     }
 
+    /// The mesh as Wavefront OBJ text (positions, normals, texture coordinates, faces),
+    /// which every tool reads.
+    pub fn to_obj(&self) -> String {
+        use std::fmt::Write;
+        let mut obj = String::with_capacity(self.positions.len() * 80 + self.indices.len() * 12);
+        for (k, p) in self.positions.iter().enumerate() {
+            let n = self.normals.get(k).copied().unwrap_or([0.0, 1.0, 0.0]);
+            let t = self.uvs.get(k).copied().unwrap_or([0.0, 0.0]);
+            let _ = writeln!(
+                obj,
+                "v {} {} {}\nvn {} {} {}\nvt {} {}",
+                p[0], p[1], p[2], n[0], n[1], n[2], t[0], t[1]
+            );
+        }
+        for t in self.indices.chunks_exact(3) {
+            let [a, b, c] = [t[0] + 1, t[1] + 1, t[2] + 1];
+            let _ = writeln!(obj, "f {a}/{a}/{a} {b}/{b}/{b} {c}/{c}/{c}");
+        }
+        obj
+    }
+
     /// Number of triangles.
     pub fn triangle_count(&self) -> usize {
         self.indices.len() / 3

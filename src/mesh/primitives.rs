@@ -7,14 +7,29 @@ use std::f32::consts::{PI, TAU};
 /// Names accepted by [`primitive`].
 pub const PRIMITIVES: [&str; 5] = ["sphere", "cube", "torus", "plane", "genus2"];
 
-/// The primitive called `name`, if there is one.
+/// The primitive called `name`, if there is one. A name may carry a level of detail,
+/// `torus:320` (segments across the smaller direction; the defaults are sphere 48,
+/// cube 8, torus 48, plane 16 and genus2 40), for refined meshes and benchmarks.
 pub fn primitive(name: &str) -> Option<Mesh> {
-    match name {
-        "sphere" => Some(sphere(96, 48)),
-        "cube" => Some(cube()),
-        "torus" => Some(torus(0.7, 0.3, 96, 48)),
-        "plane" => Some(plane()),
-        "genus2" => Some(super::implicit::double_torus(0.025)),
+    let (base, detail) = match name.split_once(':') {
+        Some((base, detail)) => (
+            base,
+            Some(
+                detail
+                    .parse::<u32>()
+                    .ok()
+                    .filter(|d| (1..=4096).contains(d))?,
+            ),
+        ),
+        None => (name, None),
+    };
+    let detail = |default: u32| detail.unwrap_or(default);
+    match base {
+        "sphere" => Some(sphere(2 * detail(48), detail(48))),
+        "cube" => Some(cube(detail(8))),
+        "torus" => Some(torus(0.7, 0.3, 2 * detail(48), detail(48))),
+        "plane" => Some(plane(detail(16))),
+        "genus2" => Some(super::implicit::double_torus(1.0 / detail(40) as f32)),
         _ => None,
     }
 }
@@ -48,7 +63,7 @@ pub fn torus(major: f32, minor: f32, segments: u32, sides: u32) -> Mesh {
 }
 
 /// A cube from -0.7 to 0.7, one grid per face so the edges stay sharp.
-fn cube() -> Mesh {
+fn cube(steps: u32) -> Mesh {
     let mut mesh = Mesh::default();
     let half = 0.7;
     // (normal, a, b) per face with a × b = normal; the grid runs v along a and u along b
@@ -62,7 +77,7 @@ fn cube() -> Mesh {
         ([0.0, 0.0, -1.0], [-1.0, 0.0, 0.0], [0.0, 1.0, 0.0]),
     ];
     for (n, a, b) in faces {
-        mesh.push_grid(8, 8, |u, v| {
+        mesh.push_grid(steps, steps, |u, v| {
             let (s, t) = ((v * 2.0 - 1.0) * half, (u * 2.0 - 1.0) * half);
             let p = [0, 1, 2].map(|k| n[k] * half + a[k] * s + b[k] * t);
             (p, n)
@@ -72,9 +87,9 @@ fn cube() -> Mesh {
 }
 
 /// A 2×2 plane in y = 0 facing up.
-fn plane() -> Mesh {
+fn plane(steps: u32) -> Mesh {
     let mut mesh = Mesh::default();
-    mesh.push_grid(16, 16, |u, v| {
+    mesh.push_grid(steps, steps, |u, v| {
         ([u * 2.0 - 1.0, 0.0, v * 2.0 - 1.0], [0.0, 1.0, 0.0])
     });
     mesh

@@ -243,7 +243,7 @@ fn a_broken_mesh_gets_finite_distances_where_reached_and_warnings_naming_its_def
     let apart = mesh.positions.len();
     mesh.push_grid(4, 4, |u, v| ([u + 5.0, 0.0, v], [0.0, 1.0, 0.0]));
     let obj = crate::support::temp_dir("broken-mesh").join("broken.obj");
-    std::fs::write(&obj, obj_text(&mesh)).unwrap();
+    std::fs::write(&obj, mesh.to_obj()).unwrap();
     for method in ["heat", "exact", "dijkstra"] {
         for robust in [false, true] {
             let csv = obj.with_extension(format!("{method}{robust}.csv"));
@@ -301,17 +301,4 @@ fn a_broken_mesh_gets_finite_distances_where_reached_and_warnings_naming_its_def
             );
         }
     }
-}
-
-/// `mesh` as Wavefront OBJ text.
-fn obj_text(mesh: &Mesh) -> String {
-    let vertices = mesh
-        .positions
-        .iter()
-        .map(|p| format!("v {} {} {}\n", p[0], p[1], p[2]));
-    let faces = mesh
-        .indices
-        .chunks_exact(3)
-        .map(|t| format!("f {} {} {}\n", t[0] + 1, t[1] + 1, t[2] + 1));
-    vertices.chain(faces).collect()
 }

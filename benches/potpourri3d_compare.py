@@ -1,0 +1,87 @@
+#!/usr/bin/env python3
+"""Heat-method geodesic distances: Veneer against potpourri3d (geometry-central's heat
+method) on the same meshes, side by side in one run.
+
+    pip install potpourri3d
+    cargo build --release
+    python3 benches/potpourri3d_compare.py [--veneer target/release/veneer] [--runs 5]
+
+Each mesh is a Veneer primitive written out as OBJ by `veneer mesh --write`, so both
+tools read the same file. Factorisation ("set-up") and one solve are timed separately;
+each figure is the median over the runs. The last column is the mean relative
+difference between the two fields (vertices farther than 10% of the largest distance).
+"""
+
+import argparse
+import statistics
+import subprocess
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+import potpourri3d as pp3d
+
+MESHES = ["torus:160", "genus2:60", "sphere:128"]
+SUMMARY_TIMES = ("set-up", "solve")
+
+
+def veneer_run(veneer, obj, csv):
+    """Runs `veneer geodesic` once and returns (set-up ms, solve ms)."""
+    result = subprocess.run(
+        [veneer, "geodesic", obj, "--sources", "0", "--method", "heat", "-o", csv],
+        check=True,
+        capture_output=True,
+        text=True,
+    )
+    summary = result.stderr.strip().splitlines()[-1]
+    times = {}
+    for part in summary.split(";")[-1].split(","):
+        label, value = part.strip().rsplit(" ", 2)[0], part.strip().split(" ")[-2]
+        times[label] = float(value)
+    return tuple(times[label] for label in SUMMARY_TIMES)
+
+
+def theirs(vertices, faces):
+    """potpourri3d: (set-up ms, solve ms, field)."""
+    started = time.perf_counter()
+    solver = pp3d.MeshHeatMethodDistanceSolver(vertices, faces)
+    factored = time.perf_counter()
+    field = solver.compute_distance(0)
+    solved = time.perf_counter()
+    return (factored - started) * 1e3, (solved - factored) * 1e3, field
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--veneer", default="target/release/veneer")
+    parser.add_argument("--runs", type=int, default=5)
+    args = parser.parse_args()
+    header = f"{'mesh':<12}{'triangles':>10}{'set-up ours':>13}{'theirs':>9}{'ratio':>7}{'solve ours':>12}{'theirs':>9}{'ratio':>7}{'field diff':>12}"
+    print(header)
+    print("-" * len(header))
+    with tempfile.TemporaryDirectory() as folder:
+        for name in MESHES:
+            obj = str(Path(folder) / (name.replace(":", "_") + ".obj"))
+            csv = str(Path(folder) / "field.csv")
+            subprocess.run([args.veneer, "mesh", name, "--weld", "1e-6", "--write", obj], check=True, capture_output=True)
+            vertices, faces = pp3d.read_mesh(obj)
+            ours = [veneer_run(args.veneer, obj, csv) for _ in range(args.runs)]
+            their_runs = [theirs(vertices, faces) for _ in range(args.runs)]
+            our_setup = statistics.median(o[0] for o in ours)
+            our_solve = statistics.median(o[1] for o in ours)
+            their_setup = statistics.median(t[0] for t in their_runs)
+            their_solve = statistics.median(t[1] for t in their_runs)
+            our_field = np.loadtxt(csv)
+            their_field = their_runs[-1][2]
+            far = their_field > 0.1 * their_field.max()
+            difference = np.mean(np.abs(our_field[far] - their_field[far]) / their_field[far])
+            print(
+                f"{name:<12}{len(faces):>10}{our_setup:>11.1f}ms{their_setup:>7.1f}ms{our_setup / their_setup:>7.2f}"
+                f"{our_solve:>10.1f}ms{their_solve:>7.1f}ms{our_solve / their_solve:>7.2f}{difference:>11.2%}"
+            )
+    print(f"(median of {args.runs} runs each; ratio = ours / theirs)")
+
+
+if __name__ == "__main__":
+    main()
