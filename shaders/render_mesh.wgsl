@@ -17,24 +17,42 @@ struct VeneerVertexOut {
     @location(0) position: vec3f,
     @location(1) normal: vec3f,
     @location(2) uv: vec2f,
+    @location(3) fields: vec4f,
+}
+
+struct VeneerVertexIn {
+    @location(0) position: vec3f,
+    @location(1) normal: vec3f,
+    @location(2) uv: vec2f,
+    @location(3) fields: vec4f,  // distance fields, 0 where none was computed
 }
 
 @vertex
-fn veneer_mesh_vertex(@location(0) position: vec3f, @location(1) normal: vec3f, @location(2) uv: vec2f) -> VeneerVertexOut {
+fn veneer_mesh_vertex(input: VeneerVertexIn) -> VeneerVertexOut {
     var out: VeneerVertexOut;
-    out.clip = veneer_mesh_view.view_projection * vec4f(position, 1.0);
-    out.position = position;
-    out.normal = normal;
-    out.uv = uv;
+    out.clip = veneer_mesh_view.view_projection * vec4f(input.position, 1.0);
+    out.position = input.position;
+    out.normal = input.normal;
+    out.uv = input.uv;
+    out.fields = input.fields;
     return out;
+}
+
+// Where a texture-space point of the mesh sits.
+fn veneer_texture_position(position: vec3f) -> vec3f {
+    return position * veneer_mesh_view.placement.w + veneer_mesh_view.placement.xyz;
 }
 
 @fragment
 fn veneer_mesh_fragment(input: VeneerVertexOut) -> @location(0) vec4f {
     let view = veneer_mesh_view;
     let normal = normalize(input.normal);
-    let texture_position = input.position * view.placement.w + view.placement.xyz;
-    let material = veneer_material(VeneerSurface(texture_position, normal, input.uv, vec4f(0.0), view.time));
+    let surface = VeneerSurface(veneer_texture_position(input.position), normal, input.uv, input.fields, view.time);
+    let material = veneer_material(surface);
+    // Eaten-away surfaces: what the material makes transparent is cut out.
+    if material.alpha < 0.5 {
+        discard;
+    }
     let n = normalize(normal + material.bump);
     let l = view.light_direction.xyz;
     let v = normalize(view.eye.xyz - input.position);

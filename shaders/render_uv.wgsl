@@ -17,10 +17,16 @@ struct VeneerUvOut {
     @location(0) position: vec3f,
     @location(1) normal: vec3f,
     @location(2) uv: vec2f,
+    @location(3) fields: vec4f,
 }
 
 @vertex
-fn veneer_uv_vertex(@location(0) position: vec3f, @location(1) normal: vec3f, @location(2) uv: vec2f) -> VeneerUvOut {
+fn veneer_uv_vertex(
+    @location(0) position: vec3f,
+    @location(1) normal: vec3f,
+    @location(2) uv: vec2f,
+    @location(3) fields: vec4f,
+) -> VeneerUvOut {
     let view = veneer_uv_view;
     let texel = (uv * view.size - view.tile.xy) / view.tile.zw;
     var out: VeneerUvOut;
@@ -28,6 +34,7 @@ fn veneer_uv_vertex(@location(0) position: vec3f, @location(1) normal: vec3f, @l
     out.position = position;
     out.normal = normal;
     out.uv = uv;
+    out.fields = fields;
     return out;
 }
 
@@ -35,6 +42,6 @@ fn veneer_uv_vertex(@location(0) position: vec3f, @location(1) normal: vec3f, @l
 fn veneer_uv_fragment(input: VeneerUvOut) -> @location(0) vec4u {
     let view = veneer_uv_view;
     let position = input.position * view.placement.w + view.placement.xyz;
-    let material = veneer_material(VeneerSurface(position, normalize(input.normal), input.uv, vec4f(0.0), view.time));
+    let material = veneer_material(VeneerSurface(position, normalize(input.normal), input.uv, input.fields, view.time));
     return veneer_bake_channels(material, view.channels);
 }

@@ -15,13 +15,14 @@ pub struct Entry {
 }
 
 /// Menu order of the categories.
-pub const CATEGORIES: [(Category, &str); 8] = [
+pub const CATEGORIES: [(Category, &str); 9] = [
     (Category::Input, "Input"),
     (Category::Coordinates, "Coordinates"),
     (Category::Noise, "Noise"),
     (Category::Fractal, "Fractal"),
     (Category::Cellular, "Cellular"),
     (Category::Pattern, "Pattern"),
+    (Category::Field, "Distance field"),
     (Category::Math, "Math"),
     (Category::Output, "Output"),
 ];
@@ -78,6 +79,10 @@ pub fn entries() -> Vec<Entry> {
             format!("Noise ({})", basis_name(basis)),
             NodeKind::Noise { basis },
         );
+        add(
+            format!("Noise bump ({})", basis_name(basis)),
+            NodeKind::NoiseBump { basis },
+        );
     }
     for basis in Basis::ALL {
         add(
@@ -126,9 +131,17 @@ pub fn entries() -> Vec<Entry> {
         NodeKind::TriangleWave,
         NodeKind::Tiles,
         NodeKind::Rings,
+        NodeKind::Front,
+        NodeKind::Isolines,
     ] {
         add(kind.title().to_string(), kind);
     }
+    add(
+        "Layers (colour)".into(),
+        NodeKind::Layers {
+            ty: ValueType::Color,
+        },
+    );
     for op in MathOp::ALL {
         add(
             format!("{op:?}"),

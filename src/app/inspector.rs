@@ -42,7 +42,7 @@ fn settings(ui: &mut Ui, kind: &mut NodeKind) {
         Field { slot } => {
             ui.add(egui::Slider::new(slot, 0..=3).text("field slot"));
         }
-        Constant { ty } | Mix { ty } | Clamp { ty } | Step { ty } => {
+        Constant { ty } | Mix { ty } | Clamp { ty } | Step { ty } | Layers { ty } => {
             choice(ui, "type", ty, &TYPES);
         }
         Math { op, ty } => {
@@ -58,7 +58,7 @@ fn settings(ui: &mut Ui, kind: &mut NodeKind) {
         Length { ty } | Dot { ty } | Normalize { ty } | Split { ty } | Combine { ty } => {
             choice(ui, "type", ty, &VECTORS);
         }
-        DomainWarp { basis } | Noise { basis } => {
+        DomainWarp { basis } | Noise { basis } | NoiseBump { basis } => {
             choice(ui, "basis", basis, &Basis::ALL);
         }
         Fbm {

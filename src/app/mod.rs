@@ -669,6 +669,7 @@ fn material_frame(
         generation: live.generation,
         wgsl,
         slots: module.params.len(),
+        displaced: module.uses.displacement,
         params: live.params(graph),
     })
 }

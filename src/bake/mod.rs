@@ -110,8 +110,8 @@ pub fn bake(
             )
         }
         BakeSurface::MeshUv(name) => {
-            let mesh =
-                crate::mesh::preview_mesh(name).map_err(|error| BakeError(error.to_string()))?;
+            let mesh = crate::render::mesh_with_fields(graph, name, &module.uses, |_, _| {})
+                .map_err(|error| BakeError(error.to_string()))?;
             // The UV square is taken to span the preview square: normals are approximate.
             let texel = 2.0 * graph.preview.size / f64::from(size);
             (

@@ -159,6 +159,30 @@ pub fn emit_node(checked: &CheckedNode, inputs: &[String], name: &str) -> NodeCo
         }
         SineBand => call(&mut code, name, "veneer_sine_band", i),
         TriangleWave => call(&mut code, name, "veneer_triangle_wave", i),
+        Front => call(&mut code, name, "veneer_front", i),
+        Isolines => call(&mut code, name, "veneer_isolines", i),
+        Layers { .. } => {
+            let front = |edge: &str| format!("veneer_front({}, {edge}, {}, {})", i[0], i[2], i[1]);
+            single(
+                &mut code,
+                format!(
+                    "mix(mix(mix({}, {}, {}), {}, {}), {}, {})",
+                    i[9],
+                    i[8],
+                    front(&i[5]),
+                    i[7],
+                    front(&i[4]),
+                    i[6],
+                    front(&i[3])
+                ),
+            );
+            code.library.push("veneer_front".to_string());
+        }
+        NoiseBump { basis } => {
+            let function = format!("veneer_noise_bump_{}", basis.suffix());
+            single(&mut code, format!("{function}({}, {}, {})", i[0], i[1], i[2]));
+            code.library.push(function);
+        }
         Tiles => {
             code.library.push("veneer_tiles".into());
             code.bind(name, format!("veneer_tiles({})", i.join(", ")));

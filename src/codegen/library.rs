@@ -5,7 +5,7 @@ use std::collections::BTreeSet;
 use std::sync::OnceLock;
 
 /// The library sources, one family per file.
-const SOURCES: [(&str, &str); 9] = [
+const SOURCES: [(&str, &str); 10] = [
     ("hash", include_str!("../../shaders/hash.wgsl")),
     ("value", include_str!("../../shaders/value.wgsl")),
     ("gradient", include_str!("../../shaders/gradient.wgsl")),
@@ -15,6 +15,7 @@ const SOURCES: [(&str, &str); 9] = [
     ("coords", include_str!("../../shaders/coords.wgsl")),
     ("patterns", include_str!("../../shaders/patterns.wgsl")),
     ("math", include_str!("../../shaders/math.wgsl")),
+    ("fields", include_str!("../../shaders/fields.wgsl")),
 ];
 
 /// The contract structs every exported module starts with.

@@ -69,6 +69,36 @@ pub struct WgslModule {
     pub module: naga::Module,
     /// Parameter slots (uniform mode only; empty when baked).
     pub params: Vec<ParamSlot>,
+    /// Which surface inputs the material reads, so renderers compute only those.
+    pub uses: SurfaceUse,
+}
+
+/// What of the surface a material needs beyond position, normal and uv.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct SurfaceUse {
+    /// Which of the four distance fields some node reads.
+    pub fields: [bool; 4],
+    /// Whether the height output can be non-zero (the mesh is displaced).
+    pub displacement: bool,
+}
+
+impl SurfaceUse {
+    fn of(graph: &CheckedGraph) -> SurfaceUse {
+        let mut uses = SurfaceUse::default();
+        for checked in &graph.order {
+            match checked.node.kind {
+                NodeKind::Field { slot } => uses.fields[slot as usize % 4] = true,
+                NodeKind::Material => {
+                    uses.displacement = match &checked.inputs[5] {
+                        InputSource::Const(value) => value.components() != [0.0; 3],
+                        _ => true,
+                    }
+                }
+                _ => {}
+            }
+        }
+        uses
+    }
 }
 
 impl WgslModule {
@@ -256,6 +286,7 @@ pub fn compile_with(graph: &CheckedGraph, mode: ParamMode) -> Result<WgslModule,
         library,
         module: naga::Module::default(),
         params,
+        uses: SurfaceUse::of(graph),
     };
     module.module = validate(&module.source).map_err(|mut error| {
         if let Some(offset) = error.offset {

@@ -1,6 +1,7 @@
 //! CPU reference evaluator: the same graph, the same formulas as the generated WGSL,
 //! evaluated at one point in f32 (like the GPU) or f64 (the reference).
 
+mod fields;
 mod noise;
 mod real;
 mod shapes;
@@ -168,6 +169,10 @@ fn eval_node<R: Real>(checked: &CheckedNode, i: &[V3<R>], s: &Surface<R>) -> Vec
             ]
         }
         Rings => one(shapes::rings(i[0], i[1], i[2], f(3))),
+        Front => one(fields::front(f(0), f(1), f(2), f(3))),
+        Layers { .. } => vec![fields::layers(i)],
+        Isolines => one(fields::isolines(f(0), f(1), f(2))),
+        NoiseBump { basis } => vec![fields::noise_bump(*basis, i[0], f(1), f(2))],
         Math { op, .. } => vec![zip(i[0], i[1], |a, b| match op {
             MathOp::Add => a + b,
             MathOp::Subtract => a - b,

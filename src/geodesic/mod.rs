@@ -7,12 +7,14 @@
 //! off on good meshes) and [`Method::Dijkstra`] (paths along edges, an upper bound a few
 //! percent long). `veneer report` measures each against the exact one.
 
+mod attach;
 mod delaunay;
 mod dijkstra;
 mod exact;
 mod heat;
 mod triangulation;
 
+pub use attach::{FieldError, attach_fields};
 pub use dijkstra::edge_distances;
 pub use exact::exact_distances;
 pub use heat::{HeatError, HeatOptions, HeatSetup, HeatSolver};

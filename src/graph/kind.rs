@@ -202,6 +202,16 @@ pub enum NodeKind {
     Tiles,
     /// Concentric rings about an axis: `0.5 + 0.5 * sin(2π * frequency * r)`.
     Rings,
+    /// A propagation front over a distance field: 1 where `distance + noise` is below
+    /// `threshold`, fading to 0 over `width` beyond it (seed 003).
+    Front,
+    /// Four values in nested rings around the sources of a distance field, each boundary
+    /// a front of the same width and noise (seed 003's nested mixes).
+    Layers { ty: ValueType },
+    /// Lines where a value crosses multiples of `spacing`, `width` wide.
+    Isolines,
+    /// A relief of noise as a bump: minus `strength` times the noise gradient.
+    NoiseBump { basis: Basis },
     /// A binary arithmetic operator.
     Math { op: MathOp, ty: ValueType },
     /// A unary operator.
@@ -244,6 +254,7 @@ pub enum Category {
     Fractal,
     Cellular,
     Pattern,
+    Field,
     Math,
     Output,
 }
@@ -284,6 +295,10 @@ impl NodeKind {
             NodeKind::Split { .. } => "Split",
             NodeKind::Combine { .. } => "Combine",
             NodeKind::ColorRamp { .. } => "Colour ramp",
+            NodeKind::Front => "Front",
+            NodeKind::Layers { .. } => "Layers",
+            NodeKind::Isolines => "Isolines",
+            NodeKind::NoiseBump { .. } => "Noise bump",
             NodeKind::Material => "Material",
         }
     }
@@ -294,7 +309,8 @@ impl NodeKind {
         match self {
             Position | Normal | Uv | Time | Field { .. } | Constant { .. } => Category::Input,
             Transform | Project | Cylindrical | DomainWarp { .. } => Category::Coordinates,
-            Noise { .. } => Category::Noise,
+            Noise { .. } | NoiseBump { .. } => Category::Noise,
+            Front | Layers { .. } | Isolines => Category::Field,
             Fbm { .. } | Turbulence { .. } | FractalSum { .. } => Category::Fractal,
             Worley { .. } => Category::Cellular,
             SineBand | TriangleWave | Tiles | Rings => Category::Pattern,

@@ -106,6 +106,10 @@ pub struct Preview {
     pub mesh: String,
     pub center: (f64, f64, f64),
     pub size: f64,
+    /// The geodesic distance fields of the mesh, in slot order (`Field` nodes read slot
+    /// k from `fields[k]`); at most four.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub fields: Vec<FieldSource>,
 }
 
 impl Default for Preview {
@@ -114,7 +118,23 @@ impl Default for Preview {
             mesh: "sphere".to_string(),
             center: (0.0, 0.0, 0.0),
             size: 1.0,
+            fields: Vec::new(),
         }
+    }
+}
+
+/// A distance field over the preview mesh: the vertices it spreads from (in the order
+/// the mesh lists them) and how it is computed.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct FieldSource {
+    pub sources: Vec<u32>,
+    #[serde(default = "FieldSource::default_method")]
+    pub method: crate::geodesic::Method,
+}
+
+impl FieldSource {
+    fn default_method() -> crate::geodesic::Method {
+        crate::geodesic::Method::Heat(Default::default())
     }
 }
 

@@ -170,6 +170,46 @@ impl NodeKind {
                 ],
                 vec![output("band", FLOAT)],
             ),
+            Front => (
+                vec![
+                    input("distance", FLOAT, REQUIRED),
+                    input("threshold", FLOAT, f(0.5)),
+                    input("width", FLOAT, f(0.05)),
+                    input("noise", FLOAT, f(0.0)),
+                ],
+                vec![output("covered", FLOAT)],
+            ),
+            Layers { ty } => (
+                vec![
+                    input("distance", FLOAT, REQUIRED),
+                    input("noise", FLOAT, f(0.0)),
+                    input("width", FLOAT, f(0.02)),
+                    input("edge1", FLOAT, f(0.25)),
+                    input("edge2", FLOAT, f(0.5)),
+                    input("edge3", FLOAT, f(0.75)),
+                    input("inner", *ty, splat(*ty, 0.0)),
+                    input("second", *ty, splat(*ty, 0.33)),
+                    input("third", *ty, splat(*ty, 0.67)),
+                    input("outer", *ty, splat(*ty, 1.0)),
+                ],
+                vec![output("result", *ty)],
+            ),
+            Isolines => (
+                vec![
+                    input("value", FLOAT, REQUIRED),
+                    input("spacing", FLOAT, f(0.1)),
+                    input("width", FLOAT, f(0.01)),
+                ],
+                vec![output("line", FLOAT)],
+            ),
+            NoiseBump { .. } => (
+                vec![
+                    input("p", VEC3, POSITION),
+                    input("scale", FLOAT, f(1.0)),
+                    input("strength", FLOAT, f(0.05)),
+                ],
+                vec![output("bump", VEC3)],
+            ),
             TriangleWave => (
                 vec![
                     input("x", FLOAT, REQUIRED),

@@ -263,6 +263,29 @@ fn node_ranges(
             UnaryOp::Negate => Interval::new(-x.hi, -x.lo),
             UnaryOp::OneMinus => Interval::new(1.0 - x.hi, 1.0 - x.lo),
         })],
+        Front | Layers { .. } => {
+            if f(2).lo <= 0.0 {
+                state.warn(
+                    checked,
+                    "the width can be 0: a hard front that aliases (stair-steps) on screen".into(),
+                );
+            }
+            match checked.node.kind {
+                Front => one(Interval::UNIT),
+                _ => vec![lanewise(&lanewise(&i[6], &i[7], Interval::hull), &lanewise(&i[8], &i[9], Interval::hull), Interval::hull)],
+            }
+        }
+        Isolines => {
+            if f(1).lo <= 0.0 || f(2).lo <= 0.0 {
+                state.warn(checked, "the spacing or the width can be 0: no lines there".into());
+            }
+            one(Interval::UNIT)
+        }
+        NoiseBump { basis } => {
+            lattice_hazards(state, checked, Some(*basis), max_length(&i[0], 3) * f(1).magnitude());
+            let reach = 4.0 * f(2).magnitude();
+            vec![splat(Interval::new(-reach, reach))]
+        }
         Mix { .. } => {
             let factor = f(2);
             vec![lanewise(&i[0], &i[1], |a, b| a.add(b.sub(a).mul(factor)))]

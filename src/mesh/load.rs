@@ -91,6 +91,7 @@ fn finish(soup: Soup) -> Result<Mesh, String> {
         normals,
         uvs,
         indices: soup.indices,
+        fields: Vec::new(),
     })
 }
 

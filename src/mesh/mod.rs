@@ -34,6 +34,9 @@ pub struct Mesh {
     pub uvs: Vec<[f32; 2]>,
     /// Three vertex indices per triangle, counter-clockwise seen from outside.
     pub indices: Vec<u32>,
+    /// Per-vertex distance fields for `VeneerSurface.fields`, normalised to [0, 1];
+    /// empty until computed (the shader then reads 0).
+    pub fields: Vec<[f32; 4]>,
 }
 
 impl Mesh {

@@ -3,6 +3,7 @@
 use super::{
     FlatRect, FlatRenderer, GpuContext, MeshRenderer, MeshView, RenderError, albedo_to_rgb8,
 };
+use crate::codegen::SurfaceUse;
 use crate::graph::Graph;
 use serde::{Deserialize, Serialize};
 
@@ -77,6 +78,21 @@ pub fn preview_rect(graph: &Graph) -> FlatRect {
     }
 }
 
+/// The preview mesh `name` carrying the distance fields of `graph` that the material
+/// uses (none are solved when it reads none).
+pub fn mesh_with_fields(
+    graph: &Graph,
+    name: &str,
+    uses: &SurfaceUse,
+    progress: impl FnMut(usize, usize),
+) -> Result<crate::mesh::Mesh, RenderError> {
+    let mut mesh =
+        crate::mesh::preview_mesh(name).map_err(|error| RenderError(error.to_string()))?;
+    crate::geodesic::attach_fields(&mut mesh, &graph.preview.fields, uses.fields, progress)
+        .map_err(|error| RenderError(format!("{name}: {error}")))?;
+    Ok(mesh)
+}
+
 /// Compiles `graph` and renders it as `view` at size×size pixels and time `time`.
 pub fn render_graph(
     gpu: &GpuContext,
@@ -101,12 +117,11 @@ pub fn render_graph(
         View::PreviewFlat => flat(preview_rect(graph)),
         View::Mesh(name) => {
             let name = name.as_deref().unwrap_or(&graph.preview.mesh);
-            let mesh =
-                crate::mesh::preview_mesh(name).map_err(|error| RenderError(error.to_string()))?;
+            let mesh = mesh_with_fields(graph, name, &module.uses, |_, _| {})?;
             let mut mesh_view = MeshView::for_preview(&graph.preview);
             mesh_view.time = time;
-            let pixels =
-                MeshRenderer::new(gpu, &module.source)?.render(gpu, &mesh, &mesh_view, size)?;
+            let renderer = MeshRenderer::new(gpu, &module.source, module.uses.displacement)?;
+            let pixels = renderer.render(gpu, &mesh, &mesh_view, size)?;
             Ok(Image {
                 width: size,
                 height: size,

@@ -142,6 +142,7 @@ struct Vertex {
     position: [f32; 3],
     normal: [f32; 3],
     uv: [f32; 2],
+    fields: [f32; 4],
 }
 
 /// Colour format of offscreen mesh renders.
@@ -149,6 +150,7 @@ pub const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 const SAMPLES: u32 = 4;
 const ENTRY_POINTS: &str = include_str!("../../shaders/render_mesh.wgsl");
+const DISPLACED_ENTRY_POINT: &str = include_str!("../../shaders/render_mesh_displaced.wgsl");
 
 /// A mesh uploaded to the GPU.
 pub struct GpuMesh {
@@ -158,10 +160,12 @@ pub struct GpuMesh {
 }
 
 impl GpuMesh {
-    const ATTRIBUTES: [wgpu::VertexAttribute; 3] =
-        wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x2];
+    const ATTRIBUTES: [wgpu::VertexAttribute; 4] = wgpu::vertex_attr_array![
+        0 => Float32x3, 1 => Float32x3, 2 => Float32x2, 3 => Float32x4
+    ];
 
-    /// The vertex layout of every mesh pipeline: position (location 0), normal (1), uv (2).
+    /// The vertex layout of every mesh pipeline: position (location 0), normal (1), uv
+    /// (2), distance fields (3).
     pub fn layout() -> wgpu::VertexBufferLayout<'static> {
         wgpu::VertexBufferLayout {
             array_stride: std::mem::size_of::<Vertex>() as u64,
@@ -184,6 +188,7 @@ impl GpuMesh {
                 position: mesh.positions[i],
                 normal: mesh.normals[i],
                 uv: mesh.uvs[i],
+                fields: mesh.fields.get(i).copied().unwrap_or([0.0; 4]),
             })
             .collect();
         let buffer = |label, contents: &[u8], usage| {
@@ -267,23 +272,34 @@ pub struct MeshPipeline {
 
 impl MeshPipeline {
     /// Builds the pipeline for a material module; `param_slots` is the number of slots
-    /// of a uniform-mode module (0 when its parameters are baked).
+    /// of a uniform-mode module (0 when its parameters are baked); `displaced` moves the
+    /// vertices by the material's height (only for materials whose height is used).
     pub fn new(
         device: &wgpu::Device,
         material_wgsl: &str,
         param_slots: usize,
+        displaced: bool,
     ) -> Result<MeshPipeline, RenderError> {
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let entry_points = if displaced {
+            format!("{ENTRY_POINTS}\n{DISPLACED_ENTRY_POINT}")
+        } else {
+            ENTRY_POINTS.to_string()
+        };
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("mesh render"),
-            source: wgpu::ShaderSource::Wgsl(shader_source(material_wgsl, ENTRY_POINTS).into()),
+            source: wgpu::ShaderSource::Wgsl(shader_source(material_wgsl, &entry_points).into()),
         });
         let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
             label: Some("mesh render"),
             layout: None,
             vertex: wgpu::VertexState {
                 module: &module,
-                entry_point: Some("veneer_mesh_vertex"),
+                entry_point: Some(if displaced {
+                    "veneer_mesh_vertex_displaced"
+                } else {
+                    "veneer_mesh_vertex"
+                }),
                 compilation_options: Default::default(),
                 buffers: &[Some(GpuMesh::layout())],
             },
@@ -409,10 +425,15 @@ pub struct MeshRenderer {
 }
 
 impl MeshRenderer {
-    /// Builds the pipeline for a material module with baked parameters.
-    pub fn new(gpu: &GpuContext, material_wgsl: &str) -> Result<MeshRenderer, RenderError> {
+    /// Builds the pipeline for a material module with baked parameters (`displaced`:
+    /// its height moves the vertices).
+    pub fn new(
+        gpu: &GpuContext,
+        material_wgsl: &str,
+        displaced: bool,
+    ) -> Result<MeshRenderer, RenderError> {
         Ok(MeshRenderer {
-            pipeline: MeshPipeline::new(&gpu.device, material_wgsl, 0)?,
+            pipeline: MeshPipeline::new(&gpu.device, material_wgsl, 0, displaced)?,
         })
     }
 

@@ -31,6 +31,8 @@ fn kinds() -> Vec<NodeKind> {
         NodeKind::Rings,
         NodeKind::Smoothstep,
         NodeKind::Remap,
+        NodeKind::Front,
+        NodeKind::Isolines,
         NodeKind::Worley {
             feature: WorleyFeature::F1,
             metric: Metric::Euclidean,
@@ -88,6 +90,7 @@ fn kinds() -> Vec<NodeKind> {
     ];
     for basis in [Basis::ValuePcg, Basis::Gradient, Basis::Simplex] {
         kinds.push(NodeKind::Noise { basis });
+        kinds.push(NodeKind::NoiseBump { basis });
         kinds.push(NodeKind::DomainWarp { basis });
         kinds.push(NodeKind::Fbm {
             basis,
@@ -113,6 +116,7 @@ fn kinds() -> Vec<NodeKind> {
             kinds.push(NodeKind::Unary { op, ty });
         }
         kinds.extend([
+            NodeKind::Layers { ty },
             NodeKind::Mix { ty },
             NodeKind::Clamp { ty },
             NodeKind::Step { ty },

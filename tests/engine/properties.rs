@@ -28,7 +28,7 @@ fn kind(seed: u32, sine: bool) -> NodeKind {
     };
     let basis = bases[(seed / 256) as usize % bases.len()];
     let octaves = 1 + seed / 1024 % 6;
-    match seed % 30 {
+    match seed % 34 {
         0 => NodeKind::Position,
         1 => NodeKind::Normal,
         2 => NodeKind::Uv,
@@ -80,6 +80,10 @@ fn kind(seed: u32, sine: bool) -> NodeKind {
         26 => NodeKind::Dot { ty: vector },
         27 => NodeKind::Normalize { ty: vector },
         28 => NodeKind::Split { ty: vector },
+        29 => NodeKind::Front,
+        30 => NodeKind::Layers { ty },
+        31 => NodeKind::Isolines,
+        32 => NodeKind::NoiseBump { basis },
         _ => NodeKind::Combine { ty: vector },
     }
 }

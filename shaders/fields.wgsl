@@ -1,0 +1,31 @@
+//! Materials driven by geodesic distance fields (seed 003): propagation fronts, nested
+//! layers, isolines, and bump reliefs of noise.
+
+// How much of the surface a material spreading from the sources covers: 1 where
+// `distance + noise` is at most `threshold`, falling smoothly to 0 over `width` beyond
+// it (seed 003's smoothstep front, measured from the threshold); a hard edge at width 0.
+fn veneer_front(distance: f32, threshold: f32, width: f32, noise: f32) -> f32 {
+    return 1.0 - veneer_smoothstep(threshold, threshold + max(width, 0.0), distance + noise);
+}
+
+// 1 on the lines where `value` is a multiple of `spacing`, falling to 0 at `width` from
+// them (in the value's units); no lines when the spacing or the width is 0.
+fn veneer_isolines(value: f32, spacing: f32, width: f32) -> f32 {
+    let period = max(spacing, 1.0e-30);
+    let offset = abs(fract(value / period + 0.5) - 0.5) * period;
+    let line = 1.0 - veneer_smoothstep(0.0, max(width, 0.0), offset);
+    return select(line, 0.0, spacing <= 0.0 || width <= 0.0);
+}
+
+// A relief of basis noise at `p * scale` as a bump: minus `strength` times the noise
+// gradient per noise cell (central differences a hundredth of a cell apart).
+fn veneer_noise_bump_BASIS(p: vec3f, scale: f32, strength: f32) -> vec3f {
+    let q = p * scale;
+    let h = 0.01;
+    let gradient = vec3f(
+        veneer_noise_BASIS(q + vec3f(h, 0.0, 0.0)) - veneer_noise_BASIS(q - vec3f(h, 0.0, 0.0)),
+        veneer_noise_BASIS(q + vec3f(0.0, h, 0.0)) - veneer_noise_BASIS(q - vec3f(0.0, h, 0.0)),
+        veneer_noise_BASIS(q + vec3f(0.0, 0.0, h)) - veneer_noise_BASIS(q - vec3f(0.0, 0.0, h)),
+    ) / (2.0 * h);
+    return -strength * gradient;
+}

@@ -1,0 +1,79 @@
+//! Distance fields as vertex attributes: a graph's field sources solved over its preview
+//! mesh and stored, normalised, in `Mesh::fields` for `VeneerSurface.fields`.
+
+use super::{Method, fields, max_finite, welded_for_distances};
+use crate::graph::FieldSource;
+use crate::mesh::Mesh;
+
+/// Why fields could not be attached.
+#[derive(Debug, thiserror::Error)]
+pub enum FieldError {
+    #[error("field {slot}: source vertex {vertex} does not exist (the mesh has {count} vertices)")]
+    NoSuchVertex { slot: usize, vertex: u32, count: usize },
+    #[error("field {slot} has no source vertices")]
+    NoSources { slot: usize },
+    #[error("{0} fields given; a mesh carries at most 4")]
+    TooMany(usize),
+    #[error(transparent)]
+    Heat(#[from] super::HeatError),
+}
+
+/// Solves the fields of `sources` whose slot is marked in `used` over `mesh` and stores
+/// them in `mesh.fields`, each divided by its largest finite distance. Vertices a field
+/// never reaches read 1 (the material never gets there); unused or missing slots read 0.
+/// Nothing is solved, and `mesh.fields` stays empty, when no slot is used.
+pub fn attach_fields(
+    mesh: &mut Mesh,
+    sources: &[FieldSource],
+    used: [bool; 4],
+    mut progress: impl FnMut(usize, usize),
+) -> Result<(), FieldError> {
+    if sources.len() > 4 {
+        return Err(FieldError::TooMany(sources.len()));
+    }
+    let count = mesh.positions.len();
+    for (slot, field) in sources.iter().enumerate() {
+        if field.sources.is_empty() && used[slot] {
+            return Err(FieldError::NoSources { slot });
+        }
+        if let Some(&vertex) = field.sources.iter().find(|&&v| v as usize >= count) {
+            return Err(FieldError::NoSuchVertex { slot, vertex, count });
+        }
+    }
+    let wanted: Vec<usize> = (0..sources.len()).filter(|&slot| used[slot]).collect();
+    mesh.fields.clear();
+    if wanted.is_empty() {
+        return Ok(());
+    }
+    let (welded, remap) = welded_for_distances(mesh);
+    mesh.fields = vec![[0.0; 4]; count];
+    let mut methods: Vec<Method> = Vec::new();
+    for &slot in &wanted {
+        if !methods.contains(&sources[slot].method) {
+            methods.push(sources[slot].method);
+        }
+    }
+    let total = wanted.len() * welded.positions.len();
+    let mut done = 0;
+    for method in methods {
+        let slots: Vec<usize> = wanted.iter().copied().filter(|&s| sources[s].method == method).collect();
+        let sets: Vec<Vec<u32>> = slots
+            .iter()
+            .map(|&slot| sources[slot].sources.iter().map(|&v| remap[v as usize]).collect())
+            .collect();
+        let solved = fields(&welded, &sets, method, |d, _| progress(done + d, total))?;
+        done += slots.len() * welded.positions.len();
+        for (&slot, field) in slots.iter().zip(&solved.fields) {
+            let farthest = max_finite(field);
+            for (vertex, &target) in remap.iter().enumerate() {
+                let distance = field[target as usize];
+                mesh.fields[vertex][slot] = match distance.is_finite() {
+                    true if farthest > 0.0 => (distance / farthest) as f32,
+                    true => 0.0,
+                    false => 1.0,
+                };
+            }
+        }
+    }
+    Ok(())
+}
