@@ -144,13 +144,12 @@ fn live_edit(c: &mut Criterion) {
             }
             assert!(live.update(&graph));
             let module = live.module.as_ref().expect("compiles");
-            let pipeline =
-                veneer::render::MeshPipeline::new(
-                    &gpu.device,
-                    &module.source,
-                    module.params.len(),
-                    module.uses.displacement,
-                );
+            let pipeline = veneer::render::MeshPipeline::new(
+                &gpu.device,
+                &module.source,
+                module.params.len(),
+                module.uses.displacement,
+            );
             pipeline.expect("pipeline builds")
         })
     });

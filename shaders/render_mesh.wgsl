@@ -27,15 +27,34 @@ struct VeneerVertexIn {
     @location(3) fields: vec4f,  // distance fields, 0 where none was computed
 }
 
-@vertex
-fn veneer_mesh_vertex(input: VeneerVertexIn) -> VeneerVertexOut {
+// The vertex at `position` (mesh space, moved or not) with the rest of `input`.
+fn veneer_vertex_at(input: VeneerVertexIn, position: vec3f) -> VeneerVertexOut {
     var out: VeneerVertexOut;
-    out.clip = veneer_mesh_view.view_projection * vec4f(input.position, 1.0);
-    out.position = input.position;
+    out.clip = veneer_mesh_view.view_projection * vec4f(position, 1.0);
+    out.position = position;
     out.normal = input.normal;
     out.uv = input.uv;
     out.fields = input.fields;
     return out;
+}
+
+@vertex
+fn veneer_mesh_vertex(input: VeneerVertexIn) -> VeneerVertexOut {
+    return veneer_vertex_at(input, input.position);
+}
+
+// The normal perturbation of a height relief (mesh units) over the surface, from the
+// screen-space derivatives of the height and the position (Mikkelsen's surface
+// gradient); 0 where the height is constant. Displaced meshes take their silhouette
+// from the vertex stage and their shading from this.
+fn veneer_height_bump(position: vec3f, normal: vec3f, height: f32) -> vec3f {
+    let dx = dpdx(position);
+    let dy = dpdy(position);
+    let across_y = cross(dy, normal);
+    let across_x = cross(normal, dx);
+    let det = dot(dx, across_y);
+    let gradient = sign(det) * (dpdx(height) * across_y + dpdy(height) * across_x);
+    return select(-gradient / abs(det), vec3f(0.0), abs(det) < 1.0e-20);
 }
 
 // Where a texture-space point of the mesh sits.
@@ -49,11 +68,12 @@ fn veneer_mesh_fragment(input: VeneerVertexOut) -> @location(0) vec4f {
     let normal = normalize(input.normal);
     let surface = VeneerSurface(veneer_texture_position(input.position), normal, input.uv, input.fields, view.time);
     let material = veneer_material(surface);
+    let relief = veneer_height_bump(input.position, normal, material.height / max(view.placement.w, 1.0e-6));
     // Eaten-away surfaces: what the material makes transparent is cut out.
     if material.alpha < 0.5 {
         discard;
     }
-    let n = normalize(normal + material.bump);
+    let n = normalize(normal + material.bump + relief);
     let l = view.light_direction.xyz;
     let v = normalize(view.eye.xyz - input.position);
     let h = normalize(l + v);

@@ -7,9 +7,5 @@ fn veneer_mesh_vertex_displaced(input: VeneerVertexIn) -> VeneerVertexOut {
     let normal = normalize(input.normal);
     let surface = VeneerSurface(veneer_texture_position(input.position), normal, input.uv, input.fields, veneer_mesh_view.time);
     let height = veneer_material(surface).height;
-    let moved = input.position + normal * height / max(veneer_mesh_view.placement.w, 1.0e-6);
-    var out = veneer_mesh_vertex(input);
-    out.clip = veneer_mesh_view.view_projection * vec4f(moved, 1.0);
-    out.position = moved;
-    return out;
+    return veneer_vertex_at(input, input.position + normal * height / max(veneer_mesh_view.placement.w, 1.0e-6));
 }

@@ -129,7 +129,8 @@ impl PreviewResources {
         if let Some(material) = &frame.material {
             let current = self.pipeline.as_ref().map(|(generation, _)| *generation);
             if current != Some(material.generation) {
-                match MeshPipeline::new(device, &material.wgsl, material.slots, material.displaced) {
+                match MeshPipeline::new(device, &material.wgsl, material.slots, material.displaced)
+                {
                     Ok(pipeline) => {
                         self.pipeline = Some((material.generation, pipeline));
                         self.pipeline_error = None;

@@ -180,7 +180,10 @@ pub fn emit_node(checked: &CheckedNode, inputs: &[String], name: &str) -> NodeCo
         }
         NoiseBump { basis } => {
             let function = format!("veneer_noise_bump_{}", basis.suffix());
-            single(&mut code, format!("{function}({}, {}, {})", i[0], i[1], i[2]));
+            single(
+                &mut code,
+                format!("{function}({}, {}, {})", i[0], i[1], i[2]),
+            );
             code.library.push(function);
         }
         Tiles => {

@@ -7,7 +7,12 @@ use crate::graph::Basis;
 
 /// `veneer_front`: 1 up to the threshold, 0 beyond `threshold + width`.
 pub fn front<R: Real>(distance: R, threshold: R, width: R, noise: R) -> R {
-    R::c(1.0) - smoothstep(threshold, threshold + width.max(R::c(0.0)), distance + noise)
+    R::c(1.0)
+        - smoothstep(
+            threshold,
+            threshold + width.max(R::c(0.0)),
+            distance + noise,
+        )
 }
 
 /// The nested mix of four values by three fronts (inputs in the node's pin order).

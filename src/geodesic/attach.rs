@@ -9,7 +9,11 @@ use crate::mesh::Mesh;
 #[derive(Debug, thiserror::Error)]
 pub enum FieldError {
     #[error("field {slot}: source vertex {vertex} does not exist (the mesh has {count} vertices)")]
-    NoSuchVertex { slot: usize, vertex: u32, count: usize },
+    NoSuchVertex {
+        slot: usize,
+        vertex: u32,
+        count: usize,
+    },
     #[error("field {slot} has no source vertices")]
     NoSources { slot: usize },
     #[error("{0} fields given; a mesh carries at most 4")]
@@ -37,7 +41,11 @@ pub fn attach_fields(
             return Err(FieldError::NoSources { slot });
         }
         if let Some(&vertex) = field.sources.iter().find(|&&v| v as usize >= count) {
-            return Err(FieldError::NoSuchVertex { slot, vertex, count });
+            return Err(FieldError::NoSuchVertex {
+                slot,
+                vertex,
+                count,
+            });
         }
     }
     let wanted: Vec<usize> = (0..sources.len()).filter(|&slot| used[slot]).collect();
@@ -56,10 +64,20 @@ pub fn attach_fields(
     let total = wanted.len() * welded.positions.len();
     let mut done = 0;
     for method in methods {
-        let slots: Vec<usize> = wanted.iter().copied().filter(|&s| sources[s].method == method).collect();
+        let slots: Vec<usize> = wanted
+            .iter()
+            .copied()
+            .filter(|&s| sources[s].method == method)
+            .collect();
         let sets: Vec<Vec<u32>> = slots
             .iter()
-            .map(|&slot| sources[slot].sources.iter().map(|&v| remap[v as usize]).collect())
+            .map(|&slot| {
+                sources[slot]
+                    .sources
+                    .iter()
+                    .map(|&v| remap[v as usize])
+                    .collect()
+            })
             .collect();
         let solved = fields(&welded, &sets, method, |d, _| progress(done + d, total))?;
         done += slots.len() * welded.positions.len();

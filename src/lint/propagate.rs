@@ -272,17 +272,29 @@ fn node_ranges(
             }
             match checked.node.kind {
                 Front => one(Interval::UNIT),
-                _ => vec![lanewise(&lanewise(&i[6], &i[7], Interval::hull), &lanewise(&i[8], &i[9], Interval::hull), Interval::hull)],
+                _ => vec![lanewise(
+                    &lanewise(&i[6], &i[7], Interval::hull),
+                    &lanewise(&i[8], &i[9], Interval::hull),
+                    Interval::hull,
+                )],
             }
         }
         Isolines => {
             if f(1).lo <= 0.0 || f(2).lo <= 0.0 {
-                state.warn(checked, "the spacing or the width can be 0: no lines there".into());
+                state.warn(
+                    checked,
+                    "the spacing or the width can be 0: no lines there".into(),
+                );
             }
             one(Interval::UNIT)
         }
         NoiseBump { basis } => {
-            lattice_hazards(state, checked, Some(*basis), max_length(&i[0], 3) * f(1).magnitude());
+            lattice_hazards(
+                state,
+                checked,
+                Some(*basis),
+                max_length(&i[0], 3) * f(1).magnitude(),
+            );
             let reach = 4.0 * f(2).magnitude();
             vec![splat(Interval::new(-reach, reach))]
         }

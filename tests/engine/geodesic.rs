@@ -302,3 +302,85 @@ fn a_broken_mesh_gets_finite_distances_where_reached_and_warnings_naming_its_def
         }
     }
 }
+
+#[test]
+fn fields_are_solved_only_for_the_slots_a_material_reads() {
+    let sand = veneer::graph::load(&crate::support::root("graphs/water_lava.ron")).unwrap();
+    let uses = veneer::codegen::compile_graph(&sand).unwrap().uses;
+    assert_eq!(uses.fields, [true, true, false, false]);
+    assert!(!uses.displacement);
+    let wood = veneer::graph::load(&crate::support::root("graphs/wood.ron")).unwrap();
+    let wood_uses = veneer::codegen::compile_graph(&wood).unwrap().uses;
+    assert_eq!(wood_uses.fields, [false; 4], "no field node, no field");
+
+    let mut mesh = veneer::mesh::primitive(&sand.preview.mesh).unwrap();
+    geodesic::attach_fields(&mut mesh, &sand.preview.fields, wood_uses.fields, |_, _| {}).unwrap();
+    assert!(
+        mesh.fields.is_empty(),
+        "nothing solved when nothing reads a field"
+    );
+    geodesic::attach_fields(&mut mesh, &sand.preview.fields, uses.fields, |_, _| {}).unwrap();
+    assert_eq!(mesh.fields.len(), mesh.positions.len());
+    for slot in 0..2 {
+        let values: Vec<f32> = mesh.fields.iter().map(|f| f[slot]).collect();
+        assert!(
+            values.iter().all(|v| (0.0..=1.0).contains(v)),
+            "slot {slot} normalised"
+        );
+        assert!(values.iter().any(|&v| v == 0.0) && values.iter().any(|&v| v == 1.0));
+    }
+    assert!(
+        mesh.fields.iter().all(|f| f[2] == 0.0 && f[3] == 0.0),
+        "unused slots read 0"
+    );
+
+    let waves = veneer::graph::load(&crate::support::root("graphs/waves.ron")).unwrap();
+    assert!(
+        veneer::codegen::compile_graph(&waves)
+            .unwrap()
+            .uses
+            .displacement
+    );
+}
+
+#[test]
+fn geotexture_fronts_move_with_time_and_bad_sources_are_named() {
+    let dir = crate::support::temp_dir("fronts");
+    let render = |graph: &std::path::Path, time: &str, out: &str| {
+        crate::support::veneer()
+            .args([
+                "render",
+                graph.to_str().unwrap(),
+                "--size",
+                "64",
+                "--time",
+                time,
+                "-o",
+            ])
+            .arg(dir.join(out))
+            .output()
+            .unwrap()
+    };
+    let sand = crate::support::root("graphs/sand_water.ron");
+    assert!(render(&sand, "0", "early.png").status.success());
+    assert!(render(&sand, "4", "late.png").status.success());
+    let (early, late) = (
+        std::fs::read(dir.join("early.png")).unwrap(),
+        std::fs::read(dir.join("late.png")).unwrap(),
+    );
+    assert_ne!(early, late, "the sand front advances");
+
+    let text = std::fs::read_to_string(&sand)
+        .unwrap()
+        .replace("sources: [29039]", "sources: [99999999]");
+    let broken = dir.join("broken.ron");
+    std::fs::write(&broken, text).unwrap();
+    let output = render(&broken, "0", "broken.png");
+    assert_eq!(output.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        stderr.contains("field 0: source vertex 99999999 does not exist"),
+        "{stderr}"
+    );
+    assert!(!dir.join("broken.png").exists(), "no half-made image");
+}
