@@ -5,6 +5,7 @@ mod catalogue;
 mod clipboard;
 mod dialogs;
 mod document;
+mod fields;
 mod graph_view;
 mod history;
 mod inspector;
@@ -72,6 +73,11 @@ pub struct VeneerApp {
     last_autosave: f64,
     /// The material code handed to each preview slot, shared between frames.
     wgsl: [Option<(u64, Arc<str>)>; 2],
+    /// The preview mesh's distance fields: solving, picking sources, viewing.
+    fields: fields::FieldState,
+    /// The field view's material (a colour scale with isolines of one field).
+    field_view: LiveMaterial,
+    field_view_wgsl: Option<(u64, Arc<str>)>,
     render_state: Option<eframe::egui_wgpu::RenderState>,
     allowed_to_close: bool,
     /// Where unsaved work is autosaved.
@@ -116,6 +122,9 @@ impl VeneerApp {
             recent: recovery::load_recent(&recovery_file),
             last_autosave: 0.0,
             wgsl: [None, None],
+            fields: Default::default(),
+            field_view: LiveMaterial::default(),
+            field_view_wgsl: None,
             render_state,
             allowed_to_close: false,
             recovery_file,
@@ -240,6 +249,11 @@ impl VeneerApp {
             self.snarl = snarl_from_graph(&graph);
             self.document.graph = graph;
         }
+    }
+
+    /// Whether the preview shows a mesh whose distance fields are solved and up to date.
+    pub fn fields_solved(&self) -> bool {
+        self.preview.prepared.is_some() && self.fields.progress().is_none()
     }
 
     /// The graph view's transform from graph to screen coordinates (node widgets are laid
@@ -495,22 +509,33 @@ impl VeneerApp {
             ui.color_edit_button_rgb(&mut self.preview.view.background);
         });
         let width = ui.available_width();
-        let material = if self.render_state.is_some() {
-            material_frame(
+        self.solve_fields();
+        let material = match (self.render_state.is_some(), self.fields.view) {
+            (false, _) => None,
+            (true, Some(slot)) => {
+                let graph = fields::field_view_graph(slot as u8);
+                self.field_view.update(&graph);
+                material_frame(&self.field_view, &mut self.field_view_wgsl, &graph).map(
+                    |mut frame| {
+                        frame.generation |= FIELD_VIEW_GENERATIONS;
+                        frame
+                    },
+                )
+            }
+            (true, None) => material_frame(
                 &self.live,
                 &mut self.wgsl[Slot::Main as usize],
                 &self.document.graph,
-            )
-        } else {
-            None
+            ),
         };
         if self.render_state.is_some() {
-            preview::show(
+            let response = preview::show(
                 ui,
                 &mut self.preview,
                 material,
                 egui::vec2(width, width.min(ui.available_height() * 0.55)),
             );
+            self.pick_source(&response);
         } else {
             ui.label("(no GPU: preview unavailable)");
         }
@@ -544,10 +569,78 @@ impl VeneerApp {
                     .range(-1.0..=1.0),
             );
         });
+        fields::fields_panel(
+            ui,
+            &mut self.document.graph.preview.fields,
+            &mut self.fields,
+        );
         if self.preview.playing {
             let dt = ui.input(|input| input.stable_dt).min(0.1);
             self.preview.view.time = (self.preview.view.time + dt) % 20.0;
             ui.ctx().request_repaint();
+        }
+    }
+
+    /// Keeps the preview mesh's fields in step with the graph (solving in the background)
+    /// and hands the solved mesh to the preview.
+    fn solve_fields(&mut self) {
+        let mut used = self
+            .live
+            .module
+            .as_ref()
+            .map(|m| m.uses.fields)
+            .unwrap_or_default();
+        if let Some(slot) = self.fields.view {
+            used[slot.min(3)] = true;
+        }
+        let name = self.preview.mesh.clone();
+        let file = self.preview.file.clone();
+        let base =
+            || crate::mesh::primitive(&name).or_else(|| file.map(|mesh| mesh.as_ref().clone()));
+        self.fields
+            .update(&name, base, &self.document.graph.preview.fields, used);
+        let mesh_prefix = format!("{name}|");
+        self.preview.prepared = self
+            .fields
+            .ready
+            .clone()
+            .filter(|(key, _)| key.starts_with(&mesh_prefix));
+    }
+
+    /// A click on the preview while picking adds (or removes) the vertex under it as a
+    /// source of the picked field.
+    fn pick_source(&mut self, response: &egui::Response) {
+        let (Some(slot), Some(click)) = (self.fields.picking, response.interact_pointer_pos())
+        else {
+            return;
+        };
+        if !response.clicked() || self.preview.flat {
+            return;
+        }
+        let rect = response.rect;
+        let ndc = [
+            (click.x - rect.left()) / rect.width() * 2.0 - 1.0,
+            1.0 - (click.y - rect.top()) / rect.height() * 2.0,
+        ];
+        let (origin, direction) = self
+            .preview
+            .view
+            .ray(rect.width() / rect.height().max(1.0), ndc);
+        let mesh = match (
+            &self.preview.file,
+            crate::mesh::primitive(&self.preview.mesh),
+        ) {
+            (_, Some(primitive)) => Arc::new(primitive),
+            (Some(file), None) => file.clone(),
+            (None, None) => return,
+        };
+        let fields = &mut self.document.graph.preview.fields;
+        if let (Some(vertex), Some(field)) = (
+            crate::mesh::pick_vertex(&mesh, origin, direction),
+            fields.get_mut(slot),
+        ) {
+            fields::toggle_source(field, vertex);
+            self.message = Some(format!("field {slot}: {} sources", field.sources.len()));
         }
     }
 
@@ -649,6 +742,10 @@ impl VeneerApp {
         }
     }
 }
+
+/// Set in the generations of field-view materials, so that the preview never mistakes
+/// one for the graph's material of the same generation.
+const FIELD_VIEW_GENERATIONS: u64 = 1 << 48;
 
 /// What a preview should draw this frame: `live`'s code (shared through `cache` until it
 /// changes) and its parameter values for `graph`.

@@ -14,6 +14,9 @@ pub struct PreviewState {
     pub mesh: String,
     /// The loaded mesh when `mesh` is a file (fitted to the unit sphere).
     pub file: Option<Arc<crate::mesh::Mesh>>,
+    /// The mesh with its distance fields solved, and what it was solved for; drawn in
+    /// place of the plain mesh when present.
+    pub prepared: Option<(String, Arc<crate::mesh::Mesh>)>,
     pub view: MeshView,
     /// Show the albedo flat from above instead of lit on the mesh.
     pub flat: bool,
@@ -25,6 +28,7 @@ impl PreviewState {
     pub fn for_graph(preview: &Preview) -> PreviewState {
         PreviewState {
             file: None,
+            prepared: None,
             mesh: preview.mesh.clone(),
             view: MeshView::for_preview(preview),
             flat: false,
@@ -140,19 +144,21 @@ impl PreviewResources {
                 }
             }
         }
-        let mesh_name = if frame.flat {
-            "plane"
-        } else {
-            frame.mesh.as_str()
+        let prepared = frame.prepared.as_ref().filter(|_| !frame.flat);
+        let mesh_key = match (frame.flat, prepared) {
+            (true, _) => "plane",
+            (false, Some((key, _))) => key.as_str(),
+            (false, None) => frame.mesh.as_str(),
         };
-        if self.mesh.as_ref().is_none_or(|(name, _)| name != mesh_name) {
+        if self.mesh.as_ref().is_none_or(|(key, _)| key != mesh_key) {
             let file = frame.file.as_deref().filter(|_| !frame.flat);
-            let mesh = match (crate::mesh::primitive(mesh_name), file) {
-                (Some(primitive), _) => primitive,
-                (None, Some(loaded)) => loaded.clone(),
-                (None, None) => crate::mesh::primitive("sphere").expect("sphere exists"),
+            let mesh = match (prepared, crate::mesh::primitive(mesh_key), file) {
+                (Some((_, mesh)), _, _) => mesh.as_ref().clone(),
+                (None, Some(primitive), _) => primitive,
+                (None, None, Some(loaded)) => loaded.clone(),
+                (None, None, None) => crate::mesh::primitive("sphere").expect("sphere exists"),
             };
-            self.mesh = Some((mesh_name.to_string(), GpuMesh::new(device, &mesh)));
+            self.mesh = Some((mesh_key.to_string(), GpuMesh::new(device, &mesh)));
         }
         if self
             .target
@@ -185,6 +191,7 @@ pub struct PreviewCallback {
     material: Option<MaterialFrame>,
     mesh: String,
     file: Option<Arc<crate::mesh::Mesh>>,
+    prepared: Option<(String, Arc<crate::mesh::Mesh>)>,
     view: MeshView,
     flat: bool,
     size: (u32, u32),
@@ -257,6 +264,7 @@ pub fn thumbnail(
     let mut flat = PreviewState {
         mesh: state.mesh.clone(),
         file: None,
+        prepared: None,
         view: state.view.clone(),
         flat: true,
         playing: false,
@@ -317,6 +325,7 @@ fn draw(
         material,
         mesh: state.mesh.clone(),
         file: state.file.clone(),
+        prepared: state.prepared.clone(),
         view: frame_view,
         flat: state.flat,
         size: (pixels.x.max(1.0) as u32, pixels.y.max(1.0) as u32),

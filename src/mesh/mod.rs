@@ -3,11 +3,13 @@
 mod analysis;
 mod implicit;
 mod load;
+mod pick;
 mod primitives;
 
 pub use analysis::{MeshReport, analyse, weld};
 pub use implicit::{double_torus, polygonize};
 pub use load::{EXTENSIONS, MeshError, load, vertex_normals};
+pub use pick::pick_vertex;
 pub use primitives::{PRIMITIVES, primitive, sphere, torus};
 
 /// The mesh a preview or render shows for `name`: a primitive, or else a mesh file

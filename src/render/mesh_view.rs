@@ -75,6 +75,15 @@ impl MeshView {
         Vec3::from(self.target) + offset
     }
 
+    /// The ray through a point of the image, given in normalised device coordinates
+    /// (x right, y up, both in [-1, 1]): its origin and unit direction in mesh space.
+    pub fn ray(&self, aspect: f32, ndc: [f32; 2]) -> (Vec3, Vec3) {
+        let inverse = self.view_projection(aspect).inverse();
+        let near = inverse.project_point3(Vec3::new(ndc[0], ndc[1], 0.0));
+        let far = inverse.project_point3(Vec3::new(ndc[0], ndc[1], 1.0));
+        (near, (far - near).normalize_or(Vec3::NEG_Z))
+    }
+
     fn view_projection(&self, aspect: f32) -> Mat4 {
         match self.projection {
             Projection::Perspective { fov } => {

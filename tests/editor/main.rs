@@ -3,4 +3,5 @@
 
 mod editing;
 mod files;
+mod geotextures;
 mod support;

@@ -21,7 +21,8 @@ pub fn editor(dir: &Path, graph: Option<PathBuf>) -> Harness<'static, VeneerApp>
         .with_size(egui::vec2(1400.0, 900.0))
         .wgpu()
         .build_eframe(move |cc| VeneerApp::with_recovery_file(cc, graph, recovery));
-    harness.run();
+    // Steps, not `run`: a graph with distance fields keeps repainting while they solve.
+    harness.run_steps(4);
     harness
 }
 

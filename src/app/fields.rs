@@ -1,0 +1,249 @@
+//! GeoTextures in the editor: the preview mesh's distance fields solved in the
+//! background (with a progress bar), their sources picked by clicking the mesh, and a
+//! field view (a colour scale with isolines) in place of the material.
+
+use crate::geodesic::{HeatOptions, Method};
+use crate::graph::{FieldSource, Graph, NodeKind, RampInterpolation, RampStop, Value};
+use crate::mesh::Mesh;
+use egui::Ui;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Arc, mpsc};
+
+/// The fields of the preview mesh and how the editor shows and edits them.
+#[derive(Default)]
+pub struct FieldState {
+    /// The preview mesh carrying the fields in use, once solved, with what it was solved
+    /// for.
+    pub ready: Option<(String, Arc<Mesh>)>,
+    job: Option<Job>,
+    /// What the newest solve was started for (not restarted while unchanged, even when
+    /// it failed).
+    attempted: Option<String>,
+    /// Why the newest solve failed.
+    pub error: Option<String>,
+    /// The field whose sources clicks on the preview add or remove.
+    pub picking: Option<usize>,
+    /// Show this field as a colour scale with isolines instead of the material.
+    pub view: Option<usize>,
+}
+
+/// A solve running on another thread.
+struct Job {
+    key: String,
+    done: Arc<AtomicUsize>,
+    total: Arc<AtomicUsize>,
+    result: mpsc::Receiver<Result<Mesh, String>>,
+}
+
+impl FieldState {
+    /// Starts a solve when the mesh, the sources or the fields in use changed, and picks
+    /// up a finished one. `base` gives the preview mesh (only called when a solve starts).
+    pub fn update(
+        &mut self,
+        mesh_name: &str,
+        base: impl FnOnce() -> Option<Mesh>,
+        fields: &[FieldSource],
+        used: [bool; 4],
+    ) {
+        if let Some(job) = &self.job
+            && let Ok(result) = job.result.try_recv()
+        {
+            let key = job.key.clone();
+            self.job = None;
+            match result {
+                Ok(mesh) => {
+                    self.ready = Some((key, Arc::new(mesh)));
+                    self.error = None;
+                }
+                Err(error) => self.error = Some(error),
+            }
+        }
+        if !used.iter().any(|&u| u) {
+            *self = FieldState {
+                picking: self.picking,
+                view: self.view,
+                ..FieldState::default()
+            };
+            return;
+        }
+        let key = format!("{mesh_name}|{fields:?}|{used:?}");
+        if self.attempted.as_ref() == Some(&key) {
+            return;
+        }
+        self.attempted = Some(key.clone());
+        let Some(mut mesh) = base() else {
+            return;
+        };
+        let (done, total) = (Arc::new(AtomicUsize::new(0)), Arc::new(AtomicUsize::new(1)));
+        let (sender, result) = mpsc::channel();
+        let (fields, progress) = (fields.to_vec(), (done.clone(), total.clone()));
+        std::thread::spawn(move || {
+            let solved = crate::geodesic::attach_fields(&mut mesh, &fields, used, |d, t| {
+                progress.0.store(d, Ordering::Relaxed);
+                progress.1.store(t.max(1), Ordering::Relaxed);
+            });
+            let _ = sender.send(solved.map(|()| mesh).map_err(|error| error.to_string()));
+        });
+        self.error = None;
+        self.job = Some(Job {
+            key,
+            done,
+            total,
+            result,
+        });
+    }
+
+    /// The share of the running solve done, if one is running.
+    pub fn progress(&self) -> Option<f32> {
+        self.job.as_ref().map(|job| {
+            job.done.load(Ordering::Relaxed) as f32 / job.total.load(Ordering::Relaxed) as f32
+        })
+    }
+}
+
+/// A material showing field `slot` as a colour scale (red near the sources, blue far)
+/// with isolines every 0.05 (seed 003, figure 5.2).
+pub fn field_view_graph(slot: u8) -> Graph {
+    let mut graph = Graph::default();
+    let field = graph.add("field", NodeKind::Field { slot });
+    let stops = [
+        (0.0, (0.85, 0.1, 0.1)),
+        (0.25, (0.95, 0.75, 0.1)),
+        (0.5, (0.2, 0.75, 0.25)),
+        (0.75, (0.1, 0.55, 0.85)),
+        (1.0, (0.15, 0.1, 0.6)),
+    ];
+    let scale = graph.add(
+        "colour scale",
+        NodeKind::ColorRamp {
+            stops: stops
+                .iter()
+                .map(|&(position, color)| RampStop { position, color })
+                .collect(),
+            interpolation: RampInterpolation::Linear,
+        },
+    );
+    let lines = graph.add("lines", NodeKind::Isolines);
+    graph.set_input(lines, "spacing", Value::Float(0.05));
+    graph.set_input(lines, "width", Value::Float(0.006));
+    let inked = graph.add(
+        "inked",
+        NodeKind::Mix {
+            ty: crate::graph::ValueType::Color,
+        },
+    );
+    graph.set_input(inked, "b", Value::Color(0.02, 0.02, 0.02));
+    let material = graph.add("material", NodeKind::Material);
+    graph.connect(field, "distance", scale, "factor");
+    graph.connect(field, "distance", lines, "value");
+    graph.connect(scale, "color", inked, "a");
+    graph.connect(lines, "line", inked, "factor");
+    graph.connect(inked, "result", material, "albedo");
+    graph
+}
+
+/// Adds `vertex` to the sources of `field`, or removes it when it is one already.
+pub fn toggle_source(field: &mut FieldSource, vertex: u32) {
+    match field.sources.iter().position(|&s| s == vertex) {
+        Some(index) => {
+            field.sources.remove(index);
+        }
+        None => field.sources.push(vertex),
+    }
+}
+
+const METHODS: [(&str, Method); 4] = [
+    (
+        "heat",
+        Method::Heat(HeatOptions {
+            time_factor: 1.0,
+            robust: false,
+        }),
+    ),
+    (
+        "heat, robust",
+        Method::Heat(HeatOptions {
+            time_factor: 1.0,
+            robust: true,
+        }),
+    ),
+    ("exact", Method::Exact),
+    ("dijkstra", Method::Dijkstra),
+];
+
+/// The fields section under the preview: per field its sources, method, picking and
+/// view toggles; adding and removing fields.
+pub fn fields_panel(ui: &mut Ui, fields: &mut Vec<FieldSource>, state: &mut FieldState) {
+    ui.horizontal(|ui| {
+        ui.label("Distance fields");
+        if fields.len() < 4 && ui.small_button("+ field").clicked() {
+            fields.push(FieldSource {
+                sources: Vec::new(),
+                method: METHODS[0].1,
+            });
+            state.picking = Some(fields.len() - 1);
+        }
+        if let Some(done) = state.progress() {
+            ui.add(
+                egui::ProgressBar::new(done)
+                    .desired_width(120.0)
+                    .text("solving"),
+            );
+            ui.ctx().request_repaint();
+        }
+    });
+    let mut remove = None;
+    for (slot, field) in fields.iter_mut().enumerate() {
+        ui.horizontal(|ui| {
+            ui.label(format!("{slot}: {} sources", field.sources.len()));
+            let name = METHODS
+                .iter()
+                .find(|(_, m)| *m == field.method)
+                .map_or("heat", |(name, _)| name);
+            egui::ComboBox::from_id_salt(("field method", slot))
+                .selected_text(name)
+                .show_ui(ui, |ui| {
+                    for (label, method) in METHODS {
+                        ui.selectable_value(&mut field.method, method, label);
+                    }
+                });
+            let mut picking = state.picking == Some(slot);
+            if ui
+                .toggle_value(&mut picking, "pick")
+                .on_hover_text("click the mesh to add or remove sources")
+                .changed()
+            {
+                state.picking = picking.then_some(slot);
+            }
+            let mut viewing = state.view == Some(slot);
+            if ui
+                .toggle_value(&mut viewing, "view")
+                .on_hover_text("show the field as colours and isolines")
+                .changed()
+            {
+                state.view = viewing.then_some(slot);
+            }
+            if ui.small_button("clear").clicked() {
+                field.sources.clear();
+            }
+            if ui
+                .small_button("remove")
+                .on_hover_text("remove this field")
+                .clicked()
+            {
+                remove = Some(slot);
+            }
+        });
+    }
+    if let Some(slot) = remove {
+        fields.remove(slot);
+        state.picking = None;
+        state.view = None;
+    }
+    if let Some(error) = &state.error {
+        ui.colored_label(egui::Color32::LIGHT_RED, error);
+    }
+    if state.picking.is_some() {
+        ui.weak("Click the mesh to add a source; click it again to remove it.");
+    }
+}

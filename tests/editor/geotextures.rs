@@ -1,0 +1,70 @@
+//! GeoTextures in the editor: fields solved in the background for the preview, sources
+//! picked by clicking the mesh, and the field view.
+
+use crate::support::{editor, preview_pixels, scratch, screen};
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
+use veneer::app::VeneerApp;
+
+/// Runs frames until the preview's fields are solved (they solve on another thread).
+fn wait_for_fields(harness: &mut Harness<'static, VeneerApp>) {
+    for _ in 0..600 {
+        harness.step();
+        if harness.state().fields_solved() {
+            harness.run();
+            return;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    panic!("the fields were not solved in 12 s");
+}
+
+fn sources(harness: &Harness<'static, VeneerApp>) -> Vec<u32> {
+    harness.state().document.graph.preview.fields[0]
+        .sources
+        .clone()
+}
+
+#[test]
+fn fields_solve_for_the_preview_and_a_click_on_the_mesh_adds_a_source() {
+    let dir = scratch("fields");
+    let graph = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("graphs/isolines.ron");
+    let mut harness = editor(&dir, Some(graph));
+    wait_for_fields(&mut harness);
+    let solved = preview_pixels(&screen(&mut harness));
+    assert_eq!(sources(&harness).len(), 2);
+
+    harness.get_by_label("pick").click();
+    harness.run();
+    // The middle of the preview looks at the bridge between the two rings.
+    let centre = egui::pos2(1170.0, 250.0);
+    harness.event(egui::Event::PointerMoved(centre));
+    for pressed in [true, false] {
+        harness.event(egui::Event::PointerButton {
+            pos: centre,
+            button: egui::PointerButton::Primary,
+            pressed,
+            modifiers: Default::default(),
+        });
+    }
+    harness.step();
+    let picked = sources(&harness);
+    assert_eq!(picked.len(), 3, "the click added a source: {picked:?}");
+    assert!(harness.state().document.is_dirty(), "picking is an edit");
+
+    wait_for_fields(&mut harness);
+    for _ in 0..3 {
+        harness.run();
+    }
+    let moved = preview_pixels(&screen(&mut harness));
+    assert_ne!(solved, moved, "the isolines now ring the new source too");
+
+    harness.get_by_label("view").click();
+    harness.run();
+    harness.run();
+    assert_ne!(
+        moved,
+        preview_pixels(&screen(&mut harness)),
+        "the field view replaces the material"
+    );
+}
