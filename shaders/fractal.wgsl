@@ -15,18 +15,51 @@ fn veneer_octave_fractal_sum_BASIS(q: vec3f) -> f32 {
     return veneer_noise_BASIS_signed(q);
 }
 
+// The average of one fBm octave (noise in [0, 1]), which stands in for octaves too fine
+// to show.
+fn veneer_octave_mean_fbm() -> f32 {
+    return 0.5;
+}
+
+// The average of one turbulence octave (|signed noise|).
+fn veneer_octave_mean_turbulence() -> f32 {
+    return 0.25;
+}
+
+// The average of one fractal-sum octave (signed noise).
+fn veneer_octave_mean_fractal_sum() -> f32 {
+    return 0.0;
+}
+
 // Sum of `octaves` octaves; each multiplies the frequency by `lacunarity` and the
 // amplitude by `gain`. With `normalize` the sum is divided by the sum of amplitudes.
-fn veneer_MODE_BASIS(p: vec3f, octaves: i32, lacunarity: f32, gain: f32, amplitude: f32, normalize: bool) -> f32 {
+// Octave i counts fully below `cutoff - 1`, fades to its average over the next octave
+// and is replaced by its average (and not evaluated) from `cutoff` on.
+fn veneer_MODE_BASIS(p: vec3f, octaves: i32, lacunarity: f32, gain: f32, amplitude: f32, normalize: bool, cutoff: f32) -> f32 {
     var sum = 0.0;
     var amp = amplitude;
     var freq = 1.0;
     var total = 0.0;
+    let mean = veneer_octave_mean_MODE();
     for (var i = 0; i < octaves; i++) {
-        sum += amp * veneer_octave_MODE_BASIS(p * freq);
+        let shown = clamp(cutoff - f32(i), 0.0, 1.0);
+        var octave = mean;
+        if shown > 0.0 {
+            octave = shown * veneer_octave_MODE_BASIS(p * freq) + (1.0 - shown) * mean;
+        }
+        sum += amp * octave;
         total += abs(amp);
         freq *= lacunarity;
         amp *= gain;
     }
     return select(sum, sum / total, normalize && total > 0.0);
+}
+
+// How many octaves of noise at `q` (frequency times `lacunarity` per octave) the pixel
+// footprint can show: octaves finer than half a pixel are left out (a fractional count
+// fades the last one). From the screen-space derivatives of `q`: fragment stage only.
+fn veneer_octave_cutoff(q: vec3f, lacunarity: f32) -> f32 {
+    let footprint = max(length(dpdx(q)), length(dpdy(q)));
+    let visible = 1.0 + log2(0.5 / max(footprint, 1.0e-30)) / log2(max(lacunarity, 1.0001));
+    return select(max(visible, 0.0), 1.0e9, footprint <= 0.0 || lacunarity <= 1.0);
 }

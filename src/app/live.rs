@@ -1,7 +1,9 @@
 //! The live compile loop: a structural edit recompiles the material (parameters as
 //! uniforms), a parameter edit does not; a failed compile keeps the last good material.
 
-use crate::codegen::{CompileError, ParamMode, WgslModule, compile_graph_with, param_values};
+use crate::codegen::{
+    CompileError, Detail, ParamMode, WgslModule, compile_graph_detailed, param_values,
+};
 use crate::graph::{Graph, NodeId};
 use std::collections::BTreeMap;
 
@@ -22,6 +24,8 @@ pub struct LiveMaterial {
     pub warnings: BTreeMap<NodeId, String>,
     /// The graph the warnings were found for.
     linted: Option<Graph>,
+    /// Noise detail: footprint-aware unless the user asks for every octave.
+    pub full_detail: bool,
 }
 
 /// What decides the generated code: nodes with their kinds and settings, and the wires.
@@ -43,14 +47,19 @@ fn structure_key(graph: &Graph) -> String {
 impl LiveMaterial {
     /// Recompiles if the graph's structure changed since the last call; returns whether it did.
     pub fn update(&mut self, graph: &Graph) -> bool {
-        let key = structure_key(graph);
+        let key = format!("{}|{}", structure_key(graph), self.full_detail);
         if self.structure.as_ref() == Some(&key) {
             return false;
         }
         self.structure = Some(key);
         self.compiles += 1;
         self.errors.clear();
-        match compile_graph_with(graph, ParamMode::Uniform) {
+        let detail = if self.full_detail {
+            Detail::Full
+        } else {
+            Detail::Footprint
+        };
+        match compile_graph_detailed(graph, ParamMode::Uniform, detail) {
             Ok(module) => {
                 // Nodes the output does not reach are pruned: the code may well be unchanged.
                 if self

@@ -505,6 +505,8 @@ impl VeneerApp {
                     }
                 });
             ui.checkbox(&mut self.preview.flat, "flat albedo");
+            ui.checkbox(&mut self.live.full_detail, "every octave")
+                .on_hover_text("off: noise leaves out octaves finer than a pixel (less aliasing, faster far away)");
             ui.label("background");
             ui.color_edit_button_rgb(&mut self.preview.view.background);
         });

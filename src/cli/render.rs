@@ -3,7 +3,26 @@
 use super::{Failure, in_file, load_graph, write_output};
 use clap::Args;
 use std::path::PathBuf;
-use veneer::render::{FlatRect, GpuContext, View, render_graph};
+use veneer::codegen::Detail;
+use veneer::render::{FlatRect, GpuContext, View, render_graph_detailed};
+
+/// How much noise detail to compute.
+#[derive(Clone, Copy, clap::ValueEnum)]
+pub enum DetailName {
+    /// Every octave everywhere (the CPU reference's numbers).
+    Full,
+    /// Leave out octaves finer than a pixel, fading the last one.
+    Footprint,
+}
+
+impl From<DetailName> for Detail {
+    fn from(name: DetailName) -> Detail {
+        match name {
+            DetailName::Full => Detail::Full,
+            DetailName::Footprint => Detail::Footprint,
+        }
+    }
+}
 
 #[derive(Args)]
 pub struct RenderArgs {
@@ -15,7 +34,8 @@ pub struct RenderArgs {
     /// Width and height of the image in pixels.
     #[arg(long, default_value_t = 512)]
     size: u32,
-    /// Mesh to render on: sphere, cube, torus or plane (default: the graph's preview mesh).
+    /// Mesh to render on: a primitive (sphere, cube, torus, plane, genus2, optionally
+    /// with a detail level such as torus:160) or a mesh file (default: the preview mesh).
     #[arg(long, conflicts_with = "flat")]
     mesh: Option<String>,
     /// Render the albedo unlit over the plane y = Y, x from X0 to X1, z from Z0 to Z1.
@@ -24,6 +44,9 @@ pub struct RenderArgs {
     /// Time in seconds.
     #[arg(long, default_value_t = 0.0)]
     time: f32,
+    /// Noise detail.
+    #[arg(long, value_enum, default_value = "full")]
+    detail: DetailName,
 }
 
 pub fn parse_flat(text: &str) -> Result<FlatRect, String> {
@@ -55,6 +78,13 @@ pub fn run(args: RenderArgs) -> Result<(), Failure> {
         None => View::Mesh(args.mesh),
     };
     let gpu = GpuContext::new()?;
-    let image = render_graph(&gpu, &graph, &view, args.size, args.time)?;
+    let image = render_graph_detailed(
+        &gpu,
+        &graph,
+        &view,
+        args.size,
+        args.time,
+        args.detail.into(),
+    )?;
     write_output(Some(&args.output), &image.to_png()?)
 }

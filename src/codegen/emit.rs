@@ -53,7 +53,12 @@ impl NodeCode {
 
 /// Emits one node. `inputs` holds a WGSL expression per input pin, already converted
 /// to the pin's type; `name` is the identifier reserved for the node.
-pub fn emit_node(checked: &CheckedNode, inputs: &[String], name: &str) -> NodeCode {
+pub fn emit_node(
+    checked: &CheckedNode,
+    inputs: &[String],
+    name: &str,
+    detail: super::Detail,
+) -> NodeCode {
     use NodeKind::*;
     let mut code = NodeCode::default();
     let i = inputs;
@@ -125,11 +130,19 @@ pub fn emit_node(checked: &CheckedNode, inputs: &[String], name: &str) -> NodeCo
             let (mode, basis, octaves, normalize) =
                 checked.node.kind.fractal().expect("a fractal kind");
             let function = format!("veneer_{}_{}", mode.name(), basis.suffix());
+            let q = format!("{} * {}", i[0], i[1]);
+            let cutoff = match detail {
+                super::Detail::Full => float_literal(1.0e9),
+                super::Detail::Footprint => {
+                    code.library.push("veneer_octave_cutoff".to_string());
+                    format!("veneer_octave_cutoff({q}, {})", i[2])
+                }
+            };
             single(
                 &mut code,
                 format!(
-                    "{function}({} * {}, {octaves}, {}, {}, {}, {normalize})",
-                    i[0], i[1], i[2], i[3], i[4]
+                    "{function}({q}, {octaves}, {}, {}, {}, {normalize}, {cutoff})",
+                    i[2], i[3], i[4]
                 ),
             );
             code.library.push(function);

@@ -29,6 +29,20 @@ pub enum ParamMode {
     Uniform,
 }
 
+/// How much detail noise and fractal nodes compute.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Detail {
+    /// Every octave everywhere: the same numbers as the CPU evaluator (exports, renders,
+    /// snapshots).
+    #[default]
+    Full,
+    /// Fractal nodes leave out octaves finer than the pixel footprint (from screen-space
+    /// derivatives of their input), fading the last one: less aliasing and less work in
+    /// the distance. Fragment stage only, so materials that displace vertices keep full
+    /// detail.
+    Footprint,
+}
+
 /// One parameter slot of a uniform-mode module.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ParamSlot {
@@ -141,8 +155,17 @@ pub fn compile_graph(graph: &Graph) -> Result<WgslModule, CompileError> {
 
 /// Checks and compiles a graph with parameters in `mode`.
 pub fn compile_graph_with(graph: &Graph, mode: ParamMode) -> Result<WgslModule, CompileError> {
+    compile_graph_detailed(graph, mode, Detail::Full)
+}
+
+/// Checks and compiles a graph with parameters in `mode` and noise detail `detail`.
+pub fn compile_graph_detailed(
+    graph: &Graph,
+    mode: ParamMode,
+    detail: Detail,
+) -> Result<WgslModule, CompileError> {
     let checked = graph::check(graph).map_err(CompileError::Check)?;
-    compile_with(&checked, mode)
+    compile_detailed(&checked, mode, detail)
 }
 
 fn input_expression(
@@ -199,6 +222,21 @@ pub fn compile(graph: &CheckedGraph) -> Result<WgslModule, CompileError> {
 
 /// Compiles a checked graph to a validated WGSL module with parameters in `mode`.
 pub fn compile_with(graph: &CheckedGraph, mode: ParamMode) -> Result<WgslModule, CompileError> {
+    compile_detailed(graph, mode, Detail::Full)
+}
+
+/// Compiles a checked graph with parameters in `mode` and noise detail `detail`.
+pub fn compile_detailed(
+    graph: &CheckedGraph,
+    mode: ParamMode,
+    detail: Detail,
+) -> Result<WgslModule, CompileError> {
+    let uses = SurfaceUse::of(graph);
+    let detail = if uses.displacement {
+        Detail::Full
+    } else {
+        detail
+    };
     let mut params = Vec::new();
     let mut namer = Namer::default();
     let mut outputs: BTreeMap<NodeId, Vec<String>> = BTreeMap::new();
@@ -219,7 +257,7 @@ pub fn compile_with(graph: &CheckedGraph, mode: ParamMode) -> Result<WgslModule,
             NodeKind::Material => String::new(),
             _ => namer.name(node.display_name(), node.id.0),
         };
-        let code = emit::emit_node(checked, &inputs, &name);
+        let code = emit::emit_node(checked, &inputs, &name, detail);
         if !code.statements.is_empty() {
             let mut text = format!(
                 "    // {} '{}' ({})\n",
@@ -286,7 +324,7 @@ pub fn compile_with(graph: &CheckedGraph, mode: ParamMode) -> Result<WgslModule,
         library,
         module: naga::Module::default(),
         params,
-        uses: SurfaceUse::of(graph),
+        uses,
     };
     module.module = validate(&module.source).map_err(|mut error| {
         if let Some(offset) = error.offset {

@@ -133,6 +133,8 @@ fn eval_node<R: Real>(checked: &CheckedNode, i: &[V3<R>], s: &Surface<R>) -> Vec
                 octaves,
                 [f(2), f(3), f(4)],
                 normalize,
+                // Every octave: the CPU has no pixel footprint.
+                R::c(1.0e9),
             ))
         }
         Worley {

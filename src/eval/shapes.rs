@@ -70,15 +70,27 @@ pub fn fractal<R: Real>(
     octaves: u32,
     [lacunarity, gain, amplitude]: [R; 3],
     normalize: bool,
+    cutoff: R,
 ) -> R {
     let octave = |q: V3<R>| match mode {
         FractalMode::Fbm => noise::basis(basis, q),
         FractalMode::Turbulence => noise::signed(basis, q).abs(),
         FractalMode::FractalSum => noise::signed(basis, q),
     };
+    let mean = R::c(match mode {
+        FractalMode::Fbm => 0.5,
+        FractalMode::Turbulence => 0.25,
+        FractalMode::FractalSum => 0.0,
+    });
     let (mut sum, mut amp, mut freq, mut total) = (R::c(0.0), amplitude, R::c(1.0), R::c(0.0));
-    for _ in 0..octaves {
-        sum = sum + amp * octave(scale(p, freq));
+    for i in 0..octaves {
+        let shown = (cutoff - R::c(f64::from(i))).clamp(R::c(0.0), R::c(1.0));
+        let value = if shown > R::c(0.0) {
+            shown * octave(scale(p, freq)) + (R::c(1.0) - shown) * mean
+        } else {
+            mean
+        };
+        sum = sum + amp * value;
         total = total + amp.abs();
         freq = freq * lacunarity;
         amp = amp * gain;

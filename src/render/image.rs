@@ -3,7 +3,7 @@
 use super::{
     FlatRect, FlatRenderer, GpuContext, MeshRenderer, MeshView, RenderError, albedo_to_rgb8,
 };
-use crate::codegen::SurfaceUse;
+use crate::codegen::{Detail, ParamMode, SurfaceUse};
 use crate::graph::Graph;
 use serde::{Deserialize, Serialize};
 
@@ -93,7 +93,8 @@ pub fn mesh_with_fields(
     Ok(mesh)
 }
 
-/// Compiles `graph` and renders it as `view` at size×size pixels and time `time`.
+/// Compiles `graph` and renders it as `view` at size×size pixels and time `time`, with
+/// every octave (as snapshots and the CPU reference expect).
 pub fn render_graph(
     gpu: &GpuContext,
     graph: &Graph,
@@ -101,8 +102,20 @@ pub fn render_graph(
     size: u32,
     time: f32,
 ) -> Result<Image, RenderError> {
-    let module =
-        crate::codegen::compile_graph(graph).map_err(|error| RenderError(error.to_string()))?;
+    render_graph_detailed(gpu, graph, view, size, time, Detail::Full)
+}
+
+/// [`render_graph`] with a choice of noise detail.
+pub fn render_graph_detailed(
+    gpu: &GpuContext,
+    graph: &Graph,
+    view: &View,
+    size: u32,
+    time: f32,
+    detail: Detail,
+) -> Result<Image, RenderError> {
+    let module = crate::codegen::compile_graph_detailed(graph, ParamMode::Baked, detail)
+        .map_err(|error| RenderError(error.to_string()))?;
     let flat = |rect: FlatRect| -> Result<Image, RenderError> {
         let pixels = FlatRenderer::new(gpu, &module.source)?.render(gpu, rect, size, time)?;
         Ok(Image {

@@ -4,6 +4,7 @@
 mod bake;
 mod cli;
 mod cpu_gpu;
+mod detail;
 mod export;
 mod geodesic;
 mod graph_files;

@@ -70,15 +70,29 @@ fn veneer_octave_fbm_value_sine(q: vec3f) -> f32 {
     return veneer_noise_value_sine(q);
 }
 
+// The average of one fBm octave (noise in [0, 1]), which stands in for octaves too fine
+// to show.
+fn veneer_octave_mean_fbm() -> f32 {
+    return 0.5;
+}
+
 // Sum of `octaves` octaves; each multiplies the frequency by `lacunarity` and the
 // amplitude by `gain`. With `normalize` the sum is divided by the sum of amplitudes.
-fn veneer_fbm_value_sine(p: vec3f, octaves: i32, lacunarity: f32, gain: f32, amplitude: f32, normalize: bool) -> f32 {
+// Octave i counts fully below `cutoff - 1`, fades to its average over the next octave
+// and is replaced by its average (and not evaluated) from `cutoff` on.
+fn veneer_fbm_value_sine(p: vec3f, octaves: i32, lacunarity: f32, gain: f32, amplitude: f32, normalize: bool, cutoff: f32) -> f32 {
     var sum = 0.0;
     var amp = amplitude;
     var freq = 1.0;
     var total = 0.0;
+    let mean = veneer_octave_mean_fbm();
     for (var i = 0; i < octaves; i++) {
-        sum += amp * veneer_octave_fbm_value_sine(p * freq);
+        let shown = clamp(cutoff - f32(i), 0.0, 1.0);
+        var octave = mean;
+        if shown > 0.0 {
+            octave = shown * veneer_octave_fbm_value_sine(p * freq) + (1.0 - shown) * mean;
+        }
+        sum += amp * octave;
         total += abs(amp);
         freq *= lacunarity;
         amp *= gain;
@@ -132,7 +146,7 @@ fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     // Transform 'turbulence space' (#3)
     let turbulence_space: vec3f = marble_space * vec3f(2.0f, 2.0f, 2.0f) + vec3f(0.0f, 0.0f, 0.0f);
     // fBm 'turbulence' (#4)
-    let turbulence: f32 = veneer_fbm_value_sine(turbulence_space * 1.0f, 5, 2.0f, 0.5f, 0.5f, false);
+    let turbulence: f32 = veneer_fbm_value_sine(turbulence_space * 1.0f, 5, 2.0f, 0.5f, 0.5f, false, 1000000000.0f);
     // Remap 'warp' (#5)
     let warp: f32 = veneer_remap(turbulence, 0.0f, 1.0f, -1.0f, 1.0f);
     // Sine band 'bands' (#6)

@@ -115,6 +115,13 @@ fn veneer_remap(x: f32, from_min: f32, from_max: f32, to_min: f32, to_max: f32) 
     return to_min + veneer_safe_div_f32(x - from_min, from_max - from_min) * (to_max - to_min);
 }
 
+// ---- shaders/fractal.wgsl
+
+// The average of one turbulence octave (|signed noise|).
+fn veneer_octave_mean_turbulence() -> f32 {
+    return 0.25;
+}
+
 // ---- shaders/value.wgsl
 
 // Any basis remapped from [0, 1] to [-1, 1].
@@ -131,13 +138,21 @@ fn veneer_octave_turbulence_gradient(q: vec3f) -> f32 {
 
 // Sum of `octaves` octaves; each multiplies the frequency by `lacunarity` and the
 // amplitude by `gain`. With `normalize` the sum is divided by the sum of amplitudes.
-fn veneer_turbulence_gradient(p: vec3f, octaves: i32, lacunarity: f32, gain: f32, amplitude: f32, normalize: bool) -> f32 {
+// Octave i counts fully below `cutoff - 1`, fades to its average over the next octave
+// and is replaced by its average (and not evaluated) from `cutoff` on.
+fn veneer_turbulence_gradient(p: vec3f, octaves: i32, lacunarity: f32, gain: f32, amplitude: f32, normalize: bool, cutoff: f32) -> f32 {
     var sum = 0.0;
     var amp = amplitude;
     var freq = 1.0;
     var total = 0.0;
+    let mean = veneer_octave_mean_turbulence();
     for (var i = 0; i < octaves; i++) {
-        sum += amp * veneer_octave_turbulence_gradient(p * freq);
+        let shown = clamp(cutoff - f32(i), 0.0, 1.0);
+        var octave = mean;
+        if shown > 0.0 {
+            octave = shown * veneer_octave_turbulence_gradient(p * freq) + (1.0 - shown) * mean;
+        }
+        sum += amp * octave;
         total += abs(amp);
         freq *= lacunarity;
         amp *= gain;
@@ -180,7 +195,7 @@ fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     // Math 'vein coordinate' (#9)
     let vein_coordinate: f32 = position_parts.x + slope_offset;
     // Turbulence 'turbulence' (#10)
-    let turbulence: f32 = veneer_turbulence_gradient(s.position * 1.0f, 4, 2.07f, 0.4830917874396135f, 1.0f, false);
+    let turbulence: f32 = veneer_turbulence_gradient(s.position * 1.0f, 4, 2.07f, 0.4830917874396135f, 1.0f, false, 1000000000.0f);
     // Sine band 'veins' (#11)
     let veins: f32 = veneer_sine_band(vein_coordinate, 5.711818181818182f, 6.0f, turbulence);
     // Math 'vein falloff' (#12)

@@ -18,6 +18,13 @@ struct VeneerMaterial {
     height: f32,      // displacement along the normal
 }
 
+// ---- shaders/fractal.wgsl
+
+// The average of one turbulence octave (|signed noise|).
+fn veneer_octave_mean_turbulence() -> f32 {
+    return 0.25;
+}
+
 // ---- shaders/hash.wgsl
 
 // Integer coordinates of a lattice cell, clamped to the i32 range so that any finite
@@ -93,13 +100,21 @@ fn veneer_octave_turbulence_simplex(q: vec3f) -> f32 {
 
 // Sum of `octaves` octaves; each multiplies the frequency by `lacunarity` and the
 // amplitude by `gain`. With `normalize` the sum is divided by the sum of amplitudes.
-fn veneer_turbulence_simplex(p: vec3f, octaves: i32, lacunarity: f32, gain: f32, amplitude: f32, normalize: bool) -> f32 {
+// Octave i counts fully below `cutoff - 1`, fades to its average over the next octave
+// and is replaced by its average (and not evaluated) from `cutoff` on.
+fn veneer_turbulence_simplex(p: vec3f, octaves: i32, lacunarity: f32, gain: f32, amplitude: f32, normalize: bool, cutoff: f32) -> f32 {
     var sum = 0.0;
     var amp = amplitude;
     var freq = 1.0;
     var total = 0.0;
+    let mean = veneer_octave_mean_turbulence();
     for (var i = 0; i < octaves; i++) {
-        sum += amp * veneer_octave_turbulence_simplex(p * freq);
+        let shown = clamp(cutoff - f32(i), 0.0, 1.0);
+        var octave = mean;
+        if shown > 0.0 {
+            octave = shown * veneer_octave_turbulence_simplex(p * freq) + (1.0 - shown) * mean;
+        }
+        sum += amp * octave;
         total += abs(amp);
         freq *= lacunarity;
         amp *= gain;
@@ -207,15 +222,29 @@ fn veneer_octave_fbm_gradient(q: vec3f) -> f32 {
     return veneer_noise_gradient(q);
 }
 
+// The average of one fBm octave (noise in [0, 1]), which stands in for octaves too fine
+// to show.
+fn veneer_octave_mean_fbm() -> f32 {
+    return 0.5;
+}
+
 // Sum of `octaves` octaves; each multiplies the frequency by `lacunarity` and the
 // amplitude by `gain`. With `normalize` the sum is divided by the sum of amplitudes.
-fn veneer_fbm_gradient(p: vec3f, octaves: i32, lacunarity: f32, gain: f32, amplitude: f32, normalize: bool) -> f32 {
+// Octave i counts fully below `cutoff - 1`, fades to its average over the next octave
+// and is replaced by its average (and not evaluated) from `cutoff` on.
+fn veneer_fbm_gradient(p: vec3f, octaves: i32, lacunarity: f32, gain: f32, amplitude: f32, normalize: bool, cutoff: f32) -> f32 {
     var sum = 0.0;
     var amp = amplitude;
     var freq = 1.0;
     var total = 0.0;
+    let mean = veneer_octave_mean_fbm();
     for (var i = 0; i < octaves; i++) {
-        sum += amp * veneer_octave_fbm_gradient(p * freq);
+        let shown = clamp(cutoff - f32(i), 0.0, 1.0);
+        var octave = mean;
+        if shown > 0.0 {
+            octave = shown * veneer_octave_fbm_gradient(p * freq) + (1.0 - shown) * mean;
+        }
+        sum += amp * octave;
         total += abs(amp);
         freq *= lacunarity;
         amp *= gain;
@@ -258,7 +287,7 @@ fn veneer_noise_bump_simplex(p: vec3f, scale: f32, strength: f32) -> vec3f {
 
 fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     // Turbulence 'granite grain' (#12)
-    let granite_grain: f32 = veneer_turbulence_simplex(s.position * 14.0f, 5, 2.0f, 0.5f, 1.0f, true);
+    let granite_grain: f32 = veneer_turbulence_simplex(s.position * 14.0f, 5, 2.0f, 0.5f, 1.0f, true, 1000000000.0f);
     // Colour ramp 'granite shade' (#13)
     var granite_shade = vec3f(0.35f, 0.33f, 0.33f);
     granite_shade = veneer_ramp_linear(granite_shade, vec3f(0.62f, 0.6f, 0.58f), granite_grain, 0.0f, 0.45f);
@@ -266,7 +295,7 @@ fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     // Worley 'moss cells' (#8)
     let moss_cells: f32 = veneer_worley_feature(veneer_worley(s.position * 24.0f, 1.0f, 0), 0);
     // Turbulence 'moss tufts' (#9)
-    let moss_tufts: f32 = veneer_turbulence_simplex(s.position * 30.0f, 4, 2.0f, 0.5f, 1.0f, true);
+    let moss_tufts: f32 = veneer_turbulence_simplex(s.position * 30.0f, 4, 2.0f, 0.5f, 1.0f, true, 1000000000.0f);
     // Math 'moss relief' (#10)
     let moss_relief: f32 = moss_cells + moss_tufts;
     // Mix 'moss shade' (#11)
@@ -276,7 +305,7 @@ fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     // Math 'threshold' (#4)
     let threshold: f32 = growth + 0.35f;
     // fBm 'edge wobble' (#5)
-    let edge_wobble: f32 = veneer_fbm_gradient(s.position * 6.0f, 4, 2.0f, 0.5f, 0.5f, true);
+    let edge_wobble: f32 = veneer_fbm_gradient(s.position * 6.0f, 4, 2.0f, 0.5f, 0.5f, true, 1000000000.0f);
     // Math 'wobble' (#6)
     let wobble: f32 = edge_wobble * 0.12f;
     // Front 'moss' (#7)

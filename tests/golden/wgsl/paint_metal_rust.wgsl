@@ -91,15 +91,28 @@ fn veneer_octave_fractal_sum_simplex(q: vec3f) -> f32 {
     return veneer_noise_simplex_signed(q);
 }
 
+// The average of one fractal-sum octave (signed noise).
+fn veneer_octave_mean_fractal_sum() -> f32 {
+    return 0.0;
+}
+
 // Sum of `octaves` octaves; each multiplies the frequency by `lacunarity` and the
 // amplitude by `gain`. With `normalize` the sum is divided by the sum of amplitudes.
-fn veneer_fractal_sum_simplex(p: vec3f, octaves: i32, lacunarity: f32, gain: f32, amplitude: f32, normalize: bool) -> f32 {
+// Octave i counts fully below `cutoff - 1`, fades to its average over the next octave
+// and is replaced by its average (and not evaluated) from `cutoff` on.
+fn veneer_fractal_sum_simplex(p: vec3f, octaves: i32, lacunarity: f32, gain: f32, amplitude: f32, normalize: bool, cutoff: f32) -> f32 {
     var sum = 0.0;
     var amp = amplitude;
     var freq = 1.0;
     var total = 0.0;
+    let mean = veneer_octave_mean_fractal_sum();
     for (var i = 0; i < octaves; i++) {
-        sum += amp * veneer_octave_fractal_sum_simplex(p * freq);
+        let shown = clamp(cutoff - f32(i), 0.0, 1.0);
+        var octave = mean;
+        if shown > 0.0 {
+            octave = shown * veneer_octave_fractal_sum_simplex(p * freq) + (1.0 - shown) * mean;
+        }
+        sum += amp * octave;
         total += abs(amp);
         freq *= lacunarity;
         amp *= gain;
@@ -157,11 +170,11 @@ fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     // Math 'metal edge' (#6)
     let metal_edge: f32 = ageing + 0.5f;
     // Fractal sum 'rust flakes' (#9)
-    let rust_flakes: f32 = veneer_fractal_sum_simplex(s.position * 4.62f, 5, 2.0f, 0.5f, 1.0f, true);
+    let rust_flakes: f32 = veneer_fractal_sum_simplex(s.position * 4.62f, 5, 2.0f, 0.5f, 1.0f, true, 1000000000.0f);
     // Mix 'rust colour' (#10)
     let rust_colour: vec3f = mix(vec3f(0.42f, 0.22f, 0.1f), vec3f(0.24f, 0.12f, 0.06f), rust_flakes);
     // Fractal sum 'metal stains' (#7)
-    let metal_stains: f32 = veneer_fractal_sum_simplex(s.position * 5.0f, 4, 2.0f, 0.5f, 1.0f, true);
+    let metal_stains: f32 = veneer_fractal_sum_simplex(s.position * 5.0f, 4, 2.0f, 0.5f, 1.0f, true, 1000000000.0f);
     // Mix 'metal colour' (#8)
     let metal_colour: vec3f = mix(vec3f(0.5f, 0.52f, 0.55f), vec3f(0.68f, 0.7f, 0.72f), metal_stains);
     // Layers 'albedo layers' (#11)

@@ -18,6 +18,13 @@ struct VeneerMaterial {
     height: f32,      // displacement along the normal
 }
 
+// ---- shaders/fractal.wgsl
+
+// The average of one turbulence octave (|signed noise|).
+fn veneer_octave_mean_turbulence() -> f32 {
+    return 0.25;
+}
+
 // ---- shaders/hash.wgsl
 
 // Integer coordinates of a lattice cell, clamped to the i32 range so that any finite
@@ -93,13 +100,21 @@ fn veneer_octave_turbulence_simplex(q: vec3f) -> f32 {
 
 // Sum of `octaves` octaves; each multiplies the frequency by `lacunarity` and the
 // amplitude by `gain`. With `normalize` the sum is divided by the sum of amplitudes.
-fn veneer_turbulence_simplex(p: vec3f, octaves: i32, lacunarity: f32, gain: f32, amplitude: f32, normalize: bool) -> f32 {
+// Octave i counts fully below `cutoff - 1`, fades to its average over the next octave
+// and is replaced by its average (and not evaluated) from `cutoff` on.
+fn veneer_turbulence_simplex(p: vec3f, octaves: i32, lacunarity: f32, gain: f32, amplitude: f32, normalize: bool, cutoff: f32) -> f32 {
     var sum = 0.0;
     var amp = amplitude;
     var freq = 1.0;
     var total = 0.0;
+    let mean = veneer_octave_mean_turbulence();
     for (var i = 0; i < octaves; i++) {
-        sum += amp * veneer_octave_turbulence_simplex(p * freq);
+        let shown = clamp(cutoff - f32(i), 0.0, 1.0);
+        var octave = mean;
+        if shown > 0.0 {
+            octave = shown * veneer_octave_turbulence_simplex(p * freq) + (1.0 - shown) * mean;
+        }
+        sum += amp * octave;
         total += abs(amp);
         freq *= lacunarity;
         amp *= gain;
@@ -220,15 +235,29 @@ fn veneer_octave_fbm_gradient(q: vec3f) -> f32 {
     return veneer_noise_gradient(q);
 }
 
+// The average of one fBm octave (noise in [0, 1]), which stands in for octaves too fine
+// to show.
+fn veneer_octave_mean_fbm() -> f32 {
+    return 0.5;
+}
+
 // Sum of `octaves` octaves; each multiplies the frequency by `lacunarity` and the
 // amplitude by `gain`. With `normalize` the sum is divided by the sum of amplitudes.
-fn veneer_fbm_gradient(p: vec3f, octaves: i32, lacunarity: f32, gain: f32, amplitude: f32, normalize: bool) -> f32 {
+// Octave i counts fully below `cutoff - 1`, fades to its average over the next octave
+// and is replaced by its average (and not evaluated) from `cutoff` on.
+fn veneer_fbm_gradient(p: vec3f, octaves: i32, lacunarity: f32, gain: f32, amplitude: f32, normalize: bool, cutoff: f32) -> f32 {
     var sum = 0.0;
     var amp = amplitude;
     var freq = 1.0;
     var total = 0.0;
+    let mean = veneer_octave_mean_fbm();
     for (var i = 0; i < octaves; i++) {
-        sum += amp * veneer_octave_fbm_gradient(p * freq);
+        let shown = clamp(cutoff - f32(i), 0.0, 1.0);
+        var octave = mean;
+        if shown > 0.0 {
+            octave = shown * veneer_octave_fbm_gradient(p * freq) + (1.0 - shown) * mean;
+        }
+        sum += amp * octave;
         total += abs(amp);
         freq *= lacunarity;
         amp *= gain;
@@ -284,7 +313,7 @@ fn veneer_noise_bump_gradient(p: vec3f, scale: f32, strength: f32) -> vec3f {
 
 fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     // Turbulence 'burnt ground' (#11)
-    let burnt_ground: f32 = veneer_turbulence_simplex(s.position * 8.0f, 5, 2.0f, 0.5f, 1.0f, true);
+    let burnt_ground: f32 = veneer_turbulence_simplex(s.position * 8.0f, 5, 2.0f, 0.5f, 1.0f, true, 1000000000.0f);
     // Mix 'ground colour' (#12)
     let ground_colour: vec3f = mix(vec3f(0.08f, 0.06f, 0.05f), vec3f(0.3f, 0.24f, 0.2f), burnt_ground);
     // Worley 'lava cells' (#13)
@@ -298,7 +327,7 @@ fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     // Math 'lava reach' (#6)
     let lava_reach: f32 = flow + 0.35f;
     // fBm 'lava edge noise' (#7)
-    let lava_edge_noise: f32 = veneer_fbm_gradient(s.position * 5.0f, 3, 2.0f, 0.5f, 0.5f, true);
+    let lava_edge_noise: f32 = veneer_fbm_gradient(s.position * 5.0f, 3, 2.0f, 0.5f, 0.5f, true, 1000000000.0f);
     // Math 'viscosity' (#8)
     let viscosity: f32 = lava_edge_noise * 0.1f;
     // Front 'lava' (#10)

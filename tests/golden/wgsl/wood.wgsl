@@ -83,15 +83,29 @@ fn veneer_octave_fbm_value_sine(q: vec3f) -> f32 {
     return veneer_noise_value_sine(q);
 }
 
+// The average of one fBm octave (noise in [0, 1]), which stands in for octaves too fine
+// to show.
+fn veneer_octave_mean_fbm() -> f32 {
+    return 0.5;
+}
+
 // Sum of `octaves` octaves; each multiplies the frequency by `lacunarity` and the
 // amplitude by `gain`. With `normalize` the sum is divided by the sum of amplitudes.
-fn veneer_fbm_value_sine(p: vec3f, octaves: i32, lacunarity: f32, gain: f32, amplitude: f32, normalize: bool) -> f32 {
+// Octave i counts fully below `cutoff - 1`, fades to its average over the next octave
+// and is replaced by its average (and not evaluated) from `cutoff` on.
+fn veneer_fbm_value_sine(p: vec3f, octaves: i32, lacunarity: f32, gain: f32, amplitude: f32, normalize: bool, cutoff: f32) -> f32 {
     var sum = 0.0;
     var amp = amplitude;
     var freq = 1.0;
     var total = 0.0;
+    let mean = veneer_octave_mean_fbm();
     for (var i = 0; i < octaves; i++) {
-        sum += amp * veneer_octave_fbm_value_sine(p * freq);
+        let shown = clamp(cutoff - f32(i), 0.0, 1.0);
+        var octave = mean;
+        if shown > 0.0 {
+            octave = shown * veneer_octave_fbm_value_sine(p * freq) + (1.0 - shown) * mean;
+        }
+        sum += amp * octave;
         total += abs(amp);
         freq *= lacunarity;
         amp *= gain;
@@ -145,7 +159,7 @@ fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     // Transform 'coarse warp space' (#3)
     let coarse_warp_space: vec3f = warp_space * vec3f(2.0f, 2.0f, 2.0f) + vec3f(0.0f, 0.0f, 0.0f);
     // fBm 'coarse warp' (#4)
-    let coarse_warp: f32 = veneer_fbm_value_sine(coarse_warp_space * 1.0f, 5, 2.0f, 0.5f, 0.5f, false);
+    let coarse_warp: f32 = veneer_fbm_value_sine(coarse_warp_space * 1.0f, 5, 2.0f, 0.5f, 0.5f, false, 1000000000.0f);
     // Remap 'coarse warp signed' (#5)
     let coarse_warp_signed: f32 = veneer_remap(coarse_warp, 0.0f, 1.0f, -1.0f, 1.0f);
     // Math 'coarse warp amount' (#9)
@@ -155,7 +169,7 @@ fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     // Transform 'fine warp space' (#6)
     let fine_warp_space: vec3f = warp_space * vec3f(6.0f, 6.0f, 6.0f) + vec3f(13.7f, 13.7f, 13.7f);
     // fBm 'fine warp' (#7)
-    let fine_warp: f32 = veneer_fbm_value_sine(fine_warp_space * 1.0f, 5, 2.0f, 0.5f, 0.5f, false);
+    let fine_warp: f32 = veneer_fbm_value_sine(fine_warp_space * 1.0f, 5, 2.0f, 0.5f, 0.5f, false, 1000000000.0f);
     // Remap 'fine warp signed' (#8)
     let fine_warp_signed: f32 = veneer_remap(fine_warp, 0.0f, 1.0f, -1.0f, 1.0f);
     // Math 'fine warp amount' (#10)
@@ -185,7 +199,7 @@ fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     // Math 'grain space' (#22)
     let grain_space: vec3f = grain_coords + grain_drift;
     // fBm 'grain' (#23)
-    let grain: f32 = veneer_fbm_value_sine(grain_space * 1.0f, 5, 2.0f, 0.5f, 0.5f, false);
+    let grain: f32 = veneer_fbm_value_sine(grain_space * 1.0f, 5, 2.0f, 0.5f, 0.5f, false, 1000000000.0f);
     // Smoothstep 'grain contrast' (#24)
     let grain_contrast: f32 = veneer_smoothstep(0.35f, 0.75f, grain);
     // Mix 'grain shade' (#25)
@@ -195,7 +209,7 @@ fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     // Transform 'tint space' (#28)
     let tint_space: vec3f = s.position * vec3f(0.08f, 0.08f, 0.08f) + vec3f(4.2f, 4.2f, 4.2f);
     // fBm 'tint' (#29)
-    let tint: f32 = veneer_fbm_value_sine(tint_space * 1.0f, 5, 2.0f, 0.5f, 0.5f, false);
+    let tint: f32 = veneer_fbm_value_sine(tint_space * 1.0f, 5, 2.0f, 0.5f, 0.5f, false, 1000000000.0f);
     // Math 'tint amount' (#30)
     let tint_amount: f32 = tint * 0.1f;
     // Math 'tint shade' (#31)
