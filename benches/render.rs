@@ -6,45 +6,68 @@
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
+use veneer::codegen::{Detail, ParamMode};
 use veneer::eval::{Evaluator, Surface};
 use veneer::render::{FlatRect, FlatRenderer, GpuContext};
 
 const WOOD: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/graphs/wood.ron");
 const MARBLE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/graphs/marble.ron");
-const HAND_WRITTEN_WOOD: &str = concat!(
-    include_str!("../tests/engine/reference/seed000_noise.wgsl"),
-    include_str!("../tests/engine/reference/wood_seed000.wgsl")
-);
+const SEED_NOISE: &str = include_str!("../tests/engine/reference/seed000_noise.wgsl");
+const HAND_WRITTEN_WOOD: &str = include_str!("../tests/engine/reference/wood_seed000.wgsl");
+const HAND_WRITTEN_MARBLE: &str = include_str!("../tests/engine/reference/marble_seed000.wgsl");
 
+/// Generated against hand-written WGSL of the same seed 000 material, then the generated
+/// one with every octave against footprint-aware detail on a view 50× wider.
 fn flat_render(c: &mut Criterion) {
     let gpu = GpuContext::new().expect("a wgpu adapter");
-    let graph = veneer::graph::load(std::path::Path::new(WOOD)).expect("wood preset");
-    let generated = veneer::codegen::compile_graph(&graph)
-        .expect("compiles")
-        .source;
-    let hand_written = format!("{}\n{HAND_WRITTEN_WOOD}", veneer::codegen::library::SURFACE);
-    let rect = FlatRect {
-        x0: 0.0,
-        z0: 0.0,
-        x1: 50.0,
-        z1: 50.0,
-        y: 0.5,
-    };
-    let mut group = c.benchmark_group(format!(
-        "flat render 256² of wood on {}",
-        gpu.adapter_description()
-    ));
-    group.sample_size(20);
-    for (name, source) in [
-        ("hand-written seed shader", &hand_written),
-        ("generated from the graph", &generated),
+    for (name, path, hand_written) in [
+        ("wood", WOOD, HAND_WRITTEN_WOOD),
+        ("marble", MARBLE, HAND_WRITTEN_MARBLE),
     ] {
-        let renderer = FlatRenderer::new(&gpu, source).expect("pipeline builds");
-        group.bench_function(name, |b| {
-            b.iter(|| renderer.render(&gpu, rect, 256, 0.0).expect("renders"))
-        });
+        let graph = veneer::graph::load(std::path::Path::new(path)).expect("preset");
+        let compile = |detail| {
+            veneer::codegen::compile_graph_detailed(&graph, ParamMode::Baked, detail)
+                .expect("compiles")
+                .source
+        };
+        let hand_written = format!(
+            "{}\n{SEED_NOISE}\n{hand_written}",
+            veneer::codegen::library::SURFACE
+        );
+        let near = veneer::render::preview_rect(&graph);
+        let far = FlatRect {
+            x0: near.x0 * 50.0,
+            z0: near.z0 * 50.0,
+            x1: near.x1 * 50.0,
+            z1: near.z1 * 50.0,
+            y: near.y,
+        };
+        let mut group = c.benchmark_group(format!(
+            "flat render 256² of {name} on {}",
+            gpu.adapter_description()
+        ));
+        group.sample_size(20);
+        for (label, source, rect) in [
+            ("hand-written seed shader", hand_written, near),
+            ("generated from the graph", compile(Detail::Full), near),
+            (
+                "generated, every octave, 50× wider view",
+                compile(Detail::Full),
+                far,
+            ),
+            (
+                "generated, footprint-aware, 50× wider view",
+                compile(Detail::Footprint),
+                far,
+            ),
+        ] {
+            let renderer = FlatRenderer::new(&gpu, &source).expect("pipeline builds");
+            group.bench_function(label, |b| {
+                b.iter(|| renderer.render(&gpu, rect, 256, 0.0).expect("renders"))
+            });
+        }
+        group.finish();
     }
-    group.finish();
 }
 
 fn compile(c: &mut Criterion) {

@@ -68,7 +68,11 @@ fn veneer_mesh_fragment(input: VeneerVertexOut) -> @location(0) vec4f {
     let normal = normalize(input.normal);
     let surface = VeneerSurface(veneer_texture_position(input.position), normal, input.uv, input.fields, view.time);
     let material = veneer_material(surface);
-    let relief = veneer_height_bump(input.position, normal, material.height / max(view.placement.w, 1.0e-6));
+    // VENEER_HEIGHT (set by the pipeline): the material's height can be non-zero.
+    var relief = vec3f(0.0);
+    if VENEER_HEIGHT {
+        relief = veneer_height_bump(input.position, normal, material.height / max(view.placement.w, 1.0e-6));
+    }
     // Eaten-away surfaces: what the material makes transparent is cut out.
     if material.alpha < 0.5 {
         discard;

@@ -12,4 +12,5 @@ pub mod graph;
 pub mod lint;
 pub mod mesh;
 pub mod render;
+pub mod report;
 pub mod snapshot;

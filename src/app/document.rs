@@ -5,28 +5,6 @@ use super::history::History;
 use crate::graph::{Graph, to_ron};
 use std::path::{Path, PathBuf};
 
-/// The presets shipped inside the binary, by file stem.
-pub const PRESETS: [(&str, &str); 4] = [
-    ("wood", include_str!("../../graphs/wood.ron")),
-    ("marble", include_str!("../../graphs/marble.ron")),
-    (
-        "wood_classic",
-        include_str!("../../graphs/wood_classic.ron"),
-    ),
-    (
-        "marble_tiles",
-        include_str!("../../graphs/marble_tiles.ron"),
-    ),
-];
-
-/// The embedded preset called `name`.
-pub fn preset(name: &str) -> Option<Graph> {
-    PRESETS
-        .iter()
-        .find(|(stem, _)| *stem == name)
-        .and_then(|(_, text)| crate::graph::from_ron(text).ok())
-}
-
 /// A graph open in the editor.
 pub struct Document {
     pub graph: Graph,

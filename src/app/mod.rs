@@ -15,7 +15,8 @@ mod probe;
 mod recovery;
 mod widgets;
 
-pub use document::{Document, PRESETS, preset};
+pub use crate::graph::{PRESETS, preset};
+pub use document::Document;
 pub use live::LiveMaterial;
 
 use crate::graph::{Graph, Node};

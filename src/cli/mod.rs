@@ -7,6 +7,7 @@ mod fmt;
 mod geodesic;
 mod mesh;
 mod render;
+mod report;
 mod snapshot;
 
 use clap::{Parser, Subcommand};
@@ -44,6 +45,9 @@ enum Command {
     Fmt(fmt::FmtArgs),
     /// Render graphs and compare them with approved golden images (exit 1 on a difference).
     Snapshot(snapshot::SnapshotArgs),
+    /// Measure error against run time (precision, hashes, octaves, geodesics, detail) and
+    /// write a report with tables and plots.
+    Report(report::ReportArgs),
 }
 
 /// A failed command: the message to print (already prefixed with the file or node) and
@@ -77,6 +81,7 @@ pub fn run() -> ExitCode {
         Some(Command::Mesh(args)) => mesh::run(args),
         Some(Command::Geodesic(args)) => geodesic::run(args),
         Some(Command::Snapshot(args)) => snapshot::run(args),
+        Some(Command::Report(args)) => report::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -34,6 +34,24 @@ pub fn value_literal(value: &Value) -> String {
     }
 }
 
+/// A literal of type `ty` from three f32 lanes (a folded constant), each written as the
+/// shortest decimal that reads back as the same f32.
+pub fn lanes_literal(ty: ValueType, lanes: [f32; 3]) -> String {
+    let [x, y, z] = lanes.map(|lane| {
+        let text = format!("{lane:?}");
+        if text.contains(['.', 'e', 'E']) {
+            format!("{text}f")
+        } else {
+            format!("{text}.0f")
+        }
+    });
+    match ty {
+        ValueType::Float => x,
+        ValueType::Vec2 => format!("vec2f({x}, {y})"),
+        ValueType::Vec3 | ValueType::Color => format!("vec3f({x}, {y}, {z})"),
+    }
+}
+
 /// What one node contributes to the material function.
 #[derive(Default)]
 pub struct NodeCode {

@@ -200,10 +200,11 @@ mod tests {
                 "veneer_lattice_sine",
                 "veneer_noise_value_sine",
                 "veneer_octave_fbm_value_sine",
+                "veneer_octave_mean_fbm",
                 "veneer_fbm_value_sine"
             ]
         );
-        assert!(!items[3].text.contains("BASIS") && !items[3].text.contains("MODE"));
+        assert!(!items[4].text.contains("BASIS") && !items[4].text.contains("MODE"));
     }
 
     #[test]

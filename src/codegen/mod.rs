@@ -193,6 +193,38 @@ fn input_expression(
     }
 }
 
+/// The outputs of `checked` when all its inputs are constants (literals or outputs of
+/// folded nodes) and it reads nothing of the surface: a constant subgraph folds into
+/// literals. `None` when it cannot fold (or folds to a non-finite value).
+fn fold(
+    checked: &graph::check::CheckedNode,
+    folded: &BTreeMap<NodeId, Vec<[f32; 3]>>,
+) -> Option<Vec<[f32; 3]>> {
+    use NodeKind::*;
+    if matches!(
+        checked.node.kind,
+        Position | Normal | Uv | Time | Field { .. } | Material
+    ) {
+        return None;
+    }
+    let inputs = checked
+        .inputs
+        .iter()
+        .map(|source| match *source {
+            InputSource::Const(ref value) => Some(value.components().map(|c| c as f32)),
+            InputSource::Wire { node, output, .. } => {
+                folded.get(&node).map(|values| values[output])
+            }
+            InputSource::Position => None,
+        })
+        .collect::<Option<Vec<_>>>()?;
+    let values = crate::eval::constant_outputs(checked, &inputs);
+    values
+        .iter()
+        .all(|lanes| lanes.iter().all(|x| x.is_finite()))
+        .then_some(values)
+}
+
 /// The uniform block of a uniform-mode module, with its layout spelled out.
 fn params_block(graph: &CheckedGraph, params: &[ParamSlot]) -> String {
     let mut text = String::from(
@@ -238,12 +270,27 @@ pub fn compile_detailed(
         detail
     };
     let mut params = Vec::new();
+    let mut folded: BTreeMap<NodeId, Vec<[f32; 3]>> = BTreeMap::new();
     let mut namer = Namer::default();
     let mut outputs: BTreeMap<NodeId, Vec<String>> = BTreeMap::new();
     let mut body: Vec<(NodeId, String)> = Vec::new();
     let mut roots: Vec<String> = Vec::new();
     for checked in &graph.order {
         let node = &checked.node;
+        if mode == ParamMode::Baked
+            && let Some(values) = fold(checked, &folded)
+        {
+            let literals = checked
+                .signature
+                .outputs
+                .iter()
+                .zip(&values)
+                .map(|(pin, lanes)| emit::lanes_literal(pin.ty, *lanes))
+                .collect();
+            outputs.insert(node.id, literals);
+            folded.insert(node.id, values);
+            continue;
+        }
         let inputs: Vec<String> = checked
             .inputs
             .iter()

@@ -106,6 +106,12 @@ fn vec2<R: Real>(x: V3<R>) -> V3<R> {
     [x[0], x[1], R::c(0.0)]
 }
 
+/// The outputs of a node whose inputs are all known constants, evaluated in f32 as the
+/// GPU would (codegen folds such nodes into literals).
+pub(crate) fn constant_outputs(checked: &CheckedNode, inputs: &[[f32; 3]]) -> Vec<[f32; 3]> {
+    eval_node(checked, inputs, &Surface::<f32>::at([0.0; 3]))
+}
+
 /// The outputs of one node (each as three lanes) given its inputs.
 fn eval_node<R: Real>(checked: &CheckedNode, i: &[V3<R>], s: &Surface<R>) -> Vec<V3<R>> {
     use NodeKind::*;

@@ -4,6 +4,7 @@ pub mod check;
 mod io;
 pub mod kind;
 pub mod layout;
+mod presets;
 pub mod signature;
 pub mod value;
 
@@ -13,6 +14,7 @@ pub use kind::{
     Basis, Category, FractalMode, MAX_OCTAVES, MAX_OCTAVES_UI, MathOp, Metric, NodeKind,
     RampInterpolation, RampStop, UnaryOp, WorleyFeature,
 };
+pub use presets::{PRESETS, preset};
 pub use signature::{InputPin, OutputPin, PinDefault, Signature};
 pub use value::{Value, ValueType};
 

@@ -290,10 +290,12 @@ impl MeshPipeline {
         displaced: bool,
     ) -> Result<MeshPipeline, RenderError> {
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+        // Height work (vertex displacement, relief shading) only for materials with a height.
+        let height = format!("const VENEER_HEIGHT: bool = {displaced};\n");
         let entry_points = if displaced {
-            format!("{ENTRY_POINTS}\n{DISPLACED_ENTRY_POINT}")
+            format!("{height}{ENTRY_POINTS}\n{DISPLACED_ENTRY_POINT}")
         } else {
-            ENTRY_POINTS.to_string()
+            format!("{height}{ENTRY_POINTS}")
         };
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("mesh render"),

@@ -244,3 +244,50 @@ fn uniform_mode_turns_every_constant_into_a_slot_and_validates() {
         3.0
     );
 }
+
+#[test]
+fn constant_subgraphs_fold_to_literals_and_surface_reads_do_not() {
+    let mut graph = Graph::default();
+    let sum = graph.add(
+        "quarter plus half",
+        NodeKind::Math {
+            op: veneer::graph::MathOp::Add,
+            ty: veneer::graph::ValueType::Float,
+        },
+    );
+    graph.set_input(sum, "a", Value::Float(0.25));
+    graph.set_input(sum, "b", Value::Float(0.5));
+    let noise = graph.add(
+        "noise",
+        NodeKind::Noise {
+            basis: veneer::graph::Basis::Gradient,
+        },
+    );
+    let mix = graph.add(
+        "shade",
+        NodeKind::Mix {
+            ty: veneer::graph::ValueType::Color,
+        },
+    );
+    graph.connect(sum, "result", mix, "factor");
+    let material = graph.add("material", NodeKind::Material);
+    graph.connect(mix, "result", material, "albedo");
+    graph.connect(noise, "value", material, "shininess");
+    let source = compile_graph(&graph).unwrap().source;
+    assert!(
+        !source.contains("quarter_plus_half"),
+        "the sum folded away:\n{source}"
+    );
+    assert!(source.contains("0.75f"), "its value is a literal");
+    assert!(
+        source.contains("veneer_noise_gradient(s.position"),
+        "noise of the position stays"
+    );
+    let uniform = veneer::codegen::compile_graph_with(&graph, veneer::codegen::ParamMode::Uniform)
+        .unwrap()
+        .source;
+    assert!(
+        uniform.contains("quarter_plus_half"),
+        "editor parameters stay live: no folding"
+    );
+}

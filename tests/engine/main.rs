@@ -13,6 +13,7 @@ mod meshes;
 mod node_kinds;
 mod presets;
 mod properties;
+mod report;
 mod seed_reference;
 mod snapshots;
 mod support;

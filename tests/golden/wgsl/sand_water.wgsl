@@ -237,8 +237,6 @@ fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     let water_cells: f32 = veneer_worley_fractal(ripple_space * 7.0f, 1.0f, 0, 0, 3, 2.0f, 0.5f);
     // Mix 'water shade' (#9)
     let water_shade: vec3f = mix(vec3f(0.12f, 0.4f, 0.34f), vec3f(0.22f, 0.58f, 0.48f), water_cells);
-    // Constant 'sand colour' (#12)
-    let sand_colour: vec3f = vec3f(0.894f, 0.969f, 0.755f);
     // Math 'tide' (#3)
     let tide: f32 = s.time * 0.08f;
     // Math 'threshold' (#4)
@@ -246,7 +244,7 @@ fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     // Front 'shore' (#5)
     let shore: f32 = veneer_front(s.fields.x, threshold, 0.05f, 0.0f);
     // Mix 'colour' (#13)
-    let colour: vec3f = mix(water_shade, sand_colour, shore);
+    let colour: vec3f = mix(water_shade, vec3f(0.894f, 0.969f, 0.755f), shore);
     // Noise bump 'water ripples' (#11)
     let water_ripples: vec3f = veneer_noise_bump_gradient(ripple_space, 9.0f, 0.25f);
     // Noise bump 'sand grains' (#10)

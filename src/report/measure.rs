@@ -1,0 +1,100 @@
+//! Sampling and timing shared by the report's sections.
+
+use crate::eval::{Evaluator, Surface};
+use crate::graph::Graph;
+use crate::render::{FlatRect, FlatRenderer, GpuContext, RenderError};
+use std::time::Instant;
+
+/// The median wall time of `runs` calls of `work` (after one untimed warm-up call, which
+/// pays for lazy pipeline and buffer creation), in milliseconds.
+pub fn median_ms(runs: usize, mut work: impl FnMut()) -> f64 {
+    work();
+    let mut times: Vec<f64> = (0..runs.max(1))
+        .map(|_| {
+            let started = Instant::now();
+            work();
+            started.elapsed().as_secs_f64() * 1e3
+        })
+        .collect();
+    times.sort_by(f64::total_cmp);
+    times[times.len() / 2]
+}
+
+/// The flat render's sample positions over `rect` at size×size, computed in f32 as the
+/// GPU computes them (so every evaluator sees the same points).
+pub fn flat_points(rect: FlatRect, size: u32) -> Vec<[f64; 3]> {
+    let mut points = Vec::with_capacity((size * size) as usize);
+    for j in 0..size {
+        for i in 0..size {
+            let t = [
+                (i as f32 + 0.5) / size as f32,
+                (j as f32 + 0.5) / size as f32,
+            ];
+            let x = rect.x0 as f32 + (rect.x1 as f32 - rect.x0 as f32) * t[0];
+            let z = rect.z0 as f32 + (rect.z1 as f32 - rect.z0 as f32) * t[1];
+            points.push([f64::from(x), rect.y, f64::from(z)]);
+        }
+    }
+    points
+}
+
+/// The albedo at each point by the CPU evaluator in f32 or f64, and the time it took.
+pub fn cpu_albedo(graph: &Graph, points: &[[f64; 3]], double: bool) -> (Vec<[f64; 3]>, f64) {
+    let evaluator = Evaluator::new(graph).expect("report graphs check");
+    let started = Instant::now();
+    let albedo = points
+        .iter()
+        .map(|&p| {
+            if double {
+                evaluator.eval(&Surface::<f64>::at(p)).albedo
+            } else {
+                evaluator.eval(&Surface::<f32>::at(p)).albedo.map(f64::from)
+            }
+        })
+        .collect();
+    (albedo, started.elapsed().as_secs_f64() * 1e3)
+}
+
+/// The albedo of a flat render by the GPU (f32), as f64.
+pub fn gpu_albedo(
+    gpu: &GpuContext,
+    renderer: &FlatRenderer,
+    rect: FlatRect,
+    size: u32,
+) -> Result<Vec<[f64; 3]>, RenderError> {
+    Ok(renderer
+        .render(gpu, rect, size, 0.0)?
+        .iter()
+        .map(|p| [p[0], p[1], p[2]].map(f64::from))
+        .collect())
+}
+
+/// Largest and mean absolute difference over every channel.
+pub fn errors(values: &[[f64; 3]], reference: &[[f64; 3]]) -> (f64, f64) {
+    let differences: Vec<f64> = values
+        .iter()
+        .zip(reference)
+        .flat_map(|(a, b)| (0..3).map(move |k| (a[k] - b[k]).abs()))
+        .map(|d| if d.is_finite() { d } else { f64::INFINITY })
+        .collect();
+    let max = differences.iter().copied().fold(0.0, f64::max);
+    (
+        max,
+        differences.iter().sum::<f64>() / differences.len().max(1) as f64,
+    )
+}
+
+/// The processor's name and core count, for the report's captions.
+pub fn machine() -> String {
+    let model = std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|info| {
+            info.lines()
+                .find(|l| l.starts_with("model name"))
+                .and_then(|l| l.split(':').nth(1))
+                .map(|m| m.trim().to_string())
+        })
+        .unwrap_or_else(|| std::env::consts::ARCH.to_string());
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    format!("{model}, {cores} cores")
+}
