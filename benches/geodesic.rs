@@ -14,14 +14,7 @@ use std::hint::black_box;
 use veneer::geodesic::{self, HeatOptions, HeatSolver, Method, Triangulation};
 
 fn mean_relative_error(field: &[f64], exact: &[f64]) -> f64 {
-    let near = 0.1 * geodesic::max_finite(exact);
-    let errors: Vec<f64> = field
-        .iter()
-        .zip(exact)
-        .filter(|(_, e)| e.is_finite() && **e > near)
-        .map(|(f, e)| (f - e).abs() / e)
-        .collect();
-    errors.iter().sum::<f64>() / errors.len() as f64
+    geodesic::relative_errors(field, exact, 0.1 * geodesic::max_finite(exact)).0
 }
 
 fn fields(c: &mut Criterion) {

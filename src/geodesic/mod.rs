@@ -116,6 +116,20 @@ pub fn welded_for_distances(mesh: &Mesh) -> (Mesh, Vec<u32>) {
     crate::mesh::weld(mesh, 1.0e-6 * extent.max(1.0))
 }
 
+/// Mean and largest relative error of `field` against `reference` over the vertices the
+/// reference puts farther than `near` from the sources (relative errors blow up at the
+/// sources themselves, so accuracy tables leave the nearest vertices out).
+pub fn relative_errors(field: &[f64], reference: &[f64], near: f64) -> (f64, f64) {
+    let errors: Vec<f64> = field
+        .iter()
+        .zip(reference)
+        .filter(|(_, r)| r.is_finite() && **r > near)
+        .map(|(f, r)| (f - r).abs() / r)
+        .collect();
+    let mean = errors.iter().sum::<f64>() / errors.len().max(1) as f64;
+    (mean, errors.iter().copied().fold(0.0, f64::max))
+}
+
 /// The largest finite value of a field (0 when none is finite).
 pub fn max_finite(field: &[f64]) -> f64 {
     field

@@ -151,3 +151,22 @@ pub fn albedo_to_rgb8(pixels: &[[f32; 4]]) -> Vec<u8> {
         .map(|v| (255.0 * v.clamp(0.0, 1.0)).round() as u8)
         .collect()
 }
+
+/// The flat render's sample positions over `rect` at size×size, rows from the top,
+/// computed in f32 as `shaders/render_flat.wgsl` computes them (so the CPU evaluator can
+/// see exactly the GPU's points).
+pub fn flat_points(rect: FlatRect, size: u32) -> Vec<[f64; 3]> {
+    let mut points = Vec::with_capacity((size * size) as usize);
+    for j in 0..size {
+        for i in 0..size {
+            let t = [
+                (i as f32 + 0.5) / size as f32,
+                (j as f32 + 0.5) / size as f32,
+            ];
+            let x = rect.x0 as f32 + (rect.x1 as f32 - rect.x0 as f32) * t[0];
+            let z = rect.z0 as f32 + (rect.z1 as f32 - rect.z0 as f32) * t[1];
+            points.push([f64::from(x), rect.y, f64::from(z)]);
+        }
+    }
+    points
+}

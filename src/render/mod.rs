@@ -10,7 +10,7 @@ mod tiles;
 mod uv_bake;
 
 pub use context::{GpuContext, RenderError};
-pub use flat::{FlatChannels, FlatRect, FlatRenderer, albedo_to_rgb8};
+pub use flat::{FlatChannels, FlatRect, FlatRenderer, albedo_to_rgb8, flat_points};
 pub use image::{Image, View, mesh_with_fields, preview_rect, render_graph, render_graph_detailed};
 pub use mesh_view::{
     COLOR_FORMAT, GpuMesh, MeshPipeline, MeshRenderer, MeshTarget, MeshView, Projection,

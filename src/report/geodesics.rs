@@ -8,19 +8,6 @@ use super::{Context, Section};
 use crate::geodesic::{self, HeatOptions, HeatSolver, Method, Triangulation};
 use std::time::Instant;
 
-/// Mean and largest relative error over vertices farther than 10% of the largest distance.
-fn relative_errors(field: &[f64], exact: &[f64]) -> (f64, f64) {
-    let near = 0.1 * geodesic::max_finite(exact);
-    let errors: Vec<f64> = field
-        .iter()
-        .zip(exact)
-        .filter(|(_, e)| e.is_finite() && **e > near)
-        .map(|(f, e)| (f - e).abs() / e)
-        .collect();
-    let mean = errors.iter().sum::<f64>() / errors.len().max(1) as f64;
-    (mean, errors.iter().copied().fold(0.0, f64::max))
-}
-
 /// Every method against exact on each mesh of the context.
 pub fn geodesics(ctx: &Context) -> Result<Section, String> {
     let mut table = Table::new(&[
@@ -86,7 +73,8 @@ pub fn geodesics(ctx: &Context) -> Result<Section, String> {
                     (0.0, solve, geodesic::edge_distances(&mesh, &[0], |_, _| {}))
                 }
             };
-            let (mean, max) = relative_errors(&field, &exact);
+            let (mean, max) =
+                geodesic::relative_errors(&field, &exact, 0.1 * geodesic::max_finite(&exact));
             series.points.push((solve_ms, mean));
             table.push(vec![
                 name.to_string(),

@@ -1,13 +1,13 @@
 //! The report's material sections: precision (GPU f32 and CPU f32 against CPU f64),
 //! hash choice, octave budget, and footprint-aware detail.
 
-use super::measure::{cpu_albedo, errors, flat_points, gpu_albedo, median_ms};
+use super::measure::{cpu_albedo, errors, gpu_albedo, median_ms};
 use super::plot::{Plot, Series};
 use super::table::{Table, number};
 use super::{Context, Section};
 use crate::codegen::{Detail, ParamMode, compile_graph_detailed};
 use crate::graph::{Basis, Graph, NodeKind, PRESETS, Value, ValueType};
-use crate::render::{FlatRect, FlatRenderer, preview_rect};
+use crate::render::{FlatRect, FlatRenderer, flat_points, preview_rect};
 
 /// A graph showing one scalar node's output as grey, at `scale`.
 fn single_node(kind: NodeKind, scale: f64) -> Graph {

@@ -20,24 +20,6 @@ pub fn median_ms(runs: usize, mut work: impl FnMut()) -> f64 {
     times[times.len() / 2]
 }
 
-/// The flat render's sample positions over `rect` at size×size, computed in f32 as the
-/// GPU computes them (so every evaluator sees the same points).
-pub fn flat_points(rect: FlatRect, size: u32) -> Vec<[f64; 3]> {
-    let mut points = Vec::with_capacity((size * size) as usize);
-    for j in 0..size {
-        for i in 0..size {
-            let t = [
-                (i as f32 + 0.5) / size as f32,
-                (j as f32 + 0.5) / size as f32,
-            ];
-            let x = rect.x0 as f32 + (rect.x1 as f32 - rect.x0 as f32) * t[0];
-            let z = rect.z0 as f32 + (rect.z1 as f32 - rect.z0 as f32) * t[1];
-            points.push([f64::from(x), rect.y, f64::from(z)]);
-        }
-    }
-    points
-}
-
 /// The albedo at each point by the CPU evaluator in f32 or f64, and the time it took.
 pub fn cpu_albedo(graph: &Graph, points: &[[f64; 3]], double: bool) -> (Vec<[f64; 3]>, f64) {
     let evaluator = Evaluator::new(graph).expect("report graphs check");

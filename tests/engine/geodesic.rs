@@ -5,18 +5,7 @@
 use veneer::geodesic::{self, HeatOptions, HeatSolver, Method, Triangulation};
 use veneer::mesh::{self, Mesh};
 
-/// Mean and largest relative error of `field` against `reference` over the vertices the
-/// reference puts farther than `near` from the sources.
-fn relative_error(field: &[f64], reference: &[f64], near: f64) -> (f64, f64) {
-    let errors: Vec<f64> = field
-        .iter()
-        .zip(reference)
-        .filter(|(_, r)| r.is_finite() && **r > near)
-        .map(|(f, r)| (f - r).abs() / r)
-        .collect();
-    let mean = errors.iter().sum::<f64>() / errors.len() as f64;
-    (mean, errors.iter().copied().fold(0.0, f64::max))
-}
+use veneer::geodesic::relative_errors as relative_error;
 
 fn welded(mesh: &Mesh) -> Mesh {
     geodesic::welded_for_distances(mesh).0

@@ -71,25 +71,15 @@ pub fn flat_rgb8(material_wgsl: &str, rect: FlatRect, size: u32) -> Vec<u8> {
 /// computed with the same f32 arithmetic as shaders/render_flat.wgsl.
 pub fn cpu_flat_rgb8(graph: &veneer::graph::Graph, rect: FlatRect, size: u32) -> Vec<u8> {
     let evaluator = veneer::eval::Evaluator::new(graph).expect("graph checks");
-    let mut pixels = Vec::with_capacity(size as usize * size as usize * 3);
-    for j in 0..size {
-        for i in 0..size {
-            let t = [
-                (i as f32 + 0.5) / size as f32,
-                (j as f32 + 0.5) / size as f32,
-            ];
-            let x = rect.x0 as f32 + (rect.x1 as f32 - rect.x0 as f32) * t[0];
-            let z = rect.z0 as f32 + (rect.z1 as f32 - rect.z0 as f32) * t[1];
-            let surface = veneer::eval::Surface::<f32>::at([f64::from(x), rect.y, f64::from(z)]);
-            pixels.extend(
-                evaluator
-                    .eval(&surface)
-                    .albedo
-                    .map(|v| (255.0 * v.clamp(0.0, 1.0)).round() as u8),
-            );
-        }
-    }
-    pixels
+    veneer::render::flat_points(rect, size)
+        .into_iter()
+        .flat_map(|point| {
+            evaluator
+                .eval(&veneer::eval::Surface::<f32>::at(point))
+                .albedo
+                .map(|v| (255.0 * v.clamp(0.0, 1.0)).round() as u8)
+        })
+        .collect()
 }
 
 /// How two square 8-bit images of `channels` channels differ, with a per-channel tolerance
