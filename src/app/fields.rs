@@ -41,7 +41,7 @@ impl FieldState {
     pub fn update(
         &mut self,
         mesh_name: &str,
-        base: impl FnOnce() -> Option<Mesh>,
+        base: impl FnOnce() -> Option<Arc<Mesh>>,
         fields: &[FieldSource],
         used: [bool; 4],
     ) {
@@ -71,7 +71,7 @@ impl FieldState {
             return;
         }
         self.attempted = Some(key.clone());
-        let Some(mut mesh) = base() else {
+        let Some(mut mesh) = base().map(Arc::unwrap_or_clone) else {
             return;
         };
         let (done, total) = (Arc::new(AtomicUsize::new(0)), Arc::new(AtomicUsize::new(1)));

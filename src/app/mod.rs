@@ -597,11 +597,13 @@ impl VeneerApp {
             used[slot.min(3)] = true;
         }
         let name = self.preview.mesh.clone();
-        let file = self.preview.file.clone();
-        let base =
-            || crate::mesh::primitive(&name).or_else(|| file.map(|mesh| mesh.as_ref().clone()));
-        self.fields
-            .update(&name, base, &self.document.graph.preview.fields, used);
+        let preview = &self.preview;
+        self.fields.update(
+            &name,
+            || preview.plain_mesh(),
+            &self.document.graph.preview.fields,
+            used,
+        );
         let mesh_prefix = format!("{name}|");
         self.preview.prepared = self
             .fields
@@ -629,13 +631,10 @@ impl VeneerApp {
             .preview
             .view
             .ray(rect.width() / rect.height().max(1.0), ndc);
-        let mesh = match (
-            &self.preview.file,
-            crate::mesh::primitive(&self.preview.mesh),
-        ) {
-            (_, Some(primitive)) => Arc::new(primitive),
-            (Some(file), None) => file.clone(),
-            (None, None) => return,
+        // The solved mesh has the plain one's vertices: no need to make it again.
+        let prepared = self.preview.prepared.as_ref().map(|(_, mesh)| mesh.clone());
+        let Some(mesh) = prepared.or_else(|| self.preview.plain_mesh()) else {
+            return;
         };
         let fields = &mut self.document.graph.preview.fields;
         if let (Some(vertex), Some(field)) = (

@@ -36,6 +36,14 @@ impl PreviewState {
         }
     }
 
+    /// The mesh shown, without distance fields: the primitive named (made anew) or the
+    /// loaded file.
+    pub fn plain_mesh(&self) -> Option<Arc<crate::mesh::Mesh>> {
+        crate::mesh::primitive(&self.mesh)
+            .map(Arc::new)
+            .or_else(|| self.file.clone())
+    }
+
     /// Takes the placement (centre and size in texture space) of `preview`, keeping the camera.
     pub fn follow(&mut self, preview: &Preview) {
         self.view.center = [
@@ -151,14 +159,22 @@ impl PreviewResources {
             (false, None) => frame.mesh.as_str(),
         };
         if self.mesh.as_ref().is_none_or(|(key, _)| key != mesh_key) {
+            // Uploaded from where it is: the solved mesh, a primitive, the loaded file
+            // or, failing all, the sphere.
             let file = frame.file.as_deref().filter(|_| !frame.flat);
-            let mesh = match (prepared, crate::mesh::primitive(mesh_key), file) {
-                (Some((_, mesh)), _, _) => mesh.as_ref().clone(),
-                (None, Some(primitive), _) => primitive,
-                (None, None, Some(loaded)) => loaded.clone(),
-                (None, None, None) => crate::mesh::primitive("sphere").expect("sphere exists"),
+            let generated = match prepared {
+                Some(_) => None,
+                None => crate::mesh::primitive(mesh_key).or_else(|| {
+                    file.is_none()
+                        .then(|| crate::mesh::primitive("sphere").expect("sphere exists"))
+                }),
             };
-            self.mesh = Some((mesh_key.to_string(), GpuMesh::new(device, &mesh)));
+            let mesh = prepared
+                .map(|(_, mesh)| mesh.as_ref())
+                .or(generated.as_ref())
+                .or(file)
+                .expect("one of them is present");
+            self.mesh = Some((mesh_key.to_string(), GpuMesh::new(device, mesh)));
         }
         if self
             .target

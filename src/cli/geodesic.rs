@@ -45,10 +45,7 @@ pub struct GeodesicArgs {
 
 pub fn run(args: GeodesicArgs) -> Result<(), Failure> {
     let started = Instant::now();
-    let mesh = match veneer::mesh::primitive(&args.mesh) {
-        Some(primitive) => primitive,
-        None => veneer::mesh::load(std::path::Path::new(&args.mesh))?,
-    };
+    let mesh = veneer::mesh::Mesh::named(&args.mesh)?;
     let source_sets = parse_sources(&args, mesh.positions.len())?;
     let (welded, remap) = geodesic::welded_for_distances(&mesh);
     let loaded = started.elapsed();

@@ -20,10 +20,7 @@ pub struct MeshArgs {
 }
 
 pub fn run(args: MeshArgs) -> Result<(), Failure> {
-    let mut mesh = match veneer::mesh::primitive(&args.mesh) {
-        Some(primitive) => primitive,
-        None => veneer::mesh::load(std::path::Path::new(&args.mesh))?,
-    };
+    let mut mesh = veneer::mesh::Mesh::named(&args.mesh)?;
     let mut reports = vec![("as loaded", veneer::mesh::analyse(&mesh))];
     if let Some(tolerance) = args.weld {
         if !(tolerance.is_finite() && tolerance >= 0.0) {

@@ -79,7 +79,7 @@ pub struct HeatSolver {
     corners: Vec<Corner>,
     /// Vertices with no area around them (in no triangle, or only degenerate ones).
     dead: Vec<bool>,
-    components: Vec<u32>,
+    components: Vec<usize>,
     heat: Llt<u32, f64>,
     /// The heat system with zero heat held on the boundary, when there is one.
     dirichlet: Option<Restricted>,
@@ -177,21 +177,20 @@ impl HeatSolver {
         for &s in &sources {
             heat[s] = 1.0;
         }
-        let initial = heat.clone();
+        // The boundary system starts from the same heat, restricted to its rows.
+        let mut held: Option<Vec<f64>> = self
+            .dirichlet
+            .as_ref()
+            .map(|dirichlet| dirichlet.rows.iter().map(|&v| heat[v as usize]).collect());
         solve(&self.heat, &mut heat);
-        if let Some(dirichlet) = &self.dirichlet {
-            let mut held: Vec<f64> = dirichlet
-                .rows
-                .iter()
-                .map(|&v| initial[v as usize])
-                .collect();
-            solve(&dirichlet.llt, &mut held);
-            let mut averaged = vec![0.0; n];
-            for (&v, &value) in dirichlet.rows.iter().zip(&held) {
-                averaged[v as usize] = value;
+        if let (Some(dirichlet), Some(held)) = (&self.dirichlet, held.as_mut()) {
+            solve(&dirichlet.llt, held);
+            // The average of both; boundary vertices hold no heat in the second.
+            for u in heat.iter_mut() {
+                *u *= 0.5;
             }
-            for (u, held) in heat.iter_mut().zip(averaged) {
-                *u = 0.5 * (*u + held);
+            for (&v, &value) in dirichlet.rows.iter().zip(held.iter()) {
+                heat[v as usize] += 0.5 * value;
             }
         }
         let mut potential = self.divergence_of_normalised_gradient(&heat);
@@ -237,7 +236,7 @@ impl HeatSolver {
     /// Moves each component's potential so its sources sit at 0, clamps the rest at 0,
     /// and marks components without a source (and dead vertices) as unreached.
     fn shift_to_sources(&self, potential: Vec<f64>, sources: &[usize]) -> Vec<f64> {
-        let mut offsets: std::collections::HashMap<u32, (f64, usize)> = Default::default();
+        let mut offsets: std::collections::HashMap<usize, (f64, usize)> = Default::default();
         for &s in sources.iter().filter(|&&s| !self.dead[s]) {
             let entry = offsets.entry(self.components[s]).or_default();
             entry.0 += potential[s];

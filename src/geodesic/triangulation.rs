@@ -137,26 +137,10 @@ impl Triangulation {
         boundary
     }
 
-    /// The connected component of each vertex (through shared triangles); vertices in no
-    /// triangle get a component of their own.
-    pub fn components(&self) -> Vec<u32> {
-        let mut parents: Vec<u32> = (0..self.vertex_count as u32).collect();
-        fn find(parents: &mut [u32], mut x: u32) -> u32 {
-            while parents[x as usize] != x {
-                parents[x as usize] = parents[parents[x as usize] as usize];
-                x = parents[x as usize];
-            }
-            x
-        }
-        for face in &self.faces {
-            for k in 1..3 {
-                let (a, b) = (find(&mut parents, face[0]), find(&mut parents, face[k]));
-                parents[a.max(b) as usize] = a.min(b);
-            }
-        }
-        (0..self.vertex_count as u32)
-            .map(|v| find(&mut parents, v))
-            .collect()
+    /// The connected component of each vertex (through shared triangles), as a
+    /// representative vertex; vertices in no triangle get a component of their own.
+    pub fn components(&self) -> Vec<usize> {
+        crate::mesh::vertex_components(self.vertex_count, self.faces.iter().copied())
     }
 
     /// The sum of the corner angles at each vertex (2π on a flat interior vertex, more

@@ -97,11 +97,29 @@ fn find(parents: &mut [usize], mut x: usize) -> usize {
     x
 }
 
+/// The connected component of each of `count` vertices through `triangles`, as the
+/// index of a representative vertex; vertices in no triangle are their own component.
+pub fn vertex_components(
+    count: usize,
+    triangles: impl IntoIterator<Item = [u32; 3]>,
+) -> Vec<usize> {
+    let mut parents: Vec<usize> = (0..count).collect();
+    for triangle in triangles {
+        for k in 1..3 {
+            let (a, b) = (
+                find(&mut parents, triangle[0] as usize),
+                find(&mut parents, triangle[k] as usize),
+            );
+            parents[a] = b;
+        }
+    }
+    (0..count).map(|v| find(&mut parents, v)).collect()
+}
+
 /// Reports the structure and defects of `mesh`.
 pub fn analyse(mesh: &Mesh) -> MeshReport {
     let scale = extent(mesh);
     let mut edges: BTreeMap<(u32, u32), u32> = BTreeMap::new();
-    let mut parents: Vec<usize> = (0..mesh.positions.len()).collect();
     let mut used = vec![false; mesh.positions.len()];
     let mut degenerate_triangles = 0;
     for triangle in mesh.indices.chunks_exact(3) {
@@ -114,15 +132,12 @@ pub fn analyse(mesh: &Mesh) -> MeshReport {
                 *edges.entry((a.min(b), a.max(b))).or_default() += 1;
             }
             used[a as usize] = true;
-            let (root_a, root_b) = (
-                find(&mut parents, a as usize),
-                find(&mut parents, b as usize),
-            );
-            parents[root_a] = root_b;
         }
     }
-    let components = (0..parents.len())
-        .filter(|&v| used[v] && find(&mut parents, v) == v)
+    let triangles = mesh.indices.chunks_exact(3).map(|t| [t[0], t[1], t[2]]);
+    let roots = vertex_components(mesh.positions.len(), triangles);
+    let components = (0..roots.len())
+        .filter(|&v| used[v] && roots[v] == v)
         .count();
     MeshReport {
         vertices: mesh.positions.len(),

@@ -6,7 +6,7 @@ mod load;
 mod pick;
 mod primitives;
 
-pub use analysis::{MeshReport, analyse, weld};
+pub use analysis::{MeshReport, analyse, vertex_components, weld};
 pub use implicit::{double_torus, polygonize};
 pub use load::{EXTENSIONS, MeshError, load, vertex_normals};
 pub use pick::pick_vertex;
@@ -15,17 +15,10 @@ pub use primitives::{PRIMITIVES, primitive, sphere, torus};
 /// The mesh a preview or render shows for `name`: a primitive, or else a mesh file
 /// fitted to the unit sphere.
 pub fn preview_mesh(name: &str) -> Result<Mesh, MeshError> {
-    if let Some(mesh) = primitive(name) {
-        return Ok(mesh);
+    match primitive(name) {
+        Some(mesh) => Ok(mesh),
+        None => Ok(Mesh::named(name)?.fitted_to_unit_sphere()),
     }
-    if std::path::Path::new(name).extension().is_none() {
-        let known = PRIMITIVES.join(", ");
-        return Err(MeshError {
-            path: name.to_string(),
-            message: format!("unknown mesh (expected one of: {known}, or a mesh file)"),
-        });
-    }
-    Ok(load(std::path::Path::new(name))?.fitted_to_unit_sphere())
 }
 
 /// An indexed triangle mesh with per-vertex normals and texture coordinates.
@@ -52,7 +45,7 @@ impl Mesh {
             None => Err(MeshError {
                 path: name.to_string(),
                 message: format!(
-                    "not a primitive ({}) nor a mesh file",
+                    "unknown mesh (expected one of: {}, or a mesh file)",
                     PRIMITIVES.join(", ")
                 ),
             }),

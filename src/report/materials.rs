@@ -340,6 +340,8 @@ pub fn detail(ctx: &Context) -> Result<Section, String> {
     let (size, factor) = (128u32, 8u32);
     for (name, graph) in &cases {
         let base = preview_rect(graph);
+        let full = renderer(ctx, graph, Detail::Full)?;
+        let footprint = renderer(ctx, graph, Detail::Footprint)?;
         for zoom in [1.0, 10.0, 100.0] {
             let half = (base.x1 - base.x0) * 0.5 * zoom;
             let rect = FlatRect {
@@ -349,8 +351,6 @@ pub fn detail(ctx: &Context) -> Result<Section, String> {
                 z1: half,
                 y: base.y,
             };
-            let full = renderer(ctx, graph, Detail::Full)?;
-            let footprint = renderer(ctx, graph, Detail::Footprint)?;
             let wide =
                 gpu_albedo(ctx.gpu, &full, rect, size * factor).map_err(|e| e.to_string())?;
             let reference = box_down(&wide, size as usize, factor as usize);
