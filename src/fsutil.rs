@@ -4,7 +4,9 @@ use std::io::Write;
 use std::path::Path;
 
 /// Writes `bytes` to `path` through a temporary file in the same folder and a rename,
-/// so that readers see either the old file or the whole new one.
+/// so that readers see either the old file or the whole new one. A failed write (full
+/// disk, no permission) removes the temporary file and says that the old file, if there
+/// was one, is unchanged.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     write_atomic_with(path, |file| file.write_all(bytes))
 }
@@ -52,10 +54,15 @@ pub fn write_atomic_with(
         file.sync_all()?;
         std::fs::rename(&temp, path)
     })();
-    if result.is_err() {
+    result.map_err(|error| {
         let _ = std::fs::remove_file(&temp);
-    }
-    result
+        let kept = if path.exists() {
+            "the old file is unchanged"
+        } else {
+            "nothing was written"
+        };
+        std::io::Error::new(error.kind(), format!("{error}; {kept}"))
+    })
 }
 
 #[cfg(test)]

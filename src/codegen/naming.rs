@@ -207,6 +207,20 @@ const RESERVED: &[&str] = &[
     "trunc",
 ];
 
+/// `text` made safe inside a `//` comment: every control character (line breaks above
+/// all, which would end the comment and let the rest be read as code) becomes a space.
+pub fn comment(text: &str) -> String {
+    text.chars()
+        .map(|c| {
+            if c.is_control() || matches!(c, '\u{2028}' | '\u{2029}') {
+                ' '
+            } else {
+                c
+            }
+        })
+        .collect()
+}
+
 /// Hands out identifiers, each once.
 #[derive(Default)]
 pub struct Namer {

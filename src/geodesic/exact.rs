@@ -16,6 +16,14 @@ use std::collections::BinaryHeap;
 /// Relative slack in comparisons of path lengths.
 const SLACK: f64 = 1.0e-12;
 
+/// Windows propagated per triangle before the method gives up on windows: good meshes
+/// need 36 (torus:48) to 81 (genus2:40) per triangle, growing with the square root of
+/// the size; a sliver folded onto itself took millions (found by fuzzing).
+const WINDOWS_PER_FACE: usize = 2000;
+
+/// The least window budget of a mesh, so that small meshes are never cut short.
+const MIN_WINDOWS: usize = 200_000;
+
 /// An interval `[b0, b1]` of half-edge `edge`, lit from `source`: coordinates in the
 /// half-edge's frame (its tail at the origin, its head on the positive x axis, its
 /// triangle above), the source below the axis, `sigma` further back along the path.
@@ -96,6 +104,8 @@ struct Propagation<'a> {
     distance: Vec<f64>,
     splits: Vec<Option<Split>>,
     queue: BinaryHeap<Queued>,
+    /// Windows that may still be propagated; at zero, paths continue along edges only.
+    budget: usize,
 }
 
 impl<'a> Propagation<'a> {
@@ -125,6 +135,7 @@ impl<'a> Propagation<'a> {
             distance: vec![f64::INFINITY; n],
             splits: vec![None; surface.faces.len() * 3],
             queue: BinaryHeap::new(),
+            budget: (WINDOWS_PER_FACE * surface.faces.len()).max(MIN_WINDOWS),
         }
     }
 
@@ -146,12 +157,28 @@ impl<'a> Propagation<'a> {
                     if settled % 4096 == 0 {
                         progress(settled.min(n), n);
                     }
-                    if is_source[v as usize] || self.bends[v as usize] {
+                    if is_source[v as usize] || self.bends[v as usize] || self.budget == 0 {
                         self.emit_from_vertex(v);
                     }
                 }
                 Event::Window(window) => {
-                    if self.useful(&window) {
+                    if self.budget > 0 && self.useful(&window) {
+                        self.budget -= 1;
+                        if self.budget == 0 {
+                            // Out of windows (a degenerate mesh): finish along edges from
+                            // every vertex reached so far, so each reachable vertex gets
+                            // an upper bound instead of staying infinite.
+                            self.queue.extend(
+                                self.distance
+                                    .iter()
+                                    .enumerate()
+                                    .filter(|(_, d)| d.is_finite())
+                                    .map(|(v, &d)| Queued {
+                                        key: d,
+                                        event: Event::Vertex(v as u32),
+                                    }),
+                            );
+                        }
                         self.propagate(&window);
                     }
                 }
@@ -198,6 +225,7 @@ impl<'a> Propagation<'a> {
     /// its neighbours along the edges.
     fn emit_from_vertex(&mut self, v: u32) {
         let d = self.distance[v as usize];
+        let windows = self.budget > 0;
         for i in 0..self.around[v as usize].len() {
             let h = self.around[v as usize][i];
             let (f, k) = split(h);
@@ -210,7 +238,7 @@ impl<'a> Propagation<'a> {
             self.lower(previous, d + l[(k + 2) % 3]);
             let far = half_edge(f, k + 1);
             let across = self.surface.twins[far as usize];
-            if across == NO_TWIN {
+            if across == NO_TWIN || !windows {
                 continue;
             }
             // In the frame of `across` (tail = previous, head = next), v lies below.

@@ -151,13 +151,10 @@ impl<'g> Checker<'g> {
     fn check_constants(&mut self, node: &Node, signature: &Signature) {
         for (pin, value) in &node.inputs {
             match signature.input(pin) {
-                None => {
-                    let names: Vec<_> = signature.inputs.iter().map(|p| p.name).collect();
-                    self.error(
-                        Some(node),
-                        format!("no input named '{pin}' (inputs: {})", names.join(", ")),
-                    );
-                }
+                None => self.error(
+                    Some(node),
+                    no_pin("input", pin, signature.inputs.iter().map(|p| p.name)),
+                ),
                 Some((_, input)) if !value.ty().converts_to(input.ty) => self.error(
                     Some(node),
                     format!(
@@ -168,6 +165,20 @@ impl<'g> Checker<'g> {
                 ),
                 Some(_) if !value.is_finite() => {
                     self.error(Some(node), format!("input '{pin}' is not finite"))
+                }
+                Some(_)
+                    if value
+                        .components()
+                        .iter()
+                        .any(|c| c.abs() > f64::from(f32::MAX)) =>
+                {
+                    self.error(
+                        Some(node),
+                        format!(
+                            "input '{pin}' is {value:?}, beyond the f32 range (±3.4e38) that \
+                             shaders compute in"
+                        ),
+                    )
                 }
                 Some(_) => {}
             }
@@ -198,7 +209,9 @@ impl<'g> Checker<'g> {
                 .output(&wire.from.pin)
                 .map(|(i, p)| (i, *p))
             else {
-                self.error(Some(from), format!("no output named '{}'", wire.from.pin));
+                let signature = from.kind.signature();
+                let names = signature.outputs.iter().map(|p| p.name);
+                self.error(Some(from), no_pin("output", &wire.from.pin, names));
                 continue;
             };
             let Some((_, input)) = to
@@ -207,7 +220,9 @@ impl<'g> Checker<'g> {
                 .input(&wire.to.pin)
                 .map(|(i, p)| (i, *p))
             else {
-                self.error(Some(to), format!("no input named '{}'", wire.to.pin));
+                let signature = to.kind.signature();
+                let names = signature.inputs.iter().map(|p| p.name);
+                self.error(Some(to), no_pin("input", &wire.to.pin, names));
                 continue;
             };
             if !fed.insert((wire.to.node, wire.to.pin.clone())) {
@@ -400,4 +415,14 @@ pub fn check(graph: &Graph) -> Result<CheckedGraph, Vec<CheckError>> {
         name: graph.name.clone(),
         order,
     })
+}
+
+/// The message for a pin name the node does not have, listing the ones it has.
+fn no_pin<'a>(side: &str, pin: &str, names: impl Iterator<Item = &'a str>) -> String {
+    let names: Vec<&str> = names.collect();
+    if names.is_empty() {
+        format!("no {side} named '{pin}' (the node has no {side}s)")
+    } else {
+        format!("no {side} named '{pin}' ({side}s: {})", names.join(", "))
+    }
 }

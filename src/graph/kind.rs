@@ -9,6 +9,7 @@ use serde::{Deserialize, Serialize};
 
 /// The lattice noise a noise, fractal or warp node is built on.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[cfg_attr(feature = "arbitrary", derive(arbitrary::Arbitrary))]
 pub enum Basis {
     /// Value noise hashed with `fract(sin(dot(p, k)) * 43758.5453)`, as in seed 000.
     /// Cheap, but differs between GPUs and degrades at large coordinates.
@@ -43,6 +44,7 @@ impl Basis {
 
 /// How a fractal node combines its octaves.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[cfg_attr(feature = "arbitrary", derive(arbitrary::Arbitrary))]
 pub enum FractalMode {
     /// Sum of the basis in its natural range (value noise in [0, 1]).
     Fbm,
@@ -65,6 +67,7 @@ impl FractalMode {
 
 /// Which Worley feature a cellular node outputs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[cfg_attr(feature = "arbitrary", derive(arbitrary::Arbitrary))]
 pub enum WorleyFeature {
     F1,
     F2,
@@ -74,6 +77,7 @@ pub enum WorleyFeature {
 
 /// The distance metric of a cellular node.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[cfg_attr(feature = "arbitrary", derive(arbitrary::Arbitrary))]
 pub enum Metric {
     Euclidean,
     Manhattan,
@@ -82,6 +86,7 @@ pub enum Metric {
 
 /// Binary arithmetic operators; division and power are safe (never NaN or Inf).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[cfg_attr(feature = "arbitrary", derive(arbitrary::Arbitrary))]
 pub enum MathOp {
     Add,
     Subtract,
@@ -107,6 +112,7 @@ impl MathOp {
 
 /// Unary operators, applied per component.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[cfg_attr(feature = "arbitrary", derive(arbitrary::Arbitrary))]
 pub enum UnaryOp {
     Abs,
     Fract,
@@ -132,6 +138,7 @@ impl UnaryOp {
 
 /// How a colour ramp blends between stops.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default, Serialize, Deserialize)]
+#[cfg_attr(feature = "arbitrary", derive(arbitrary::Arbitrary))]
 pub enum RampInterpolation {
     #[default]
     Linear,
@@ -140,6 +147,7 @@ pub enum RampInterpolation {
 
 /// One stop of a colour ramp.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "arbitrary", derive(arbitrary::Arbitrary))]
 pub struct RampStop {
     pub position: f64,
     pub color: (f64, f64, f64),
@@ -147,6 +155,7 @@ pub struct RampStop {
 
 /// Every kind of node Veneer knows, with its structural settings.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "arbitrary", derive(arbitrary::Arbitrary))]
 pub enum NodeKind {
     /// Object-space position of the shaded point.
     Position,

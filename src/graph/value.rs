@@ -5,6 +5,7 @@ use std::fmt;
 
 /// The type carried by a pin or a wire.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[cfg_attr(feature = "arbitrary", derive(arbitrary::Arbitrary))]
 pub enum ValueType {
     Float,
     Vec2,
@@ -57,6 +58,7 @@ impl fmt::Display for ValueType {
 /// Values are kept in f64 so that the f64 reference evaluator sees exactly the
 /// decimal the artist typed; the GPU rounds them to f32.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "arbitrary", derive(arbitrary::Arbitrary))]
 pub enum Value {
     Float(f64),
     Vec2(f64, f64),

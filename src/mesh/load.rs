@@ -34,18 +34,31 @@ pub fn load(path: &Path) -> Result<Mesh, MeshError> {
         .extension()
         .map(|e| e.to_string_lossy().to_lowercase())
         .unwrap_or_default();
-    let soup = match extension.as_str() {
-        "obj" => obj(path),
-        "stl" => stl(path),
-        "ply" => ply(path),
-        "gltf" | "glb" => gltf(path),
+    if !EXTENSIONS.contains(&extension.as_str()) {
+        return Err(fail(format!(
+            "unknown mesh format '{extension}' (expected one of: {})",
+            EXTENSIONS.join(", ")
+        )));
+    }
+    let bytes = std::fs::read(path).map_err(|error| fail(error.to_string()))?;
+    from_bytes(&extension, &bytes, path.parent()).map_err(fail)
+}
+
+/// Parses the content of a mesh file in the format its lower-case `extension` names.
+/// `folder` is where a glTF file's external buffers are read from; without one, only
+/// embedded buffers are read.
+pub fn from_bytes(extension: &str, bytes: &[u8], folder: Option<&Path>) -> Result<Mesh, String> {
+    let soup = match extension {
+        "obj" => obj(bytes),
+        "stl" => stl(bytes),
+        "ply" => ply(bytes),
+        "gltf" | "glb" => gltf(bytes, folder),
         _ => Err(format!(
             "unknown mesh format '{extension}' (expected one of: {})",
             EXTENSIONS.join(", ")
         )),
-    }
-    .map_err(fail)?;
-    finish(soup).map_err(fail)
+    }?;
+    finish(soup)
 }
 
 fn finish(soup: Soup) -> Result<Mesh, String> {
@@ -110,13 +123,17 @@ pub fn vertex_normals(positions: &[[f32; 3]], indices: &[u32]) -> Vec<[f32; 3]> 
         .collect()
 }
 
-fn obj(path: &Path) -> Result<Soup, String> {
+fn obj(bytes: &[u8]) -> Result<Soup, String> {
     let options = tobj::LoadOptions {
         triangulate: true,
         single_index: true,
         ..Default::default()
     };
-    let (models, _) = tobj::load_obj(path, &options).map_err(|e| e.to_string())?;
+    // Materials play no part in a preview mesh: their libraries are not read.
+    let (models, _) = tobj::load_obj_buf(&mut &bytes[..], &options, |_| {
+        Ok((Vec::new(), Default::default()))
+    })
+    .map_err(|e| e.to_string())?;
     let mut soup = Soup {
         positions: vec![],
         normals: Some(vec![]),
@@ -129,7 +146,8 @@ fn obj(path: &Path) -> Result<Soup, String> {
         let count = mesh.positions.len() / 3;
         soup.positions
             .extend(mesh.positions.chunks_exact(3).map(|p| [p[0], p[1], p[2]]));
-        soup.indices.extend(mesh.indices.iter().map(|i| base + i));
+        soup.indices
+            .extend(mesh.indices.iter().map(|&i| base.saturating_add(i)));
         match (&mut soup.normals, mesh.normals.len() == count * 3) {
             (Some(normals), true) => {
                 normals.extend(mesh.normals.chunks_exact(3).map(|n| [n[0], n[1], n[2]]))
@@ -144,9 +162,8 @@ fn obj(path: &Path) -> Result<Soup, String> {
     Ok(soup)
 }
 
-fn stl(path: &Path) -> Result<Soup, String> {
-    let mut file = std::fs::File::open(path).map_err(|e| e.to_string())?;
-    let mesh = stl_io::read_stl(&mut file).map_err(|e| e.to_string())?;
+fn stl(bytes: &[u8]) -> Result<Soup, String> {
+    let mesh = stl_io::read_stl(&mut std::io::Cursor::new(bytes)).map_err(|e| e.to_string())?;
     let indices = mesh
         .faces
         .iter()
@@ -161,11 +178,10 @@ fn stl(path: &Path) -> Result<Soup, String> {
     })
 }
 
-fn ply(path: &Path) -> Result<Soup, String> {
+fn ply(bytes: &[u8]) -> Result<Soup, String> {
     use ply_rs_bw::ply::{DefaultElement, Property};
-    let mut file = std::io::BufReader::new(std::fs::File::open(path).map_err(|e| e.to_string())?);
     let ply = ply_rs_bw::parser::Parser::<DefaultElement>::new()
-        .read_ply(&mut file)
+        .read_ply(&mut &bytes[..])
         .map_err(|e| e.to_string())?;
     let vertices = ply.payload.get("vertex").ok_or("no 'vertex' element")?;
     let scalar =
@@ -217,8 +233,12 @@ fn ply(path: &Path) -> Result<Soup, String> {
     })
 }
 
-fn gltf(path: &Path) -> Result<Soup, String> {
-    let (document, buffers, _) = gltf::import(path).map_err(|e| e.to_string())?;
+fn gltf(bytes: &[u8], folder: Option<&Path>) -> Result<Soup, String> {
+    use gltf::Semantic;
+    use gltf::accessor::{DataType, Dimensions};
+    position_accessors_exist(bytes)?;
+    let gltf::Gltf { document, blob } = gltf::Gltf::from_slice(bytes).map_err(|e| e.to_string())?;
+    let buffers = gltf::import_buffers(&document, folder, blob).map_err(|e| e.to_string())?;
     let mut soup = Soup {
         positions: vec![],
         normals: Some(vec![]),
@@ -231,7 +251,12 @@ fn gltf(path: &Path) -> Result<Soup, String> {
         .ok_or("the file has no scene")?;
     let mut stack: Vec<(gltf::Node, glam::Mat4)> =
         scene.nodes().map(|n| (n, glam::Mat4::IDENTITY)).collect();
+    // Nodes form trees; a file whose children loop back is read once per node.
+    let mut visited = vec![false; document.nodes().len()];
     while let Some((node, parent)) = stack.pop() {
+        if std::mem::replace(&mut visited[node.index()], true) {
+            continue;
+        }
         let transform = parent * glam::Mat4::from_cols_array_2d(&node.transform().matrix());
         stack.extend(node.children().map(|child| (child, transform)));
         let Some(mesh) = node.mesh() else { continue };
@@ -240,6 +265,31 @@ fn gltf(path: &Path) -> Result<Soup, String> {
             .primitives()
             .filter(|p| p.mode() == gltf::mesh::Mode::Triangles)
         {
+            // The glTF crate trusts each accessor's type (and reaches `unreachable!` on
+            // float indices; found by fuzzing): only the types the format allows are read.
+            let typed = |semantic, types: &[DataType], dimensions| {
+                primitive.get(&semantic).is_none_or(|accessor| {
+                    types.contains(&accessor.data_type()) && accessor.dimensions() == dimensions
+                })
+            };
+            let integers = [DataType::U8, DataType::U16, DataType::U32];
+            let indices_typed = primitive.indices().is_none_or(|accessor| {
+                integers.contains(&accessor.data_type())
+                    && accessor.dimensions() == Dimensions::Scalar
+            });
+            if !typed(Semantic::Positions, &[DataType::F32], Dimensions::Vec3) || !indices_typed {
+                return Err(format!(
+                    "mesh {}, primitive {}: positions must be float VEC3 and indices unsigned integer SCALAR",
+                    mesh.index(),
+                    primitive.index()
+                ));
+            }
+            let normals_typed = typed(Semantic::Normals, &[DataType::F32], Dimensions::Vec3);
+            let uvs_typed = typed(
+                Semantic::TexCoords(0),
+                &[DataType::U8, DataType::U16, DataType::F32],
+                Dimensions::Vec2,
+            );
             let reader =
                 primitive.reader(|buffer| buffers.get(buffer.index()).map(|data| &data.0[..]));
             let Some(positions) = reader.read_positions() else {
@@ -251,10 +301,17 @@ fn gltf(path: &Path) -> Result<Soup, String> {
                 .collect();
             let count = positions.len() as u32;
             match reader.read_indices() {
-                Some(indices) => soup.indices.extend(indices.into_u32().map(|i| base + i)),
-                None => soup.indices.extend((0..count).map(|i| base + i)),
+                Some(indices) => soup
+                    .indices
+                    .extend(indices.into_u32().map(|i| base.saturating_add(i))),
+                None => soup
+                    .indices
+                    .extend((0..count).map(|i| base.saturating_add(i))),
             }
-            match (&mut soup.normals, reader.read_normals()) {
+            match (
+                &mut soup.normals,
+                normals_typed.then(|| reader.read_normals()).flatten(),
+            ) {
                 (Some(normals), Some(read)) => normals.extend(read.map(|n| {
                     (normal_matrix * glam::Vec3::from(n))
                         .normalize_or(glam::Vec3::Y)
@@ -262,7 +319,10 @@ fn gltf(path: &Path) -> Result<Soup, String> {
                 })),
                 (normals, _) => *normals = None,
             }
-            match (&mut soup.uvs, reader.read_tex_coords(0)) {
+            match (
+                &mut soup.uvs,
+                uvs_typed.then(|| reader.read_tex_coords(0)).flatten(),
+            ) {
                 (Some(uvs), Some(read)) => uvs.extend(read.into_f32()),
                 (uvs, _) => *uvs = None,
             }
@@ -270,4 +330,27 @@ fn gltf(path: &Path) -> Result<Soup, String> {
         }
     }
     Ok(soup)
+}
+
+/// Checks that every primitive's POSITION accessor exists, before the glTF crate's own
+/// validation, which looks that accessor up without checking (and panics; found by
+/// fuzzing, gltf-json 1.4.1).
+fn position_accessors_exist(bytes: &[u8]) -> Result<(), String> {
+    let unchecked = gltf::Gltf::from_slice_without_validation(bytes).map_err(|e| e.to_string())?;
+    let json = unchecked.document.as_json();
+    for (m, mesh) in json.meshes.iter().enumerate() {
+        for (p, primitive) in mesh.primitives.iter().enumerate() {
+            let position = gltf::json::validation::Checked::Valid(gltf::Semantic::Positions);
+            if let Some(accessor) = primitive.attributes.get(&position)
+                && accessor.value() >= json.accessors.len()
+            {
+                return Err(format!(
+                    "mesh {m}, primitive {p}: POSITION refers to accessor {}, but there are only {}",
+                    accessor.value(),
+                    json.accessors.len()
+                ));
+            }
+        }
+    }
+    Ok(())
 }

@@ -7,6 +7,12 @@ use std::f32::consts::{PI, TAU};
 /// Names accepted by [`primitive`].
 pub const PRIMITIVES: [&str; 5] = ["sphere", "cube", "torus", "plane", "genus2"];
 
+/// The largest level of detail of a primitive (`torus:4096` is 67 million triangles).
+pub const MAX_DETAIL: u32 = 4096;
+
+/// The largest level of detail of `genus2`, whose polygonisation grows with its cube.
+pub const MAX_GENUS2_DETAIL: u32 = 256;
+
 /// The primitive called `name`, if there is one. A name may carry a level of detail,
 /// `torus:320` (segments across the smaller direction; the defaults are sphere 48,
 /// cube 8, torus 48, plane 16 and genus2 40), for refined meshes and benchmarks.
@@ -18,7 +24,7 @@ pub fn primitive(name: &str) -> Option<Mesh> {
                 detail
                     .parse::<u32>()
                     .ok()
-                    .filter(|d| (1..=4096).contains(d))?,
+                    .filter(|d| (1..=MAX_DETAIL).contains(d))?,
             ),
         ),
         None => (name, None),
@@ -29,7 +35,10 @@ pub fn primitive(name: &str) -> Option<Mesh> {
         "cube" => Some(cube(detail(8))),
         "torus" => Some(torus(0.7, 0.3, 2 * detail(48), detail(48))),
         "plane" => Some(plane(detail(16))),
-        "genus2" => Some(super::implicit::double_torus(1.0 / detail(40) as f32)),
+        // Marching tetrahedra cost the cube of the detail: capped where it stays seconds.
+        "genus2" if detail(40) <= MAX_GENUS2_DETAIL => {
+            Some(super::implicit::double_torus(1.0 / detail(40) as f32))
+        }
         _ => None,
     }
 }

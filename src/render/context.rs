@@ -36,6 +36,8 @@ impl GpuContext {
         .map_err(|error| RenderError(format!("no GPU adapter available: {error}")))?;
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("veneer"),
+            // Timestamps where the adapter has them, for timings of the GPU's work alone.
+            required_features: adapter.features() & wgpu::Features::TIMESTAMP_QUERY,
             required_limits: wgpu::Limits::downlevel_defaults().using_resolution(adapter.limits()),
             ..Default::default()
         }))

@@ -1,6 +1,7 @@
 //! The flat render: a material's outputs over a rectangle of the plane y = Y.
 
 use super::tiles::{FORMAT, render_tiled};
+use super::timing::PassTimer;
 use super::{GpuContext, RenderError, shader_source};
 
 /// The part of the plane y = `y` that the image covers: x from `x0` to `x1` left to
@@ -116,30 +117,98 @@ impl FlatRenderer {
         channels: FlatChannels,
         progress: impl FnMut(u32, u32),
     ) -> Result<Vec<[f32; 4]>, RenderError> {
-        let prepare = |offset: (u32, u32), _| {
-            let view = FlatViewUniform {
-                rect: [
-                    rect.x0 as f32,
-                    rect.z0 as f32,
-                    rect.x1 as f32,
-                    rect.z1 as f32,
-                ],
-                pixel_offset: [offset.0 as f32, offset.1 as f32],
-                plane_y: rect.y as f32,
-                size: size as f32,
-                time,
-                channels: channels as u32,
-                padding: [0.0; 2],
-            };
-            gpu.queue
-                .write_buffer(&self.uniform, 0, bytemuck::bytes_of(&view));
-        };
-        let draw = |pass: &mut wgpu::RenderPass<'_>| {
-            pass.set_pipeline(&self.pipeline);
-            pass.set_bind_group(0, &self.bind_group, &[]);
-            pass.draw(0..3, 0..1);
-        };
+        let prepare = |offset, _| self.write_view(gpu, rect, size, time, channels, offset);
+        let draw = |pass: &mut wgpu::RenderPass<'_>| self.draw(pass);
         render_tiled(gpu, size, wgpu::Color::TRANSPARENT, prepare, draw, progress)
+    }
+
+    /// The time the GPU takes to shade a size×size image (at most one tile), without
+    /// reading it back: the pass time from timestamp queries where the device has them,
+    /// else the wall time from submitting the pass to its completion.
+    pub fn shading_time(
+        &self,
+        gpu: &GpuContext,
+        rect: FlatRect,
+        size: u32,
+        time: f32,
+    ) -> Result<std::time::Duration, RenderError> {
+        let limit = super::tile_size(gpu);
+        if size == 0 || size > limit {
+            return Err(RenderError(format!(
+                "a timed render is one tile: size {size} is outside 1..={limit}"
+            )));
+        }
+        self.write_view(gpu, rect, size, time, FlatChannels::AlbedoAlpha, (0, 0));
+        let target = gpu
+            .device
+            .create_texture(&super::tiles::target_descriptor(size, size))
+            .create_view(&Default::default());
+        let timer = PassTimer::new(gpu);
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        {
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("timed flat render"),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view: &target,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                        store: wgpu::StoreOp::Store,
+                    },
+                })],
+                timestamp_writes: timer.as_ref().map(PassTimer::writes),
+                ..Default::default()
+            });
+            self.draw(&mut pass);
+        }
+        if let Some(timer) = &timer {
+            timer.resolve(&mut encoder);
+        }
+        let started = std::time::Instant::now();
+        gpu.queue.submit([encoder.finish()]);
+        match timer {
+            Some(timer) => timer.read(gpu),
+            None => {
+                gpu.device
+                    .poll(wgpu::PollType::wait_indefinitely())
+                    .map_err(|error| RenderError(format!("waiting for the GPU failed: {error}")))?;
+                Ok(started.elapsed())
+            }
+        }
+    }
+
+    fn write_view(
+        &self,
+        gpu: &GpuContext,
+        rect: FlatRect,
+        size: u32,
+        time: f32,
+        channels: FlatChannels,
+        offset: (u32, u32),
+    ) {
+        let view = FlatViewUniform {
+            rect: [
+                rect.x0 as f32,
+                rect.z0 as f32,
+                rect.x1 as f32,
+                rect.z1 as f32,
+            ],
+            pixel_offset: [offset.0 as f32, offset.1 as f32],
+            plane_y: rect.y as f32,
+            size: size as f32,
+            time,
+            channels: channels as u32,
+            padding: [0.0; 2],
+        };
+        gpu.queue
+            .write_buffer(&self.uniform, 0, bytemuck::bytes_of(&view));
+    }
+
+    fn draw(&self, pass: &mut wgpu::RenderPass<'_>) {
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, &self.bind_group, &[]);
+        pass.draw(0..3, 0..1);
     }
 }
 

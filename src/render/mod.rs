@@ -7,6 +7,7 @@ mod image;
 mod mesh_view;
 mod readback;
 mod tiles;
+mod timing;
 mod uv_bake;
 
 pub use context::{GpuContext, RenderError};
@@ -16,6 +17,7 @@ pub use mesh_view::{
     COLOR_FORMAT, GpuMesh, MeshPipeline, MeshRenderer, MeshTarget, MeshView, Projection,
 };
 pub use tiles::tile_size;
+pub use timing::PassTimer;
 pub use uv_bake::UvRenderer;
 
 /// WGSL of a material module combined with a renderer's entry points.

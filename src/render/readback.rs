@@ -45,6 +45,22 @@ pub fn read_texture(
         },
     );
     gpu.queue.submit([encoder.finish()]);
+    read_buffer(gpu, &buffer, |bytes| {
+        let mut pixels = Vec::with_capacity((unpadded * height) as usize);
+        for row in bytes.chunks(padded as usize) {
+            pixels.extend_from_slice(&row[..unpadded as usize]);
+        }
+        pixels
+    })
+}
+
+/// `read` applied to the content of a `MAP_READ` buffer once the GPU has finished the
+/// work submitted before (waits for it).
+pub fn read_buffer<T>(
+    gpu: &GpuContext,
+    buffer: &wgpu::Buffer,
+    read: impl FnOnce(&[u8]) -> T,
+) -> Result<T, RenderError> {
     let (sender, receiver) = std::sync::mpsc::channel();
     buffer
         .slice(..)
@@ -58,12 +74,11 @@ pub fn read_texture(
         .recv()
         .map_err(|_| RenderError("the GPU dropped the readback".into()))?
         .map_err(|error| RenderError(format!("cannot map the readback buffer: {error}")))?;
-    let view = buffer
-        .get_mapped_range(..)
-        .map_err(|error| RenderError(format!("cannot read back: {error}")))?;
-    let mut pixels = Vec::with_capacity((unpadded * height) as usize);
-    for row in view.chunks(padded as usize) {
-        pixels.extend_from_slice(&row[..unpadded as usize]);
-    }
-    Ok(pixels)
+    let value = read(
+        &buffer
+            .get_mapped_range(..)
+            .map_err(|error| RenderError(format!("cannot read back: {error}")))?,
+    );
+    buffer.unmap();
+    Ok(value)
 }

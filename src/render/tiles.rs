@@ -34,28 +34,15 @@ pub fn render_tiled(
     if size == 0 {
         return Err(RenderError("image size must be at least 1 pixel".into()));
     }
+    let mut image = image_buffer(size)?;
     let tile = tile_size(gpu);
     let tiles_per_side = size.div_ceil(tile);
-    let mut image = vec![[0.0f32; 4]; size as usize * size as usize];
     let mut done = 0;
     for tile_y in (0..size).step_by(tile as usize) {
         for tile_x in (0..size).step_by(tile as usize) {
             let (width, height) = (tile.min(size - tile_x), tile.min(size - tile_y));
             prepare((tile_x, tile_y), (width, height));
-            let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
-                label: Some("tile"),
-                size: wgpu::Extent3d {
-                    width,
-                    height,
-                    depth_or_array_layers: 1,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: FORMAT,
-                usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-                view_formats: &[],
-            });
+            let texture = gpu.device.create_texture(&target_descriptor(width, height));
             let target = texture.create_view(&Default::default());
             let mut encoder = gpu
                 .device
@@ -90,4 +77,66 @@ pub fn render_tiled(
         }
     }
     Ok(image)
+}
+
+/// Bytes per pixel an image costs on its way out: four f32 while rendering, and about as
+/// much again while it is converted and encoded.
+const BYTES_PER_PIXEL: u64 = 32;
+
+/// The zeroed pixels of a `size`² image, or a clear error when the machine does not
+/// have the memory for it (more than is available, or refused by the allocator), so a
+/// mistyped size fails at once instead of in the out-of-memory killer.
+fn image_buffer(size: u32) -> Result<Vec<[f32; 4]>, RenderError> {
+    let pixels = size as usize * size as usize;
+    let needed = pixels as u64 * BYTES_PER_PIXEL;
+    let refuse = |why: String| {
+        RenderError(format!(
+            "a {size}×{size} image needs about {} of memory, {why}; ask for a smaller size",
+            gibibytes(needed)
+        ))
+    };
+    if let Some(available) = available_memory()
+        && needed > available
+    {
+        return Err(refuse(format!(
+            "more than the {} this machine has available",
+            gibibytes(available)
+        )));
+    }
+    let mut image = Vec::new();
+    image
+        .try_reserve_exact(pixels)
+        .map_err(|_| refuse("which the allocator refused".into()))?;
+    image.resize(pixels, [0.0f32; 4]);
+    Ok(image)
+}
+
+/// Memory the kernel says is available for new allocations (Linux), in bytes.
+fn available_memory() -> Option<u64> {
+    let meminfo = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = meminfo.lines().find(|l| l.starts_with("MemAvailable:"))?;
+    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib * 1024)
+}
+
+fn gibibytes(bytes: u64) -> String {
+    format!("{:.1} GiB", bytes as f64 / (1u64 << 30) as f64)
+}
+
+/// A render target of `width`×`height` in [`FORMAT`] that can be read back.
+pub fn target_descriptor(width: u32, height: u32) -> wgpu::TextureDescriptor<'static> {
+    wgpu::TextureDescriptor {
+        label: Some("tile"),
+        size: wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: FORMAT,
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+        view_formats: &[],
+    }
 }

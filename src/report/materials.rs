@@ -1,7 +1,7 @@
 //! The report's material sections: precision (GPU f32 and CPU f32 against CPU f64),
 //! hash choice, octave budget, and footprint-aware detail.
 
-use super::measure::{cpu_albedo, errors, gpu_albedo, median_ms};
+use super::measure::{cpu_albedo, errors, gpu_albedo, median};
 use super::plot::{Plot, Series};
 use super::table::{Table, number};
 use super::{Context, Section};
@@ -37,8 +37,10 @@ fn renderer(ctx: &Context, graph: &Graph, detail: Detail) -> Result<FlatRenderer
 /// GPU time per megapixel of a flat render of `graph` over `rect`.
 fn gpu_ms_per_megapixel(ctx: &Context, renderer: &FlatRenderer, rect: FlatRect) -> f64 {
     let size = ctx.timing_size;
-    let ms = median_ms(ctx.repetitions, || {
-        let _ = renderer.render(ctx.gpu, rect, size, 0.0);
+    let ms = median(ctx.repetitions, || {
+        renderer
+            .shading_time(ctx.gpu, rect, size, 0.0)
+            .map_or(f64::NAN, |time| time.as_secs_f64() * 1e3)
     });
     ms / (f64::from(size * size) / 1e6)
 }

@@ -8,16 +8,20 @@ use std::time::Instant;
 /// The median wall time of `runs` calls of `work` (after one untimed warm-up call, which
 /// pays for lazy pipeline and buffer creation), in milliseconds.
 pub fn median_ms(runs: usize, mut work: impl FnMut()) -> f64 {
-    work();
-    let mut times: Vec<f64> = (0..runs.max(1))
-        .map(|_| {
-            let started = Instant::now();
-            work();
-            started.elapsed().as_secs_f64() * 1e3
-        })
-        .collect();
-    times.sort_by(f64::total_cmp);
-    times[times.len() / 2]
+    median(runs, || {
+        let started = Instant::now();
+        work();
+        started.elapsed().as_secs_f64() * 1e3
+    })
+}
+
+/// The median of `runs` values of `sample` (after one warm-up call whose value is left
+/// out).
+pub fn median(runs: usize, mut sample: impl FnMut() -> f64) -> f64 {
+    sample();
+    let mut values: Vec<f64> = (0..runs.max(1)).map(|_| sample()).collect();
+    values.sort_by(f64::total_cmp);
+    values[values.len() / 2]
 }
 
 /// The albedo at each point by the CPU evaluator in f32 or f64, and the time it took.

@@ -86,11 +86,16 @@ pub fn write(
             .map_err(|e| format!("{}: cannot write: {e}", path.display()))
     };
     let mut markdown = format!(
-        "# Veneer: error against run time\n\nMeasured by `veneer report` (Veneer {}) on {} with the adapter {}. Each timing is the median of {} runs unless a section says otherwise; every table is also a CSV beside this file.\n",
+        "# Veneer: error against run time\n\nMeasured by `veneer report` (Veneer {}) on {} with the adapter {}. Each timing is the median of {} runs unless a section says otherwise; GPU times are {}. Every table is also a CSV beside this file.\n",
         env!("CARGO_PKG_VERSION"),
         measure::machine(),
         gpu.adapter_description(),
-        settings.repetitions
+        settings.repetitions,
+        if crate::render::PassTimer::new(gpu).is_some() {
+            "the time the GPU spent in the render pass (timestamp queries), without submission or reading back"
+        } else {
+            "wall time from submitting the render pass to its completion (the adapter has no timestamp queries), without reading back"
+        }
     );
     for section in &sections {
         write(

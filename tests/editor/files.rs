@@ -92,9 +92,18 @@ fn presets_open_from_the_menu() {
     assert!(harness.state().live.errors.is_empty());
 }
 
+/// The variable that makes [`killed_session_child`] run: the folder it works in.
+const CHILD_FOLDER: &str = "VENEER_KILLED_SESSION_FOLDER";
+
+/// The child half of [`unsaved_work_survives_killing_the_editor`]: edits the wood preset
+/// in an editor autosaving into the folder the parent names, writes what the graph is
+/// then to `edited.ron`, and goes on running until it is killed.
 #[test]
-fn unsaved_work_is_offered_back_after_a_crash() {
-    let dir = scratch("recovery");
+#[ignore = "run by unsaved_work_survives_killing_the_editor in a process of its own"]
+fn killed_session_child() {
+    let Some(dir) = std::env::var_os(CHILD_FOLDER).map(std::path::PathBuf::from) else {
+        return;
+    };
     let mut harness = editor(&dir, None);
     select_node(&mut harness, "material");
     harness.get_by_label("label").hover();
@@ -107,25 +116,64 @@ fn unsaved_work_is_offered_back_after_a_crash() {
     harness.get_by(label_field).type_text(" (oiled)");
     harness.run();
     assert!(harness.state().document.is_dirty());
-    // Let the autosave interval pass, then "crash": drop the editor without a clean exit.
+    // Let the autosave interval pass.
     for _ in 0..6 {
         harness.step();
         std::thread::sleep(std::time::Duration::from_millis(5));
         harness.input_mut().time = Some(harness.input().time.unwrap_or(0.0) + 1.0);
     }
     harness.run();
-    let edited = harness.state().document.graph.clone();
+    let edited = veneer::graph::to_ron(&harness.state().document.graph);
+    veneer::fsutil::write_atomic(&dir.join("edited.ron"), edited.as_bytes()).expect("marker");
+    loop {
+        harness.step();
+        std::thread::sleep(std::time::Duration::from_millis(10));
+    }
+}
+
+#[test]
+fn unsaved_work_survives_killing_the_editor() {
+    let dir = scratch("killed");
+    let mut child = std::process::Command::new(std::env::current_exe().expect("test binary"))
+        .args([
+            "--exact",
+            "files::killed_session_child",
+            "--ignored",
+            "--nocapture",
+        ])
+        .env(CHILD_FOLDER, &dir)
+        .stdout(std::process::Stdio::null())
+        .spawn()
+        .expect("the child editor starts");
+    let marker = dir.join("edited.ron");
+    let started = std::time::Instant::now();
+    while !marker.exists() {
+        if let Some(status) = child.try_wait().expect("child status") {
+            panic!("the child editor ended before it was killed: {status}");
+        }
+        assert!(
+            started.elapsed() < std::time::Duration::from_secs(300),
+            "the child editor did not get to its edit"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
+    // SIGKILL mid-session: no clean exit, no chance to save.
+    child.kill().expect("kill");
+    child.wait().expect("reaped");
+    let edited = std::fs::read_to_string(&marker).expect("marker");
     assert!(
         dir.join("recovery.ron").exists(),
         "autosave wrote the recovery file"
     );
-    drop(harness);
 
     let mut restarted = editor(&dir, None);
     assert!(shows(&restarted, "Recover unsaved work?"));
     restarted.get_by_label("Recover").click();
     restarted.run();
-    assert_eq!(restarted.state().document.graph, edited);
+    assert_eq!(
+        veneer::graph::to_ron(&restarted.state().document.graph),
+        edited
+    );
     assert!(
         restarted.state().document.is_dirty(),
         "recovered work is not saved yet"

@@ -1,16 +1,8 @@
 //! The `veneer` binary: bad input exits 1 with a message naming the file position or the
 //! node, never panics; good input works as DESIGN.md's CLI contract says.
 
-use crate::support::root;
-use std::process::{Command, Output};
-
-fn veneer(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_veneer"))
-        .args(args)
-        .current_dir(root(""))
-        .output()
-        .expect("the veneer binary runs")
-}
+use crate::support::run_veneer;
+use std::process::Output;
 
 fn stderr(output: &Output) -> String {
     String::from_utf8_lossy(&output.stderr).into_owned()
@@ -18,7 +10,7 @@ fn stderr(output: &Output) -> String {
 
 /// Runs `veneer check` on a bad file and returns its message, asserting exit code 1.
 fn check_fails(file: &str) -> String {
-    let output = veneer(&["check", file]);
+    let output = run_veneer(&["check", file]);
     assert_eq!(output.status.code(), Some(1), "{file}: {}", stderr(&output));
     let message = stderr(&output);
     assert!(!message.contains("panicked"), "{file} panicked: {message}");
@@ -73,13 +65,13 @@ fn check_passes_on_every_preset() {
             .map(|p| p.display().to_string()),
     );
     let args: Vec<&str> = args.iter().map(String::as_str).collect();
-    let output = veneer(&args);
+    let output = run_veneer(&args);
     assert!(output.status.success(), "{}", stderr(&output));
 }
 
 #[test]
 fn compile_prints_validated_wgsl_with_the_contract() {
-    let output = veneer(&["compile", "graphs/marble.ron"]);
+    let output = run_veneer(&["compile", "graphs/marble.ron"]);
     assert!(output.status.success(), "{}", stderr(&output));
     let wgsl = String::from_utf8(output.stdout).expect("utf-8");
     assert!(wgsl.contains("struct VeneerSurface {") && wgsl.contains("struct VeneerMaterial {"));
@@ -92,7 +84,7 @@ fn render_writes_a_flat_png_of_the_requested_size() {
     std::fs::create_dir_all(&dir).expect("temp dir");
     let out = dir.join("wood.png");
     let out_arg = out.display().to_string();
-    let output = veneer(&[
+    let output = run_veneer(&[
         "render",
         "graphs/wood.ron",
         "--flat",
@@ -109,7 +101,7 @@ fn render_writes_a_flat_png_of_the_requested_size() {
 
 #[test]
 fn bad_render_arguments_exit_1_without_writing() {
-    let output = veneer(&[
+    let output = run_veneer(&[
         "render",
         "graphs/wood.ron",
         "--mesh",

@@ -50,19 +50,27 @@ fn only_used_library_functions_are_emitted() {
 }
 
 #[test]
-fn a_naga_error_is_mapped_to_the_node_that_caused_it() {
+fn a_constant_beyond_f32_is_rejected_by_the_check_naming_its_node() {
     let (mut graph, noise) = small_graph();
     graph.set_input(noise, "scale", Value::Float(1e39));
     match compile_graph(&graph) {
-        Err(CompileError::Validation(error)) => {
-            assert_eq!(error.node, Some(noise), "{error}");
-            assert!(
-                error.to_string().starts_with("node 'grain' (#1)"),
-                "{error}"
-            );
+        Err(CompileError::Check(errors)) => {
+            let message = errors[0].to_string();
+            assert!(message.starts_with("node 'grain' (#1)"), "{message}");
+            assert!(message.contains("beyond the f32 range"), "{message}");
         }
-        other => panic!("expected a validation error, got {other:?}"),
+        other => panic!("expected a check error, got {other:?}"),
     }
+}
+
+#[test]
+fn generated_code_maps_back_to_its_node() {
+    // What a naga error, should one slip past the check, is blamed on.
+    let (graph, noise) = small_graph();
+    let module = compile_graph(&graph).expect("compiles");
+    let offset = module.source.find("let grain").expect("the node's line");
+    assert_eq!(module.node_at(offset), Some(noise));
+    assert_eq!(module.node_at(0), None);
 }
 
 #[test]

@@ -116,3 +116,12 @@ pub fn temp_dir(name: &str) -> PathBuf {
 pub fn veneer() -> std::process::Command {
     std::process::Command::new(env!("CARGO_BIN_EXE_veneer"))
 }
+
+/// Runs `veneer args` in the repository root and returns what it did.
+pub fn run_veneer(args: &[&str]) -> std::process::Output {
+    veneer()
+        .args(args)
+        .current_dir(root(""))
+        .output()
+        .expect("the veneer binary runs")
+}

@@ -1,0 +1,75 @@
+//! How long the GPU spends in a render pass, from timestamps it writes at the pass's
+//! beginning and end, so that timings leave out submission and reading the image back
+//! (which dominate on a real GPU). Adapters without timestamp queries get none.
+
+use super::readback::read_buffer;
+use super::{GpuContext, RenderError};
+use std::time::Duration;
+
+/// Two timestamp queries around one render pass, and the buffers to read them through.
+pub struct PassTimer {
+    queries: wgpu::QuerySet,
+    resolved: wgpu::Buffer,
+    readable: wgpu::Buffer,
+}
+
+impl PassTimer {
+    /// A timer, when the device has timestamp queries.
+    pub fn new(gpu: &GpuContext) -> Option<PassTimer> {
+        if !gpu
+            .device
+            .features()
+            .contains(wgpu::Features::TIMESTAMP_QUERY)
+        {
+            return None;
+        }
+        let buffer = |label, usage| {
+            gpu.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: 16,
+                usage,
+                mapped_at_creation: false,
+            })
+        };
+        Some(PassTimer {
+            queries: gpu.device.create_query_set(&wgpu::QuerySetDescriptor {
+                label: Some("pass timer"),
+                ty: wgpu::QueryType::Timestamp,
+                count: 2,
+            }),
+            resolved: buffer(
+                "pass timer resolve",
+                wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
+            ),
+            readable: buffer(
+                "pass timer readback",
+                wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+            ),
+        })
+    }
+
+    /// The timestamp writes for the pass to time.
+    pub fn writes(&self) -> wgpu::RenderPassTimestampWrites<'_> {
+        wgpu::RenderPassTimestampWrites {
+            query_set: &self.queries,
+            beginning_of_pass_write_index: Some(0),
+            end_of_pass_write_index: Some(1),
+        }
+    }
+
+    /// Records copying the timestamps out, after the pass, into `encoder`.
+    pub fn resolve(&self, encoder: &mut wgpu::CommandEncoder) {
+        encoder.resolve_query_set(&self.queries, 0..2, &self.resolved, 0);
+        encoder.copy_buffer_to_buffer(&self.resolved, 0, &self.readable, 0, 16);
+    }
+
+    /// The time between the two timestamps, once the submitted work has finished.
+    pub fn read(&self, gpu: &GpuContext) -> Result<Duration, RenderError> {
+        let ticks = read_buffer(gpu, &self.readable, |bytes| {
+            let stamp = |k: usize| bytemuck::pod_read_unaligned::<u64>(&bytes[8 * k..8 * k + 8]);
+            stamp(1).saturating_sub(stamp(0))
+        })?;
+        let nanoseconds = ticks as f64 * f64::from(gpu.queue.get_timestamp_period());
+        Ok(Duration::from_nanos(nanoseconds as u64))
+    }
+}
