@@ -99,22 +99,26 @@ fn veneer_octave_mean_fractal_sum() -> f32 {
 // Sum of `octaves` octaves; each multiplies the frequency by `lacunarity` and the
 // amplitude by `gain`. With `normalize` the sum is divided by the sum of amplitudes.
 // Octave i counts fully below `cutoff - 1`, fades to its average over the next octave
-// and is replaced by its average (and not evaluated) from `cutoff` on.
+// and is replaced by its average from `cutoff` on: those octaves are summed in a second
+// loop without any noise, so a coarse footprint shortens the expensive one (software
+// rasterisers run both sides of a branch; a shorter loop is what saves them work).
 fn veneer_fractal_sum_simplex(p: vec3f, octaves: i32, lacunarity: f32, gain: f32, amplitude: f32, normalize: bool, cutoff: f32) -> f32 {
     var sum = 0.0;
     var amp = amplitude;
     var freq = 1.0;
     var total = 0.0;
     let mean = veneer_octave_mean_fractal_sum();
-    for (var i = 0; i < octaves; i++) {
+    let evaluated = min(octaves, i32(clamp(ceil(cutoff), 0.0, 64.0)));
+    for (var i = 0; i < evaluated; i++) {
         let shown = clamp(cutoff - f32(i), 0.0, 1.0);
-        var octave = mean;
-        if shown > 0.0 {
-            octave = shown * veneer_octave_fractal_sum_simplex(p * freq) + (1.0 - shown) * mean;
-        }
-        sum += amp * octave;
+        sum += amp * (shown * veneer_octave_fractal_sum_simplex(p * freq) + (1.0 - shown) * mean);
         total += abs(amp);
         freq *= lacunarity;
+        amp *= gain;
+    }
+    for (var i = evaluated; i < octaves; i++) {
+        sum += amp * mean;
+        total += abs(amp);
         amp *= gain;
     }
     return select(sum, sum / total, normalize && total > 0.0);
