@@ -186,7 +186,7 @@ fn live_edit(c: &mut Criterion) {
                 &gpu.device,
                 &module.source,
                 module.params.len(),
-                module.uses.displacement,
+                module.uses,
             );
             pipeline.expect("pipeline builds")
         })

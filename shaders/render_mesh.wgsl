@@ -77,7 +77,11 @@ fn veneer_mesh_fragment(input: VeneerVertexOut) -> @location(0) vec4f {
     if material.alpha < 0.5 {
         discard;
     }
-    let n = normalize(normal + material.bump + relief);
+    // VENEER_RELIEF (set by the pipeline): a bump or a height perturbs the normal.
+    var n = normal;
+    if VENEER_RELIEF {
+        n = normalize(normal + material.bump + relief);
+    }
     let l = view.light_direction.xyz;
     let v = normalize(view.eye.xyz - input.position);
     let h = normalize(l + v);

@@ -768,7 +768,7 @@ fn material_frame(
         generation: live.generation,
         wgsl,
         slots: module.params.len(),
-        displaced: module.uses.displacement,
+        uses: module.uses,
         params: live.params(graph),
     })
 }

@@ -62,8 +62,8 @@ pub struct MaterialFrame {
     pub generation: u64,
     pub wgsl: Arc<str>,
     pub slots: usize,
-    /// The material's height moves the vertices.
-    pub displaced: bool,
+    /// What of the surface the material uses (height, bump, fields).
+    pub uses: crate::codegen::SurfaceUse,
     pub params: Vec<[f32; 4]>,
 }
 
@@ -141,8 +141,7 @@ impl PreviewResources {
         if let Some(material) = &frame.material {
             let current = self.pipeline.as_ref().map(|(generation, _)| *generation);
             if current != Some(material.generation) {
-                match MeshPipeline::new(device, &material.wgsl, material.slots, material.displaced)
-                {
+                match MeshPipeline::new(device, &material.wgsl, material.slots, material.uses) {
                     Ok(pipeline) => {
                         self.pipeline = Some((material.generation, pipeline));
                         self.pipeline_error = None;

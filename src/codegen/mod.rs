@@ -94,6 +94,8 @@ pub struct SurfaceUse {
     pub fields: [bool; 4],
     /// Whether the height output can be non-zero (the mesh is displaced).
     pub displacement: bool,
+    /// Whether the bump output can be non-zero (the shading normal is perturbed).
+    pub bump: bool,
 }
 
 impl SurfaceUse {
@@ -103,10 +105,12 @@ impl SurfaceUse {
             match checked.node.kind {
                 NodeKind::Field { slot } => uses.fields[slot as usize % 4] = true,
                 NodeKind::Material => {
-                    uses.displacement = match &checked.inputs[5] {
+                    let non_zero = |input: &InputSource| match input {
                         InputSource::Const(value) => value.components() != [0.0; 3],
                         _ => true,
-                    }
+                    };
+                    uses.bump = non_zero(&checked.inputs[4]);
+                    uses.displacement = non_zero(&checked.inputs[5]);
                 }
                 _ => {}
             }

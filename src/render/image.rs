@@ -133,7 +133,7 @@ pub fn render_graph_detailed(
             let mesh = mesh_with_fields(graph, name, &module.uses, |_, _| {})?;
             let mut mesh_view = MeshView::for_preview(&graph.preview);
             mesh_view.time = time;
-            let renderer = MeshRenderer::new(gpu, &module.source, module.uses.displacement)?;
+            let renderer = MeshRenderer::new(gpu, &module.source, module.uses)?;
             let pixels = renderer.render(gpu, &mesh, &mesh_view, size)?;
             Ok(Image {
                 width: size,

@@ -4,6 +4,7 @@
 
 use super::readback::read_texture;
 use super::{GpuContext, RenderError, shader_source};
+use crate::codegen::SurfaceUse;
 use crate::graph::Preview;
 use crate::mesh::Mesh;
 use glam::{Mat4, Vec3};
@@ -281,17 +282,23 @@ pub struct MeshPipeline {
 
 impl MeshPipeline {
     /// Builds the pipeline for a material module; `param_slots` is the number of slots
-    /// of a uniform-mode module (0 when its parameters are baked); `displaced` moves the
-    /// vertices by the material's height (only for materials whose height is used).
+    /// of a uniform-mode module (0 when its parameters are baked); `uses` says whether
+    /// the material's height moves the vertices and whether it perturbs the normal, so
+    /// that materials without them pay for neither.
     pub fn new(
         device: &wgpu::Device,
         material_wgsl: &str,
         param_slots: usize,
-        displaced: bool,
+        uses: SurfaceUse,
     ) -> Result<MeshPipeline, RenderError> {
+        let displaced = uses.displacement;
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-        // Height work (vertex displacement, relief shading) only for materials with a height.
-        let height = format!("const VENEER_HEIGHT: bool = {displaced};\n");
+        // Height work (vertex displacement, relief shading) only for materials with a
+        // height, normal perturbation only for materials with a bump or a height.
+        let height = format!(
+            "const VENEER_HEIGHT: bool = {displaced};\nconst VENEER_RELIEF: bool = {};\n",
+            displaced || uses.bump
+        );
         let entry_points = if displaced {
             format!("{height}{ENTRY_POINTS}\n{DISPLACED_ENTRY_POINT}")
         } else {
@@ -436,15 +443,15 @@ pub struct MeshRenderer {
 }
 
 impl MeshRenderer {
-    /// Builds the pipeline for a material module with baked parameters (`displaced`:
-    /// its height moves the vertices).
+    /// Builds the pipeline for a material module with baked parameters, using what
+    /// `uses` says of its height and bump.
     pub fn new(
         gpu: &GpuContext,
         material_wgsl: &str,
-        displaced: bool,
+        uses: SurfaceUse,
     ) -> Result<MeshRenderer, RenderError> {
         Ok(MeshRenderer {
-            pipeline: MeshPipeline::new(&gpu.device, material_wgsl, 0, displaced)?,
+            pipeline: MeshPipeline::new(&gpu.device, material_wgsl, 0, uses)?,
         })
     }
 

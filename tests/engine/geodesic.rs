@@ -300,7 +300,7 @@ fn a_broken_mesh_gets_finite_distances_where_reached_and_warnings_naming_its_def
 }
 
 #[test]
-fn fields_are_solved_only_for_the_slots_a_material_reads() {
+fn fields_and_relief_are_computed_only_where_a_material_uses_them() {
     let sand = veneer::graph::load(&crate::support::root("graphs/water_lava.ron")).unwrap();
     let uses = veneer::codegen::compile_graph(&sand).unwrap().uses;
     assert_eq!(uses.fields, [true, true, false, false]);
@@ -336,6 +336,12 @@ fn fields_are_solved_only_for_the_slots_a_material_reads() {
             .unwrap()
             .uses
             .displacement
+    );
+    let moss = veneer::graph::load(&crate::support::root("graphs/moss_granite.ron")).unwrap();
+    assert!(veneer::codegen::compile_graph(&moss).unwrap().uses.bump);
+    assert!(
+        !wood_uses.bump && !wood_uses.displacement,
+        "no bump, no height: no relief work in the renderer"
     );
 }
 
