@@ -84,8 +84,15 @@ fn compile_through(
         .expect("the veneer binary runs")
 }
 
-/// The folder holds `old.wgsl` and nothing else, as before the failed write.
-fn only_the_old_file(dir: &Path) {
+/// The write failed with exit code 1 and a message giving `cause` and saying the old
+/// file is unchanged; `dir` still holds `old.wgsl` as it was and nothing else (no
+/// temporary file left behind). Removes `dir`.
+fn refused_with_the_old_file_intact(output: &Output, cause: &str, dir: &Path) {
+    let message = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(1), "{message}");
+    for words in ["cannot write", cause, "the old file is unchanged"] {
+        assert!(message.contains(words), "'{words}' not in: {message}");
+    }
     let names: Vec<_> = std::fs::read_dir(dir)
         .expect("folder")
         .map(|entry| entry.expect("entry").file_name())
@@ -95,6 +102,7 @@ fn only_the_old_file(dir: &Path) {
         std::fs::read_to_string(dir.join("old.wgsl")).unwrap(),
         "old"
     );
+    std::fs::remove_dir_all(dir).unwrap();
 }
 
 #[test]
@@ -108,14 +116,7 @@ fn a_full_disk_leaves_the_old_file_intact_and_says_so() {
     let limits = "trap '' XFSZ; ulimit -f 2; exec \"$@\"";
     let veneer = Path::new(env!("CARGO_BIN_EXE_veneer"));
     let output = compile_through("sh", &["-c", limits, "sh"], (veneer, &root("")), &target);
-    let message = String::from_utf8_lossy(&output.stderr);
-    assert_eq!(output.status.code(), Some(1), "{message}");
-    assert!(
-        message.contains("cannot write") && message.contains("the old file is unchanged"),
-        "{message}"
-    );
-    only_the_old_file(&dir);
-    std::fs::remove_dir_all(&dir).unwrap();
+    refused_with_the_old_file_intact(&output, "File too large", &dir);
 }
 
 #[test]
@@ -140,14 +141,7 @@ fn a_permission_error_leaves_the_old_file_intact_and_says_so() {
     };
     std::fs::remove_dir_all(&work).unwrap();
     std::fs::set_permissions(&dir, std::fs::Permissions::from_mode(0o755)).unwrap();
-    let message = String::from_utf8_lossy(&output.stderr);
-    assert_eq!(output.status.code(), Some(1), "{message}");
-    assert!(
-        message.contains("Permission denied") && message.contains("the old file is unchanged"),
-        "{message}"
-    );
-    only_the_old_file(&dir);
-    std::fs::remove_dir_all(&dir).unwrap();
+    refused_with_the_old_file_intact(&output, "Permission denied", &dir);
 }
 
 /// The real user id of this process, read from `/proc`.
