@@ -28,7 +28,9 @@ use std::time::{Duration, Instant};
 pub enum Method {
     /// The heat method.
     Heat(HeatOptions),
-    /// Exact polyhedral distances (window propagation).
+    /// Exact polyhedral distances (window propagation), within a budget of windows per
+    /// triangle that good meshes never reach; a degenerate mesh that exhausts it gets
+    /// paths along edges (upper bounds) for the vertices left.
     Exact,
     /// Shortest paths along edges.
     Dijkstra,

@@ -382,7 +382,7 @@ pub fn detail(ctx: &Context) -> Result<Section, String> {
         slug: "detail",
         title: "Level of detail: footprint-aware octaves against full evaluation".into(),
         text: format!(
-            "Flat renders at {size}² of each material over its preview square widened 1×, 10× and 100×; the error is the mean absolute difference from the same view rendered with every octave at {}² and box-filtered down (the truly filtered pattern). Footprint-aware detail leaves out octaves finer than half a pixel, fading the last one to its mean: far away it is both closer to the filtered pattern (less aliasing) and cheaper; near by it changes nothing. Wood's sine bands and ring shapes are not octaves, so they still alias at a distance.",
+            "Flat renders at {size}² of each material over its preview square widened 1×, 10× and 100×; the error is the mean absolute difference from the same view rendered with every octave at {}² and box-filtered down (the truly filtered pattern). Footprint-aware detail leaves out octaves finer than half a pixel, fading the last one to its mean: far away it is both closer to the filtered pattern (less aliasing) and cheaper; near by it changes nothing in the image but costs each fractal node its screen-space derivatives and octave count, which a material of several short fBm nodes (wood) feels most. Wood's sine bands and ring shapes are not octaves, so they still alias at a distance.",
             size * factor
         ),
         table,
