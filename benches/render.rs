@@ -43,7 +43,7 @@ fn flat_render(c: &mut Criterion) {
             z1: near.z1 * 50.0,
             y: near.y,
         };
-        let timing = if veneer::render::PassTimer::new(&gpu).is_some() {
+        let timing = if veneer::render::PassTimer::supported(&gpu) {
             "GPU pass time"
         } else {
             "submit to completion"

@@ -8,7 +8,7 @@
 use arbitrary::Arbitrary;
 use libfuzzer_sys::fuzz_target;
 use veneer::geodesic::{HeatOptions, Method, distances};
-use veneer::mesh::{Mesh, vertex_normals};
+use veneer::mesh::Mesh;
 
 #[derive(Arbitrary, Debug)]
 struct FuzzMesh {
@@ -39,13 +39,7 @@ fuzz_target!(|fuzz: FuzzMesh| {
         .iter()
         .map(|&s| u32::from(s) % count as u32)
         .collect();
-    let mesh = Mesh {
-        normals: vertex_normals(&positions, &indices),
-        uvs: vec![[0.0; 2]; count],
-        positions,
-        indices,
-        fields: Vec::new(),
-    };
+    let mesh = Mesh::from_triangles(positions, indices);
     let time_factor = 2f64.powi(i32::from(fuzz.time_factor % 24) - 12);
     for method in [
         Method::Heat(HeatOptions {

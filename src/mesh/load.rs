@@ -236,8 +236,10 @@ fn ply(bytes: &[u8]) -> Result<Soup, String> {
 fn gltf(bytes: &[u8], folder: Option<&Path>) -> Result<Soup, String> {
     use gltf::Semantic;
     use gltf::accessor::{DataType, Dimensions};
-    position_accessors_exist(bytes)?;
-    let gltf::Gltf { document, blob } = gltf::Gltf::from_slice(bytes).map_err(|e| e.to_string())?;
+    let gltf::Gltf { document, blob } =
+        gltf::Gltf::from_slice_without_validation(bytes).map_err(|e| e.to_string())?;
+    position_accessors_exist(document.as_json())?;
+    let document = gltf::Document::from_json(document.into_json()).map_err(|e| e.to_string())?;
     let buffers = gltf::import_buffers(&document, folder, blob).map_err(|e| e.to_string())?;
     let mut soup = Soup {
         positions: vec![],
@@ -335,9 +337,7 @@ fn gltf(bytes: &[u8], folder: Option<&Path>) -> Result<Soup, String> {
 /// Checks that every primitive's POSITION accessor exists, before the glTF crate's own
 /// validation, which looks that accessor up without checking (and panics; found by
 /// fuzzing, gltf-json 1.4.1).
-fn position_accessors_exist(bytes: &[u8]) -> Result<(), String> {
-    let unchecked = gltf::Gltf::from_slice_without_validation(bytes).map_err(|e| e.to_string())?;
-    let json = unchecked.document.as_json();
+fn position_accessors_exist(json: &gltf::json::Root) -> Result<(), String> {
     for (m, mesh) in json.meshes.iter().enumerate() {
         for (p, primitive) in mesh.primitives.iter().enumerate() {
             let position = gltf::json::validation::Checked::Valid(gltf::Semantic::Positions);

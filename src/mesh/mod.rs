@@ -35,6 +35,18 @@ pub struct Mesh {
 }
 
 impl Mesh {
+    /// A mesh of `positions` and triangle `indices` (not checked), with area-weighted
+    /// normals and zero texture coordinates.
+    pub fn from_triangles(positions: Vec<[f32; 3]>, indices: Vec<u32>) -> Mesh {
+        Mesh {
+            normals: vertex_normals(&positions, &indices),
+            uvs: vec![[0.0; 2]; positions.len()],
+            positions,
+            indices,
+            fields: Vec::new(),
+        }
+    }
+
     /// A primitive by name, or else a mesh file.
     pub fn named(name: &str) -> Result<Mesh, MeshError> {
         match primitive(name) {

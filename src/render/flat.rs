@@ -1,6 +1,6 @@
 //! The flat render: a material's outputs over a rectangle of the plane y = Y.
 
-use super::tiles::{FORMAT, render_tiled};
+use super::tiles::{FORMAT, clear_pass, render_tiled};
 use super::timing::PassTimer;
 use super::{GpuContext, RenderError, shader_source};
 
@@ -146,20 +146,8 @@ impl FlatRenderer {
         let timer = PassTimer::new(gpu);
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
         {
-            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("timed flat render"),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: &target,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
-                        store: wgpu::StoreOp::Store,
-                    },
-                })],
-                timestamp_writes: timer.as_ref().map(PassTimer::writes),
-                ..Default::default()
-            });
+            let writes = timer.as_ref().map(PassTimer::writes);
+            let mut pass = clear_pass(&mut encoder, &target, wgpu::Color::TRANSPARENT, writes);
             self.draw(&mut pass);
         }
         if let Some(timer) = &timer {

@@ -14,13 +14,16 @@ pub struct PassTimer {
 }
 
 impl PassTimer {
-    /// A timer, when the device has timestamp queries.
-    pub fn new(gpu: &GpuContext) -> Option<PassTimer> {
-        if !gpu
-            .device
+    /// Whether the device has timestamp queries (else timings fall back to wall time).
+    pub fn supported(gpu: &GpuContext) -> bool {
+        gpu.device
             .features()
             .contains(wgpu::Features::TIMESTAMP_QUERY)
-        {
+    }
+
+    /// A timer, when the device has timestamp queries.
+    pub fn new(gpu: &GpuContext) -> Option<PassTimer> {
+        if !PassTimer::supported(gpu) {
             return None;
         }
         let buffer = |label, usage| {

@@ -91,7 +91,7 @@ pub fn write(
         measure::machine(),
         gpu.adapter_description(),
         settings.repetitions,
-        if crate::render::PassTimer::new(gpu).is_some() {
+        if crate::render::PassTimer::supported(gpu) {
             "the time the GPU spent in the render pass (timestamp queries), without submission or reading back"
         } else {
             "wall time from submitting the render pass to its completion (the adapter has no timestamp queries), without reading back"

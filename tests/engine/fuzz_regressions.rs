@@ -4,11 +4,15 @@
 use crate::support::root;
 use veneer::codegen::{CompileError, Detail, ParamMode, compile_graph_detailed};
 
-/// The files under `tests/fuzz/<target>/`.
+/// The files under `tests/fuzz/<target>/` (there is at least one: an empty or missing
+/// folder would make the replay test nothing).
 fn findings(target: &str) -> Vec<std::path::PathBuf> {
-    let mut paths: Vec<_> = std::fs::read_dir(root(&format!("tests/fuzz/{target}")))
-        .map(|entries| entries.map(|entry| entry.expect("entry").path()).collect())
-        .unwrap_or_default();
+    let folder = root(&format!("tests/fuzz/{target}"));
+    let mut paths: Vec<_> = std::fs::read_dir(&folder)
+        .unwrap_or_else(|error| panic!("{}: {error}", folder.display()))
+        .map(|entry| entry.expect("entry").path())
+        .collect();
+    assert!(!paths.is_empty(), "no findings in {}", folder.display());
     paths.sort();
     paths
 }
@@ -63,13 +67,7 @@ fn meshes_that_hung_a_geodesic_method_give_fields_without_nan() {
     for path in findings("geodesic") {
         let text = std::fs::read_to_string(&path).expect("finding");
         let finding: GeodesicFinding = serde_json::from_str(&text).expect("finding parses");
-        let mesh = veneer::mesh::Mesh {
-            normals: veneer::mesh::vertex_normals(&finding.positions, &finding.indices),
-            uvs: vec![[0.0; 2]; finding.positions.len()],
-            positions: finding.positions,
-            indices: finding.indices,
-            fields: Vec::new(),
-        };
+        let mesh = veneer::mesh::Mesh::from_triangles(finding.positions, finding.indices);
         for method in [
             Method::Heat(HeatOptions::default()),
             Method::Heat(HeatOptions {
