@@ -257,11 +257,11 @@ fn export_png(app: &mut VeneerApp, path: PathBuf, size: u32, flat: bool) -> Opti
     let Some(state) = &app.render_state else {
         return Some(Dialog::Message("no GPU: cannot render".into()));
     };
-    let gpu = crate::render::GpuContext {
-        adapter: state.adapter.clone(),
-        device: state.device.clone(),
-        queue: state.queue.clone(),
-    };
+    let gpu = crate::render::GpuContext::on_device(
+        state.adapter.clone(),
+        state.device.clone(),
+        state.queue.clone(),
+    );
     let view = if flat {
         crate::render::View::PreviewFlat
     } else {

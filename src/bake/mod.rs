@@ -84,6 +84,44 @@ enum Surface {
     Uv(UvRenderer, GpuMesh),
 }
 
+/// The file a bake writes `map` to: `<stem>_<map>.<ext>`.
+pub fn map_path(stem: &Path, map: Map, format: Format) -> PathBuf {
+    let stem_name = stem
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    stem.with_file_name(format!("{stem_name}_{}.{}", map.name(), format.extension()))
+}
+
+/// Checks, before anything renders, that every file the bakes of `stems` would write
+/// has a folder to go to and that no two bakes write the same file (two graphs of the
+/// same name baked into one folder would silently replace each other's maps).
+pub fn check_outputs(stems: &[&Path], settings: &BakeSettings) -> Result<(), BakeError> {
+    let mut writers: std::collections::BTreeMap<PathBuf, &Path> = Default::default();
+    for &stem in stems {
+        let folder = match stem.parent() {
+            Some(folder) if !folder.as_os_str().is_empty() => folder,
+            _ => Path::new("."),
+        };
+        if !folder.is_dir() {
+            let why = if folder.exists() { "is not a folder" } else { "does not exist" };
+            return Err(BakeError(format!("{}: {why}; nothing was baked", folder.display())));
+        }
+        for &map in &settings.maps {
+            let path = map_path(stem, map, settings.format);
+            if let Some(other) = writers.insert(path.clone(), stem) {
+                return Err(BakeError(format!(
+                    "{}: both {} and {} would write this file; bake them into different folders (-o); nothing was baked",
+                    path.display(),
+                    other.display(),
+                    stem.display()
+                )));
+            }
+        }
+    }
+    Ok(())
+}
+
 /// Bakes `graph` into `<stem>_<map>.<ext>` files, calling `progress(done, total)` as
 /// tiles finish. Every file is written atomically: an interrupted bake leaves no
 /// partial map.
@@ -112,6 +150,11 @@ pub fn bake(
         BakeSurface::MeshUv(name) => {
             let mesh = crate::render::mesh_with_fields(graph, name, &module.uses, |_, _| {})
                 .map_err(|error| BakeError(error.to_string()))?;
+            if mesh.uv_area() < 1e-9 {
+                return Err(BakeError(format!(
+                    "{name} has no UV layout (its texture coordinates cover no area), so its maps would be uniform; bake over a plane instead, or give a mesh with UVs"
+                )));
+            }
             // The UV square is taken to span the preview square: normals are approximate.
             let texel = 2.0 * graph.preview.size / f64::from(size);
             (
@@ -158,15 +201,7 @@ pub fn bake(
                 pixels
             }
         };
-        let stem_name = stem
-            .file_name()
-            .map(|n| n.to_string_lossy().into_owned())
-            .unwrap_or_default();
-        let path = stem.with_file_name(format!(
-            "{stem_name}_{}.{}",
-            map.name(),
-            settings.format.extension()
-        ));
+        let path = map_path(stem, *map, settings.format);
         let pixels = maps::convert(*map, pixels, size, spacing, settings.normal);
         maps::write(&path, pixels, size, settings.format)
             .map_err(|error| BakeError(format!("{}: {error}", path.display())))?;

@@ -1,6 +1,7 @@
 //! `veneer bake`: texture maps of one or more graphs, baked in parallel with a progress bar.
 
 use super::Failure;
+use super::output::{note, out};
 use super::render::parse_flat;
 use clap::{Args, ValueEnum};
 use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
@@ -96,12 +97,23 @@ pub fn run(args: BakeArgs) -> Result<(), Failure> {
     if settings.size == 0 {
         return Err(Failure::new("--size must be at least 1"));
     }
+    let stems: Vec<PathBuf> = args
+        .graphs
+        .iter()
+        .map(|path| match &args.out_dir {
+            Some(dir) => dir.join(path.file_stem().unwrap_or_default()),
+            None => path.with_extension(""),
+        })
+        .collect();
+    let stem_refs: Vec<&std::path::Path> = stems.iter().map(PathBuf::as_path).collect();
+    veneer::bake::check_outputs(&stem_refs, &settings)?;
     let graphs = args
         .graphs
         .iter()
-        .map(|path| {
+        .zip(&stems)
+        .map(|(path, stem)| {
             veneer::graph::load(path)
-                .map(|graph| (path, graph))
+                .map(|graph| (path, stem, graph))
                 .map_err(Failure::from)
         })
         .collect::<Result<Vec<_>, _>>()?;
@@ -112,20 +124,16 @@ pub fn run(args: BakeArgs) -> Result<(), Failure> {
     let results: Vec<Result<Vec<BakedMap>, Failure>> = std::thread::scope(|scope| {
         let tasks: Vec<_> = graphs
             .iter()
-            .map(|(path, graph)| {
+            .map(|(path, stem, graph)| {
                 let bar = bars.add(ProgressBar::new(0).with_style(style.clone()));
                 bar.set_prefix(
                     path.file_stem()
                         .map(|s| s.to_string_lossy().into_owned())
                         .unwrap_or_default(),
                 );
-                let stem = match &args.out_dir {
-                    Some(dir) => dir.join(path.file_stem().unwrap_or_default()),
-                    None => path.with_extension(""),
-                };
                 let (gpu, settings) = (&gpu, &settings);
                 scope.spawn(move || {
-                    let result = bake(gpu, graph, settings, &stem, |done, total| {
+                    let result = bake(gpu, graph, settings, stem, |done, total| {
                         bar.set_length(total);
                         bar.set_position(done);
                     });
@@ -151,16 +159,16 @@ pub fn run(args: BakeArgs) -> Result<(), Failure> {
         }
     }
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&written)?);
+        out(serde_json::to_string_pretty(&written)?)?;
     } else {
         for map in &written {
-            eprintln!(
+            note(format!(
                 "wrote {} ({}×{}, {} bytes)",
                 map.path.display(),
                 map.size,
                 map.size,
                 map.bytes
-            );
+            ))?;
         }
     }
     if failures.is_empty() {

@@ -1,5 +1,6 @@
 //! `veneer geodesic`: geodesic distance fields over a mesh, one line per vertex.
 
+use super::output::note;
 use super::{Failure, write_output};
 use clap::{Args, ValueEnum};
 use std::path::PathBuf;
@@ -44,6 +45,9 @@ pub struct GeodesicArgs {
 }
 
 pub fn run(args: GeodesicArgs) -> Result<(), Failure> {
+    args.method()
+        .validate()
+        .map_err(|error| Failure::new(format!("--time-factor: {error}")))?;
     let started = Instant::now();
     let mesh = veneer::mesh::Mesh::named(&args.mesh)?;
     let source_sets = parse_sources(&args, mesh.positions.len())?;
@@ -51,7 +55,7 @@ pub fn run(args: GeodesicArgs) -> Result<(), Failure> {
     let loaded = started.elapsed();
     let report = veneer::mesh::analyse(&welded);
     for problem in report.problems() {
-        eprintln!("warning: {}: {problem}", args.mesh);
+        note(format!("warning: {}: {problem}", args.mesh))?;
     }
     let source_sets: Vec<Vec<u32>> = source_sets
         .iter()
@@ -82,10 +86,10 @@ pub fn run(args: GeodesicArgs) -> Result<(), Failure> {
         bar.finish_and_clear();
     }
     if let Some(heat) = solved.heat.filter(|_| args.robust) {
-        eprintln!(
+        note(format!(
             "robust: edges lengthened by {:.3e}, {} intrinsic flips",
             heat.mollified_by, heat.flips
-        );
+        ))?;
     }
     let fields: Vec<Vec<f64>> = if args.normalize {
         fields.iter().map(|f| geodesic::normalized(f)).collect()
@@ -106,7 +110,7 @@ pub fn run(args: GeodesicArgs) -> Result<(), Failure> {
     }
     write_output(Some(&args.output), csv.as_bytes())?;
     let unreached = fields[0].iter().filter(|d| d.is_infinite()).count();
-    eprintln!(
+    note(format!(
         "{}: {} vertices ({} after welding), {} triangles; {}; load {:.1} ms, set-up {:.1} ms, solve {:.1} ms{}",
         args.mesh,
         remap.len(),
@@ -121,8 +125,7 @@ pub fn run(args: GeodesicArgs) -> Result<(), Failure> {
         } else {
             String::new()
         }
-    );
-    Ok(())
+    ))
 }
 
 impl GeodesicArgs {

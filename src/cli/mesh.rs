@@ -1,6 +1,7 @@
 //! `veneer mesh`: what a mesh file (or primitive) is made of and what is wrong with it.
 
 use super::Failure;
+use super::output::out;
 use clap::Args;
 
 #[derive(Args)]
@@ -39,10 +40,10 @@ pub fn run(args: MeshArgs) -> Result<(), Failure> {
             .iter()
             .map(|(state, report)| serde_json::json!({ "state": state, "report": report }))
             .collect();
-        println!("{}", serde_json::to_string_pretty(&entries)?);
+        out(serde_json::to_string_pretty(&entries)?)?;
     } else {
         for (state, report) in &reports {
-            println!("{} ({state}): {report}", args.mesh);
+            out(format!("{} ({state}): {report}", args.mesh))?;
         }
     }
     Ok(())

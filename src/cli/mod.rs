@@ -6,6 +6,7 @@ mod compile;
 mod fmt;
 mod geodesic;
 mod mesh;
+mod output;
 mod render;
 mod report;
 mod snapshot;
@@ -65,11 +66,43 @@ impl Failure {
     pub fn new(message: impl Into<String>) -> Failure {
         Failure(message.into(), 1)
     }
+
+    /// The reader of stdout went away (a closed pipe): stop writing and end quietly,
+    /// as `head` expects of the program before it.
+    pub fn reader_gone() -> Failure {
+        Failure(String::new(), 0)
+    }
 }
 
-/// Parses the arguments, runs the subcommand, and maps failures to exit code 1.
+/// The exit code of a command line that does not parse. The contract gives bad input
+/// exit code 1; `veneer snapshot` documents 2 for bad input (1 means "differs").
+fn usage_exit_code() -> u8 {
+    match std::env::args().nth(1).as_deref() {
+        Some("snapshot") => 2,
+        _ => 1,
+    }
+}
+
+/// Parses the arguments: help and version go to stdout with exit code 0, usage errors
+/// to stderr with the exit code of bad input.
+fn parse_arguments() -> Result<Cli, ExitCode> {
+    Cli::try_parse().map_err(|error| {
+        // The message cannot be written anywhere else when the stream itself fails.
+        let _ = error.print();
+        if error.use_stderr() {
+            ExitCode::from(usage_exit_code())
+        } else {
+            ExitCode::SUCCESS
+        }
+    })
+}
+
+/// Parses the arguments, runs the subcommand, and maps failures to their exit codes.
 pub fn run() -> ExitCode {
-    let cli = Cli::parse();
+    let cli = match parse_arguments() {
+        Ok(cli) => cli,
+        Err(code) => return code,
+    };
     let result = match cli.command {
         None => editor(None),
         Some(Command::Edit { graph }) => editor(Some(graph)),
@@ -85,12 +118,7 @@ pub fn run() -> ExitCode {
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
-        Err(Failure(message, code)) => {
-            if !message.is_empty() {
-                eprintln!("{message}");
-            }
-            ExitCode::from(code)
-        }
+        Err(failure) => ExitCode::from(output::report_failure(failure)),
     }
 }
 
@@ -124,12 +152,20 @@ fn in_file(path: &Path, error: impl std::fmt::Display) -> Failure {
     Failure::new(lines.join("\n"))
 }
 
+/// Whether an output path names a folder (an existing one, or any path ending in `/`).
+fn names_folder(path: &Path) -> bool {
+    path.is_dir() || path.as_os_str().as_encoded_bytes().ends_with(b"/")
+}
+
 /// Writes `bytes` atomically to `path`, or to stdout when `path` is `None` or `-`.
 fn write_output(path: Option<&PathBuf>, bytes: &[u8]) -> Result<(), Failure> {
-    use std::io::Write;
     match path {
+        Some(path) if names_folder(path) => Err(Failure::new(format!(
+            "{}: is a folder; give the output a file name",
+            path.display()
+        ))),
         Some(path) if path.as_os_str() != "-" => veneer::fsutil::write_atomic(path, bytes)
             .map_err(|error| Failure::new(format!("{}: cannot write: {error}", path.display()))),
-        _ => std::io::stdout().write_all(bytes).map_err(Failure::from),
+        _ => output::out_bytes(bytes),
     }
 }

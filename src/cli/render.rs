@@ -59,10 +59,10 @@ pub fn parse_flat(text: &str) -> Result<FlatRect, String> {
         })
         .collect::<Result<_, _>>()?;
     match numbers[..] {
-        [x0, z0, x1, z1, y] if numbers.iter().all(|n| n.is_finite()) => {
-            Ok(FlatRect { x0, z0, x1, z1, y })
+        [x0, z0, x1, z1, y] => {
+            let rect = FlatRect { x0, z0, x1, z1, y };
+            rect.validate().map(|()| rect)
         }
-        [_, _, _, _, _] => Err("the rectangle must be finite".into()),
         _ => Err(format!(
             "expected five numbers X0,Z0,X1,Z1,Y, got {}",
             numbers.len()

@@ -2,6 +2,7 @@
 //! and PNG plots.
 
 use super::Failure;
+use super::output::note;
 use clap::Args;
 use std::path::PathBuf;
 
@@ -19,8 +20,12 @@ pub struct ReportArgs {
 }
 
 pub fn run(args: ReportArgs) -> Result<(), Failure> {
-    if args.repetitions == 0 {
-        return Err(Failure::new("--repetitions: expected at least 1"));
+    let limit = veneer::report::MAX_REPETITIONS;
+    if !(1..=limit).contains(&args.repetitions) {
+        return Err(Failure::new(format!(
+            "--repetitions {}: expected 1 to {limit}",
+            args.repetitions
+        )));
     }
     let settings = veneer::report::Settings {
         repetitions: args.repetitions,
@@ -35,10 +40,9 @@ pub fn run(args: ReportArgs) -> Result<(), Failure> {
     let started = std::time::Instant::now();
     veneer::report::write(&gpu, &settings, &args.output, &|| bar.inc(1)).map_err(Failure::new)?;
     bar.finish_and_clear();
-    eprintln!(
+    note(format!(
         "wrote {} in {:.0} s",
         args.output.join("report.md").display(),
         started.elapsed().as_secs_f64()
-    );
-    Ok(())
+    ))
 }

@@ -2,6 +2,7 @@
 //! Exit 0 when all match, 1 when any differs, 2 on bad input.
 
 use super::Failure;
+use super::output::out;
 use super::render::parse_flat;
 use clap::Args;
 use std::path::PathBuf;
@@ -99,6 +100,12 @@ pub fn run(args: SnapshotArgs) -> Result<(), Failure> {
         time: args.time,
         tolerance,
     };
+    if args.golden.exists() && !args.golden.is_dir() {
+        return Err(bad_input(format!(
+            "--golden {}: is a file; it takes the folder of golden images",
+            args.golden.display()
+        )));
+    }
     let update = args.update || update_requested();
     let gpu = GpuContext::new().map_err(|error| bad_input(error.to_string()))?;
     let mut reports = Vec::new();
@@ -111,15 +118,14 @@ pub fn run(args: SnapshotArgs) -> Result<(), Failure> {
         let report = check(&gpu, graph, &golden, &settings, update)
             .map_err(|error| bad_input(error.to_string()))?;
         if !args.json {
-            println!("{}", report.summary());
+            out(report.summary())?;
         }
         reports.push(report);
     }
     if args.json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&reports.iter().map(json_entry).collect::<Vec<_>>())?
-        );
+        out(serde_json::to_string_pretty(
+            &reports.iter().map(json_entry).collect::<Vec<_>>(),
+        )?)?;
     }
     let failed = reports.iter().filter(|r| !r.passed()).count();
     if failed == 0 {

@@ -22,20 +22,17 @@ pub enum FieldError {
     Heat(#[from] super::HeatError),
 }
 
-/// Solves the fields of `sources` whose slot is marked in `used` over `mesh` and stores
-/// them in `mesh.fields`, each divided by its largest finite distance. Vertices a field
-/// never reaches read 1 (the material never gets there); unused or missing slots read 0.
-/// Nothing is solved, and `mesh.fields` stays empty, when no slot is used.
-pub fn attach_fields(
-    mesh: &mut Mesh,
+/// Checks field settings against a mesh of `count` vertices without solving anything:
+/// at most four fields, sources on existing vertices, a source for every used slot, and
+/// settings the method accepts. `veneer check` asks this of what a render would solve.
+pub fn check_field_sources(
     sources: &[FieldSource],
+    count: usize,
     used: [bool; 4],
-    mut progress: impl FnMut(usize, usize),
 ) -> Result<(), FieldError> {
     if sources.len() > 4 {
         return Err(FieldError::TooMany(sources.len()));
     }
-    let count = mesh.positions.len();
     for (slot, field) in sources.iter().enumerate() {
         if field.sources.is_empty() && used[slot] {
             return Err(FieldError::NoSources { slot });
@@ -47,7 +44,23 @@ pub fn attach_fields(
                 count,
             });
         }
+        field.method.validate()?;
     }
+    Ok(())
+}
+
+/// Solves the fields of `sources` whose slot is marked in `used` over `mesh` and stores
+/// them in `mesh.fields`, each divided by its largest finite distance. Vertices a field
+/// never reaches read 1 (the material never gets there); unused or missing slots read 0.
+/// Nothing is solved, and `mesh.fields` stays empty, when no slot is used.
+pub fn attach_fields(
+    mesh: &mut Mesh,
+    sources: &[FieldSource],
+    used: [bool; 4],
+    mut progress: impl FnMut(usize, usize),
+) -> Result<(), FieldError> {
+    check_field_sources(sources, mesh.positions.len(), used)?;
+    let count = mesh.positions.len();
     let wanted: Vec<usize> = (0..sources.len()).filter(|&slot| used[slot]).collect();
     mesh.fields.clear();
     if wanted.is_empty() {

@@ -14,7 +14,7 @@ mod exact;
 mod heat;
 mod triangulation;
 
-pub use attach::{FieldError, attach_fields};
+pub use attach::{FieldError, attach_fields, check_field_sources};
 pub use dijkstra::edge_distances;
 pub use exact::exact_distances;
 pub use heat::{HeatError, HeatOptions, HeatSetup, HeatSolver};
@@ -44,6 +44,15 @@ impl Method {
             Method::Heat(HeatOptions { robust: true, .. }) => "heat (robust)",
             Method::Exact => "exact",
             Method::Dijkstra => "dijkstra",
+        }
+    }
+
+    /// Refuses settings that cannot give a meaningful field (a heat time factor out of
+    /// range), before any mesh work.
+    pub fn validate(self) -> Result<(), HeatError> {
+        match self {
+            Method::Heat(options) => options.validate(),
+            Method::Exact | Method::Dijkstra => Ok(()),
         }
     }
 }

@@ -371,6 +371,9 @@ pub fn check(graph: &Graph) -> Result<CheckedGraph, Vec<CheckError>> {
         errors: Vec::new(),
     };
     checker.check_ids();
+    for problem in graph.preview.problems() {
+        checker.error(None, problem);
+    }
     for node in &graph.nodes {
         checker.by_id.entry(node.id).or_insert(node);
         checker.check_settings(node);

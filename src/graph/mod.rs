@@ -5,6 +5,7 @@ mod io;
 pub mod kind;
 pub mod layout;
 mod presets;
+mod preview;
 pub mod signature;
 pub mod value;
 

@@ -128,6 +128,18 @@ impl Mesh {
         self.indices.len() / 3
     }
 
+    /// The area the triangles cover in texture space (overlaps counted twice): 0 for a
+    /// mesh without a UV layout, whose loaders give every vertex uv (0, 0).
+    pub fn uv_area(&self) -> f64 {
+        self.indices
+            .chunks_exact(3)
+            .map(|t| {
+                let [a, b, c] = [0, 1, 2].map(|k| glam::DVec2::from(self.uvs[t[k] as usize].map(f64::from)));
+                0.5 * (b - a).perp_dot(c - a).abs()
+            })
+            .sum()
+    }
+
     /// Adds a vertex and returns its index.
     pub fn push_vertex(&mut self, position: [f32; 3], normal: [f32; 3], uv: [f32; 2]) -> u32 {
         self.positions.push(position);

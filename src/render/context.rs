@@ -1,6 +1,7 @@
 //! A headless wgpu device on whatever adapter the machine has.
 
 use std::fmt;
+use std::sync::{Arc, Mutex};
 
 /// A failure to set up the GPU or to run a render.
 #[derive(Debug)]
@@ -19,6 +20,8 @@ pub struct GpuContext {
     pub adapter: wgpu::Adapter,
     pub device: wgpu::Device,
     pub queue: wgpu::Queue,
+    /// Errors wgpu raised outside any error scope (wgpu's default is to panic on them).
+    uncaptured: Arc<Mutex<Vec<String>>>,
 }
 
 impl GpuContext {
@@ -42,11 +45,50 @@ impl GpuContext {
             ..Default::default()
         }))
         .map_err(|error| RenderError(format!("cannot open the GPU device: {error}")))?;
+        let uncaptured = Arc::new(Mutex::new(Vec::new()));
+        let errors = Arc::clone(&uncaptured);
+        device.on_uncaptured_error(Arc::new(move |error: wgpu::Error| {
+            if let Ok(mut errors) = errors.lock() {
+                errors.push(error.to_string());
+            }
+        }));
         Ok(GpuContext {
             adapter,
             device,
             queue,
+            uncaptured,
         })
+    }
+
+    /// A context on a device opened elsewhere (the editor's), whose own handler keeps
+    /// receiving the errors raised outside error scopes.
+    pub fn on_device(adapter: wgpu::Adapter, device: wgpu::Device, queue: wgpu::Queue) -> GpuContext {
+        GpuContext {
+            adapter,
+            device,
+            queue,
+            uncaptured: Arc::default(),
+        }
+    }
+
+    /// Fails with the errors wgpu raised outside error scopes since the last call (out of
+    /// memory, a limit passed), so that a broken render is an error instead of an image.
+    pub fn take_errors(&self) -> Result<(), RenderError> {
+        let errors = match self.uncaptured.lock() {
+            Ok(mut errors) => std::mem::take(&mut *errors),
+            Err(_) => return Err(RenderError("a GPU error handler panicked".into())),
+        };
+        match errors.as_slice() {
+            [] => Ok(()),
+            [first, ..] => Err(RenderError(format!(
+                "the GPU refused the work: {first}{}",
+                if errors.len() > 1 {
+                    format!(" (and {} more errors)", errors.len() - 1)
+                } else {
+                    String::new()
+                }
+            ))),
+        }
     }
 
     /// "name (backend)" of the adapter, as recorded next to golden images.

@@ -16,6 +16,20 @@ pub struct FlatRect {
 }
 
 impl FlatRect {
+    /// Refuses a rectangle the GPU cannot sample: the shader works in f32, where a
+    /// coordinate or a span beyond its range becomes infinite and the image uniform.
+    pub fn validate(&self) -> Result<(), String> {
+        let fits = |v: f64| v.is_finite() && v.abs() <= f64::from(f32::MAX);
+        let values = [self.x0, self.z0, self.x1, self.z1, self.y];
+        if !values.into_iter().all(fits) {
+            return Err("the rectangle must be finite numbers within the f32 range (±3.4e38)".into());
+        }
+        if !(fits(self.x1 - self.x0) && fits(self.z1 - self.z0)) {
+            return Err("the rectangle's width or depth overflows f32".into());
+        }
+        Ok(())
+    }
+
     /// The surface position sampled at the centre of pixel (i, j) of an n×n image.
     pub fn sample_position(&self, i: u32, j: u32, n: u32) -> [f64; 3] {
         let (u, v) = (
@@ -117,6 +131,7 @@ impl FlatRenderer {
         channels: FlatChannels,
         progress: impl FnMut(u32, u32),
     ) -> Result<Vec<[f32; 4]>, RenderError> {
+        rect.validate().map_err(RenderError)?;
         let prepare = |offset, _| self.write_view(gpu, rect, size, time, channels, offset);
         let draw = |pass: &mut wgpu::RenderPass<'_>| self.draw(pass);
         render_tiled(gpu, size, wgpu::Color::TRANSPARENT, prepare, draw, progress)

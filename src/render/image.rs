@@ -139,7 +139,7 @@ pub fn render_graph_detailed(
                 width: size,
                 height: size,
                 channels: 4,
-                pixels,
+                pixels: pixels.into_flattened(),
             })
         }
     }

@@ -2,13 +2,10 @@
 //! (uploaded mesh, pipeline, offscreen target) are shared by headless renders and the
 //! editor's live preview.
 
-use super::readback::read_texture;
-use super::{GpuContext, RenderError, shader_source};
+use super::{GpuMesh, RenderError, shader_source};
 use crate::codegen::SurfaceUse;
 use crate::graph::Preview;
-use crate::mesh::Mesh;
 use glam::{Mat4, Vec3};
-use wgpu::util::DeviceExt;
 
 /// How the camera looks at the mesh.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -116,9 +113,9 @@ impl MeshView {
         }
     }
 
-    fn uniform(&self, aspect: f32) -> MeshViewUniform {
+    fn uniform(&self, aspect: f32, crop: Mat4) -> MeshViewUniform {
         MeshViewUniform {
-            view_projection: self.view_projection(aspect).to_cols_array_2d(),
+            view_projection: (crop * self.view_projection(aspect)).to_cols_array_2d(),
             eye: self.eye().extend(1.0).to_array(),
             light_direction: Vec3::from(self.light)
                 .normalize_or(Vec3::Y)
@@ -131,6 +128,25 @@ impl MeshView {
             padding: 0,
         }
     }
+}
+
+/// The clip-space transform that shows the pixels `origin .. origin + extent` of a
+/// `size`² image on a whole target of `extent` pixels (rows from the top), so a large
+/// image renders tile by tile with every pixel centre where the whole image has it.
+pub fn tile_crop(size: u32, origin: (u32, u32), extent: (u32, u32)) -> Mat4 {
+    let size = size as f32;
+    let scale = glam::Vec2::new(size / extent.0 as f32, size / extent.1 as f32);
+    // The tile's centre in normalised device coordinates (y up).
+    let centre = glam::Vec2::new(
+        -1.0 + (2.0 * origin.0 as f32 + extent.0 as f32) / size,
+        1.0 - (2.0 * origin.1 as f32 + extent.1 as f32) / size,
+    );
+    Mat4::from_cols(
+        glam::Vec4::new(scale.x, 0.0, 0.0, 0.0),
+        glam::Vec4::new(0.0, scale.y, 0.0, 0.0),
+        glam::Vec4::Z,
+        (-scale * centre).extend(0.0).extend(1.0),
+    )
 }
 
 #[repr(C)]
@@ -146,83 +162,12 @@ struct MeshViewUniform {
     padding: u32,
 }
 
-#[repr(C)]
-#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
-struct Vertex {
-    position: [f32; 3],
-    normal: [f32; 3],
-    uv: [f32; 2],
-    fields: [f32; 4],
-}
-
 /// Colour format of offscreen mesh renders.
 pub const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 const SAMPLES: u32 = 4;
 const ENTRY_POINTS: &str = include_str!("../../shaders/render_mesh.wgsl");
 const DISPLACED_ENTRY_POINT: &str = include_str!("../../shaders/render_mesh_displaced.wgsl");
-
-/// A mesh uploaded to the GPU.
-pub struct GpuMesh {
-    vertices: wgpu::Buffer,
-    indices: wgpu::Buffer,
-    index_count: u32,
-}
-
-impl GpuMesh {
-    const ATTRIBUTES: [wgpu::VertexAttribute; 4] = wgpu::vertex_attr_array![
-        0 => Float32x3, 1 => Float32x3, 2 => Float32x2, 3 => Float32x4
-    ];
-
-    /// The vertex layout of every mesh pipeline: position (location 0), normal (1), uv
-    /// (2), distance fields (3).
-    pub fn layout() -> wgpu::VertexBufferLayout<'static> {
-        wgpu::VertexBufferLayout {
-            array_stride: std::mem::size_of::<Vertex>() as u64,
-            step_mode: wgpu::VertexStepMode::Vertex,
-            attributes: &Self::ATTRIBUTES,
-        }
-    }
-
-    /// Binds the buffers and draws every triangle.
-    pub fn draw(&self, pass: &mut wgpu::RenderPass<'_>) {
-        pass.set_vertex_buffer(0, self.vertices.slice(..));
-        pass.set_index_buffer(self.indices.slice(..), wgpu::IndexFormat::Uint32);
-        pass.draw_indexed(0..self.index_count, 0, 0..1);
-    }
-
-    /// Uploads `mesh`.
-    pub fn new(device: &wgpu::Device, mesh: &Mesh) -> GpuMesh {
-        let vertices: Vec<Vertex> = (0..mesh.positions.len())
-            .map(|i| Vertex {
-                position: mesh.positions[i],
-                normal: mesh.normals[i],
-                uv: mesh.uvs[i],
-                fields: mesh.fields.get(i).copied().unwrap_or([0.0; 4]),
-            })
-            .collect();
-        let buffer = |label, contents: &[u8], usage| {
-            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some(label),
-                contents,
-                usage,
-            })
-        };
-        GpuMesh {
-            vertices: buffer(
-                "mesh vertices",
-                bytemuck::cast_slice(&vertices),
-                wgpu::BufferUsages::VERTEX,
-            ),
-            indices: buffer(
-                "mesh indices",
-                bytemuck::cast_slice(&mesh.indices),
-                wgpu::BufferUsages::INDEX,
-            ),
-            index_count: mesh.indices.len() as u32,
-        }
-    }
-}
 
 /// Multisampled colour and depth targets plus the resolved image, of one size.
 pub struct MeshTarget {
@@ -383,7 +328,13 @@ impl MeshPipeline {
 
     /// Writes the camera, light and time for the next draw into a target of `aspect` (w / h).
     pub fn write_view(&self, queue: &wgpu::Queue, view: &MeshView, aspect: f32) {
-        queue.write_buffer(&self.view, 0, bytemuck::bytes_of(&view.uniform(aspect)));
+        self.write_view_cropped(queue, view, aspect, Mat4::IDENTITY);
+    }
+
+    /// [`MeshPipeline::write_view`] for a target that shows part of the image: `crop`
+    /// maps that part's clip-space rectangle onto the whole target (see [`tile_crop`]).
+    pub fn write_view_cropped(&self, queue: &wgpu::Queue, view: &MeshView, aspect: f32, crop: Mat4) {
+        queue.write_buffer(&self.view, 0, bytemuck::bytes_of(&view.uniform(aspect, crop)));
     }
 
     /// Writes the parameter values of a uniform-mode material (ignored when baked).
@@ -434,52 +385,5 @@ impl MeshPipeline {
             pass.set_bind_group(1, group, &[]);
         }
         mesh.draw(&mut pass);
-    }
-}
-
-/// A headless renderer of one (baked) material on meshes.
-pub struct MeshRenderer {
-    pipeline: MeshPipeline,
-}
-
-impl MeshRenderer {
-    /// Builds the pipeline for a material module with baked parameters, using what
-    /// `uses` says of its height and bump.
-    pub fn new(
-        gpu: &GpuContext,
-        material_wgsl: &str,
-        uses: SurfaceUse,
-    ) -> Result<MeshRenderer, RenderError> {
-        Ok(MeshRenderer {
-            pipeline: MeshPipeline::new(&gpu.device, material_wgsl, 0, uses)?,
-        })
-    }
-
-    /// Renders `mesh` into a size×size RGBA8 image (rows from the top).
-    pub fn render(
-        &self,
-        gpu: &GpuContext,
-        mesh: &Mesh,
-        view: &MeshView,
-        size: u32,
-    ) -> Result<Vec<u8>, RenderError> {
-        let limit = gpu.device.limits().max_texture_dimension_2d;
-        if size == 0 || size > limit {
-            return Err(RenderError(format!(
-                "mesh render size {size} is outside 1..={limit} on this adapter"
-            )));
-        }
-        let target = MeshTarget::new(&gpu.device, size, size);
-        let mesh = GpuMesh::new(&gpu.device, mesh);
-        self.pipeline.write_view(&gpu.queue, view, 1.0);
-        let mut encoder = gpu
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                label: Some("mesh"),
-            });
-        self.pipeline
-            .encode(&mut encoder, &target, &mesh, view.background);
-        gpu.queue.submit([encoder.finish()]);
-        read_texture(gpu, &target.resolved, 4)
     }
 }

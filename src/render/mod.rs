@@ -3,7 +3,9 @@
 
 mod context;
 mod flat;
+mod gpu_mesh;
 mod image;
+mod mesh_render;
 mod mesh_view;
 mod readback;
 mod tiles;
@@ -13,9 +15,9 @@ mod uv_bake;
 pub use context::{GpuContext, RenderError};
 pub use flat::{FlatChannels, FlatRect, FlatRenderer, albedo_to_rgb8, flat_points};
 pub use image::{Image, View, mesh_with_fields, preview_rect, render_graph, render_graph_detailed};
-pub use mesh_view::{
-    COLOR_FORMAT, GpuMesh, MeshPipeline, MeshRenderer, MeshTarget, MeshView, Projection,
-};
+pub use gpu_mesh::GpuMesh;
+pub use mesh_render::MeshRenderer;
+pub use mesh_view::{COLOR_FORMAT, MeshPipeline, MeshTarget, MeshView, Projection};
 pub use tiles::tile_size;
 pub use timing::PassTimer;
 pub use uv_bake::UvRenderer;

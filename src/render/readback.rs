@@ -70,6 +70,7 @@ pub fn read_buffer<T>(
     gpu.device
         .poll(wgpu::PollType::wait_indefinitely())
         .map_err(|error| RenderError(format!("waiting for the GPU failed: {error}")))?;
+    gpu.take_errors()?;
     receiver
         .recv()
         .map_err(|_| RenderError("the GPU dropped the readback".into()))?

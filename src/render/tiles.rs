@@ -34,49 +34,65 @@ pub fn render_tiled(
     if size == 0 {
         return Err(RenderError("image size must be at least 1 pixel".into()));
     }
-    let mut image = image_buffer(size)?;
+    let mut image = image_buffer(size, FLOAT_PIXEL_BYTES)?;
     let tile = tile_size(gpu);
     let tiles_per_side = size.div_ceil(tile);
     let mut done = 0;
-    for tile_y in (0..size).step_by(tile as usize) {
-        for tile_x in (0..size).step_by(tile as usize) {
-            let (width, height) = (tile.min(size - tile_x), tile.min(size - tile_y));
-            prepare((tile_x, tile_y), (width, height));
-            let texture = gpu.device.create_texture(&target_descriptor(width, height));
-            let target = texture.create_view(&Default::default());
-            let mut encoder = gpu
-                .device
-                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                    label: Some("tile"),
-                });
-            {
-                let mut pass = clear_pass(&mut encoder, &target, clear, None);
-                draw(&mut pass);
-            }
-            gpu.queue.submit([encoder.finish()]);
-            let pixels: Vec<[f32; 4]> =
-                bytemuck::pod_collect_to_vec(&read_texture(gpu, &texture, 16)?);
-            for (row, chunk) in pixels.chunks(width as usize).enumerate() {
-                let start = (tile_y as usize + row) * size as usize + tile_x as usize;
-                image[start..start + width as usize].copy_from_slice(chunk);
-            }
-            done += 1;
-            progress(done, tiles_per_side * tiles_per_side);
+    for (origin, (width, height)) in tiles(size, tile) {
+        prepare(origin, (width, height));
+        let texture = gpu.device.create_texture(&target_descriptor(width, height));
+        let target = texture.create_view(&Default::default());
+        let mut encoder = gpu
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("tile"),
+            });
+        {
+            let mut pass = clear_pass(&mut encoder, &target, clear, None);
+            draw(&mut pass);
         }
+        gpu.queue.submit([encoder.finish()]);
+        let pixels: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&read_texture(gpu, &texture, 16)?);
+        paste(&mut image, size, origin, width, &pixels);
+        done += 1;
+        progress(done, tiles_per_side * tiles_per_side);
     }
     Ok(image)
 }
 
-/// Bytes per pixel an image costs on its way out: four f32 while rendering, and about as
-/// much again while it is converted and encoded.
-const BYTES_PER_PIXEL: u64 = 32;
+/// Copies the rows of a tile `width` pixels wide into a `size`² image at `origin`.
+pub fn paste<T: Copy>(image: &mut [T], size: u32, origin: (u32, u32), width: u32, tile: &[T]) {
+    for (row, chunk) in tile.chunks(width as usize).enumerate() {
+        let start = (origin.1 as usize + row) * size as usize + origin.0 as usize;
+        image[start..start + width as usize].copy_from_slice(chunk);
+    }
+}
 
-/// The zeroed pixels of a `size`² image, or a clear error when the machine does not
-/// have the memory for it (more than is available, or refused by the allocator), so a
-/// mistyped size fails at once instead of in the out-of-memory killer.
-fn image_buffer(size: u32) -> Result<Vec<[f32; 4]>, RenderError> {
+/// The tiles of a `size`² image in tiles of at most `tile`², row by row from the top:
+/// each tile's first texel and extent.
+pub fn tiles(size: u32, tile: u32) -> impl Iterator<Item = ((u32, u32), (u32, u32))> {
+    let step = tile.max(1) as usize;
+    (0..size).step_by(step).flat_map(move |y| {
+        (0..size)
+            .step_by(step)
+            .map(move |x| ((x, y), (tile.min(size - x), tile.min(size - y))))
+    })
+}
+
+/// Bytes per pixel a float image costs on its way out: four f32 while rendering, and
+/// about as much again while it is converted and encoded.
+const FLOAT_PIXEL_BYTES: u64 = 32;
+
+/// The zeroed pixels of a `size`² image that costs `bytes_per_pixel` on its way out, or
+/// a clear error when the machine does not have the memory for it (more than is
+/// available, or refused by the allocator), so a mistyped size fails at once instead of
+/// in the out-of-memory killer.
+pub fn image_buffer<T: Copy + Default>(
+    size: u32,
+    bytes_per_pixel: u64,
+) -> Result<Vec<T>, RenderError> {
     let pixels = size as usize * size as usize;
-    let needed = pixels as u64 * BYTES_PER_PIXEL;
+    let needed = pixels as u64 * bytes_per_pixel;
     let refuse = |why: String| {
         RenderError(format!(
             "a {size}×{size} image needs about {} of memory, {why}; ask for a smaller size",
@@ -95,7 +111,7 @@ fn image_buffer(size: u32) -> Result<Vec<[f32; 4]>, RenderError> {
     image
         .try_reserve_exact(pixels)
         .map_err(|_| refuse("which the allocator refused".into()))?;
-    image.resize(pixels, [0.0f32; 4]);
+    image.resize(pixels, T::default());
     Ok(image)
 }
 

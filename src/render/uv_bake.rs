@@ -1,7 +1,7 @@
 //! UV-layout rendering: a material evaluated over a mesh's texture layout, for baking
 //! maps that wrap onto that mesh.
 
-use super::mesh_view::GpuMesh;
+use super::GpuMesh;
 use super::tiles::{FORMAT, NAN_BITS, render_tiled};
 use super::{FlatChannels, GpuContext, RenderError, shader_source};
 

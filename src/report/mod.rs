@@ -13,6 +13,10 @@ pub use table::Table;
 use crate::render::GpuContext;
 use std::path::Path;
 
+/// The most repetitions a timing may take: a median over more says nothing new, and
+/// every repetition is kept in memory.
+pub const MAX_REPETITIONS: usize = 1000;
+
 /// How much to measure.
 pub struct Settings {
     /// Repetitions each timing's median is over.
@@ -58,6 +62,12 @@ pub fn write(
     folder: &Path,
     progress: &dyn Fn(),
 ) -> Result<(), String> {
+    if !(1..=MAX_REPETITIONS).contains(&settings.repetitions) {
+        return Err(format!(
+            "repetitions {} is outside 1..={MAX_REPETITIONS}",
+            settings.repetitions
+        ));
+    }
     std::fs::create_dir_all(folder).map_err(|e| format!("{}: {e}", folder.display()))?;
     let meshes: &[&str] = if settings.quick {
         &["torus:24", "genus2:20"]

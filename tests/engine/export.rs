@@ -14,7 +14,7 @@ fn run_validator(tool: &str, file: &Path) {
         .arg(file)
         .output()
         .unwrap_or_else(|error| {
-            panic!("{tool} is needed (Debian glslang-tools / spirv-tools): {error}")
+            panic!("{tool} is needed (Debian glslang-tools / spirv-tools; `.ci/run` installs them): {error}")
         });
     assert!(
         output.status.success(),

@@ -9,6 +9,7 @@ mod errors;
 mod export;
 mod fuzz_regressions;
 mod geodesic;
+mod hostile_cli;
 mod graph_files;
 mod limits;
 mod lint;

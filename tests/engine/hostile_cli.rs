@@ -1,0 +1,228 @@
+//! Hostile command lines (issue: no crash, no hang, no silent wrong result): sizes past
+//! the device's limits, full and closed standard streams, counts that would allocate
+//! without bound, values that used to give uniform images or wrong fields with exit 0,
+//! outputs that would replace each other, and usage errors with the documented codes.
+
+use crate::support::{gpu, root, run_veneer, temp_dir, veneer};
+use std::io::Read;
+use std::process::{Output, Stdio};
+use std::time::{Duration, Instant};
+use veneer::render::{MeshRenderer, MeshView};
+
+/// The command's stderr as text.
+fn stderr(output: &Output) -> String {
+    String::from_utf8_lossy(&output.stderr).into_owned()
+}
+
+/// Asserts a refusal: exit `code`, a message containing `expected`, no panic.
+fn assert_refused(output: &Output, code: i32, expected: &str) {
+    let message = stderr(output);
+    assert_eq!(output.status.code(), Some(code), "{message}");
+    assert!(message.contains(expected), "expected '{expected}' in: {message}");
+    assert!(!message.contains("panicked"), "{message}");
+}
+
+/// A copy of a preset with one piece of its text replaced, in `dir`.
+fn edited_preset(dir: &std::path::Path, preset: &str, from: &str, to: &str) -> String {
+    let text = std::fs::read_to_string(root(&format!("graphs/{preset}.ron"))).expect("preset");
+    assert!(text.contains(from), "{preset} has no '{from}'");
+    let path = dir.join(format!("{preset}.ron"));
+    std::fs::write(&path, text.replacen(from, to, 1)).expect("written");
+    path.to_string_lossy().into_owned()
+}
+
+#[test]
+fn a_full_stdout_or_stderr_is_an_error_not_a_panic() {
+    let full = || {
+        std::fs::OpenOptions::new()
+            .write(true)
+            .open("/dev/full")
+            .expect("/dev/full")
+    };
+    let output = veneer()
+        .args(["mesh", "torus"])
+        .stdout(full())
+        .output()
+        .expect("runs");
+    assert_refused(&output, 1, "cannot write to stdout");
+    let output = veneer()
+        .args(["check", "tests/missing.ron"])
+        .current_dir(root(""))
+        .stderr(full())
+        .output()
+        .expect("runs");
+    assert_eq!(output.status.code(), Some(1));
+}
+
+#[test]
+fn a_closed_pipe_ends_the_command_quietly() {
+    // 80,000 lines of CSV: far more than a pipe holds, so the write meets the closed end.
+    let mut child = veneer()
+        .args(["geodesic", "torus:200", "--sources", "0", "--method", "dijkstra", "-o", "-"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("runs");
+    let mut first = [0u8; 1];
+    child.stdout.take().expect("piped").read_exact(&mut first).expect("one byte");
+    let output = child.wait_with_output().expect("finishes");
+    let message = stderr(&output);
+    assert_eq!(output.status.code(), Some(0), "{message}");
+    assert!(!message.contains("panicked") && !message.contains("Broken pipe"), "{message}");
+}
+
+#[test]
+fn counts_from_the_command_line_are_bounded_before_anything_is_allocated() {
+    let started = Instant::now();
+    let output = run_veneer(&[
+        "report", "--quick", "--repetitions", "4294967295", "-o", "target/never-report",
+    ]);
+    assert_refused(&output, 1, "--repetitions 4294967295: expected 1 to 1000");
+    assert!(started.elapsed() < Duration::from_secs(10));
+}
+
+#[test]
+fn heat_time_factors_that_give_wrong_fields_are_refused() {
+    let csv = temp_dir("time-factor").join("field.csv");
+    for factor in ["0", "1e30", "-1", "NaN"] {
+        let output = run_veneer(&[
+            "geodesic", "torus", "--sources", "0", &format!("--time-factor={factor}"), "-o",
+            &csv.to_string_lossy(),
+        ]);
+        assert_refused(&output, 1, "is outside 1e-3 to 1e6");
+        assert!(!csv.exists(), "{factor} wrote a field");
+    }
+}
+
+#[test]
+fn check_refuses_what_render_would_refuse_or_draw_uniform() {
+    let dir = temp_dir("check-preview");
+    let cases = [
+        ("wood", "size: 9.0", "size: NaN", "preview size NaN"),
+        ("wood", "center: (31.0", "center: (inf", "preview center"),
+        ("sand_water", "sources: [29039]", "sources: [99999999]", "source vertex 99999999 does not exist"),
+        ("sand_water", "time_factor: 1.0", "time_factor: 1e30", "preview field 0: time factor"),
+    ];
+    for (preset, from, to, expected) in cases {
+        let graph = edited_preset(&dir, preset, from, to);
+        assert_refused(&run_veneer(&["check", &graph]), 1, expected);
+        let png = dir.join("never.png");
+        let output = run_veneer(&["render", &graph, "--size", "16", "-o", &png.to_string_lossy()]);
+        assert_eq!(output.status.code(), Some(1), "{to}: {}", stderr(&output));
+        assert!(!png.exists());
+    }
+}
+
+#[test]
+fn flat_rectangles_beyond_f32_are_refused() {
+    for rect in ["0,0,1e39,50,0.5", "-3e38,0,3e38,1,0", "0,0,1,1,inf"] {
+        let output = run_veneer(&[
+            "render", "graphs/wood.ron", "--flat", rect, "--size", "8", "-o", "target/never.png",
+        ]);
+        assert_refused(&output, 1, "f32");
+    }
+}
+
+#[test]
+fn baking_into_a_mesh_without_uvs_is_refused() {
+    let dir = temp_dir("no-uvs");
+    let mesh = dir.join("no_uvs.obj");
+    std::fs::write(&mesh, "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n")
+        .expect("written");
+    let output = run_veneer(&[
+        "bake", "graphs/wood.ron", "--size", "16", "--mesh", &mesh.to_string_lossy(), "-o",
+        &dir.to_string_lossy(),
+    ]);
+    assert_refused(&output, 1, "has no UV layout");
+    assert!(!dir.join("wood_albedo.png").exists());
+}
+
+#[test]
+fn bake_outputs_are_checked_before_any_rendering() {
+    let dir = temp_dir("bake-outputs");
+    for sub in ["a", "b"] {
+        std::fs::create_dir_all(dir.join(sub)).expect("folder");
+        std::fs::copy(root("graphs/marble.ron"), dir.join(sub).join("x.ron")).expect("copied");
+    }
+    let out = dir.join("out");
+    std::fs::create_dir_all(&out).expect("folder");
+    let (a, b) = (dir.join("a/x.ron"), dir.join("b/x.ron"));
+    let started = Instant::now();
+    let output = run_veneer(&[
+        "bake", &a.to_string_lossy(), &b.to_string_lossy(), "--size", "8192", "-o",
+        &out.to_string_lossy(),
+    ]);
+    assert_refused(&output, 1, "would write this file");
+    assert_eq!(std::fs::read_dir(&out).expect("listed").count(), 0);
+    let missing = dir.join("no such folder");
+    let output = run_veneer(&[
+        "bake", &a.to_string_lossy(), "--size", "8192", "-o", &missing.to_string_lossy(),
+    ]);
+    assert_refused(&output, 1, "does not exist; nothing was baked");
+    // Refused before loading the GPU or rendering an 8192² map.
+    assert!(started.elapsed() < Duration::from_secs(5), "{:?}", started.elapsed());
+}
+
+#[test]
+fn outputs_that_name_folders_are_explained() {
+    let dir = temp_dir("folder-outputs");
+    let slash = format!("{}/", dir.join("sub").display());
+    let output = run_veneer(&["compile", "graphs/wood.ron", "-o", &slash]);
+    assert_refused(&output, 1, "is a folder; give the output a file name");
+    let file = dir.join("golden.png");
+    std::fs::write(&file, b"not a folder").expect("written");
+    let output = run_veneer(&["snapshot", "graphs/wood.ron", "--golden", &file.to_string_lossy()]);
+    assert_refused(&output, 2, "is a file; it takes the folder of golden images");
+}
+
+#[test]
+fn usage_errors_exit_with_the_documented_codes() {
+    assert_refused(&run_veneer(&["render", "graphs/wood.ron"]), 1, "--output");
+    assert_refused(&run_veneer(&["no-such-command"]), 1, "unrecognized subcommand");
+    assert_refused(&run_veneer(&["snapshot", "graphs/wood.ron"]), 2, "--golden");
+    let help = run_veneer(&["--help"]);
+    assert_eq!(help.status.code(), Some(0));
+    assert!(String::from_utf8_lossy(&help.stdout).contains("Usage"));
+}
+
+#[test]
+fn mesh_views_past_the_device_limits_render_in_tiles_and_parts() {
+    let dir = temp_dir("big-mesh-views");
+    // A readback of 8193² RGBA passes the 256 MiB buffer limit; torus:1700 has 5.8
+    // million vertices, past the largest vertex buffer.
+    for args in [
+        ["--size", "8193", "--mesh", "sphere"],
+        ["--size", "48", "--mesh", "torus:1700"],
+    ] {
+        let png = dir.join("view.png");
+        let mut command = vec!["render", "graphs/marble.ron", "-o"];
+        let png_text = png.to_string_lossy().into_owned();
+        command.push(&png_text);
+        command.extend(args);
+        let output = run_veneer(&command);
+        assert_eq!(output.status.code(), Some(0), "{args:?}: {}", stderr(&output));
+        let image = image::open(&png).expect("a PNG");
+        let size: u32 = args[1].parse().expect("a size");
+        assert_eq!((image.width(), image.height()), (size, size));
+        std::fs::remove_file(&png).expect("removed");
+    }
+}
+
+#[test]
+fn tiled_mesh_renders_match_whole_ones() {
+    let graph = veneer::graph::load(&root("graphs/wood.ron")).expect("preset");
+    let module = veneer::codegen::compile_graph(&graph).expect("compiles");
+    let renderer = MeshRenderer::new(gpu(), &module.source, module.uses).expect("pipeline");
+    let mesh = veneer::mesh::preview_mesh(&graph.preview.mesh).expect("mesh");
+    let view = MeshView::for_preview(&graph.preview);
+    let whole = renderer.render_in_tiles(gpu(), &mesh, &view, 300, 300).expect("renders");
+    // Uneven tiles: 97, 97, 97 and 9 pixels a side.
+    let tiled = renderer.render_in_tiles(gpu(), &mesh, &view, 300, 97).expect("renders");
+    let differing = whole
+        .iter()
+        .zip(&tiled)
+        .filter(|(a, b)| a.iter().zip(b.iter()).any(|(x, y)| x.abs_diff(*y) > 2))
+        .count();
+    // Only pixels on triangle edges may round differently.
+    assert!(differing * 1000 <= whole.len(), "{differing} of {} pixels differ", whole.len());
+}
