@@ -51,7 +51,7 @@ pub struct BakeArgs {
     #[arg(long, value_name = "NAME|FILE")]
     mesh: Option<String>,
     /// Time in seconds.
-    #[arg(long, default_value_t = 0.0)]
+    #[arg(long, default_value_t = 0.0, value_parser = super::parse_time, allow_hyphen_values = true)]
     time: f32,
     /// Folder for the maps (`<graph>_<map>.<ext>`); default: next to each graph.
     #[arg(short, long)]

@@ -137,6 +137,16 @@ fn editor(graph: Option<PathBuf>) -> Result<(), Failure> {
     }
 }
 
+/// A `--time` value: seconds, finite (an infinite or NaN time makes every animated
+/// pattern NaN, and the image uniform).
+fn parse_time(text: &str) -> Result<f32, String> {
+    match text.trim().parse::<f32>() {
+        Ok(seconds) if seconds.is_finite() => Ok(seconds),
+        Ok(_) => Err("the time must be a finite number of seconds".into()),
+        Err(_) => Err(format!("'{text}' is not a number of seconds")),
+    }
+}
+
 /// Loads a graph, with errors as `path:line:col: message`.
 fn load_graph(path: &Path) -> Result<veneer::graph::Graph, Failure> {
     veneer::graph::load(path).map_err(Failure::from)

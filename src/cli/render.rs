@@ -42,7 +42,7 @@ pub struct RenderArgs {
     #[arg(long, value_name = "X0,Z0,X1,Z1,Y", value_parser = parse_flat, allow_hyphen_values = true)]
     flat: Option<FlatRect>,
     /// Time in seconds.
-    #[arg(long, default_value_t = 0.0)]
+    #[arg(long, default_value_t = 0.0, value_parser = super::parse_time, allow_hyphen_values = true)]
     time: f32,
     /// Noise detail.
     #[arg(long, value_enum, default_value = "full")]

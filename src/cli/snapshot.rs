@@ -40,7 +40,7 @@ pub struct SnapshotArgs {
     #[arg(long, default_value_t = 256)]
     size: u32,
     /// Time in seconds.
-    #[arg(long, default_value_t = 0.0)]
+    #[arg(long, default_value_t = 0.0, value_parser = super::parse_time, allow_hyphen_values = true)]
     time: f32,
     /// Print a JSON summary on stdout instead of one line per graph.
     #[arg(long)]
@@ -107,6 +107,12 @@ pub fn run(args: SnapshotArgs) -> Result<(), Failure> {
         )));
     }
     let update = args.update || update_requested();
+    if !update && !args.golden.is_dir() {
+        return Err(bad_input(format!(
+            "--golden {}: no such folder; approve the first goldens with --update",
+            args.golden.display()
+        )));
+    }
     let gpu = GpuContext::new().map_err(|error| bad_input(error.to_string()))?;
     let mut reports = Vec::new();
     for graph in &args.graphs {

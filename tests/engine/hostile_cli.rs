@@ -114,6 +114,16 @@ fn check_refuses_what_render_would_refuse_or_draw_uniform() {
 }
 
 #[test]
+fn times_that_are_not_finite_are_refused() {
+    for time in ["inf", "NaN", "-inf"] {
+        let output = run_veneer(&[
+            "render", "graphs/wood.ron", "--time", time, "--size", "8", "-o", "target/never.png",
+        ]);
+        assert_refused(&output, 1, "the time must be a finite number of seconds");
+    }
+}
+
+#[test]
 fn flat_rectangles_beyond_f32_are_refused() {
     for rect in ["0,0,1e39,50,0.5", "-3e38,0,3e38,1,0", "0,0,1,1,inf"] {
         let output = run_veneer(&[
