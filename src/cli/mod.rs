@@ -18,7 +18,7 @@ use std::process::ExitCode;
 /// Veneer: procedural material node graphs compiled to WGSL.
 #[derive(Parser)]
 #[command(name = "veneer", version, about, long_about = None)]
-struct Cli {
+pub struct Cli {
     #[command(subcommand)]
     command: Option<Command>,
 }
@@ -74,26 +74,33 @@ impl Failure {
     }
 }
 
-/// The exit code of a command line that does not parse. The contract gives bad input
-/// exit code 1; `veneer snapshot` documents 2 for bad input (1 means "differs").
-fn usage_exit_code() -> u8 {
-    match std::env::args().nth(1).as_deref() {
+/// The exit code of a command line (program name first) that does not parse: 0 for
+/// `--help` and `--version`, which clap reports as errors; else the code of bad input,
+/// 1 by the contract, 2 for `veneer snapshot`, where 1 means "differs".
+pub fn usage_exit_code(args: &[std::ffi::OsString], error: &clap::Error) -> u8 {
+    if !error.use_stderr() {
+        return 0;
+    }
+    match args.get(1).and_then(|arg| arg.to_str()) {
         Some("snapshot") => 2,
         _ => 1,
     }
 }
 
-/// Parses the arguments: help and version go to stdout with exit code 0, usage errors
-/// to stderr with the exit code of bad input.
+/// Parses a command line (program name first) as `veneer` does; the fuzz target
+/// `cli_args` feeds it arbitrary arguments.
+pub fn parse_from(args: &[std::ffi::OsString]) -> Result<Cli, clap::Error> {
+    Cli::try_parse_from(args)
+}
+
+/// Parses the process's arguments: help and version go to stdout with exit code 0,
+/// usage errors to stderr with the exit code of bad input.
 fn parse_arguments() -> Result<Cli, ExitCode> {
-    Cli::try_parse().map_err(|error| {
+    let args: Vec<std::ffi::OsString> = std::env::args_os().collect();
+    parse_from(&args).map_err(|error| {
         // The message cannot be written anywhere else when the stream itself fails.
         let _ = error.print();
-        if error.use_stderr() {
-            ExitCode::from(usage_exit_code())
-        } else {
-            ExitCode::SUCCESS
-        }
+        ExitCode::from(usage_exit_code(&args, &error))
     })
 }
 

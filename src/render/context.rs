@@ -28,6 +28,12 @@ impl GpuContext {
     /// Opens the best adapter of the backends in `WGPU_BACKEND` (default: all): a real
     /// GPU when there is one, otherwise a software rasteriser (lavapipe, llvmpipe).
     pub fn new() -> Result<GpuContext, RenderError> {
+        Self::with_limits(|limits| limits)
+    }
+
+    /// [`GpuContext::new`] with the device's limits narrowed by `narrow` (given what the
+    /// adapter offers), to see how Veneer copes with a smaller device than this one.
+    pub fn with_limits(narrow: impl FnOnce(wgpu::Limits) -> wgpu::Limits) -> Result<GpuContext, RenderError> {
         let descriptor = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
         let instance = wgpu::Instance::new(descriptor);
         let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
@@ -41,7 +47,9 @@ impl GpuContext {
             label: Some("veneer"),
             // Timestamps where the adapter has them, for timings of the GPU's work alone.
             required_features: adapter.features() & wgpu::Features::TIMESTAMP_QUERY,
-            required_limits: wgpu::Limits::downlevel_defaults().using_resolution(adapter.limits()),
+            required_limits: narrow(
+                wgpu::Limits::downlevel_defaults().using_resolution(adapter.limits()),
+            ),
             ..Default::default()
         }))
         .map_err(|error| RenderError(format!("cannot open the GPU device: {error}")))?;

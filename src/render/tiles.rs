@@ -15,9 +15,17 @@ pub const NAN_BITS: wgpu::Color = wgpu::Color {
     a: 4294967295.0,
 };
 
-/// The largest tile side.
+/// The largest tile side: at most 2048, within the device's largest texture, and small
+/// enough that a tile of four f32 per pixel reads back through one buffer (rows padded to
+/// wgpu's 256-byte alignment, which 16-pixel multiples meet).
 pub fn tile_size(gpu: &GpuContext) -> u32 {
-    gpu.device.limits().max_texture_dimension_2d.min(2048)
+    let limits = gpu.device.limits();
+    let by_buffer = ((limits.max_buffer_size / 16) as f64).sqrt() as u32 / 16 * 16;
+    limits
+        .max_texture_dimension_2d
+        .min(2048)
+        .min(by_buffer)
+        .max(16)
 }
 
 /// Renders a `size`² image tile by tile: `prepare(first texel, tile extent)` writes the
