@@ -2,6 +2,7 @@
 //! One binary so that wgpu and the rest link once.
 
 mod bake;
+mod big_graphs;
 mod cli;
 mod cpu_gpu;
 mod detail;
@@ -10,6 +11,7 @@ mod export;
 mod fuzz_regressions;
 mod geodesic;
 mod graph_files;
+mod hostile_scale;
 mod limits;
 mod lint;
 mod meshes;
