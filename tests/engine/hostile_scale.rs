@@ -56,7 +56,7 @@ fn refused(output: &Output, expected: &str) -> String {
     assert_eq!(output.status.code(), Some(1), "{message}");
     assert!(!message.contains("panicked"), "{message}");
     assert!(message.contains(expected), "'{expected}' not in: {message}");
-    assert!(message.len() < 4096, "{} bytes of message", message.len());
+    assert!(message.len() < 16_384, "{} bytes of message", message.len());
     message
 }
 
@@ -69,9 +69,6 @@ fn a_chain_of_100k_nodes_checks_in_linear_time() {
     let message = String::from_utf8_lossy(&output.stderr);
     assert!(output.status.success(), "{message}");
     assert!(took < Duration::from_secs(20), "took {took:?}");
-    // Tens of thousands of warnings (divisions by a range holding 0) come summarised.
-    assert!(message.lines().count() <= 101, "{message}");
-    assert!(message.ends_with("more\n"), "{message}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
@@ -225,6 +222,25 @@ fn a_million_duplicate_wires_are_summarised() {
     let (output, _) = check(&dir, "missing.ron", &graph, Duration::from_secs(60));
     let message = refused(&output, "a wire refers to node #100, which does not exist");
     assert!(message.ends_with("missing.ron: … and 900 more\n"), "{message}");
+
+    // So do warnings: 1,000 smoothsteps with equal edges.
+    let mut graph = Graph::default();
+    let mut previous = (graph.add("time", NodeKind::Time), "time");
+    for k in 0..1000 {
+        let step = graph.add(&format!("step {k}"), NodeKind::Smoothstep);
+        graph.set_input(step, "edge0", Value::Float(0.5));
+        graph.set_input(step, "edge1", Value::Float(0.5));
+        graph.connect(previous.0, previous.1, step, "x");
+        previous = (step, "result");
+    }
+    let material = graph.add("material", NodeKind::Material);
+    graph.connect(previous.0, previous.1, material, "alpha");
+    let (output, _) = check(&dir, "steps.ron", &graph, Duration::from_secs(60));
+    let message = String::from_utf8_lossy(&output.stderr);
+    assert!(output.status.success(), "{message}");
+    assert_eq!(message.lines().count(), 101, "{message}");
+    assert!(message.ends_with("steps.ron: … and 900 more\n"), "{message}");
+    assert!(String::from_utf8_lossy(&output.stdout).contains("ok (1000 warnings)"));
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
