@@ -215,10 +215,7 @@ fn input_expression(
 /// The outputs of `checked` when all its inputs are constants (literals or outputs of
 /// folded nodes) and it reads nothing of the surface: a constant subgraph folds into
 /// literals. `None` when it cannot fold (or folds to a non-finite value).
-fn fold(
-    checked: &graph::check::CheckedNode,
-    from: &[Option<&Emitted>],
-) -> Option<Vec<[f32; 3]>> {
+fn fold(checked: &graph::check::CheckedNode, from: &[Option<&Emitted>]) -> Option<Vec<[f32; 3]>> {
     use NodeKind::*;
     if matches!(
         checked.node.kind,

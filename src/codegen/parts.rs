@@ -80,7 +80,10 @@ pub fn write_material(source: &mut String, body: &[Block]) -> Vec<(Range<usize>,
             format!(" -> veneer_part_{number}")
         };
         let inputs = bound(&reads[part]);
-        let _ = write!(source, "\nfn veneer_material_part_{number}(s: VeneerSurface");
+        let _ = write!(
+            source,
+            "\nfn veneer_material_part_{number}(s: VeneerSurface"
+        );
         let mut call = format!("veneer_material_part_{number}(s");
         for (b, name, ty) in &inputs {
             let _ = write!(source, ", {name}: {ty}");
@@ -90,7 +93,11 @@ pub fn write_material(source: &mut String, body: &[Block]) -> Vec<(Range<usize>,
         write_blocks(source, &body[blocks.clone()], &mut spans);
         if !last && !outputs.is_empty() {
             let names: Vec<&str> = outputs.iter().map(|(_, name, _)| *name).collect();
-            let _ = writeln!(source, "    return veneer_part_{number}({});", names.join(", "));
+            let _ = writeln!(
+                source,
+                "    return veneer_part_{number}({});",
+                names.join(", ")
+            );
         }
         source.push_str("}\n");
         let _ = match (last, outputs.is_empty()) {

@@ -1,9 +1,9 @@
 //! Validation of a graph, topological ordering and pruning to what the output needs.
 
+use super::ids::IdIndex;
 use super::kind::{MAX_OCTAVES, MAX_RAMP_STOPS, NodeKind};
 use super::signature::{PinDefault, Signature};
 use super::value::{Value, ValueType};
-use super::ids::IdIndex;
 use super::{Graph, MAX_PATH_CHARS, MAX_TEXT_CHARS, Node, NodeId, Wire, clip};
 use std::fmt;
 
@@ -130,7 +130,10 @@ impl<'g> Checker<'g> {
         let graph = self.graph;
         let too_long = |text: &str, max: usize| clip(text, max).1;
         if too_long(&graph.name, MAX_TEXT_CHARS) {
-            self.error(None, long_text("the graph name", &graph.name, MAX_TEXT_CHARS));
+            self.error(
+                None,
+                long_text("the graph name", &graph.name, MAX_TEXT_CHARS),
+            );
         }
         if too_long(&graph.preview.mesh, MAX_PATH_CHARS) {
             let message = long_text("the preview mesh name", &graph.preview.mesh, MAX_PATH_CHARS);
@@ -138,12 +141,18 @@ impl<'g> Checker<'g> {
         }
         for frame in &graph.frames {
             if too_long(&frame.title, MAX_TEXT_CHARS) {
-                self.error(None, long_text("a frame title", &frame.title, MAX_TEXT_CHARS));
+                self.error(
+                    None,
+                    long_text("a frame title", &frame.title, MAX_TEXT_CHARS),
+                );
             }
         }
         for node in &graph.nodes {
             if too_long(&node.label, MAX_TEXT_CHARS) {
-                self.error(Some(node), long_text("the label", &node.label, MAX_TEXT_CHARS));
+                self.error(
+                    Some(node),
+                    long_text("the label", &node.label, MAX_TEXT_CHARS),
+                );
             }
         }
     }
@@ -488,7 +497,10 @@ fn cycle_path(stack: &[(Entry, usize)]) -> String {
     if stack.len() <= 2 * ENDS + 1 {
         return stack.iter().map(name).collect::<Vec<_>>().join(" -> ");
     }
-    let skipped = format!("… {} more …", crate::messages::thousands(stack.len() - 2 * ENDS));
+    let skipped = format!(
+        "… {} more …",
+        crate::messages::thousands(stack.len() - 2 * ENDS)
+    );
     let (head, tail) = (&stack[..ENDS], &stack[stack.len() - ENDS..]);
     let names: Vec<String> = head
         .iter()

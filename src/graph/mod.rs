@@ -93,7 +93,11 @@ impl Node {
 impl fmt::Display for Node {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let name = self.display_name();
-        let cut = if name.len() < self.label.len() { "…" } else { "" };
+        let cut = if name.len() < self.label.len() {
+            "…"
+        } else {
+            ""
+        };
         write!(f, "node '{name}{cut}' ({})", self.id)
     }
 }

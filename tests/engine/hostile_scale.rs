@@ -82,8 +82,16 @@ fn large_materials_compile_to_part_functions_every_target_accepts() {
         let module = veneer::codegen::compile_graph_detailed(&graph, mode, detail)
             .expect("compiles and validates");
         assert!(module.source.contains("in 8 parts of at most 256 nodes"));
-        assert!(module.source.contains("fn veneer_material_part_8(s: VeneerSurface, "));
-        assert!(module.source.contains("struct veneer_part_7 {\n    noise_1791: f32,\n}"));
+        assert!(
+            module
+                .source
+                .contains("fn veneer_material_part_8(s: VeneerSurface, ")
+        );
+        assert!(
+            module
+                .source
+                .contains("struct veneer_part_7 {\n    noise_1791: f32,\n}")
+        );
         assert_eq!(module.node_spans.len(), 2_000);
     }
     for (target, name) in Target::ALL {
@@ -221,7 +229,10 @@ fn a_million_duplicate_wires_are_summarised() {
     }));
     let (output, _) = check(&dir, "missing.ron", &graph, Duration::from_secs(60));
     let message = refused(&output, "a wire refers to node #100, which does not exist");
-    assert!(message.ends_with("missing.ron: … and 900 more\n"), "{message}");
+    assert!(
+        message.ends_with("missing.ron: … and 900 more\n"),
+        "{message}"
+    );
 
     // So do warnings: 1,000 smoothsteps with equal edges.
     let mut graph = Graph::default();
@@ -239,7 +250,10 @@ fn a_million_duplicate_wires_are_summarised() {
     let message = String::from_utf8_lossy(&output.stderr);
     assert!(output.status.success(), "{message}");
     assert_eq!(message.lines().count(), 101, "{message}");
-    assert!(message.ends_with("steps.ron: … and 900 more\n"), "{message}");
+    assert!(
+        message.ends_with("steps.ron: … and 900 more\n"),
+        "{message}"
+    );
     assert!(String::from_utf8_lossy(&output.stdout).contains("ok (1000 warnings)"));
     std::fs::remove_dir_all(&dir).unwrap();
 }
@@ -271,16 +285,29 @@ fn primitive_detail_stops_where_it_fits_this_machine() {
     let dir = temp_dir("detail-cap");
     for args in [
         &["mesh", "torus:4096"][..],
-        &["geodesic", "torus:4096", "--sources", "0", "-o", "never.csv"],
+        &[
+            "geodesic",
+            "torus:4096",
+            "--sources",
+            "0",
+            "-o",
+            "never.csv",
+        ],
         &["mesh", "sphere:513"],
     ] {
         let (output, took) = run_within(&dir, args, Duration::from_secs(60));
         let message = refused(&output, "level of detail out of range");
         assert!(message.contains("1 to 512"), "{message}");
-        assert!(message.contains("torus:512 is a million triangles: about"), "{message}");
+        assert!(
+            message.contains("torus:512 is a million triangles: about"),
+            "{message}"
+        );
         assert!(took < Duration::from_secs(5), "{args:?} took {took:?}");
     }
-    let help = veneer().args(["geodesic", "--help"]).output().expect("runs");
+    let help = veneer()
+        .args(["geodesic", "--help"])
+        .output()
+        .expect("runs");
     assert!(String::from_utf8_lossy(&help.stdout).contains("level of detail up to 512"));
     std::fs::remove_dir_all(&dir).unwrap();
 }
