@@ -10,6 +10,9 @@ use veneer::codegen::{Detail, ParamMode};
 use veneer::eval::{Evaluator, Surface};
 use veneer::render::{FlatRect, FlatRenderer, GpuContext};
 
+#[path = "../tests/engine/big_graphs.rs"]
+mod big_graphs;
+
 const WOOD: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/graphs/wood.ron");
 const MARBLE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/graphs/marble.ron");
 const SEED_NOISE: &str = include_str!("../tests/engine/reference/seed000_noise.wgsl");
@@ -244,54 +247,52 @@ fn bake_marble(c: &mut Criterion) {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-/// A graph of `nodes` nodes: a long chain of noises and arithmetic, every node reached.
-fn large_graph(nodes: usize) -> veneer::graph::Graph {
-    use veneer::graph::{Basis, MathOp, NodeKind, ValueType};
-    let mut graph = veneer::graph::Graph::default();
-    let mut previous = (
-        graph.add(
-            "start",
-            NodeKind::Noise {
-                basis: Basis::ValuePcg,
-            },
-        ),
-        "value",
-    );
-    for k in 1..nodes - 1 {
-        previous = if k % 3 == 0 {
-            let noise = graph.add(
-                &format!("noise {k}"),
-                NodeKind::Noise {
-                    basis: Basis::Gradient,
-                },
-            );
-            graph.connect(previous.0, previous.1, noise, "scale");
-            (noise, "value")
-        } else {
-            let math = graph.add(
-                &format!("step {k}"),
-                NodeKind::Math {
-                    op: MathOp::ALL[k % 7],
-                    ty: ValueType::Float,
-                },
-            );
-            graph.connect(previous.0, previous.1, math, "a");
-            (math, "result")
-        };
-    }
-    let material = graph.add("material", NodeKind::Material);
-    graph.connect(previous.0, previous.1, material, "alpha");
-    graph
-}
-
 /// Checking and compiling graphs of growing size (the target: 5,000 nodes under 2 s).
 fn large_graphs(c: &mut Criterion) {
     let mut group = c.benchmark_group("check + compile a chain graph");
     group.sample_size(10);
     for nodes in [500, 5000] {
-        let graph = large_graph(nodes);
+        let graph = big_graphs::chain(nodes);
         group.bench_function(format!("{nodes} nodes"), |b| {
             b.iter(|| veneer::codegen::compile_graph(black_box(&graph)).expect("compiles"))
+        });
+    }
+    group.finish();
+}
+
+/// What `veneer check` does with a loaded graph (check, compile, validate, lint) on
+/// chains of 10⁴ (the baseline), 10⁵ and 10⁶ nodes: linear cost keeps the ratios at 10
+/// and 100 (the target: 10⁶ nodes under 10 s).
+fn huge_graphs(c: &mut Criterion) {
+    let mut group = c.benchmark_group("veneer check of a chain graph");
+    group.sample_size(10);
+    for nodes in [10_000, 100_000, 1_000_000] {
+        let graph = big_graphs::chain(nodes);
+        let positions = veneer::lint::preview_positions(&graph);
+        group.bench_function(format!("{nodes} nodes"), |b| {
+            b.iter(|| {
+                let checked = veneer::graph::check(black_box(&graph)).expect("checks");
+                veneer::codegen::compile(&checked).expect("compiles");
+                veneer::lint::lint(&checked, positions)
+            })
+        });
+    }
+    group.finish();
+}
+
+/// A colour ramp of 10⁶ stops read from its file and refused, against one of the most
+/// stops a ramp accepts ([`veneer::graph::MAX_RAMP_STOPS`]) read, checked and compiled
+/// (the target: under 5 s).
+fn huge_ramps(c: &mut Criterion) {
+    let mut group = c.benchmark_group("load and check a colour ramp");
+    group.sample_size(10);
+    for stops in [veneer::graph::MAX_RAMP_STOPS, 1_000_000] {
+        let text = veneer::graph::to_ron(&big_graphs::ramp(stops));
+        group.bench_function(format!("{stops} stops"), |b| {
+            b.iter(|| {
+                let graph = veneer::graph::from_ron(black_box(&text)).expect("parses");
+                veneer::codegen::compile_graph(&graph).is_ok()
+            })
         });
     }
     group.finish();
@@ -304,6 +305,8 @@ criterion_group!(
     cpu_eval,
     live_edit,
     bake_marble,
-    large_graphs
+    large_graphs,
+    huge_graphs,
+    huge_ramps
 );
 criterion_main!(benches);

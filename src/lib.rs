@@ -11,6 +11,7 @@ pub mod geodesic;
 pub mod graph;
 pub mod lint;
 pub mod mesh;
+pub mod messages;
 pub mod render;
 pub mod report;
 pub mod snapshot;

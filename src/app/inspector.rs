@@ -144,7 +144,15 @@ fn ramp_editor(ui: &mut Ui, stops: &mut Vec<RampStop>, interpolation: &mut RampI
     if let Some(index) = remove.filter(|_| stops.len() > 1) {
         stops.remove(index);
     }
-    if ui.button("Add stop").clicked() {
+    let room = stops.len() < crate::graph::MAX_RAMP_STOPS;
+    let add = ui.add_enabled(room, egui::Button::new("Add stop"));
+    if add
+        .on_disabled_hover_text(format!(
+            "a ramp has at most {} stops",
+            crate::graph::MAX_RAMP_STOPS
+        ))
+        .clicked()
+    {
         let last = stops.last().copied().unwrap_or(RampStop {
             position: 0.0,
             color: (0.5, 0.5, 0.5),

@@ -38,8 +38,9 @@ pub fn run(args: CheckArgs) -> Result<(), Failure> {
     for path in &args.graphs {
         match check_one(path) {
             Ok(lints) => {
-                for lint in &lints {
-                    note(format!("{}: warning: {lint}", path.display()))?;
+                let lines = lints.iter().map(|lint| format!("warning: {lint}"));
+                for line in veneer::messages::summarise(lines) {
+                    note(format!("{}: {line}", path.display()))?;
                 }
                 let warnings = if lints.is_empty() {
                     String::new()

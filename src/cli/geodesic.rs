@@ -20,7 +20,7 @@ enum MethodName {
 
 #[derive(Args)]
 pub struct GeodesicArgs {
-    /// A mesh file (OBJ, STL, PLY, glTF) or a primitive name.
+    #[arg(help = super::mesh_help())]
     mesh: String,
     /// Source vertices, counted as the mesh file lists them. Repeat the option (up to
     /// four times) for several fields: one column each.

@@ -6,7 +6,7 @@ use clap::Args;
 
 #[derive(Args)]
 pub struct MeshArgs {
-    /// A mesh file (OBJ, STL, PLY, glTF) or a primitive name.
+    #[arg(help = super::mesh_help())]
     mesh: String,
     /// Also report the mesh after welding vertices closer than this distance.
     #[arg(long, value_name = "TOLERANCE")]

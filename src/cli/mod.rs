@@ -51,6 +51,16 @@ enum Command {
     Report(report::ReportArgs),
 }
 
+/// The help of a mesh argument, with what the most detailed primitives cost.
+fn mesh_help() -> String {
+    format!(
+        "A mesh file (OBJ, STL, PLY, glTF) or a primitive name, with an optional level of \
+         detail up to {} ({})",
+        veneer::mesh::MAX_DETAIL,
+        veneer::mesh::DETAIL_COST
+    )
+}
+
 /// A failed command: the message to print (already prefixed with the file or node) and
 /// the exit code (1 unless a command documents otherwise).
 pub struct Failure(pub String, pub u8);

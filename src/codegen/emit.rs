@@ -61,11 +61,15 @@ pub struct NodeCode {
     pub outputs: Vec<String>,
     /// Library items the statements call.
     pub library: Vec<String>,
+    /// The WGSL type of the identifier the statements bind (the node's name), if any.
+    pub binding: Option<&'static str>,
 }
 
 impl NodeCode {
-    fn bind(&mut self, name: &str, expression: String) {
+    /// `let name = expression;`, of type `ty`.
+    fn bind(&mut self, name: &str, ty: &'static str, expression: String) {
         self.statements.push(format!("let {name} = {expression};"));
+        self.binding = Some(ty);
     }
 }
 
@@ -91,6 +95,7 @@ pub fn emit_node(
         code.statements
             .push(format!("let {name}: {output_type} = {expression};"));
         code.outputs = vec![name.to_string()];
+        code.binding = Some(output_type);
     };
     match &checked.node.kind {
         Position => code.outputs = vec!["s.position".into()],
@@ -124,6 +129,7 @@ pub fn emit_node(
             code.library.push("veneer_cylindrical".into());
             code.bind(
                 name,
+                "vec3f",
                 format!("veneer_cylindrical({}, {}, {})", i[0], i[1], i[2]),
             );
             code.outputs = ["x", "y", "z"]
@@ -219,7 +225,11 @@ pub fn emit_node(
         }
         Tiles => {
             code.library.push("veneer_tiles".into());
-            code.bind(name, format!("veneer_tiles({})", i.join(", ")));
+            code.bind(
+                name,
+                "veneer_tiles_result",
+                format!("veneer_tiles({})", i.join(", ")),
+            );
             code.outputs = ["mask", "cell", "local"]
                 .iter()
                 .map(|c| format!("{name}.{c}"))
@@ -283,7 +293,7 @@ pub fn emit_node(
             code.library.push(function);
         }
         Split { ty } => {
-            code.bind(name, i[0].clone());
+            code.bind(name, ty.wgsl(), i[0].clone());
             code.outputs = ["x", "y", "z"][..ty.width()]
                 .iter()
                 .map(|c| format!("{name}.{c}"))
@@ -305,6 +315,7 @@ pub fn emit_node(
                 single(&mut code, color(0));
             } else {
                 code.statements.push(format!("var {name} = {};", color(0)));
+                code.binding = Some("vec3f");
                 for k in 1..stops.len() {
                     let (p0, p1) = (
                         float_literal(stops[k - 1].position),
@@ -353,6 +364,7 @@ fn call(code: &mut NodeCode, name: &str, function: &str, inputs: &[String]) {
     ));
     code.outputs = vec![name.to_string()];
     code.library.push(function.to_string());
+    code.binding = Some("f32");
 }
 
 /// The integer the WGSL library uses for a Worley feature.

@@ -5,6 +5,7 @@ mod emit;
 pub mod export;
 pub mod library;
 mod naming;
+mod parts;
 mod validate;
 
 pub use emit::{float_literal, metric_index, value_literal, worley_feature_index};
@@ -13,7 +14,8 @@ pub use validate::{ValidationError, validate};
 use crate::graph::check::{CheckedGraph, InputSource};
 use crate::graph::{self, CheckError, Graph, NodeId, NodeKind};
 use naming::Namer;
-use std::collections::BTreeMap;
+use parts::Block;
+use std::collections::HashSet;
 use std::fmt;
 use std::ops::Range;
 
@@ -142,7 +144,7 @@ impl fmt::Display for CompileError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             CompileError::Check(errors) => {
-                let lines: Vec<String> = errors.iter().map(|e| e.to_string()).collect();
+                let lines = crate::messages::summarise(errors.iter().map(|e| e.to_string()));
                 f.write_str(&lines.join("\n"))
             }
             CompileError::Validation(error) => error.fmt(f),
@@ -172,16 +174,29 @@ pub fn compile_graph_detailed(
     compile_detailed(&checked, mode, detail)
 }
 
+/// What a node left for the nodes that read it, by its position in the checked order.
+#[derive(Default)]
+struct Emitted {
+    /// One WGSL expression per output.
+    outputs: Vec<String>,
+    /// The output values, when the node folded into constants.
+    folded: Option<Vec<[f32; 3]>>,
+    /// The node's code in the body, when it has some.
+    block: Option<usize>,
+}
+
+/// The WGSL expression for one input: `from` is the node a wired input reads.
 fn input_expression(
     source: &InputSource,
     pin: &graph::InputPin,
     node: NodeId,
-    outputs: &BTreeMap<NodeId, Vec<String>>,
+    from: Option<&Emitted>,
     params: Option<&mut Vec<ParamSlot>>,
 ) -> String {
     match (source, params) {
-        (InputSource::Wire { node, output, ty }, _) => {
-            emit::convert(outputs[node][*output].clone(), *ty, pin.ty)
+        (InputSource::Wire { output, ty, .. }, _) => {
+            let expression = from.and_then(|from| from.outputs.get(*output));
+            emit::convert(expression.cloned().unwrap_or_default(), *ty, pin.ty)
         }
         (InputSource::Const(_), Some(params)) => {
             let swizzle = ["x", "xy", "xyz"][pin.ty.width() - 1];
@@ -200,10 +215,7 @@ fn input_expression(
 /// The outputs of `checked` when all its inputs are constants (literals or outputs of
 /// folded nodes) and it reads nothing of the surface: a constant subgraph folds into
 /// literals. `None` when it cannot fold (or folds to a non-finite value).
-fn fold(
-    checked: &graph::check::CheckedNode,
-    folded: &BTreeMap<NodeId, Vec<[f32; 3]>>,
-) -> Option<Vec<[f32; 3]>> {
+fn fold(checked: &graph::check::CheckedNode, from: &[Option<&Emitted>]) -> Option<Vec<[f32; 3]>> {
     use NodeKind::*;
     if matches!(
         checked.node.kind,
@@ -214,11 +226,10 @@ fn fold(
     let inputs = checked
         .inputs
         .iter()
-        .map(|source| match *source {
+        .zip(from)
+        .map(|(source, from)| match *source {
             InputSource::Const(ref value) => Some(value.components().map(|c| c as f32)),
-            InputSource::Wire { node, output, .. } => {
-                folded.get(&node).map(|values| values[output])
-            }
+            InputSource::Wire { output, .. } => (*from)?.folded.as_ref()?.get(output).copied(),
             InputSource::Position => None,
         })
         .collect::<Option<Vec<_>>>()?;
@@ -276,36 +287,50 @@ pub fn compile_detailed(
         detail
     };
     let mut params = Vec::new();
-    let mut folded: BTreeMap<NodeId, Vec<[f32; 3]>> = BTreeMap::new();
     let mut namer = Namer::default();
-    let mut outputs: BTreeMap<NodeId, Vec<String>> = BTreeMap::new();
-    let mut body: Vec<(NodeId, String)> = Vec::new();
+    let mut emitted: Vec<Emitted> = Vec::with_capacity(graph.order.len());
+    let mut body: Vec<Block> = Vec::new();
+    // Library items the nodes call, each once, in the order first called.
     let mut roots: Vec<String> = Vec::new();
+    let mut called: HashSet<String> = HashSet::new();
     for checked in &graph.order {
         let node = &checked.node;
+        let from: Vec<Option<&Emitted>> = checked
+            .inputs
+            .iter()
+            .map(|source| match source {
+                InputSource::Wire { node, .. } => graph.index_of(*node).map(|i| &emitted[i]),
+                _ => None,
+            })
+            .collect();
         if mode == ParamMode::Baked
-            && let Some(values) = fold(checked, &folded)
+            && let Some(values) = fold(checked, &from)
         {
-            let literals = checked
+            let outputs = checked
                 .signature
                 .outputs
                 .iter()
                 .zip(&values)
                 .map(|(pin, lanes)| emit::lanes_literal(pin.ty, *lanes))
                 .collect();
-            outputs.insert(node.id, literals);
-            folded.insert(node.id, values);
+            emitted.push(Emitted {
+                outputs,
+                folded: Some(values),
+                block: None,
+            });
             continue;
         }
         let inputs: Vec<String> = checked
             .inputs
             .iter()
             .zip(&checked.signature.inputs)
-            .map(|(source, pin)| {
+            .zip(&from)
+            .map(|((source, pin), from)| {
                 let slots = (mode == ParamMode::Uniform).then_some(&mut params);
-                input_expression(source, pin, node.id, &outputs, slots)
+                input_expression(source, pin, node.id, *from, slots)
             })
             .collect();
+        let reads: Vec<usize> = from.iter().filter_map(|from| (*from)?.block).collect();
         let name = match node.kind {
             NodeKind::Material => String::new(),
             _ => namer.name(node.display_name(), node.id.0),
@@ -323,10 +348,24 @@ pub fn compile_detailed(
                 text.push_str(statement);
                 text.push('\n');
             }
-            body.push((node.id, text));
+            body.push(Block {
+                node: node.id,
+                text,
+                binding: code.binding.map(|ty| (name, ty)),
+                reads,
+            });
         }
-        roots.extend(code.library);
-        outputs.insert(node.id, code.outputs);
+        for item in code.library {
+            if !called.contains(&item) {
+                called.insert(item.clone());
+                roots.push(item);
+            }
+        }
+        emitted.push(Emitted {
+            outputs: code.outputs,
+            folded: None,
+            block: (!code.statements.is_empty()).then(|| body.len() - 1),
+        });
     }
     let items = library::closure(roots.iter().map(String::as_str));
 
@@ -361,14 +400,7 @@ pub fn compile_detailed(
         source.push('\n');
         source.push_str(&item.text);
     }
-    source.push_str("\n// ---- the material graph\n\nfn veneer_material(s: VeneerSurface) -> VeneerMaterial {\n");
-    let mut node_spans = Vec::new();
-    for (id, text) in body {
-        let start = source.len();
-        source.push_str(&text);
-        node_spans.push((start..source.len(), id));
-    }
-    source.push_str("}\n");
+    let node_spans = parts::write_material(&mut source, &body);
 
     let library = items.into_iter().map(|item| item.name).collect();
     let mut module = WgslModule {

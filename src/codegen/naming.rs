@@ -1,6 +1,7 @@
 //! Readable, unique WGSL identifiers for nodes, named after their labels.
 
-use std::collections::BTreeSet;
+use std::collections::HashSet;
+use std::sync::OnceLock;
 
 /// WGSL keywords and reserved words that a label could collide with, plus names the
 /// generated function uses itself.
@@ -221,10 +222,17 @@ pub fn comment(text: &str) -> String {
         .collect()
 }
 
+/// Whether `name` is in [`RESERVED`] (a set: a name is looked up for every node).
+fn reserved(name: &str) -> bool {
+    static SET: OnceLock<HashSet<&str>> = OnceLock::new();
+    SET.get_or_init(|| RESERVED.iter().copied().collect())
+        .contains(name)
+}
+
 /// Hands out identifiers, each once.
 #[derive(Default)]
 pub struct Namer {
-    taken: BTreeSet<String>,
+    taken: HashSet<String>,
 }
 
 /// `label` as a snake_case identifier (ASCII letters, digits, underscores).
@@ -265,8 +273,7 @@ impl Namer {
     /// when the plain name is reserved or already used.
     pub fn name(&mut self, label: &str, fallback_id: u32) -> String {
         let base = sanitize(label);
-        let clashes =
-            |name: &str, taken: &BTreeSet<String>| RESERVED.contains(&name) || taken.contains(name);
+        let clashes = |name: &str, taken: &HashSet<String>| reserved(name) || taken.contains(name);
         let mut name = base.clone();
         if clashes(&name, &self.taken) {
             name = format!("{base}_{fallback_id}");

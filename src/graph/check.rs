@@ -1,10 +1,10 @@
 //! Validation of a graph, topological ordering and pruning to what the output needs.
 
-use super::kind::{MAX_OCTAVES, NodeKind};
+use super::ids::IdIndex;
+use super::kind::{MAX_OCTAVES, MAX_RAMP_STOPS, NodeKind};
 use super::signature::{PinDefault, Signature};
 use super::value::{Value, ValueType};
-use super::{Graph, Node, NodeId};
-use std::collections::{BTreeMap, BTreeSet};
+use super::{Graph, MAX_PATH_CHARS, MAX_TEXT_CHARS, Node, NodeId, Wire, clip};
 use std::fmt;
 
 /// One problem found in a graph, attached to the node it concerns when there is one.
@@ -57,12 +57,14 @@ pub struct CheckedGraph {
     pub name: String,
     /// Needed nodes, every node after the nodes it reads; the material node is last.
     pub order: Vec<CheckedNode>,
+    /// The position of each node in `order`.
+    index: IdIndex,
 }
 
 impl CheckedGraph {
     /// The position of node `id` in `order`.
     pub fn index_of(&self, id: NodeId) -> Option<usize> {
-        self.order.iter().position(|checked| checked.node.id == id)
+        self.index.get(id)
     }
 
     /// The material output node.
@@ -73,13 +75,47 @@ impl CheckedGraph {
     }
 }
 
+/// A node, its signature and its index in the file.
+type Entry<'g> = (&'g Node, &'g Signature, usize);
+
 struct Checker<'g> {
     graph: &'g Graph,
-    by_id: BTreeMap<NodeId, &'g Node>,
+    /// The signature of each node of the graph, in file order.
+    signatures: &'g [Signature],
+    /// The first node with each id, as its index in the file.
+    by_id: IdIndex,
+    /// Where each node's input pins start in `wires_into` (by index in the file).
+    first_pin: Vec<usize>,
+    /// The first wire into each input pin of each node, as [`Graph::wire_into`] finds it.
+    wires_into: Vec<Option<&'g Wire>>,
     errors: Vec<CheckError>,
 }
 
 impl<'g> Checker<'g> {
+    /// The (first) node with `id` and its signature.
+    fn lookup(&self, id: NodeId) -> Option<Entry<'g>> {
+        let index = self.by_id.get(id)?;
+        Some((&self.graph.nodes[index], &self.signatures[index], index))
+    }
+
+    /// The slot in `wires_into` of input `pin` of the node at `index`.
+    fn pin_slot(&self, index: usize, pin: usize) -> usize {
+        self.first_pin[index] + pin
+    }
+
+    /// Indexes the first wire into each input pin (whatever it comes from).
+    fn index_wires(&mut self) {
+        for wire in &self.graph.wires {
+            let Some((_, signature, index)) = self.lookup(wire.to.node) else {
+                continue;
+            };
+            if let Some((pin, _)) = signature.input(&wire.to.pin) {
+                let slot = self.pin_slot(index, pin);
+                self.wires_into[slot].get_or_insert(wire);
+            }
+        }
+    }
+
     fn error(&mut self, node: Option<&Node>, message: String) {
         self.errors.push(CheckError {
             node: node.map(|n| n.id),
@@ -88,10 +124,43 @@ impl<'g> Checker<'g> {
         });
     }
 
+    /// Refuses texts longer than [`MAX_TEXT_CHARS`] (a mesh path: [`MAX_PATH_CHARS`]),
+    /// which would otherwise be copied into shader code and messages.
+    fn check_text(&mut self) {
+        let graph = self.graph;
+        let too_long = |text: &str, max: usize| clip(text, max).1;
+        if too_long(&graph.name, MAX_TEXT_CHARS) {
+            self.error(
+                None,
+                long_text("the graph name", &graph.name, MAX_TEXT_CHARS),
+            );
+        }
+        if too_long(&graph.preview.mesh, MAX_PATH_CHARS) {
+            let message = long_text("the preview mesh name", &graph.preview.mesh, MAX_PATH_CHARS);
+            self.error(None, message);
+        }
+        for frame in &graph.frames {
+            if too_long(&frame.title, MAX_TEXT_CHARS) {
+                self.error(
+                    None,
+                    long_text("a frame title", &frame.title, MAX_TEXT_CHARS),
+                );
+            }
+        }
+        for node in &graph.nodes {
+            if too_long(&node.label, MAX_TEXT_CHARS) {
+                self.error(
+                    Some(node),
+                    long_text("the label", &node.label, MAX_TEXT_CHARS),
+                );
+            }
+        }
+    }
+
+    /// Reports repeated ids and indexes the nodes by id.
     fn check_ids(&mut self) {
-        let mut seen = BTreeSet::new();
-        for node in &self.graph.nodes {
-            if !seen.insert(node.id) {
+        for (index, node) in self.graph.nodes.iter().enumerate() {
+            if !self.by_id.insert_first(node.id, index) {
                 self.error(Some(node), format!("duplicate node id {}", node.id));
             }
         }
@@ -124,6 +193,10 @@ impl<'g> Checker<'g> {
             ColorRamp { stops, .. } if stops.is_empty() => {
                 Some("a colour ramp needs at least one stop".into())
             }
+            ColorRamp { stops, .. } if stops.len() > MAX_RAMP_STOPS => Some(format!(
+                "the colour ramp has {} stops (at most {MAX_RAMP_STOPS})",
+                crate::messages::thousands(stops.len())
+            )),
             ColorRamp { stops, .. } => {
                 if stops.iter().any(|s| {
                     !s.position.is_finite()
@@ -186,13 +259,12 @@ impl<'g> Checker<'g> {
     }
 
     fn check_wires(&mut self) {
-        let mut fed = BTreeSet::new();
+        let mut fed = vec![false; self.wires_into.len()];
         for wire in &self.graph.wires {
-            let (Some(from), Some(to)) = (
-                self.by_id.get(&wire.from.node).copied(),
-                self.by_id.get(&wire.to.node).copied(),
-            ) else {
-                let missing = if self.by_id.contains_key(&wire.from.node) {
+            let (Some((from, from_signature, _)), Some((to, to_signature, to_index))) =
+                (self.lookup(wire.from.node), self.lookup(wire.to.node))
+            else {
+                let missing = if self.by_id.get(wire.from.node).is_some() {
                     wire.to.node
                 } else {
                     wire.from.node
@@ -203,29 +275,18 @@ impl<'g> Checker<'g> {
                 );
                 continue;
             };
-            let Some((_, output)) = from
-                .kind
-                .signature()
-                .output(&wire.from.pin)
-                .map(|(i, p)| (i, *p))
-            else {
-                let signature = from.kind.signature();
-                let names = signature.outputs.iter().map(|p| p.name);
+            let Some((_, output)) = from_signature.output(&wire.from.pin) else {
+                let names = from_signature.outputs.iter().map(|p| p.name);
                 self.error(Some(from), no_pin("output", &wire.from.pin, names));
                 continue;
             };
-            let Some((_, input)) = to
-                .kind
-                .signature()
-                .input(&wire.to.pin)
-                .map(|(i, p)| (i, *p))
-            else {
-                let signature = to.kind.signature();
-                let names = signature.inputs.iter().map(|p| p.name);
+            let Some((pin, input)) = to_signature.input(&wire.to.pin) else {
+                let names = to_signature.inputs.iter().map(|p| p.name);
                 self.error(Some(to), no_pin("input", &wire.to.pin, names));
                 continue;
             };
-            if !fed.insert((wire.to.node, wire.to.pin.clone())) {
+            let slot = self.pin_slot(to_index, pin);
+            if std::mem::replace(&mut fed[slot], true) {
                 self.error(
                     Some(to),
                     format!("input '{}' has more than one wire", wire.to.pin),
@@ -243,21 +304,24 @@ impl<'g> Checker<'g> {
         }
     }
 
-    fn material_node(&mut self) -> Option<&'g Node> {
-        let materials: Vec<&Node> = self
+    fn material_node(&mut self) -> Option<Entry<'g>> {
+        let materials: Vec<Entry<'g>> = self
             .graph
             .nodes
             .iter()
-            .filter(|node| node.kind == NodeKind::Material)
+            .zip(self.signatures)
+            .enumerate()
+            .filter(|(_, (node, _))| node.kind == NodeKind::Material)
+            .map(|(index, (node, signature))| (node, signature, index))
             .collect();
         match materials.as_slice() {
             [] => {
                 self.error(None, "the graph has no Material output node".into());
                 None
             }
-            [one] => Some(one),
+            [one] => Some(*one),
             [_, more @ ..] => {
-                for extra in more {
+                for (extra, _, _) in more {
                     self.error(
                         Some(extra),
                         "a graph has exactly one Material output node".into(),
@@ -269,76 +333,71 @@ impl<'g> Checker<'g> {
     }
 
     /// Nodes reachable backwards from `root`, each after its inputs; reports cycles.
-    fn order_from(&mut self, root: &'g Node) -> Vec<&'g Node> {
+    fn order_from(&mut self, root: Entry<'g>) -> Vec<Entry<'g>> {
         #[derive(Clone, Copy, PartialEq)]
         enum Mark {
-            Visiting,
+            Unseen,
+            /// On the stack, at this position.
+            Visiting(usize),
             Done,
         }
-        let mut marks: BTreeMap<NodeId, Mark> = BTreeMap::new();
+        // By index in the file.
+        let mut marks = vec![Mark::Unseen; self.graph.nodes.len()];
         let mut order = Vec::new();
-        // Iterative depth-first search: (node, next input index to visit).
-        let mut stack: Vec<(&Node, usize)> = vec![(root, 0)];
-        marks.insert(root.id, Mark::Visiting);
-        while let Some((node, next)) = stack.pop() {
-            let inputs = node.kind.signature().inputs;
+        // Iterative depth-first search: (node, next input index to visit). A node keeps
+        // its position on the stack while it is visited.
+        let mut stack: Vec<(Entry<'g>, usize)> = vec![(root, 0)];
+        marks[root.2] = Mark::Visiting(0);
+        while let Some((entry, next)) = stack.pop() {
+            let (_, signature, index) = entry;
+            let inputs = &signature.inputs;
             if next == inputs.len() {
-                marks.insert(node.id, Mark::Done);
-                order.push(node);
+                marks[index] = Mark::Done;
+                order.push(entry);
                 continue;
             }
-            stack.push((node, next + 1));
-            let Some(wire) = self.graph.wire_into(node.id, inputs[next].name) else {
+            stack.push((entry, next + 1));
+            let Some(wire) = self.wires_into[self.pin_slot(index, next)] else {
                 continue;
             };
-            let Some(source) = self.by_id.get(&wire.from.node).copied() else {
+            let Some(source_entry) = self.lookup(wire.from.node) else {
                 continue;
             };
-            match marks.get(&source.id) {
-                Some(Mark::Done) => {}
-                Some(Mark::Visiting) => {
-                    let start = stack
-                        .iter()
-                        .position(|(n, _)| n.id == source.id)
-                        .unwrap_or(0);
-                    let names: Vec<String> = stack[start..]
-                        .iter()
-                        .map(|(n, _)| format!("'{}'", n.display_name()))
-                        .collect();
+            let source = source_entry.0;
+            match &marks[source_entry.2] {
+                Mark::Done => {}
+                Mark::Visiting(start) => {
+                    let path = cycle_path(&stack[*start..]);
                     self.error(
                         Some(source),
-                        format!(
-                            "cycle: {} -> '{}'",
-                            names.join(" -> "),
-                            source.display_name()
-                        ),
+                        format!("cycle: {path} -> '{}'", source.display_name()),
                     );
                 }
-                None => {
-                    marks.insert(source.id, Mark::Visiting);
-                    stack.push((source, 0));
+                Mark::Unseen => {
+                    marks[source_entry.2] = Mark::Visiting(stack.len());
+                    stack.push((source_entry, 0));
                 }
             }
         }
         order
     }
 
-    fn resolve(&mut self, node: &Node, signature: &Signature) -> Vec<InputSource> {
+    fn resolve(&mut self, (node, signature, index): Entry<'g>) -> Vec<InputSource> {
         let mut sources = Vec::with_capacity(signature.inputs.len());
-        for pin in &signature.inputs {
-            let source = if let Some(wire) = self.graph.wire_into(node.id, pin.name) {
-                let from = self.by_id[&wire.from.node];
-                let (output, out_pin) = from
-                    .kind
-                    .signature()
-                    .output(&wire.from.pin)
-                    .map(|(i, p)| (i, *p))
-                    .expect("wires were checked before resolution");
-                InputSource::Wire {
+        for (k, pin) in signature.inputs.iter().enumerate() {
+            let wire = self.wires_into[self.pin_slot(index, k)];
+            // Wires were checked before resolution: the node and its output exist.
+            let from = wire.and_then(|wire| {
+                let (from, signature, _) = self.lookup(wire.from.node)?;
+                let (output, out_pin) = signature.output(&wire.from.pin)?;
+                Some(InputSource::Wire {
                     node: from.id,
                     output,
                     ty: out_pin.ty,
-                }
+                })
+            });
+            let source = if let Some(from) = from {
+                from
             } else if let Some(value) = node.inputs.get(pin.name) {
                 InputSource::Const(value.convert(pin.ty))
             } else {
@@ -365,19 +424,30 @@ impl<'g> Checker<'g> {
 /// Reports unknown pins, bad constants and settings, type mismatches, missing required
 /// inputs and cycles, each naming its node. Nodes the output does not reach are pruned.
 pub fn check(graph: &Graph) -> Result<CheckedGraph, Vec<CheckError>> {
+    let signatures: Vec<Signature> = graph.nodes.iter().map(|n| n.kind.signature()).collect();
+    let mut first_pin = Vec::with_capacity(graph.nodes.len() + 1);
+    first_pin.push(0);
+    for signature in &signatures {
+        first_pin.push(first_pin.last().copied().unwrap_or(0) + signature.inputs.len());
+    }
+    let max_id = graph.nodes.iter().map(|node| node.id).max();
     let mut checker = Checker {
         graph,
-        by_id: BTreeMap::new(),
+        signatures: &signatures,
+        by_id: IdIndex::new(graph.nodes.len(), max_id),
+        wires_into: vec![None; first_pin.last().copied().unwrap_or(0)],
+        first_pin,
         errors: Vec::new(),
     };
+    checker.check_text();
     checker.check_ids();
     for problem in graph.preview.problems() {
         checker.error(None, problem);
     }
-    for node in &graph.nodes {
-        checker.by_id.entry(node.id).or_insert(node);
+    checker.index_wires();
+    for (node, signature) in graph.nodes.iter().zip(&signatures) {
         checker.check_settings(node);
-        checker.check_constants(node, &node.kind.signature());
+        checker.check_constants(node, signature);
     }
     checker.check_wires();
     let Some(material) = checker.material_node() else {
@@ -388,13 +458,13 @@ pub fn check(graph: &Graph) -> Result<CheckedGraph, Vec<CheckError>> {
         return Err(checker.errors);
     }
     let mut order: Vec<CheckedNode> = Vec::with_capacity(needed.len());
-    for node in needed {
-        let signature = node.kind.signature();
-        let inputs = checker.resolve(node, &signature);
+    for entry in needed {
+        let (node, signature, _) = entry;
+        let inputs = checker.resolve(entry);
         let used_outputs = vec![false; signature.outputs.len()];
         order.push(CheckedNode {
             node: node.clone(),
-            signature,
+            signature: signature.clone(),
             inputs,
             used_outputs,
         });
@@ -402,26 +472,60 @@ pub fn check(graph: &Graph) -> Result<CheckedGraph, Vec<CheckError>> {
     if !checker.errors.is_empty() {
         return Err(checker.errors);
     }
-    let index: BTreeMap<NodeId, usize> = order
-        .iter()
-        .enumerate()
-        .map(|(i, c)| (c.node.id, i))
-        .collect();
+    let mut index = IdIndex::new(order.len(), max_id);
+    for (position, checked) in order.iter().enumerate() {
+        index.insert_first(checked.node.id, position);
+    }
     for i in 0..order.len() {
-        for source in order[i].inputs.clone() {
-            if let InputSource::Wire { node, output, .. } = source {
-                order[index[&node]].used_outputs[output] = true;
+        for k in 0..order[i].inputs.len() {
+            if let InputSource::Wire { node, output, .. } = order[i].inputs[k]
+                && let Some(source) = index.get(node)
+            {
+                order[source].used_outputs[output] = true;
             }
         }
     }
     Ok(CheckedGraph {
         name: graph.name.clone(),
         order,
+        index,
     })
+}
+
+/// The nodes of a cycle (the search stack from where it closes) as `'a' -> 'b' -> …`,
+/// the middle of a long one left out.
+fn cycle_path(stack: &[(Entry, usize)]) -> String {
+    const ENDS: usize = 4;
+    let name = |((node, _, _), _): &(Entry, usize)| format!("'{}'", node.display_name());
+    if stack.len() <= 2 * ENDS + 1 {
+        return stack.iter().map(name).collect::<Vec<_>>().join(" -> ");
+    }
+    let skipped = format!(
+        "… {} more …",
+        crate::messages::thousands(stack.len() - 2 * ENDS)
+    );
+    let (head, tail) = (&stack[..ENDS], &stack[stack.len() - ENDS..]);
+    let names: Vec<String> = head
+        .iter()
+        .map(name)
+        .chain(std::iter::once(skipped))
+        .chain(tail.iter().map(name))
+        .collect();
+    names.join(" -> ")
+}
+
+/// The message for a text longer than `max` characters.
+fn long_text(what: &str, text: &str, max: usize) -> String {
+    format!(
+        "{what} is {} characters long (at most {max})",
+        crate::messages::thousands(text.chars().count())
+    )
 }
 
 /// The message for a pin name the node does not have, listing the ones it has.
 fn no_pin<'a>(side: &str, pin: &str, names: impl Iterator<Item = &'a str>) -> String {
+    let (pin, cut) = clip(pin, MAX_TEXT_CHARS);
+    let pin = format!("{pin}{}", if cut { "…" } else { "" });
     let names: Vec<&str> = names.collect();
     if names.is_empty() {
         format!("no {side} named '{pin}' (the node has no {side}s)")

@@ -1,6 +1,6 @@
 //! Reading and writing graph files (RON).
 
-use super::Graph;
+use super::{Graph, MAX_TEXT_CHARS, clip};
 use crate::fsutil;
 use std::fmt;
 use std::path::{Path, PathBuf};
@@ -34,12 +34,17 @@ impl fmt::Display for LoadError {
 
 impl std::error::Error for LoadError {}
 
-/// Parses a graph from RON text. Errors carry the line and column.
+/// Parses a graph from RON text. Errors carry the line and column, and quote at most
+/// a few lines of the file (a parser message can quote a whole unknown name).
 pub fn from_ron(text: &str) -> Result<Graph, LoadError> {
-    let graph: Graph = ron::from_str(text).map_err(|err| LoadError {
-        path: None,
-        position: Some((err.span.start.line, err.span.start.col)),
-        message: err.code.to_string(),
+    let graph: Graph = ron::from_str(text).map_err(|err| {
+        let message = err.code.to_string();
+        let (clipped, cut) = clip(&message, 2 * MAX_TEXT_CHARS);
+        LoadError {
+            path: None,
+            position: Some((err.span.start.line, err.span.start.col)),
+            message: format!("{clipped}{}", if cut { "…" } else { "" }),
+        }
     })?;
     if graph.version != CURRENT_VERSION {
         let line = text

@@ -356,3 +356,8 @@ pub const MAX_OCTAVES: u32 = 64;
 
 /// The most octaves the editor's slider offers (more are allowed in files, up to `MAX_OCTAVES`).
 pub const MAX_OCTAVES_UI: u32 = 16;
+
+/// The most stops a colour ramp accepts: each stop is a line of shader code, and past a
+/// few hundred a ramp only costs compile and shading time (a file with more is refused,
+/// naming the node).
+pub const MAX_RAMP_STOPS: usize = 256;

@@ -1,6 +1,7 @@
 //! The graph model: nodes, pins, wires, their checks and their file format.
 
 pub mod check;
+mod ids;
 mod io;
 pub mod kind;
 pub mod layout;
@@ -12,8 +13,8 @@ pub mod value;
 pub use check::{CheckError, CheckedGraph, check};
 pub use io::{CURRENT_VERSION, LoadError, from_ron, load, save, to_ron};
 pub use kind::{
-    Basis, Category, FractalMode, MAX_OCTAVES, MAX_OCTAVES_UI, MathOp, Metric, NodeKind,
-    RampInterpolation, RampStop, UnaryOp, WorleyFeature,
+    Basis, Category, FractalMode, MAX_OCTAVES, MAX_OCTAVES_UI, MAX_RAMP_STOPS, MathOp, Metric,
+    NodeKind, RampInterpolation, RampStop, UnaryOp, WorleyFeature,
 };
 pub use presets::{PRESETS, preset};
 pub use signature::{InputPin, OutputPin, PinDefault, Signature};
@@ -22,6 +23,23 @@ pub use value::{Value, ValueType};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::fmt;
+
+/// The most characters of a node label, graph name, frame title or pin name: a label
+/// names variables in generated WGSL and every text appears in messages, so a longer one
+/// is refused by the check (naming its node) instead of being copied into megabytes of
+/// shader and error text.
+pub const MAX_TEXT_CHARS: usize = 256;
+
+/// The most characters of the preview's mesh name (a primitive or a file path).
+pub const MAX_PATH_CHARS: usize = 4096;
+
+/// `text` cut to its first `max` characters, and whether anything was cut.
+pub fn clip(text: &str, max: usize) -> (&str, bool) {
+    match text.char_indices().nth(max) {
+        Some((end, _)) => (&text[..end], true),
+        None => (text, false),
+    }
+}
 
 /// A node's stable identifier: unique in its graph, never reused while the node lives.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
@@ -62,19 +80,26 @@ impl Node {
         }
     }
 
-    /// The label, or the kind's title when the label is empty.
+    /// The label (its first [`MAX_TEXT_CHARS`] characters), or the kind's title when the
+    /// label is empty.
     pub fn display_name(&self) -> &str {
         if self.label.is_empty() {
             self.kind.title()
         } else {
-            &self.label
+            clip(&self.label, MAX_TEXT_CHARS).0
         }
     }
 }
 
 impl fmt::Display for Node {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "node '{}' ({})", self.display_name(), self.id)
+        let name = self.display_name();
+        let cut = if name.len() < self.label.len() {
+            "…"
+        } else {
+            ""
+        };
+        write!(f, "node '{name}{cut}' ({})", self.id)
     }
 }
 

@@ -10,7 +10,9 @@ pub use analysis::{MeshReport, analyse, vertex_components, weld};
 pub use implicit::{double_torus, polygonize};
 pub use load::{EXTENSIONS, MeshError, from_bytes, load, vertex_normals};
 pub use pick::pick_vertex;
-pub use primitives::{MAX_DETAIL, MAX_GENUS2_DETAIL, PRIMITIVES, primitive, sphere, torus};
+pub use primitives::{
+    DETAIL_COST, MAX_DETAIL, MAX_GENUS2_DETAIL, PRIMITIVES, primitive, sphere, torus,
+};
 
 /// The mesh a preview or render shows for `name`: a primitive, or else a mesh file
 /// fitted to the unit sphere.
@@ -57,9 +59,15 @@ impl Mesh {
             None => Err(MeshError {
                 path: name.to_string(),
                 message: format!(
-                    "unknown mesh (expected one of: {}, with an optional level of detail \
-                     1 to {MAX_DETAIL} such as torus:320 (genus2 up to {MAX_GENUS2_DETAIL}), \
-                     or a mesh file)",
+                    "{} (expected one of: {}, with an optional level of detail \
+                     1 to {MAX_DETAIL} such as torus:320 (genus2 up to {MAX_GENUS2_DETAIL}; \
+                     {DETAIL_COST}), or a mesh file)",
+                    match name.split_once(':') {
+                        Some((base, _)) if PRIMITIVES.contains(&base) => {
+                            "level of detail out of range"
+                        }
+                        _ => "unknown mesh",
+                    },
                     PRIMITIVES.join(", ")
                 ),
             }),

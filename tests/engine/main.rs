@@ -2,6 +2,7 @@
 //! One binary so that wgpu and the rest link once.
 
 mod bake;
+mod big_graphs;
 mod cli;
 mod cpu_gpu;
 mod detail;
@@ -11,6 +12,7 @@ mod fuzz_regressions;
 mod geodesic;
 mod hostile_cli;
 mod graph_files;
+mod hostile_scale;
 mod limits;
 mod lint;
 mod meshes;
