@@ -21,6 +21,9 @@ pub struct FieldState {
     attempted: Option<String>,
     /// Why the newest solve failed.
     pub error: Option<String>,
+    /// What the newest solve had to do differently (the robust heat method in place of
+    /// the plain one).
+    pub notes: Vec<String>,
     /// The field whose sources clicks on the preview add or remove.
     pub picking: Option<usize>,
     /// Show this field as a colour scale with isolines instead of the material.
@@ -32,7 +35,7 @@ struct Job {
     key: String,
     done: Arc<AtomicUsize>,
     total: Arc<AtomicUsize>,
-    result: mpsc::Receiver<Result<Mesh, String>>,
+    result: mpsc::Receiver<Result<(Mesh, Vec<String>), String>>,
 }
 
 impl FieldState {
@@ -51,9 +54,10 @@ impl FieldState {
             let key = job.key.clone();
             self.job = None;
             match result {
-                Ok(mesh) => {
+                Ok((mesh, notes)) => {
                     self.ready = Some((key, Arc::new(mesh)));
                     self.error = None;
+                    self.notes = notes;
                 }
                 Err(error) => self.error = Some(error),
             }
@@ -82,7 +86,11 @@ impl FieldState {
                 progress.0.store(d, Ordering::Relaxed);
                 progress.1.store(t.max(1), Ordering::Relaxed);
             });
-            let _ = sender.send(solved.map(|()| mesh).map_err(|error| error.to_string()));
+            let _ = sender.send(
+                solved
+                    .map(|notes| (mesh, notes))
+                    .map_err(|error| error.to_string()),
+            );
         });
         self.error = None;
         self.job = Some(Job {
@@ -242,6 +250,9 @@ pub fn fields_panel(ui: &mut Ui, fields: &mut Vec<FieldSource>, state: &mut Fiel
     }
     if let Some(error) = &state.error {
         ui.colored_label(egui::Color32::LIGHT_RED, error);
+    }
+    for note in &state.notes {
+        ui.colored_label(egui::Color32::YELLOW, note);
     }
     if state.picking.is_some() {
         ui.weak("Click the mesh to add a source; click it again to remove it.");

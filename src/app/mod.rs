@@ -637,11 +637,12 @@ impl VeneerApp {
             return;
         };
         let fields = &mut self.document.graph.preview.fields;
+        // Sources count vertices as the mesh file lists them.
         if let (Some(vertex), Some(field)) = (
             crate::mesh::pick_vertex(&mesh, origin, direction),
             fields.get_mut(slot),
         ) {
-            fields::toggle_source(field, vertex);
+            fields::toggle_source(field, mesh.file_vertex(vertex));
             self.message = Some(format!("field {slot}: {} sources", field.sources.len()));
         }
     }

@@ -28,9 +28,14 @@ fn check_one(path: &PathBuf) -> Result<Vec<veneer::lint::Lint>, Failure> {
 /// What a render would find wrong with the preview mesh: a mesh that does not load, or
 /// field sources it does not have.
 fn check_preview_mesh(graph: &veneer::graph::Graph, used_fields: [bool; 4]) -> Result<(), String> {
-    let mesh = veneer::mesh::preview_mesh(&graph.preview.mesh).map_err(|error| error.to_string())?;
-    veneer::geodesic::check_field_sources(&graph.preview.fields, mesh.positions.len(), used_fields)
-        .map_err(|error| format!("preview mesh {}: {error}", graph.preview.mesh))
+    let mesh =
+        veneer::mesh::preview_mesh(&graph.preview.mesh).map_err(|error| error.to_string())?;
+    veneer::geodesic::check_field_sources(
+        &graph.preview.fields,
+        mesh.file_vertex_count(),
+        used_fields,
+    )
+    .map_err(|error| format!("preview mesh {}: {error}", graph.preview.mesh))
 }
 
 pub fn run(args: CheckArgs) -> Result<(), Failure> {

@@ -30,7 +30,8 @@ pub struct GeodesicArgs {
     #[arg(long, value_enum, default_value = "heat")]
     method: MethodName,
     /// Heat method: mollify lengths and retriangulate (intrinsic Delaunay) first, for
-    /// meshes with slivers or degenerate triangles.
+    /// meshes with slivers or degenerate triangles. Without it, the robust method is
+    /// still used, with a warning, where the plain one cannot be set up.
     #[arg(long)]
     robust: bool,
     /// Heat method: diffusion time as a multiple of the mean edge length squared.
@@ -39,7 +40,8 @@ pub struct GeodesicArgs {
     /// Divide each field by its largest finite distance.
     #[arg(long)]
     normalize: bool,
-    /// Output CSV: one line per vertex in file order, `inf` where no source reaches.
+    /// Output CSV: one line per vertex of the file, in its order, `inf` where no source
+    /// reaches.
     #[arg(short, long)]
     output: PathBuf,
 }
@@ -50,30 +52,27 @@ pub fn run(args: GeodesicArgs) -> Result<(), Failure> {
         .map_err(|error| Failure::new(format!("--time-factor: {error}")))?;
     let started = Instant::now();
     let mesh = veneer::mesh::Mesh::named(&args.mesh)?;
-    let source_sets = parse_sources(&args, mesh.positions.len())?;
-    let (welded, remap) = geodesic::welded_for_distances(&mesh);
+    let file_sets = parse_sources(&args, mesh.file_vertex_count())?;
+    let welded = geodesic::WeldedMesh::new(&mesh);
     let loaded = started.elapsed();
-    let report = veneer::mesh::analyse(&welded);
+    let report = veneer::mesh::analyse(&welded.mesh);
     for problem in report.problems() {
         note(format!("warning: {}: {problem}", args.mesh))?;
     }
-    let source_sets: Vec<Vec<u32>> = source_sets
-        .iter()
-        .map(|set| set.iter().map(|&s| remap[s as usize]).collect())
-        .collect();
-    let big = welded.positions.len() > 100_000;
-    let bar = big.then(|| {
-        let bar = indicatif::ProgressBar::new((welded.positions.len() * source_sets.len()) as u64);
+    let source_sets: Vec<Vec<u32>> = file_sets.iter().map(|set| welded.sources(set)).collect();
+    let count = welded.mesh.positions.len();
+    let bar = (count > 100_000).then(|| {
+        let bar = indicatif::ProgressBar::new((count * source_sets.len()) as u64);
         bar.set_style(
             indicatif::ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} {elapsed}")
                 .expect("valid template"),
         );
-        bar.set_message(format!("{} distances", args.method_name()));
+        bar.set_message(format!("{} distances", args.method().name()));
         bar.enable_steady_tick(std::time::Duration::from_millis(200));
         bar
     });
     let solving = Instant::now();
-    let solved = geodesic::fields(&welded, &source_sets, args.method(), |done, _| {
+    let solved = geodesic::fields(&welded.mesh, &source_sets, args.method(), |done, _| {
         if let Some(bar) = &bar {
             bar.set_position(done as u64);
         }
@@ -81,42 +80,39 @@ pub fn run(args: GeodesicArgs) -> Result<(), Failure> {
     .map_err(|e| Failure::new(format!("{}: {e}", args.mesh)))?;
     let setup = solved.setup_time;
     let solve_time = solving.elapsed().saturating_sub(setup);
-    let fields = solved.fields;
     if let Some(bar) = bar {
         bar.finish_and_clear();
     }
-    if let Some(heat) = solved.heat.filter(|_| args.robust) {
+    if let Some(fallback) = &solved.fallback {
+        note(format!("warning: {}: {fallback}", args.mesh))?;
+    }
+    if let (Some(heat), Method::Heat(HeatOptions { robust: true, .. })) =
+        (solved.heat, solved.method)
+    {
         note(format!(
             "robust: edges lengthened by {:.3e}, {} intrinsic flips",
             heat.mollified_by, heat.flips
         ))?;
     }
-    let fields: Vec<Vec<f64>> = if args.normalize {
-        fields.iter().map(|f| geodesic::normalized(f)).collect()
-    } else {
-        fields
-    };
-    let mut csv = String::with_capacity(remap.len() * 12 * fields.len());
-    for &vertex in &remap {
-        let row: Vec<String> = fields
-            .iter()
-            .map(|field| match field[vertex as usize] {
-                d if d.is_finite() => d.to_string(),
-                _ => "inf".to_string(),
-            })
-            .collect();
-        csv.push_str(&row.join(","));
-        csv.push('\n');
-    }
-    write_output(Some(&args.output), csv.as_bytes())?;
+    let fields: Vec<Vec<f64>> = solved
+        .fields
+        .iter()
+        .zip(&file_sets)
+        .map(|(field, sources)| welded.in_file_order(field, sources))
+        .map(|field| match args.normalize {
+            true => geodesic::normalized(&field),
+            false => field,
+        })
+        .collect();
+    write_output(Some(&args.output), csv(&fields).as_bytes())?;
     let unreached = fields[0].iter().filter(|d| d.is_infinite()).count();
     note(format!(
         "{}: {} vertices ({} after welding), {} triangles; {}; load {:.1} ms, set-up {:.1} ms, solve {:.1} ms{}",
         args.mesh,
-        remap.len(),
-        welded.positions.len(),
-        welded.triangle_count(),
-        args.method_name(),
+        fields[0].len(),
+        count,
+        welded.mesh.triangle_count(),
+        solved.method.name(),
         loaded.as_secs_f64() * 1e3,
         setup.as_secs_f64() * 1e3,
         solve_time.as_secs_f64() * 1e3,
@@ -126,6 +122,24 @@ pub fn run(args: GeodesicArgs) -> Result<(), Failure> {
             String::new()
         }
     ))
+}
+
+/// One line per vertex, one column per field, `inf` where a field does not reach.
+fn csv(fields: &[Vec<f64>]) -> String {
+    let rows = fields.first().map_or(0, Vec::len);
+    let mut csv = String::with_capacity(rows * 12 * fields.len());
+    for vertex in 0..rows {
+        let row: Vec<String> = fields
+            .iter()
+            .map(|field| match field[vertex] {
+                d if d.is_finite() => d.to_string(),
+                _ => "inf".to_string(),
+            })
+            .collect();
+        csv.push_str(&row.join(","));
+        csv.push('\n');
+    }
+    csv
 }
 
 impl GeodesicArgs {
@@ -139,13 +153,9 @@ impl GeodesicArgs {
             MethodName::Dijkstra => Method::Dijkstra,
         }
     }
-
-    fn method_name(&self) -> &'static str {
-        self.method().name()
-    }
 }
 
-/// The source sets of the command line, checked against the vertex count.
+/// The source sets of the command line, checked against the file's vertex count.
 fn parse_sources(args: &GeodesicArgs, count: usize) -> Result<Vec<Vec<u32>>, Failure> {
     if args.sources.len() > 4 {
         return Err(Failure::new(format!(

@@ -1,7 +1,8 @@
-//! Distance fields as vertex attributes: a graph's field sources solved over its preview
-//! mesh and stored, normalised, in `Mesh::fields` for `VeneerSurface.fields`.
+//! Distance fields as vertex attributes: a graph's field sources (vertices counted as
+//! the mesh file lists them) solved over its preview mesh and stored, normalised, in
+//! `Mesh::fields` for `VeneerSurface.fields`.
 
-use super::{Method, fields, max_finite, welded_for_distances};
+use super::{Method, WeldedMesh, fields, max_finite};
 use crate::graph::FieldSource;
 use crate::mesh::Mesh;
 
@@ -22,7 +23,7 @@ pub enum FieldError {
     Heat(#[from] super::HeatError),
 }
 
-/// Checks field settings against a mesh of `count` vertices without solving anything:
+/// Checks field settings against a mesh file of `count` vertices without solving anything:
 /// at most four fields, sources on existing vertices, a source for every used slot, and
 /// settings the method accepts. `veneer check` asks this of what a render would solve.
 pub fn check_field_sources(
@@ -52,30 +53,32 @@ pub fn check_field_sources(
 /// Solves the fields of `sources` whose slot is marked in `used` over `mesh` and stores
 /// them in `mesh.fields`, each divided by its largest finite distance. Vertices a field
 /// never reaches read 1 (the material never gets there); unused or missing slots read 0.
-/// Nothing is solved, and `mesh.fields` stays empty, when no slot is used.
+/// Nothing is solved, and `mesh.fields` stays empty, when no slot is used. Returns a
+/// note for each field the robust heat method solved in place of the plain one.
 pub fn attach_fields(
     mesh: &mut Mesh,
     sources: &[FieldSource],
     used: [bool; 4],
     mut progress: impl FnMut(usize, usize),
-) -> Result<(), FieldError> {
-    check_field_sources(sources, mesh.positions.len(), used)?;
-    let count = mesh.positions.len();
+) -> Result<Vec<String>, FieldError> {
+    check_field_sources(sources, mesh.file_vertex_count(), used)?;
     let wanted: Vec<usize> = (0..sources.len()).filter(|&slot| used[slot]).collect();
     mesh.fields.clear();
+    let mut notes = Vec::new();
     if wanted.is_empty() {
-        return Ok(());
+        return Ok(notes);
     }
-    let (welded, remap) = welded_for_distances(mesh);
-    mesh.fields = vec![[0.0; 4]; count];
+    let welded = WeldedMesh::new(mesh);
     let mut methods: Vec<Method> = Vec::new();
     for &slot in &wanted {
         if !methods.contains(&sources[slot].method) {
             methods.push(sources[slot].method);
         }
     }
-    let total = wanted.len() * welded.positions.len();
+    let count = welded.mesh.positions.len();
+    let total = wanted.len() * count;
     let mut done = 0;
+    let mut attached = vec![[0.0; 4]; mesh.positions.len()];
     for method in methods {
         let slots: Vec<usize> = wanted
             .iter()
@@ -84,21 +87,20 @@ pub fn attach_fields(
             .collect();
         let sets: Vec<Vec<u32>> = slots
             .iter()
-            .map(|&slot| {
-                sources[slot]
-                    .sources
-                    .iter()
-                    .map(|&v| remap[v as usize])
-                    .collect()
-            })
+            .map(|&slot| welded.sources(&sources[slot].sources))
             .collect();
-        let solved = fields(&welded, &sets, method, |d, _| progress(done + d, total))?;
-        done += slots.len() * welded.positions.len();
+        let solved = fields(&welded.mesh, &sets, method, |d, _| {
+            progress(done + d, total)
+        })?;
+        done += slots.len() * count;
         for (&slot, field) in slots.iter().zip(&solved.fields) {
+            if let Some(fallback) = &solved.fallback {
+                notes.push(format!("field {slot}: {fallback}"));
+            }
             let farthest = max_finite(field);
-            for (vertex, &target) in remap.iter().enumerate() {
+            for (vertex, &target) in welded.of_vertex.iter().enumerate() {
                 let distance = field[target as usize];
-                mesh.fields[vertex][slot] = match distance.is_finite() {
+                attached[vertex][slot] = match distance.is_finite() {
                     true if farthest > 0.0 => (distance / farthest) as f32,
                     true => 0.0,
                     false => 1.0,
@@ -106,5 +108,6 @@ pub fn attach_fields(
             }
         }
     }
-    Ok(())
+    mesh.fields = attached;
+    Ok(notes)
 }

@@ -11,12 +11,16 @@ mod attach;
 mod delaunay;
 mod dijkstra;
 mod exact;
+mod fallback;
+mod file_order;
 mod heat;
 mod triangulation;
 
 pub use attach::{FieldError, attach_fields, check_field_sources};
 pub use dijkstra::edge_distances;
 pub use exact::exact_distances;
+pub use fallback::{Fallback, heat_solver};
+pub use file_order::WeldedMesh;
 pub use heat::{HeatError, HeatOptions, HeatSetup, HeatSolver};
 pub use triangulation::{NO_TWIN, Triangulation};
 
@@ -79,11 +83,17 @@ pub struct Solved {
     pub setup_time: Duration,
     /// What the heat method's set-up did, when it ran.
     pub heat: Option<HeatSetup>,
+    /// The method the fields were computed with: the one asked for, or the robust heat
+    /// method where the plain one could not be set up.
+    pub method: Method,
+    /// Why the robust heat method replaced the plain one, when it did.
+    pub fallback: Option<Fallback>,
 }
 
 /// One field per set of sources (a material spreading from each set), sharing the set-up
 /// of the mesh between them (the heat method factors once). Progress counts vertices
-/// over all fields.
+/// over all fields. The plain heat method falls back to the robust one when it cannot
+/// be set up ([`heat_solver`]).
 pub fn fields(
     mesh: &Mesh,
     source_sets: &[Vec<u32>],
@@ -93,9 +103,19 @@ pub fn fields(
     let started = Instant::now();
     let n = mesh.positions.len();
     let total = n * source_sets.len();
-    let heat = match method {
-        Method::Heat(options) => Some(HeatSolver::new(Triangulation::from_mesh(mesh), options)?),
-        _ => None,
+    let (heat, fallback) = match method {
+        Method::Heat(options) => {
+            let (solver, fallback) = heat_solver(mesh, options)?;
+            (Some(solver), fallback)
+        }
+        _ => (None, None),
+    };
+    let method = match (method, &fallback) {
+        (Method::Heat(options), Some(_)) => Method::Heat(HeatOptions {
+            robust: true,
+            ..options
+        }),
+        _ => method,
     };
     let surface = (method == Method::Exact).then(|| Triangulation::from_mesh(mesh));
     let setup_time = started.elapsed();
@@ -113,6 +133,8 @@ pub fn fields(
         fields,
         setup_time,
         heat: heat.map(|solver| solver.setup()),
+        method,
+        fallback,
     })
 }
 

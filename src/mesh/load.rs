@@ -1,7 +1,7 @@
 //! Reading meshes from OBJ, STL, PLY and glTF/GLB files. Every loader checks its indices
 //! and coordinates, so a broken file is an error naming the file, never a panic.
 
-use super::Mesh;
+use super::{FileVertices, Mesh};
 use std::path::Path;
 
 /// A mesh file that could not be read.
@@ -16,11 +16,14 @@ pub struct MeshError {
 pub const EXTENSIONS: [&str; 5] = ["obj", "stl", "ply", "gltf", "glb"];
 
 /// Triangles as positions and indices, before normals and texture coordinates are settled.
-struct Soup {
-    positions: Vec<[f32; 3]>,
-    normals: Option<Vec<[f32; 3]>>,
-    uvs: Option<Vec<[f32; 2]>>,
-    indices: Vec<u32>,
+pub(super) struct Soup {
+    pub positions: Vec<[f32; 3]>,
+    pub normals: Option<Vec<[f32; 3]>>,
+    pub uvs: Option<Vec<[f32; 2]>>,
+    pub indices: Vec<u32>,
+    /// Where each vertex came from in the file, when it is not the file's vertex of
+    /// the same number.
+    pub file_vertices: Option<FileVertices>,
 }
 
 /// Reads a mesh file, by extension. Missing normals are computed (area-weighted), missing
@@ -49,7 +52,7 @@ pub fn load(path: &Path) -> Result<Mesh, MeshError> {
 /// embedded buffers are read.
 pub fn from_bytes(extension: &str, bytes: &[u8], folder: Option<&Path>) -> Result<Mesh, String> {
     let soup = match extension {
-        "obj" => obj(bytes),
+        "obj" => super::obj::read(bytes),
         "stl" => stl(bytes),
         "ply" => ply(bytes),
         "gltf" | "glb" => gltf(bytes, folder),
@@ -105,6 +108,7 @@ fn finish(soup: Soup) -> Result<Mesh, String> {
         uvs,
         indices: soup.indices,
         fields: Vec::new(),
+        file_vertices: soup.file_vertices,
     })
 }
 
@@ -123,45 +127,6 @@ pub fn vertex_normals(positions: &[[f32; 3]], indices: &[u32]) -> Vec<[f32; 3]> 
         .collect()
 }
 
-fn obj(bytes: &[u8]) -> Result<Soup, String> {
-    let options = tobj::LoadOptions {
-        triangulate: true,
-        single_index: true,
-        ..Default::default()
-    };
-    // Materials play no part in a preview mesh: their libraries are not read.
-    let (models, _) = tobj::load_obj_buf(&mut &bytes[..], &options, |_| {
-        Ok((Vec::new(), Default::default()))
-    })
-    .map_err(|e| e.to_string())?;
-    let mut soup = Soup {
-        positions: vec![],
-        normals: Some(vec![]),
-        uvs: Some(vec![]),
-        indices: vec![],
-    };
-    for model in models {
-        let mesh = model.mesh;
-        let base = soup.positions.len() as u32;
-        let count = mesh.positions.len() / 3;
-        soup.positions
-            .extend(mesh.positions.chunks_exact(3).map(|p| [p[0], p[1], p[2]]));
-        soup.indices
-            .extend(mesh.indices.iter().map(|&i| base.saturating_add(i)));
-        match (&mut soup.normals, mesh.normals.len() == count * 3) {
-            (Some(normals), true) => {
-                normals.extend(mesh.normals.chunks_exact(3).map(|n| [n[0], n[1], n[2]]))
-            }
-            (normals, _) => *normals = None,
-        }
-        match (&mut soup.uvs, mesh.texcoords.len() == count * 2) {
-            (Some(uvs), true) => uvs.extend(mesh.texcoords.chunks_exact(2).map(|t| [t[0], t[1]])),
-            (uvs, _) => *uvs = None,
-        }
-    }
-    Ok(soup)
-}
-
 fn stl(bytes: &[u8]) -> Result<Soup, String> {
     let mesh = stl_io::read_stl(&mut std::io::Cursor::new(bytes)).map_err(|e| e.to_string())?;
     let indices = mesh
@@ -175,6 +140,7 @@ fn stl(bytes: &[u8]) -> Result<Soup, String> {
         normals: None,
         uvs: None,
         indices,
+        file_vertices: None,
     })
 }
 
@@ -230,6 +196,7 @@ fn ply(bytes: &[u8]) -> Result<Soup, String> {
         normals,
         uvs: None,
         indices,
+        file_vertices: None,
     })
 }
 
@@ -246,6 +213,7 @@ fn gltf(bytes: &[u8], folder: Option<&Path>) -> Result<Soup, String> {
         normals: Some(vec![]),
         uvs: Some(vec![]),
         indices: vec![],
+        file_vertices: None,
     };
     let scene = document
         .default_scene()

@@ -1,12 +1,15 @@
 //! Triangle meshes: procedural primitives and mesh files, for the preview and the CLI.
 
 mod analysis;
+mod file_vertices;
 mod implicit;
 mod load;
+mod obj;
 mod pick;
 mod primitives;
 
 pub use analysis::{MeshReport, analyse, vertex_components, weld};
+pub use file_vertices::FileVertices;
 pub use implicit::{double_torus, polygonize};
 pub use load::{EXTENSIONS, MeshError, from_bytes, load, vertex_normals};
 pub use pick::pick_vertex;
@@ -34,6 +37,9 @@ pub struct Mesh {
     /// Per-vertex distance fields for `VeneerSurface.fields`, normalised to [0, 1];
     /// empty until computed (the shader then reads 0).
     pub fields: Vec<[f32; 4]>,
+    /// Where each vertex came from in the mesh file, when the loader split or reordered
+    /// the file's vertices; `None` when the vertices are the file's, one for one.
+    pub file_vertices: Option<FileVertices>,
 }
 
 impl Mesh {
@@ -45,7 +51,7 @@ impl Mesh {
             uvs: vec![[0.0; 2]; positions.len()],
             positions,
             indices,
-            fields: Vec::new(),
+            ..Mesh::default()
         }
     }
 

@@ -88,6 +88,8 @@ pub fn mesh_with_fields(
 ) -> Result<crate::mesh::Mesh, RenderError> {
     let mut mesh =
         crate::mesh::preview_mesh(name).map_err(|error| RenderError(error.to_string()))?;
+    // A field the robust heat method solved in place of the plain one is as good: the
+    // render has no use for the notes saying so (the editor shows them).
     crate::geodesic::attach_fields(&mut mesh, &graph.preview.fields, uses.fields, progress)
         .map_err(|error| RenderError(format!("{name}: {error}")))?;
     Ok(mesh)
