@@ -10,6 +10,7 @@ mod export;
 mod fuzz_regressions;
 mod geodesic;
 mod graph_files;
+mod hostile_files;
 mod limits;
 mod lint;
 mod meshes;
