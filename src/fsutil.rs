@@ -103,7 +103,10 @@ fn too_large(limit: ReadLimit) -> io::Error {
     };
     io::Error::new(
         io::ErrorKind::FileTooLarge,
-        format!("the file is larger than {size}, the limit for {}", limit.what),
+        format!(
+            "the file is larger than {size}, the limit for {}",
+            limit.what
+        ),
     )
 }
 
@@ -300,15 +303,28 @@ mod tests {
     fn stale_temporaries_of_ours_are_removed_and_fresh_ones_and_others_kept() {
         let dir = folder("stale");
         let old = std::time::SystemTime::now() - STALE_TEMPORARY_AGE * 2;
-        for name in [".veneer-stale1.tmp", ".other-stale.tmp", "keep.veneer-x.tmp"] {
-            File::create(dir.join(name)).unwrap().set_modified(old).unwrap();
+        for name in [
+            ".veneer-stale1.tmp",
+            ".other-stale.tmp",
+            "keep.veneer-x.tmp",
+        ] {
+            File::create(dir.join(name))
+                .unwrap()
+                .set_modified(old)
+                .unwrap();
         }
         File::create(dir.join(".veneer-fresh1.tmp")).unwrap();
         std::os::unix::fs::symlink("/nowhere", dir.join(".veneer-link01.tmp")).unwrap();
         write_atomic(&dir.join("out.txt"), b"new").unwrap();
         assert_eq!(
             names(&dir),
-            [".other-stale.tmp", ".veneer-fresh1.tmp", ".veneer-link01.tmp", "keep.veneer-x.tmp", "out.txt"]
+            [
+                ".other-stale.tmp",
+                ".veneer-fresh1.tmp",
+                ".veneer-link01.tmp",
+                "keep.veneer-x.tmp",
+                "out.txt"
+            ]
         );
         std::fs::remove_dir_all(&dir).unwrap();
     }
@@ -329,7 +345,10 @@ mod tests {
         let zero = read_limited(Path::new("/dev/zero"), tiny).unwrap_err();
         assert!(zero.to_string().contains("a character device"), "{zero}");
         let folder_error = read_limited(&dir, tiny).unwrap_err();
-        assert!(folder_error.to_string().contains("a folder"), "{folder_error}");
+        assert!(
+            folder_error.to_string().contains("a folder"),
+            "{folder_error}"
+        );
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -66,16 +66,23 @@ struct Input {
 fn root() -> &'static Path {
     static ROOT: OnceLock<PathBuf> = OnceLock::new();
     ROOT.get_or_init(|| {
-        let root = std::env::temp_dir().join(format!("veneer-fuzz-gltf-uri-{}", std::process::id()));
+        let root =
+            std::env::temp_dir().join(format!("veneer-fuzz-gltf-uri-{}", std::process::id()));
         let model = root.join("model");
         std::fs::create_dir_all(model.join("sub")).expect("folders");
         let triangle = |value: f32| -> Vec<u8> {
-            (0..9).flat_map(|k| if k % 4 == 0 { value } else { 0.5 }.to_le_bytes()).collect()
+            (0..9)
+                .flat_map(|k| if k % 4 == 0 { value } else { 0.5 }.to_le_bytes())
+                .collect()
         };
         std::fs::write(root.join("secret.bin"), triangle(CANARY)).expect("secret");
         std::fs::write(model.join("inside.bin"), triangle(1.0)).expect("inside");
         std::fs::write(model.join("sub/inside.bin"), triangle(2.0)).expect("inside");
-        for (link, target) in [("escape.bin", "../secret.bin"), ("up", ".."), ("sub/secret.bin", "../../secret.bin")] {
+        for (link, target) in [
+            ("escape.bin", "../secret.bin"),
+            ("up", ".."),
+            ("sub/secret.bin", "../../secret.bin"),
+        ] {
             let _ = std::os::unix::fs::symlink(target, model.join(link));
         }
         root.canonicalize().expect("root")

@@ -3,8 +3,8 @@
 pub mod check;
 mod io;
 pub mod kind;
-mod node_file;
 pub mod layout;
+mod node_file;
 mod presets;
 pub mod signature;
 pub mod value;

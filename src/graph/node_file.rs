@@ -35,7 +35,10 @@ impl<'de> Deserialize<'de> for Inputs {
             fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
                 f.write_str("a map from input names to values")
             }
-            fn visit_map<A: serde::de::MapAccess<'de>>(self, mut map: A) -> Result<Inputs, A::Error> {
+            fn visit_map<A: serde::de::MapAccess<'de>>(
+                self,
+                mut map: A,
+            ) -> Result<Inputs, A::Error> {
                 let mut inputs = Inputs::default();
                 while let Some((pin, value)) = map.next_entry::<String, Value>()? {
                     if inputs.values.contains_key(&pin) {

@@ -25,7 +25,9 @@ pub(super) fn import(
         let index = buffer.index();
         let data = match buffer.source() {
             gltf::buffer::Source::Bin => blob.take().ok_or_else(|| {
-                format!("buffer {index} refers to the binary chunk of a GLB file, but there is none")
+                format!(
+                    "buffer {index} refers to the binary chunk of a GLB file, but there is none"
+                )
             })?,
             gltf::buffer::Source::Uri(uri) if uri.starts_with("data:") => {
                 // Decoded by the glTF crate, which reads no file without a folder.
@@ -34,8 +36,8 @@ pub(super) fn import(
                     .0
             }
             gltf::buffer::Source::Uri(uri) => {
-                let path =
-                    inside(uri, folder).map_err(|why| format!("buffer {index}: URI '{uri}' {why}"))?;
+                let path = inside(uri, folder)
+                    .map_err(|why| format!("buffer {index}: URI '{uri}' {why}"))?;
                 let limit = ReadLimit {
                     what: "the files of one glTF's buffers together",
                     bytes: left,

@@ -67,8 +67,7 @@ pub(super) fn read(bytes: &[u8], folder: Option<&Path>) -> Result<Soup, String> 
                 &[DataType::U8, DataType::U16, DataType::F32],
                 Dimensions::Vec2,
             );
-            let reader =
-                primitive.reader(|buffer| buffers.get(buffer.index()).map(Vec::as_slice));
+            let reader = primitive.reader(|buffer| buffers.get(buffer.index()).map(Vec::as_slice));
             let Some(positions) = reader.read_positions() else {
                 continue;
             };

@@ -102,7 +102,14 @@ fn a_golden_image_that_is_a_device_is_refused_at_once() {
     let graph = root("graphs/wood.ron");
     let output = run_in(
         &dir,
-        &["snapshot", graph.to_str().unwrap(), "--golden", "golden", "--size", "16"],
+        &[
+            "snapshot",
+            graph.to_str().unwrap(),
+            "--golden",
+            "golden",
+            "--size",
+            "16",
+        ],
     );
     refused_with(
         &output,
@@ -203,7 +210,12 @@ fn gltf_buffers_are_read_only_from_the_files_folder() {
         "data:application/octet-stream;base64,{}",
         "AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"
     );
-    for uri in ["inside.bin", "sub/inside%20one.bin", "sub/../inside.bin", &data] {
+    for uri in [
+        "inside.bin",
+        "sub/inside%20one.bin",
+        "sub/../inside.bin",
+        &data,
+    ] {
         std::fs::write(model.join("good.gltf"), triangle_gltf(uri)).unwrap();
         let mesh = veneer::mesh::load(&model.join("good.gltf")).unwrap_or_else(|e| panic!("{e}"));
         assert_eq!(mesh.positions.concat(), INSIDE, "{uri}");
@@ -218,10 +230,7 @@ fn a_link_planted_where_the_temporary_file_would_go_is_left_alone() {
     std::fs::write(&victim, "precious").unwrap();
     // Veneer used to write `.o.wgsl.PID.tmp` without O_EXCL: links at the next few
     // thousand process ids catch the next veneer's.
-    let next = std::process::Command::new("true")
-        .spawn()
-        .unwrap()
-        .id();
+    let next = std::process::Command::new("true").spawn().unwrap().id();
     for pid in next..next + 5000 {
         symlink(&victim, dir.join(format!(".o.wgsl.{pid}.tmp"))).unwrap();
     }
@@ -285,7 +294,10 @@ fn graph_files_get_messages_with_positions() {
     let output = run_in(&dir, &["check", "deep.ron"]);
     refused(
         &output,
-        &["deep.ron:3:", "values are nested too deeply (more than 128 levels)"],
+        &[
+            "deep.ron:3:",
+            "values are nested too deeply (more than 128 levels)",
+        ],
     );
     assert!(!String::from_utf8_lossy(&output.stderr).contains("ron::Options"));
     // An input given twice.
@@ -298,7 +310,10 @@ fn graph_files_get_messages_with_positions() {
     std::fs::write(dir.join("twice.ron"), twice).unwrap();
     refused(
         &run_in(&dir, &["check", "twice.ron"]),
-        &["twice.ron:11:", "node 'warp space' (#2): input 'scale' is given twice"],
+        &[
+            "twice.ron:11:",
+            "node 'warp space' (#2): input 'scale' is given twice",
+        ],
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
