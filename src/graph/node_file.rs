@@ -5,6 +5,7 @@
 use super::{Node, NodeId, NodeKind, Value};
 use serde::Deserialize;
 use std::collections::BTreeMap;
+use std::collections::btree_map::Entry;
 
 /// A node as the file gives it, before its inputs are checked for repeated pins.
 #[derive(Deserialize)]
@@ -41,10 +42,13 @@ impl<'de> Deserialize<'de> for Inputs {
             ) -> Result<Inputs, A::Error> {
                 let mut inputs = Inputs::default();
                 while let Some((pin, value)) = map.next_entry::<String, Value>()? {
-                    if inputs.values.contains_key(&pin) {
-                        inputs.repeated.get_or_insert(pin);
-                    } else {
-                        inputs.values.insert(pin, value);
+                    match inputs.values.entry(pin) {
+                        Entry::Occupied(given) => {
+                            inputs.repeated.get_or_insert_with(|| given.key().clone());
+                        }
+                        Entry::Vacant(new) => {
+                            new.insert(value);
+                        }
                     }
                 }
                 Ok(inputs)
