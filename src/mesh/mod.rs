@@ -1,6 +1,8 @@
 //! Triangle meshes: procedural primitives and mesh files, for the preview and the CLI.
 
 mod analysis;
+mod gltf_buffers;
+mod gltf_scene;
 mod implicit;
 mod load;
 mod pick;
