@@ -34,7 +34,7 @@ pub fn autosave(path: &Path, recovery: &Recovery) -> std::io::Result<()> {
 
 /// The content of the recovery file `path`, if there is a readable one.
 pub fn pending(path: &Path) -> Option<Recovery> {
-    ron::from_str(&std::fs::read_to_string(path).ok()?).ok()
+    ron::from_str(&read_ron(path)?).ok()
 }
 
 /// Removes the recovery file (after a clean exit, or once the user has decided).
@@ -49,8 +49,7 @@ pub fn recent_path(recovery_file: &Path) -> PathBuf {
 
 /// The recent files saved by an earlier session (none if unreadable).
 pub fn load_recent(recovery_file: &Path) -> Vec<PathBuf> {
-    std::fs::read_to_string(recent_path(recovery_file))
-        .ok()
+    read_ron(&recent_path(recovery_file))
         .and_then(|text| ron::from_str(&text).ok())
         .unwrap_or_default()
 }
@@ -64,4 +63,11 @@ pub fn save_recent(recovery_file: &Path, recent: &[PathBuf]) -> std::io::Result<
     let text = ron::ser::to_string_pretty(&recent, ron::ser::PrettyConfig::new())
         .map_err(std::io::Error::other)?;
     crate::fsutil::write_atomic(&path, text.as_bytes())
+}
+
+/// The text of a RON file of ours, if it is a readable regular file within the limit
+/// for graph files.
+fn read_ron(path: &Path) -> Option<String> {
+    let bytes = crate::fsutil::read_limited(path, crate::fsutil::ReadLimit::GRAPH).ok()?;
+    String::from_utf8(bytes).ok()
 }

@@ -34,11 +34,19 @@ impl fmt::Display for LoadError {
 
 impl std::error::Error for LoadError {}
 
-/// Parses a graph from RON text. Errors carry the line and column, and quote at most
-/// a few lines of the file (a parser message can quote a whole unknown name).
+/// Parses a graph from RON text (a leading byte-order mark is skipped). Errors carry the
+/// line and column, and quote at most a few lines of the file (a parser message can
+/// quote a whole unknown name).
 pub fn from_ron(text: &str) -> Result<Graph, LoadError> {
-    let graph: Graph = ron::from_str(text).map_err(|err| {
-        let message = err.code.to_string();
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    let options = ron::Options::default().with_recursion_limit(RECURSION_LIMIT);
+    let graph: Graph = options.from_str(text).map_err(|err| {
+        let message = match err.code {
+            ron::Error::ExceededRecursionLimit => {
+                format!("values are nested too deeply (more than {RECURSION_LIMIT} levels)")
+            }
+            code => code.to_string(),
+        };
         let (clipped, cut) = clip(&message, 2 * MAX_TEXT_CHARS);
         LoadError {
             path: None,
@@ -63,17 +71,41 @@ pub fn from_ron(text: &str) -> Result<Graph, LoadError> {
     Ok(graph)
 }
 
-/// Reads a graph file.
+/// How deeply values may nest (the RON parser's default), which keeps its recursion
+/// well inside the stack.
+const RECURSION_LIMIT: usize = 128;
+
+/// Reads a graph file: a regular file of at most [`fsutil::ReadLimit::GRAPH`], in UTF-8.
 pub fn load(path: &Path) -> Result<Graph, LoadError> {
-    let text = std::fs::read_to_string(path).map_err(|err| LoadError {
+    let failed = |position, message| LoadError {
         path: Some(path.to_path_buf()),
-        position: None,
-        message: format!("cannot read: {err}"),
+        position,
+        message,
+    };
+    let bytes = fsutil::read_limited(path, fsutil::ReadLimit::GRAPH)
+        .map_err(|err| failed(None, format!("cannot read: {err}")))?;
+    let text = std::str::from_utf8(&bytes).map_err(|err| {
+        let (valid, rest) = bytes.split_at(err.valid_up_to());
+        failed(
+            Some(end_position(valid)),
+            format!("not UTF-8 text: byte 0x{:02X} is not a character", rest[0]),
+        )
     })?;
-    from_ron(&text).map_err(|err| LoadError {
+    from_ron(text).map_err(|err| LoadError {
         path: Some(path.to_path_buf()),
         ..err
     })
+}
+
+/// The 1-based line and column just after `valid` (UTF-8 text up to there), counting
+/// characters as the RON parser's positions do.
+fn end_position(valid: &[u8]) -> (usize, usize) {
+    let text = std::str::from_utf8(valid).unwrap_or_default();
+    let line_start = text.rfind('\n').map_or(0, |k| k + 1);
+    (
+        text.matches('\n').count() + 1,
+        text[line_start..].chars().count() + 1,
+    )
 }
 
 /// The canonical RON text of a graph: nodes by id, wires sorted, so the same graph

@@ -5,6 +5,7 @@ mod ids;
 mod io;
 pub mod kind;
 pub mod layout;
+mod node_file;
 mod presets;
 mod preview;
 pub mod signature;
@@ -52,19 +53,18 @@ impl fmt::Display for NodeId {
     }
 }
 
-/// One node of a material graph.
+/// One node of a material graph. A file may leave out its label, inputs and position;
+/// one that gives an input twice is refused (see `node_file.rs`).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(try_from = "node_file::NodeFile")]
 pub struct Node {
     pub id: NodeId,
     /// The artist's name for the node; also names its variables in generated WGSL.
-    #[serde(default)]
     pub label: String,
     pub kind: NodeKind,
     /// Constant values of unconnected inputs that differ from, or pin down, the defaults.
-    #[serde(default)]
     pub inputs: BTreeMap<String, Value>,
     /// Position in the editor canvas.
-    #[serde(default)]
     pub position: (f32, f32),
 }
 

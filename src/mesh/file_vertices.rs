@@ -4,9 +4,12 @@
 //!
 //! Per format, the file's vertices are: OBJ — its `v` lines; PLY — the `vertex`
 //! elements; glTF/GLB — the entries of the POSITION accessors of the scene's triangle
-//! primitives, one primitive after another (for a single primitive, its accessor's
-//! order); STL, which repeats every corner in each facet — each distinct position (bit for
-//! bit) in the order it first appears, facet by facet; a primitive — its own vertices.
+//! primitives, one primitive after another, nodes depth first in the order the scene
+//! and each node list them (a mesh that several nodes use counts once per node; for a
+//! single primitive, simply its accessor's order); STL, which repeats every corner in
+//! each facet — each distinct position (bit for bit) in the order it first appears,
+//! facet by facet; a primitive — its own vertices. Vertices no triangle uses count too
+//! (they are never reached).
 
 use super::Mesh;
 

@@ -2,6 +2,7 @@
 //! and coordinates, so a broken file is an error naming the file, never a panic.
 
 use super::{FileVertices, Mesh};
+use crate::fsutil::{ReadLimit, read_limited};
 use std::path::Path;
 
 /// A mesh file that could not be read.
@@ -26,8 +27,8 @@ pub(super) struct Soup {
     pub file_vertices: Option<FileVertices>,
 }
 
-/// Reads a mesh file, by extension. Missing normals are computed (area-weighted), missing
-/// texture coordinates are zero.
+/// Reads a mesh file, by extension: a regular file of at most [`ReadLimit::MESH`].
+/// Missing normals are computed (area-weighted), missing texture coordinates are zero.
 pub fn load(path: &Path) -> Result<Mesh, MeshError> {
     let fail = |message: String| MeshError {
         path: path.display().to_string(),
@@ -43,19 +44,19 @@ pub fn load(path: &Path) -> Result<Mesh, MeshError> {
             EXTENSIONS.join(", ")
         )));
     }
-    let bytes = std::fs::read(path).map_err(|error| fail(error.to_string()))?;
+    let bytes = read_limited(path, ReadLimit::MESH).map_err(|error| fail(error.to_string()))?;
     from_bytes(&extension, &bytes, path.parent()).map_err(fail)
 }
 
 /// Parses the content of a mesh file in the format its lower-case `extension` names.
-/// `folder` is where a glTF file's external buffers are read from; without one, only
-/// embedded buffers are read.
+/// `folder` is the glTF file's folder, the only place its external buffers are read
+/// from; without one, only embedded buffers are read.
 pub fn from_bytes(extension: &str, bytes: &[u8], folder: Option<&Path>) -> Result<Mesh, String> {
     let soup = match extension {
         "obj" => super::obj::read(bytes),
         "stl" => stl(bytes),
         "ply" => ply(bytes),
-        "gltf" | "glb" => gltf(bytes, folder),
+        "gltf" | "glb" => super::gltf_scene::read(bytes, folder),
         _ => Err(format!(
             "unknown mesh format '{extension}' (expected one of: {})",
             EXTENSIONS.join(", ")
@@ -182,10 +183,17 @@ fn ply(bytes: &[u8]) -> Result<Soup, String> {
             Property::ListUInt(v) => v.iter().map(|&i| i64::from(i)).collect(),
             _ => return Err(format!("face {k}: vertex indices are not an integer list")),
         };
-        let polygon: Vec<u32> = polygon
+        let polygon = polygon
             .into_iter()
-            .map(|i| u32::try_from(i).unwrap_or(u32::MAX))
-            .collect();
+            .map(|i| {
+                u32::try_from(i).map_err(|_| {
+                    format!(
+                        "face {k} refers to vertex {i}, but there are only {}",
+                        positions.len()
+                    )
+                })
+            })
+            .collect::<Result<Vec<u32>, String>>()?;
         for corner in 1..polygon.len().saturating_sub(1) {
             indices.extend([polygon[0], polygon[corner], polygon[corner + 1]]);
         }
@@ -198,127 +206,4 @@ fn ply(bytes: &[u8]) -> Result<Soup, String> {
         indices,
         file_vertices: None,
     })
-}
-
-fn gltf(bytes: &[u8], folder: Option<&Path>) -> Result<Soup, String> {
-    use gltf::Semantic;
-    use gltf::accessor::{DataType, Dimensions};
-    let gltf::Gltf { document, blob } =
-        gltf::Gltf::from_slice_without_validation(bytes).map_err(|e| e.to_string())?;
-    position_accessors_exist(document.as_json())?;
-    let document = gltf::Document::from_json(document.into_json()).map_err(|e| e.to_string())?;
-    let buffers = gltf::import_buffers(&document, folder, blob).map_err(|e| e.to_string())?;
-    let mut soup = Soup {
-        positions: vec![],
-        normals: Some(vec![]),
-        uvs: Some(vec![]),
-        indices: vec![],
-        file_vertices: None,
-    };
-    let scene = document
-        .default_scene()
-        .or_else(|| document.scenes().next())
-        .ok_or("the file has no scene")?;
-    let mut stack: Vec<(gltf::Node, glam::Mat4)> =
-        scene.nodes().map(|n| (n, glam::Mat4::IDENTITY)).collect();
-    // Nodes form trees; a file whose children loop back is read once per node.
-    let mut visited = vec![false; document.nodes().len()];
-    while let Some((node, parent)) = stack.pop() {
-        if std::mem::replace(&mut visited[node.index()], true) {
-            continue;
-        }
-        let transform = parent * glam::Mat4::from_cols_array_2d(&node.transform().matrix());
-        stack.extend(node.children().map(|child| (child, transform)));
-        let Some(mesh) = node.mesh() else { continue };
-        let normal_matrix = glam::Mat3::from_mat4(transform).inverse().transpose();
-        for primitive in mesh
-            .primitives()
-            .filter(|p| p.mode() == gltf::mesh::Mode::Triangles)
-        {
-            // The glTF crate trusts each accessor's type (and reaches `unreachable!` on
-            // float indices; found by fuzzing): only the types the format allows are read.
-            let typed = |semantic, types: &[DataType], dimensions| {
-                primitive.get(&semantic).is_none_or(|accessor| {
-                    types.contains(&accessor.data_type()) && accessor.dimensions() == dimensions
-                })
-            };
-            let integers = [DataType::U8, DataType::U16, DataType::U32];
-            let indices_typed = primitive.indices().is_none_or(|accessor| {
-                integers.contains(&accessor.data_type())
-                    && accessor.dimensions() == Dimensions::Scalar
-            });
-            if !typed(Semantic::Positions, &[DataType::F32], Dimensions::Vec3) || !indices_typed {
-                return Err(format!(
-                    "mesh {}, primitive {}: positions must be float VEC3 and indices unsigned integer SCALAR",
-                    mesh.index(),
-                    primitive.index()
-                ));
-            }
-            let normals_typed = typed(Semantic::Normals, &[DataType::F32], Dimensions::Vec3);
-            let uvs_typed = typed(
-                Semantic::TexCoords(0),
-                &[DataType::U8, DataType::U16, DataType::F32],
-                Dimensions::Vec2,
-            );
-            let reader =
-                primitive.reader(|buffer| buffers.get(buffer.index()).map(|data| &data.0[..]));
-            let Some(positions) = reader.read_positions() else {
-                continue;
-            };
-            let base = soup.positions.len() as u32;
-            let positions: Vec<[f32; 3]> = positions
-                .map(|p| transform.transform_point3(p.into()).to_array())
-                .collect();
-            let count = positions.len() as u32;
-            match reader.read_indices() {
-                Some(indices) => soup
-                    .indices
-                    .extend(indices.into_u32().map(|i| base.saturating_add(i))),
-                None => soup
-                    .indices
-                    .extend((0..count).map(|i| base.saturating_add(i))),
-            }
-            match (
-                &mut soup.normals,
-                normals_typed.then(|| reader.read_normals()).flatten(),
-            ) {
-                (Some(normals), Some(read)) => normals.extend(read.map(|n| {
-                    (normal_matrix * glam::Vec3::from(n))
-                        .normalize_or(glam::Vec3::Y)
-                        .to_array()
-                })),
-                (normals, _) => *normals = None,
-            }
-            match (
-                &mut soup.uvs,
-                uvs_typed.then(|| reader.read_tex_coords(0)).flatten(),
-            ) {
-                (Some(uvs), Some(read)) => uvs.extend(read.into_f32()),
-                (uvs, _) => *uvs = None,
-            }
-            soup.positions.extend(positions);
-        }
-    }
-    Ok(soup)
-}
-
-/// Checks that every primitive's POSITION accessor exists, before the glTF crate's own
-/// validation, which looks that accessor up without checking (and panics; found by
-/// fuzzing, gltf-json 1.4.1).
-fn position_accessors_exist(json: &gltf::json::Root) -> Result<(), String> {
-    for (m, mesh) in json.meshes.iter().enumerate() {
-        for (p, primitive) in mesh.primitives.iter().enumerate() {
-            let position = gltf::json::validation::Checked::Valid(gltf::Semantic::Positions);
-            if let Some(accessor) = primitive.attributes.get(&position)
-                && accessor.value() >= json.accessors.len()
-            {
-                return Err(format!(
-                    "mesh {m}, primitive {p}: POSITION refers to accessor {}, but there are only {}",
-                    accessor.value(),
-                    json.accessors.len()
-                ));
-            }
-        }
-    }
-    Ok(())
 }

@@ -2,6 +2,8 @@
 
 mod analysis;
 mod file_vertices;
+mod gltf_buffers;
+mod gltf_scene;
 mod implicit;
 mod load;
 mod obj;

@@ -8,6 +8,7 @@ mod record;
 pub use compare::{Comparison, Tolerance, compare, heat_map, ssim};
 pub use record::{SnapshotRecord, fnv1a};
 
+use crate::fsutil::{ReadLimit, read_limited};
 use crate::graph::{Basis, Graph, NodeKind};
 use crate::render::{GpuContext, Image, View, render_graph};
 use std::path::{Path, PathBuf};
@@ -228,17 +229,27 @@ pub fn check(
             reasons,
         }))
     };
-    let Ok(golden_bytes) = std::fs::read(golden) else {
-        let reason = format!(
-            "no golden at {}: approve this render with --update or {UPDATE_VARIABLE}=1",
-            golden.display()
-        );
-        return mismatch(None, current.tolerance, vec![reason]);
+    let golden_bytes = match read_limited(golden, ReadLimit::IMAGE) {
+        Ok(bytes) => bytes,
+        Err(error) if error.kind() == std::io::ErrorKind::NotFound => {
+            let reason = format!(
+                "no golden at {}: approve this render with --update or {UPDATE_VARIABLE}=1",
+                golden.display()
+            );
+            return mismatch(None, current.tolerance, vec![reason]);
+        }
+        Err(error) => {
+            return Err(SnapshotError(format!(
+                "{}: cannot read: {error}",
+                golden.display()
+            )));
+        }
     };
     let expected = Image::from_png(&golden_bytes)
         .map_err(|error| SnapshotError(format!("{}: {error}", golden.display())))?;
-    let recorded: Option<SnapshotRecord> = std::fs::read_to_string(&sidecar)
+    let recorded: Option<SnapshotRecord> = read_limited(&sidecar, ReadLimit::GRAPH)
         .ok()
+        .and_then(|bytes| String::from_utf8(bytes).ok())
         .and_then(|text| ron::from_str(&text).ok());
     let same_adapter = recorded
         .as_ref()

@@ -4,14 +4,16 @@
 mod bake;
 mod big_graphs;
 mod cli;
+mod cli_contract;
 mod cpu_gpu;
 mod detail;
 mod errors;
 mod export;
 mod fuzz_regressions;
 mod geodesic;
-mod hostile_cli;
 mod graph_files;
+mod hostile_cli;
+mod hostile_files;
 mod hostile_scale;
 mod limits;
 mod lint;

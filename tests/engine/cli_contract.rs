@@ -1,0 +1,280 @@
+//! The command-line contract under generated hostile input. Argument vectors are built
+//! from every subcommand and from hostile values — sizes and counts from 0 to past
+//! memory, non-numbers, special files (`/dev/zero`, a FIFO, a folder, a link to
+//! `/dev/zero`), missing and full outputs — and the real binary must, for each:
+//! exit 0, 1 or 2 with a message when not 0, never panic nor die by a signal, finish
+//! within a time limit under a 6 GiB address-space limit, and touch no file but its
+//! outputs. The generator is seeded, so a failure names a case that replays.
+
+use crate::support::root;
+use proptest::prelude::*;
+use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant, SystemTime};
+
+/// Cases per run: each starts the binary once (a GPU context for most).
+const CASES: u32 = 96;
+/// Longer than any refused or small command takes; a hang passes it.
+const TIME_LIMIT: Duration = Duration::from_secs(30);
+/// The address space a command may take: far above what these inputs need, far below
+/// what reading `/dev/zero` or an unbounded allocation reaches.
+const ADDRESS_SPACE: u64 = 6 << 30;
+
+/// Inputs every case's folder holds; the hostile ones are made by [`fixture`].
+const GRAPHS: &[&str] = &["wood.ron", "fields.ron"];
+const HOSTILE_GRAPHS: &[&str] = &[
+    "zero.ron", "fifo.ron", "folder.ron", "empty.ron", "missing.ron", "mesh.obj",
+];
+const MESHES: &[&str] = &["sphere", "plane:3", "mesh.obj", "torus:8"];
+const HOSTILE_MESHES: &[&str] = &[
+    "torus:0", "torus:99999", "zero.obj", "fifo.obj", "folder.obj", "missing.obj", "empty.stl",
+    "wood.ron",
+];
+const SIZES: &[&str] = &["1", "7", "32"];
+const HOSTILE_SIZES: &[&str] = &["0", "200000", "4294967296", "-3", "abc", "NaN"];
+const HOSTILE_NUMBERS: &[&str] = &["0", "-1", "1e30", "-1e-30", "NaN", "inf", "x"];
+const OUTPUTS: &[&str] = &["out/a.png", "out/a b.png"];
+const HOSTILE_OUTPUTS: &[&str] = &["out", "out/", "missing/a.png", "full", "-", "wood.ron"];
+
+/// A folder with every input the generator names: real graphs and a mesh, and hostile
+/// stand-ins (links to `/dev/zero` and `/dev/full`, a FIFO, folders, empty files).
+fn fixture(dir: &Path) {
+    std::fs::create_dir_all(dir.join("out")).expect("folder");
+    std::fs::copy(root("graphs/wood.ron"), dir.join("wood.ron")).expect("copied");
+    std::fs::copy(root("graphs/isolines.ron"), dir.join("fields.ron")).expect("copied");
+    std::fs::copy(root("tests/meshes/tetrahedron.obj"), dir.join("mesh.obj")).expect("copied");
+    for name in ["zero.ron", "zero.obj"] {
+        std::os::unix::fs::symlink("/dev/zero", dir.join(name)).expect("link");
+    }
+    std::os::unix::fs::symlink("/dev/full", dir.join("full")).expect("link");
+    for name in ["fifo.ron", "fifo.obj"] {
+        let status = Command::new("mkfifo").arg(dir.join(name)).status().expect("mkfifo");
+        assert!(status.success());
+    }
+    for name in ["folder.ron", "folder.obj"] {
+        std::fs::create_dir_all(dir.join(name)).expect("folder");
+    }
+    for name in ["empty.ron", "empty.stl"] {
+        std::fs::write(dir.join(name), b"").expect("written");
+    }
+}
+
+/// One of `values`.
+fn pick(values: &'static [&'static str]) -> impl Strategy<Value = String> {
+    proptest::sample::select(values).prop_map(str::to_string)
+}
+
+/// An option and its value, or nothing.
+fn option(name: &'static str, values: impl Strategy<Value = String> + 'static) -> BoxedStrategy<Vec<String>> {
+    prop_oneof![
+        Just(Vec::new()),
+        values.prop_map(move |value| vec![name.to_string(), value]),
+    ]
+    .boxed()
+}
+
+/// A flag, or nothing.
+fn flag(name: &'static str) -> BoxedStrategy<Vec<String>> {
+    prop_oneof![Just(Vec::new()), Just(vec![name.to_string()])].boxed()
+}
+
+/// Options in any order, each present or not.
+fn options(choices: Vec<BoxedStrategy<Vec<String>>>) -> impl Strategy<Value = Vec<String>> {
+    choices.prop_shuffle().prop_map(|parts| parts.concat())
+}
+
+/// Mostly a usual value, sometimes a hostile one: commands must get past parsing to
+/// meet the hostile values deeper in.
+fn usual_or(
+    usual: &'static [&'static str],
+    hostile: &'static [&'static str],
+) -> BoxedStrategy<String> {
+    prop_oneof![3 => pick(usual), 1 => pick(hostile)].boxed()
+}
+
+/// A whole command line.
+fn command_line() -> impl Strategy<Value = Vec<String>> {
+    let graph = || usual_or(GRAPHS, HOSTILE_GRAPHS);
+    let graphs = || proptest::collection::vec(graph(), 1..3);
+    let mesh = || usual_or(MESHES, HOSTILE_MESHES);
+    let size = || usual_or(SIZES, HOSTILE_SIZES);
+    let output = || option("-o", usual_or(OUTPUTS, HOSTILE_OUTPUTS));
+    let time = || option("--time", usual_or(&["0", "2.5"], HOSTILE_NUMBERS));
+    let flat = || usual_or(&["0,0,1,1,0", "-2,-2,2,2,0.5"], &["0,0,1e39,1,0", "1,2,3", "NaN,0,1,1,0"]);
+    let render = (graph(), options(vec![
+        output(),
+        option("--size", size()),
+        option("--mesh", mesh()),
+        time(),
+        option("--flat", flat()),
+        option("--detail", usual_or(&["footprint", "full"], &["none"])),
+    ]))
+    .prop_map(|(graph, rest)| [vec!["render".into(), graph], rest].concat());
+    let bake = (graphs(), options(vec![
+        option("-o", usual_or(&["out"], &["missing", "full", "wood.ron", "out/"])),
+        option("--size", size()),
+        option("--mesh", mesh()),
+        option("--flat", flat()),
+        option("--maps", usual_or(&["albedo", "normal,height", "roughness"], &["albedo,albedo", "nope", ""])),
+        option("--format", usual_or(&["png16", "exr", "png"], &["gif"])),
+        time(),
+    ]))
+    .prop_map(|(graphs, rest)| [vec!["bake".into()], graphs, rest].concat());
+    let compile = (graph(), options(vec![
+        option("-o", usual_or(&["out/a.wgsl", "out/a.glsl", "-"], HOSTILE_OUTPUTS)),
+        option("--target", usual_or(&["glsl", "spv", "hlsl", "msl", "wgsl"], &["cobol"])),
+        option("--params", usual_or(&["uniform", "baked"], &["none"])),
+    ]))
+    .prop_map(|(graph, rest)| [vec!["compile".into(), graph], rest].concat());
+    let check = graphs().prop_map(|graphs| [vec!["check".into()], graphs].concat());
+    let fmt = (graphs(), flag("--arrange"))
+        .prop_map(|(graphs, rest)| [vec!["fmt".into()], rest, graphs].concat());
+    let mesh_command = (mesh(), options(vec![
+        option("--weld", usual_or(&["0", "0.001"], HOSTILE_NUMBERS)),
+        option("--write", usual_or(&["out/m.obj"], &["full", "out/", "missing/m.obj", "-"])),
+        flag("--json"),
+    ]))
+    .prop_map(|(mesh, rest)| [vec!["mesh".into(), mesh], rest].concat());
+    let geodesic = (mesh(), options(vec![
+        option("--sources", usual_or(&["0", "1,2"], &["-1", "99999999", "", "0,x"])),
+        option("--sources", usual_or(&["3"], &["", "4294967296"])),
+        option("--method", usual_or(&["heat", "exact", "dijkstra"], &["magic"])),
+        option("--time-factor", usual_or(&["1", "10"], HOSTILE_NUMBERS)),
+        flag("--robust"),
+        flag("--normalize"),
+    ]))
+    .prop_map(|(mesh, rest)| [vec!["geodesic".into(), mesh], rest].concat());
+    let geodesic = (geodesic, usual_or(&["out/f.csv", "-"], HOSTILE_OUTPUTS))
+        .prop_map(|(line, output)| [line, vec!["-o".into(), output]].concat());
+    let golden = usual_or(&["out", "out/golden"], &["full", "missing/deeper", "wood.ron"]);
+    let snapshot = (graphs(), golden, options(vec![
+        option("--size", size()),
+        option("--tolerance", usual_or(&["channel=2,share=0.001"], &["channel=-1", "share=NaN", "x"])),
+        option("--flat", usual_or(&["preview", "0,0,1,1,0"], &["bad", "0,0,1e39,1,0"])),
+        option("--mesh", mesh()),
+        time(),
+        flag("--update"),
+        flag("--json"),
+    ]))
+    .prop_map(|(graphs, golden, rest)| {
+        [vec!["snapshot".into()], graphs, vec!["--golden".into(), golden], rest].concat()
+    });
+    // Only refused counts: a whole report takes a minute.
+    let report = pick(&["0", "1001", "18446744073709551616", "-1"]).prop_map(|count| {
+        ["report", "--quick", "-o", "out/report", "--repetitions", &count]
+            .map(String::from)
+            .to_vec()
+    });
+    prop_oneof![render, bake, compile, check, fmt, mesh_command, geodesic, snapshot, report]
+}
+
+/// Every file under `dir` (not following links) with its size and modification time.
+fn listing(dir: &Path) -> BTreeMap<PathBuf, Option<(u64, SystemTime)>> {
+    let mut files = BTreeMap::new();
+    let mut pending = vec![dir.to_path_buf()];
+    while let Some(folder) = pending.pop() {
+        for entry in std::fs::read_dir(&folder).expect("listable").flatten() {
+            let path = entry.path();
+            let meta = std::fs::symlink_metadata(&path).expect("metadata");
+            if meta.is_dir() {
+                pending.push(path.clone());
+            }
+            let stamp = meta.is_file().then(|| (meta.len(), meta.modified().expect("mtime")));
+            files.insert(path.strip_prefix(dir).expect("inside").to_path_buf(), stamp);
+        }
+    }
+    files
+}
+
+/// Whether a command line may write `path` (relative to its folder): its outputs, and
+/// the graphs `fmt` rewrites in place.
+fn may_write(args: &[String], path: &Path) -> bool {
+    let name = path.to_string_lossy();
+    let named = args.iter().any(|arg| *arg == name);
+    // Inside an output, or a folder made on the way to one.
+    let under_output = args.windows(2).any(|pair| {
+        let output = Path::new(pair[1].trim_end_matches('/'));
+        ["-o", "--golden", "--write"].contains(&pair[0].as_str())
+            && (path.starts_with(output) || output.starts_with(path))
+    });
+    under_output || (args[0] == "fmt" && named)
+}
+
+/// Runs one command line in a fresh fixture and checks the contract.
+fn run_case(args: &[String], case: usize) -> Result<(), TestCaseError> {
+    let dir = std::env::temp_dir().join(format!("veneer-contract-{}-{case}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    fixture(&dir);
+    let before = listing(&dir);
+    let mut child = Command::new("prlimit")
+        .arg(format!("--as={ADDRESS_SPACE}"))
+        .arg(env!("CARGO_BIN_EXE_veneer"))
+        .args(args)
+        .current_dir(&dir)
+        .stdin(Stdio::null())
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("prlimit runs");
+    let started = Instant::now();
+    let status = loop {
+        if let Some(status) = child.try_wait().expect("waits") {
+            break status;
+        }
+        if started.elapsed() > TIME_LIMIT {
+            let _ = child.kill();
+            let _ = child.wait();
+            return Err(TestCaseError::fail(format!("{args:?} ran past {TIME_LIMIT:?}")));
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    };
+    let mut message = String::new();
+    std::io::Read::read_to_string(&mut child.stderr.take().expect("piped"), &mut message)
+        .expect("stderr");
+    let code = status.code();
+    prop_assert!(
+        matches!(code, Some(0..=2)),
+        "{args:?}: exit {status} (a signal, or an undocumented code): {message}"
+    );
+    prop_assert!(!message.contains("panicked"), "{args:?}: {message}");
+    prop_assert!(code == Some(0) || !message.trim().is_empty(), "{args:?}: no message");
+    let after = listing(&dir);
+    for (path, stamp) in &after {
+        let changed = before.get(path) != Some(stamp);
+        prop_assert!(
+            !changed || may_write(args, path),
+            "{args:?} touched {} outside its outputs",
+            path.display()
+        );
+        prop_assert!(
+            !path.file_name().is_some_and(|n| n.to_string_lossy().ends_with(".tmp")),
+            "{args:?} left {} behind",
+            path.display()
+        );
+    }
+    for path in before.keys().filter(|path| !after.contains_key(*path)) {
+        prop_assert!(may_write(args, path), "{args:?} removed {}", path.display());
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+    Ok(())
+}
+
+#[test]
+fn generated_command_lines_keep_the_contract() {
+    let config = Config {
+        cases: CASES,
+        failure_persistence: None,
+        ..Config::default()
+    };
+    let rng = TestRng::deterministic_rng(RngAlgorithm::ChaCha);
+    let mut runner = TestRunner::new_with_rng(config, rng);
+    let case = std::sync::atomic::AtomicUsize::new(0);
+    let result = runner.run(&command_line(), |args| {
+        run_case(&args, case.fetch_add(1, std::sync::atomic::Ordering::Relaxed))
+    });
+    if let Err(error) = result {
+        panic!("{error}");
+    }
+}
