@@ -151,8 +151,8 @@ impl Default for Preview {
     }
 }
 
-/// A distance field over the preview mesh: the vertices it spreads from (in the order
-/// the mesh lists them) and how it is computed.
+/// A distance field over the preview mesh: the vertices it spreads from (numbered as
+/// the mesh file lists them, see [`crate::mesh::FileVertices`]) and how it is computed.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct FieldSource {
     pub sources: Vec<u32>,

@@ -11,6 +11,7 @@ mod errors;
 mod export;
 mod fuzz_regressions;
 mod geodesic;
+mod geodesic_files;
 mod graph_files;
 mod hostile_cli;
 mod hostile_files;
