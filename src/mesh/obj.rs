@@ -192,3 +192,77 @@ fn attach<T: Copy>(list: &mut Option<Vec<T>>, values: &[T], index: u32) -> Resul
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn corners_become_vertices_in_first_use_order_and_remember_their_v_line() {
+        let text = "# a quad over four of five points, the first unused\n\
+                    v 9 9 9\nv 0 0 0 1 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 \\\n 0\n\
+                    vt 0 0\nvt 1 0\nvt 1 1\nvn 0 0 1\n\
+                    f 4/3/1 -4//-1 3//1 -1//1\n";
+        let soup = read(text.as_bytes()).unwrap();
+        assert_eq!(
+            soup.indices,
+            [0, 1, 2, 0, 2, 3],
+            "fanned from the first corner"
+        );
+        let file = soup.file_vertices.unwrap();
+        assert_eq!((file.of_vertex, file.count), (vec![3, 1, 2, 4], 5));
+        assert_eq!(soup.positions[3], [0.0, 1.0, 0.0], "continued line");
+        assert_eq!(soup.normals.unwrap().len(), 4);
+        assert!(
+            soup.uvs.is_none(),
+            "not every corner has a texture coordinate"
+        );
+    }
+
+    #[test]
+    fn a_vertex_with_two_texture_coordinates_is_split() {
+        let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvt 0 0\nvt 1 0\n\
+                    f 1/1 2/1 3/1\nf 2/2 4/2 3/2\n";
+        let soup = read(text.as_bytes()).unwrap();
+        assert_eq!(soup.file_vertices.unwrap().of_vertex, [0, 1, 2, 1, 3, 2]);
+        assert_eq!(soup.uvs.unwrap()[3], [1.0, 0.0]);
+    }
+
+    #[test]
+    fn broken_statements_name_their_line() {
+        for (text, message) in [
+            ("v 0 0\n", "line 1: `v` needs 3 numbers, found 2"),
+            ("v 0 0 inf\n", "line 1: `v`: `inf` is not a finite number"),
+            (
+                "v 0 0 0\nf 1 1\n",
+                "line 2: a face needs at least 3 corners, found 2",
+            ),
+            (
+                "v 0 0 0\nf 0 1 1\n",
+                "line 2: index 0 refers to no vertex (1 read so far)",
+            ),
+            (
+                "v 0 0 0\nf 1 -2 1\n",
+                "line 2: index -2 refers to no vertex (1 read so far)",
+            ),
+            (
+                "v 0 0 0\nf 1/1/1/1 1 1\n",
+                "line 2: `1/1/1/1` is not a face corner",
+            ),
+            (
+                "v 0 0 0\n\nf 1 2 3\n",
+                "line 3: a face refers to vertex 2, but the file has 1",
+            ),
+            (
+                "v 0 0 0\nf 1/1 1/1 1/1\n",
+                "line 2: a face refers to texture coordinate 1, but the file has 0",
+            ),
+        ] {
+            assert_eq!(
+                read(text.as_bytes()).err().as_deref(),
+                Some(message),
+                "{text}"
+            );
+        }
+    }
+}

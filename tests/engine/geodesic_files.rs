@@ -69,7 +69,12 @@ fn scan() -> FileMesh {
         }
     }
     let base = positions.len() as u32;
-    positions.extend([[3.0, 0.0, 0.0], [4.0, 0.0, 0.0], [3.0, 0.0, 1.0], [4.0, 0.5, 1.0]]);
+    positions.extend([
+        [3.0, 0.0, 0.0],
+        [4.0, 0.0, 0.0],
+        [3.0, 0.0, 1.0],
+        [4.0, 0.5, 1.0],
+    ]);
     triangles.extend([[base, base + 2, base + 1], [base + 1, base + 2, base + 3]]);
     positions.push([9.0, 9.0, 9.0]);
     FileMesh {
@@ -142,7 +147,11 @@ fn obj(mesh: &FileMesh, seams: bool) -> String {
         let corners: Vec<String> = (0..3)
             .map(|k| {
                 let v = i64::from(triangle[k]);
-                let written = if seams && t % 2 == 1 { v - count } else { v + 1 };
+                let written = if seams && t % 2 == 1 {
+                    v - count
+                } else {
+                    v + 1
+                };
                 match seams {
                     true => {
                         text += &format!("vt {} {}\n", k as f32 / 3.0, t as f32 / 100.0);
@@ -221,12 +230,22 @@ fn glb(mesh: &FileMesh, split: u32) -> Vec<u8> {
         });
         for (bytes, accessor) in [
             (
-                positions.iter().flatten().flat_map(|c| c.to_le_bytes()).collect::<Vec<u8>>(),
-                format!(r#"{{"componentType":5126,"count":{},"type":"VEC3","min":{min:?},"max":{max:?}"#, positions.len()),
+                positions
+                    .iter()
+                    .flatten()
+                    .flat_map(|c| c.to_le_bytes())
+                    .collect::<Vec<u8>>(),
+                format!(
+                    r#"{{"componentType":5126,"count":{},"type":"VEC3","min":{min:?},"max":{max:?}"#,
+                    positions.len()
+                ),
             ),
             (
                 indices.iter().flat_map(|i| i.to_le_bytes()).collect(),
-                format!(r#"{{"componentType":5125,"count":{},"type":"SCALAR""#, indices.len()),
+                format!(
+                    r#"{{"componentType":5125,"count":{},"type":"SCALAR""#,
+                    indices.len()
+                ),
             ),
         ] {
             views.push(format!(
@@ -270,7 +289,11 @@ fn glb(mesh: &FileMesh, split: u32) -> Vec<u8> {
 fn geodesic_cli(file: &Path, sources: &[Vec<u32>], method: &str) -> Vec<Vec<f64>> {
     let csv = file.with_extension(format!("{method}.csv"));
     let mut command = veneer();
-    command.arg("geodesic").arg(file).args(["--method", method, "-o"]).arg(&csv);
+    command
+        .arg("geodesic")
+        .arg(file)
+        .args(["--method", method, "-o"])
+        .arg(&csv);
     for set in sources {
         let list: Vec<String> = set.iter().map(u32::to_string).collect();
         command.args(["--sources", &list.join(",")]);
@@ -285,7 +308,11 @@ fn geodesic_cli(file: &Path, sources: &[Vec<u32>], method: &str) -> Vec<Vec<f64>
     let text = std::fs::read_to_string(&csv).expect("the field was written");
     let rows: Vec<Vec<f64>> = text
         .lines()
-        .map(|line| line.split(',').map(|d| d.parse().expect("a number or inf")).collect())
+        .map(|line| {
+            line.split(',')
+                .map(|d| d.parse().expect("a number or inf"))
+                .collect()
+        })
         .collect();
     (0..sources.len())
         .map(|k| rows.iter().map(|row| row[k]).collect())
@@ -294,10 +321,14 @@ fn geodesic_cli(file: &Path, sources: &[Vec<u32>], method: &str) -> Vec<Vec<f64>
 
 /// Asserts two fields agree vertex by vertex within `tolerance` (relative above 1).
 fn assert_fields_match(what: &str, got: &[f64], expected: &[f64], tolerance: f64) {
-    assert_eq!(got.len(), expected.len(), "{what}: one line per file vertex");
+    assert_eq!(
+        got.len(),
+        expected.len(),
+        "{what}: one line per file vertex"
+    );
     for (v, (&g, &e)) in got.iter().zip(expected).enumerate() {
-        let same = (g.is_infinite() && e.is_infinite())
-            || (g - e).abs() <= tolerance * e.abs().max(1.0);
+        let same =
+            (g.is_infinite() && e.is_infinite()) || (g - e).abs() <= tolerance * e.abs().max(1.0);
         assert!(same, "{what}: vertex {v} has {g}, expected {e}");
     }
 }
@@ -312,11 +343,20 @@ fn files(dir: &Path) -> Vec<(PathBuf, FileMesh)> {
         path
     };
     vec![
-        (write("plain.obj", obj(&mesh, false).as_bytes()), mesh.clone()),
-        (write("seams.obj", obj(&mesh, true).as_bytes()), mesh.clone()),
+        (
+            write("plain.obj", obj(&mesh, false).as_bytes()),
+            mesh.clone(),
+        ),
+        (
+            write("seams.obj", obj(&mesh, true).as_bytes()),
+            mesh.clone(),
+        ),
         (write("scan.ply", ply(&mesh).as_bytes()), mesh.clone()),
         (write("scan.stl", stl_text.as_bytes()), stl_mesh),
-        (write("scan.glb", &glb(&mesh, mesh.positions.len() as u32 - 5)), mesh),
+        (
+            write("scan.glb", &glb(&mesh, mesh.positions.len() as u32 - 5)),
+            mesh,
+        ),
     ]
 }
 
@@ -328,7 +368,11 @@ fn every_format_gives_one_line_per_file_vertex_in_the_files_order() {
         let loaded = veneer::mesh::load(&path).unwrap_or_else(|e| panic!("{e}"));
         assert_eq!(loaded.file_vertex_count(), mesh.positions.len(), "{name}");
         if name == "seams.obj" {
-            assert_eq!(loaded.positions.len(), 3 * mesh.triangles.len(), "split at seams");
+            assert_eq!(
+                loaded.positions.len(),
+                3 * mesh.triangles.len(),
+                "split at seams"
+            );
         }
         let used = mesh.used();
         let unused = (0..used.len() as u32).find(|&v| !used[v as usize]);
@@ -360,7 +404,12 @@ fn every_format_gives_one_line_per_file_vertex_in_the_files_order() {
                         None => f64::INFINITY,
                     })
                     .collect();
-                assert_fields_match(&format!("{name} {method}, field {k}"), &got[k], &expected, 1e-7);
+                assert_fields_match(
+                    &format!("{name} {method}, field {k}"),
+                    &got[k],
+                    &expected,
+                    1e-7,
+                );
             }
         }
     }
@@ -378,15 +427,27 @@ fn graph_fields_and_picking_count_vertices_as_the_file_does() {
         sources: vec![source],
         method: Method::Dijkstra,
     };
-    let notes = geodesic::attach_fields(&mut loaded, &[field.clone()], [true, false, false, false], |_, _| {})
-        .expect("solves");
+    let notes = geodesic::attach_fields(
+        &mut loaded,
+        &[field.clone()],
+        [true, false, false, false],
+        |_, _| {},
+    )
+    .expect("solves");
     assert!(notes.is_empty(), "{notes:?}");
     let expected = dijkstra(&mesh, &[source]);
     let farthest = geodesic::max_finite(&expected);
     for (vertex, values) in loaded.fields.iter().enumerate() {
         let distance = expected[loaded.file_vertex(vertex as u32) as usize];
-        let normalised = if distance.is_finite() { distance / farthest } else { 1.0 };
-        assert!((f64::from(values[0]) - normalised).abs() < 1e-5, "vertex {vertex}");
+        let normalised = if distance.is_finite() {
+            distance / farthest
+        } else {
+            1.0
+        };
+        assert!(
+            (f64::from(values[0]) - normalised).abs() < 1e-5,
+            "vertex {vertex}"
+        );
     }
     // The last vertex of the file is unused but exists; one past it does not.
     let count = mesh.positions.len() as u32;
@@ -395,7 +456,12 @@ fn graph_fields_and_picking_count_vertices_as_the_file_does() {
             sources: vec![vertex],
             ..field.clone()
         };
-        let result = geodesic::attach_fields(&mut loaded, &[field], [true, false, false, false], |_, _| {});
+        let result = geodesic::attach_fields(
+            &mut loaded,
+            &[field],
+            [true, false, false, false],
+            |_, _| {},
+        );
         assert_eq!(result.is_ok(), ok, "source {vertex}: {result:?}");
     }
     // A click straight down onto a grid vertex picks that vertex of the file.
@@ -434,9 +500,18 @@ fn dirty_scan() -> FileMesh {
     let cap = add([0.023_163_013, 0.020_272_52, 1.0 / 3.0]);
     let tall = add([1.0 / 6.0, 0.5, 1.0 / 3.0]);
     let (near, far) = (add([-0.5, 0.0, 0.0]), add([-1.0, 0.0, 0.0]));
-    let square = [[5.0, 0.0, 0.0], [6.0, 0.0, 0.0], [5.0, 0.0, 1.0], [6.0, 0.0, 1.0]].map(&mut add);
+    let square = [
+        [5.0, 0.0, 0.0],
+        [6.0, 0.0, 0.0],
+        [5.0, 0.0, 1.0],
+        [6.0, 0.0, 1.0],
+    ]
+    .map(&mut add);
     triangles.extend([[a, b, cap], [a, b, tall], [0, near, far]]);
-    triangles.extend([[square[0], square[2], square[1]], [square[1], square[2], square[3]]]);
+    triangles.extend([
+        [square[0], square[2], square[1]],
+        [square[1], square[2], square[3]],
+    ]);
     FileMesh {
         positions,
         triangles,
@@ -463,8 +538,13 @@ fn the_heat_method_falls_back_to_robust_where_the_plain_one_cannot_factor() {
         HeatSolver::new(Triangulation::from_mesh(&welded.mesh), plain).is_err(),
         "the plain heat method must fail to factor this mesh for the test to mean anything"
     );
-    let solved = geodesic::fields(&welded.mesh, &[welded.sources(&[0])], Method::Heat(plain), |_, _| {})
-        .expect("the robust method takes over");
+    let solved = geodesic::fields(
+        &welded.mesh,
+        &[welded.sources(&[0])],
+        Method::Heat(plain),
+        |_, _| {},
+    )
+    .expect("the robust method takes over");
     assert!(solved.fallback.is_some());
     assert_eq!(
         solved.method,
@@ -496,7 +576,14 @@ fn the_heat_method_falls_back_to_robust_where_the_plain_one_cannot_factor() {
     let reached = dijkstra(&mesh, &[0]);
     assert_eq!(field.len(), mesh.positions.len());
     for (v, (&d, &r)) in field.iter().zip(&reached).enumerate() {
-        assert_eq!(d.is_finite(), r.is_finite(), "vertex {v}: {d} (edge path {r})");
-        assert!(d >= 0.0 && d <= 1.5 * r + 0.05, "vertex {v}: {d}, edge path {r}");
+        assert_eq!(
+            d.is_finite(),
+            r.is_finite(),
+            "vertex {v}: {d} (edge path {r})"
+        );
+        assert!(
+            d >= 0.0 && d <= 1.5 * r + 0.05,
+            "vertex {v}: {d}, edge path {r}"
+        );
     }
 }

@@ -49,7 +49,10 @@ fn gltf_node_transforms_are_applied_and_fitting_undoes_them() {
 #[test]
 fn broken_files_are_errors_that_name_the_file() {
     for (file, expected) in [
-        ("bad_index.obj", "line 4: a face refers to vertex 9, but the file has 3"),
+        (
+            "bad_index.obj",
+            "line 4: a face refers to vertex 9, but the file has 3",
+        ),
         ("truncated.stl", ""),
         ("missing.obj", ""),
         ("tetrahedron.xyz", "unknown mesh format 'xyz'"),
