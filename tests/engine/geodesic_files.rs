@@ -429,7 +429,7 @@ fn graph_fields_and_picking_count_vertices_as_the_file_does() {
     };
     let notes = geodesic::attach_fields(
         &mut loaded,
-        &[field.clone()],
+        std::slice::from_ref(&field),
         [true, false, false, false],
         |_, _| {},
     )
