@@ -440,4 +440,26 @@ mod tests {
             "{d:?}"
         );
     }
+
+    #[test]
+    fn a_failed_factorisation_suggests_the_robust_option_only_when_it_was_off() {
+        let plain = HeatError::Factorisation("heat", "NonPositivePivot".into(), false);
+        let robust = HeatError::Factorisation("heat", "NonPositivePivot".into(), true);
+        assert!(plain.to_string().contains("the robust option handles poor triangles"));
+        assert!(!robust.to_string().contains("the robust option handles"));
+        assert!(robust.to_string().contains("could not repair"));
+    }
+
+    #[test]
+    fn time_factors_outside_the_trusted_range_are_refused_before_any_work() {
+        for factor in [0.0, -1.0, 1e-4, 2e6, f64::NAN, f64::INFINITY] {
+            let options = HeatOptions {
+                time_factor: factor,
+                robust: false,
+            };
+            let mesh = crate::mesh::primitive("torus:8").expect("a primitive");
+            let result = HeatSolver::new(Triangulation::from_mesh(&mesh), options);
+            assert!(matches!(result, Err(HeatError::TimeFactor(_))), "{factor}");
+        }
+    }
 }
