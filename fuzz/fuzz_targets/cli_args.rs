@@ -10,7 +10,7 @@ use libfuzzer_sys::fuzz_target;
 use std::ffi::OsString;
 
 // The binary's own parser: the CLI lives in the binary crate, not in the library.
-#[allow(dead_code)]
+#[allow(dead_code, unexpected_cfgs)]
 #[path = "../../src/cli/mod.rs"]
 mod cli;
 

@@ -11,6 +11,7 @@ use std::path::Path;
 pub(super) fn read(bytes: &[u8], folder: Option<&Path>) -> Result<Soup, String> {
     use gltf::Semantic;
     use gltf::accessor::{DataType, Dimensions};
+    glb_length_fits(bytes)?;
     let gltf::Gltf { document, blob } =
         gltf::Gltf::from_slice_without_validation(bytes).map_err(|e| e.to_string())?;
     position_accessors_exist(document.as_json())?;
@@ -133,4 +134,38 @@ fn position_accessors_exist(json: &gltf::json::Root) -> Result<(), String> {
         }
     }
     Ok(())
+}
+
+/// Refuses a GLB whose header gives a total length shorter than the header itself,
+/// which the `gltf` crate subtracts from without a check (found by fuzzing: it panics
+/// where overflow checks are on, and reads a wrapped length where they are off).
+fn glb_length_fits(bytes: &[u8]) -> Result<(), String> {
+    const HEADER: usize = 12;
+    match bytes {
+        [b'g', b'l', b'T', b'F', _, _, _, _, a, b, c, d, ..] => {
+            let length = u32::from_le_bytes([*a, *b, *c, *d]) as usize;
+            if length < HEADER {
+                Err(format!("the GLB header gives a length of {length} bytes, less than the header's own {HEADER}"))
+            } else {
+                Ok(())
+            }
+        }
+        _ => Ok(()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn a_glb_length_shorter_than_its_header_is_refused_before_the_gltf_crate_reads_it() {
+        let bytes = std::fs::read(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/tests/fuzz/mesh_load/glb_length_below_header.glb"
+        ))
+        .expect("the fuzz finding");
+        let Err(error) = super::read(&bytes, None) else {
+            panic!("a GLB shorter than its header loaded")
+        };
+        assert!(error.contains("less than the header's own 12"), "{error}");
+    }
 }
