@@ -15,7 +15,7 @@ use crate::graph::check::{CheckedGraph, InputSource};
 use crate::graph::{self, CheckError, Graph, NodeId, NodeKind};
 use naming::Namer;
 use parts::Block;
-use std::collections::HashSet;
+use rustc_hash::FxHashSet;
 use std::fmt;
 use std::ops::Range;
 
@@ -292,7 +292,7 @@ pub fn compile_detailed(
     let mut body: Vec<Block> = Vec::new();
     // Library items the nodes call, each once, in the order first called.
     let mut roots: Vec<String> = Vec::new();
-    let mut called: HashSet<String> = HashSet::new();
+    let mut called: FxHashSet<String> = FxHashSet::default();
     for checked in &graph.order {
         let node = &checked.node;
         let from: Vec<Option<&Emitted>> = checked

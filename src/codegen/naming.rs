@@ -1,6 +1,6 @@
 //! Readable, unique WGSL identifiers for nodes, named after their labels.
 
-use std::collections::HashSet;
+use rustc_hash::FxHashSet;
 use std::sync::OnceLock;
 
 /// WGSL keywords and reserved words that a label could collide with, plus names the
@@ -224,7 +224,7 @@ pub fn comment(text: &str) -> String {
 
 /// Whether `name` is in [`RESERVED`] (a set: a name is looked up for every node).
 fn reserved(name: &str) -> bool {
-    static SET: OnceLock<HashSet<&str>> = OnceLock::new();
+    static SET: OnceLock<FxHashSet<&str>> = OnceLock::new();
     SET.get_or_init(|| RESERVED.iter().copied().collect())
         .contains(name)
 }
@@ -232,7 +232,7 @@ fn reserved(name: &str) -> bool {
 /// Hands out identifiers, each once.
 #[derive(Default)]
 pub struct Namer {
-    taken: HashSet<String>,
+    taken: FxHashSet<String>,
 }
 
 /// `label` as a snake_case identifier (ASCII letters, digits, underscores).
@@ -273,7 +273,7 @@ impl Namer {
     /// when the plain name is reserved or already used.
     pub fn name(&mut self, label: &str, fallback_id: u32) -> String {
         let base = sanitize(label);
-        let clashes = |name: &str, taken: &HashSet<String>| reserved(name) || taken.contains(name);
+        let clashes = |name: &str, taken: &FxHashSet<String>| reserved(name) || taken.contains(name);
         let mut name = base.clone();
         if clashes(&name, &self.taken) {
             name = format!("{base}_{fallback_id}");
