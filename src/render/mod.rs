@@ -18,7 +18,7 @@ pub use image::{Image, View, mesh_with_fields, preview_rect, render_graph, rende
 pub use gpu_mesh::GpuMesh;
 pub use mesh_render::MeshRenderer;
 pub use mesh_view::{COLOR_FORMAT, MeshPipeline, MeshTarget, MeshView, Projection};
-pub use tiles::tile_size;
+pub use tiles::{ensure_memory, tile_size};
 pub use timing::PassTimer;
 pub use uv_bake::UvRenderer;
 
