@@ -7,9 +7,9 @@ use super::Format;
 use exr::block::writer::ChunksWriter;
 use exr::block::{BlockIndex, UncompressedBlock};
 use exr::math::Vec2;
+use exr::meta::BlockDescription;
 use exr::meta::attribute::{ChannelDescription, LineOrder, SampleType, Text};
 use exr::meta::header::Header;
-use exr::meta::BlockDescription;
 use std::io::{self, Seek, Write};
 
 /// Where converted rows go: `emit(pixels)` takes whole rows of RGBA, in order.
@@ -77,7 +77,9 @@ fn png_rows<W: Write>(
     encoder.set_compression(png::Compression::Fast);
     encoder.set_filter(png::Filter::Adaptive);
     let mut writer = encoder.write_header().map_err(io::Error::other)?;
-    writer.write_image_data(&samples).map_err(io::Error::other)?;
+    writer
+        .write_image_data(&samples)
+        .map_err(io::Error::other)?;
     writer.finish().map_err(io::Error::other)
 }
 

@@ -107,7 +107,8 @@ impl Converter {
         let rows = band.len() / n;
         for r in 0..rows {
             self.down.clear();
-            self.down.extend(band[r * n..(r + 1) * n].iter().map(|p| p[0]));
+            self.down
+                .extend(band[r * n..(r + 1) * n].iter().map(|p| p[0]));
             if !self.started {
                 self.started = true;
                 std::mem::swap(&mut self.center, &mut self.down);
@@ -126,7 +127,8 @@ impl Converter {
         }
         emit(&band[..rows.saturating_sub(1) * n])?;
         self.held.clear();
-        self.held.extend_from_slice(&band[rows.saturating_sub(1) * n..]);
+        self.held
+            .extend_from_slice(&band[rows.saturating_sub(1) * n..]);
         Ok(())
     }
 

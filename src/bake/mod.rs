@@ -109,8 +109,15 @@ pub fn check_outputs(stems: &[&Path], settings: &BakeSettings) -> Result<(), Bak
             _ => Path::new("."),
         };
         if !folder.is_dir() {
-            let why = if folder.exists() { "is not a folder" } else { "does not exist" };
-            return Err(BakeError(format!("{}: {why}; nothing was baked", folder.display())));
+            let why = if folder.exists() {
+                "is not a folder"
+            } else {
+                "does not exist"
+            };
+            return Err(BakeError(format!(
+                "{}: {why}; nothing was baked",
+                folder.display()
+            )));
         }
         for &map in &settings.maps {
             let path = map_path(stem, map, settings.format);
@@ -245,8 +252,9 @@ pub fn bake(
 /// Bytes of the band buffers a plane bake renders into (two circulate).
 const BAND_BYTES: u64 = 128 << 20;
 
-/// Rows per band: as many as fit [`BAND_BYTES`] at four f32 per pixel, at most a tile.
-fn band_rows(size: u32, tile: u32) -> u32 {
+/// Rows per band of a `size`² plane bake in tiles of `tile`²: as many as fit
+/// [`BAND_BYTES`] at four f32 per pixel, at most a tile.
+pub fn band_rows(size: u32, tile: u32) -> u32 {
     let rows = BAND_BYTES / (u64::from(size.max(1)) * 16);
     (rows.min(u64::from(tile)) as u32).max(1)
 }

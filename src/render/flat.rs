@@ -22,7 +22,9 @@ impl FlatRect {
         let fits = |v: f64| v.is_finite() && v.abs() <= f64::from(f32::MAX);
         let values = [self.x0, self.z0, self.x1, self.z1, self.y];
         if !values.into_iter().all(fits) {
-            return Err("the rectangle must be finite numbers within the f32 range (±3.4e38)".into());
+            return Err(
+                "the rectangle must be finite numbers within the f32 range (±3.4e38)".into(),
+            );
         }
         if !(fits(self.x1 - self.x0) && fits(self.z1 - self.z0)) {
             return Err("the rectangle's width or depth overflows f32".into());

@@ -97,7 +97,9 @@ pub fn read_texture(
     readback.record_copy(&mut encoder, texture, extent);
     let submission = gpu.queue.submit([encoder.finish()]);
     let mut pixels = Vec::with_capacity((extent.0 * bytes_per_pixel * extent.1) as usize);
-    readback.read_rows(gpu, submission, extent, |_, row| pixels.extend_from_slice(row))?;
+    readback.read_rows(gpu, submission, extent, |_, row| {
+        pixels.extend_from_slice(row)
+    })?;
     Ok(pixels)
 }
 

@@ -45,7 +45,11 @@ pub fn render_tiled(
     }
     let mut image = image_buffer(size, FLOAT_PIXEL_BYTES)?;
     let rows = tile_size(gpu);
-    let whole = TileDraw { clear, prepare, draw };
+    let whole = TileDraw {
+        clear,
+        prepare,
+        draw,
+    };
     render_bands(gpu, size, rows, whole, progress, |first_row, band| {
         let start = first_row as usize * size as usize;
         image[start..start + band.len()].copy_from_slice(&band);
@@ -86,10 +90,18 @@ where
     let height = band_rows.clamp(1, width).min(size);
     let slots: [_; 2] = std::array::from_fn(|_| {
         let texture = gpu.device.create_texture(&target_descriptor(width, height));
-        (texture.create_view(&Default::default()), texture, Readback::new(gpu, (width, height), 16))
+        (
+            texture.create_view(&Default::default()),
+            texture,
+            Readback::new(gpu, (width, height), 16),
+        )
     });
     let all = size.div_ceil(width) * size.div_ceil(height);
-    let mut filling = BandBuffer { pixels: Vec::new(), first_row: 0, size };
+    let mut filling = BandBuffer {
+        pixels: Vec::new(),
+        first_row: 0,
+        size,
+    };
     filling.start(0, height);
     let mut pending = None;
     for (index, (origin, extent)) in tile_grid(size, (width, height)).enumerate() {
@@ -220,9 +232,13 @@ pub fn image_buffer<T: Copy + Default>(
     let pixels = size as usize * size as usize;
     ensure_memory(size, pixels as u64 * bytes_per_pixel)?;
     let mut image = Vec::new();
-    image
-        .try_reserve_exact(pixels)
-        .map_err(|_| too_large(size, pixels as u64 * bytes_per_pixel, "which the allocator refused"))?;
+    image.try_reserve_exact(pixels).map_err(|_| {
+        too_large(
+            size,
+            pixels as u64 * bytes_per_pixel,
+            "which the allocator refused",
+        )
+    })?;
     image.resize(pixels, T::default());
     Ok(image)
 }
@@ -234,7 +250,10 @@ pub fn ensure_memory(size: u32, needed: u64) -> Result<(), RenderError> {
         Some(available) if needed > available => Err(too_large(
             size,
             needed,
-            &format!("more than the {} this machine has available", gibibytes(available)),
+            &format!(
+                "more than the {} this machine has available",
+                gibibytes(available)
+            ),
         )),
         _ => Ok(()),
     }
