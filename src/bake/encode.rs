@@ -4,12 +4,14 @@
 //! streaming writer compresses differently).
 
 use super::Format;
+use exr::block::chunk::Chunk;
 use exr::block::writer::ChunksWriter;
 use exr::block::{BlockIndex, UncompressedBlock};
 use exr::math::Vec2;
 use exr::meta::BlockDescription;
 use exr::meta::attribute::{ChannelDescription, LineOrder, SampleType, Text};
 use exr::meta::header::Header;
+use rayon::prelude::*;
 use std::io::{self, Seek, Write};
 
 /// Where converted rows go: `emit(pixels)` takes whole rows of RGBA, in order.
@@ -18,7 +20,7 @@ pub type Emit<'e> = dyn FnMut(&[[f32; 4]]) -> io::Result<()> + 'e;
 /// Writes a `size`² map in `format` to `file`: `produce` calls its argument with every
 /// row of the map, top to bottom, in batches of whole rows. Fails, naming what is
 /// missing, when `produce` gives fewer rows.
-pub fn encode<W: Write + Seek>(
+pub fn encode<W: Write + Seek + Send>(
     file: &mut W,
     size: u32,
     format: Format,
@@ -83,12 +85,10 @@ fn png_rows<W: Write>(
     writer.finish().map_err(io::Error::other)
 }
 
-/// Scan lines per EXR block (RLE compresses one line at a time).
-const EXR_LINES_PER_BLOCK: usize = 1;
-
-/// 32-bit float RGBA EXR rows as RLE-compressed scan-line blocks, compressed in parallel
-/// and written in order.
-fn exr_rows<W: Write + Seek>(
+/// 32-bit float RGBA EXR rows as RLE-compressed scan lines (one line a block),
+/// compressed on every core, then written in order by a thread of their own while the
+/// next rows compress (the file's writes wait on the disk, not the processor).
+fn exr_rows<W: Write + Seek + Send>(
     file: &mut W,
     size: u32,
     produce: impl FnOnce(&mut Emit<'_>) -> io::Result<()>,
@@ -106,79 +106,57 @@ fn exr_rows<W: Write + Seek>(
             BlockDescription::ScanLines,
             LineOrder::Increasing,
         );
-    let threads = std::thread::available_parallelism().map_or(1, usize::from);
     let mut next_line = 0usize;
     exr::block::writer::write_chunks_with(file, vec![header].into(), true, |meta, writer| {
-        let emit = &mut |pixels: &[[f32; 4]]| -> io::Result<()> {
-            let lines: Vec<&[[f32; 4]]> = pixels.chunks(width).collect();
-            let blocks: Vec<&[&[[f32; 4]]]> = lines.chunks(EXR_LINES_PER_BLOCK).collect();
-            let first = next_line;
-            let compress = |(index, block): (usize, &&[&[[f32; 4]]])| {
-                let y = first + index * EXR_LINES_PER_BLOCK;
-                let mut data = Vec::with_capacity(block.len() * width * 16);
-                for line in block.iter() {
+        std::thread::scope(|scope| {
+            let (batches, to_write) = std::sync::mpsc::sync_channel::<Vec<Chunk>>(1);
+            let file_writer = scope.spawn(move || -> exr::error::UnitResult {
+                for (index, chunk) in to_write.into_iter().flatten().enumerate() {
+                    writer.write_chunk(index, chunk)?;
+                }
+                Ok(())
+            });
+            let produced = produce(&mut |pixels: &[[f32; 4]]| -> io::Result<()> {
+                let first = next_line;
+                let compress = |(index, line): (usize, &[[f32; 4]])| {
+                    let mut data = Vec::with_capacity(width * 16);
                     for (_, lane) in LANES {
-                        data.extend(line.iter().flat_map(|p| p[lane].to_ne_bytes()));
+                        line.iter()
+                            .for_each(|p| data.extend_from_slice(&p[lane].to_ne_bytes()));
                     }
-                }
-                UncompressedBlock {
-                    index: BlockIndex {
-                        layer: 0,
-                        pixel_position: Vec2(0, y),
-                        pixel_size: Vec2(width, block.len()),
-                        level: Vec2(0, 0),
-                    },
-                    data,
-                }
-                .compress_to_chunk(&meta.headers)
-                .map_err(io::Error::other)
-            };
-            let chunks = parallel_map(&blocks, threads, compress)?;
-            for (index, chunk) in chunks.into_iter().enumerate() {
-                let block = (first / EXR_LINES_PER_BLOCK) + index;
-                writer.write_chunk(block, chunk).map_err(io::Error::other)?;
-            }
-            next_line += lines.len();
-            Ok(())
-        };
-        produce(emit).map_err(exr::error::Error::from)
+                    UncompressedBlock {
+                        index: BlockIndex {
+                            layer: 0,
+                            pixel_position: Vec2(0, first + index),
+                            pixel_size: Vec2(width, 1),
+                            level: Vec2(0, 0),
+                        },
+                        data,
+                    }
+                    .compress_to_chunk(&meta.headers)
+                    .map_err(io::Error::other)
+                };
+                let chunks = pixels
+                    .par_chunks(width)
+                    .enumerate()
+                    .map(compress)
+                    .collect::<io::Result<Vec<_>>>()?;
+                next_line += chunks.len();
+                batches
+                    .send(chunks)
+                    .map_err(|_| io::Error::other("the EXR file writer stopped"))
+            });
+            drop(batches);
+            let written = file_writer
+                .join()
+                .map_err(|_| io::Error::other("the EXR file writer panicked"))?;
+            // A failed write explains why the rows could not be sent.
+            written?;
+            produced.map_err(exr::error::Error::from)
+        })
     })
     .map_err(|error| match error {
         exr::error::Error::Io(error) => error,
         other => io::Error::other(other),
-    })
-}
-
-/// `f` applied to every item on up to `threads` threads, results in order.
-fn parallel_map<T: Sync, R: Send>(
-    items: &[T],
-    threads: usize,
-    f: impl Fn((usize, &T)) -> io::Result<R> + Sync,
-) -> io::Result<Vec<R>> {
-    let per_thread = items.len().div_ceil(threads.max(1)).max(1);
-    std::thread::scope(|scope| {
-        let f = &f;
-        let workers: Vec<_> = items
-            .chunks(per_thread)
-            .enumerate()
-            .map(|(part, chunk)| {
-                scope.spawn(move || {
-                    let offset = part * per_thread;
-                    chunk
-                        .iter()
-                        .enumerate()
-                        .map(|(index, item)| f((offset + index, item)))
-                        .collect::<io::Result<Vec<R>>>()
-                })
-            })
-            .collect();
-        let mut results = Vec::with_capacity(items.len());
-        for worker in workers {
-            let part = worker
-                .join()
-                .map_err(|_| io::Error::other("an encoding thread panicked"))??;
-            results.extend(part);
-        }
-        Ok(results)
     })
 }

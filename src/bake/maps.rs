@@ -1,5 +1,7 @@
 //! Turning rendered material outputs into texture maps.
 
+use rayon::prelude::*;
+
 /// A texture map a bake can write.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
 pub enum Map {
@@ -51,21 +53,20 @@ pub enum NormalConvention {
 }
 
 /// Turns rendered material outputs into a map's pixels (RGB, plus alpha for EXR), band
-/// by band in place. A normal map needs the heights above and below each row, so each
-/// band's last row waits, copied, for the next band (or [`Converter::finish`]).
+/// by band in place, on every core. A normal map needs the heights above and below each
+/// row, so each band's last row waits, copied, for the next band (or [`Converter::finish`]).
 pub struct Converter {
     map: Map,
     size: usize,
     /// Plane distance between pixels in x and z.
     spacing: (f32, f32),
     convention: NormalConvention,
-    /// Heights of the row above the waiting one, of the waiting row, and of the row below.
-    up: Vec<f32>,
-    center: Vec<f32>,
-    down: Vec<f32>,
-    /// Whether a row has been seen yet, and whether the waiting row is the image's top one.
-    started: bool,
-    at_top: bool,
+    /// Heights of image rows `first_height_row..`: the two rows before the current band,
+    /// then the band's.
+    heights: Vec<f32>,
+    first_height_row: usize,
+    /// The image row the next band starts at.
+    next_row: usize,
     /// A band's last row, unconverted, while it waits for the row below.
     held: Vec<[f32; 4]>,
 }
@@ -83,11 +84,9 @@ impl Converter {
             size: size as usize,
             spacing: (spacing.0 as f32, spacing.1 as f32),
             convention,
-            up: Vec::new(),
-            center: Vec::new(),
-            down: Vec::new(),
-            started: false,
-            at_top: true,
+            heights: Vec::new(),
+            first_height_row: 0,
+            next_row: 0,
             held: Vec::new(),
         }
     }
@@ -98,37 +97,35 @@ impl Converter {
     where
         F: FnMut(&[[f32; 4]]) -> Result<(), E> + ?Sized,
     {
+        let n = self.size;
         if self.map != Map::Normal {
             let map = self.map;
-            band.iter_mut().for_each(|p| *p = pixel(map, *p));
+            band.par_chunks_mut(n)
+                .for_each(|row| row.iter_mut().for_each(|p| *p = pixel(map, *p)));
             return emit(band);
         }
-        let n = self.size;
         let rows = band.len() / n;
-        for r in 0..rows {
-            self.down.clear();
-            self.down
-                .extend(band[r * n..(r + 1) * n].iter().map(|p| p[0]));
-            if !self.started {
-                self.started = true;
-                std::mem::swap(&mut self.center, &mut self.down);
-                continue;
-            }
-            // The row above row r (held from the last band, or row r - 1) now has its row below.
-            if !self.held.is_empty() {
-                let mut held = std::mem::take(&mut self.held);
-                self.normal_row(0, &mut held, false);
-                emit(&held)?;
-                held.clear();
-                self.held = held;
-            } else if let Some(above) = r.checked_sub(1) {
-                self.normal_row(above, band, false);
-            }
+        let first = self.next_row;
+        // Keep the heights of the two rows above the band (the held row and the one above it).
+        let keep = first.saturating_sub(2).max(self.first_height_row);
+        self.heights.drain(..(keep - self.first_height_row) * n);
+        self.first_height_row = keep;
+        self.heights.extend(band.iter().map(|p| p[0]));
+        self.next_row += rows;
+        if let Some(above) = first.checked_sub(1) {
+            let mut held = std::mem::take(&mut self.held);
+            self.normal_row(above, &mut held);
+            emit(&held)?;
+            self.held = held;
         }
-        emit(&band[..rows.saturating_sub(1) * n])?;
+        let (done, last) = band.split_at_mut(rows.saturating_sub(1) * n);
+        let this = &*self;
+        done.par_chunks_mut(n)
+            .enumerate()
+            .for_each(|(row, pixels)| this.normal_row(first + row, pixels));
+        emit(done)?;
         self.held.clear();
-        self.held
-            .extend_from_slice(&band[rows.saturating_sub(1) * n..]);
+        self.held.extend_from_slice(last);
         Ok(())
     }
 
@@ -137,29 +134,40 @@ impl Converter {
     where
         F: FnMut(&[[f32; 4]]) -> Result<(), E> + ?Sized,
     {
+        let Some(last) = self.next_row.checked_sub(1) else {
+            return Ok(());
+        };
         if self.held.is_empty() {
             return Ok(());
         }
         let mut held = std::mem::take(&mut self.held);
-        self.down.clone_from(&self.center);
-        self.normal_row(0, &mut held, true);
+        self.normal_row(last, &mut held);
         emit(&held)
     }
 
-    /// Tangent-space normals of row `row` of `pixels` (its heights in `center`), from
-    /// central differences with the rows `up` and `down` (one-sided at the edges),
-    /// perturbed by each pixel's bump (lanes 1..4), encoded as 0.5 + 0.5·n; then moves the
-    /// height rows one down.
-    fn normal_row(&mut self, row: usize, pixels: &mut [[f32; 4]], at_bottom: bool) {
+    /// The heights of image row `row`, which must be among those kept.
+    fn height_row(&self, row: usize) -> &[f32] {
+        let start = (row - self.first_height_row) * self.size;
+        &self.heights[start..start + self.size]
+    }
+
+    /// Tangent-space normals of image row `row` into `pixels` (its rendered outputs):
+    /// central differences of the heights (one-sided at the image's edges), perturbed by
+    /// each pixel's bump (lanes 1..4), encoded as 0.5 + 0.5·n.
+    fn normal_row(&self, row: usize, pixels: &mut [[f32; 4]]) {
         let n = self.size;
         let (dx, dz) = self.spacing;
-        let up = if self.at_top { &self.center } else { &self.up };
-        let rows_apart = (usize::from(!self.at_top) + usize::from(!at_bottom)).max(1) as f32;
-        let center = &self.center;
-        for (i, pixel) in pixels[row * n..(row + 1) * n].iter_mut().enumerate() {
+        let (up, down) = (row.saturating_sub(1), (row + 1).min(self.next_row - 1));
+        let rows_apart = (down - up).max(1) as f32;
+        let (up, center, down) = (
+            self.height_row(up),
+            self.height_row(row),
+            self.height_row(down),
+        );
+        for (i, pixel) in pixels.iter_mut().enumerate() {
             let (left, right) = (i.saturating_sub(1), (i + 1).min(n - 1));
             let slope_x = (center[right] - center[left]) / (dx * (right - left).max(1) as f32);
-            let slope_z = (self.down[i] - up[i]) / (dz * rows_apart);
+            let slope_z = (down[i] - up[i]) / (dz * rows_apart);
             // Object space (y up) with the bump added, as the preview lights it.
             let normal = glam::Vec3::new(-slope_x, 1.0, -slope_z).normalize()
                 + glam::Vec3::new(pixel[1], pixel[2], pixel[3]);
@@ -176,9 +184,6 @@ impl Converter {
                 1.0,
             ];
         }
-        self.at_top = false;
-        std::mem::swap(&mut self.up, &mut self.center);
-        std::mem::swap(&mut self.center, &mut self.down);
     }
 }
 
