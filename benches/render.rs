@@ -198,7 +198,8 @@ fn live_edit(c: &mut Criterion) {
 }
 
 /// `veneer bake graphs/marble.ron --size 8192 --maps albedo,normal,height --format exr`
-/// against rendering the three passes alone (no conversion, no encoding).
+/// against rendering the three passes alone, in the bake's bands (no conversion, no
+/// encoding, no files).
 fn bake_marble(c: &mut Criterion) {
     use veneer::bake::{BakeSettings, Format, Map, NormalConvention, bake};
     use veneer::render::FlatChannels;
@@ -210,6 +211,7 @@ fn bake_marble(c: &mut Criterion) {
         .expect("compiles")
         .source;
     let renderer = FlatRenderer::new(&gpu, &source).expect("pipeline builds");
+    let rows = veneer::bake::band_rows(size, veneer::render::tile_size(&gpu));
     let dir = std::env::temp_dir().join(format!("veneer-bench-bake-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("scratch folder");
     let mut group = c.benchmark_group(format!(
@@ -224,11 +226,18 @@ fn bake_marble(c: &mut Criterion) {
                 FlatChannels::HeightBump,
                 FlatChannels::HeightBump,
             ] {
-                black_box(
-                    renderer
-                        .render_channels(&gpu, rect, size, 0.0, channels, |_, _| {})
-                        .expect("renders"),
-                );
+                renderer
+                    .render_channel_bands(
+                        &gpu,
+                        rect,
+                        size,
+                        0.0,
+                        channels,
+                        rows,
+                        |_, _| {},
+                        |_, band| Ok(black_box(band)),
+                    )
+                    .expect("renders");
             }
         })
     });

@@ -1,8 +1,6 @@
-//! Turning rendered material outputs into texture maps, and writing them.
+//! Turning rendered material outputs into texture maps.
 
-use super::Format;
-use image::ImageEncoder;
-use std::path::Path;
+use rayon::prelude::*;
 
 /// A texture map a bake can write.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
@@ -54,58 +52,128 @@ pub enum NormalConvention {
     DirectX,
 }
 
-/// Turns rendered outputs into `map`, in place: each pixel becomes the four values to
-/// write (RGB plus alpha for EXR). `spacing` is the plane distance between pixels in x and z.
-pub fn convert(
+/// Turns rendered material outputs into a map's pixels (RGB, plus alpha for EXR), band
+/// by band in place, on every core. A normal map needs the heights above and below each
+/// row, so each band's last row waits, copied, for the next band (or [`Converter::finish`]).
+pub struct Converter {
     map: Map,
-    mut pixels: Vec<[f32; 4]>,
-    size: u32,
-    spacing: (f64, f64),
+    size: usize,
+    /// Plane distance between pixels in x and z.
+    spacing: (f32, f32),
     convention: NormalConvention,
-) -> Vec<[f32; 4]> {
-    match map {
-        Map::Albedo => {}
-        Map::Alpha => pixels.iter_mut().for_each(|p| *p = [p[3], p[3], p[3], 1.0]),
-        Map::Height => pixels.iter_mut().for_each(|p| *p = [p[0], p[0], p[0], 1.0]),
-        Map::Specular => pixels.iter_mut().for_each(|p| p[3] = 1.0),
-        Map::Roughness => pixels.iter_mut().for_each(|p| {
-            let roughness = (2.0 / (p[3].max(0.0) + 2.0)).sqrt();
-            *p = [roughness, roughness, roughness, 1.0];
-        }),
-        Map::Normal => {
-            let heights: Vec<f32> = pixels.iter().map(|p| p[0]).collect();
-            normal_map(&heights, &mut pixels, size, spacing, convention);
-        }
-    }
-    pixels
+    /// Heights of image rows `first_height_row..`: the two rows before the current band,
+    /// then the band's.
+    heights: Vec<f32>,
+    first_height_row: usize,
+    /// The image row the next band starts at.
+    next_row: usize,
+    /// A band's last row, unconverted, while it waits for the row below.
+    held: Vec<[f32; 4]>,
 }
 
-/// Tangent-space normals of the height field `heights` (row-major, size²), perturbed by
-/// each pixel's bump (lanes 1..4 of `pixels`), encoded as 0.5 + 0.5·n into `pixels`.
-/// Central differences inside, one-sided at the edges.
-pub fn normal_map(
-    heights: &[f32],
-    pixels: &mut [[f32; 4]],
-    size: u32,
-    spacing: (f64, f64),
-    convention: NormalConvention,
-) {
-    let n = size as usize;
-    let at = |i: usize, j: usize| heights[j * n + i];
-    let (dx, dz) = (spacing.0 as f32, spacing.1 as f32);
-    for j in 0..n {
-        for i in 0..n {
+impl Converter {
+    /// A converter for a `size`² `map` whose pixels lie `spacing` apart on the plane.
+    pub fn new(
+        map: Map,
+        size: u32,
+        spacing: (f64, f64),
+        convention: NormalConvention,
+    ) -> Converter {
+        Converter {
+            map,
+            size: size as usize,
+            spacing: (spacing.0 as f32, spacing.1 as f32),
+            convention,
+            heights: Vec::new(),
+            first_height_row: 0,
+            next_row: 0,
+            held: Vec::new(),
+        }
+    }
+
+    /// Converts the next band of whole rows in place and passes every finished row on to
+    /// `emit`, in order.
+    pub fn band<E, F>(&mut self, band: &mut [[f32; 4]], emit: &mut F) -> Result<(), E>
+    where
+        F: FnMut(&[[f32; 4]]) -> Result<(), E> + ?Sized,
+    {
+        let n = self.size;
+        if self.map != Map::Normal {
+            let map = self.map;
+            band.par_chunks_mut(n)
+                .for_each(|row| row.iter_mut().for_each(|p| *p = pixel(map, *p)));
+            return emit(band);
+        }
+        let rows = band.len() / n;
+        let first = self.next_row;
+        // Keep the heights of the two rows above the band (the held row and the one above it).
+        let keep = first.saturating_sub(2).max(self.first_height_row);
+        self.heights.drain(..(keep - self.first_height_row) * n);
+        self.first_height_row = keep;
+        self.heights.extend(band.iter().map(|p| p[0]));
+        self.next_row += rows;
+        if let Some(above) = first.checked_sub(1) {
+            let mut held = std::mem::take(&mut self.held);
+            self.normal_row(above, &mut held);
+            emit(&held)?;
+            self.held = held;
+        }
+        let (done, last) = band.split_at_mut(rows.saturating_sub(1) * n);
+        let this = &*self;
+        done.par_chunks_mut(n)
+            .enumerate()
+            .for_each(|(row, pixels)| this.normal_row(first + row, pixels));
+        emit(done)?;
+        self.held.clear();
+        self.held.extend_from_slice(last);
+        Ok(())
+    }
+
+    /// Converts the image's last row, which has no row below, and passes it to `emit`.
+    pub fn finish<E, F>(&mut self, emit: &mut F) -> Result<(), E>
+    where
+        F: FnMut(&[[f32; 4]]) -> Result<(), E> + ?Sized,
+    {
+        let Some(last) = self.next_row.checked_sub(1) else {
+            return Ok(());
+        };
+        if self.held.is_empty() {
+            return Ok(());
+        }
+        let mut held = std::mem::take(&mut self.held);
+        self.normal_row(last, &mut held);
+        emit(&held)
+    }
+
+    /// The heights of image row `row`, which must be among those kept.
+    fn height_row(&self, row: usize) -> &[f32] {
+        let start = (row - self.first_height_row) * self.size;
+        &self.heights[start..start + self.size]
+    }
+
+    /// Tangent-space normals of image row `row` into `pixels` (its rendered outputs):
+    /// central differences of the heights (one-sided at the image's edges), perturbed by
+    /// each pixel's bump (lanes 1..4), encoded as 0.5 + 0.5·n.
+    fn normal_row(&self, row: usize, pixels: &mut [[f32; 4]]) {
+        let n = self.size;
+        let (dx, dz) = self.spacing;
+        let (up, down) = (row.saturating_sub(1), (row + 1).min(self.next_row - 1));
+        let rows_apart = (down - up).max(1) as f32;
+        let (up, center, down) = (
+            self.height_row(up),
+            self.height_row(row),
+            self.height_row(down),
+        );
+        for (i, pixel) in pixels.iter_mut().enumerate() {
             let (left, right) = (i.saturating_sub(1), (i + 1).min(n - 1));
-            let (up, down) = (j.saturating_sub(1), (j + 1).min(n - 1));
-            let slope_x = (at(right, j) - at(left, j)) / (dx * (right - left).max(1) as f32);
-            let slope_z = (at(i, down) - at(i, up)) / (dz * (down - up).max(1) as f32);
-            let pixel = &mut pixels[j * n + i];
+            let slope_x = (center[right] - center[left]) / (dx * (right - left).max(1) as f32);
+            let slope_z = (down[i] - up[i]) / (dz * rows_apart);
             // Object space (y up) with the bump added, as the preview lights it.
             let normal = glam::Vec3::new(-slope_x, 1.0, -slope_z).normalize()
                 + glam::Vec3::new(pixel[1], pixel[2], pixel[3]);
             let normal = normal.normalize_or(glam::Vec3::Y);
             // Tangent space: x along +x (right), y towards the top of the image (-z), z up.
-            let green = match convention {
+            let green = match self.convention {
                 NormalConvention::OpenGl => -normal.z,
                 NormalConvention::DirectX => normal.z,
             };
@@ -115,6 +183,20 @@ pub fn normal_map(
                 0.5 + 0.5 * normal.y,
                 1.0,
             ];
+        }
+    }
+}
+
+/// One pixel of a map other than the normal map from the rendered outputs.
+fn pixel(map: Map, p: [f32; 4]) -> [f32; 4] {
+    match map {
+        Map::Albedo | Map::Normal => p,
+        Map::Alpha => [p[3], p[3], p[3], 1.0],
+        Map::Height => [p[0], p[0], p[0], 1.0],
+        Map::Specular => [p[0], p[1], p[2], 1.0],
+        Map::Roughness => {
+            let roughness = (2.0 / (p[3].max(0.0) + 2.0)).sqrt();
+            [roughness, roughness, roughness, 1.0]
         }
     }
 }
@@ -162,57 +244,4 @@ pub fn fill_uncovered(pixels: &mut [[f32; 4]], size: u32, passes: u32) {
         .iter_mut()
         .filter(|p| p[0].is_nan())
         .for_each(|p| *p = [0.0; 4]);
-}
-
-/// Writes a converted map (atomically, streaming into the temporary file).
-pub fn write(path: &Path, pixels: Vec<[f32; 4]>, size: u32, format: Format) -> std::io::Result<()> {
-    let error = |e: image::ImageError| std::io::Error::other(e.to_string());
-    match format {
-        Format::Png8 => {
-            let rgb: Vec<u8> = pixels
-                .iter()
-                .flat_map(|p| [p[0], p[1], p[2]])
-                .map(|v| (255.0 * v.clamp(0.0, 1.0)).round() as u8)
-                .collect();
-            drop(pixels);
-            crate::fsutil::write_atomic_with(path, |file| {
-                image::codecs::png::PngEncoder::new(file)
-                    .write_image(&rgb, size, size, image::ExtendedColorType::Rgb8)
-                    .map_err(error)
-            })
-        }
-        Format::Png16 => {
-            let rgb: Vec<u16> = pixels
-                .iter()
-                .flat_map(|p| [p[0], p[1], p[2]])
-                .map(|v| (65535.0 * v.clamp(0.0, 1.0)).round() as u16)
-                .collect();
-            drop(pixels);
-            crate::fsutil::write_atomic_with(path, |file| {
-                let encoder = image::codecs::png::PngEncoder::new(file);
-                encoder
-                    .write_image(
-                        bytemuck::cast_slice(&rgb),
-                        size,
-                        size,
-                        image::ExtendedColorType::Rgb16,
-                    )
-                    .map_err(error)
-            })
-        }
-        Format::Exr => {
-            let floats: Vec<f32> = bytemuck::cast_vec(pixels);
-            crate::fsutil::write_atomic_with(path, |file| {
-                let encoder = image::codecs::openexr::OpenExrEncoder::new(file);
-                encoder
-                    .write_image(
-                        bytemuck::cast_slice(&floats),
-                        size,
-                        size,
-                        image::ExtendedColorType::Rgba32F,
-                    )
-                    .map_err(error)
-            })
-        }
-    }
 }

@@ -1,11 +1,16 @@
 //! Baking: a material's outputs rendered into texture maps (albedo, alpha, height,
 //! normal, specular, roughness) over a rectangle of the plane or into a mesh's UV
-//! layout, as 8- or 16-bit PNG or 32-bit float EXR. Maps are baked one at a time and
-//! converted in place, so an 8192² bake stays near 1.4 GiB however many maps it writes.
+//! layout, as 8- or 16-bit PNG or 32-bit float EXR. Maps are baked one at a time, each
+//! as a pipeline: bands of rows render on the GPU while the band before is converted and
+//! encoded on other threads, so over a plane an EXR bake holds two bands at any size (a
+//! PNG bake also its 8- or 16-bit samples). UV bakes hold the whole map, to pad its islands.
 
+mod encode;
 mod maps;
+mod pipeline;
 
-pub use maps::{Map, NormalConvention, fill_uncovered, normal_map};
+pub use maps::{Converter, Map, NormalConvention, fill_uncovered};
+use pipeline::MapTarget;
 
 use crate::graph::Graph;
 use crate::render::{
@@ -104,8 +109,15 @@ pub fn check_outputs(stems: &[&Path], settings: &BakeSettings) -> Result<(), Bak
             _ => Path::new("."),
         };
         if !folder.is_dir() {
-            let why = if folder.exists() { "is not a folder" } else { "does not exist" };
-            return Err(BakeError(format!("{}: {why}; nothing was baked", folder.display())));
+            let why = if folder.exists() {
+                "is not a folder"
+            } else {
+                "does not exist"
+            };
+            return Err(BakeError(format!(
+                "{}: {why}; nothing was baked",
+                folder.display()
+            )));
         }
         for &map in &settings.maps {
             let path = map_path(stem, map, settings.format);
@@ -171,10 +183,18 @@ pub fn bake(
         [center.0 as f32, center.1 as f32, center.2 as f32],
         graph.preview.size as f32,
     );
-    let tile = u64::from(crate::render::tile_size(gpu));
-    let tiles_per_pass = u64::from(size).div_ceil(tile).pow(2);
+    let tile = crate::render::tile_size(gpu);
+    let band_rows = band_rows(size, tile);
+    if let Surface::Plane(..) = surface {
+        check_memory(size, band_rows, settings.format)?;
+    }
+    let tiles_per_pass = match surface {
+        Surface::Plane(..) => u64::from(size.div_ceil(tile)) * u64::from(size.div_ceil(band_rows)),
+        Surface::Uv(..) => u64::from(size.div_ceil(tile)).pow(2),
+    };
     let total = tiles_per_pass * settings.maps.len() as u64;
     let mut written = Vec::new();
+    let mut spare = Vec::new();
     for (index, map) in settings.maps.iter().enumerate() {
         let channels = match map {
             Map::Albedo | Map::Alpha => FlatChannels::AlbedoAlpha,
@@ -183,10 +203,26 @@ pub fn bake(
         };
         let base = index as u64 * tiles_per_pass;
         let report = |done: u32, _| progress(base + u64::from(done), total);
-        let pixels = match &surface {
-            Surface::Plane(flat, rect) => {
-                flat.render_channels(gpu, *rect, size, settings.time, channels, report)?
-            }
+        let path = map_path(stem, *map, settings.format);
+        let target = MapTarget {
+            path: &path,
+            map: *map,
+            size,
+            format: settings.format,
+            spacing,
+            convention: settings.normal,
+        };
+        pipeline::bake_map(&target, &mut spare, |sink| match &surface {
+            Surface::Plane(flat, rect) => flat.render_channel_bands(
+                gpu,
+                *rect,
+                size,
+                settings.time,
+                channels,
+                band_rows,
+                report,
+                sink,
+            ),
             Surface::Uv(uv, mesh) => {
                 let mut pixels = uv.render_channels(
                     gpu,
@@ -198,13 +234,9 @@ pub fn bake(
                     report,
                 )?;
                 fill_uncovered(&mut pixels, size, UV_PADDING);
-                pixels
+                sink(0, pixels).map(drop)
             }
-        };
-        let path = map_path(stem, *map, settings.format);
-        let pixels = maps::convert(*map, pixels, size, spacing, settings.normal);
-        maps::write(&path, pixels, size, settings.format)
-            .map_err(|error| BakeError(format!("{}: {error}", path.display())))?;
+        })?;
         let bytes = std::fs::metadata(&path).map(|m| m.len()).unwrap_or(0);
         written.push(BakedMap {
             map: *map,
@@ -215,4 +247,27 @@ pub fn bake(
         });
     }
     Ok(written)
+}
+
+/// Bytes of the band buffers a plane bake renders into (two circulate).
+const BAND_BYTES: u64 = 128 << 20;
+
+/// Rows per band of a `size`² plane bake in tiles of `tile`²: as many as fit
+/// [`BAND_BYTES`] at four f32 per pixel, at most a tile.
+pub fn band_rows(size: u32, tile: u32) -> u32 {
+    let rows = BAND_BYTES / (u64::from(size.max(1)) * 16);
+    (rows.min(u64::from(tile)) as u32).max(1)
+}
+
+/// Refuses, before any work, a plane bake the machine lacks the memory for: two bands,
+/// and for PNG the samples and the compressed stream.
+fn check_memory(size: u32, band_rows: u32, format: Format) -> Result<(), BakeError> {
+    let pixels = u64::from(size) * u64::from(size);
+    let stream = match format {
+        Format::Png8 => 2 * 3 * pixels,
+        Format::Png16 => 2 * 6 * pixels,
+        Format::Exr => 0,
+    };
+    let bands = 2 * u64::from(size) * u64::from(band_rows) * 16;
+    crate::render::ensure_memory(size, bands + stream).map_err(BakeError::from)
 }

@@ -1,6 +1,6 @@
 //! The flat render: a material's outputs over a rectangle of the plane y = Y.
 
-use super::tiles::{FORMAT, clear_pass, render_tiled};
+use super::tiles::{FORMAT, TileDraw, clear_pass, render_bands, render_tiled};
 use super::timing::PassTimer;
 use super::{GpuContext, RenderError, shader_source};
 
@@ -22,7 +22,9 @@ impl FlatRect {
         let fits = |v: f64| v.is_finite() && v.abs() <= f64::from(f32::MAX);
         let values = [self.x0, self.z0, self.x1, self.z1, self.y];
         if !values.into_iter().all(fits) {
-            return Err("the rectangle must be finite numbers within the f32 range (±3.4e38)".into());
+            return Err(
+                "the rectangle must be finite numbers within the f32 range (±3.4e38)".into(),
+            );
         }
         if !(fits(self.x1 - self.x0) && fits(self.z1 - self.z0)) {
             return Err("the rectangle's width or depth overflows f32".into());
@@ -135,6 +137,30 @@ impl FlatRenderer {
         let prepare = |offset, _| self.write_view(gpu, rect, size, time, channels, offset);
         let draw = |pass: &mut wgpu::RenderPass<'_>| self.draw(pass);
         render_tiled(gpu, size, wgpu::Color::TRANSPARENT, prepare, draw, progress)
+    }
+
+    /// Renders an n×n image of `channels` in bands of `band_rows` full-width rows, handing
+    /// each band to `band(first row, pixels)` in order, which returns a buffer to fill
+    /// later (see [`render_bands`]): the whole image is never held at once.
+    #[allow(clippy::too_many_arguments)]
+    pub fn render_channel_bands(
+        &self,
+        gpu: &GpuContext,
+        rect: FlatRect,
+        size: u32,
+        time: f32,
+        channels: FlatChannels,
+        band_rows: u32,
+        progress: impl FnMut(u32, u32),
+        band: impl FnMut(u32, Vec<[f32; 4]>) -> Result<Vec<[f32; 4]>, RenderError>,
+    ) -> Result<(), RenderError> {
+        rect.validate().map_err(RenderError)?;
+        let draw = TileDraw {
+            clear: wgpu::Color::TRANSPARENT,
+            prepare: |offset, _| self.write_view(gpu, rect, size, time, channels, offset),
+            draw: |pass: &mut wgpu::RenderPass<'_>| self.draw(pass),
+        };
+        render_bands(gpu, size, band_rows, draw, progress, band)
     }
 
     /// The time the GPU takes to shade a size×size image (at most one tile), without

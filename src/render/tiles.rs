@@ -1,7 +1,7 @@
 //! Rendering a large square image of four f32 per pixel in tiles, so memory on the GPU
 //! stays bounded: the shared loop of the flat and UV-layout renders.
 
-use super::readback::read_texture;
+use super::readback::Readback;
 use super::{GpuContext, RenderError};
 
 /// f32 bits in an integer target: renderable on every backend (GL has no float targets).
@@ -28,44 +28,165 @@ pub fn tile_size(gpu: &GpuContext) -> u32 {
         .max(16)
 }
 
-/// Renders a `size`² image tile by tile: `prepare(first texel, tile extent)` writes the
-/// tile's uniforms, `draw` records its draw calls into a pass cleared to `clear`, and
-/// `progress(tiles done, tiles in all)` follows each tile. Rows run from the top.
+/// Renders a `size`² image tile by tile into one buffer: `prepare(first texel, tile
+/// extent)` writes the tile's uniforms, `draw` records its draw calls into a pass cleared
+/// to `clear`, and `progress(tiles done, tiles in all)` follows each tile. Rows run from
+/// the top.
 pub fn render_tiled(
     gpu: &GpuContext,
     size: u32,
     clear: wgpu::Color,
-    mut prepare: impl FnMut((u32, u32), (u32, u32)),
-    mut draw: impl FnMut(&mut wgpu::RenderPass<'_>),
-    mut progress: impl FnMut(u32, u32),
+    prepare: impl FnMut((u32, u32), (u32, u32)),
+    draw: impl FnMut(&mut wgpu::RenderPass<'_>),
+    progress: impl FnMut(u32, u32),
 ) -> Result<Vec<[f32; 4]>, RenderError> {
     if size == 0 {
         return Err(RenderError("image size must be at least 1 pixel".into()));
     }
     let mut image = image_buffer(size, FLOAT_PIXEL_BYTES)?;
-    let tile = tile_size(gpu);
-    let tiles_per_side = size.div_ceil(tile);
-    let mut done = 0;
-    for (origin, (width, height)) in tiles(size, tile) {
-        prepare(origin, (width, height));
+    let rows = tile_size(gpu);
+    let whole = TileDraw {
+        clear,
+        prepare,
+        draw,
+    };
+    render_bands(gpu, size, rows, whole, progress, |first_row, band| {
+        let start = first_row as usize * size as usize;
+        image[start..start + band.len()].copy_from_slice(&band);
+        Ok(band)
+    })?;
+    Ok(image)
+}
+
+/// What a tiled render draws: each tile's pass is cleared to `clear`, then `prepare(first
+/// texel, extent)` writes the tile's uniforms and `draw` records its draw calls.
+pub struct TileDraw<P, D> {
+    pub clear: wgpu::Color,
+    pub prepare: P,
+    pub draw: D,
+}
+
+/// Renders a `size`² image in bands of `band_rows` full-width rows (at most a tile high),
+/// each band in tiles: `band(first row, pixels)` receives every band in order, four f32
+/// per pixel row by row, and hands back a buffer for a later band (the same one, or any
+/// other: its length does not matter). Tile n + 1 renders while tile n is read back, and
+/// the two render targets and readback buffers are reused throughout.
+pub fn render_bands<P, D>(
+    gpu: &GpuContext,
+    size: u32,
+    band_rows: u32,
+    mut tiles_draw: TileDraw<P, D>,
+    mut progress: impl FnMut(u32, u32),
+    mut band: impl FnMut(u32, Vec<[f32; 4]>) -> Result<Vec<[f32; 4]>, RenderError>,
+) -> Result<(), RenderError>
+where
+    P: FnMut((u32, u32), (u32, u32)),
+    D: FnMut(&mut wgpu::RenderPass<'_>),
+{
+    if size == 0 {
+        return Err(RenderError("image size must be at least 1 pixel".into()));
+    }
+    let width = tile_size(gpu).min(size);
+    let height = band_rows.clamp(1, width).min(size);
+    let slots: [_; 2] = std::array::from_fn(|_| {
         let texture = gpu.device.create_texture(&target_descriptor(width, height));
-        let target = texture.create_view(&Default::default());
+        (
+            texture.create_view(&Default::default()),
+            texture,
+            Readback::new(gpu, (width, height), 16),
+        )
+    });
+    let all = size.div_ceil(width) * size.div_ceil(height);
+    let mut filling = BandBuffer {
+        pixels: Vec::new(),
+        first_row: 0,
+        size,
+    };
+    filling.start(0, height);
+    let mut pending = None;
+    for (index, (origin, extent)) in tile_grid(size, (width, height)).enumerate() {
+        let (view, texture, readback) = &slots[index % 2];
+        (tiles_draw.prepare)(origin, extent);
         let mut encoder = gpu
             .device
             .create_command_encoder(&wgpu::CommandEncoderDescriptor {
                 label: Some("tile"),
             });
         {
-            let mut pass = clear_pass(&mut encoder, &target, clear, None);
-            draw(&mut pass);
+            let mut pass = clear_pass(&mut encoder, view, tiles_draw.clear, None);
+            pass.set_viewport(0.0, 0.0, extent.0 as f32, extent.1 as f32, 0.0, 1.0);
+            (tiles_draw.draw)(&mut pass);
         }
-        gpu.queue.submit([encoder.finish()]);
-        let pixels: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&read_texture(gpu, &texture, 16)?);
-        paste(&mut image, size, origin, width, &pixels);
-        done += 1;
-        progress(done, tiles_per_side * tiles_per_side);
+        readback.record_copy(&mut encoder, texture, extent);
+        let submission = gpu.queue.submit([encoder.finish()]);
+        if let Some((slot, origin, extent, submission)) =
+            pending.replace((index % 2, origin, extent, submission))
+        {
+            filling.read_tile(gpu, &slots[slot].2, submission, origin, extent)?;
+            progress(index as u32, all);
+            filling.pass_on_if_full(origin, extent, height, &mut band)?;
+        }
     }
-    Ok(image)
+    if let Some((slot, origin, extent, submission)) = pending {
+        filling.read_tile(gpu, &slots[slot].2, submission, origin, extent)?;
+        progress(all, all);
+        filling.pass_on_if_full(origin, extent, height, &mut band)?;
+    }
+    Ok(())
+}
+
+/// The band of a tiled render being read back into.
+struct BandBuffer {
+    pixels: Vec<[f32; 4]>,
+    first_row: u32,
+    size: u32,
+}
+
+impl BandBuffer {
+    /// Gets ready for the `rows` rows from `first_row` on.
+    fn start(&mut self, first_row: u32, rows: u32) {
+        self.first_row = first_row;
+        let rows = rows.min(self.size - first_row);
+        self.pixels
+            .resize(rows as usize * self.size as usize, [0.0; 4]);
+    }
+
+    /// Copies a finished tile's rows straight from the readback buffer into the band.
+    fn read_tile(
+        &mut self,
+        gpu: &GpuContext,
+        readback: &Readback,
+        submission: wgpu::SubmissionIndex,
+        origin: (u32, u32),
+        extent: (u32, u32),
+    ) -> Result<(), RenderError> {
+        let (size, top) = (self.size as usize, (origin.1 - self.first_row) as usize);
+        let pixels = &mut self.pixels;
+        readback.read_rows(gpu, submission, extent, |row, bytes| {
+            let start = (top + row) * size + origin.0 as usize;
+            bytemuck::cast_slice_mut(&mut pixels[start..start + extent.0 as usize])
+                .copy_from_slice(bytes);
+        })
+    }
+
+    /// Hands the band on when the tile at `origin` was its last, and starts the next.
+    fn pass_on_if_full(
+        &mut self,
+        origin: (u32, u32),
+        extent: (u32, u32),
+        band_rows: u32,
+        band: &mut impl FnMut(u32, Vec<[f32; 4]>) -> Result<Vec<[f32; 4]>, RenderError>,
+    ) -> Result<(), RenderError> {
+        if origin.0 + extent.0 < self.size {
+            return Ok(());
+        }
+        self.pixels = band(self.first_row, std::mem::take(&mut self.pixels))?;
+        let next = origin.1 + extent.1;
+        if next < self.size {
+            self.start(next, band_rows);
+        }
+        Ok(())
+    }
 }
 
 /// Copies the rows of a tile `width` pixels wide into a `size`² image at `origin`.
@@ -79,11 +200,20 @@ pub fn paste<T: Copy>(image: &mut [T], size: u32, origin: (u32, u32), width: u32
 /// The tiles of a `size`² image in tiles of at most `tile`², row by row from the top:
 /// each tile's first texel and extent.
 pub fn tiles(size: u32, tile: u32) -> impl Iterator<Item = ((u32, u32), (u32, u32))> {
-    let step = tile.max(1) as usize;
-    (0..size).step_by(step).flat_map(move |y| {
+    tile_grid(size, (tile, tile))
+}
+
+/// The tiles of a `size`² image in tiles of at most `width`×`height`, row by row from the
+/// top: each tile's first texel and extent.
+fn tile_grid(
+    size: u32,
+    (width, height): (u32, u32),
+) -> impl Iterator<Item = ((u32, u32), (u32, u32))> {
+    let (width, height) = (width.max(1), height.max(1));
+    (0..size).step_by(height as usize).flat_map(move |y| {
         (0..size)
-            .step_by(step)
-            .map(move |x| ((x, y), (tile.min(size - x), tile.min(size - y))))
+            .step_by(width as usize)
+            .map(move |x| ((x, y), (width.min(size - x), height.min(size - y))))
     })
 }
 
@@ -100,27 +230,40 @@ pub fn image_buffer<T: Copy + Default>(
     bytes_per_pixel: u64,
 ) -> Result<Vec<T>, RenderError> {
     let pixels = size as usize * size as usize;
-    let needed = pixels as u64 * bytes_per_pixel;
-    let refuse = |why: String| {
-        RenderError(format!(
-            "a {size}×{size} image needs about {} of memory, {why}; ask for a smaller size",
-            gibibytes(needed)
-        ))
-    };
-    if let Some(available) = available_memory()
-        && needed > available
-    {
-        return Err(refuse(format!(
-            "more than the {} this machine has available",
-            gibibytes(available)
-        )));
-    }
+    ensure_memory(size, pixels as u64 * bytes_per_pixel)?;
     let mut image = Vec::new();
-    image
-        .try_reserve_exact(pixels)
-        .map_err(|_| refuse("which the allocator refused".into()))?;
+    image.try_reserve_exact(pixels).map_err(|_| {
+        too_large(
+            size,
+            pixels as u64 * bytes_per_pixel,
+            "which the allocator refused",
+        )
+    })?;
     image.resize(pixels, T::default());
     Ok(image)
+}
+
+/// Refuses work on a `size`² image that needs `needed` bytes when the machine has less
+/// memory available, saying how much it would need.
+pub fn ensure_memory(size: u32, needed: u64) -> Result<(), RenderError> {
+    match available_memory() {
+        Some(available) if needed > available => Err(too_large(
+            size,
+            needed,
+            &format!(
+                "more than the {} this machine has available",
+                gibibytes(available)
+            ),
+        )),
+        _ => Ok(()),
+    }
+}
+
+fn too_large(size: u32, needed: u64, why: &str) -> RenderError {
+    RenderError(format!(
+        "a {size}×{size} image needs about {} of memory, {why}; ask for a smaller size",
+        gibibytes(needed)
+    ))
 }
 
 /// Memory the kernel says is available for new allocations (Linux), in bytes.

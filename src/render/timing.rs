@@ -68,7 +68,7 @@ impl PassTimer {
 
     /// The time between the two timestamps, once the submitted work has finished.
     pub fn read(&self, gpu: &GpuContext) -> Result<Duration, RenderError> {
-        let ticks = read_buffer(gpu, &self.readable, |bytes| {
+        let ticks = read_buffer(gpu, &self.readable, None, |bytes| {
             let stamp = |k: usize| bytemuck::pod_read_unaligned::<u64>(&bytes[8 * k..8 * k + 8]);
             stamp(1).saturating_sub(stamp(0))
         })?;

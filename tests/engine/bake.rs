@@ -233,3 +233,41 @@ fn fill_uncovered_grows_islands_by_the_padding() {
     );
     assert_eq!(pixels[0], [0.0; 4], "beyond the padding stays empty (0)");
 }
+
+/// A 3000² bake renders in two bands: the EXR's values, quantised as 16-bit PNG quantises,
+/// give the 16-bit PNG exactly, for every map including normals across the band seam.
+#[test]
+fn banded_exr_and_png_bakes_agree_across_band_seams() {
+    let graph = veneer::graph::load(&root("graphs/marble.ron")).expect("preset");
+    let rect = veneer::render::preview_rect(&graph);
+    let dir = scratch("bands");
+    let maps = vec![Map::Albedo, Map::Normal, Map::Height];
+    let exr = bake(
+        gpu(),
+        &graph,
+        &settings(3000, maps.clone(), Format::Exr, rect),
+        &dir.join("exr"),
+        |_, _| {},
+    )
+    .expect("bakes EXR");
+    let png = bake(
+        gpu(),
+        &graph,
+        &settings(3000, maps, Format::Png16, rect),
+        &dir.join("png"),
+        |_, _| {},
+    )
+    .expect("bakes PNG");
+    for (exr, png) in exr.iter().zip(&png) {
+        let floats = image::open(&exr.path).expect("an EXR").to_rgba32f();
+        let words = image::open(&png.path).expect("a PNG").to_rgb16();
+        let mismatches = floats
+            .pixels()
+            .zip(words.pixels())
+            .filter(|(f, w)| {
+                (0..3).any(|c| (65535.0 * f.0[c].clamp(0.0, 1.0)).round() as u16 != w.0[c])
+            })
+            .count();
+        assert_eq!(mismatches, 0, "{:?}: EXR and PNG differ", exr.map);
+    }
+}
