@@ -28,6 +28,16 @@ pub enum Format {
 }
 
 impl Format {
+    /// The most bytes a pixel of a map takes in a file of this format: uncompressed
+    /// RGB for PNG, RGBA f32 for EXR (RLE can only lose on noise).
+    fn max_bytes_per_pixel(self) -> u64 {
+        match self {
+            Format::Png8 => 3,
+            Format::Png16 => 6,
+            Format::Exr => 16,
+        }
+    }
+
     /// The file extension.
     pub fn extension(self) -> &'static str {
         match self {
@@ -99,10 +109,13 @@ pub fn map_path(stem: &Path, map: Map, format: Format) -> PathBuf {
 }
 
 /// Checks, before anything renders, that every file the bakes of `stems` would write
-/// has a folder to go to and that no two bakes write the same file (two graphs of the
-/// same name baked into one folder would silently replace each other's maps).
+/// has a folder to go to, that no two bakes write the same file (two graphs of the
+/// same name baked into one folder would silently replace each other's maps), and that
+/// each folder's disk has room for the maps at their largest.
 pub fn check_outputs(stems: &[&Path], settings: &BakeSettings) -> Result<(), BakeError> {
     let mut writers: std::collections::BTreeMap<PathBuf, &Path> = Default::default();
+    let mut needed: std::collections::BTreeMap<&Path, u64> = Default::default();
+    let map_bytes = u64::from(settings.size).pow(2) * settings.format.max_bytes_per_pixel();
     for &stem in stems {
         let folder = match stem.parent() {
             Some(folder) if !folder.as_os_str().is_empty() => folder,
@@ -119,6 +132,7 @@ pub fn check_outputs(stems: &[&Path], settings: &BakeSettings) -> Result<(), Bak
                 folder.display()
             )));
         }
+        *needed.entry(folder).or_default() += map_bytes * settings.maps.len() as u64;
         for &map in &settings.maps {
             let path = map_path(stem, map, settings.format);
             if let Some(other) = writers.insert(path.clone(), stem) {
@@ -129,6 +143,18 @@ pub fn check_outputs(stems: &[&Path], settings: &BakeSettings) -> Result<(), Bak
                     stem.display()
                 )));
             }
+        }
+    }
+    for (folder, bytes) in needed {
+        if let Some(free) = crate::fsutil::free_space(folder)
+            && bytes > free
+        {
+            return Err(BakeError(format!(
+                "{}: the maps take up to {} and its disk has {} free; nothing was baked",
+                folder.display(),
+                crate::fsutil::gibibytes(bytes),
+                crate::fsutil::gibibytes(free)
+            )));
         }
     }
     Ok(())

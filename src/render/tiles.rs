@@ -252,7 +252,7 @@ pub fn ensure_memory(size: u32, needed: u64) -> Result<(), RenderError> {
             needed,
             &format!(
                 "more than the {} this machine has available",
-                gibibytes(available)
+                crate::fsutil::gibibytes(available)
             ),
         )),
         _ => Ok(()),
@@ -262,7 +262,7 @@ pub fn ensure_memory(size: u32, needed: u64) -> Result<(), RenderError> {
 fn too_large(size: u32, needed: u64, why: &str) -> RenderError {
     RenderError(format!(
         "a {size}×{size} image needs about {} of memory, {why}; ask for a smaller size",
-        gibibytes(needed)
+        crate::fsutil::gibibytes(needed)
     ))
 }
 
@@ -272,10 +272,6 @@ fn available_memory() -> Option<u64> {
     let line = meminfo.lines().find(|l| l.starts_with("MemAvailable:"))?;
     let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
     Some(kib * 1024)
-}
-
-fn gibibytes(bytes: u64) -> String {
-    format!("{:.1} GiB", bytes as f64 / (1u64 << 30) as f64)
 }
 
 /// A render target of `width`×`height` in [`FORMAT`] that can be read back.

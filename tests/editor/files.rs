@@ -207,7 +207,7 @@ fn the_preview_shows_a_mesh_file_and_refuses_a_broken_one() {
 
     let mut harness = editor(&dir, None);
     load_mesh(&mut harness, &root.join("tests/meshes/bad_index.obj"));
-    assert!(shows(&harness, "index out of bounds"), "the error is shown");
+    assert!(shows(&harness, "refers to vertex 9"), "the error is shown");
 }
 
 #[test]

@@ -169,6 +169,14 @@ fn bake_outputs_are_checked_before_any_rendering() {
         "bake", &a.to_string_lossy(), "--size", "8192", "-o", &missing.to_string_lossy(),
     ]);
     assert_refused(&output, 1, "does not exist; nothing was baked");
+    // Bakes stream to disk with bounded memory: the disk is what bounds a huge EXR
+    // (200,000² × 3 maps × 16 bytes: 1.7 TiB).
+    let output = run_veneer(&[
+        "bake", &a.to_string_lossy(), "--size", "200000", "--format", "exr", "-o",
+        &out.to_string_lossy(),
+    ]);
+    assert_refused(&output, 1, "its disk has");
+    assert_eq!(std::fs::read_dir(&out).expect("listed").count(), 0);
     // Refused before loading the GPU or rendering an 8192² map.
     assert!(started.elapsed() < Duration::from_secs(5), "{:?}", started.elapsed());
 }
