@@ -273,7 +273,8 @@ impl Namer {
     /// when the plain name is reserved or already used.
     pub fn name(&mut self, label: &str, fallback_id: u32) -> String {
         let base = sanitize(label);
-        let clashes = |name: &str, taken: &FxHashSet<String>| reserved(name) || taken.contains(name);
+        let clashes =
+            |name: &str, taken: &FxHashSet<String>| reserved(name) || taken.contains(name);
         let mut name = base.clone();
         if clashes(&name, &self.taken) {
             name = format!("{base}_{fallback_id}");

@@ -445,7 +445,11 @@ mod tests {
     fn a_failed_factorisation_suggests_the_robust_option_only_when_it_was_off() {
         let plain = HeatError::Factorisation("heat", "NonPositivePivot".into(), false);
         let robust = HeatError::Factorisation("heat", "NonPositivePivot".into(), true);
-        assert!(plain.to_string().contains("the robust option handles poor triangles"));
+        assert!(
+            plain
+                .to_string()
+                .contains("the robust option handles poor triangles")
+        );
         assert!(!robust.to_string().contains("the robust option handles"));
         assert!(robust.to_string().contains("could not repair"));
     }

@@ -65,8 +65,16 @@ mod tests {
             5
         ];
         let problems = preview.problems().join("\n");
-        for expected in ["preview size NaN", "preview center", "5 preview fields", "preview field 4: time factor 0"] {
-            assert!(problems.contains(expected), "{expected} missing from {problems}");
+        for expected in [
+            "preview size NaN",
+            "preview center",
+            "5 preview fields",
+            "preview field 4: time factor 0",
+        ] {
+            assert!(
+                problems.contains(expected),
+                "{expected} missing from {problems}"
+            );
         }
     }
 }

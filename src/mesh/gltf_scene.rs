@@ -145,7 +145,9 @@ fn glb_length_fits(bytes: &[u8]) -> Result<(), String> {
         [b'g', b'l', b'T', b'F', _, _, _, _, a, b, c, d, ..] => {
             let length = u32::from_le_bytes([*a, *b, *c, *d]) as usize;
             if length < HEADER {
-                Err(format!("the GLB header gives a length of {length} bytes, less than the header's own {HEADER}"))
+                Err(format!(
+                    "the GLB header gives a length of {length} bytes, less than the header's own {HEADER}"
+                ))
             } else {
                 Ok(())
             }

@@ -150,7 +150,8 @@ impl Mesh {
         self.indices
             .chunks_exact(3)
             .map(|t| {
-                let [a, b, c] = [0, 1, 2].map(|k| glam::DVec2::from(self.uvs[t[k] as usize].map(f64::from)));
+                let [a, b, c] =
+                    [0, 1, 2].map(|k| glam::DVec2::from(self.uvs[t[k] as usize].map(f64::from)));
                 0.5 * (b - a).perp_dot(c - a).abs()
             })
             .sum()

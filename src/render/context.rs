@@ -33,7 +33,9 @@ impl GpuContext {
 
     /// [`GpuContext::new`] with the device's limits narrowed by `narrow` (given what the
     /// adapter offers), to see how Veneer copes with a smaller device than this one.
-    pub fn with_limits(narrow: impl FnOnce(wgpu::Limits) -> wgpu::Limits) -> Result<GpuContext, RenderError> {
+    pub fn with_limits(
+        narrow: impl FnOnce(wgpu::Limits) -> wgpu::Limits,
+    ) -> Result<GpuContext, RenderError> {
         let descriptor = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
         let instance = wgpu::Instance::new(descriptor);
         let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
@@ -70,7 +72,11 @@ impl GpuContext {
 
     /// A context on a device opened elsewhere (the editor's), whose own handler keeps
     /// receiving the errors raised outside error scopes.
-    pub fn on_device(adapter: wgpu::Adapter, device: wgpu::Device, queue: wgpu::Queue) -> GpuContext {
+    pub fn on_device(
+        adapter: wgpu::Adapter,
+        device: wgpu::Device,
+        queue: wgpu::Queue,
+    ) -> GpuContext {
         GpuContext {
             adapter,
             device,

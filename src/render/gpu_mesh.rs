@@ -160,7 +160,11 @@ mod tests {
         for (max_vertices, max_indices) in [(50, usize::MAX), (usize::MAX, 99), (3, 3), (40, 60)] {
             let parts = split(&mesh, max_vertices, max_indices);
             assert!(parts.len() > 1, "{max_vertices}, {max_indices}");
-            assert!(parts.iter().all(|(v, i)| v.len() <= max_vertices && i.len() <= max_indices));
+            assert!(
+                parts
+                    .iter()
+                    .all(|(v, i)| v.len() <= max_vertices && i.len() <= max_indices)
+            );
             assert_eq!(triangles(&parts), triangles(&whole));
         }
     }

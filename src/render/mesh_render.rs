@@ -53,7 +53,9 @@ impl MeshRenderer {
         tile: u32,
     ) -> Result<Vec<[u8; 4]>, RenderError> {
         if size == 0 || tile == 0 {
-            return Err(RenderError("image and tile sizes must be at least 1 pixel".into()));
+            return Err(RenderError(
+                "image and tile sizes must be at least 1 pixel".into(),
+            ));
         }
         let mut image = image_buffer::<[u8; 4]>(size, PIXEL_BYTES)?;
         let tile = tile.min(tile_size(gpu));

@@ -333,8 +333,18 @@ impl MeshPipeline {
 
     /// [`MeshPipeline::write_view`] for a target that shows part of the image: `crop`
     /// maps that part's clip-space rectangle onto the whole target (see [`tile_crop`]).
-    pub fn write_view_cropped(&self, queue: &wgpu::Queue, view: &MeshView, aspect: f32, crop: Mat4) {
-        queue.write_buffer(&self.view, 0, bytemuck::bytes_of(&view.uniform(aspect, crop)));
+    pub fn write_view_cropped(
+        &self,
+        queue: &wgpu::Queue,
+        view: &MeshView,
+        aspect: f32,
+        crop: Mat4,
+    ) {
+        queue.write_buffer(
+            &self.view,
+            0,
+            bytemuck::bytes_of(&view.uniform(aspect, crop)),
+        );
     }
 
     /// Writes the parameter values of a uniform-mode material (ignored when baked).

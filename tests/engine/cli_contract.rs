@@ -25,11 +25,22 @@ const ADDRESS_SPACE: u64 = 6 << 30;
 /// Inputs every case's folder holds; the hostile ones are made by [`fixture`].
 const GRAPHS: &[&str] = &["wood.ron", "fields.ron"];
 const HOSTILE_GRAPHS: &[&str] = &[
-    "zero.ron", "fifo.ron", "folder.ron", "empty.ron", "missing.ron", "mesh.obj",
+    "zero.ron",
+    "fifo.ron",
+    "folder.ron",
+    "empty.ron",
+    "missing.ron",
+    "mesh.obj",
 ];
 const MESHES: &[&str] = &["sphere", "plane:3", "mesh.obj", "torus:8"];
 const HOSTILE_MESHES: &[&str] = &[
-    "torus:0", "torus:99999", "zero.obj", "fifo.obj", "folder.obj", "missing.obj", "empty.stl",
+    "torus:0",
+    "torus:99999",
+    "zero.obj",
+    "fifo.obj",
+    "folder.obj",
+    "missing.obj",
+    "empty.stl",
     "wood.ron",
 ];
 const SIZES: &[&str] = &["1", "7", "32"];
@@ -50,7 +61,10 @@ fn fixture(dir: &Path) {
     }
     std::os::unix::fs::symlink("/dev/full", dir.join("full")).expect("link");
     for name in ["fifo.ron", "fifo.obj"] {
-        let status = Command::new("mkfifo").arg(dir.join(name)).status().expect("mkfifo");
+        let status = Command::new("mkfifo")
+            .arg(dir.join(name))
+            .status()
+            .expect("mkfifo");
         assert!(status.success());
     }
     for name in ["folder.ron", "folder.obj"] {
@@ -67,7 +81,10 @@ fn pick(values: &'static [&'static str]) -> impl Strategy<Value = String> {
 }
 
 /// An option and its value, or nothing.
-fn option(name: &'static str, values: impl Strategy<Value = String> + 'static) -> BoxedStrategy<Vec<String>> {
+fn option(
+    name: &'static str,
+    values: impl Strategy<Value = String> + 'static,
+) -> BoxedStrategy<Vec<String>> {
     prop_oneof![
         Just(Vec::new()),
         values.prop_map(move |value| vec![name.to_string(), value]),
@@ -102,72 +119,155 @@ fn command_line() -> impl Strategy<Value = Vec<String>> {
     let size = || usual_or(SIZES, HOSTILE_SIZES);
     let output = || option("-o", usual_or(OUTPUTS, HOSTILE_OUTPUTS));
     let time = || option("--time", usual_or(&["0", "2.5"], HOSTILE_NUMBERS));
-    let flat = || usual_or(&["0,0,1,1,0", "-2,-2,2,2,0.5"], &["0,0,1e39,1,0", "1,2,3", "NaN,0,1,1,0"]);
-    let render = (graph(), options(vec![
-        output(),
-        option("--size", size()),
-        option("--mesh", mesh()),
-        time(),
-        option("--flat", flat()),
-        option("--detail", usual_or(&["footprint", "full"], &["none"])),
-    ]))
-    .prop_map(|(graph, rest)| [vec!["render".into(), graph], rest].concat());
-    let bake = (graphs(), options(vec![
-        option("-o", usual_or(&["out"], &["missing", "full", "wood.ron", "out/"])),
-        option("--size", size()),
-        option("--mesh", mesh()),
-        option("--flat", flat()),
-        option("--maps", usual_or(&["albedo", "normal,height", "roughness"], &["albedo,albedo", "nope", ""])),
-        option("--format", usual_or(&["png16", "exr", "png"], &["gif"])),
-        time(),
-    ]))
-    .prop_map(|(graphs, rest)| [vec!["bake".into()], graphs, rest].concat());
-    let compile = (graph(), options(vec![
-        option("-o", usual_or(&["out/a.wgsl", "out/a.glsl", "-"], HOSTILE_OUTPUTS)),
-        option("--target", usual_or(&["glsl", "spv", "hlsl", "msl", "wgsl"], &["cobol"])),
-        option("--params", usual_or(&["uniform", "baked"], &["none"])),
-    ]))
-    .prop_map(|(graph, rest)| [vec!["compile".into(), graph], rest].concat());
+    let flat = || {
+        usual_or(
+            &["0,0,1,1,0", "-2,-2,2,2,0.5"],
+            &["0,0,1e39,1,0", "1,2,3", "NaN,0,1,1,0"],
+        )
+    };
+    let render = (
+        graph(),
+        options(vec![
+            output(),
+            option("--size", size()),
+            option("--mesh", mesh()),
+            time(),
+            option("--flat", flat()),
+            option("--detail", usual_or(&["footprint", "full"], &["none"])),
+        ]),
+    )
+        .prop_map(|(graph, rest)| [vec!["render".into(), graph], rest].concat());
+    let bake = (
+        graphs(),
+        options(vec![
+            option(
+                "-o",
+                usual_or(&["out"], &["missing", "full", "wood.ron", "out/"]),
+            ),
+            option("--size", size()),
+            option("--mesh", mesh()),
+            option("--flat", flat()),
+            option(
+                "--maps",
+                usual_or(
+                    &["albedo", "normal,height", "roughness"],
+                    &["albedo,albedo", "nope", ""],
+                ),
+            ),
+            option("--format", usual_or(&["png16", "exr", "png"], &["gif"])),
+            time(),
+        ]),
+    )
+        .prop_map(|(graphs, rest)| [vec!["bake".into()], graphs, rest].concat());
+    let compile = (
+        graph(),
+        options(vec![
+            option(
+                "-o",
+                usual_or(&["out/a.wgsl", "out/a.glsl", "-"], HOSTILE_OUTPUTS),
+            ),
+            option(
+                "--target",
+                usual_or(&["glsl", "spv", "hlsl", "msl", "wgsl"], &["cobol"]),
+            ),
+            option("--params", usual_or(&["uniform", "baked"], &["none"])),
+        ]),
+    )
+        .prop_map(|(graph, rest)| [vec!["compile".into(), graph], rest].concat());
     let check = graphs().prop_map(|graphs| [vec!["check".into()], graphs].concat());
     let fmt = (graphs(), flag("--arrange"))
         .prop_map(|(graphs, rest)| [vec!["fmt".into()], rest, graphs].concat());
-    let mesh_command = (mesh(), options(vec![
-        option("--weld", usual_or(&["0", "0.001"], HOSTILE_NUMBERS)),
-        option("--write", usual_or(&["out/m.obj"], &["full", "out/", "missing/m.obj", "-"])),
-        flag("--json"),
-    ]))
-    .prop_map(|(mesh, rest)| [vec!["mesh".into(), mesh], rest].concat());
-    let geodesic = (mesh(), options(vec![
-        option("--sources", usual_or(&["0", "1,2"], &["-1", "99999999", "", "0,x"])),
-        option("--sources", usual_or(&["3"], &["", "4294967296"])),
-        option("--method", usual_or(&["heat", "exact", "dijkstra"], &["magic"])),
-        option("--time-factor", usual_or(&["1", "10"], HOSTILE_NUMBERS)),
-        flag("--robust"),
-        flag("--normalize"),
-    ]))
-    .prop_map(|(mesh, rest)| [vec!["geodesic".into(), mesh], rest].concat());
+    let mesh_command = (
+        mesh(),
+        options(vec![
+            option("--weld", usual_or(&["0", "0.001"], HOSTILE_NUMBERS)),
+            option(
+                "--write",
+                usual_or(&["out/m.obj"], &["full", "out/", "missing/m.obj", "-"]),
+            ),
+            flag("--json"),
+        ]),
+    )
+        .prop_map(|(mesh, rest)| [vec!["mesh".into(), mesh], rest].concat());
+    let geodesic = (
+        mesh(),
+        options(vec![
+            option(
+                "--sources",
+                usual_or(&["0", "1,2"], &["-1", "99999999", "", "0,x"]),
+            ),
+            option("--sources", usual_or(&["3"], &["", "4294967296"])),
+            option(
+                "--method",
+                usual_or(&["heat", "exact", "dijkstra"], &["magic"]),
+            ),
+            option("--time-factor", usual_or(&["1", "10"], HOSTILE_NUMBERS)),
+            flag("--robust"),
+            flag("--normalize"),
+        ]),
+    )
+        .prop_map(|(mesh, rest)| [vec!["geodesic".into(), mesh], rest].concat());
     let geodesic = (geodesic, usual_or(&["out/f.csv", "-"], HOSTILE_OUTPUTS))
         .prop_map(|(line, output)| [line, vec!["-o".into(), output]].concat());
-    let golden = usual_or(&["out", "out/golden"], &["full", "missing/deeper", "wood.ron"]);
-    let snapshot = (graphs(), golden, options(vec![
-        option("--size", size()),
-        option("--tolerance", usual_or(&["channel=2,share=0.001"], &["channel=-1", "share=NaN", "x"])),
-        option("--flat", usual_or(&["preview", "0,0,1,1,0"], &["bad", "0,0,1e39,1,0"])),
-        option("--mesh", mesh()),
-        time(),
-        flag("--update"),
-        flag("--json"),
-    ]))
-    .prop_map(|(graphs, golden, rest)| {
-        [vec!["snapshot".into()], graphs, vec!["--golden".into(), golden], rest].concat()
-    });
+    let golden = usual_or(
+        &["out", "out/golden"],
+        &["full", "missing/deeper", "wood.ron"],
+    );
+    let snapshot = (
+        graphs(),
+        golden,
+        options(vec![
+            option("--size", size()),
+            option(
+                "--tolerance",
+                usual_or(
+                    &["channel=2,share=0.001"],
+                    &["channel=-1", "share=NaN", "x"],
+                ),
+            ),
+            option(
+                "--flat",
+                usual_or(&["preview", "0,0,1,1,0"], &["bad", "0,0,1e39,1,0"]),
+            ),
+            option("--mesh", mesh()),
+            time(),
+            flag("--update"),
+            flag("--json"),
+        ]),
+    )
+        .prop_map(|(graphs, golden, rest)| {
+            [
+                vec!["snapshot".into()],
+                graphs,
+                vec!["--golden".into(), golden],
+                rest,
+            ]
+            .concat()
+        });
     // Only refused counts: a whole report takes a minute.
     let report = pick(&["0", "1001", "18446744073709551616", "-1"]).prop_map(|count| {
-        ["report", "--quick", "-o", "out/report", "--repetitions", &count]
-            .map(String::from)
-            .to_vec()
+        [
+            "report",
+            "--quick",
+            "-o",
+            "out/report",
+            "--repetitions",
+            &count,
+        ]
+        .map(String::from)
+        .to_vec()
     });
-    prop_oneof![render, bake, compile, check, fmt, mesh_command, geodesic, snapshot, report]
+    prop_oneof![
+        render,
+        bake,
+        compile,
+        check,
+        fmt,
+        mesh_command,
+        geodesic,
+        snapshot,
+        report
+    ]
 }
 
 /// Every file under `dir` (not following links) with its size and modification time.
@@ -181,7 +281,9 @@ fn listing(dir: &Path) -> BTreeMap<PathBuf, Option<(u64, SystemTime)>> {
             if meta.is_dir() {
                 pending.push(path.clone());
             }
-            let stamp = meta.is_file().then(|| (meta.len(), meta.modified().expect("mtime")));
+            let stamp = meta
+                .is_file()
+                .then(|| (meta.len(), meta.modified().expect("mtime")));
             files.insert(path.strip_prefix(dir).expect("inside").to_path_buf(), stamp);
         }
     }
@@ -226,7 +328,9 @@ fn run_case(args: &[String], case: usize) -> Result<(), TestCaseError> {
         if started.elapsed() > TIME_LIMIT {
             let _ = child.kill();
             let _ = child.wait();
-            return Err(TestCaseError::fail(format!("{args:?} ran past {TIME_LIMIT:?}")));
+            return Err(TestCaseError::fail(format!(
+                "{args:?} ran past {TIME_LIMIT:?}"
+            )));
         }
         std::thread::sleep(Duration::from_millis(20));
     };
@@ -239,7 +343,10 @@ fn run_case(args: &[String], case: usize) -> Result<(), TestCaseError> {
         "{args:?}: exit {status} (a signal, or an undocumented code): {message}"
     );
     prop_assert!(!message.contains("panicked"), "{args:?}: {message}");
-    prop_assert!(code == Some(0) || !message.trim().is_empty(), "{args:?}: no message");
+    prop_assert!(
+        code == Some(0) || !message.trim().is_empty(),
+        "{args:?}: no message"
+    );
     let after = listing(&dir);
     for (path, stamp) in &after {
         let changed = before.get(path) != Some(stamp);
@@ -249,7 +356,9 @@ fn run_case(args: &[String], case: usize) -> Result<(), TestCaseError> {
             path.display()
         );
         prop_assert!(
-            !path.file_name().is_some_and(|n| n.to_string_lossy().ends_with(".tmp")),
+            !path
+                .file_name()
+                .is_some_and(|n| n.to_string_lossy().ends_with(".tmp")),
             "{args:?} left {} behind",
             path.display()
         );
@@ -272,7 +381,10 @@ fn generated_command_lines_keep_the_contract() {
     let mut runner = TestRunner::new_with_rng(config, rng);
     let case = std::sync::atomic::AtomicUsize::new(0);
     let result = runner.run(&command_line(), |args| {
-        run_case(&args, case.fetch_add(1, std::sync::atomic::Ordering::Relaxed))
+        run_case(
+            &args,
+            case.fetch_add(1, std::sync::atomic::Ordering::Relaxed),
+        )
     });
     if let Err(error) = result {
         panic!("{error}");
