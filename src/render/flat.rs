@@ -134,9 +134,25 @@ impl FlatRenderer {
         progress: impl FnMut(u32, u32),
     ) -> Result<Vec<[f32; 4]>, RenderError> {
         rect.validate().map_err(RenderError)?;
-        let prepare = |offset, _| self.write_view(gpu, rect, size, time, channels, offset);
-        let draw = |pass: &mut wgpu::RenderPass<'_>| self.draw(pass);
-        render_tiled(gpu, size, wgpu::Color::TRANSPARENT, prepare, draw, progress)
+        let draw = self.tile_draw(gpu, rect, size, time, channels);
+        render_tiled(gpu, size, draw, progress)
+    }
+
+    /// How each tile of a size×size render of `channels` over `rect` is drawn.
+    fn tile_draw<'a>(
+        &'a self,
+        gpu: &'a GpuContext,
+        rect: FlatRect,
+        size: u32,
+        time: f32,
+        channels: FlatChannels,
+    ) -> TileDraw<impl FnMut((u32, u32), (u32, u32)) + 'a, impl FnMut(&mut wgpu::RenderPass<'_>) + 'a>
+    {
+        TileDraw {
+            clear: wgpu::Color::TRANSPARENT,
+            prepare: move |offset, _| self.write_view(gpu, rect, size, time, channels, offset),
+            draw: |pass: &mut wgpu::RenderPass<'_>| self.draw(pass),
+        }
     }
 
     /// Renders an n×n image of `channels` in bands of `band_rows` full-width rows, handing
@@ -155,11 +171,7 @@ impl FlatRenderer {
         band: impl FnMut(u32, Vec<[f32; 4]>) -> Result<Vec<[f32; 4]>, RenderError>,
     ) -> Result<(), RenderError> {
         rect.validate().map_err(RenderError)?;
-        let draw = TileDraw {
-            clear: wgpu::Color::TRANSPARENT,
-            prepare: |offset, _| self.write_view(gpu, rect, size, time, channels, offset),
-            draw: |pass: &mut wgpu::RenderPass<'_>| self.draw(pass),
-        };
+        let draw = self.tile_draw(gpu, rect, size, time, channels);
         render_bands(gpu, size, band_rows, draw, progress, band)
     }
 

@@ -28,29 +28,24 @@ pub fn tile_size(gpu: &GpuContext) -> u32 {
         .max(16)
 }
 
-/// Renders a `size`² image tile by tile into one buffer: `prepare(first texel, tile
-/// extent)` writes the tile's uniforms, `draw` records its draw calls into a pass cleared
-/// to `clear`, and `progress(tiles done, tiles in all)` follows each tile. Rows run from
-/// the top.
-pub fn render_tiled(
+/// Renders a `size`² image tile by tile into one buffer, each tile drawn as `tiles_draw`
+/// says, with `progress(tiles done, tiles in all)` after each. Rows run from the top.
+pub fn render_tiled<P, D>(
     gpu: &GpuContext,
     size: u32,
-    clear: wgpu::Color,
-    prepare: impl FnMut((u32, u32), (u32, u32)),
-    draw: impl FnMut(&mut wgpu::RenderPass<'_>),
+    tiles_draw: TileDraw<P, D>,
     progress: impl FnMut(u32, u32),
-) -> Result<Vec<[f32; 4]>, RenderError> {
+) -> Result<Vec<[f32; 4]>, RenderError>
+where
+    P: FnMut((u32, u32), (u32, u32)),
+    D: FnMut(&mut wgpu::RenderPass<'_>),
+{
     if size == 0 {
         return Err(RenderError("image size must be at least 1 pixel".into()));
     }
     let mut image = image_buffer(size, FLOAT_PIXEL_BYTES)?;
     let rows = tile_size(gpu);
-    let whole = TileDraw {
-        clear,
-        prepare,
-        draw,
-    };
-    render_bands(gpu, size, rows, whole, progress, |first_row, band| {
+    render_bands(gpu, size, rows, tiles_draw, progress, |first_row, band| {
         let start = first_row as usize * size as usize;
         image[start..start + band.len()].copy_from_slice(&band);
         Ok(band)

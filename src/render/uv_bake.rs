@@ -2,7 +2,7 @@
 //! maps that wrap onto that mesh.
 
 use super::GpuMesh;
-use super::tiles::{FORMAT, NAN_BITS, render_tiled};
+use super::tiles::{FORMAT, NAN_BITS, TileDraw, render_tiled};
 use super::{FlatChannels, GpuContext, RenderError, shader_source};
 
 #[repr(C)]
@@ -113,7 +113,12 @@ impl UvRenderer {
             pass.set_bind_group(0, &self.bind_group, &[]);
             mesh.draw(pass);
         };
-        // Cleared to NaN bits: "no triangle here".
-        render_tiled(gpu, texels, NAN_BITS, prepare, draw, progress)
+        let tiles_draw = TileDraw {
+            // NaN bits: "no triangle here".
+            clear: NAN_BITS,
+            prepare,
+            draw,
+        };
+        render_tiled(gpu, texels, tiles_draw, progress)
     }
 }
