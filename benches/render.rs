@@ -8,6 +8,7 @@ use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
 use veneer::codegen::{Detail, ParamMode};
 use veneer::eval::{Evaluator, Surface};
+use veneer::nodes::Constant;
 use veneer::render::{FlatRect, FlatRenderer, GpuContext};
 
 #[path = "../tests/engine/big_graphs.rs"]
@@ -168,9 +169,9 @@ fn live_edit(c: &mut Criterion) {
     // Alternate between two structures so that every iteration really recompiles.
     let constant = graph.add(
         "specular level",
-        NodeKind::Constant {
+        NodeKind::Constant(Constant {
             ty: ValueType::Color,
-        },
+        }),
     );
     let mut wired = false;
     group.bench_function("structural edit: recompile + new pipeline", |b| {

@@ -12,6 +12,7 @@ pub mod graph;
 pub mod lint;
 pub mod mesh;
 pub mod messages;
+pub mod nodes;
 pub mod render;
 pub mod report;
 pub mod snapshot;

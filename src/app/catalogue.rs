@@ -1,10 +1,7 @@
 //! Every node kind the editor offers, grouped by category, with search and the
 //! compatibility filter for wires dropped on empty space.
 
-use crate::graph::{
-    Basis, Category, MathOp, Metric, NodeKind, RampInterpolation, RampStop, UnaryOp, ValueType,
-    WorleyFeature,
-};
+use crate::graph::{Category, NodeKind, ValueType};
 
 /// One entry of the add-node menu.
 #[derive(Clone, Debug)]
@@ -14,231 +11,14 @@ pub struct Entry {
     pub kind: NodeKind,
 }
 
-/// Menu order of the categories.
-pub const CATEGORIES: [(Category, &str); 9] = [
-    (Category::Input, "Input"),
-    (Category::Coordinates, "Coordinates"),
-    (Category::Noise, "Noise"),
-    (Category::Fractal, "Fractal"),
-    (Category::Cellular, "Cellular"),
-    (Category::Pattern, "Pattern"),
-    (Category::Field, "Distance field"),
-    (Category::Math, "Math"),
-    (Category::Output, "Output"),
-];
-
-fn basis_name(basis: Basis) -> &'static str {
-    match basis {
-        Basis::ValueSine => "value, sine hash",
-        Basis::ValuePcg => "value, PCG hash",
-        Basis::Gradient => "gradient",
-        Basis::Simplex => "simplex",
-    }
-}
-
-/// All entries, in menu order.
+/// All entries, in menu order: the registry's, category by category.
 pub fn entries() -> Vec<Entry> {
-    let mut entries = Vec::new();
-    let mut add = |name: String, kind: NodeKind| entries.push(Entry { name, kind });
-    for kind in [
-        NodeKind::Position,
-        NodeKind::Normal,
-        NodeKind::Uv,
-        NodeKind::Time,
-    ] {
-        add(kind.title().to_string(), kind);
-    }
-    add("Distance field".into(), NodeKind::Field { slot: 0 });
-    for (ty, name) in [
-        (ValueType::Float, "Value"),
-        (ValueType::Vec3, "Vector"),
-        (ValueType::Color, "Colour"),
-        (ValueType::Vec2, "Vector 2"),
-    ] {
-        add(name.to_string(), NodeKind::Constant { ty });
-    }
-    add(
-        "Reroute".into(),
-        NodeKind::Constant {
-            ty: ValueType::Vec3,
-        },
-    );
-    for kind in [
-        NodeKind::Transform,
-        NodeKind::Project,
-        NodeKind::Cylindrical,
-    ] {
-        add(kind.title().to_string(), kind);
-    }
-    for basis in Basis::ALL {
-        add(
-            format!("Domain warp ({})", basis_name(basis)),
-            NodeKind::DomainWarp { basis },
-        );
-        add(
-            format!("Noise ({})", basis_name(basis)),
-            NodeKind::Noise { basis },
-        );
-        add(
-            format!("Noise bump ({})", basis_name(basis)),
-            NodeKind::NoiseBump { basis },
-        );
-    }
-    for basis in Basis::ALL {
-        add(
-            format!("fBm ({})", basis_name(basis)),
-            NodeKind::Fbm {
-                basis,
-                octaves: 5,
-                normalize: false,
-            },
-        );
-        add(
-            format!("Turbulence ({})", basis_name(basis)),
-            NodeKind::Turbulence {
-                basis,
-                octaves: 4,
-                normalize: false,
-            },
-        );
-        add(
-            format!("Fractal sum ({})", basis_name(basis)),
-            NodeKind::FractalSum {
-                basis,
-                octaves: 4,
-                normalize: false,
-            },
-        );
-    }
-    add(
-        "Worley".into(),
-        NodeKind::Worley {
-            feature: WorleyFeature::F1,
-            metric: Metric::Euclidean,
-            octaves: 1,
-        },
-    );
-    add(
-        "Worley, fractal".into(),
-        NodeKind::Worley {
-            feature: WorleyFeature::F2MinusF1,
-            metric: Metric::Euclidean,
-            octaves: 3,
-        },
-    );
-    for kind in [
-        NodeKind::SineBand,
-        NodeKind::TriangleWave,
-        NodeKind::Tiles,
-        NodeKind::Rings,
-        NodeKind::Front,
-        NodeKind::Isolines,
-    ] {
-        add(kind.title().to_string(), kind);
-    }
-    add(
-        "Layers (colour)".into(),
-        NodeKind::Layers {
-            ty: ValueType::Color,
-        },
-    );
-    for op in MathOp::ALL {
-        add(
-            format!("{op:?}"),
-            NodeKind::Math {
-                op,
-                ty: ValueType::Float,
-            },
-        );
-    }
-    for op in UnaryOp::ALL {
-        add(
-            format!("{op:?}"),
-            NodeKind::Unary {
-                op,
-                ty: ValueType::Float,
-            },
-        );
-    }
-    add(
-        "Mix".into(),
-        NodeKind::Mix {
-            ty: ValueType::Float,
-        },
-    );
-    add(
-        "Mix colours".into(),
-        NodeKind::Mix {
-            ty: ValueType::Color,
-        },
-    );
-    add(
-        "Clamp".into(),
-        NodeKind::Clamp {
-            ty: ValueType::Float,
-        },
-    );
-    add(
-        "Step".into(),
-        NodeKind::Step {
-            ty: ValueType::Float,
-        },
-    );
-    add("Smoothstep".into(), NodeKind::Smoothstep);
-    add("Remap".into(), NodeKind::Remap);
-    add(
-        "Length".into(),
-        NodeKind::Length {
-            ty: ValueType::Vec3,
-        },
-    );
-    add(
-        "Dot".into(),
-        NodeKind::Dot {
-            ty: ValueType::Vec3,
-        },
-    );
-    add(
-        "Normalize".into(),
-        NodeKind::Normalize {
-            ty: ValueType::Vec3,
-        },
-    );
-    add(
-        "Split".into(),
-        NodeKind::Split {
-            ty: ValueType::Vec3,
-        },
-    );
-    add(
-        "Combine".into(),
-        NodeKind::Combine {
-            ty: ValueType::Vec3,
-        },
-    );
-    add(
-        "Combine colour".into(),
-        NodeKind::Combine {
-            ty: ValueType::Color,
-        },
-    );
-    add(
-        "Colour ramp".into(),
-        NodeKind::ColorRamp {
-            stops: vec![
-                RampStop {
-                    position: 0.0,
-                    color: (0.05, 0.05, 0.05),
-                },
-                RampStop {
-                    position: 1.0,
-                    color: (0.95, 0.95, 0.95),
-                },
-            ],
-            interpolation: RampInterpolation::Linear,
-        },
-    );
-    add("Material".into(), NodeKind::Material);
+    let mut entries: Vec<Entry> = NodeKind::menu()
+        .into_iter()
+        .map(|(name, kind)| Entry { name, kind })
+        .collect();
+    let rank = |kind: &NodeKind| Category::ALL.iter().position(|c| *c == kind.category());
+    entries.sort_by_key(|entry| rank(&entry.kind));
     entries
 }
 
@@ -248,7 +28,14 @@ pub fn search(query: &str) -> Vec<Entry> {
     entries()
         .into_iter()
         .filter(|entry| {
-            let name = format!("{} {}", entry.name, entry.kind.title()).to_lowercase();
+            let definition = entry.kind.definition();
+            let name = format!(
+                "{} {} {}",
+                entry.name,
+                definition.title(),
+                definition.keywords().join(" ")
+            )
+            .to_lowercase();
             words.iter().all(|word| name.contains(word))
         })
         .collect()
@@ -286,10 +73,11 @@ mod tests {
     #[test]
     fn every_category_has_entries_and_every_entry_checks_alone() {
         let all = entries();
-        for (category, name) in CATEGORIES {
+        for category in Category::ALL {
             assert!(
                 all.iter().any(|e| e.kind.category() == category),
-                "{name} is empty"
+                "{} is empty",
+                category.name()
             );
         }
         assert!(all.len() > 50);
@@ -308,18 +96,18 @@ mod tests {
         let vec2 = Dangling::FromOutput(ValueType::Vec2);
         assert!(
             compatible_pin(
-                &NodeKind::Length {
+                &NodeKind::Length(crate::nodes::Length {
                     ty: ValueType::Vec2
-                },
+                }),
                 vec2
             )
             .is_some()
         );
         assert!(
             compatible_pin(
-                &NodeKind::Noise {
-                    basis: Basis::Simplex
-                },
+                &NodeKind::Noise(crate::nodes::Noise {
+                    basis: crate::graph::Basis::Simplex
+                }),
                 vec2
             )
             .is_none()

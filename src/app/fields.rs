@@ -5,6 +5,7 @@
 use crate::geodesic::{HeatOptions, Method};
 use crate::graph::{FieldSource, Graph, NodeKind, RampInterpolation, RampStop, Value};
 use crate::mesh::Mesh;
+use crate::nodes::{ColorRamp, Field, Mix};
 use egui::Ui;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, mpsc};
@@ -113,7 +114,12 @@ impl FieldState {
 /// with isolines every 0.05 (seed 003, figure 5.2).
 pub fn field_view_graph(slot: u8) -> Graph {
     let mut graph = Graph::default();
-    let field = graph.add("field", NodeKind::Field { slot });
+    let field = graph.add(
+        "field",
+        NodeKind::Field(Field {
+            slot: u32::from(slot),
+        }),
+    );
     let stops = [
         (0.0, (0.85, 0.1, 0.1)),
         (0.25, (0.95, 0.75, 0.1)),
@@ -123,22 +129,22 @@ pub fn field_view_graph(slot: u8) -> Graph {
     ];
     let scale = graph.add(
         "colour scale",
-        NodeKind::ColorRamp {
+        NodeKind::ColorRamp(ColorRamp {
             stops: stops
                 .iter()
                 .map(|&(position, color)| RampStop { position, color })
                 .collect(),
             interpolation: RampInterpolation::Linear,
-        },
+        }),
     );
     let lines = graph.add("lines", NodeKind::Isolines);
     graph.set_input(lines, "spacing", Value::Float(0.05));
     graph.set_input(lines, "width", Value::Float(0.006));
     let inked = graph.add(
         "inked",
-        NodeKind::Mix {
+        NodeKind::Mix(Mix {
             ty: crate::graph::ValueType::Color,
-        },
+        }),
     );
     graph.set_input(inked, "b", Value::Color(0.02, 0.02, 0.02));
     let material = graph.add("material", NodeKind::Material);

@@ -2,7 +2,7 @@
 //! stays the saved, ordered truth; the `Snarl` is rebuilt from it when it is replaced
 //! (open, undo) and read back after every frame of editing.
 
-use super::catalogue::{self, CATEGORIES, Dangling};
+use super::catalogue::{self, Dangling};
 use super::widgets::{input_editor, type_color};
 use crate::graph::{Graph, Node, NodeId, PinDefault, PinRef, Wire};
 use egui::{Color32, Pos2, RichText, Ui};
@@ -178,7 +178,7 @@ impl Viewer<'_> {
         };
         let mut chosen = None;
         if self.search.trim().is_empty() {
-            for (category, name) in CATEGORIES {
+            for category in crate::graph::Category::ALL {
                 let entries: Vec<_> = catalogue::entries()
                     .into_iter()
                     .filter(|e| e.kind.category() == category && usable(e))
@@ -186,7 +186,7 @@ impl Viewer<'_> {
                 if entries.is_empty() {
                     continue;
                 }
-                ui.menu_button(name, |ui| {
+                ui.menu_button(category.name(), |ui| {
                     for entry in entries {
                         if ui.button(&entry.name).clicked() {
                             chosen = Some(entry);

@@ -67,15 +67,16 @@ impl History {
 mod tests {
     use super::*;
     use crate::graph::{NodeKind, Value};
+    use crate::nodes::Constant;
 
     #[test]
     fn a_drag_of_many_frames_is_one_step() {
         let mut graph = Graph::default();
         let node = graph.add(
             "v",
-            NodeKind::Constant {
+            NodeKind::Constant(Constant {
                 ty: crate::graph::ValueType::Float,
-            },
+            }),
         );
         let mut history = History::new(graph.clone());
         for frame in 1..=30 {

@@ -3,122 +3,64 @@
 //! per input.
 
 use super::widgets::{input_editor, type_color};
-use crate::graph::{
-    Basis, MAX_OCTAVES_UI, MathOp, Metric, Node, NodeKind, PinDefault, RampInterpolation, RampStop,
-    UnaryOp, ValueType, WorleyFeature,
-};
+use crate::graph::{Node, PinDefault, RampInterpolation, RampStop, ValueType};
+use crate::nodes::settings::{RAMP_INTERPOLATIONS, Setting};
 use egui::{ComboBox, RichText, Ui};
 use egui_snarl::{InPinId, OutPinId, Snarl};
 
-fn choice<T: PartialEq + Copy + std::fmt::Debug>(
-    ui: &mut Ui,
-    label: &str,
-    value: &mut T,
-    options: &[T],
-) -> bool {
-    let before = *value;
+/// A combo box choosing among `names`; whether the choice changed.
+fn combo(ui: &mut Ui, label: &str, names: &[String], selected: &mut usize) -> bool {
+    let before = *selected;
     ComboBox::from_label(label)
-        .selected_text(format!("{value:?}"))
+        .selected_text(names.get(*selected).cloned().unwrap_or_default())
         .show_ui(ui, |ui| {
-            for option in options {
-                ui.selectable_value(value, *option, format!("{option:?}"));
+            for (index, name) in names.iter().enumerate() {
+                ui.selectable_value(selected, index, name);
             }
         });
-    *value != before
+    *selected != before
 }
 
-const TYPES: [ValueType; 4] = [
-    ValueType::Float,
-    ValueType::Vec2,
-    ValueType::Vec3,
-    ValueType::Color,
-];
-const VECTORS: [ValueType; 3] = [ValueType::Vec2, ValueType::Vec3, ValueType::Color];
-
-/// Editors for the structural settings of a node kind.
-fn settings(ui: &mut Ui, kind: &mut NodeKind) {
-    use NodeKind::*;
-    match kind {
-        Field { slot } => {
-            ui.add(egui::Slider::new(slot, 0..=3).text("field slot"));
+/// Editors for the structural settings the node's kind lists.
+fn settings(ui: &mut Ui, node: &mut Node) {
+    for setting in node.kind.settings() {
+        match setting {
+            Setting::Choice { label, mut value } => {
+                let mut selected = value.selected();
+                if combo(ui, label, &value.names(), &mut selected) {
+                    value.select(selected);
+                }
+            }
+            Setting::Count {
+                label,
+                value,
+                range,
+            } => {
+                ui.add(egui::Slider::new(value, range).text(label));
+            }
+            Setting::Toggle { label, value } => {
+                ui.checkbox(value, label);
+            }
+            Setting::Ramp {
+                stops,
+                interpolation,
+            } => ramp_editor(ui, stops, interpolation),
         }
-        Constant { ty } | Mix { ty } | Clamp { ty } | Step { ty } | Layers { ty } => {
-            choice(ui, "type", ty, &TYPES);
-        }
-        Math { op, ty } => {
-            let ops = MathOp::ALL;
-            choice(ui, "operation", op, &ops);
-            choice(ui, "type", ty, &TYPES);
-        }
-        Unary { op, ty } => {
-            let ops = UnaryOp::ALL;
-            choice(ui, "operation", op, &ops);
-            choice(ui, "type", ty, &TYPES);
-        }
-        Length { ty } | Dot { ty } | Normalize { ty } | Split { ty } | Combine { ty } => {
-            choice(ui, "type", ty, &VECTORS);
-        }
-        DomainWarp { basis } | Noise { basis } | NoiseBump { basis } => {
-            choice(ui, "basis", basis, &Basis::ALL);
-        }
-        Fbm {
-            basis,
-            octaves,
-            normalize,
-        }
-        | Turbulence {
-            basis,
-            octaves,
-            normalize,
-        }
-        | FractalSum {
-            basis,
-            octaves,
-            normalize,
-        } => {
-            choice(ui, "basis", basis, &Basis::ALL);
-            ui.add(egui::Slider::new(octaves, 1..=MAX_OCTAVES_UI).text("octaves"));
-            ui.checkbox(normalize, "normalize");
-        }
-        Worley {
-            feature,
-            metric,
-            octaves,
-        } => {
-            choice(
-                ui,
-                "feature",
-                feature,
-                &[
-                    WorleyFeature::F1,
-                    WorleyFeature::F2,
-                    WorleyFeature::F3,
-                    WorleyFeature::F2MinusF1,
-                ],
-            );
-            choice(
-                ui,
-                "metric",
-                metric,
-                &[Metric::Euclidean, Metric::Manhattan, Metric::Chebyshev],
-            );
-            ui.add(egui::Slider::new(octaves, 1..=8).text("octaves"));
-        }
-        ColorRamp {
-            stops,
-            interpolation,
-        } => ramp_editor(ui, stops, interpolation),
-        _ => {}
     }
 }
 
 fn ramp_editor(ui: &mut Ui, stops: &mut Vec<RampStop>, interpolation: &mut RampInterpolation) {
-    choice(
-        ui,
-        "interpolation",
-        interpolation,
-        &[RampInterpolation::Linear, RampInterpolation::Constant],
-    );
+    let names: Vec<String> = RAMP_INTERPOLATIONS
+        .iter()
+        .map(|i| format!("{i:?}"))
+        .collect();
+    let mut selected = RAMP_INTERPOLATIONS
+        .iter()
+        .position(|i| i == interpolation)
+        .unwrap_or(0);
+    if combo(ui, "interpolation", &names, &mut selected) {
+        *interpolation = RAMP_INTERPOLATIONS[selected];
+    }
     let mut remove = None;
     for (index, stop) in stops.iter_mut().enumerate() {
         ui.horizontal(|ui| {
@@ -239,7 +181,7 @@ pub fn show(
             format!("⚠ {warning}"),
         );
     }
-    settings(ui, &mut node.kind);
+    settings(ui, node);
     ui.separator();
     let inputs = node.kind.signature().inputs;
     for (index, pin) in inputs.iter().enumerate() {

@@ -129,14 +129,15 @@ impl LiveMaterial {
 mod tests {
     use super::*;
     use crate::graph::{NodeKind, Value};
+    use crate::nodes::{Noise, Worley};
 
     fn graph() -> (Graph, NodeId, NodeId) {
         let mut graph = Graph::default();
         let noise = graph.add(
             "noise",
-            NodeKind::Noise {
+            NodeKind::Noise(Noise {
                 basis: crate::graph::Basis::Gradient,
-            },
+            }),
         );
         let material = graph.add("material", NodeKind::Material);
         graph.connect(noise, "value", material, "albedo");
@@ -167,11 +168,11 @@ mod tests {
         let generation = live.generation;
         graph.add(
             "unused",
-            NodeKind::Worley {
+            NodeKind::Worley(Worley {
                 feature: crate::graph::WorleyFeature::F1,
                 metric: crate::graph::Metric::Euclidean,
                 octaves: 1,
-            },
+            }),
         );
         assert!(live.update(&graph), "a new node is a structural edit");
         assert_eq!(

@@ -2,6 +2,7 @@
 //! shown as the material's albedo.
 
 use crate::graph::{Graph, NodeId, NodeKind, ValueType};
+use crate::nodes::{Combine, Split};
 
 /// `graph` with the first output of `node` wired into the material's albedo (a vec2 as
 /// red and green), or `None` for the material node itself and nodes without outputs.
@@ -16,15 +17,15 @@ pub fn probe_graph(graph: &Graph, node: NodeId) -> Option<Graph> {
     if output.ty == ValueType::Vec2 {
         let split = probe.add(
             "probe split",
-            NodeKind::Split {
+            NodeKind::Split(Split {
                 ty: ValueType::Vec2,
-            },
+            }),
         );
         let combine = probe.add(
             "probe colour",
-            NodeKind::Combine {
+            NodeKind::Combine(Combine {
                 ty: ValueType::Color,
-            },
+            }),
         );
         probe.connect(node, output.name, split, "v");
         probe.connect(split, "x", combine, "x");

@@ -1,18 +1,18 @@
 //! Graph → WGSL: emits `veneer_material` for a checked graph with only the library
 //! items it uses, then validates the module with naga.
 
-mod emit;
 pub mod export;
 pub mod library;
 mod naming;
 mod parts;
 mod validate;
 
-pub use emit::{float_literal, metric_index, value_literal, worley_feature_index};
+pub use crate::nodes::emit::{Detail, float_literal, value_literal};
 pub use validate::{ValidationError, validate};
 
 use crate::graph::check::{CheckedGraph, InputSource};
 use crate::graph::{self, CheckError, Graph, NodeId, NodeKind};
+use crate::nodes::emit::{self, Emit};
 use naming::Namer;
 use parts::Block;
 use rustc_hash::FxHashSet;
@@ -29,20 +29,6 @@ pub enum ParamMode {
     /// `.xyz`), in the order of [`WgslModule::params`]. Editing a value then only means
     /// rewriting the buffer (the editor's live preview).
     Uniform,
-}
-
-/// How much detail noise and fractal nodes compute.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum Detail {
-    /// Every octave everywhere: the same numbers as the CPU evaluator (exports, renders,
-    /// snapshots).
-    #[default]
-    Full,
-    /// Fractal nodes leave out octaves finer than the pixel footprint (from screen-space
-    /// derivatives of their input), fading the last one: less aliasing and less work in
-    /// the distance. Fragment stage only, so materials that displace vertices keep full
-    /// detail.
-    Footprint,
 }
 
 /// One parameter slot of a uniform-mode module.
@@ -104,19 +90,17 @@ impl SurfaceUse {
     fn of(graph: &CheckedGraph) -> SurfaceUse {
         let mut uses = SurfaceUse::default();
         for checked in &graph.order {
-            match checked.node.kind {
-                NodeKind::Field { slot } => uses.fields[slot as usize % 4] = true,
-                NodeKind::Material => {
-                    let non_zero = |input: &InputSource| match input {
-                        InputSource::Const(value) => value.components() != [0.0; 3],
-                        _ => true,
-                    };
-                    uses.bump = non_zero(&checked.inputs[4]);
-                    uses.displacement = non_zero(&checked.inputs[5]);
-                }
-                _ => {}
+            if let NodeKind::Field(field) = &checked.node.kind {
+                uses.fields[field.slot as usize % 4] = true;
             }
         }
+        let non_zero = |input: Option<&InputSource>| match input {
+            Some(InputSource::Const(value)) => value.components() != [0.0; 3],
+            _ => true,
+        };
+        let material = graph.material();
+        uses.bump = non_zero(material.input("bump"));
+        uses.displacement = non_zero(material.input("height"));
         uses
     }
 }
@@ -216,11 +200,7 @@ fn input_expression(
 /// folded nodes) and it reads nothing of the surface: a constant subgraph folds into
 /// literals. `None` when it cannot fold (or folds to a non-finite value).
 fn fold(checked: &graph::check::CheckedNode, from: &[Option<&Emitted>]) -> Option<Vec<[f32; 3]>> {
-    use NodeKind::*;
-    if matches!(
-        checked.node.kind,
-        Position | Normal | Uv | Time | Field { .. } | Material
-    ) {
+    if checked.node.kind.definition().reads_surface() {
         return None;
     }
     let inputs = checked
@@ -335,7 +315,15 @@ pub fn compile_detailed(
             NodeKind::Material => String::new(),
             _ => namer.name(node.display_name(), node.id.0),
         };
-        let code = emit::emit_node(checked, &inputs, &name, detail);
+        let mut io = Emit::new(
+            &checked.signature.inputs,
+            &inputs,
+            &checked.signature.outputs,
+            &name,
+            detail,
+        );
+        checked.node.kind.definition().emit(&mut io);
+        let code = io.finish();
         if !code.statements.is_empty() {
             let mut text = format!(
                 "    // {} '{}' ({})\n",

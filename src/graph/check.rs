@@ -1,10 +1,8 @@
 //! Validation of a graph, topological ordering and pruning to what the output needs.
 
 use super::ids::IdIndex;
-use super::kind::{MAX_OCTAVES, MAX_RAMP_STOPS, NodeKind};
-use super::signature::{PinDefault, Signature};
-use super::value::{Value, ValueType};
 use super::{Graph, MAX_PATH_CHARS, MAX_TEXT_CHARS, Node, NodeId, Wire, clip};
+use super::{NodeKind, PinDefault, Signature, Value, ValueType};
 use std::fmt;
 
 /// One problem found in a graph, attached to the node it concerns when there is one.
@@ -49,6 +47,14 @@ pub struct CheckedNode {
     pub inputs: Vec<InputSource>,
     /// Which outputs some later node reads.
     pub used_outputs: Vec<bool>,
+}
+
+impl CheckedNode {
+    /// Where input pin `name` gets its value.
+    pub fn input(&self, name: &str) -> Option<&InputSource> {
+        let (index, _) = self.signature.input(name)?;
+        self.inputs.get(index)
+    }
 }
 
 /// A graph that passed the checks: the nodes the material output needs, in dependency order.
@@ -167,56 +173,7 @@ impl<'g> Checker<'g> {
     }
 
     fn check_settings(&mut self, node: &Node) {
-        use NodeKind::*;
-        let vector_only = |ty: &ValueType| *ty != ValueType::Float;
-        let problem = match &node.kind {
-            Field { slot } if *slot > 3 => Some(format!(
-                "field slot {slot} is out of range (expected 0 to 3)"
-            )),
-            Fbm { octaves, .. }
-            | Turbulence { octaves, .. }
-            | FractalSum { octaves, .. }
-            | Worley { octaves, .. }
-                if *octaves == 0 || *octaves > MAX_OCTAVES =>
-            {
-                Some(format!(
-                    "octaves {octaves} is out of range (expected 1 to {MAX_OCTAVES})"
-                ))
-            }
-            Length { ty } | Dot { ty } | Normalize { ty } | Split { ty } | Combine { ty }
-                if !vector_only(ty) =>
-            {
-                Some(format!(
-                    "type {ty} is not a vector (expected vec2, vec3 or color)"
-                ))
-            }
-            ColorRamp { stops, .. } if stops.is_empty() => {
-                Some("a colour ramp needs at least one stop".into())
-            }
-            ColorRamp { stops, .. } if stops.len() > MAX_RAMP_STOPS => Some(format!(
-                "the colour ramp has {} stops (at most {MAX_RAMP_STOPS})",
-                crate::messages::thousands(stops.len())
-            )),
-            ColorRamp { stops, .. } => {
-                if stops.iter().any(|s| {
-                    !s.position.is_finite()
-                        || ![s.color.0, s.color.1, s.color.2]
-                            .iter()
-                            .all(|c| c.is_finite())
-                }) {
-                    Some("colour ramp stops must be finite".into())
-                } else if stops
-                    .windows(2)
-                    .any(|pair| pair[1].position < pair[0].position)
-                {
-                    Some("colour ramp stops must be sorted by position".into())
-                } else {
-                    None
-                }
-            }
-            _ => None,
-        };
-        if let Some(message) = problem {
+        if let Some(message) = node.kind.definition().check() {
             self.error(Some(node), message);
         }
     }

@@ -56,6 +56,7 @@ pub fn arrange(graph: &mut Graph) {
 mod tests {
     use super::*;
     use crate::graph::NodeKind;
+    use crate::nodes::Noise;
 
     #[test]
     fn wires_run_left_to_right_and_columns_do_not_overlap() {
@@ -64,9 +65,9 @@ mod tests {
         let b = graph.add("b", NodeKind::Transform);
         let c = graph.add(
             "c",
-            NodeKind::Noise {
+            NodeKind::Noise(Noise {
                 basis: crate::graph::Basis::Gradient,
-            },
+            }),
         );
         let d = graph.add("d", NodeKind::Material);
         graph.connect(a, "position", b, "p");

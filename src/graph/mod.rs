@@ -3,23 +3,21 @@
 pub mod check;
 mod ids;
 mod io;
-pub mod kind;
 pub mod layout;
 mod node_file;
 mod presets;
 mod preview;
-pub mod signature;
-pub mod value;
 
+pub use crate::nodes::pins::{InputPin, OutputPin, PinDefault, PinRange, Signature};
+pub use crate::nodes::settings::{
+    Basis, FractalMode, MAX_OCTAVES, MAX_OCTAVES_UI, MAX_RAMP_STOPS, MathOp, Metric,
+    RampInterpolation, RampStop, UnaryOp, WorleyFeature,
+};
+pub use crate::nodes::value::{Value, ValueType};
+pub use crate::nodes::{Category, NodeKind};
 pub use check::{CheckError, CheckedGraph, check};
 pub use io::{CURRENT_VERSION, LoadError, from_ron, load, save, to_ron};
-pub use kind::{
-    Basis, Category, FractalMode, MAX_OCTAVES, MAX_OCTAVES_UI, MAX_RAMP_STOPS, MathOp, Metric,
-    NodeKind, RampInterpolation, RampStop, UnaryOp, WorleyFeature,
-};
 pub use presets::{PRESETS, preset};
-pub use signature::{InputPin, OutputPin, PinDefault, Signature};
-pub use value::{Value, ValueType};
 
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;

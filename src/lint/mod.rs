@@ -4,23 +4,14 @@
 //! f32 can no longer tell lattice cells apart. `veneer check` prints these as warnings;
 //! the editor marks the nodes.
 
-mod interval;
 mod propagate;
 
-pub use interval::{Interval, Lanes};
+pub use crate::nodes::interval::{Interval, Lanes};
+pub use crate::nodes::ranges::{F32_LATTICE_LIMIT, SINE_HASH_SAFE_COORDINATE};
 
 use crate::graph::check::CheckedGraph;
 use crate::graph::{Graph, NodeId};
 use std::fmt;
-
-/// Past this coordinate magnitude the sine hash's neighbouring lattice cells start to
-/// repeat in f32 (measured on the CPU: 0.25% of neighbours repeat at 10⁶ as everywhere
-/// closer, 1% at 2·10⁶, half at 4·10⁶; see `eval::noise`'s `sine_hash_precision`).
-pub const SINE_HASH_SAFE_COORDINATE: f64 = 1.0e6;
-
-/// Past this magnitude f32 coordinates are spaced more than 1 apart, so lattice noise
-/// turns into a stair of repeated cells.
-pub const F32_LATTICE_LIMIT: f64 = 1.6777216e7;
 
 /// One numerical hazard, on the node it concerns.
 #[derive(Clone, Debug, PartialEq)]

@@ -7,6 +7,7 @@ use super::table::{Table, number};
 use super::{Context, Section};
 use crate::codegen::{Detail, ParamMode, compile_graph_detailed};
 use crate::graph::{Basis, Graph, NodeKind, PRESETS, Value, ValueType};
+use crate::nodes::{Combine, Fbm, Noise, Turbulence, Worley};
 use crate::render::{FlatRect, FlatRenderer, flat_points, preview_rect};
 
 /// A graph showing one scalar node's output as grey, at `scale`.
@@ -16,9 +17,9 @@ fn single_node(kind: NodeKind, scale: f64) -> Graph {
     graph.set_input(node, "scale", Value::Float(scale));
     let grey = graph.add(
         "grey",
-        NodeKind::Combine {
+        NodeKind::Combine(Combine {
             ty: ValueType::Color,
-        },
+        }),
     );
     for pin in ["x", "y", "z"] {
         graph.connect(node, "value", grey, pin);
@@ -65,21 +66,21 @@ pub fn precision(ctx: &Context) -> Result<Section, String> {
     for basis in Basis::ALL {
         cases.push((
             format!("noise ({basis:?})"),
-            single_node(NodeKind::Noise { basis }, 2.0),
+            single_node(NodeKind::Noise(Noise { basis }), 2.0),
             square,
         ));
-        let fbm = NodeKind::Fbm {
+        let fbm = NodeKind::Fbm(Fbm {
             basis,
             octaves: 6,
             normalize: true,
-        };
+        });
         cases.push((format!("fBm 6 ({basis:?})"), single_node(fbm, 2.0), square));
     }
-    let worley = NodeKind::Worley {
+    let worley = NodeKind::Worley(Worley {
         feature: crate::graph::WorleyFeature::F1,
         metric: crate::graph::Metric::Euclidean,
         octaves: 3,
-    };
+    });
     cases.push(("Worley, 3 octaves".into(), single_node(worley, 2.0), square));
     let mut table = Table::new(&[
         "material",
@@ -174,13 +175,13 @@ pub fn hashes(ctx: &Context) -> Result<Section, String> {
     ]);
     let mut series = Vec::new();
     for basis in [Basis::ValueSine, Basis::ValuePcg] {
-        let lattice = single_node(NodeKind::Noise { basis }, 1.0);
+        let lattice = single_node(NodeKind::Noise(Noise { basis }), 1.0);
         let fbm = single_node(
-            NodeKind::Fbm {
+            NodeKind::Fbm(Fbm {
                 basis,
                 octaves: 8,
                 normalize: true,
-            },
+            }),
             1.0,
         );
         let fbm_renderer = renderer(ctx, &fbm, Detail::Full)?;
@@ -254,17 +255,17 @@ pub fn octaves(ctx: &Context) -> Result<Section, String> {
     let kind = |turbulence: bool, octaves: u32| {
         let basis = Basis::Gradient;
         if turbulence {
-            NodeKind::Turbulence {
+            NodeKind::Turbulence(Turbulence {
                 basis,
                 octaves,
                 normalize: false,
-            }
+            })
         } else {
-            NodeKind::Fbm {
+            NodeKind::Fbm(Fbm {
                 basis,
                 octaves,
                 normalize: false,
-            }
+            })
         }
     };
     for turbulence in [false, true] {
@@ -325,11 +326,11 @@ pub fn detail(ctx: &Context) -> Result<Section, String> {
     ]);
     let (mut full_points, mut footprint_points) = (Vec::new(), Vec::new());
     let fbm = single_node(
-        NodeKind::Fbm {
+        NodeKind::Fbm(Fbm {
             basis: Basis::Gradient,
             octaves: 8,
             normalize: true,
-        },
+        }),
         1.0,
     );
     let mut cases = vec![("fBm 8 (gradient)".to_string(), fbm)];

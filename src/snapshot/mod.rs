@@ -9,7 +9,7 @@ pub use compare::{Comparison, Tolerance, compare, heat_map, ssim};
 pub use record::{SnapshotRecord, fnv1a};
 
 use crate::fsutil::{ReadLimit, read_limited};
-use crate::graph::{Basis, Graph, NodeKind};
+use crate::graph::{Basis, Graph};
 use crate::render::{GpuContext, Image, View, render_graph};
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
@@ -124,12 +124,9 @@ fn uses_sine_hash(graph: &Graph) -> bool {
     let reachable = crate::graph::check(graph)
         .map(|checked| checked.order)
         .unwrap_or_default();
-    reachable.iter().any(|checked| match checked.node.kind {
-        NodeKind::Noise { basis } | NodeKind::DomainWarp { basis } => basis == Basis::ValueSine,
-        ref kind => kind
-            .fractal()
-            .is_some_and(|(_, basis, _, _)| basis == Basis::ValueSine),
-    })
+    reachable
+        .iter()
+        .any(|checked| checked.node.kind.basis() == Some(Basis::ValueSine))
 }
 
 fn write(path: &Path, bytes: &[u8]) -> Result<(), SnapshotError> {

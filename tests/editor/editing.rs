@@ -8,6 +8,7 @@ use crate::support::{
 };
 use egui_kittest::kittest::Queryable;
 use veneer::graph::NodeKind;
+use veneer::nodes::Worley;
 
 #[test]
 fn opens_on_the_wood_preset_with_the_material_on_a_sphere() {
@@ -49,7 +50,7 @@ fn adds_a_node_through_the_search_menu_and_wires_it_from_the_inspector() {
     let worley = graph
         .nodes
         .iter()
-        .find(|n| matches!(n.kind, NodeKind::Worley { .. }))
+        .find(|n| matches!(n.kind, NodeKind::Worley(Worley { .. })))
         .expect("a Worley node")
         .id;
 

@@ -2,6 +2,7 @@
 //! scale tests and the render benchmark (`benches/render.rs` includes this file).
 
 use veneer::graph::{Basis, Graph, MathOp, Node, NodeId, NodeKind, PinRef, ValueType, Wire};
+use veneer::nodes::{ColorRamp, Math, Noise};
 
 /// A graph of `nodes` nodes (at least 2): a noise, then a chain where every third node is
 /// a gradient noise scaled by the previous value and the others cycle through the math
@@ -12,23 +13,23 @@ pub fn chain(nodes: usize) -> Graph {
         push(
             &mut graph,
             "start",
-            NodeKind::Noise {
+            NodeKind::Noise(Noise {
                 basis: Basis::ValuePcg,
-            },
+            }),
         ),
         "value",
     );
     for k in 1..nodes - 1 {
         let (kind, input, output) = if k % 3 == 0 {
-            let kind = NodeKind::Noise {
+            let kind = NodeKind::Noise(Noise {
                 basis: Basis::Gradient,
-            };
+            });
             (kind, "scale", "value")
         } else {
-            let kind = NodeKind::Math {
+            let kind = NodeKind::Math(Math {
                 op: MathOp::ALL[k % 7],
                 ty: ValueType::Float,
-            };
+            });
             (kind, "a", "result")
         };
         let label = if k % 3 == 0 { "noise" } else { "step" };
@@ -67,9 +68,9 @@ pub fn ramp(stops: usize) -> Graph {
     let noise = push(
         &mut graph,
         "noise",
-        NodeKind::Noise {
+        NodeKind::Noise(Noise {
             basis: Basis::ValuePcg,
-        },
+        }),
     );
     let stops = (0..stops)
         .map(|k| {
@@ -80,10 +81,10 @@ pub fn ramp(stops: usize) -> Graph {
             }
         })
         .collect();
-    let kind = NodeKind::ColorRamp {
+    let kind = NodeKind::ColorRamp(ColorRamp {
         stops,
         interpolation: RampInterpolation::Linear,
-    };
+    });
     let ramp = push(&mut graph, "ramp", kind);
     connect(&mut graph, (noise, "value"), ramp, "factor");
     let material = push(&mut graph, "material", NodeKind::Material);

@@ -4,6 +4,7 @@
 use crate::support::{cpu_flat_rgb8, difference, flat_rgb8};
 use veneer::eval::{Evaluator, Surface};
 use veneer::graph::{Basis, Graph, MathOp, Metric, NodeKind, Value, ValueType, WorleyFeature};
+use veneer::nodes::{Combine, DomainWarp, Fbm, Math, Mix, Noise, Turbulence, Worley};
 use veneer::render::FlatRect;
 
 /// A graph touching every PCG-hashed family: value, gradient and simplex noise, the
@@ -12,69 +13,69 @@ fn pcg_graph() -> Graph {
     let mut g = Graph::default();
     let warp = g.add(
         "warp",
-        NodeKind::DomainWarp {
+        NodeKind::DomainWarp(DomainWarp {
             basis: Basis::Gradient,
-        },
+        }),
     );
     g.set_input(warp, "strength", Value::Float(0.3));
     let fbm = g.add(
         "fbm",
-        NodeKind::Fbm {
+        NodeKind::Fbm(Fbm {
             basis: Basis::ValuePcg,
             octaves: 4,
             normalize: true,
-        },
+        }),
     );
     g.connect(warp, "p", fbm, "p");
     let turbulence = g.add(
         "turbulence",
-        NodeKind::Turbulence {
+        NodeKind::Turbulence(Turbulence {
             basis: Basis::Simplex,
             octaves: 3,
             normalize: false,
-        },
+        }),
     );
     g.set_input(turbulence, "scale", Value::Float(1.7));
     let worley = g.add(
         "cells",
-        NodeKind::Worley {
+        NodeKind::Worley(Worley {
             feature: WorleyFeature::F2MinusF1,
             metric: Metric::Euclidean,
             octaves: 2,
-        },
+        }),
     );
     let tiles = g.add("tiles", NodeKind::Tiles);
     g.set_input(tiles, "blur", Value::Float(0.05));
     let gradient = g.add(
         "gradient",
-        NodeKind::Noise {
+        NodeKind::Noise(Noise {
             basis: Basis::Gradient,
-        },
+        }),
     );
     g.set_input(gradient, "scale", Value::Float(2.5));
     let sum = g.add(
         "sum",
-        NodeKind::Math {
+        NodeKind::Math(Math {
             op: MathOp::Multiply,
             ty: ValueType::Float,
-        },
+        }),
     );
     g.connect(gradient, "value", sum, "a");
     g.connect(tiles, "mask", sum, "b");
     let color = g.add(
         "colour",
-        NodeKind::Combine {
+        NodeKind::Combine(Combine {
             ty: ValueType::Color,
-        },
+        }),
     );
     g.connect(fbm, "value", color, "x");
     g.connect(turbulence, "value", color, "y");
     g.connect(worley, "value", color, "z");
     let tint = g.add(
         "tint",
-        NodeKind::Mix {
+        NodeKind::Mix(Mix {
             ty: ValueType::Color,
-        },
+        }),
     );
     g.connect(color, "v", tint, "a");
     g.connect(sum, "result", tint, "factor");

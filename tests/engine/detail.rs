@@ -5,24 +5,25 @@
 use crate::support::gpu;
 use veneer::codegen::Detail;
 use veneer::graph::{Basis, Graph, NodeKind, Value};
+use veneer::nodes::{Combine, Fbm};
 use veneer::render::{FlatRect, View, render_graph_detailed};
 
 fn fbm_graph() -> Graph {
     let mut graph = Graph::default();
     let fbm = graph.add(
         "fbm",
-        NodeKind::Fbm {
+        NodeKind::Fbm(Fbm {
             basis: Basis::Gradient,
             octaves: 8,
             normalize: true,
-        },
+        }),
     );
     graph.set_input(fbm, "scale", Value::Float(1.0));
     let colour = graph.add(
         "grey",
-        NodeKind::Combine {
+        NodeKind::Combine(Combine {
             ty: veneer::graph::ValueType::Color,
-        },
+        }),
     );
     for pin in ["x", "y", "z"] {
         graph.connect(fbm, "value", colour, pin);

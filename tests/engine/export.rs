@@ -8,6 +8,7 @@ use std::process::Command;
 use veneer::codegen::ParamMode;
 use veneer::codegen::export::{Target, export};
 use veneer::graph::{Graph, NodeKind};
+use veneer::nodes::{Noise, Unary};
 
 fn run_validator(tool: &str, file: &Path) {
     let output = Command::new(tool)
@@ -83,19 +84,19 @@ fn labels_that_are_keywords_in_the_target_languages_stay_valid() {
     ] {
         let node = graph.add(
             keyword,
-            NodeKind::Unary {
+            NodeKind::Unary(Unary {
                 op: veneer::graph::UnaryOp::Fract,
                 ty: veneer::graph::ValueType::Float,
-            },
+            }),
         );
         match previous {
             Some(before) => graph.connect(before, "result", node, "x"),
             None => {
                 let noise = graph.add(
                     "sampler",
-                    NodeKind::Noise {
+                    NodeKind::Noise(Noise {
                         basis: veneer::graph::Basis::Simplex,
-                    },
+                    }),
                 );
                 graph.connect(noise, "value", node, "x");
             }

@@ -2,14 +2,15 @@
 
 use veneer::codegen::{CompileError, compile_graph};
 use veneer::graph::{Graph, Metric, NodeKind, Value, WorleyFeature};
+use veneer::nodes::{Fbm, Math, Mix, Noise, Worley};
 
 fn small_graph() -> (Graph, veneer::graph::NodeId) {
     let mut graph = Graph::default();
     let noise = graph.add(
         "grain",
-        NodeKind::Noise {
+        NodeKind::Noise(Noise {
             basis: veneer::graph::Basis::ValuePcg,
-        },
+        }),
     );
     let material = graph.add("material", NodeKind::Material);
     graph.connect(noise, "value", material, "albedo");
@@ -21,11 +22,11 @@ fn unconnected_worley_emits_no_worley_code() {
     let (mut graph, _) = small_graph();
     graph.add(
         "unused cells",
-        NodeKind::Worley {
+        NodeKind::Worley(Worley {
             feature: WorleyFeature::F1,
             metric: Metric::Euclidean,
             octaves: 1,
-        },
+        }),
     );
     let module = compile_graph(&graph).expect("compiles");
     assert!(!module.source.contains("worley"), "{}", module.source);
@@ -108,11 +109,11 @@ fn out_of_range_settings_and_unknown_pins_are_errors() {
     graph.set_input(noise, "frequency", Value::Float(2.0));
     graph.add(
         "too fine",
-        NodeKind::Fbm {
+        NodeKind::Fbm(Fbm {
             basis: veneer::graph::Basis::Gradient,
             octaves: 65,
             normalize: false,
-        },
+        }),
     );
     let messages: Vec<String> = veneer::graph::check(&graph)
         .expect_err("two errors")
@@ -258,24 +259,24 @@ fn constant_subgraphs_fold_to_literals_and_surface_reads_do_not() {
     let mut graph = Graph::default();
     let sum = graph.add(
         "quarter plus half",
-        NodeKind::Math {
+        NodeKind::Math(Math {
             op: veneer::graph::MathOp::Add,
             ty: veneer::graph::ValueType::Float,
-        },
+        }),
     );
     graph.set_input(sum, "a", Value::Float(0.25));
     graph.set_input(sum, "b", Value::Float(0.5));
     let noise = graph.add(
         "noise",
-        NodeKind::Noise {
+        NodeKind::Noise(Noise {
             basis: veneer::graph::Basis::Gradient,
-        },
+        }),
     );
     let mix = graph.add(
         "shade",
-        NodeKind::Mix {
+        NodeKind::Mix(Mix {
             ty: veneer::graph::ValueType::Color,
-        },
+        }),
     );
     graph.connect(sum, "result", mix, "factor");
     let material = graph.add("material", NodeKind::Material);

@@ -11,6 +11,7 @@ use std::time::{Duration, Instant};
 use veneer::codegen::export::Target;
 use veneer::codegen::{Detail, ParamMode};
 use veneer::graph::{Graph, MathOp, NodeKind, PinRef, Value, ValueType, Wire};
+use veneer::nodes::{Math, Noise};
 
 /// Runs `veneer args` (output to files, so a flood of lines cannot block it), killing it
 /// past `limit`; returns what it did and how long it took.
@@ -107,18 +108,18 @@ fn a_material_in_parts_renders_as_the_cpu_evaluates_it() {
     let mut graph = Graph::default();
     let noise = graph.add(
         "noise",
-        NodeKind::Noise {
+        NodeKind::Noise(Noise {
             basis: veneer::graph::Basis::ValuePcg,
-        },
+        }),
     );
     let mut previous = (noise, "value");
     for k in 0..600 {
         let add = graph.add(
             &format!("add {k}"),
-            NodeKind::Math {
+            NodeKind::Math(Math {
                 op: MathOp::Add,
                 ty: ValueType::Float,
-            },
+            }),
         );
         graph.connect(previous.0, previous.1, add, "a");
         graph.set_input(add, "b", Value::Float(0.0005));

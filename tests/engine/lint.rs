@@ -3,6 +3,7 @@
 
 use veneer::graph::{Basis, Graph, MathOp, NodeId, NodeKind, Value, ValueType};
 use veneer::lint::{lint, preview_positions};
+use veneer::nodes::{Fbm, Math, Noise, Normalize};
 
 /// Lints of `graph`, as (node, message) pairs.
 fn lints(graph: &Graph) -> Vec<(NodeId, String)> {
@@ -52,27 +53,27 @@ fn degenerate_smoothstep_and_remap_parameters() {
 
 #[test]
 fn fractal_parameters_and_octave_budgets() {
-    let (mut graph, node) = with_node(NodeKind::Fbm {
+    let (mut graph, node) = with_node(NodeKind::Fbm(Fbm {
         basis: Basis::ValuePcg,
         octaves: 6,
         normalize: false,
-    });
+    }));
     graph.set_input(node, "gain", Value::Float(1.2));
     assert_lint(&graph, node, "does not converge");
     graph.set_input(node, "gain", Value::Float(0.5));
     graph.set_input(node, "lacunarity", Value::Float(0.9));
     assert_lint(&graph, node, "do not get finer");
-    let (graph, node) = with_node(NodeKind::Fbm {
+    let (graph, node) = with_node(NodeKind::Fbm(Fbm {
         basis: Basis::Gradient,
         octaves: 64,
         normalize: true,
-    });
+    }));
     assert_lint(&graph, node, "past f32's integer precision");
-    let (graph, _) = with_node(NodeKind::Fbm {
+    let (graph, _) = with_node(NodeKind::Fbm(Fbm {
         basis: Basis::Gradient,
         octaves: 16,
         normalize: true,
-    });
+    }));
     assert!(
         lints(&graph).is_empty(),
         "16 octaves at lacunarity 2 stay within f32: {:?}",
@@ -82,14 +83,14 @@ fn fractal_parameters_and_octave_budgets() {
 
 #[test]
 fn the_sine_hash_far_from_the_origin() {
-    let (mut graph, node) = with_node(NodeKind::Noise {
+    let (mut graph, node) = with_node(NodeKind::Noise(Noise {
         basis: Basis::ValueSine,
-    });
+    }));
     graph.preview.size = 5.0e6;
     assert_lint(&graph, node, "sine hash");
-    graph.nodes[0].kind = NodeKind::Noise {
+    graph.nodes[0].kind = NodeKind::Noise(Noise {
         basis: Basis::ValuePcg,
-    };
+    });
     assert!(lints(&graph).is_empty(), "the PCG hash is fine there");
 }
 
@@ -100,10 +101,10 @@ fn divisions_powers_and_normalisations_that_may_hit_zero_or_negatives() {
         (MathOp::Divide, "divisor may be 0"),
         (MathOp::Power, "base may be negative"),
     ] {
-        let (mut graph, node) = with_node(NodeKind::Math {
+        let (mut graph, node) = with_node(NodeKind::Math(Math {
             op,
             ty: ValueType::Float,
-        });
+        }));
         let x = graph.add("x", NodeKind::Project);
         let (input, other) = if op == MathOp::Divide {
             ("b", "a")
@@ -114,9 +115,9 @@ fn divisions_powers_and_normalisations_that_may_hit_zero_or_negatives() {
         graph.set_input(node, other, Value::Float(2.0));
         assert_lint(&graph, node, expected);
     }
-    let (mut graph, node) = with_node(NodeKind::Normalize {
+    let (mut graph, node) = with_node(NodeKind::Normalize(Normalize {
         ty: ValueType::Vec3,
-    });
+    }));
     let position = graph.add("position", NodeKind::Position);
     graph.connect(position, "position", node, "v");
     assert_lint(&graph, node, "may be zero");

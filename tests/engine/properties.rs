@@ -6,86 +6,18 @@
 use crate::support::{cpu_flat_rgb8, difference, flat_rgb8};
 use proptest::prelude::*;
 use veneer::codegen::{CompileError, compile_graph};
-use veneer::graph::{
-    Basis, Graph, MathOp, Metric, NodeKind, PinDefault, UnaryOp, ValueType, WorleyFeature,
-};
+use veneer::graph::{Basis, Graph, NodeKind, PinDefault, ValueType};
 use veneer::render::FlatRect;
 
-/// A node kind from a seed, over every kind (sine-hash bases only when `sine` is allowed).
+/// A node kind from a seed, over every kind the registry lists with the settings its
+/// tests cover (sine-hash bases only when `sine` is allowed).
 fn kind(seed: u32, sine: bool) -> NodeKind {
-    let types = [
-        ValueType::Float,
-        ValueType::Vec2,
-        ValueType::Vec3,
-        ValueType::Color,
-    ];
-    let ty = types[(seed / 64) as usize % 4];
-    let vector = types[1 + (seed / 64) as usize % 3];
-    let bases: &[Basis] = if sine {
-        &Basis::ALL
-    } else {
-        &[Basis::ValuePcg, Basis::Gradient, Basis::Simplex]
-    };
-    let basis = bases[(seed / 256) as usize % bases.len()];
-    let octaves = 1 + seed / 1024 % 6;
-    match seed % 34 {
-        0 => NodeKind::Position,
-        1 => NodeKind::Normal,
-        2 => NodeKind::Uv,
-        3 => NodeKind::Time,
-        4 => NodeKind::Constant { ty },
-        5 => NodeKind::Transform,
-        6 => NodeKind::Project,
-        7 => NodeKind::Cylindrical,
-        8 => NodeKind::DomainWarp { basis },
-        9 => NodeKind::Noise { basis },
-        10 => NodeKind::Fbm {
-            basis,
-            octaves,
-            normalize: seed % 2 == 0,
-        },
-        11 => NodeKind::Turbulence {
-            basis,
-            octaves,
-            normalize: seed % 2 == 1,
-        },
-        12 => NodeKind::FractalSum {
-            basis,
-            octaves,
-            normalize: seed % 2 == 0,
-        },
-        13 => NodeKind::Worley {
-            feature: WorleyFeature::F2MinusF1,
-            metric: Metric::Manhattan,
-            octaves: octaves.min(3),
-        },
-        14 => NodeKind::SineBand,
-        15 => NodeKind::TriangleWave,
-        16 => NodeKind::Tiles,
-        17 => NodeKind::Rings,
-        18 => NodeKind::Math {
-            op: MathOp::ALL[(seed / 32) as usize % 7],
-            ty,
-        },
-        19 => NodeKind::Unary {
-            op: UnaryOp::ALL[(seed / 32) as usize % 7],
-            ty,
-        },
-        20 => NodeKind::Mix { ty },
-        21 => NodeKind::Clamp { ty },
-        22 => NodeKind::Step { ty },
-        23 => NodeKind::Smoothstep,
-        24 => NodeKind::Remap,
-        25 => NodeKind::Length { ty: vector },
-        26 => NodeKind::Dot { ty: vector },
-        27 => NodeKind::Normalize { ty: vector },
-        28 => NodeKind::Split { ty: vector },
-        29 => NodeKind::Front,
-        30 => NodeKind::Layers { ty },
-        31 => NodeKind::Isolines,
-        32 => NodeKind::NoiseBump { basis },
-        _ => NodeKind::Combine { ty: vector },
-    }
+    let kinds: Vec<NodeKind> = NodeKind::examples()
+        .into_iter()
+        .filter(|kind| *kind != NodeKind::Material)
+        .filter(|kind| sine || kind.basis() != Some(Basis::ValueSine))
+        .collect();
+    kinds[seed as usize % kinds.len()].clone()
 }
 
 /// A random graph: each node's inputs wired (or not) to compatible outputs of earlier

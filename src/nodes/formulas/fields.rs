@@ -2,8 +2,8 @@
 
 use super::noise;
 use super::real::{Real, V3, add, scale};
-use super::shapes::{mix3, smoothstep};
-use crate::graph::Basis;
+use super::shapes::smoothstep;
+use crate::nodes::settings::Basis;
 
 /// `veneer_front`: 1 up to the threshold, 0 beyond `threshold + width`.
 pub fn front<R: Real>(distance: R, threshold: R, width: R, noise: R) -> R {
@@ -13,14 +13,6 @@ pub fn front<R: Real>(distance: R, threshold: R, width: R, noise: R) -> R {
             threshold + width.max(R::c(0.0)),
             distance + noise,
         )
-}
-
-/// The nested mix of four values by three fronts (inputs in the node's pin order).
-pub fn layers<R: Real>(i: &[V3<R>]) -> V3<R> {
-    let front_at = |edge: usize| front(i[0][0], i[edge][0], i[2][0], i[1][0]);
-    let outer = mix3(i[9], i[8], front_at(5));
-    let middle = mix3(outer, i[7], front_at(4));
-    mix3(middle, i[6], front_at(3))
 }
 
 /// `veneer_isolines`.

@@ -2,7 +2,7 @@
 //! gradient.wgsl, simplex.wgsl and worley.wgsl.
 
 use super::real::{Real, V3, add, dot, length, map, splat, sub, zip};
-use crate::graph::{Basis, Metric};
+use crate::nodes::settings::{Basis, Metric};
 
 /// The sine hash of a lattice cell (`veneer_lattice_sine`).
 pub fn lattice_sine<R: Real>(cell: V3<R>) -> R {

@@ -3,7 +3,7 @@
 
 use super::noise;
 use super::real::{Real, V3, add, cross, dot, length, map, mul, safe_normalize, scale, sub};
-use crate::graph::{Basis, FractalMode};
+use crate::nodes::settings::{Basis, FractalMode};
 
 /// `rotate(p * scale) + offset`, rotation in degrees about x, then y, then z.
 pub fn transform<R: Real>(p: V3<R>, scale_by: V3<R>, rotation: V3<R>, offset: V3<R>) -> V3<R> {

@@ -1,0 +1,184 @@
+//! Cellular noise: Worley's feature distances, one octave or fractal.
+
+use super::cpu::Eval;
+use super::emit::Emit;
+use super::formulas::real::{Real, V3, scale, splat};
+use super::formulas::{noise, shapes};
+use super::interval::{self, Interval, Lanes};
+use super::pins::{FLOAT, POSITION, Signature, VEC3, f, input, output};
+use super::ranges::Ranges;
+use super::settings::{Basis, METRICS, Metric, Setting, WORLEY_FEATURES, WorleyFeature, choice};
+use super::{Catalogue, Category, Configure, Definition, Evaluate};
+use serde::{Deserialize, Serialize};
+
+macro_rules! kinds {
+    ($registry:ident @gather [$($units:tt)*] [$($configured:tt)*] $($rest:tt)*) => {
+        $registry!(@gather [$($units)*] [$($configured)* (Worley, cellular)] $($rest)*);
+    };
+}
+pub(super) use kinds;
+
+/// The integer the WGSL library uses for a Worley feature.
+pub fn worley_feature_index(feature: WorleyFeature) -> i32 {
+    match feature {
+        WorleyFeature::F1 => 0,
+        WorleyFeature::F2 => 1,
+        WorleyFeature::F3 => 2,
+        WorleyFeature::F2MinusF1 => 3,
+    }
+}
+
+/// The integer the WGSL library uses for a distance metric.
+pub fn metric_index(metric: Metric) -> i32 {
+    match metric {
+        Metric::Euclidean => 0,
+        Metric::Manhattan => 1,
+        Metric::Chebyshev => 2,
+    }
+}
+
+/// Cellular (Worley) noise; more than one octave makes it fractal.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "arbitrary", derive(arbitrary::Arbitrary))]
+pub struct Worley {
+    pub feature: WorleyFeature,
+    pub metric: Metric,
+    pub octaves: u32,
+}
+
+impl Definition for Worley {
+    fn title(&self) -> &'static str {
+        "Worley"
+    }
+    fn category(&self) -> Category {
+        Category::Cellular
+    }
+    fn keywords(&self) -> &'static [&'static str] {
+        &["voronoi", "cells", "cellular", "crackle", "stones"]
+    }
+    fn signature(&self) -> Signature {
+        Signature::new(
+            vec![
+                input("p", VEC3, POSITION),
+                input("scale", FLOAT, f(1.0)).soft(0.0, 50.0),
+                input("jitter", FLOAT, f(1.0)).limits(0.0, 1.0),
+                input("lacunarity", FLOAT, f(2.0)).soft(1.0, 4.0),
+                input("gain", FLOAT, f(0.5)).limits(0.0, 1.0),
+            ],
+            vec![output("value", FLOAT)],
+        )
+    }
+    fn reads_surface(&self) -> bool {
+        false
+    }
+    fn basis(&self) -> Option<Basis> {
+        None
+    }
+    fn check(&self) -> Option<String> {
+        super::fractal::check_octaves(self.octaves)
+    }
+    fn emit(&self, io: &mut Emit) {
+        let feature = worley_feature_index(self.feature);
+        let metric = metric_index(self.metric);
+        let (p, scale, jitter) = (io.input("p"), io.input("scale"), io.input("jitter"));
+        let expression = if self.octaves == 1 {
+            io.uses("veneer_worley");
+            io.uses("veneer_worley_feature");
+            format!(
+                "veneer_worley_feature(veneer_worley({p} * {scale}, {jitter}, {metric}), {feature})"
+            )
+        } else {
+            io.uses("veneer_worley_fractal");
+            format!(
+                "veneer_worley_fractal({p} * {scale}, {jitter}, {metric}, {feature}, {}, {}, {})",
+                self.octaves,
+                io.input("lacunarity"),
+                io.input("gain")
+            )
+        };
+        io.single(expression);
+    }
+    fn ranges(&self, io: &mut Ranges) -> Vec<Lanes> {
+        let octaves = self.octaves as i32;
+        let finest = io
+            .float("lacunarity")
+            .magnitude()
+            .max(1.0)
+            .powi(octaves - 1);
+        let magnitude = io.reach("p") * io.float("scale").magnitude() * finest;
+        io.lattice(None, magnitude);
+        let gain = io.float("gain").magnitude();
+        let sum: f64 = (0..octaves).map(|k| gain.powi(k)).sum();
+        vec![interval::splat(Interval::new(0.0, 3.0 * sum))]
+    }
+}
+
+impl Evaluate for Worley {
+    fn eval<R: Real>(&self, io: &Eval<R>) -> Vec<V3<R>> {
+        let feature = worley_feature_index(self.feature);
+        let p = scale(io.input("p"), io.float("scale"));
+        let jitter = io.float("jitter");
+        let octave =
+            |q: V3<R>| shapes::worley_feature(noise::worley(q, jitter, self.metric), feature);
+        if self.octaves == 1 {
+            return vec![splat(octave(p))];
+        }
+        let (lacunarity, gain) = (io.float("lacunarity"), io.float("gain"));
+        let (mut sum, mut amplitude, mut frequency) = (R::c(0.0), R::c(1.0), R::c(1.0));
+        for _ in 0..self.octaves {
+            sum = sum + amplitude * octave(scale(p, frequency));
+            frequency = frequency * lacunarity;
+            amplitude = amplitude * gain;
+        }
+        vec![splat(sum)]
+    }
+}
+
+impl Configure for Worley {
+    fn settings(&mut self) -> Vec<Setting<'_>> {
+        vec![
+            choice("feature", &mut self.feature, &WORLEY_FEATURES),
+            choice("metric", &mut self.metric, &METRICS),
+            Setting::Count {
+                label: "octaves",
+                value: &mut self.octaves,
+                range: 1..=8,
+            },
+        ]
+    }
+}
+
+impl Catalogue for Worley {
+    fn menu() -> Vec<(String, Self)> {
+        vec![
+            (
+                "Worley".into(),
+                Worley {
+                    feature: WorleyFeature::F1,
+                    metric: Metric::Euclidean,
+                    octaves: 1,
+                },
+            ),
+            (
+                "Worley, fractal".into(),
+                Worley {
+                    feature: WorleyFeature::F2MinusF1,
+                    metric: Metric::Euclidean,
+                    octaves: 3,
+                },
+            ),
+        ]
+    }
+    fn examples() -> Vec<Self> {
+        WORLEY_FEATURES
+            .into_iter()
+            .zip(METRICS.into_iter().cycle())
+            .zip([1, 1, 1, 3])
+            .map(|((feature, metric), octaves)| Worley {
+                feature,
+                metric,
+                octaves,
+            })
+            .collect()
+    }
+}

@@ -1,0 +1,70 @@
+//! The interface through which a node kind evaluates on the CPU: its inputs by pin
+//! name, as three lanes in precision `R`, and the surface point.
+
+use super::formulas::real::{Real, V3};
+use super::pins::InputPin;
+
+/// The inputs of a material at one point (the CPU side of `VeneerSurface`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Surface<R> {
+    pub position: [R; 3],
+    pub normal: [R; 3],
+    pub uv: [R; 2],
+    pub fields: [R; 4],
+    pub time: R,
+}
+
+impl<R: Real> Surface<R> {
+    /// A point with normal +y, uv 0, fields 0 and time 0 (the flat render's surface).
+    pub fn at(position: [f64; 3]) -> Surface<R> {
+        let zero = R::c(0.0);
+        Surface {
+            position: position.map(R::c),
+            normal: [zero, R::c(1.0), zero],
+            uv: [zero; 2],
+            fields: [zero; 4],
+            time: zero,
+        }
+    }
+}
+
+/// A node's view of CPU evaluation: its input values (three lanes each: a float in all
+/// three, a vec2 in the first two) and the surface point.
+pub struct Eval<'a, R> {
+    pins: &'a [InputPin],
+    inputs: &'a [V3<R>],
+    /// The point being shaded.
+    pub surface: &'a Surface<R>,
+}
+
+impl<'a, R: Real> Eval<'a, R> {
+    /// A node with these input pins and values at `surface`.
+    pub fn new(pins: &'a [InputPin], inputs: &'a [V3<R>], surface: &'a Surface<R>) -> Self {
+        Eval {
+            pins,
+            inputs,
+            surface,
+        }
+    }
+
+    /// The value of input pin `pin`. A name the kind does not have is a bug in its
+    /// definition (the registry test evaluates every kind).
+    pub fn input(&self, pin: &str) -> V3<R> {
+        let index = self
+            .pins
+            .iter()
+            .position(|p| p.name == pin)
+            .unwrap_or_else(|| panic!("the node kind has no input '{pin}'"));
+        self.inputs[index]
+    }
+
+    /// The value of float input pin `pin`.
+    pub fn float(&self, pin: &str) -> R {
+        self.input(pin)[0]
+    }
+
+    /// Every input value, in pin order.
+    pub fn inputs(&self) -> &'a [V3<R>] {
+        self.inputs
+    }
+}

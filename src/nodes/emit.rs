@@ -1,0 +1,208 @@
+//! WGSL literals and the interface through which a node kind emits its code: inputs
+//! by pin name, the identifier reserved for the node, and what it adds to
+//! `veneer_material` and the library.
+
+use super::pins::{InputPin, OutputPin};
+use super::value::{Value, ValueType};
+
+/// A WGSL f32 literal for `x` (`0.35f`): typed, so that expressions of constants only
+/// are never abstract (naga rejects builtins of abstract arguments outside constants).
+pub fn float_literal(x: f64) -> String {
+    let text = format!("{x:?}");
+    let text = if text.contains(['.', 'e', 'E']) {
+        text
+    } else {
+        format!("{text}.0")
+    };
+    format!("{text}f")
+}
+
+/// A WGSL literal for a constant.
+pub fn value_literal(value: &Value) -> String {
+    match *value {
+        Value::Float(x) => float_literal(x),
+        Value::Vec2(x, y) => format!("vec2f({}, {})", float_literal(x), float_literal(y)),
+        Value::Vec3(x, y, z) | Value::Color(x, y, z) => {
+            format!(
+                "vec3f({}, {}, {})",
+                float_literal(x),
+                float_literal(y),
+                float_literal(z)
+            )
+        }
+    }
+}
+
+/// A literal of type `ty` from three f32 lanes (a folded constant), each written as the
+/// shortest decimal that reads back as the same f32.
+pub fn lanes_literal(ty: ValueType, lanes: [f32; 3]) -> String {
+    let [x, y, z] = lanes.map(|lane| {
+        let text = format!("{lane:?}");
+        if text.contains(['.', 'e', 'E']) {
+            format!("{text}f")
+        } else {
+            format!("{text}.0f")
+        }
+    });
+    match ty {
+        ValueType::Float => x,
+        ValueType::Vec2 => format!("vec2f({x}, {y})"),
+        ValueType::Vec3 | ValueType::Color => format!("vec3f({x}, {y}, {z})"),
+    }
+}
+
+/// How much detail noise and fractal nodes compute.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Detail {
+    /// Every octave everywhere: the same numbers as the CPU evaluator (exports, renders,
+    /// snapshots).
+    #[default]
+    Full,
+    /// Fractal nodes leave out octaves finer than the pixel footprint (from screen-space
+    /// derivatives of their input), fading the last one: less aliasing and less work in
+    /// the distance. Fragment stage only, so materials that displace vertices keep full
+    /// detail.
+    Footprint,
+}
+
+/// What one node contributes to the material function.
+#[derive(Default)]
+pub struct NodeCode {
+    /// Statements, one per line, without indentation.
+    pub statements: Vec<String>,
+    /// One WGSL expression per output pin.
+    pub outputs: Vec<String>,
+    /// Library items the statements call.
+    pub library: Vec<String>,
+    /// The WGSL type of the identifier the statements bind (the node's name), if any.
+    pub binding: Option<&'static str>,
+}
+
+/// A node's view of code generation: its inputs as WGSL expressions (already converted
+/// to each pin's type), the name reserved for it, and the code it writes.
+pub struct Emit<'a> {
+    pins: &'a [InputPin],
+    inputs: &'a [String],
+    outputs: &'a [OutputPin],
+    name: &'a str,
+    /// How much detail fractal nodes compute.
+    pub detail: Detail,
+    code: NodeCode,
+}
+
+impl<'a> Emit<'a> {
+    /// A node with these input pins and expressions, output pins and reserved name.
+    pub fn new(
+        pins: &'a [InputPin],
+        inputs: &'a [String],
+        outputs: &'a [OutputPin],
+        name: &'a str,
+        detail: Detail,
+    ) -> Emit<'a> {
+        Emit {
+            pins,
+            inputs,
+            outputs,
+            name,
+            detail,
+            code: NodeCode::default(),
+        }
+    }
+
+    /// The expression of input pin `pin`. A name the kind does not have is a bug in its
+    /// definition (the registry test emits every kind).
+    pub fn input(&self, pin: &str) -> &'a str {
+        let index = self
+            .pins
+            .iter()
+            .position(|p| p.name == pin)
+            .unwrap_or_else(|| panic!("the node kind has no input '{pin}'"));
+        &self.inputs[index]
+    }
+
+    /// Every input expression, in pin order.
+    pub fn inputs(&self) -> &'a [String] {
+        self.inputs
+    }
+
+    /// The input pins, in order.
+    pub fn pins(&self) -> &'a [InputPin] {
+        self.pins
+    }
+
+    /// The identifier reserved for the node.
+    pub fn name(&self) -> &'a str {
+        self.name
+    }
+
+    /// The WGSL type of the first output (f32 when there is none).
+    fn output_type(&self) -> &'static str {
+        self.outputs
+            .first()
+            .map(|pin| pin.ty.wgsl())
+            .unwrap_or("f32")
+    }
+
+    /// One output: `let name: T = expression;`, typed so that an expression of constants
+    /// only (abstract in WGSL) becomes f32.
+    pub fn single(&mut self, expression: String) {
+        let ty = self.output_type();
+        self.code
+            .statements
+            .push(format!("let {}: {ty} = {expression};", self.name));
+        self.code.outputs = vec![self.name.to_string()];
+        self.code.binding = Some(ty);
+    }
+
+    /// One output: library function `function` of every input in pin order.
+    pub fn call(&mut self, function: &str) {
+        self.single(format!("{function}({})", self.inputs.join(", ")));
+        self.uses(function);
+    }
+
+    /// `let name = expression;` of type `ty`, whose parts the outputs then name.
+    pub fn bind(&mut self, ty: &'static str, expression: String) {
+        self.code
+            .statements
+            .push(format!("let {} = {expression};", self.name));
+        self.code.binding = Some(ty);
+    }
+
+    /// A `var` of type `ty` the following statements update; it is the one output.
+    pub fn var(&mut self, ty: &'static str, expression: String) {
+        self.code
+            .statements
+            .push(format!("var {} = {expression};", self.name));
+        self.code.binding = Some(ty);
+        self.code.outputs = vec![self.name.to_string()];
+    }
+
+    /// A statement after the node's binding.
+    pub fn statement(&mut self, statement: String) {
+        self.code.statements.push(statement);
+    }
+
+    /// The outputs' expressions, in pin order (when `single` does not set them).
+    pub fn outputs(&mut self, outputs: Vec<String>) {
+        self.code.outputs = outputs;
+    }
+
+    /// Library item `item` is called.
+    pub fn uses(&mut self, item: &str) {
+        self.code.library.push(item.to_string());
+    }
+
+    /// The code written.
+    pub fn finish(self) -> NodeCode {
+        self.code
+    }
+}
+
+/// `expression` of type `from` converted to `to` (a float broadcasts).
+pub fn convert(expression: String, from: ValueType, to: ValueType) -> String {
+    if from == ValueType::Float && to != ValueType::Float {
+        format!("{}({expression})", to.wgsl())
+    } else {
+        expression
+    }
+}

@@ -1,0 +1,157 @@
+//! Pin signatures: the inputs and outputs of a node kind, with the defaults and the
+//! ranges the inspector offers, and the small builders the family files use.
+
+use super::value::{Value, ValueType};
+
+/// What an unconnected input uses.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum PinDefault {
+    /// A constant, overridable per node in the graph file.
+    Const(Value),
+    /// The surface position (texture-space coordinate), like Blender's implicit vector input.
+    Position,
+    /// The input must be wired.
+    Required,
+}
+
+/// How the inspector offers a constant input: hard limits for dragging, and the span
+/// artists usually work in (its width sets the drag step).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PinRange {
+    pub min: f64,
+    pub max: f64,
+    pub soft_min: f64,
+    pub soft_max: f64,
+}
+
+impl PinRange {
+    /// Any finite value, usually within [-1, 1].
+    pub const ANY: PinRange = PinRange {
+        min: f64::NEG_INFINITY,
+        max: f64::INFINITY,
+        soft_min: -1.0,
+        soft_max: 1.0,
+    };
+
+    /// The drag step: a two-hundredth of the soft span.
+    pub fn step(&self) -> f64 {
+        (self.soft_max - self.soft_min) / 200.0
+    }
+}
+
+/// One input pin.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct InputPin {
+    pub name: &'static str,
+    pub ty: ValueType,
+    pub default: PinDefault,
+    pub range: PinRange,
+}
+
+impl InputPin {
+    /// The same pin offered within `soft` (any value allowed).
+    pub const fn soft(self, soft_min: f64, soft_max: f64) -> InputPin {
+        InputPin {
+            range: PinRange {
+                soft_min,
+                soft_max,
+                ..self.range
+            },
+            ..self
+        }
+    }
+
+    /// The same pin limited to [min, max] in the inspector, offered within that span.
+    pub const fn limits(self, min: f64, max: f64) -> InputPin {
+        InputPin {
+            range: PinRange {
+                min,
+                max,
+                soft_min: min,
+                soft_max: max,
+            },
+            ..self
+        }
+    }
+}
+
+/// One output pin.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct OutputPin {
+    pub name: &'static str,
+    pub ty: ValueType,
+}
+
+/// The pins of a node kind.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Signature {
+    pub inputs: Vec<InputPin>,
+    pub outputs: Vec<OutputPin>,
+}
+
+impl Signature {
+    /// A signature of these inputs and outputs.
+    pub fn new(inputs: Vec<InputPin>, outputs: Vec<OutputPin>) -> Signature {
+        Signature { inputs, outputs }
+    }
+
+    /// The input pin called `name` and its index.
+    pub fn input(&self, name: &str) -> Option<(usize, &InputPin)> {
+        self.inputs
+            .iter()
+            .enumerate()
+            .find(|(_, pin)| pin.name == name)
+    }
+
+    /// The output pin called `name` and its index.
+    pub fn output(&self, name: &str) -> Option<(usize, &OutputPin)> {
+        self.outputs
+            .iter()
+            .enumerate()
+            .find(|(_, pin)| pin.name == name)
+    }
+}
+
+/// A float default.
+pub fn f(x: f64) -> PinDefault {
+    PinDefault::Const(Value::Float(x))
+}
+/// A vec2 default.
+pub fn v2(x: f64, y: f64) -> PinDefault {
+    PinDefault::Const(Value::Vec2(x, y))
+}
+/// A vec3 default.
+pub fn v3(x: f64, y: f64, z: f64) -> PinDefault {
+    PinDefault::Const(Value::Vec3(x, y, z))
+}
+/// A colour default.
+pub fn rgb(r: f64, g: f64, b: f64) -> PinDefault {
+    PinDefault::Const(Value::Color(r, g, b))
+}
+/// `x` in every component of a `ty` default.
+pub fn splat(ty: ValueType, x: f64) -> PinDefault {
+    PinDefault::Const(Value::Float(x).convert(ty))
+}
+/// An input pin offered within [-1, 1] (see [`InputPin::soft`] and [`InputPin::limits`]).
+pub const fn input(name: &'static str, ty: ValueType, default: PinDefault) -> InputPin {
+    InputPin {
+        name,
+        ty,
+        default,
+        range: PinRange::ANY,
+    }
+}
+/// An output pin.
+pub const fn output(name: &'static str, ty: ValueType) -> OutputPin {
+    OutputPin { name, ty }
+}
+
+pub const FLOAT: ValueType = ValueType::Float;
+pub const VEC2: ValueType = ValueType::Vec2;
+pub const VEC3: ValueType = ValueType::Vec3;
+pub const COLOR: ValueType = ValueType::Color;
+pub const REQUIRED: PinDefault = PinDefault::Required;
+pub const POSITION: PinDefault = PinDefault::Position;
+
+/// Names of vector components, in order.
+pub const COMPONENTS: [&str; 3] = ["x", "y", "z"];
