@@ -589,9 +589,9 @@ impl VeneerApp {
     fn solve_fields(&mut self) {
         let mut used = self
             .live
-            .module
+            .compiled
             .as_ref()
-            .map(|m| m.uses.fields)
+            .map(|c| c.uses().fields)
             .unwrap_or_default();
         if let Some(slot) = self.fields.view {
             used[slot.min(3)] = true;
@@ -757,7 +757,7 @@ fn material_frame(
     cache: &mut Option<(u64, Arc<str>)>,
     graph: &Graph,
 ) -> Option<MaterialFrame> {
-    let module = live.module.as_ref()?;
+    let module = &live.compiled.as_ref()?.module;
     if cache
         .as_ref()
         .is_none_or(|(generation, _)| *generation != live.generation)
