@@ -1,6 +1,7 @@
 //! The node editor: an egui-snarl graph on the left, the live material on a mesh and
 //! the inspector on the right, a status bar below. Behind the default `gui` feature.
 
+mod actions;
 mod catalogue;
 mod clipboard;
 mod dialogs;
@@ -827,7 +828,10 @@ impl eframe::App for VeneerApp {
         if let Some(dialog) = self.dialog.take() {
             // A dialog's action may open another dialog (an open that fails shows a
             // message): that one wins over the dialog staying open.
-            let still_open = dialog.show(&ctx, self);
+            let (still_open, action) = dialog.show(&ctx, &self.document);
+            if let Some(action) = action {
+                self.apply(action);
+            }
             self.dialog = self.dialog.take().or(still_open);
         }
         self.handle_close(&ctx);
