@@ -204,6 +204,7 @@ pub fn bake(
     stem: &Path,
     mut progress: impl FnMut(u64, u64),
 ) -> Result<Vec<BakedMap>, BakeError> {
+    crate::render::baked_parameters(compiled)?;
     let (module, preview) = (&compiled.module, &compiled.preview);
     let size = settings.size;
     let (surface, spacing) = match &settings.surface {

@@ -4,7 +4,7 @@
 use super::{
     FlatRect, FlatRenderer, GpuContext, MeshRenderer, MeshView, RenderError, albedo_to_rgb8,
 };
-use crate::codegen::{Compiled, SurfaceUse};
+use crate::codegen::{Compiled, ParamMode, SurfaceUse};
 use crate::graph::Preview;
 use serde::{Deserialize, Serialize};
 
@@ -99,6 +99,17 @@ pub fn mesh_with_fields(
     Ok(mesh)
 }
 
+/// Refuses a material compiled with its parameters in a uniform block (the editor's):
+/// the headless renderers bind no parameter buffer.
+pub fn baked_parameters(compiled: &Compiled) -> Result<(), RenderError> {
+    match compiled.options.params {
+        ParamMode::Baked => Ok(()),
+        ParamMode::Uniform => Err(RenderError::Invalid(
+            "the material was compiled with its parameters in a uniform block; renders and bakes take baked parameters".into(),
+        )),
+    }
+}
+
 /// Renders a compiled material as `view` at size×size pixels and time `time`, with the
 /// detail it was compiled with (snapshots and the CPU reference expect every octave).
 /// The module must have baked parameters (the default).
@@ -109,6 +120,7 @@ pub fn render_material(
     size: u32,
     time: f32,
 ) -> Result<Image, RenderError> {
+    baked_parameters(compiled)?;
     let module = &compiled.module;
     let flat = |rect: FlatRect| -> Result<Image, RenderError> {
         let pixels = FlatRenderer::new(gpu, &module.source)?.render(gpu, rect, size, time)?;

@@ -101,3 +101,65 @@ fn snapshot_checks_and_emits_each_graph_once() {
     assert_eq!(counted(&compare), once_each(2), "comparing with them");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn errors_tell_a_graph_error_from_a_render_failure() {
+    use veneer::codegen::{CompileError, CompileOptions, ParamMode};
+    use veneer::render::{RenderError, View};
+    let dir = temp_dir("typed-errors");
+    let error = veneer::snapshot::check(
+        crate::support::gpu(),
+        &root("tests/bad/cycle.ron"),
+        &dir.join("cycle.png"),
+        &Default::default(),
+        true,
+    )
+    .expect_err("a cycle does not compile");
+    assert!(
+        matches!(
+            error,
+            veneer::snapshot::SnapshotError::Compile {
+                error: CompileError::Check(_),
+                ..
+            }
+        ),
+        "{error:?}"
+    );
+    // The editor's uniform-parameter modules are refused before any GPU work.
+    let graph = veneer::graph::load(&root("graphs/wood.ron")).expect("preset");
+    let uniform =
+        veneer::codegen::compile(&graph, &CompileOptions::with_params(ParamMode::Uniform))
+            .expect("compiles");
+    let render = veneer::render::render_material(
+        crate::support::gpu(),
+        &uniform,
+        &View::PreviewFlat,
+        8,
+        0.0,
+    );
+    assert!(matches!(render, Err(RenderError::Invalid(_))), "{render:?}");
+    let settings = veneer::bake::BakeSettings {
+        surface: veneer::bake::BakeSurface::Plane(None),
+        size: 8,
+        maps: vec![veneer::bake::Map::Albedo],
+        format: veneer::bake::Format::Png8,
+        normal: veneer::bake::NormalConvention::OpenGl,
+        time: 0.0,
+    };
+    let baked = veneer::bake::bake(
+        crate::support::gpu(),
+        &uniform,
+        &settings,
+        &dir.join("wood"),
+        |_, _| {},
+    );
+    assert!(
+        matches!(
+            baked,
+            Err(veneer::bake::BakeError::Render(RenderError::Invalid(_)))
+        ),
+        "{baked:?}"
+    );
+    assert!(!dir.join("cycle.png").exists() && !dir.join("wood_albedo.png").exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
