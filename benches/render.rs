@@ -6,7 +6,7 @@
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
-use veneer::codegen::{Detail, ParamMode};
+use veneer::codegen::{CompileOptions, Detail};
 use veneer::eval::{Evaluator, Surface};
 use veneer::nodes::Constant;
 use veneer::render::{FlatRect, FlatRenderer, GpuContext};
@@ -31,15 +31,16 @@ fn flat_render(c: &mut Criterion) {
     ] {
         let graph = veneer::graph::load(std::path::Path::new(path)).expect("preset");
         let compile = |detail| {
-            veneer::codegen::compile_graph_detailed(&graph, ParamMode::Baked, detail)
+            veneer::codegen::compile(&graph, &CompileOptions::with_detail(detail))
                 .expect("compiles")
+                .module
                 .source
         };
         let hand_written = format!(
             "{}\n{SEED_NOISE}\n{hand_written}",
             veneer::codegen::library::SURFACE
         );
-        let near = veneer::render::preview_rect(&graph);
+        let near = veneer::render::preview_rect(&graph.preview);
         let far = FlatRect {
             x0: near.x0 * 50.0,
             z0: near.z0 * 50.0,
@@ -91,15 +92,18 @@ fn flat_render(c: &mut Criterion) {
 
 fn compile(c: &mut Criterion) {
     let graph = veneer::graph::load(std::path::Path::new(WOOD)).expect("wood preset");
-    let source = veneer::codegen::compile_graph(&graph)
+    let source = veneer::codegen::compile(&graph, &Default::default())
         .expect("compiles")
+        .module
         .source;
     let mut group = c.benchmark_group("compile wood");
     group.bench_function("naga parse + validate only (baseline)", |b| {
         b.iter(|| veneer::codegen::validate(black_box(&source)).expect("valid"))
     });
     group.bench_function("check + codegen + naga", |b| {
-        b.iter(|| veneer::codegen::compile_graph(black_box(&graph)).expect("compiles"))
+        b.iter(|| {
+            veneer::codegen::compile(black_box(&graph), &Default::default()).expect("compiles")
+        })
     });
     group.finish();
 }
@@ -185,7 +189,7 @@ fn live_edit(c: &mut Criterion) {
                     .retain(|wire| !(wire.to.node == material && wire.to.pin == "specular"));
             }
             assert!(live.update(&graph));
-            let module = live.module.as_ref().expect("compiles");
+            let module = &live.compiled.as_ref().expect("compiles").module;
             let pipeline = veneer::render::MeshPipeline::new(
                 &gpu.device,
                 &module.source,
@@ -207,9 +211,10 @@ fn bake_marble(c: &mut Criterion) {
     let gpu = GpuContext::new().expect("a wgpu adapter");
     let graph = veneer::graph::load(std::path::Path::new(MARBLE)).expect("marble preset");
     let size = 8192;
-    let rect = veneer::render::preview_rect(&graph);
-    let source = veneer::codegen::compile_graph(&graph)
+    let rect = veneer::render::preview_rect(&graph.preview);
+    let source = veneer::codegen::compile(&graph, &Default::default())
         .expect("compiles")
+        .module
         .source;
     let renderer = FlatRenderer::new(&gpu, &source).expect("pipeline builds");
     let rows = veneer::bake::band_rows(size, veneer::render::tile_size(&gpu));
@@ -251,7 +256,10 @@ fn bake_marble(c: &mut Criterion) {
         time: 0.0,
     };
     group.bench_function("bake albedo, normal, height to EXR", |b| {
-        b.iter(|| bake(&gpu, &graph, &settings, &dir.join("marble"), |_, _| {}).expect("bakes"))
+        b.iter(|| {
+            let compiled = veneer::codegen::compile(&graph, &Default::default()).expect("compiles");
+            bake(&gpu, &compiled, &settings, &dir.join("marble"), |_, _| {}).expect("bakes")
+        })
     });
     group.finish();
     let _ = std::fs::remove_dir_all(&dir);
@@ -264,7 +272,9 @@ fn large_graphs(c: &mut Criterion) {
     for nodes in [500, 5000] {
         let graph = big_graphs::chain(nodes);
         group.bench_function(format!("{nodes} nodes"), |b| {
-            b.iter(|| veneer::codegen::compile_graph(black_box(&graph)).expect("compiles"))
+            b.iter(|| {
+                veneer::codegen::compile(black_box(&graph), &Default::default()).expect("compiles")
+            })
         });
     }
     group.finish();
@@ -282,7 +292,7 @@ fn huge_graphs(c: &mut Criterion) {
         group.bench_function(format!("{nodes} nodes"), |b| {
             b.iter(|| {
                 let checked = veneer::graph::check(black_box(&graph)).expect("checks");
-                veneer::codegen::compile(&checked).expect("compiles");
+                veneer::codegen::compile_checked(&checked, &Default::default()).expect("compiles");
                 veneer::lint::lint(&checked, positions)
             })
         });
@@ -301,7 +311,7 @@ fn huge_ramps(c: &mut Criterion) {
         group.bench_function(format!("{stops} stops"), |b| {
             b.iter(|| {
                 let graph = veneer::graph::from_ron(black_box(&text)).expect("parses");
-                veneer::codegen::compile_graph(&graph).is_ok()
+                veneer::codegen::compile(&graph, &Default::default()).is_ok()
             })
         });
     }

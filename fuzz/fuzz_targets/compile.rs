@@ -8,7 +8,7 @@
 
 use arbitrary::Arbitrary;
 use libfuzzer_sys::fuzz_target;
-use veneer::codegen::{CompileError, Detail, ParamMode, compile_graph_detailed};
+use veneer::codegen::{CompileError, CompileOptions, Detail, ParamMode, compile};
 use veneer::eval::{Evaluator, Surface};
 use veneer::graph::{Graph, NodeId, NodeKind, Value};
 
@@ -78,7 +78,11 @@ fuzz_target!(|fuzz: FuzzGraph| {
         (ParamMode::Baked, Detail::Full),
         (ParamMode::Uniform, Detail::Footprint),
     ] {
-        let compiled = match compile_graph_detailed(&graph, mode, detail) {
+        let options = CompileOptions {
+            params: mode,
+            detail,
+        };
+        let compiled = match compile(&graph, &options) {
             Ok(_) => true,
             Err(CompileError::Check(errors)) => {
                 assert!(!errors.is_empty(), "rejected without an error");

@@ -5,7 +5,7 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use veneer::codegen::{CompileError, compile_graph};
+use veneer::codegen::{CompileError, compile};
 use veneer::graph::{from_ron, to_ron};
 
 fuzz_target!(|bytes: &[u8]| {
@@ -29,7 +29,7 @@ fuzz_target!(|bytes: &[u8]| {
         saved,
         "save → load → save changed the text"
     );
-    if let Err(CompileError::Validation(error)) = compile_graph(&graph) {
+    if let Err(CompileError::Validation(error)) = compile(&graph, &Default::default()) {
         panic!("naga rejected a checked graph: {error}\n{saved}");
     }
 });

@@ -1,8 +1,9 @@
 //! Modal dialogs: file paths for open, save as and export; the prompt before losing
-//! unsaved work; recovery after a crash; messages.
+//! unsaved work; recovery after a crash; messages. A dialog only reads the document:
+//! what the user decides comes back as an [`Action`] for the editor to carry out.
 
-use super::recovery::{self, Recovery};
-use super::{Document, VeneerApp};
+use super::Document;
+use super::recovery::Recovery;
 use crate::codegen::ParamMode;
 use crate::codegen::export::Target;
 use egui::{Context, Id, Modal};
@@ -15,6 +16,37 @@ pub enum Pending {
     Open(PathBuf),
     Preset(&'static str),
     Quit,
+}
+
+/// What the user decided in a dialog, for the editor to carry out.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Action {
+    /// Open a graph file (asking first about unsaved changes).
+    Open(PathBuf),
+    /// Save the document to this file.
+    SaveAs(PathBuf),
+    /// Write the material as a shader for `target`.
+    ExportShader {
+        path: PathBuf,
+        target: Target,
+        params: ParamMode,
+    },
+    /// Write a PNG of the lit preview mesh, or of the flat albedo.
+    ExportPng {
+        path: PathBuf,
+        size: u32,
+        flat: bool,
+    },
+    /// Show a mesh file in the preview.
+    LoadMesh(String),
+    /// Save the unsaved changes, then go on if they were saved.
+    SaveThen(Pending),
+    /// Drop the unsaved changes and go on.
+    Discard(Pending),
+    /// Open the autosaved work.
+    Recover(Recovery),
+    /// Forget the autosaved work.
+    ForgetRecovery,
 }
 
 /// An open dialog.
@@ -87,9 +119,11 @@ impl Dialog {
         }
     }
 
-    /// Shows the dialog; returns the dialog to show next frame (`None` once closed).
-    pub fn show(mut self, ctx: &Context, app: &mut VeneerApp) -> Option<Dialog> {
+    /// Shows the dialog over `document`; returns the dialog to show next frame (`None`
+    /// once closed) and what the user asked for, if anything.
+    pub fn show(mut self, ctx: &Context, document: &Document) -> (Option<Dialog>, Option<Action>) {
         let mut next: Option<Option<Dialog>> = None;
+        let mut action = None;
         Modal::new(Id::new("veneer dialog")).show(ctx, |ui| {
             ui.set_min_width(420.0);
             match &mut self {
@@ -99,9 +133,8 @@ impl Dialog {
                     let enter = edit.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
                     ui.horizontal(|ui| {
                         if ui.button("Open").clicked() || enter {
-                            let path = PathBuf::from(path.trim());
                             next = Some(None);
-                            app.guard(Pending::Open(path));
+                            action = Some(Action::Open(PathBuf::from(path.trim())));
                         }
                         if ui.button("Cancel").clicked() {
                             next = Some(None);
@@ -113,16 +146,8 @@ impl Dialog {
                     ui.text_edit_singleline(path);
                     ui.horizontal(|ui| {
                         if ui.button("Save").clicked() {
-                            let target = PathBuf::from(path.trim());
-                            next = Some(match app.document.save_as(&target) {
-                                Ok(()) => {
-                                    app.remember(&target);
-                                    app.message = Some(format!("saved {}", target.display()));
-                                    recovery::clear(&app.recovery_file);
-                                    None
-                                }
-                                Err(error) => Some(Dialog::Message(error)),
-                            });
+                            next = Some(None);
+                            action = Some(Action::SaveAs(PathBuf::from(path.trim())));
                         }
                         if ui.button("Cancel").clicked() {
                             next = Some(None);
@@ -147,7 +172,8 @@ impl Dialog {
                     ui.horizontal(|ui| {
                         if ui.button("Export").clicked() {
                             let params = if *uniform { ParamMode::Uniform } else { ParamMode::Baked };
-                            next = Some(export_shader(app, PathBuf::from(path.trim()), *target, params));
+                            next = Some(None);
+                            action = Some(Action::ExportShader { path: PathBuf::from(path.trim()), target: *target, params });
                         }
                         if ui.button("Cancel").clicked() {
                             next = Some(None);
@@ -161,7 +187,8 @@ impl Dialog {
                     ui.checkbox(flat, "flat albedo over the preview square (instead of the lit mesh)");
                     ui.horizontal(|ui| {
                         if ui.button("Export").clicked() {
-                            next = Some(export_png(app, PathBuf::from(path.trim()), *size, *flat));
+                            next = Some(None);
+                            action = Some(Action::ExportPng { path: PathBuf::from(path.trim()), size: *size, flat: *flat });
                         }
                         if ui.button("Cancel").clicked() {
                             next = Some(None);
@@ -174,26 +201,24 @@ impl Dialog {
                     ui.text_edit_singleline(path);
                     ui.horizontal(|ui| {
                         if ui.button("Load").clicked() {
-                            next = Some(app.load_mesh(path.trim()).err().map(Dialog::Message));
+                            next = Some(None);
+                            action = Some(Action::LoadMesh(path.trim().to_string()));
                         }
                         if ui.button("Cancel").clicked() {
                             next = Some(None);
                         }
                     });
                 }
-                Dialog::Discard(action) => {
+                Dialog::Discard(pending) => {
                     ui.heading("Unsaved changes");
-                    ui.label(format!("{} has changes that are not saved.", app.document.title().trim_end_matches(" — Veneer")));
+                    ui.label(format!("{} has changes that are not saved.", document.title().trim_end_matches(" — Veneer")));
                     ui.horizontal(|ui| {
                         if ui.button("Save").clicked() {
-                            app.save();
-                            if !app.document.is_dirty() {
-                                app.perform(action.clone());
-                            }
+                            action = Some(Action::SaveThen(pending.clone()));
                             next = Some(None);
                         }
                         if ui.button("Discard").clicked() {
-                            app.perform(action.clone());
+                            action = Some(Action::Discard(pending.clone()));
                             next = Some(None);
                         }
                         if ui.button("Cancel").clicked() {
@@ -207,11 +232,11 @@ impl Dialog {
                     ui.label(format!("Veneer did not exit cleanly last time. Autosaved work from {from} is available."));
                     ui.horizontal(|ui| {
                         if ui.button("Recover").clicked() {
-                            app.load(Document::recovered(saved.graph.clone(), saved.original.clone()));
+                            action = Some(Action::Recover(saved.clone()));
                             next = Some(None);
                         }
                         if ui.button("Discard").clicked() {
-                            recovery::clear(&app.recovery_file);
+                            action = Some(Action::ForgetRecovery);
                             next = Some(None);
                         }
                     });
@@ -226,64 +251,8 @@ impl Dialog {
             }
         });
         match next {
-            Some(replacement) => replacement,
-            None => Some(self),
+            Some(replacement) => (replacement, action),
+            None => (Some(self), action),
         }
-    }
-}
-
-fn export_shader(
-    app: &mut VeneerApp,
-    path: PathBuf,
-    target: Target,
-    params: ParamMode,
-) -> Option<Dialog> {
-    let result = crate::codegen::export::export(&app.document.graph, target, params)
-        .map_err(|error| error.to_string())
-        .and_then(|bytes| {
-            crate::fsutil::write_atomic(&path, &bytes)
-                .map_err(|e| format!("{}: {e}", path.display()))
-        });
-    match result {
-        Ok(()) => {
-            app.message = Some(format!("exported {}", path.display()));
-            None
-        }
-        Err(error) => Some(Dialog::Message(error)),
-    }
-}
-
-fn export_png(app: &mut VeneerApp, path: PathBuf, size: u32, flat: bool) -> Option<Dialog> {
-    let Some(state) = &app.render_state else {
-        return Some(Dialog::Message("no GPU: cannot render".into()));
-    };
-    let gpu = crate::render::GpuContext::on_device(
-        state.adapter.clone(),
-        state.device.clone(),
-        state.queue.clone(),
-    );
-    let view = if flat {
-        crate::render::View::PreviewFlat
-    } else {
-        crate::render::View::Mesh(Some(app.preview.mesh.clone()))
-    };
-    let result = crate::render::render_graph(
-        &gpu,
-        &app.document.graph,
-        &view,
-        size,
-        app.preview.view.time,
-    )
-    .map_err(|error| error.to_string())
-    .and_then(|image| image.to_png().map_err(|e| e.to_string()))
-    .and_then(|png| {
-        crate::fsutil::write_atomic(&path, &png).map_err(|e| format!("{}: {e}", path.display()))
-    });
-    match result {
-        Ok(()) => {
-            app.message = Some(format!("exported {}", path.display()));
-            None
-        }
-        Err(error) => Some(Dialog::Message(error)),
     }
 }

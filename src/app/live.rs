@@ -2,7 +2,7 @@
 //! uniforms), a parameter edit does not; a failed compile keeps the last good material.
 
 use crate::codegen::{
-    CompileError, Detail, ParamMode, WgslModule, compile_graph_detailed, param_values,
+    CompileError, CompileOptions, Compiled, Detail, ParamMode, compile, param_values,
 };
 use crate::graph::{Graph, NodeId};
 use std::collections::BTreeMap;
@@ -12,8 +12,8 @@ use std::collections::BTreeMap;
 pub struct LiveMaterial {
     /// Structure of the graph last compiled (nodes, kinds and settings, wires).
     structure: Option<String>,
-    /// The last module that compiled, in uniform mode.
-    pub module: Option<WgslModule>,
+    /// The last graph that compiled, in uniform mode.
+    pub compiled: Option<Compiled>,
     /// Errors of the last compile, by node (`None`: not tied to a node).
     pub errors: BTreeMap<Option<NodeId>, String>,
     /// How many times the graph was compiled (parameter edits never count).
@@ -59,17 +59,21 @@ impl LiveMaterial {
         } else {
             Detail::Footprint
         };
-        match compile_graph_detailed(graph, ParamMode::Uniform, detail) {
-            Ok(module) => {
+        let options = CompileOptions {
+            params: ParamMode::Uniform,
+            detail,
+        };
+        match compile(graph, &options) {
+            Ok(compiled) => {
                 // Nodes the output does not reach are pruned: the code may well be unchanged.
                 if self
-                    .module
+                    .compiled
                     .as_ref()
-                    .is_none_or(|old| old.source != module.source)
+                    .is_none_or(|old| old.source() != compiled.source())
                 {
                     self.generation += 1;
                 }
-                self.module = Some(module);
+                self.compiled = Some(compiled);
             }
             Err(CompileError::Check(errors)) => {
                 for error in errors {
@@ -108,9 +112,9 @@ impl LiveMaterial {
 
     /// The uniform values of the current module for `graph`.
     pub fn params(&self, graph: &Graph) -> Vec<[f32; 4]> {
-        self.module
+        self.compiled
             .as_ref()
-            .map(|module| param_values(graph, &module.params))
+            .map(|compiled| param_values(graph, &compiled.module.params))
             .unwrap_or_default()
     }
 
@@ -150,9 +154,10 @@ mod tests {
         let mut live = LiveMaterial::default();
         assert!(live.update(&graph));
         let slot = live
-            .module
+            .compiled
             .as_ref()
             .unwrap()
+            .module
             .params
             .iter()
             .position(|p| p.pin == "scale")
@@ -191,7 +196,7 @@ mod tests {
         graph.connect(smooth, "result", material, "alpha");
         live.update(&graph);
         assert_eq!(live.generation, good);
-        assert!(live.module.is_some());
+        assert!(live.compiled.is_some());
         assert!(live.errors.contains_key(&Some(smooth)));
         assert_eq!(
             live.status(&graph).unwrap(),

@@ -1,6 +1,7 @@
 //! The node editor: an egui-snarl graph on the left, the live material on a mesh and
 //! the inspector on the right, a status bar below. Behind the default `gui` feature.
 
+mod actions;
 mod catalogue;
 mod clipboard;
 mod dialogs;
@@ -589,9 +590,9 @@ impl VeneerApp {
     fn solve_fields(&mut self) {
         let mut used = self
             .live
-            .module
+            .compiled
             .as_ref()
-            .map(|m| m.uses.fields)
+            .map(|c| c.uses().fields)
             .unwrap_or_default();
         if let Some(slot) = self.fields.view {
             used[slot.min(3)] = true;
@@ -757,7 +758,7 @@ fn material_frame(
     cache: &mut Option<(u64, Arc<str>)>,
     graph: &Graph,
 ) -> Option<MaterialFrame> {
-    let module = live.module.as_ref()?;
+    let module = &live.compiled.as_ref()?.module;
     if cache
         .as_ref()
         .is_none_or(|(generation, _)| *generation != live.generation)
@@ -827,7 +828,10 @@ impl eframe::App for VeneerApp {
         if let Some(dialog) = self.dialog.take() {
             // A dialog's action may open another dialog (an open that fails shows a
             // message): that one wins over the dialog staying open.
-            let still_open = dialog.show(&ctx, self);
+            let (still_open, action) = dialog.show(&ctx, &self.document);
+            if let Some(action) = action {
+                self.apply(action);
+            }
             self.dialog = self.dialog.take().or(still_open);
         }
         self.handle_close(&ctx);

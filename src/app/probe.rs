@@ -40,7 +40,7 @@ pub fn probe_graph(graph: &Graph, node: NodeId) -> Option<Graph> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::codegen::compile_graph;
+    use crate::codegen::compile;
 
     #[test]
     fn every_node_of_the_presets_can_be_probed() {
@@ -49,7 +49,8 @@ mod tests {
             for node in &graph.nodes {
                 match probe_graph(&graph, node.id) {
                     Some(probe) => {
-                        compile_graph(&probe).unwrap_or_else(|e| panic!("{name} {node}: {e}"));
+                        compile(&probe, &Default::default())
+                            .unwrap_or_else(|e| panic!("{name} {node}: {e}"));
                     }
                     None => assert_eq!(node.kind, NodeKind::Material),
                 }

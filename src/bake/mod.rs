@@ -12,7 +12,7 @@ mod pipeline;
 pub use maps::{Converter, Map, NormalConvention, fill_uncovered};
 use pipeline::MapTarget;
 
-use crate::graph::Graph;
+use crate::codegen::Compiled;
 use crate::render::{
     FlatChannels, FlatRect, FlatRenderer, GpuContext, GpuMesh, RenderError, UvRenderer,
 };
@@ -82,15 +82,51 @@ pub struct BakedMap {
     pub bytes: u64,
 }
 
-/// A bake that failed.
+/// A bake that failed: refused before any work (outputs, memory, a mesh without UVs),
+/// a render that failed, or a map that could not be written.
 #[derive(Debug, thiserror::Error)]
-#[error("{0}")]
-pub struct BakeError(pub String);
-
-impl From<RenderError> for BakeError {
-    fn from(error: RenderError) -> BakeError {
-        BakeError(error.to_string())
-    }
+pub enum BakeError {
+    /// The folder a map would go to is missing or not a folder.
+    #[error("{folder}: {why}; nothing was baked")]
+    Folder { folder: PathBuf, why: &'static str },
+    /// Two bakes would write the same file.
+    #[error(
+        "{path}: both {first} and {second} would write this file; bake them into different folders (-o); nothing was baked"
+    )]
+    SameFile {
+        path: PathBuf,
+        first: PathBuf,
+        second: PathBuf,
+    },
+    /// A folder's disk lacks room for the maps at their largest.
+    #[error(
+        "{folder}: the maps take up to {} and its disk has {} free; nothing was baked",
+        crate::fsutil::gibibytes(*.needed),
+        crate::fsutil::gibibytes(*.free)
+    )]
+    NoSpace {
+        folder: PathBuf,
+        needed: u64,
+        free: u64,
+    },
+    /// A UV bake on a mesh whose texture coordinates cover no area.
+    #[error(
+        "{mesh} has no UV layout (its texture coordinates cover no area), so its maps would be uniform; bake over a plane instead, or give a mesh with UVs"
+    )]
+    NoUvLayout { mesh: String },
+    /// The GPU, the mesh or its fields failed, or the bake is too large for memory.
+    #[error(transparent)]
+    Render(#[from] RenderError),
+    /// A map could not be converted, encoded or written.
+    #[error("{path}: {error}")]
+    Write {
+        path: PathBuf,
+        #[source]
+        error: std::io::Error,
+    },
+    /// The thread writing a map panicked.
+    #[error("{path}: the map writer panicked")]
+    WriterPanicked { path: PathBuf },
 }
 
 /// The renderer of a bake's surface.
@@ -127,21 +163,20 @@ pub fn check_outputs(stems: &[&Path], settings: &BakeSettings) -> Result<(), Bak
             } else {
                 "does not exist"
             };
-            return Err(BakeError(format!(
-                "{}: {why}; nothing was baked",
-                folder.display()
-            )));
+            return Err(BakeError::Folder {
+                folder: folder.to_path_buf(),
+                why,
+            });
         }
         *needed.entry(folder).or_default() += map_bytes * settings.maps.len() as u64;
         for &map in &settings.maps {
             let path = map_path(stem, map, settings.format);
             if let Some(other) = writers.insert(path.clone(), stem) {
-                return Err(BakeError(format!(
-                    "{}: both {} and {} would write this file; bake them into different folders (-o); nothing was baked",
-                    path.display(),
-                    other.display(),
-                    stem.display()
-                )));
+                return Err(BakeError::SameFile {
+                    path,
+                    first: other.to_path_buf(),
+                    second: stem.to_path_buf(),
+                });
             }
         }
     }
@@ -149,33 +184,32 @@ pub fn check_outputs(stems: &[&Path], settings: &BakeSettings) -> Result<(), Bak
         if let Some(free) = crate::fsutil::free_space(folder)
             && bytes > free
         {
-            return Err(BakeError(format!(
-                "{}: the maps take up to {} and its disk has {} free; nothing was baked",
-                folder.display(),
-                crate::fsutil::gibibytes(bytes),
-                crate::fsutil::gibibytes(free)
-            )));
+            return Err(BakeError::NoSpace {
+                folder: folder.to_path_buf(),
+                needed: bytes,
+                free,
+            });
         }
     }
     Ok(())
 }
 
-/// Bakes `graph` into `<stem>_<map>.<ext>` files, calling `progress(done, total)` as
-/// tiles finish. Every file is written atomically: an interrupted bake leaves no
-/// partial map.
+/// Bakes a compiled material (parameters baked, the default) into `<stem>_<map>.<ext>`
+/// files, calling `progress(done, total)` as tiles finish. Every file is written
+/// atomically: an interrupted bake leaves no partial map.
 pub fn bake(
     gpu: &GpuContext,
-    graph: &Graph,
+    compiled: &Compiled,
     settings: &BakeSettings,
     stem: &Path,
     mut progress: impl FnMut(u64, u64),
 ) -> Result<Vec<BakedMap>, BakeError> {
-    let module =
-        crate::codegen::compile_graph(graph).map_err(|error| BakeError(error.to_string()))?;
+    crate::render::baked_parameters(compiled)?;
+    let (module, preview) = (&compiled.module, &compiled.preview);
     let size = settings.size;
     let (surface, spacing) = match &settings.surface {
         BakeSurface::Plane(rect) => {
-            let rect = rect.unwrap_or_else(|| crate::render::preview_rect(graph));
+            let rect = rect.unwrap_or_else(|| crate::render::preview_rect(preview));
             let spacing = (
                 (rect.x1 - rect.x0) / f64::from(size),
                 (rect.z1 - rect.z0) / f64::from(size),
@@ -186,15 +220,12 @@ pub fn bake(
             )
         }
         BakeSurface::MeshUv(name) => {
-            let mesh = crate::render::mesh_with_fields(graph, name, &module.uses, |_, _| {})
-                .map_err(|error| BakeError(error.to_string()))?;
+            let mesh = crate::render::mesh_with_fields(preview, name, &module.uses, |_, _| {})?;
             if mesh.uv_area() < 1e-9 {
-                return Err(BakeError(format!(
-                    "{name} has no UV layout (its texture coordinates cover no area), so its maps would be uniform; bake over a plane instead, or give a mesh with UVs"
-                )));
+                return Err(BakeError::NoUvLayout { mesh: name.clone() });
             }
             // The UV square is taken to span the preview square: normals are approximate.
-            let texel = 2.0 * graph.preview.size / f64::from(size);
+            let texel = 2.0 * preview.size / f64::from(size);
             (
                 Surface::Uv(
                     UvRenderer::new(gpu, &module.source)?,
@@ -204,10 +235,10 @@ pub fn bake(
             )
         }
     };
-    let center = graph.preview.center;
+    let center = preview.center;
     let placement = (
         [center.0 as f32, center.1 as f32, center.2 as f32],
-        graph.preview.size as f32,
+        preview.size as f32,
     );
     let tile = crate::render::tile_size(gpu);
     let band_rows = band_rows(size, tile);

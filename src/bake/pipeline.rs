@@ -56,17 +56,20 @@ pub fn bake_map(
         let rendered = render(&mut |_, band| {
             full.send(band).map_err(|_| {
                 writer_stopped = true;
-                RenderError("the map writer stopped".into())
+                RenderError::Stopped("the map writer stopped")
             })?;
             Ok(recycled.try_recv().unwrap_or_default())
         });
         drop(full);
         let written = writer.join();
         spare.extend(recycled.try_iter());
-        let path = target.path.display();
+        let path = || target.path.to_path_buf();
         let written = written
-            .map_err(|_| BakeError(format!("{path}: the map writer panicked")))?
-            .map_err(|error| BakeError(format!("{path}: {error}")));
+            .map_err(|_| BakeError::WriterPanicked { path: path() })?
+            .map_err(|error| BakeError::Write {
+                path: path(),
+                error,
+            });
         match rendered {
             // A render that failed first explains why the writer got too few rows.
             Err(error) if !writer_stopped => Err(BakeError::from(error)),

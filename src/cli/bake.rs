@@ -7,6 +7,7 @@ use clap::{Args, ValueEnum};
 use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
 use std::path::PathBuf;
 use veneer::bake::{BakeSettings, BakeSurface, BakedMap, Format, Map, NormalConvention, bake};
+use veneer::codegen::{CompileOptions, compile};
 use veneer::render::{FlatRect, GpuContext};
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -117,14 +118,28 @@ pub fn run(args: BakeArgs) -> Result<(), Failure> {
                 .map_err(Failure::from)
         })
         .collect::<Result<Vec<_>, _>>()?;
+    // Every graph is checked and compiled once, here, before any GPU work; one that does
+    // not compile fails on its own while the others bake.
+    let compiled: Vec<_> = graphs
+        .into_iter()
+        .map(|(path, stem, graph)| {
+            let compiled = compile(&graph, &CompileOptions::default())
+                .map_err(|error| format!("{}: {error}", path.display()));
+            (path, stem, compiled)
+        })
+        .collect();
     let gpu = GpuContext::new()?;
     let bars = MultiProgress::new();
     let style = ProgressStyle::with_template("{prefix:>16} [{bar:40}] {pos}/{len} tiles {elapsed}")
         .expect("valid template");
     let results: Vec<Result<Vec<BakedMap>, Failure>> = std::thread::scope(|scope| {
-        let tasks: Vec<_> = graphs
+        let tasks: Vec<_> = compiled
             .iter()
-            .map(|(path, stem, graph)| {
+            .map(|(path, stem, compiled)| {
+                let compiled = match compiled {
+                    Ok(compiled) => compiled,
+                    Err(message) => return Err(Failure::new(message.clone())),
+                };
                 let bar = bars.add(ProgressBar::new(0).with_style(style.clone()));
                 bar.set_prefix(
                     path.file_stem()
@@ -132,20 +147,21 @@ pub fn run(args: BakeArgs) -> Result<(), Failure> {
                         .unwrap_or_default(),
                 );
                 let (gpu, settings) = (&gpu, &settings);
-                scope.spawn(move || {
-                    let result = bake(gpu, graph, settings, stem, |done, total| {
+                Ok(scope.spawn(move || {
+                    let result = bake(gpu, compiled, settings, stem, |done, total| {
                         bar.set_length(total);
                         bar.set_position(done);
                     });
                     bar.finish();
                     result.map_err(|error| Failure::new(format!("{}: {error}", path.display())))
-                })
+                }))
             })
             .collect();
         tasks
             .into_iter()
             .map(|task| {
-                task.join()
+                task?
+                    .join()
                     .unwrap_or_else(|_| Err(Failure::new("a bake thread panicked")))
             })
             .collect()

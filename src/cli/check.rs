@@ -3,7 +3,7 @@
 use super::output::{note, out};
 use super::{Failure, in_file};
 use clap::Args;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 #[derive(Args)]
 pub struct CheckArgs {
@@ -14,14 +14,14 @@ pub struct CheckArgs {
 
 /// The lints of a graph that compiles. The lint runs on the second core while the
 /// graph compiles and validates; both only read the checked graph.
-fn check_one(path: &PathBuf) -> Result<Vec<veneer::lint::Lint>, Failure> {
+fn check_one(path: &Path) -> Result<Vec<veneer::lint::Lint>, Failure> {
     let graph = veneer::graph::load(path)?;
     let checked = veneer::graph::check(&graph)
         .map_err(|errors| in_file(path, veneer::codegen::CompileError::Check(errors)))?;
     let positions = veneer::lint::preview_positions(&graph);
     let (module, lints) = std::thread::scope(|scope| {
         let lints = scope.spawn(|| veneer::lint::lint(&checked, positions));
-        let module = veneer::codegen::compile(&checked);
+        let module = veneer::codegen::compile_checked(&checked, &Default::default());
         (module, lints.join())
     });
     let lints = lints.map_err(|_| Failure::new(format!("{}: the lint failed", path.display())))?;

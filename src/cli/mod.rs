@@ -120,7 +120,15 @@ pub fn run() -> ExitCode {
         Ok(cli) => cli,
         Err(code) => return code,
     };
-    let result = match cli.command {
+    match execute(cli) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(failure) => ExitCode::from(output::report_failure(failure)),
+    }
+}
+
+/// Runs a parsed command line's subcommand (the tests run commands in-process through it).
+pub fn execute(cli: Cli) -> Result<(), Failure> {
+    match cli.command {
         None => editor(None),
         Some(Command::Edit { graph }) => editor(Some(graph)),
         Some(Command::Render(args)) => render::run(args),
@@ -132,10 +140,6 @@ pub fn run() -> ExitCode {
         Some(Command::Geodesic(args)) => geodesic::run(args),
         Some(Command::Snapshot(args)) => snapshot::run(args),
         Some(Command::Report(args)) => report::run(args),
-    };
-    match result {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(failure) => ExitCode::from(output::report_failure(failure)),
     }
 }
 

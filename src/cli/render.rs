@@ -3,8 +3,8 @@
 use super::{Failure, in_file, load_graph, write_output};
 use clap::Args;
 use std::path::PathBuf;
-use veneer::codegen::Detail;
-use veneer::render::{FlatRect, GpuContext, View, render_graph_detailed};
+use veneer::codegen::{CompileOptions, Detail};
+use veneer::render::{FlatRect, GpuContext, View, render_material};
 
 /// How much noise detail to compute.
 #[derive(Clone, Copy, clap::ValueEnum)]
@@ -72,19 +72,14 @@ pub fn parse_flat(text: &str) -> Result<FlatRect, String> {
 
 pub fn run(args: RenderArgs) -> Result<(), Failure> {
     let graph = load_graph(&args.graph)?;
-    veneer::codegen::compile_graph(&graph).map_err(|error| in_file(&args.graph, error))?;
+    let options = CompileOptions::with_detail(args.detail.into());
+    let compiled =
+        veneer::codegen::compile(&graph, &options).map_err(|error| in_file(&args.graph, error))?;
     let view = match args.flat {
         Some(rect) => View::Flat(rect),
         None => View::Mesh(args.mesh),
     };
     let gpu = GpuContext::new()?;
-    let image = render_graph_detailed(
-        &gpu,
-        &graph,
-        &view,
-        args.size,
-        args.time,
-        args.detail.into(),
-    )?;
+    let image = render_material(&gpu, &compiled, &view, args.size, args.time)?;
     write_output(Some(&args.output), &image.to_png()?)
 }

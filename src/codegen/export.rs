@@ -6,9 +6,8 @@
 //! (naga reads only Vulkan-style GLSL, so GLSL ES 3.00 is checked by glslangValidator in
 //! the tests instead).
 
-use super::{CompileError, ParamMode, compile_graph_with, validate};
+use super::{CompileError, CompileOptions, ParamMode, compile, validate};
 use crate::graph::Graph;
-use std::fmt;
 
 /// A shader language Veneer exports to.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -50,26 +49,15 @@ impl Target {
 }
 
 /// Why an export failed.
-#[derive(Debug)]
+#[derive(Debug, thiserror::Error)]
 pub enum ExportError {
     /// The graph does not compile.
-    Compile(CompileError),
+    #[error(transparent)]
+    Compile(#[from] CompileError),
     /// A back-end (or the check of its output) failed: a bug in Veneer or naga.
+    #[error("{target:?} export failed: {message}")]
     Backend { target: Target, message: String },
 }
-
-impl fmt::Display for ExportError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            ExportError::Compile(error) => error.fmt(f),
-            ExportError::Backend { target, message } => {
-                write!(f, "{target:?} export failed: {message}")
-            }
-        }
-    }
-}
-
-impl std::error::Error for ExportError {}
 
 /// The name of the fragment entry point in non-WGSL exports (GLSL calls it `main`).
 pub const FRAGMENT_ENTRY: &str = "veneer_fragment";
@@ -78,7 +66,7 @@ const ENTRY_SOURCE: &str = include_str!("../../shaders/export_entry.wgsl");
 /// The graph as a shader for `target`, parameters baked or in a uniform block: text for
 /// the text languages, bytes for SPIR-V.
 pub fn export(graph: &Graph, target: Target, params: ParamMode) -> Result<Vec<u8>, ExportError> {
-    let module = compile_graph_with(graph, params).map_err(ExportError::Compile)?;
+    let module = compile(graph, &CompileOptions::with_params(params))?.module;
     if target == Target::Wgsl {
         return Ok(module.source.into_bytes());
     }

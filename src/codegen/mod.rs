@@ -1,5 +1,9 @@
 //! Graph → WGSL: emits `veneer_material` for a checked graph with only the library
 //! items it uses, then validates the module with naga.
+//!
+//! One entry point: [`compile`] checks a graph and emits its module once, as a
+//! [`Compiled`] value that renders, bakes, snapshots, reports and the editor hand on;
+//! [`compile_checked`] emits a graph some caller has checked already.
 
 pub mod export;
 pub mod library;
@@ -11,18 +15,18 @@ pub use crate::nodes::emit::{Detail, float_literal, value_literal};
 pub use validate::{ValidationError, validate};
 
 use crate::graph::check::{CheckedGraph, InputSource};
-use crate::graph::{self, CheckError, Graph, NodeId, NodeKind};
+use crate::graph::{self, CheckError, Graph, NodeId, NodeKind, Preview};
 use crate::nodes::emit::{self, Emit};
 use naming::Namer;
 use parts::Block;
 use rustc_hash::FxHashSet;
-use std::fmt;
 use std::ops::Range;
 
 /// How unconnected inputs appear in generated WGSL.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum ParamMode {
     /// As literal constants: a self-contained module with no bindings (exports, renders).
+    #[default]
     Baked,
     /// As slots of one uniform block, `veneer_params` at `@group(1) @binding(0)`: every
     /// parameter is one `vec4f` (a float in `.x`, a vec2 in `.xy`, a vec3 or colour in
@@ -116,46 +120,137 @@ impl WgslModule {
 }
 
 /// Why a graph could not be compiled.
-#[derive(Debug)]
+#[derive(Debug, thiserror::Error)]
 pub enum CompileError {
-    /// The graph failed its checks.
+    /// The graph failed its checks (one message per line, repeats summarised).
+    #[error("{}", crate::messages::summarise(.0.iter().map(|e| e.to_string())).join("\n"))]
     Check(Vec<CheckError>),
     /// The generated WGSL did not validate (a bug in Veneer or an out-of-range constant).
+    #[error(transparent)]
     Validation(ValidationError),
 }
 
-impl fmt::Display for CompileError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            CompileError::Check(errors) => {
-                let lines = crate::messages::summarise(errors.iter().map(|e| e.to_string()));
-                f.write_str(&lines.join("\n"))
-            }
-            CompileError::Validation(error) => error.fmt(f),
+/// How to compile a graph. The default — parameters baked, every octave — is what
+/// renders, bakes, snapshots and exports use.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct CompileOptions {
+    /// Parameters as literals or as slots of a uniform block.
+    pub params: ParamMode,
+    /// How much detail noise and fractal nodes compute.
+    pub detail: Detail,
+}
+
+impl CompileOptions {
+    /// The default options with parameters in `params`.
+    pub fn with_params(params: ParamMode) -> CompileOptions {
+        CompileOptions {
+            params,
+            ..CompileOptions::default()
+        }
+    }
+
+    /// The default options with noise detail `detail`.
+    pub fn with_detail(detail: Detail) -> CompileOptions {
+        CompileOptions {
+            detail,
+            ..CompileOptions::default()
         }
     }
 }
 
-impl std::error::Error for CompileError {}
-
-/// Checks and compiles a graph with baked parameters.
-pub fn compile_graph(graph: &Graph) -> Result<WgslModule, CompileError> {
-    compile_graph_with(graph, ParamMode::Baked)
+/// A graph checked and compiled once, with what the stages after the compiler need of
+/// it: renders, bakes, snapshots, reports and the editor's preview take this instead of
+/// the graph.
+#[derive(Clone, Debug)]
+pub struct Compiled {
+    /// The checked graph the module was emitted from (needed nodes in order).
+    pub checked: CheckedGraph,
+    /// The validated WGSL module, with its parameter slots and surface uses.
+    pub module: WgslModule,
+    /// The graph's preview settings: the mesh, its distance fields and the placement
+    /// renders and bakes use.
+    pub preview: Preview,
+    /// The options the module was compiled with.
+    pub options: CompileOptions,
 }
 
-/// Checks and compiles a graph with parameters in `mode`.
-pub fn compile_graph_with(graph: &Graph, mode: ParamMode) -> Result<WgslModule, CompileError> {
-    compile_graph_detailed(graph, mode, Detail::Full)
+impl Compiled {
+    /// The WGSL source of the module.
+    pub fn source(&self) -> &str {
+        &self.module.source
+    }
+
+    /// Which surface inputs the material reads.
+    pub fn uses(&self) -> SurfaceUse {
+        self.module.uses
+    }
 }
 
-/// Checks and compiles a graph with parameters in `mode` and noise detail `detail`.
-pub fn compile_graph_detailed(
-    graph: &Graph,
-    mode: ParamMode,
-    detail: Detail,
-) -> Result<WgslModule, CompileError> {
+/// Checks `graph` and compiles it to a validated WGSL module: the one way from a graph
+/// to its code.
+pub fn compile(graph: &Graph, options: &CompileOptions) -> Result<Compiled, CompileError> {
+    counts::checked();
     let checked = graph::check(graph).map_err(CompileError::Check)?;
-    compile_detailed(&checked, mode, detail)
+    let module = compile_checked(&checked, options)?;
+    Ok(Compiled {
+        checked,
+        module,
+        preview: graph.preview.clone(),
+        options: *options,
+    })
+}
+
+/// How many graphs this thread has checked and emitted through the compiler, for tests
+/// that hold a command to checking and emitting each graph once.
+#[doc(hidden)]
+pub mod counts {
+    use std::cell::Cell;
+
+    thread_local! {
+        static COUNTS: Cell<CompileCounts> = const { Cell::new(CompileCounts { checks: 0, emissions: 0 }) };
+    }
+
+    /// Checks and emissions so far on the calling thread.
+    #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+    pub struct CompileCounts {
+        /// Graphs checked by [`super::compile`].
+        pub checks: u64,
+        /// Modules emitted by [`super::compile_checked`] (and so by [`super::compile`]).
+        pub emissions: u64,
+    }
+
+    impl std::ops::Sub for CompileCounts {
+        type Output = CompileCounts;
+        fn sub(self, earlier: CompileCounts) -> CompileCounts {
+            CompileCounts {
+                checks: self.checks - earlier.checks,
+                emissions: self.emissions - earlier.emissions,
+            }
+        }
+    }
+
+    /// The calling thread's counts.
+    pub fn current() -> CompileCounts {
+        COUNTS.with(Cell::get)
+    }
+
+    pub(super) fn checked() {
+        COUNTS.with(|c| {
+            c.set(CompileCounts {
+                checks: c.get().checks + 1,
+                ..c.get()
+            })
+        });
+    }
+
+    pub(super) fn emitted() {
+        COUNTS.with(|c| {
+            c.set(CompileCounts {
+                emissions: c.get().emissions + 1,
+                ..c.get()
+            })
+        });
+    }
 }
 
 /// What a node left for the nodes that read it, by its position in the checked order.
@@ -244,22 +339,17 @@ fn params_block(graph: &CheckedGraph, params: &[ParamSlot]) -> String {
     text
 }
 
-/// Compiles a checked graph to a validated WGSL module with baked parameters.
-pub fn compile(graph: &CheckedGraph) -> Result<WgslModule, CompileError> {
-    compile_with(graph, ParamMode::Baked)
-}
-
-/// Compiles a checked graph to a validated WGSL module with parameters in `mode`.
-pub fn compile_with(graph: &CheckedGraph, mode: ParamMode) -> Result<WgslModule, CompileError> {
-    compile_detailed(graph, mode, Detail::Full)
-}
-
-/// Compiles a checked graph with parameters in `mode` and noise detail `detail`.
-pub fn compile_detailed(
+/// Compiles a graph checked by [`graph::check`] to a validated WGSL module, for callers
+/// that have the checked graph already (`veneer check` lints it meanwhile).
+pub fn compile_checked(
     graph: &CheckedGraph,
-    mode: ParamMode,
-    detail: Detail,
+    options: &CompileOptions,
 ) -> Result<WgslModule, CompileError> {
+    counts::emitted();
+    let CompileOptions {
+        params: mode,
+        detail,
+    } = *options;
     let uses = SurfaceUse::of(graph);
     let detail = if uses.displacement {
         Detail::Full

@@ -45,7 +45,7 @@ pub fn check_field_sources(
                 count,
             });
         }
-        field.method.validate()?;
+        field.method.validate().map_err(super::HeatError::from)?;
     }
     Ok(())
 }

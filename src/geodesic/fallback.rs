@@ -3,8 +3,9 @@
 //! matrix), the robust variant — mollified lengths, intrinsic Delaunay triangulation,
 //! whose Laplacian has no negative weights — takes over, and the result says so.
 
-use super::heat::{HeatError, HeatOptions, HeatSolver};
+use super::heat::{HeatError, HeatSolver};
 use super::triangulation::Triangulation;
+use crate::graph::HeatOptions;
 use crate::mesh::Mesh;
 
 /// The robust heat method standing in for the plain one, which could not be set up.

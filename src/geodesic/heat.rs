@@ -6,6 +6,7 @@
 //! triangular solves and two passes over the triangles.
 
 use super::triangulation::Triangulation;
+use crate::graph::{HeatOptions, TimeFactorError};
 use faer::linalg::solvers::Solve;
 use faer::sparse::{
     SparseColMat, Triplet,
@@ -13,45 +14,6 @@ use faer::sparse::{
 };
 use glam::DVec2;
 use std::time::{Duration, Instant};
-
-/// Choices of the heat method.
-#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
-#[serde(default)]
-pub struct HeatOptions {
-    /// The diffusion time as a multiple of the mean edge length squared (1 is the
-    /// paper's choice; smaller is sharper but stiffer, larger is smoother).
-    pub time_factor: f64,
-    /// Mollify the edge lengths and retriangulate to the intrinsic Delaunay
-    /// triangulation first, for meshes with slivers and degenerate triangles.
-    pub robust: bool,
-}
-
-impl Default for HeatOptions {
-    fn default() -> Self {
-        HeatOptions {
-            time_factor: 1.0,
-            robust: false,
-        }
-    }
-}
-
-impl HeatOptions {
-    /// The time factors the method is trusted with. Below, the heat underflows between
-    /// neighbours and the field is wrong beyond the sources' first ring (20% off at
-    /// 10⁻³ on a torus, 35% at 10⁻⁶); above, the mass term is lost in rounding against
-    /// the Laplacian and every distance collapses towards 0 (96% off at 10¹², all 0 at
-    /// 10¹³; still 5% at 10⁶, as at 10³).
-    pub const TIME_FACTORS: std::ops::RangeInclusive<f64> = 1.0e-3..=1.0e6;
-
-    /// Refuses options the method cannot give a meaningful field with.
-    pub fn validate(&self) -> Result<(), HeatError> {
-        if Self::TIME_FACTORS.contains(&self.time_factor) {
-            Ok(())
-        } else {
-            Err(HeatError::TimeFactor(self.time_factor))
-        }
-    }
-}
 
 /// Why a heat solver could not be set up.
 #[derive(Debug, thiserror::Error)]
@@ -61,12 +23,8 @@ pub enum HeatError {
     #[error("the {0} matrix could not be factored ({1}){hint}", hint = robust_hint(*.2))]
     Factorisation(&'static str, String, bool),
     /// A time factor outside [`HeatOptions::TIME_FACTORS`].
-    #[error(
-        "time factor {0:e} is outside {min:e} to {max:e}: smaller ones underflow the heat, larger ones round every distance towards 0 (1 is the usual choice)",
-        min = HeatOptions::TIME_FACTORS.start(),
-        max = HeatOptions::TIME_FACTORS.end()
-    )]
-    TimeFactor(f64),
+    #[error(transparent)]
+    TimeFactor(#[from] TimeFactorError),
 }
 
 /// What to try after a failed factorisation.

@@ -16,50 +16,17 @@ mod file_order;
 mod heat;
 mod triangulation;
 
+pub use crate::graph::{HeatOptions, Method};
 pub use attach::{FieldError, attach_fields, check_field_sources};
 pub use dijkstra::edge_distances;
 pub use exact::exact_distances;
 pub use fallback::{Fallback, heat_solver};
 pub use file_order::WeldedMesh;
-pub use heat::{HeatError, HeatOptions, HeatSetup, HeatSolver};
+pub use heat::{HeatError, HeatSetup, HeatSolver};
 pub use triangulation::{NO_TWIN, Triangulation};
 
 use crate::mesh::Mesh;
 use std::time::{Duration, Instant};
-
-/// How a distance field is computed.
-#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
-pub enum Method {
-    /// The heat method.
-    Heat(HeatOptions),
-    /// Exact polyhedral distances (window propagation), within a budget of windows per
-    /// triangle that good meshes never reach; a degenerate mesh that exhausts it gets
-    /// paths along edges (upper bounds) for the vertices left.
-    Exact,
-    /// Shortest paths along edges.
-    Dijkstra,
-}
-
-impl Method {
-    /// A short name for reports and messages.
-    pub fn name(self) -> &'static str {
-        match self {
-            Method::Heat(HeatOptions { robust: false, .. }) => "heat",
-            Method::Heat(HeatOptions { robust: true, .. }) => "heat (robust)",
-            Method::Exact => "exact",
-            Method::Dijkstra => "dijkstra",
-        }
-    }
-
-    /// Refuses settings that cannot give a meaningful field (a heat time factor out of
-    /// range), before any mesh work.
-    pub fn validate(self) -> Result<(), HeatError> {
-        match self {
-            Method::Heat(options) => options.validate(),
-            Method::Exact | Method::Dijkstra => Ok(()),
-        }
-    }
-}
 
 /// Distances from `sources` over `mesh` (welded: vertices shared by the triangles
 /// around them) by `method`, reporting progress as `(done, total)` where the method

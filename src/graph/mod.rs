@@ -1,6 +1,7 @@
 //! The graph model: nodes, pins, wires, their checks and their file format.
 
 pub mod check;
+mod field;
 mod ids;
 mod io;
 pub mod layout;
@@ -16,6 +17,7 @@ pub use crate::nodes::settings::{
 pub use crate::nodes::value::{Value, ValueType};
 pub use crate::nodes::{Category, NodeKind};
 pub use check::{CheckError, CheckedGraph, check};
+pub use field::{FieldSource, HeatOptions, Method, TimeFactorError};
 pub use io::{CURRENT_VERSION, LoadError, from_ron, load, save, to_ron};
 pub use presets::{PRESETS, preset};
 
@@ -146,21 +148,6 @@ impl Default for Preview {
             size: 1.0,
             fields: Vec::new(),
         }
-    }
-}
-
-/// A distance field over the preview mesh: the vertices it spreads from (numbered as
-/// the mesh file lists them, see [`crate::mesh::FileVertices`]) and how it is computed.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct FieldSource {
-    pub sources: Vec<u32>,
-    #[serde(default = "FieldSource::default_method")]
-    pub method: crate::geodesic::Method,
-}
-
-impl FieldSource {
-    fn default_method() -> crate::geodesic::Method {
-        crate::geodesic::Method::Heat(Default::default())
     }
 }
 

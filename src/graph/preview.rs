@@ -45,8 +45,7 @@ impl Preview {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geodesic::{HeatOptions, Method};
-    use crate::graph::FieldSource;
+    use crate::graph::{FieldSource, HeatOptions, Method};
 
     #[test]
     fn non_finite_placements_and_bad_fields_are_named() {

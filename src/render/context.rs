@@ -1,19 +1,55 @@
 //! A headless wgpu device on whatever adapter the machine has.
 
-use std::fmt;
 use std::sync::{Arc, Mutex};
 
-/// A failure to set up the GPU or to run a render.
-#[derive(Debug)]
-pub struct RenderError(pub String);
-
-impl fmt::Display for RenderError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(&self.0)
-    }
+/// A failure to set up the GPU or to run a render: the machine has no GPU, the GPU
+/// refused the work, the request is too large, or what the render needs (its mesh, the
+/// mesh's fields, the image encoder) failed.
+#[derive(Debug, thiserror::Error)]
+pub enum RenderError {
+    /// No wgpu adapter: this machine cannot render at all.
+    #[error("no GPU adapter available: {0}")]
+    NoAdapter(String),
+    /// The adapter would not open a device.
+    #[error("cannot open the GPU device: {0}")]
+    Device(String),
+    /// wgpu rejected a shader or pipeline, or the GPU failed or refused the work
+    /// (validation, out of memory, a lost device, a failed readback).
+    #[error("{0}")]
+    Gpu(String),
+    /// A request the render does not accept: a zero size, a timed render larger than a
+    /// tile, a rectangle beyond the f32 range.
+    #[error("{0}")]
+    Invalid(String),
+    /// The image would not fit in memory.
+    #[error(
+        "a {size}×{size} image needs about {} of memory, {why}; ask for a smaller size",
+        crate::fsutil::gibibytes(*.bytes)
+    )]
+    TooLarge {
+        size: u32,
+        /// The bytes needed.
+        bytes: u64,
+        /// Why they are not to be had.
+        why: String,
+    },
+    /// The mesh to render on could not be loaded.
+    #[error(transparent)]
+    Mesh(#[from] crate::mesh::MeshError),
+    /// The distance fields of the mesh `mesh` could not be solved.
+    #[error("{mesh}: {error}")]
+    Fields {
+        mesh: String,
+        #[source]
+        error: crate::geodesic::FieldError,
+    },
+    /// The image could not be encoded.
+    #[error("cannot encode PNG: {0}")]
+    Encode(#[source] image::ImageError),
+    /// Whoever took the rendered rows stopped taking them (a bake's writer).
+    #[error("{0}")]
+    Stopped(&'static str),
 }
-
-impl std::error::Error for RenderError {}
 
 /// A wgpu device and queue without a window.
 pub struct GpuContext {
@@ -44,7 +80,7 @@ impl GpuContext {
             compatible_surface: None,
             apply_limit_buckets: false,
         }))
-        .map_err(|error| RenderError(format!("no GPU adapter available: {error}")))?;
+        .map_err(|error| RenderError::NoAdapter(error.to_string()))?;
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("veneer"),
             // Timestamps where the adapter has them, for timings of the GPU's work alone.
@@ -54,7 +90,7 @@ impl GpuContext {
             ),
             ..Default::default()
         }))
-        .map_err(|error| RenderError(format!("cannot open the GPU device: {error}")))?;
+        .map_err(|error| RenderError::Device(error.to_string()))?;
         let uncaptured = Arc::new(Mutex::new(Vec::new()));
         let errors = Arc::clone(&uncaptured);
         device.on_uncaptured_error(Arc::new(move |error: wgpu::Error| {
@@ -90,11 +126,11 @@ impl GpuContext {
     pub fn take_errors(&self) -> Result<(), RenderError> {
         let errors = match self.uncaptured.lock() {
             Ok(mut errors) => std::mem::take(&mut *errors),
-            Err(_) => return Err(RenderError("a GPU error handler panicked".into())),
+            Err(_) => return Err(RenderError::Gpu("a GPU error handler panicked".into())),
         };
         match errors.as_slice() {
             [] => Ok(()),
-            [first, ..] => Err(RenderError(format!(
+            [first, ..] => Err(RenderError::Gpu(format!(
                 "the GPU refused the work: {first}{}",
                 if errors.len() > 1 {
                     format!(" (and {} more errors)", errors.len() - 1)
@@ -121,7 +157,7 @@ impl GpuContext {
                 source: wgpu::ShaderSource::Wgsl(source.into()),
             });
         match pollster::block_on(scope.pop()) {
-            Some(error) => Err(RenderError(format!(
+            Some(error) => Err(RenderError::Gpu(format!(
                 "shader '{label}' rejected by wgpu: {error}"
             ))),
             None => Ok(module),
@@ -133,7 +169,7 @@ impl GpuContext {
         let scope = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
         let value = f();
         match pollster::block_on(scope.pop()) {
-            Some(error) => Err(RenderError(format!("{what}: {error}"))),
+            Some(error) => Err(RenderError::Gpu(format!("{what}: {error}"))),
             None => Ok(value),
         }
     }

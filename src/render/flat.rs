@@ -133,7 +133,7 @@ impl FlatRenderer {
         channels: FlatChannels,
         progress: impl FnMut(u32, u32),
     ) -> Result<Vec<[f32; 4]>, RenderError> {
-        rect.validate().map_err(RenderError)?;
+        rect.validate().map_err(RenderError::Invalid)?;
         let draw = self.tile_draw(gpu, rect, size, time, channels);
         render_tiled(gpu, size, draw, progress)
     }
@@ -170,7 +170,7 @@ impl FlatRenderer {
         progress: impl FnMut(u32, u32),
         band: impl FnMut(u32, Vec<[f32; 4]>) -> Result<Vec<[f32; 4]>, RenderError>,
     ) -> Result<(), RenderError> {
-        rect.validate().map_err(RenderError)?;
+        rect.validate().map_err(RenderError::Invalid)?;
         let draw = self.tile_draw(gpu, rect, size, time, channels);
         render_bands(gpu, size, band_rows, draw, progress, band)
     }
@@ -187,7 +187,7 @@ impl FlatRenderer {
     ) -> Result<std::time::Duration, RenderError> {
         let limit = super::tile_size(gpu);
         if size == 0 || size > limit {
-            return Err(RenderError(format!(
+            return Err(RenderError::Invalid(format!(
                 "a timed render is one tile: size {size} is outside 1..={limit}"
             )));
         }
@@ -213,7 +213,9 @@ impl FlatRenderer {
             None => {
                 gpu.device
                     .poll(wgpu::PollType::wait_indefinitely())
-                    .map_err(|error| RenderError(format!("waiting for the GPU failed: {error}")))?;
+                    .map_err(|error| {
+                        RenderError::Gpu(format!("waiting for the GPU failed: {error}"))
+                    })?;
                 Ok(started.elapsed())
             }
         }

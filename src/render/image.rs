@@ -1,10 +1,11 @@
-//! Rendering a graph to an 8-bit image, as `veneer render` and snapshots do.
+//! Rendering a compiled material to an 8-bit image, as `veneer render`, snapshots and
+//! the editor's PNG export do.
 
 use super::{
     FlatRect, FlatRenderer, GpuContext, MeshRenderer, MeshView, RenderError, albedo_to_rgb8,
 };
-use crate::codegen::{Detail, ParamMode, SurfaceUse};
-use crate::graph::Graph;
+use crate::codegen::{Compiled, ParamMode, SurfaceUse};
+use crate::graph::Preview;
 use serde::{Deserialize, Serialize};
 
 /// How a graph is shown in an image.
@@ -40,7 +41,7 @@ impl Image {
         let mut bytes = Vec::new();
         image::codecs::png::PngEncoder::new(&mut bytes)
             .write_image(&self.pixels, self.width, self.height, color)
-            .map_err(|error| RenderError(format!("cannot encode PNG: {error}")))?;
+            .map_err(RenderError::Encode)?;
         Ok(bytes)
     }
 
@@ -67,8 +68,8 @@ impl Image {
 }
 
 /// The flat rectangle a graph's preview covers.
-pub fn preview_rect(graph: &Graph) -> FlatRect {
-    let (c, size) = (graph.preview.center, graph.preview.size);
+pub fn preview_rect(preview: &Preview) -> FlatRect {
+    let (c, size) = (preview.center, preview.size);
     FlatRect {
         x0: c.0 - size,
         z0: c.2 - size,
@@ -78,46 +79,49 @@ pub fn preview_rect(graph: &Graph) -> FlatRect {
     }
 }
 
-/// The preview mesh `name` carrying the distance fields of `graph` that the material
+/// The preview mesh `name` carrying the distance fields of `preview` that the material
 /// uses (none are solved when it reads none).
 pub fn mesh_with_fields(
-    graph: &Graph,
+    preview: &Preview,
     name: &str,
     uses: &SurfaceUse,
     progress: impl FnMut(usize, usize),
 ) -> Result<crate::mesh::Mesh, RenderError> {
-    let mut mesh =
-        crate::mesh::preview_mesh(name).map_err(|error| RenderError(error.to_string()))?;
+    let mut mesh = crate::mesh::preview_mesh(name)?;
     // A field the robust heat method solved in place of the plain one is as good: the
     // render has no use for the notes saying so (the editor shows them).
-    crate::geodesic::attach_fields(&mut mesh, &graph.preview.fields, uses.fields, progress)
-        .map_err(|error| RenderError(format!("{name}: {error}")))?;
+    crate::geodesic::attach_fields(&mut mesh, &preview.fields, uses.fields, progress).map_err(
+        |error| RenderError::Fields {
+            mesh: name.to_string(),
+            error,
+        },
+    )?;
     Ok(mesh)
 }
 
-/// Compiles `graph` and renders it as `view` at size×size pixels and time `time`, with
-/// every octave (as snapshots and the CPU reference expect).
-pub fn render_graph(
-    gpu: &GpuContext,
-    graph: &Graph,
-    view: &View,
-    size: u32,
-    time: f32,
-) -> Result<Image, RenderError> {
-    render_graph_detailed(gpu, graph, view, size, time, Detail::Full)
+/// Refuses a material compiled with its parameters in a uniform block (the editor's):
+/// the headless renderers bind no parameter buffer.
+pub fn baked_parameters(compiled: &Compiled) -> Result<(), RenderError> {
+    match compiled.options.params {
+        ParamMode::Baked => Ok(()),
+        ParamMode::Uniform => Err(RenderError::Invalid(
+            "the material was compiled with its parameters in a uniform block; renders and bakes take baked parameters".into(),
+        )),
+    }
 }
 
-/// [`render_graph`] with a choice of noise detail.
-pub fn render_graph_detailed(
+/// Renders a compiled material as `view` at size×size pixels and time `time`, with the
+/// detail it was compiled with (snapshots and the CPU reference expect every octave).
+/// The module must have baked parameters (the default).
+pub fn render_material(
     gpu: &GpuContext,
-    graph: &Graph,
+    compiled: &Compiled,
     view: &View,
     size: u32,
     time: f32,
-    detail: Detail,
 ) -> Result<Image, RenderError> {
-    let module = crate::codegen::compile_graph_detailed(graph, ParamMode::Baked, detail)
-        .map_err(|error| RenderError(error.to_string()))?;
+    baked_parameters(compiled)?;
+    let module = &compiled.module;
     let flat = |rect: FlatRect| -> Result<Image, RenderError> {
         let pixels = FlatRenderer::new(gpu, &module.source)?.render(gpu, rect, size, time)?;
         Ok(Image {
@@ -127,13 +131,14 @@ pub fn render_graph_detailed(
             pixels: albedo_to_rgb8(&pixels),
         })
     };
+    let preview = &compiled.preview;
     match view {
         View::Flat(rect) => flat(*rect),
-        View::PreviewFlat => flat(preview_rect(graph)),
+        View::PreviewFlat => flat(preview_rect(preview)),
         View::Mesh(name) => {
-            let name = name.as_deref().unwrap_or(&graph.preview.mesh);
-            let mesh = mesh_with_fields(graph, name, &module.uses, |_, _| {})?;
-            let mut mesh_view = MeshView::for_preview(&graph.preview);
+            let name = name.as_deref().unwrap_or(&preview.mesh);
+            let mesh = mesh_with_fields(preview, name, &module.uses, |_, _| {})?;
+            let mut mesh_view = MeshView::for_preview(preview);
             mesh_view.time = time;
             let renderer = MeshRenderer::new(gpu, &module.source, module.uses)?;
             let pixels = renderer.render(gpu, &mesh, &mesh_view, size)?;

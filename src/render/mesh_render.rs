@@ -53,7 +53,7 @@ impl MeshRenderer {
         tile: u32,
     ) -> Result<Vec<[u8; 4]>, RenderError> {
         if size == 0 || tile == 0 {
-            return Err(RenderError(
+            return Err(RenderError::Invalid(
                 "image and tile sizes must be at least 1 pixel".into(),
             ));
         }

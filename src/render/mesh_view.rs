@@ -291,7 +291,7 @@ impl MeshPipeline {
             cache: None,
         });
         if let Some(error) = pollster::block_on(scope.pop()) {
-            return Err(RenderError(format!("mesh render pipeline: {error}")));
+            return Err(RenderError::Gpu(format!("mesh render pipeline: {error}")));
         }
         let uniform = |label, size: usize| {
             device.create_buffer(&wgpu::BufferDescriptor {

@@ -15,7 +15,7 @@ mod uv_bake;
 pub use context::{GpuContext, RenderError};
 pub use flat::{FlatChannels, FlatRect, FlatRenderer, albedo_to_rgb8, flat_points};
 pub use gpu_mesh::GpuMesh;
-pub use image::{Image, View, mesh_with_fields, preview_rect, render_graph, render_graph_detailed};
+pub use image::{Image, View, baked_parameters, mesh_with_fields, preview_rect, render_material};
 pub use mesh_render::MeshRenderer;
 pub use mesh_view::{COLOR_FORMAT, MeshPipeline, MeshTarget, MeshView, Projection};
 pub use tiles::{ensure_memory, tile_size};

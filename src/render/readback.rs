@@ -122,16 +122,16 @@ pub fn read_buffer<T>(
             submission_index: submission,
             timeout: None,
         })
-        .map_err(|error| RenderError(format!("waiting for the GPU failed: {error}")))?;
+        .map_err(|error| RenderError::Gpu(format!("waiting for the GPU failed: {error}")))?;
     gpu.take_errors()?;
     receiver
         .recv()
-        .map_err(|_| RenderError("the GPU dropped the readback".into()))?
-        .map_err(|error| RenderError(format!("cannot map the readback buffer: {error}")))?;
+        .map_err(|_| RenderError::Gpu("the GPU dropped the readback".into()))?
+        .map_err(|error| RenderError::Gpu(format!("cannot map the readback buffer: {error}")))?;
     let value = read(
         &buffer
             .get_mapped_range(..)
-            .map_err(|error| RenderError(format!("cannot read back: {error}")))?,
+            .map_err(|error| RenderError::Gpu(format!("cannot read back: {error}")))?,
     );
     buffer.unmap();
     Ok(value)

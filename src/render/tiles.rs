@@ -41,7 +41,9 @@ where
     D: FnMut(&mut wgpu::RenderPass<'_>),
 {
     if size == 0 {
-        return Err(RenderError("image size must be at least 1 pixel".into()));
+        return Err(RenderError::Invalid(
+            "image size must be at least 1 pixel".into(),
+        ));
     }
     let mut image = image_buffer(size, FLOAT_PIXEL_BYTES)?;
     let rows = tile_size(gpu);
@@ -79,7 +81,9 @@ where
     D: FnMut(&mut wgpu::RenderPass<'_>),
 {
     if size == 0 {
-        return Err(RenderError("image size must be at least 1 pixel".into()));
+        return Err(RenderError::Invalid(
+            "image size must be at least 1 pixel".into(),
+        ));
     }
     let width = tile_size(gpu).min(size);
     let height = band_rows.clamp(1, width).min(size);
@@ -255,10 +259,11 @@ pub fn ensure_memory(size: u32, needed: u64) -> Result<(), RenderError> {
 }
 
 fn too_large(size: u32, needed: u64, why: &str) -> RenderError {
-    RenderError(format!(
-        "a {size}×{size} image needs about {} of memory, {why}; ask for a smaller size",
-        crate::fsutil::gibibytes(needed)
-    ))
+    RenderError::TooLarge {
+        size,
+        bytes: needed,
+        why: why.to_string(),
+    }
 }
 
 /// Memory the kernel says is available for new allocations (Linux), in bytes.

@@ -5,7 +5,7 @@ use super::measure::{cpu_albedo, errors, gpu_albedo, median};
 use super::plot::{Plot, Series};
 use super::table::{Table, number};
 use super::{Context, Section};
-use crate::codegen::{Detail, ParamMode, compile_graph_detailed};
+use crate::codegen::{CompileOptions, Detail, compile};
 use crate::graph::{Basis, Graph, NodeKind, PRESETS, Value, ValueType};
 use crate::nodes::{Combine, Fbm, Noise, Turbulence, Worley};
 use crate::render::{FlatRect, FlatRenderer, flat_points, preview_rect};
@@ -29,10 +29,11 @@ fn single_node(kind: NodeKind, scale: f64) -> Graph {
     graph
 }
 
+/// The flat renderer of `graph`, compiled once with noise detail `detail`.
 fn renderer(ctx: &Context, graph: &Graph, detail: Detail) -> Result<FlatRenderer, String> {
-    let module =
-        compile_graph_detailed(graph, ParamMode::Baked, detail).map_err(|e| e.to_string())?;
-    FlatRenderer::new(ctx.gpu, &module.source).map_err(|e| e.to_string())
+    let compiled =
+        compile(graph, &CompileOptions::with_detail(detail)).map_err(|e| e.to_string())?;
+    FlatRenderer::new(ctx.gpu, compiled.source()).map_err(|e| e.to_string())
 }
 
 /// GPU time per megapixel of a flat render of `graph` over `rect`.
@@ -52,7 +53,7 @@ pub fn precision(ctx: &Context) -> Result<Section, String> {
         .iter()
         .filter_map(|(name, _)| crate::graph::preset(name).map(|g| (name.to_string(), g)))
         .map(|(name, graph)| {
-            let rect = preview_rect(&graph);
+            let rect = preview_rect(&graph.preview);
             (name, graph, rect)
         })
         .collect();
@@ -342,7 +343,7 @@ pub fn detail(ctx: &Context) -> Result<Section, String> {
     }
     let (size, factor) = (128u32, 8u32);
     for (name, graph) in &cases {
-        let base = preview_rect(graph);
+        let base = preview_rect(&graph.preview);
         let full = renderer(ctx, graph, Detail::Full)?;
         let footprint = renderer(ctx, graph, Detail::Footprint)?;
         for zoom in [1.0, 10.0, 100.0] {

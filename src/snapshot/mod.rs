@@ -8,9 +8,10 @@ mod record;
 pub use compare::{Comparison, Tolerance, compare, heat_map, ssim};
 pub use record::{SnapshotRecord, fnv1a};
 
+use crate::codegen::{CompileError, CompileOptions};
 use crate::fsutil::{ReadLimit, read_limited};
-use crate::graph::{Basis, Graph};
-use crate::render::{GpuContext, Image, View, render_graph};
+use crate::graph::{Basis, CheckedGraph, LoadError};
+use crate::render::{GpuContext, Image, RenderError, View, render_material};
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
@@ -93,17 +94,44 @@ impl Report {
     }
 }
 
-/// A snapshot that could not be taken at all (bad graph, unreadable golden, no GPU).
-#[derive(Debug)]
-pub struct SnapshotError(pub String);
-
-impl std::fmt::Display for SnapshotError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(&self.0)
-    }
+/// A snapshot that could not be taken at all: a bad graph, a failed render, a golden
+/// that cannot be read or written.
+#[derive(Debug, thiserror::Error)]
+pub enum SnapshotError {
+    /// The graph file could not be read or parsed.
+    #[error(transparent)]
+    Load(#[from] LoadError),
+    /// The graph does not compile.
+    #[error("{graph}: {error}")]
+    Compile {
+        graph: PathBuf,
+        #[source]
+        error: CompileError,
+    },
+    /// The render failed (no GPU, the GPU refused it, the mesh or its fields failed).
+    #[error("{graph}: {error}")]
+    Render {
+        graph: PathBuf,
+        #[source]
+        error: RenderError,
+    },
+    /// The render could not be encoded as PNG.
+    #[error(transparent)]
+    Encode(RenderError),
+    /// The golden is not a readable PNG.
+    #[error("{path}: {message}")]
+    Golden { path: PathBuf, message: String },
+    /// A golden, its sidecar or an explanation image could not be read or written, or
+    /// their folder made.
+    #[error("{path}: {what}{error}")]
+    File {
+        path: PathBuf,
+        /// `cannot read: `, `cannot write: ` or nothing (making the folder).
+        what: &'static str,
+        #[source]
+        error: std::io::Error,
+    },
 }
-
-impl std::error::Error for SnapshotError {}
 
 /// Whether `VENEER_UPDATE_SNAPSHOTS=1` asks for goldens to be rewritten.
 pub fn update_requested() -> bool {
@@ -120,18 +148,21 @@ pub fn beside(golden: &Path, suffix: &str) -> PathBuf {
     golden.with_file_name(format!("{stem}.{suffix}"))
 }
 
-fn uses_sine_hash(graph: &Graph) -> bool {
-    let reachable = crate::graph::check(graph)
-        .map(|checked| checked.order)
-        .unwrap_or_default();
-    reachable
+/// Whether a node the material reads hashes with the sine hash, whose bits differ
+/// between adapters.
+fn uses_sine_hash(graph: &CheckedGraph) -> bool {
+    graph
+        .order
         .iter()
         .any(|checked| checked.node.kind.basis() == Some(Basis::ValueSine))
 }
 
 fn write(path: &Path, bytes: &[u8]) -> Result<(), SnapshotError> {
-    crate::fsutil::write_atomic(path, bytes)
-        .map_err(|error| SnapshotError(format!("{}: cannot write: {error}", path.display())))
+    crate::fsutil::write_atomic(path, bytes).map_err(|error| SnapshotError::File {
+        path: path.to_path_buf(),
+        what: "cannot write: ",
+        error,
+    })
 }
 
 /// Why a render and its golden may differ, read from the golden's sidecar.
@@ -174,24 +205,32 @@ pub fn check(
     settings: &Settings,
     update: bool,
 ) -> Result<Report, SnapshotError> {
-    let graph = crate::graph::load(graph_path).map_err(|error| SnapshotError(error.to_string()))?;
-    let module = crate::codegen::compile_graph(&graph)
-        .map_err(|error| SnapshotError(format!("{}: {error}", graph_path.display())))?;
-    let image = render_graph(gpu, &graph, &settings.view, settings.size, settings.time)
-        .map_err(|error| SnapshotError(format!("{}: {error}", graph_path.display())))?;
+    let graph = crate::graph::load(graph_path)?;
+    let compiled =
+        crate::codegen::compile(&graph, &CompileOptions::default()).map_err(|error| {
+            SnapshotError::Compile {
+                graph: graph_path.to_path_buf(),
+                error,
+            }
+        })?;
+    let image = render_material(gpu, &compiled, &settings.view, settings.size, settings.time)
+        .map_err(|error| SnapshotError::Render {
+            graph: graph_path.to_path_buf(),
+            error,
+        })?;
     let info = gpu.adapter.get_info();
     let current = SnapshotRecord {
         veneer: env!("CARGO_PKG_VERSION").to_string(),
         adapter: info.name.clone(),
         backend: format!("{:?}", info.backend),
         graph_hash: fnv1a(crate::graph::to_ron(&graph).as_bytes()),
-        shader_hash: fnv1a(module.source.as_bytes()),
+        shader_hash: fnv1a(compiled.source().as_bytes()),
         view: settings.view.clone(),
         size: settings.size,
         time: settings.time,
         tolerance: settings.tolerance.unwrap_or(Tolerance::SAME_ADAPTER),
         cross_adapter: Tolerance::CROSS_ADAPTER,
-        adapter_dependent: uses_sine_hash(&graph),
+        adapter_dependent: uses_sine_hash(&compiled.checked),
     };
     let sidecar = beside(golden, "snap.ron");
     let report = |outcome| Report {
@@ -200,15 +239,16 @@ pub fn check(
         outcome,
     };
     if update {
-        let png = image
-            .to_png()
-            .map_err(|error| SnapshotError(error.to_string()))?;
+        let png = image.to_png().map_err(SnapshotError::Encode)?;
         let config = ron::ser::PrettyConfig::new().struct_names(false);
         let record =
             ron::ser::to_string_pretty(&current, config).expect("records serialise") + "\n";
         if let Some(folder) = golden.parent().filter(|f| !f.as_os_str().is_empty()) {
-            std::fs::create_dir_all(folder)
-                .map_err(|e| SnapshotError(format!("{}: {e}", folder.display())))?;
+            std::fs::create_dir_all(folder).map_err(|error| SnapshotError::File {
+                path: folder.to_path_buf(),
+                what: "",
+                error,
+            })?;
         }
         write(golden, &png)?;
         write(&sidecar, record.as_bytes())?;
@@ -218,7 +258,7 @@ pub fn check(
     let mismatch = |comparison, tolerance, reasons: Vec<String>| -> Result<Report, SnapshotError> {
         write(
             &beside(golden, "actual.png"),
-            &image.to_png().map_err(|e| SnapshotError(e.to_string()))?,
+            &image.to_png().map_err(SnapshotError::Encode)?,
         )?;
         Ok(report(Outcome::Mismatched {
             comparison,
@@ -236,14 +276,17 @@ pub fn check(
             return mismatch(None, current.tolerance, vec![reason]);
         }
         Err(error) => {
-            return Err(SnapshotError(format!(
-                "{}: cannot read: {error}",
-                golden.display()
-            )));
+            return Err(SnapshotError::File {
+                path: golden.to_path_buf(),
+                what: "cannot read: ",
+                error,
+            });
         }
     };
-    let expected = Image::from_png(&golden_bytes)
-        .map_err(|error| SnapshotError(format!("{}: {error}", golden.display())))?;
+    let expected = Image::from_png(&golden_bytes).map_err(|message| SnapshotError::Golden {
+        path: golden.to_path_buf(),
+        message,
+    })?;
     let recorded: Option<SnapshotRecord> = read_limited(&sidecar, ReadLimit::GRAPH)
         .ok()
         .and_then(|bytes| String::from_utf8(bytes).ok())
@@ -271,7 +314,7 @@ pub fn check(
         Ok(comparison) => {
             let diff = heat_map(&image, &expected)
                 .to_png()
-                .map_err(|e| SnapshotError(e.to_string()))?;
+                .map_err(SnapshotError::Encode)?;
             write(&beside(golden, "diff.png"), &diff)?;
             mismatch(Some(comparison), tolerance, reasons)
         }

@@ -17,7 +17,7 @@ fn opens_on_the_wood_preset_with_the_material_on_a_sphere() {
     let image = screen(&mut harness);
     let app = harness.state();
     assert_eq!(app.document.graph.name, "Wood");
-    assert!(app.live.errors.is_empty() && app.live.module.is_some());
+    assert!(app.live.errors.is_empty() && app.live.compiled.is_some());
     assert_eq!(
         app.pipelines_built(),
         1,
@@ -58,7 +58,7 @@ fn adds_a_node_through_the_search_menu_and_wires_it_from_the_inspector() {
     // in a thumbnail: the bare rings, brown.
     select_node(&mut harness, "ring colour");
     let image = crate::support::screen(&mut harness);
-    assert!(harness.state().thumbnail.module.is_some());
+    assert!(harness.state().thumbnail.compiled.is_some());
     let rings = image.get_pixel(1030, 615).0;
     assert!(
         rings[0] > rings[2] + 30,
@@ -139,7 +139,7 @@ fn a_compile_error_is_shown_on_the_node_that_caused_it() {
         &harness,
         &format!("node 'Smoothstep' ({smoothstep}): input 'x' (float) must be connected")
     ));
-    assert!(app.live.module.is_some(), "the last good material stays");
+    assert!(app.live.compiled.is_some(), "the last good material stays");
     let after = preview_pixels(&screen(&mut harness));
     assert_eq!(
         harness.state().pipelines_built(),

@@ -4,8 +4,14 @@
 
 use crate::support::{difference, flat_rgb8, gpu, root};
 use veneer::bake::{BakeSettings, BakeSurface, Format, Map, NormalConvention, bake};
+use veneer::codegen::Compiled;
 use veneer::graph::{Graph, NodeKind, Value};
 use veneer::render::FlatRect;
+
+/// `graph` compiled as bakes take it.
+fn compiled(graph: &Graph) -> Compiled {
+    veneer::codegen::compile(graph, &Default::default()).expect("compiles")
+}
 
 fn scratch(name: &str) -> std::path::PathBuf {
     let dir = std::env::temp_dir().join(format!("veneer-bake-{name}-{}", std::process::id()));
@@ -38,7 +44,7 @@ fn a_baked_4096_albedo_equals_the_flat_render() {
     let dir = scratch("albedo");
     let maps = bake(
         gpu(),
-        &graph,
+        &compiled(&graph),
         &settings(4096, vec![Map::Albedo], Format::Png8, rect),
         &dir.join("tiles"),
         |_, _| {},
@@ -48,9 +54,7 @@ fn a_baked_4096_albedo_equals_the_flat_render() {
         .expect("a PNG")
         .to_rgb8()
         .into_raw();
-    let source = veneer::codegen::compile_graph(&graph)
-        .expect("compiles")
-        .source;
+    let source = compiled(&graph).module.source;
     let diff = difference(&baked, &flat_rgb8(&source, rect, 4096), 3, 0);
     assert_eq!(diff.max, 0, "the bake is the flat render, tiled: {diff}");
 }
@@ -80,7 +84,7 @@ fn sixteen_bit_maps_keep_a_smooth_ramp_free_of_8_bit_banding() {
     let dir = scratch("ramp");
     let maps = bake(
         gpu(),
-        &ramp(),
+        &compiled(&ramp()),
         &settings(2048, vec![Map::Albedo], Format::Png16, rect),
         &dir.join("ramp"),
         |_, _| {},
@@ -114,7 +118,7 @@ fn normal_maps_tilt_with_the_height_field_and_flip_green_for_directx() {
     let graph = ramp();
     let gl = bake(
         gpu(),
-        &graph,
+        &compiled(&graph),
         &settings(64, vec![Map::Normal], Format::Exr, rect),
         &dir.join("gl"),
         |_, _| {},
@@ -142,9 +146,9 @@ fn normal_maps_tilt_with_the_height_field_and_flip_green_for_directx() {
     let x = graph.nodes.iter().find(|n| n.label == "x").unwrap().id;
     graph.set_input(x, "direction", Value::Vec3(0.0, 0.0, 1.0));
     let mut dx = settings(64, vec![Map::Normal], Format::Exr, rect);
-    let gl = bake(gpu(), &graph, &dx, &dir.join("z-gl"), |_, _| {}).unwrap();
+    let gl = bake(gpu(), &compiled(&graph), &dx, &dir.join("z-gl"), |_, _| {}).unwrap();
     dx.normal = NormalConvention::DirectX;
-    let directx = bake(gpu(), &graph, &dx, &dir.join("z-dx"), |_, _| {}).unwrap();
+    let directx = bake(gpu(), &compiled(&graph), &dx, &dir.join("z-dx"), |_, _| {}).unwrap();
     let green =
         |path: &std::path::Path| image::open(path).unwrap().to_rgba32f().get_pixel(32, 32).0[1];
     assert!(green(&gl[0].path) > 0.55 && green(&directx[0].path) < 0.45);
@@ -201,13 +205,20 @@ fn a_uv_bake_fills_the_layout_and_pads_its_seams() {
         },
     );
     uv.surface = veneer::bake::BakeSurface::MeshUv("tests/meshes/cube_quads.ply".to_string());
-    let error = bake(gpu(), &graph, &uv, &dir.join("no-uv"), |_, _| {});
+    let error = bake(gpu(), &compiled(&graph), &uv, &dir.join("no-uv"), |_, _| {});
     assert!(
         error.is_err_and(|e| e.to_string().contains("has no UV layout")),
         "a mesh without UVs would bake uniform maps"
     );
     uv.surface = veneer::bake::BakeSurface::MeshUv("sphere".to_string());
-    let maps = bake(gpu(), &graph, &uv, &dir.join("sphere"), |_, _| {}).expect("bakes");
+    let maps = bake(
+        gpu(),
+        &compiled(&graph),
+        &uv,
+        &dir.join("sphere"),
+        |_, _| {},
+    )
+    .expect("bakes");
     let image = image::open(&maps[0].path).expect("a PNG").to_rgb8();
     // The sphere's latitude-longitude layout covers the whole square: no black texels,
     // and marble's two colours both appear.
@@ -239,12 +250,12 @@ fn fill_uncovered_grows_islands_by_the_padding() {
 #[test]
 fn banded_exr_and_png_bakes_agree_across_band_seams() {
     let graph = veneer::graph::load(&root("graphs/marble.ron")).expect("preset");
-    let rect = veneer::render::preview_rect(&graph);
+    let rect = veneer::render::preview_rect(&graph.preview);
     let dir = scratch("bands");
     let maps = vec![Map::Albedo, Map::Normal, Map::Height];
     let exr = bake(
         gpu(),
-        &graph,
+        &compiled(&graph),
         &settings(3000, maps.clone(), Format::Exr, rect),
         &dir.join("exr"),
         |_, _| {},
@@ -252,7 +263,7 @@ fn banded_exr_and_png_bakes_agree_across_band_seams() {
     .expect("bakes EXR");
     let png = bake(
         gpu(),
-        &graph,
+        &compiled(&graph),
         &settings(3000, maps, Format::Png16, rect),
         &dir.join("png"),
         |_, _| {},

@@ -87,8 +87,9 @@ fn pcg_graph() -> Graph {
 #[test]
 fn cpu_f32_evaluation_matches_the_gpu_flat_render() {
     let graph = pcg_graph();
-    let source = veneer::codegen::compile_graph(&graph)
+    let source = veneer::codegen::compile(&graph, &Default::default())
         .expect("test graph compiles")
+        .module
         .source;
     let (size, rect) = (
         96u32,

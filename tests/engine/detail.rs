@@ -3,10 +3,10 @@
 //! view is unchanged.
 
 use crate::support::gpu;
-use veneer::codegen::Detail;
+use veneer::codegen::{CompileOptions, Detail};
 use veneer::graph::{Basis, Graph, NodeKind, Value};
 use veneer::nodes::{Combine, Fbm};
-use veneer::render::{FlatRect, View, render_graph_detailed};
+use veneer::render::{FlatRect, View, render_material};
 
 fn fbm_graph() -> Graph {
     let mut graph = Graph::default();
@@ -41,8 +41,8 @@ fn render(graph: &Graph, extent: f64, size: u32, detail: Detail) -> Vec<f64> {
         z1: extent,
         y: 0.37,
     };
-    let image =
-        render_graph_detailed(gpu(), graph, &View::Flat(rect), size, 0.0, detail).expect("renders");
+    let compiled = veneer::codegen::compile(graph, &CompileOptions::with_detail(detail)).unwrap();
+    let image = render_material(gpu(), &compiled, &View::Flat(rect), size, 0.0).expect("renders");
     image
         .pixels
         .chunks_exact(3)
@@ -68,13 +68,10 @@ fn mean_error(a: &[f64], b: &[f64]) -> f64 {
 #[test]
 fn far_away_the_footprint_is_nearer_the_filtered_pattern_and_near_by_it_changes_nothing() {
     let graph = fbm_graph();
-    let source = veneer::codegen::compile_graph_detailed(
-        &graph,
-        veneer::codegen::ParamMode::Baked,
-        Detail::Footprint,
-    )
-    .unwrap()
-    .source;
+    let source = veneer::codegen::compile(&graph, &CompileOptions::with_detail(Detail::Footprint))
+        .unwrap()
+        .module
+        .source;
     assert!(
         source.contains("veneer_octave_cutoff("),
         "the cutoff is computed"

@@ -111,8 +111,10 @@ fn labels_that_are_keywords_in_the_target_languages_stay_valid() {
 #[test]
 fn the_uniform_block_has_one_slot_per_parameter_at_a_documented_binding() {
     let graph = veneer::graph::load(&crate::support::root("graphs/marble.ron")).expect("marble");
-    let slots = veneer::codegen::compile_graph_with(&graph, ParamMode::Uniform)
+    let options = veneer::codegen::CompileOptions::with_params(ParamMode::Uniform);
+    let slots = veneer::codegen::compile(&graph, &options)
         .expect("compiles")
+        .module
         .params
         .len();
     let glsl =

@@ -2,7 +2,7 @@
 //! the targets' own checks: `tests/fuzz/<target>/` holds one file per finding.
 
 use crate::support::root;
-use veneer::codegen::{CompileError, Detail, ParamMode, compile_graph_detailed};
+use veneer::codegen::{CompileError, CompileOptions, Detail, ParamMode, compile};
 
 /// The files under `tests/fuzz/<target>/` (there is at least one: an empty or missing
 /// folder would make the replay test nothing).
@@ -44,9 +44,11 @@ fn graphs_that_crashed_the_compiler_compile_or_are_rejected_by_the_check() {
             (ParamMode::Baked, Detail::Full),
             (ParamMode::Uniform, Detail::Footprint),
         ] {
-            if let Err(CompileError::Validation(error)) =
-                compile_graph_detailed(&graph, mode, detail)
-            {
+            let options = CompileOptions {
+                params: mode,
+                detail,
+            };
+            if let Err(CompileError::Validation(error)) = compile(&graph, &options) {
                 panic!("{}: naga rejected a checked graph: {error}", path.display());
             }
         }

@@ -302,11 +302,15 @@ fn a_broken_mesh_gets_finite_distances_where_reached_and_warnings_naming_its_def
 #[test]
 fn fields_and_relief_are_computed_only_where_a_material_uses_them() {
     let sand = veneer::graph::load(&crate::support::root("graphs/water_lava.ron")).unwrap();
-    let uses = veneer::codegen::compile_graph(&sand).unwrap().uses;
+    let uses = veneer::codegen::compile(&sand, &Default::default())
+        .unwrap()
+        .uses();
     assert_eq!(uses.fields, [true, true, false, false]);
     assert!(!uses.displacement);
     let wood = veneer::graph::load(&crate::support::root("graphs/wood.ron")).unwrap();
-    let wood_uses = veneer::codegen::compile_graph(&wood).unwrap().uses;
+    let wood_uses = veneer::codegen::compile(&wood, &Default::default())
+        .unwrap()
+        .uses();
     assert_eq!(wood_uses.fields, [false; 4], "no field node, no field");
 
     let mut mesh = veneer::mesh::primitive(&sand.preview.mesh).unwrap();
@@ -332,13 +336,18 @@ fn fields_and_relief_are_computed_only_where_a_material_uses_them() {
 
     let waves = veneer::graph::load(&crate::support::root("graphs/waves.ron")).unwrap();
     assert!(
-        veneer::codegen::compile_graph(&waves)
+        veneer::codegen::compile(&waves, &Default::default())
             .unwrap()
-            .uses
+            .uses()
             .displacement
     );
     let moss = veneer::graph::load(&crate::support::root("graphs/moss_granite.ron")).unwrap();
-    assert!(veneer::codegen::compile_graph(&moss).unwrap().uses.bump);
+    assert!(
+        veneer::codegen::compile(&moss, &Default::default())
+            .unwrap()
+            .uses()
+            .bump
+    );
     assert!(
         !wood_uses.bump && !wood_uses.displacement,
         "no bump, no height: no relief work in the renderer"

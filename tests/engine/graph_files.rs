@@ -1,6 +1,6 @@
 //! Graph checks, pruning and codegen through the library API.
 
-use veneer::codegen::{CompileError, compile_graph};
+use veneer::codegen::{CompileError, CompileOptions, ParamMode, compile};
 use veneer::graph::{Graph, Metric, NodeKind, Value, WorleyFeature};
 use veneer::nodes::{Fbm, Math, Mix, Noise, Worley};
 
@@ -28,7 +28,9 @@ fn unconnected_worley_emits_no_worley_code() {
             octaves: 1,
         }),
     );
-    let module = compile_graph(&graph).expect("compiles");
+    let module = compile(&graph, &Default::default())
+        .expect("compiles")
+        .module;
     assert!(!module.source.contains("worley"), "{}", module.source);
     assert!(!module.library.iter().any(|name| name.contains("worley")));
 }
@@ -36,7 +38,9 @@ fn unconnected_worley_emits_no_worley_code() {
 #[test]
 fn only_used_library_functions_are_emitted() {
     let (graph, _) = small_graph();
-    let module = compile_graph(&graph).expect("compiles");
+    let module = compile(&graph, &Default::default())
+        .expect("compiles")
+        .module;
     assert_eq!(
         module.library,
         [
@@ -54,7 +58,7 @@ fn only_used_library_functions_are_emitted() {
 fn a_constant_beyond_f32_is_rejected_by_the_check_naming_its_node() {
     let (mut graph, noise) = small_graph();
     graph.set_input(noise, "scale", Value::Float(1e39));
-    match compile_graph(&graph) {
+    match compile(&graph, &Default::default()) {
         Err(CompileError::Check(errors)) => {
             let message = errors[0].to_string();
             assert!(message.starts_with("node 'grain' (#1)"), "{message}");
@@ -68,7 +72,9 @@ fn a_constant_beyond_f32_is_rejected_by_the_check_naming_its_node() {
 fn generated_code_maps_back_to_its_node() {
     // What a naga error, should one slip past the check, is blamed on.
     let (graph, noise) = small_graph();
-    let module = compile_graph(&graph).expect("compiles");
+    let module = compile(&graph, &Default::default())
+        .expect("compiles")
+        .module;
     let offset = module.source.find("let grain").expect("the node's line");
     assert_eq!(module.node_at(offset), Some(noise));
     assert_eq!(module.node_at(0), None);
@@ -78,8 +84,12 @@ fn generated_code_maps_back_to_its_node() {
 fn generated_wgsl_is_deterministic_and_named_after_labels() {
     let (graph, _) = small_graph();
     let (a, b) = (
-        compile_graph(&graph).expect("compiles"),
-        compile_graph(&graph).expect("compiles"),
+        compile(&graph, &Default::default())
+            .expect("compiles")
+            .module,
+        compile(&graph, &Default::default())
+            .expect("compiles")
+            .module,
     );
     assert_eq!(a.source, b.source);
     assert!(
@@ -150,7 +160,10 @@ fn future_versions_are_rejected_with_a_position() {
 fn every_preset_module_defines_exactly_the_contract_and_prefixes_the_rest() {
     for path in crate::support::presets() {
         let graph = veneer::graph::load(&path).expect("preset loads");
-        let module = compile_graph(&graph).expect("preset compiles").module;
+        let module = compile(&graph, &Default::default())
+            .expect("preset compiles")
+            .module
+            .module;
         let types: Vec<&str> = module
             .types
             .iter()
@@ -228,9 +241,9 @@ fn struct_fields(module: &naga::Module, name: &str) -> Vec<String> {
 fn uniform_mode_turns_every_constant_into_a_slot_and_validates() {
     for path in crate::support::presets() {
         let graph = veneer::graph::load(&path).expect("preset loads");
-        let module =
-            veneer::codegen::compile_graph_with(&graph, veneer::codegen::ParamMode::Uniform)
-                .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        let module = compile(&graph, &CompileOptions::with_params(ParamMode::Uniform))
+            .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+            .module;
         assert!(!module.params.is_empty());
         assert!(
             module
@@ -241,8 +254,9 @@ fn uniform_mode_turns_every_constant_into_a_slot_and_validates() {
         assert_eq!(values.len(), module.params.len());
     }
     let graph = veneer::graph::load(&crate::support::root("graphs/marble.ron")).expect("marble");
-    let module = veneer::codegen::compile_graph_with(&graph, veneer::codegen::ParamMode::Uniform)
-        .expect("compiles");
+    let module = compile(&graph, &CompileOptions::with_params(ParamMode::Uniform))
+        .expect("compiles")
+        .module;
     let slot = module
         .params
         .iter()
@@ -282,7 +296,7 @@ fn constant_subgraphs_fold_to_literals_and_surface_reads_do_not() {
     let material = graph.add("material", NodeKind::Material);
     graph.connect(mix, "result", material, "albedo");
     graph.connect(noise, "value", material, "shininess");
-    let source = compile_graph(&graph).unwrap().source;
+    let source = compile(&graph, &Default::default()).unwrap().module.source;
     assert!(
         !source.contains("quarter_plus_half"),
         "the sum folded away:\n{source}"
@@ -292,8 +306,9 @@ fn constant_subgraphs_fold_to_literals_and_surface_reads_do_not() {
         source.contains("veneer_noise_gradient(s.position"),
         "noise of the position stays"
     );
-    let uniform = veneer::codegen::compile_graph_with(&graph, veneer::codegen::ParamMode::Uniform)
+    let uniform = compile(&graph, &CompileOptions::with_params(ParamMode::Uniform))
         .unwrap()
+        .module
         .source;
     assert!(
         uniform.contains("quarter_plus_half"),

@@ -333,7 +333,9 @@ fn meshes_past_the_buffer_limit_are_drawn_in_parts() {
     })
     .expect("a device with a small buffer limit");
     let graph = veneer::graph::load(&root("graphs/marble.ron")).expect("preset");
-    let module = veneer::codegen::compile_graph(&graph).expect("compiles");
+    let module = veneer::codegen::compile(&graph, &Default::default())
+        .expect("compiles")
+        .module;
     let mesh = veneer::mesh::preview_mesh("torus:64").expect("mesh");
     let view = MeshView::for_preview(&graph.preview);
     let render = |gpu: &GpuContext| {
@@ -370,7 +372,9 @@ fn assert_nearly_equal(a: &[[u8; 4]], b: &[[u8; 4]]) {
 #[test]
 fn tiled_mesh_renders_match_whole_ones() {
     let graph = veneer::graph::load(&root("graphs/wood.ron")).expect("preset");
-    let module = veneer::codegen::compile_graph(&graph).expect("compiles");
+    let module = veneer::codegen::compile(&graph, &Default::default())
+        .expect("compiles")
+        .module;
     let renderer = MeshRenderer::new(gpu(), &module.source, module.uses).expect("pipeline");
     let mesh = veneer::mesh::preview_mesh(&graph.preview.mesh).expect("mesh");
     let view = MeshView::for_preview(&graph.preview);

@@ -80,8 +80,13 @@ fn large_materials_compile_to_part_functions_every_target_accepts() {
         (ParamMode::Baked, Detail::Full),
         (ParamMode::Uniform, Detail::Footprint),
     ] {
-        let module = veneer::codegen::compile_graph_detailed(&graph, mode, detail)
-            .expect("compiles and validates");
+        let options = veneer::codegen::CompileOptions {
+            params: mode,
+            detail,
+        };
+        let module = veneer::codegen::compile(&graph, &options)
+            .expect("compiles and validates")
+            .module;
         assert!(module.source.contains("in 8 parts of at most 256 nodes"));
         assert!(
             module
@@ -127,9 +132,11 @@ fn a_material_in_parts_renders_as_the_cpu_evaluates_it() {
     }
     let material = graph.add("material", NodeKind::Material);
     graph.connect(previous.0, previous.1, material, "albedo");
-    let module = veneer::codegen::compile_graph(&graph).expect("compiles");
+    let module = veneer::codegen::compile(&graph, &Default::default())
+        .expect("compiles")
+        .module;
     assert!(module.source.contains("in 3 parts"));
-    let rect = veneer::render::preview_rect(&graph);
+    let rect = veneer::render::preview_rect(&graph.preview);
     let gpu = flat_rgb8(&module.source, rect, 32);
     let cpu = cpu_flat_rgb8(&graph, rect, 32);
     let comparison = difference(&gpu, &cpu, 3, 1);
@@ -146,7 +153,7 @@ fn a_ramp_of_a_million_stops_is_refused_at_once() {
         "node 'ramp' (#2): the colour ramp has 1,000,000 stops (at most 256)",
     );
     assert!(took < Duration::from_secs(10), "took {took:?}");
-    let most = veneer::codegen::compile_graph(&ramp(veneer::graph::MAX_RAMP_STOPS));
+    let most = veneer::codegen::compile(&ramp(veneer::graph::MAX_RAMP_STOPS), &Default::default());
     assert!(most.is_ok(), "{:?}", most.err());
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -5,6 +5,7 @@ mod bake;
 mod big_graphs;
 mod cli;
 mod cli_contract;
+mod compile_once;
 mod cpu_gpu;
 mod detail;
 mod errors;

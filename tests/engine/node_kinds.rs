@@ -208,8 +208,9 @@ fn every_node_kind_agrees_between_cpu_and_gpu() {
         .filter(|kind| kind.basis() != Some(Basis::ValueSine));
     for kind in portable {
         let graph = graph_for(&kind);
-        let source = veneer::codegen::compile_graph(&graph)
+        let source = veneer::codegen::compile(&graph, &Default::default())
             .unwrap_or_else(|e| panic!("{kind:?}: {e}"))
+            .module
             .source;
         let diff = difference(
             &cpu_flat_rgb8(&graph, RECT, SIZE),
@@ -250,8 +251,9 @@ fn every_node_kind_stays_finite_at_extreme_coordinates() {
                 }
             }
         }
-        let source = veneer::codegen::compile_graph(&graph)
+        let source = veneer::codegen::compile(&graph, &Default::default())
             .expect("compiles")
+            .module
             .source;
         let renderer =
             veneer::render::FlatRenderer::new(crate::support::gpu(), &source).expect("pipeline");

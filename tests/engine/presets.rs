@@ -13,8 +13,9 @@ fn presets_load_check_and_match_their_golden_wgsl() {
     );
     for path in presets() {
         let graph = veneer::graph::load(&path).unwrap_or_else(|e| panic!("{e}"));
-        let module = veneer::codegen::compile_graph(&graph)
-            .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        let module = veneer::codegen::compile(&graph, &Default::default())
+            .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+            .module;
         let golden = root(&format!("tests/golden/wgsl/{}.wgsl", stem(&path)));
         if updating() {
             std::fs::write(&golden, &module.source).expect("golden WGSL written");
@@ -65,8 +66,9 @@ fn presets_render_like_their_snapshots_flat_and_on_their_mesh() {
 #[test]
 fn rendering_is_deterministic_run_to_run() {
     let graph = veneer::graph::load(&root("graphs/marble.ron")).expect("preset loads");
-    let source = veneer::codegen::compile_graph(&graph)
+    let source = veneer::codegen::compile(&graph, &Default::default())
         .expect("compiles")
+        .module
         .source;
     let rect = FlatRect {
         x0: -10.0,

@@ -5,7 +5,7 @@
 
 use crate::support::{cpu_flat_rgb8, difference, flat_rgb8};
 use proptest::prelude::*;
-use veneer::codegen::{CompileError, compile_graph};
+use veneer::codegen::{CompileError, compile};
 use veneer::graph::{Basis, Graph, NodeKind, PinDefault, ValueType};
 use veneer::render::FlatRect;
 
@@ -65,8 +65,8 @@ proptest! {
         choices in prop::collection::vec(any::<u32>(), 1..64),
     ) {
         let graph = random_graph(&kinds, &choices, true);
-        match compile_graph(&graph) {
-            Ok(module) => prop_assert!(module.source.contains("fn veneer_material(")),
+        match compile(&graph, &Default::default()) {
+            Ok(compiled) => prop_assert!(compiled.source().contains("fn veneer_material(")),
             Err(CompileError::Check(errors)) => prop_assert!(!errors.is_empty()),
             Err(CompileError::Validation(error)) => prop_assert!(false, "naga rejected a checked graph: {error}\n{}", veneer::graph::to_ron(&graph)),
         }
@@ -85,9 +85,9 @@ proptest! {
         choices in prop::collection::vec(any::<u32>(), 1..32),
     ) {
         let graph = random_graph(&kinds, &choices, false);
-        let Ok(module) = compile_graph(&graph) else { return Ok(()) };
+        let Ok(compiled) = compile(&graph, &Default::default()) else { return Ok(()) };
         let rect = FlatRect { x0: -2.0, z0: -1.5, x1: 3.0, z1: 2.5, y: 0.3 };
-        let diff = difference(&cpu_flat_rgb8(&graph, rect, 24), &flat_rgb8(&module.source, rect, 24), 3, 2);
+        let diff = difference(&cpu_flat_rgb8(&graph, rect, 24), &flat_rgb8(compiled.source(), rect, 24), 3, 2);
         // Floors, fracts and steps can flip on the last bit: allow a few such pixels.
         prop_assert!(diff.share_outside <= 0.02, "{diff}\n{}", veneer::graph::to_ron(&graph));
     }

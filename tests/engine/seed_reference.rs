@@ -9,8 +9,9 @@ pub const SEED_NOISE: &str = include_str!("reference/seed000_noise.wgsl");
 
 fn compare_with_seed(preset: &str, reference: &str, rect: FlatRect) {
     let graph = veneer::graph::load(&root(&format!("graphs/{preset}.ron"))).expect("preset loads");
-    let ours = veneer::codegen::compile_graph(&graph)
+    let ours = veneer::codegen::compile(&graph, &Default::default())
         .expect("preset compiles")
+        .module
         .source;
     let seed = format!(
         "{}\n{SEED_NOISE}\n{reference}",

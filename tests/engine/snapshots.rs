@@ -5,7 +5,7 @@ use crate::support::{gpu, root, snapshot_folder};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use veneer::graph::{NodeKind, Value};
-use veneer::render::{View, render_graph};
+use veneer::render::{View, render_material};
 use veneer::snapshot::{Outcome, Settings, beside, check};
 
 /// A scratch folder holding a copy of marble.ron and its golden and sidecar.
@@ -125,8 +125,9 @@ fn time_dependent_graphs_render_at_the_given_time() {
     graph.set_input(wave, "frequency", Value::Float(3.0));
     let material = graph.add("material", NodeKind::Material);
     graph.connect(wave, "band", material, "albedo");
+    let compiled = veneer::codegen::compile(&graph, &Default::default()).expect("compiles");
     let render = |t| {
-        render_graph(gpu(), &graph, &View::PreviewFlat, 16, t)
+        render_material(gpu(), &compiled, &View::PreviewFlat, 16, t)
             .expect("renders")
             .pixels
     };

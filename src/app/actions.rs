@@ -1,0 +1,95 @@
+//! What the editor does with the actions its dialogs return: open, save, export, load a
+//! mesh, go on after the prompt about unsaved work, recover autosaved work.
+
+use super::dialogs::{Action, Dialog, Pending};
+use super::{Document, VeneerApp, recovery};
+use crate::codegen::export::Target;
+use crate::codegen::{CompileOptions, ParamMode};
+use crate::graph::Graph;
+use std::path::Path;
+
+impl VeneerApp {
+    /// Carries out what the user decided in a dialog; a failure shows a message.
+    pub(super) fn apply(&mut self, action: Action) {
+        let done = match action {
+            Action::Open(path) => {
+                self.guard(Pending::Open(path));
+                Ok(None)
+            }
+            Action::SaveAs(path) => self.document.save_as(&path).map(|()| {
+                self.remember(&path);
+                recovery::clear(&self.recovery_file);
+                Some(format!("saved {}", path.display()))
+            }),
+            Action::ExportShader {
+                path,
+                target,
+                params,
+            } => export_shader(&self.document.graph, &path, target, params)
+                .map(|()| Some(format!("exported {}", path.display()))),
+            Action::ExportPng { path, size, flat } => self
+                .export_png(&path, size, flat)
+                .map(|()| Some(format!("exported {}", path.display()))),
+            Action::LoadMesh(path) => self.load_mesh(&path).map(|()| None),
+            Action::SaveThen(pending) => {
+                self.save();
+                if !self.document.is_dirty() {
+                    self.perform(pending);
+                }
+                Ok(None)
+            }
+            Action::Discard(pending) => {
+                self.perform(pending);
+                Ok(None)
+            }
+            Action::Recover(saved) => {
+                self.load(Document::recovered(saved.graph, saved.original));
+                Ok(None)
+            }
+            Action::ForgetRecovery => {
+                recovery::clear(&self.recovery_file);
+                Ok(None)
+            }
+        };
+        match done {
+            Ok(Some(message)) => self.message = Some(message),
+            Ok(None) => {}
+            Err(error) => self.dialog = Some(Dialog::Message(error)),
+        }
+    }
+
+    /// Renders the document as the preview shows it (or its flat albedo) into a PNG.
+    fn export_png(&self, path: &Path, size: u32, flat: bool) -> Result<(), String> {
+        let Some(state) = &self.render_state else {
+            return Err("no GPU: cannot render".into());
+        };
+        let gpu = crate::render::GpuContext::on_device(
+            state.adapter.clone(),
+            state.device.clone(),
+            state.queue.clone(),
+        );
+        let view = if flat {
+            crate::render::View::PreviewFlat
+        } else {
+            crate::render::View::Mesh(Some(self.preview.mesh.clone()))
+        };
+        let compiled = crate::codegen::compile(&self.document.graph, &CompileOptions::default())
+            .map_err(|error| error.to_string())?;
+        let image =
+            crate::render::render_material(&gpu, &compiled, &view, size, self.preview.view.time)
+                .map_err(|error| error.to_string())?;
+        let png = image.to_png().map_err(|error| error.to_string())?;
+        crate::fsutil::write_atomic(path, &png).map_err(|e| format!("{}: {e}", path.display()))
+    }
+}
+
+/// Writes `graph` as a shader for `target` to `path`.
+fn export_shader(
+    graph: &Graph,
+    path: &Path,
+    target: Target,
+    params: ParamMode,
+) -> Result<(), String> {
+    let bytes = crate::codegen::export::export(graph, target, params).map_err(|e| e.to_string())?;
+    crate::fsutil::write_atomic(path, &bytes).map_err(|e| format!("{}: {e}", path.display()))
+}
