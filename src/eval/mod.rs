@@ -1,10 +1,17 @@
 //! CPU reference evaluator: the same graph, the same formulas as the generated WGSL,
 //! evaluated at one point in f32 (like the GPU) or f64 (the reference).
 
+mod colour;
 mod fields;
+mod gabor;
+#[cfg(test)]
+mod library_items;
 mod noise;
+mod octaves;
+mod ranges;
 mod real;
 mod shapes;
+mod worley_edge;
 
 pub use real::Real;
 
