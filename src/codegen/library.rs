@@ -5,7 +5,7 @@ use std::collections::BTreeSet;
 use std::sync::OnceLock;
 
 /// The library sources, one family per file.
-const SOURCES: [(&str, &str); 10] = [
+const SOURCES: [(&str, &str); 17] = [
     ("hash", include_str!("../../shaders/hash.wgsl")),
     ("value", include_str!("../../shaders/value.wgsl")),
     ("gradient", include_str!("../../shaders/gradient.wgsl")),
@@ -16,6 +16,22 @@ const SOURCES: [(&str, &str); 10] = [
     ("patterns", include_str!("../../shaders/patterns.wgsl")),
     ("math", include_str!("../../shaders/math.wgsl")),
     ("fields", include_str!("../../shaders/fields.wgsl")),
+    ("white", include_str!("../../shaders/white.wgsl")),
+    (
+        "value_gradient",
+        include_str!("../../shaders/value_gradient.wgsl"),
+    ),
+    ("gabor", include_str!("../../shaders/gabor.wgsl")),
+    (
+        "fractal_rotated",
+        include_str!("../../shaders/fractal_rotated.wgsl"),
+    ),
+    (
+        "worley_edge",
+        include_str!("../../shaders/worley_edge.wgsl"),
+    ),
+    ("colour", include_str!("../../shaders/colour.wgsl")),
+    ("map_range", include_str!("../../shaders/map_range.wgsl")),
 ];
 
 /// The contract structs every exported module starts with.

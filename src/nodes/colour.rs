@@ -38,9 +38,7 @@ impl Definition for ColorRamp {
     fn title(&self) -> &'static str {
         "Colour ramp"
     }
-    fn category(&self) -> Category {
-        Category::Colour
-    }
+    computed_in!(Category::Colour);
     fn keywords(&self) -> &'static [&'static str] {
         &["color ramp", "gradient", "lookup", "palette", "valtorgb"]
     }
@@ -49,12 +47,6 @@ impl Definition for ColorRamp {
             vec![input("factor", FLOAT, REQUIRED)],
             vec![output("color", COLOR)],
         )
-    }
-    fn reads_surface(&self) -> bool {
-        false
-    }
-    fn basis(&self) -> Option<Basis> {
-        None
     }
     fn check(&self) -> Option<String> {
         let stops = &self.stops;

@@ -55,9 +55,7 @@ impl Definition for Transform {
     fn title(&self) -> &'static str {
         "Transform"
     }
-    fn category(&self) -> Category {
-        Category::Coordinates
-    }
+    computed_in!(Category::Coordinates, unchecked);
     fn keywords(&self) -> &'static [&'static str] {
         &["mapping", "scale", "rotate", "translate", "offset"]
     }
@@ -71,15 +69,6 @@ impl Definition for Transform {
             ],
             vec![output("p", VEC3)],
         )
-    }
-    fn reads_surface(&self) -> bool {
-        false
-    }
-    fn basis(&self) -> Option<Basis> {
-        None
-    }
-    fn check(&self) -> Option<String> {
-        None
     }
     fn emit(&self, io: &mut Emit) {
         let (p, scale, rotation, offset) = (
@@ -134,9 +123,7 @@ impl Definition for Project {
     fn title(&self) -> &'static str {
         "Project"
     }
-    fn category(&self) -> Category {
-        Category::Coordinates
-    }
+    computed_in!(Category::Coordinates, unchecked);
     fn keywords(&self) -> &'static [&'static str] {
         &["gradient", "linear", "axis", "along", "direction"]
     }
@@ -149,15 +136,6 @@ impl Definition for Project {
             ],
             vec![output("x", FLOAT)],
         )
-    }
-    fn reads_surface(&self) -> bool {
-        false
-    }
-    fn basis(&self) -> Option<Basis> {
-        None
-    }
-    fn check(&self) -> Option<String> {
-        None
     }
     fn emit(&self, io: &mut Emit) {
         io.uses("veneer_project");
@@ -194,9 +172,7 @@ impl Definition for Cylindrical {
     fn title(&self) -> &'static str {
         "Cylindrical"
     }
-    fn category(&self) -> Category {
-        Category::Coordinates
-    }
+    computed_in!(Category::Coordinates, unchecked);
     fn keywords(&self) -> &'static [&'static str] {
         &["polar", "radius", "angle", "radial", "cylinder"]
     }
@@ -213,15 +189,6 @@ impl Definition for Cylindrical {
                 output("theta", FLOAT),
             ],
         )
-    }
-    fn reads_surface(&self) -> bool {
-        false
-    }
-    fn basis(&self) -> Option<Basis> {
-        None
-    }
-    fn check(&self) -> Option<String> {
-        None
     }
     fn emit(&self, io: &mut Emit) {
         io.uses("veneer_cylindrical");

@@ -25,24 +25,6 @@ macro_rules! kinds {
 }
 pub(super) use kinds;
 
-/// The parts the field kinds share: no surface reads, no lattice, no settings to check.
-macro_rules! field_pattern {
-    () => {
-        fn category(&self) -> Category {
-            Category::Field
-        }
-        fn reads_surface(&self) -> bool {
-            false
-        }
-        fn basis(&self) -> Option<Basis> {
-            None
-        }
-        fn check(&self) -> Option<String> {
-            None
-        }
-    };
-}
-
 /// Warns when a front's width can be 0.
 fn check_width(io: &mut Ranges) {
     if io.float("width").lo <= 0.0 {
@@ -56,7 +38,7 @@ fn check_width(io: &mut Ranges) {
 pub struct Front;
 
 impl Definition for Front {
-    field_pattern!();
+    computed_in!(Category::Field, unchecked);
     fn title(&self) -> &'static str {
         "Front"
     }
@@ -101,7 +83,7 @@ plain_catalogue!(Front);
 pub struct Isolines;
 
 impl Definition for Isolines {
-    field_pattern!();
+    computed_in!(Category::Field, unchecked);
     fn title(&self) -> &'static str {
         "Isolines"
     }
@@ -153,7 +135,7 @@ pub struct Layers {
 const LAYERS: [(&str, &str); 3] = [("third", "edge3"), ("second", "edge2"), ("inner", "edge1")];
 
 impl Definition for Layers {
-    field_pattern!();
+    computed_in!(Category::Field, unchecked);
     fn title(&self) -> &'static str {
         "Layers"
     }

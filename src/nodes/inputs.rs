@@ -171,11 +171,9 @@ pub struct Constant {
 }
 
 impl Definition for Constant {
+    computed_in!(Category::Input, unchecked);
     fn title(&self) -> &'static str {
         "Constant"
-    }
-    fn category(&self) -> Category {
-        Category::Input
     }
     fn keywords(&self) -> &'static [&'static str] {
         &[
@@ -187,15 +185,6 @@ impl Definition for Constant {
             vec![input("value", self.ty, splat_default(self.ty, 0.0))],
             vec![output("value", self.ty)],
         )
-    }
-    fn reads_surface(&self) -> bool {
-        false
-    }
-    fn basis(&self) -> Option<Basis> {
-        None
-    }
-    fn check(&self) -> Option<String> {
-        None
     }
     fn emit(&self, io: &mut Emit) {
         io.single(io.input("value").to_string());

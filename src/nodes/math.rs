@@ -26,21 +26,6 @@ macro_rules! kinds {
 }
 pub(super) use kinds;
 
-/// The parts every math kind shares: no surface reads, no lattice.
-macro_rules! math_kind {
-    () => {
-        fn category(&self) -> Category {
-            Category::Math
-        }
-        fn reads_surface(&self) -> bool {
-            false
-        }
-        fn basis(&self) -> Option<Basis> {
-            None
-        }
-    };
-}
-
 /// A kind whose only setting is its value type, chosen from `$types`; `$check` says
 /// whether the type suits it.
 macro_rules! typed_settings {
@@ -77,7 +62,7 @@ pub struct Math {
 }
 
 impl Definition for Math {
-    math_kind!();
+    computed_in!(Category::Math);
     fn title(&self) -> &'static str {
         "Math"
     }
@@ -225,7 +210,7 @@ pub struct Unary {
 }
 
 impl Definition for Unary {
-    math_kind!();
+    computed_in!(Category::Math);
     fn title(&self) -> &'static str {
         "Unary"
     }
@@ -330,7 +315,7 @@ pub struct Mix {
 }
 
 impl Definition for Mix {
-    math_kind!();
+    computed_in!(Category::Math);
     fn title(&self) -> &'static str {
         "Mix"
     }
@@ -386,7 +371,7 @@ pub struct Clamp {
 }
 
 impl Definition for Clamp {
-    math_kind!();
+    computed_in!(Category::Math);
     fn title(&self) -> &'static str {
         "Clamp"
     }
@@ -442,7 +427,7 @@ pub struct Step {
 }
 
 impl Definition for Step {
-    math_kind!();
+    computed_in!(Category::Math);
     fn title(&self) -> &'static str {
         "Step"
     }
@@ -488,7 +473,7 @@ typed_settings!(Step, TYPES, menu[("Step", ValueType::Float)]);
 pub struct Smoothstep;
 
 impl Definition for Smoothstep {
-    math_kind!();
+    computed_in!(Category::Math);
     fn title(&self) -> &'static str {
         "Smoothstep"
     }
@@ -542,7 +527,7 @@ plain_catalogue!(Smoothstep);
 pub struct Remap;
 
 impl Definition for Remap {
-    math_kind!();
+    computed_in!(Category::Math);
     fn title(&self) -> &'static str {
         "Remap"
     }
@@ -608,7 +593,7 @@ pub struct Length {
 }
 
 impl Definition for Length {
-    math_kind!();
+    computed_in!(Category::Math);
     fn title(&self) -> &'static str {
         "Length"
     }
@@ -649,7 +634,7 @@ pub struct Dot {
 }
 
 impl Definition for Dot {
-    math_kind!();
+    computed_in!(Category::Math);
     fn title(&self) -> &'static str {
         "Dot"
     }
@@ -695,7 +680,7 @@ pub struct Normalize {
 }
 
 impl Definition for Normalize {
-    math_kind!();
+    computed_in!(Category::Math);
     fn title(&self) -> &'static str {
         "Normalize"
     }
@@ -743,7 +728,7 @@ pub struct Split {
 }
 
 impl Definition for Split {
-    math_kind!();
+    computed_in!(Category::Math);
     fn title(&self) -> &'static str {
         "Split"
     }
@@ -795,7 +780,7 @@ pub struct Combine {
 }
 
 impl Definition for Combine {
-    math_kind!();
+    computed_in!(Category::Math);
     fn title(&self) -> &'static str {
         "Combine"
     }

@@ -14,6 +14,29 @@
 //! the checks, codegen, the evaluator, the lint and the tests that enumerate
 //! [`NodeKind::examples`] pick it up.
 
+/// The parts of a definition for a kind that computes from its inputs alone (reads
+/// nothing of the surface, samples no lattice), in `category`; with `unchecked`, also
+/// that it has no settings to check.
+macro_rules! computed_in {
+    ($category:expr) => {
+        fn category(&self) -> Category {
+            $category
+        }
+        fn reads_surface(&self) -> bool {
+            false
+        }
+        fn basis(&self) -> Option<Basis> {
+            None
+        }
+    };
+    ($category:expr, unchecked) => {
+        computed_in!($category);
+        fn check(&self) -> Option<String> {
+            None
+        }
+    };
+}
+
 pub mod cpu;
 pub mod emit;
 mod file_form;

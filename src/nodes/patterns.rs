@@ -21,30 +21,12 @@ macro_rules! kinds {
 }
 pub(super) use kinds;
 
-/// The parts every pattern shares: no surface reads, no lattice, no settings to check.
-macro_rules! pattern {
-    () => {
-        fn category(&self) -> Category {
-            Category::Pattern
-        }
-        fn reads_surface(&self) -> bool {
-            false
-        }
-        fn basis(&self) -> Option<Basis> {
-            None
-        }
-        fn check(&self) -> Option<String> {
-            None
-        }
-    };
-}
-
 /// `0.5 + 0.5 * sin(frequency * x + distortion * turbulence)`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SineBand;
 
 impl Definition for SineBand {
-    pattern!();
+    computed_in!(Category::Pattern, unchecked);
     fn title(&self) -> &'static str {
         "Sine band"
     }
@@ -88,7 +70,7 @@ plain_catalogue!(SineBand);
 pub struct TriangleWave;
 
 impl Definition for TriangleWave {
-    pattern!();
+    computed_in!(Category::Pattern, unchecked);
     fn title(&self) -> &'static str {
         "Triangle wave"
     }
@@ -128,7 +110,7 @@ plain_catalogue!(TriangleWave);
 pub struct Tiles;
 
 impl Definition for Tiles {
-    pattern!();
+    computed_in!(Category::Pattern, unchecked);
     fn title(&self) -> &'static str {
         "Tiles"
     }
@@ -200,7 +182,7 @@ plain_catalogue!(Tiles);
 pub struct Rings;
 
 impl Definition for Rings {
-    pattern!();
+    computed_in!(Category::Pattern, unchecked);
     fn title(&self) -> &'static str {
         "Rings"
     }

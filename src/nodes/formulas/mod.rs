@@ -1,7 +1,14 @@
 //! CPU twins of the WGSL library in `shaders/`: the same formulas, generic over the
 //! precision (f32 like the GPU, f64 as the reference).
 
+pub mod colour;
 pub mod fields;
+pub mod gabor;
+#[cfg(test)]
+mod library_items;
 pub mod noise;
+pub mod octaves;
+pub mod ranges;
 pub mod real;
 pub mod shapes;
+pub mod worley_edge;
