@@ -57,6 +57,7 @@ mod math;
 mod noise;
 mod output;
 mod patterns;
+mod vectors;
 
 pub use cellular::Worley;
 pub use colour::ColorRamp;
@@ -64,8 +65,9 @@ pub use coordinates::DomainWarp;
 pub use fields::Layers;
 pub use fractal::{Fbm, FractalSum, Turbulence};
 pub use inputs::{Constant, Field};
-pub use math::{Clamp, Combine, Dot, Length, Math, Mix, Normalize, Split, Step, Unary};
+pub use math::{Clamp, Math, Mix, Step, Unary};
 pub use noise::{Noise, NoiseBump};
+pub use vectors::{Combine, Dot, Length, Normalize, Split};
 
 use cpu::Eval;
 use emit::Emit;
@@ -306,7 +308,7 @@ macro_rules! registry {
     };
 }
 
-registry!(@gather [] [] inputs coordinates noise fractal cellular patterns fields math colour output);
+registry!(@gather [] [] inputs coordinates noise fractal cellular patterns fields math vectors colour output);
 
 impl NodeKind {
     /// A short human-readable name (used for default labels and messages).
