@@ -65,6 +65,11 @@ fn veneer_hue_saturation_value(c: vec3f, hue_shift: f32, saturation: f32, value:
     return veneer_hsv_to_rgb(vec3f(h, s, v));
 }
 
+// The Hue/Saturation/Value node: the adjusted colour blended over `c` by `factor`.
+fn veneer_hue_saturation_value_mix(c: vec3f, hue_shift: f32, saturation: f32, value: f32, factor: f32) -> vec3f {
+    return veneer_colour_mix(c, veneer_hue_saturation_value(c, hue_shift, saturation, value), factor);
+}
+
 // Blender's Brightness/Contrast: max((1 + contrast) c + brightness - contrast / 2, 0) per
 // channel. The channels and the contrast are clamped to +-1e18 and the result to 3e38, so
 // no product or sum overflows into a NaN.

@@ -1,9 +1,10 @@
 //! Cellular noise: Worley's feature distances, one octave or fractal.
 
+use super::coordinates::plain_catalogue;
 use super::cpu::Eval;
 use super::emit::Emit;
 use super::formulas::real::{Real, V3, scale, splat};
-use super::formulas::{noise, shapes};
+use super::formulas::{noise, shapes, worley_edge};
 use super::interval::{self, Interval, Lanes};
 use super::pins::{FLOAT, POSITION, Signature, VEC3, f, input, output};
 use super::ranges::Ranges;
@@ -13,7 +14,10 @@ use serde::{Deserialize, Serialize};
 
 macro_rules! kinds {
     ($registry:ident @gather [$($units:tt)*] [$($configured:tt)*] $($rest:tt)*) => {
-        $registry!(@gather [$($units)*] [$($configured)* (Worley, cellular)] $($rest)*);
+        $registry!(@gather
+            [$($units)* (WorleyEdge, cellular)]
+            [$($configured)* (Worley, cellular)]
+            $($rest)*);
     };
 }
 pub(super) use kinds;
@@ -182,3 +186,54 @@ impl Catalogue for Worley {
             .collect()
     }
 }
+
+/// The distance to the nearest border between Worley cells (Quilez's two-pass Voronoi
+/// edges over the same PCG feature points as [`Worley`]): 0 on a border, growing
+/// towards the cell's feature point. Not F2 − F1, which only approximates it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WorleyEdge;
+
+impl Definition for WorleyEdge {
+    computed_in!(Category::Cellular, unchecked);
+    fn title(&self) -> &'static str {
+        "Voronoi distance to edge"
+    }
+    fn keywords(&self) -> &'static [&'static str] {
+        &[
+            "worley", "voronoi", "cells", "border", "cracks", "mortar", "edges",
+        ]
+    }
+    fn signature(&self) -> Signature {
+        Signature::new(
+            vec![
+                input("p", VEC3, POSITION),
+                input("scale", FLOAT, f(1.0)).soft(0.0, 50.0),
+                input("jitter", FLOAT, f(1.0)).limits(0.0, 1.0),
+            ],
+            vec![output("distance", FLOAT)],
+        )
+    }
+    fn emit(&self, io: &mut Emit) {
+        io.single(format!(
+            "veneer_worley_edge({} * {}, {})",
+            io.input("p"),
+            io.input("scale"),
+            io.input("jitter")
+        ));
+        io.uses("veneer_worley_edge");
+    }
+    fn ranges(&self, io: &mut Ranges) -> Vec<Lanes> {
+        let magnitude = io.reach("p") * io.float("scale").magnitude();
+        io.lattice(None, magnitude);
+        vec![interval::splat(Interval::UNIT)]
+    }
+}
+
+impl Evaluate for WorleyEdge {
+    fn eval<R: Real>(&self, io: &Eval<R>) -> Vec<V3<R>> {
+        let p = scale(io.input("p"), io.float("scale"));
+        vec![splat(worley_edge::worley_edge(p, io.float("jitter")))]
+    }
+}
+
+plain_catalogue!(WorleyEdge);

@@ -1,20 +1,27 @@
-//! Colour: ramps from a factor to a colour.
+//! Colour: ramps from a factor to a colour, adjustments (hue/saturation/value,
+//! brightness/contrast, gamma, invert, levels) and blend modes, as Blender's colour
+//! nodes compute them.
 
+use super::coordinates::plain_catalogue;
 use super::cpu::Eval;
 use super::emit::{Emit, float_literal, value_literal};
 use super::formulas::real::{Real, V3};
-use super::formulas::shapes;
-use super::interval::{Interval, Lanes};
-use super::pins::{COLOR, FLOAT, REQUIRED, Signature, input, output};
+use super::formulas::{colour, shapes};
+use super::interval::{self, Interval, Lanes};
+use super::pins::{COLOR, FLOAT, REQUIRED, Signature, f, input, output, rgb};
 use super::ranges::Ranges;
-use super::settings::{Basis, MAX_RAMP_STOPS, RampInterpolation, RampStop, Setting};
+use super::settings::{Basis, MAX_RAMP_STOPS, RampInterpolation, RampStop, Setting, choice};
 use super::value::Value;
 use super::{Catalogue, Category, Configure, Definition, Evaluate};
 use serde::{Deserialize, Serialize};
 
 macro_rules! kinds {
     ($registry:ident @gather [$($units:tt)*] [$($configured:tt)*] $($rest:tt)*) => {
-        $registry!(@gather [$($units)*] [$($configured)* (ColorRamp, colour)] $($rest)*);
+        $registry!(@gather
+            [$($units)* (HueSaturationValue, colour) (BrightnessContrast, colour) (Gamma, colour)
+                (Invert, colour) (Levels, colour)]
+            [$($configured)* (ColorRamp, colour) (Blend, colour)]
+            $($rest)*);
     };
 }
 pub(super) use kinds;
@@ -172,5 +179,273 @@ impl Catalogue for ColorRamp {
                 interpolation: RampInterpolation::Constant,
             },
         ]
+    }
+}
+
+/// Every lane of `a` and `b` within [0, 1].
+fn in_unit(lanes: &[Lanes]) -> bool {
+    lanes
+        .iter()
+        .flatten()
+        .all(|lane| lane.lo >= 0.0 && lane.hi <= 1.0)
+}
+
+/// The largest magnitude of any lane.
+fn magnitude(lanes: &[Lanes]) -> f64 {
+    lanes
+        .iter()
+        .flatten()
+        .fold(0.0f64, |m, lane| m.max(lane.magnitude()))
+}
+
+/// ±`bound` in every lane, capped at the finite f32 range the shaders clamp to.
+fn within(bound: f64) -> Lanes {
+    let bound = bound.min(3.0e38);
+    interval::splat(Interval::new(-bound, bound))
+}
+
+/// A colour adjustment: a library function of the colour and then its parameters, in
+/// pin order, with its CPU twin and output range.
+macro_rules! adjustment {
+    ($(#[$doc:meta])* $kind:ident, $title:literal, [$($keyword:literal),*], $function:literal,
+     [$($pin:expr),*], |$io:ident| $cpu:expr, |$ranges:ident| $range:expr) => {
+        $(#[$doc])*
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        pub struct $kind;
+
+        impl Definition for $kind {
+            computed_in!(Category::Colour, unchecked);
+            fn title(&self) -> &'static str {
+                $title
+            }
+            fn keywords(&self) -> &'static [&'static str] {
+                &[$($keyword),*]
+            }
+            fn signature(&self) -> Signature {
+                Signature::new(
+                    vec![input("color", COLOR, rgb(0.5, 0.5, 0.5)).limits(0.0, 1.0), $($pin),*],
+                    vec![output("color", COLOR)],
+                )
+            }
+            fn emit(&self, io: &mut Emit) {
+                io.call($function);
+            }
+            fn ranges(&self, $ranges: &mut Ranges) -> Vec<Lanes> {
+                vec![$range]
+            }
+        }
+
+        impl Evaluate for $kind {
+            fn eval<R: Real>(&self, $io: &Eval<R>) -> Vec<V3<R>> {
+                vec![$cpu]
+            }
+        }
+
+        plain_catalogue!($kind);
+    };
+}
+
+adjustment!(
+    /// Blender's Hue/Saturation/Value: the hue turned by `hue` turns (0 leaves it), the
+    /// saturation and value scaled, blended over the input by `factor`.
+    HueSaturationValue, "Hue/Saturation/Value", ["hsv", "hue", "saturation", "tint", "colour correction"],
+    "veneer_hue_saturation_value_mix",
+    [
+        input("hue", FLOAT, f(0.0)).soft(-0.5, 0.5),
+        input("saturation", FLOAT, f(1.0)).soft(0.0, 2.0),
+        input("value", FLOAT, f(1.0)).soft(0.0, 2.0),
+        input("factor", FLOAT, f(1.0)).limits(0.0, 1.0)
+    ],
+    |io| colour::hue_saturation_value_mix(
+        io.input("color"),
+        io.float("hue"),
+        io.float("saturation"),
+        io.float("value"),
+        io.float("factor"),
+    ),
+    |io| {
+        let color = io.input("color");
+        let scaled = magnitude(&[color]) * io.float("value").magnitude();
+        within(scaled.max(magnitude(&[color])))
+    }
+);
+
+adjustment!(
+    /// Blender's Brightness/Contrast: `max((1 + contrast) c + brightness - contrast / 2, 0)`.
+    BrightnessContrast, "Brightness/Contrast", ["bright", "contrast", "exposure", "colour correction"],
+    "veneer_brightness_contrast",
+    [
+        input("brightness", FLOAT, f(0.0)).soft(-1.0, 1.0),
+        input("contrast", FLOAT, f(0.0)).soft(-1.0, 1.0)
+    ],
+    |io| colour::brightness_contrast(io.input("color"), io.float("brightness"), io.float("contrast")),
+    |io| {
+        let (brightness, contrast) = (io.float("brightness"), io.float("contrast"));
+        let offset = brightness.sub(contrast.mul(Interval::point(0.5)));
+        io.input("color").map(|c| {
+            let y = c.mul(contrast.add(Interval::point(1.0))).add(offset);
+            Interval::new(y.lo.max(0.0), y.hi.max(0.0).min(3.0e38))
+        })
+    }
+);
+
+adjustment!(
+    /// Blender's Gamma: each positive channel raised to `gamma`.
+    Gamma, "Gamma", ["power", "curve", "midtones", "colour correction"],
+    "veneer_gamma",
+    [input("gamma", FLOAT, f(1.0)).soft(0.1, 4.0)],
+    |io| colour::gamma(io.input("color"), io.float("gamma")),
+    |io| {
+        let gamma = io.float("gamma");
+        io.input("color").map(|c| {
+            let raised = super::math::power_range(c, gamma);
+            Interval::new(c.lo.min(raised.lo), c.hi.max(raised.hi))
+        })
+    }
+);
+
+adjustment!(
+    /// Blender's Invert: the colour blended towards `1 - colour` by `factor`.
+    Invert, "Invert", ["negative", "complement", "one minus", "colour"],
+    "veneer_invert",
+    [input("factor", FLOAT, f(1.0)).limits(0.0, 1.0)],
+    |io| colour::invert(io.input("color"), io.float("factor")),
+    |io| io.input("color").map(|c| c.hull(Interval::new(1.0 - c.hi, 1.0 - c.lo)))
+);
+
+adjustment!(
+    /// Levels (Photoshop, Substance): each channel's place between the input black and
+    /// white points, curved by `gamma` (above 1 brightens the midtones), carried to the
+    /// output black and white points.
+    Levels, "Levels", ["input range", "output range", "black point", "white point", "colour correction"],
+    "veneer_levels",
+    [
+        input("in_black", FLOAT, f(0.0)).limits(0.0, 1.0),
+        input("in_white", FLOAT, f(1.0)).limits(0.0, 1.0),
+        input("gamma", FLOAT, f(1.0)).soft(0.1, 4.0),
+        input("out_black", FLOAT, f(0.0)).limits(0.0, 1.0),
+        input("out_white", FLOAT, f(1.0)).limits(0.0, 1.0)
+    ],
+    |io| colour::levels(
+        io.input("color"),
+        io.float("in_black"),
+        io.float("in_white"),
+        io.float("gamma"),
+        io.float("out_black"),
+        io.float("out_white"),
+    ),
+    |io| interval::splat(io.float("out_black").hull(io.float("out_white")))
+);
+
+/// How [`Blend`] combines two colours (Blender's MixRGB modes).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[cfg_attr(feature = "arbitrary", derive(arbitrary::Arbitrary))]
+pub enum BlendMode {
+    Multiply,
+    Screen,
+    Overlay,
+    SoftLight,
+    Difference,
+}
+
+impl BlendMode {
+    /// Every mode, in menu order.
+    pub const ALL: [BlendMode; 5] = [
+        BlendMode::Multiply,
+        BlendMode::Screen,
+        BlendMode::Overlay,
+        BlendMode::SoftLight,
+        BlendMode::Difference,
+    ];
+
+    /// The suffix of the mode's WGSL function (`veneer_blend_<suffix>`).
+    fn suffix(self) -> &'static str {
+        match self {
+            BlendMode::Multiply => "multiply",
+            BlendMode::Screen => "screen",
+            BlendMode::Overlay => "overlay",
+            BlendMode::SoftLight => "soft_light",
+            BlendMode::Difference => "difference",
+        }
+    }
+}
+
+/// Two colours combined by a blend mode, blended over the first by `factor`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "arbitrary", derive(arbitrary::Arbitrary))]
+pub struct Blend {
+    pub mode: BlendMode,
+}
+
+impl Definition for Blend {
+    computed_in!(Category::Colour, unchecked);
+    fn title(&self) -> &'static str {
+        "Blend"
+    }
+    fn keywords(&self) -> &'static [&'static str] {
+        &[
+            "mix rgb",
+            "multiply",
+            "screen",
+            "overlay",
+            "soft light",
+            "difference",
+            "layer",
+        ]
+    }
+    fn signature(&self) -> Signature {
+        Signature::new(
+            vec![
+                input("a", COLOR, rgb(0.5, 0.5, 0.5)).limits(0.0, 1.0),
+                input("b", COLOR, rgb(0.5, 0.5, 0.5)).limits(0.0, 1.0),
+                input("factor", FLOAT, f(1.0)).limits(0.0, 1.0),
+            ],
+            vec![output("color", COLOR)],
+        )
+    }
+    fn emit(&self, io: &mut Emit) {
+        io.call(&format!("veneer_blend_{}", self.mode.suffix()));
+    }
+    fn ranges(&self, io: &mut Ranges) -> Vec<Lanes> {
+        let colours = [io.input("a"), io.input("b")];
+        if in_unit(&colours) {
+            return vec![interval::splat(Interval::UNIT)];
+        }
+        // |(1 - 2b) a² + 2ab| and the other modes stay below 3 (1 + m)³.
+        vec![within(3.0 * (1.0 + magnitude(&colours)).powi(3))]
+    }
+}
+
+impl Evaluate for Blend {
+    fn eval<R: Real>(&self, io: &Eval<R>) -> Vec<V3<R>> {
+        let blend = match self.mode {
+            BlendMode::Multiply => colour::blend_multiply,
+            BlendMode::Screen => colour::blend_screen,
+            BlendMode::Overlay => colour::blend_overlay,
+            BlendMode::SoftLight => colour::blend_soft_light,
+            BlendMode::Difference => colour::blend_difference,
+        };
+        vec![blend(io.input("a"), io.input("b"), io.float("factor"))]
+    }
+}
+
+impl Configure for Blend {
+    fn settings(&mut self) -> Vec<Setting<'_>> {
+        vec![choice("mode", &mut self.mode, &BlendMode::ALL)]
+    }
+}
+
+impl Catalogue for Blend {
+    fn menu() -> Vec<(String, Self)> {
+        BlendMode::ALL
+            .into_iter()
+            .map(|mode| (format!("Blend ({mode:?})"), Blend { mode }))
+            .collect()
+    }
+    fn examples() -> Vec<Self> {
+        BlendMode::ALL
+            .into_iter()
+            .map(|mode| Blend { mode })
+            .collect()
     }
 }

@@ -3,7 +3,7 @@
 use super::cpu::Eval;
 use super::emit::{Detail, Emit, float_literal};
 use super::formulas::real::{Real, V3, scale, splat};
-use super::formulas::shapes;
+use super::formulas::{octaves, shapes};
 use super::interval::{Interval, Lanes};
 use super::pins::{FLOAT, POSITION, Signature, VEC3, f, input, output};
 use super::ranges::Ranges;
@@ -38,6 +38,11 @@ macro_rules! fractal_kind {
             pub basis: Basis,
             pub octaves: u32,
             pub normalize: bool,
+            /// Each octave turned by a fixed irrational rotation, so that no octave's
+            /// lattice lines up with the next (fewer directional artefacts). Graph
+            /// files leave it out when off.
+            #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+            pub rotate: bool,
         }
 
         impl Definition for $kind {
@@ -63,7 +68,7 @@ macro_rules! fractal_kind {
                 check_octaves(self.octaves)
             }
             fn emit(&self, io: &mut Emit) {
-                emit($mode, self.basis, self.octaves, self.normalize, io);
+                emit($mode, self.basis, self.octaves, self.normalize, self.rotate, io);
             }
             fn ranges(&self, io: &mut Ranges) -> Vec<Lanes> {
                 ranges($mode, self.basis, self.octaves, self.normalize, io)
@@ -72,7 +77,8 @@ macro_rules! fractal_kind {
 
         impl Evaluate for $kind {
             fn eval<R: Real>(&self, io: &Eval<R>) -> Vec<V3<R>> {
-                vec![splat(shapes::fractal(
+                let sum = if self.rotate { octaves::fractal_rotated } else { shapes::fractal };
+                vec![splat(sum(
                     $mode,
                     self.basis,
                     scale(io.input("p"), io.float("scale")),
@@ -98,6 +104,10 @@ macro_rules! fractal_kind {
                         label: "normalize",
                         value: &mut self.normalize,
                     },
+                    Setting::Toggle {
+                        label: "rotate octaves",
+                        value: &mut self.rotate,
+                    },
                 ]
             }
         }
@@ -107,7 +117,7 @@ macro_rules! fractal_kind {
                 Basis::ALL
                     .into_iter()
                     .map(|basis| {
-                        let settings = $kind { basis, octaves: $octaves, normalize: false };
+                        let settings = $kind { basis, octaves: $octaves, normalize: false, rotate: false };
                         (format!("{} ({})", $title, basis.menu_name()), settings)
                     })
                     .collect()
@@ -116,11 +126,14 @@ macro_rules! fractal_kind {
                 Basis::ALL
                     .into_iter()
                     .flat_map(|basis| {
-                        [(3, false), (4, true)].map(|(octaves, normalize)| $kind {
-                            basis,
-                            octaves,
-                            normalize,
-                        })
+                        [(3, false, false), (4, true, false), (4, false, true)].map(
+                            |(octaves, normalize, rotate)| $kind {
+                                basis,
+                                octaves,
+                                normalize,
+                                rotate,
+                            },
+                        )
                     })
                     .collect()
             }
@@ -157,8 +170,16 @@ fn signature(amplitude: f64) -> Signature {
     )
 }
 
-fn emit(mode: FractalMode, basis: Basis, octaves: u32, normalize: bool, io: &mut Emit) {
-    let function = format!("veneer_{}_{}", mode.name(), basis.suffix());
+fn emit(
+    mode: FractalMode,
+    basis: Basis,
+    octaves: u32,
+    normalize: bool,
+    rotate: bool,
+    io: &mut Emit,
+) {
+    let turned = if rotate { "_rotated" } else { "" };
+    let function = format!("veneer_{}{turned}_{}", mode.name(), basis.suffix());
     let q = format!("{} * {}", io.input("p"), io.input("scale"));
     let lacunarity = io.input("lacunarity");
     let cutoff = match io.detail {

@@ -1,12 +1,11 @@
 //! Math: arithmetic, interpolation, clamping and vector operations.
 
-use super::coordinates::plain_catalogue;
 use super::cpu::Eval;
 use super::emit::Emit;
-use super::formulas::real::{Real, V3, map, splat, zip};
+use super::formulas::real::{Real, V3, map, zip};
 use super::formulas::shapes;
-use super::interval::{self, Interval, Lanes};
-use super::pins::{FLOAT, REQUIRED, Signature, f, input, output, splat as splat_default};
+use super::interval::{Interval, Lanes};
+use super::pins::{REQUIRED, Signature, input, output, splat as splat_default};
 use super::ranges::{Ranges, lanewise};
 use super::settings::{Basis, MathOp, Setting, TYPES, UnaryOp, choice};
 use super::value::ValueType;
@@ -16,8 +15,8 @@ use serde::{Deserialize, Serialize};
 macro_rules! kinds {
     ($registry:ident @gather [$($units:tt)*] [$($configured:tt)*] $($rest:tt)*) => {
         $registry!(@gather
-            [$($units)* (Smoothstep, math) (Remap, math)]
-            [$($configured)* (Math, math) (Unary, math) (Mix, math) (Clamp, math) (Step, math)]
+            [$($units)*]
+            [$($configured)* (Math, math) (Unary, math)]
             $($rest)*);
     };
 }
@@ -137,7 +136,7 @@ impl Definition for Math {
 }
 
 /// The range of `veneer_safe_pow` over a base and an exponent range.
-fn power_range(base: Interval, exponent: Interval) -> Interval {
+pub(super) fn power_range(base: Interval, exponent: Interval) -> Interval {
     let base = base.clamp(0.0, f64::MAX);
     let corners = [
         base.lo.powf(exponent.lo),
@@ -298,281 +297,3 @@ impl Catalogue for Unary {
             .collect()
     }
 }
-
-/// Linear interpolation `a + (b - a) * factor`.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[cfg_attr(feature = "arbitrary", derive(arbitrary::Arbitrary))]
-pub struct Mix {
-    pub ty: ValueType,
-}
-
-impl Definition for Mix {
-    computed_in!(Category::Math);
-    fn title(&self) -> &'static str {
-        "Mix"
-    }
-    fn keywords(&self) -> &'static [&'static str] {
-        &["lerp", "blend", "interpolate", "mix rgb"]
-    }
-    fn signature(&self) -> Signature {
-        Signature::new(
-            vec![
-                input("a", self.ty, splat_default(self.ty, 0.0)).soft(0.0, 1.0),
-                input("b", self.ty, splat_default(self.ty, 1.0)).soft(0.0, 1.0),
-                input("factor", FLOAT, f(0.5)).soft(0.0, 1.0),
-            ],
-            vec![output("result", self.ty)],
-        )
-    }
-    fn check(&self) -> Option<String> {
-        None
-    }
-    fn emit(&self, io: &mut Emit) {
-        io.single(format!(
-            "mix({}, {}, {})",
-            io.input("a"),
-            io.input("b"),
-            io.input("factor")
-        ));
-    }
-    fn ranges(&self, io: &mut Ranges) -> Vec<Lanes> {
-        let factor = io.float("factor");
-        vec![lanewise(&io.input("a"), &io.input("b"), |a, b| {
-            a.add(b.sub(a).mul(factor))
-        })]
-    }
-}
-
-impl Evaluate for Mix {
-    fn eval<R: Real>(&self, io: &Eval<R>) -> Vec<V3<R>> {
-        vec![shapes::mix3(
-            io.input("a"),
-            io.input("b"),
-            io.float("factor"),
-        )]
-    }
-}
-
-typed_settings!(Mix, TYPES, menu [("Mix", ValueType::Float), ("Mix colours", ValueType::Color)]);
-
-/// Clamp every component between `min` and `max`.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[cfg_attr(feature = "arbitrary", derive(arbitrary::Arbitrary))]
-pub struct Clamp {
-    pub ty: ValueType,
-}
-
-impl Definition for Clamp {
-    computed_in!(Category::Math);
-    fn title(&self) -> &'static str {
-        "Clamp"
-    }
-    fn keywords(&self) -> &'static [&'static str] {
-        &["limit", "saturate", "minimum", "maximum"]
-    }
-    fn signature(&self) -> Signature {
-        Signature::new(
-            vec![
-                input("x", self.ty, REQUIRED),
-                input("min", FLOAT, f(0.0)),
-                input("max", FLOAT, f(1.0)),
-            ],
-            vec![output("result", self.ty)],
-        )
-    }
-    fn check(&self) -> Option<String> {
-        None
-    }
-    fn emit(&self, io: &mut Emit) {
-        let t = self.ty.wgsl();
-        io.single(format!(
-            "min(max({}, {t}({})), {t}({}))",
-            io.input("x"),
-            io.input("min"),
-            io.input("max")
-        ));
-    }
-    fn ranges(&self, io: &mut Ranges) -> Vec<Lanes> {
-        let (low, high) = (io.float("min"), io.float("max"));
-        vec![
-            io.input("x").map(|x| {
-                Interval::new(x.lo.max(low.lo).min(high.hi), x.hi.min(high.hi).max(low.lo))
-            }),
-        ]
-    }
-}
-
-impl Evaluate for Clamp {
-    fn eval<R: Real>(&self, io: &Eval<R>) -> Vec<V3<R>> {
-        let (low, high) = (io.float("min"), io.float("max"));
-        vec![map(io.input("x"), |x| x.max(low).min(high))]
-    }
-}
-
-typed_settings!(Clamp, TYPES, menu[("Clamp", ValueType::Float)]);
-
-/// 0 below `edge`, 1 from it on.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[cfg_attr(feature = "arbitrary", derive(arbitrary::Arbitrary))]
-pub struct Step {
-    pub ty: ValueType,
-}
-
-impl Definition for Step {
-    computed_in!(Category::Math);
-    fn title(&self) -> &'static str {
-        "Step"
-    }
-    fn keywords(&self) -> &'static [&'static str] {
-        &["threshold", "greater than", "compare", "mask"]
-    }
-    fn signature(&self) -> Signature {
-        Signature::new(
-            vec![
-                input("edge", FLOAT, f(0.5)).soft(0.0, 1.0),
-                input("x", self.ty, REQUIRED),
-            ],
-            vec![output("result", self.ty)],
-        )
-    }
-    fn check(&self) -> Option<String> {
-        None
-    }
-    fn emit(&self, io: &mut Emit) {
-        io.single(format!(
-            "step({}({}), {})",
-            self.ty.wgsl(),
-            io.input("edge"),
-            io.input("x")
-        ));
-    }
-    fn ranges(&self, _: &mut Ranges) -> Vec<Lanes> {
-        super::unit_range()
-    }
-}
-
-impl Evaluate for Step {
-    fn eval<R: Real>(&self, io: &Eval<R>) -> Vec<V3<R>> {
-        let edge = io.float("edge");
-        vec![map(io.input("x"), |x| R::step(edge, x))]
-    }
-}
-
-typed_settings!(Step, TYPES, menu[("Step", ValueType::Float)]);
-
-/// Hermite smoothstep, well defined when the edges are equal or reversed.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Smoothstep;
-
-impl Definition for Smoothstep {
-    computed_in!(Category::Math);
-    fn title(&self) -> &'static str {
-        "Smoothstep"
-    }
-    fn keywords(&self) -> &'static [&'static str] {
-        &["smooth", "ramp", "hermite", "threshold", "soft step"]
-    }
-    fn signature(&self) -> Signature {
-        Signature::new(
-            vec![
-                input("edge0", FLOAT, f(0.0)).soft(0.0, 1.0),
-                input("edge1", FLOAT, f(1.0)).soft(0.0, 1.0),
-                input("x", FLOAT, REQUIRED),
-            ],
-            vec![output("result", FLOAT)],
-        )
-    }
-    fn check(&self) -> Option<String> {
-        None
-    }
-    fn emit(&self, io: &mut Emit) {
-        io.call("veneer_smoothstep");
-    }
-    fn ranges(&self, io: &mut Ranges) -> Vec<Lanes> {
-        match (io.constant("edge0"), io.constant("edge1")) {
-            (Some(a), Some(b)) if a == b => io.warn(format!(
-                "edge0 = edge1 = {a}: a hard step, not a smooth one"
-            )),
-            (Some(a), Some(b)) if a > b => io.warn(format!(
-                "edge0 {a} > edge1 {b}: the ramp falls instead of rising"
-            )),
-            _ => {}
-        }
-        super::unit_range()
-    }
-}
-
-impl Evaluate for Smoothstep {
-    fn eval<R: Real>(&self, io: &Eval<R>) -> Vec<V3<R>> {
-        vec![splat(shapes::smoothstep(
-            io.float("edge0"),
-            io.float("edge1"),
-            io.float("x"),
-        ))]
-    }
-}
-
-plain_catalogue!(Smoothstep);
-
-/// Linear map from [from_min, from_max] to [to_min, to_max].
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Remap;
-
-impl Definition for Remap {
-    computed_in!(Category::Math);
-    fn title(&self) -> &'static str {
-        "Remap"
-    }
-    fn keywords(&self) -> &'static [&'static str] {
-        &["map range", "rescale", "fit", "normalize range"]
-    }
-    fn signature(&self) -> Signature {
-        Signature::new(
-            vec![
-                input("x", FLOAT, REQUIRED),
-                input("from_min", FLOAT, f(0.0)),
-                input("from_max", FLOAT, f(1.0)),
-                input("to_min", FLOAT, f(0.0)),
-                input("to_max", FLOAT, f(1.0)),
-            ],
-            vec![output("result", FLOAT)],
-        )
-    }
-    fn check(&self) -> Option<String> {
-        None
-    }
-    fn emit(&self, io: &mut Emit) {
-        io.call("veneer_remap");
-    }
-    fn ranges(&self, io: &mut Ranges) -> Vec<Lanes> {
-        if let (Some(a), Some(b)) = (io.constant("from_min"), io.constant("from_max"))
-            && a == b
-        {
-            io.warn(format!(
-                "from_min = from_max = {a}: the result is to_min everywhere"
-            ));
-        }
-        let (from_min, to_min) = (io.float("from_min"), io.float("to_min"));
-        let t = io
-            .float("x")
-            .sub(from_min)
-            .div(io.float("from_max").sub(from_min));
-        vec![interval::splat(
-            to_min.add(t.mul(io.float("to_max").sub(to_min))),
-        )]
-    }
-}
-
-impl Evaluate for Remap {
-    fn eval<R: Real>(&self, io: &Eval<R>) -> Vec<V3<R>> {
-        vec![splat(shapes::remap(
-            io.float("x"),
-            io.float("from_min"),
-            io.float("from_max"),
-            io.float("to_min"),
-            io.float("to_max"),
-        ))]
-    }
-}
-
-plain_catalogue!(Remap);

@@ -53,6 +53,7 @@ mod coordinates;
 mod fields;
 mod fractal;
 mod inputs;
+mod mapping;
 mod math;
 mod noise;
 mod output;
@@ -60,12 +61,13 @@ mod patterns;
 mod vectors;
 
 pub use cellular::Worley;
-pub use colour::ColorRamp;
+pub use colour::{Blend, BlendMode, ColorRamp};
 pub use coordinates::DomainWarp;
 pub use fields::Layers;
 pub use fractal::{Fbm, FractalSum, Turbulence};
 pub use inputs::{Constant, Field};
-pub use math::{Clamp, Math, Mix, Step, Unary};
+pub use mapping::{Clamp, MapRange, MapRangeMode, Mix, Step};
+pub use math::{Math, Unary};
 pub use noise::{Noise, NoiseBump};
 pub use vectors::{Combine, Dot, Length, Normalize, Split};
 
@@ -308,7 +310,7 @@ macro_rules! registry {
     };
 }
 
-registry!(@gather [] [] inputs coordinates noise fractal cellular patterns fields math vectors colour output);
+registry!(@gather [] [] inputs coordinates noise fractal cellular patterns fields math mapping vectors colour output);
 
 impl NodeKind {
     /// A short human-readable name (used for default labels and messages).

@@ -1,11 +1,12 @@
 //! Noise: one octave of lattice noise, and its gradient as a bump.
 
+use super::coordinates::plain_catalogue;
 use super::cpu::Eval;
 use super::emit::Emit;
 use super::formulas::real::{Real, V3, scale, splat};
-use super::formulas::{fields, noise};
+use super::formulas::{fields, gabor, noise};
 use super::interval::{self, Interval, Lanes};
-use super::pins::{FLOAT, POSITION, Signature, VEC3, f, input, output};
+use super::pins::{COLOR, FLOAT, POSITION, Signature, VEC3, f, input, output, v3};
 use super::ranges::Ranges;
 use super::settings::{Basis, Setting, choice};
 use super::{Catalogue, Category, Configure, Definition, Evaluate};
@@ -14,7 +15,7 @@ use serde::{Deserialize, Serialize};
 macro_rules! kinds {
     ($registry:ident @gather [$($units:tt)*] [$($configured:tt)*] $($rest:tt)*) => {
         $registry!(@gather
-            [$($units)*]
+            [$($units)* (WhiteNoise, noise) (ValueGradientNoise, noise) (Gabor, noise)]
             [$($configured)* (Noise, noise) (NoiseBump, noise)]
             $($rest)*);
     };
@@ -197,3 +198,167 @@ impl Catalogue for NoiseBump {
             .collect()
     }
 }
+
+/// Records the lattice hazards of a PCG-hashed noise sampled at `p * scale`.
+fn pcg_lattice(io: &mut Ranges) {
+    let magnitude = io.reach("p") * io.float("scale").magnitude();
+    io.lattice(None, magnitude);
+}
+
+/// White noise (seed 003 §3.2): one random value per lattice cell of `p * scale`, and a
+/// random colour whose red is that value.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WhiteNoise;
+
+impl Definition for WhiteNoise {
+    computed_in!(Category::Noise, unchecked);
+    fn title(&self) -> &'static str {
+        "White noise"
+    }
+    fn keywords(&self) -> &'static [&'static str] {
+        &["random", "hash", "per cell", "cell colour", "dither"]
+    }
+    fn signature(&self) -> Signature {
+        Signature::new(
+            vec![
+                input("p", VEC3, POSITION),
+                input("scale", FLOAT, f(1.0)).soft(0.0, 50.0),
+            ],
+            vec![output("value", FLOAT), output("color", COLOR)],
+        )
+    }
+    fn emit(&self, io: &mut Emit) {
+        io.uses("veneer_white_noise_color");
+        io.bind(
+            "vec3f",
+            format!(
+                "veneer_white_noise_color({} * {})",
+                io.input("p"),
+                io.input("scale")
+            ),
+        );
+        let name = io.name();
+        io.outputs(vec![format!("{name}.x"), name.to_string()]);
+    }
+    fn ranges(&self, io: &mut Ranges) -> Vec<Lanes> {
+        pcg_lattice(io);
+        vec![interval::splat(Interval::UNIT); 2]
+    }
+}
+
+impl Evaluate for WhiteNoise {
+    fn eval<R: Real>(&self, io: &Eval<R>) -> Vec<V3<R>> {
+        let color = gabor::white_noise_color(scale(io.input("p"), io.float("scale")));
+        vec![splat(color[0]), color]
+    }
+}
+
+plain_catalogue!(WhiteNoise);
+
+/// Value-gradient noise (seed 003 §3.2): the mean of PCG value noise and gradient noise,
+/// in [0, 1].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ValueGradientNoise;
+
+impl Definition for ValueGradientNoise {
+    computed_in!(Category::Noise, unchecked);
+    fn title(&self) -> &'static str {
+        "Value-gradient noise"
+    }
+    fn keywords(&self) -> &'static [&'static str] {
+        &["perlin", "value", "gradient", "lattice", "texture"]
+    }
+    fn signature(&self) -> Signature {
+        Signature::new(
+            vec![
+                input("p", VEC3, POSITION),
+                input("scale", FLOAT, f(1.0)).soft(0.0, 50.0),
+            ],
+            vec![output("value", FLOAT)],
+        )
+    }
+    fn emit(&self, io: &mut Emit) {
+        io.single(format!(
+            "veneer_noise_value_gradient({} * {})",
+            io.input("p"),
+            io.input("scale")
+        ));
+        io.uses("veneer_noise_value_gradient");
+    }
+    fn ranges(&self, io: &mut Ranges) -> Vec<Lanes> {
+        pcg_lattice(io);
+        super::unit_range()
+    }
+}
+
+impl Evaluate for ValueGradientNoise {
+    fn eval<R: Real>(&self, io: &Eval<R>) -> Vec<V3<R>> {
+        let p = scale(io.input("p"), io.float("scale"));
+        vec![splat(gabor::value_gradient(p))]
+    }
+}
+
+plain_catalogue!(ValueGradientNoise);
+
+/// Gabor noise (Lagae et al. 2009, sparse convolution of Gabor kernels, as Blender's
+/// Gabor texture): stripes of `frequency` per unit, all along `orientation` when
+/// `anisotropy` is 1, in random directions when it is 0 (or the orientation is zero).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Gabor;
+
+impl Definition for Gabor {
+    computed_in!(Category::Noise, unchecked);
+    fn title(&self) -> &'static str {
+        "Gabor noise"
+    }
+    fn keywords(&self) -> &'static [&'static str] {
+        &[
+            "sparse convolution",
+            "anisotropic",
+            "brushed",
+            "fibres",
+            "stripes",
+            "noise",
+        ]
+    }
+    fn signature(&self) -> Signature {
+        Signature::new(
+            vec![
+                input("p", VEC3, POSITION),
+                input("scale", FLOAT, f(1.0)).soft(0.0, 50.0),
+                input("frequency", FLOAT, f(2.0)).soft(0.0, 10.0),
+                input("anisotropy", FLOAT, f(1.0)).limits(0.0, 1.0),
+                input("orientation", VEC3, v3(1.0, 0.0, 0.0)),
+            ],
+            vec![output("value", FLOAT)],
+        )
+    }
+    fn emit(&self, io: &mut Emit) {
+        io.single(format!(
+            "veneer_gabor({} * {}, {}, {}, {})",
+            io.input("p"),
+            io.input("scale"),
+            io.input("frequency"),
+            io.input("anisotropy"),
+            io.input("orientation")
+        ));
+        io.uses("veneer_gabor");
+    }
+    fn ranges(&self, io: &mut Ranges) -> Vec<Lanes> {
+        pcg_lattice(io);
+        super::unit_range()
+    }
+}
+
+impl Evaluate for Gabor {
+    fn eval<R: Real>(&self, io: &Eval<R>) -> Vec<V3<R>> {
+        vec![splat(gabor::gabor(
+            scale(io.input("p"), io.float("scale")),
+            io.float("frequency"),
+            io.float("anisotropy"),
+            io.input("orientation"),
+        ))]
+    }
+}
+
+plain_catalogue!(Gabor);

@@ -74,6 +74,7 @@ pub fn precision(ctx: &Context) -> Result<Section, String> {
             basis,
             octaves: 6,
             normalize: true,
+            rotate: false,
         });
         cases.push((format!("fBm 6 ({basis:?})"), single_node(fbm, 2.0), square));
     }
@@ -182,6 +183,7 @@ pub fn hashes(ctx: &Context) -> Result<Section, String> {
                 basis,
                 octaves: 8,
                 normalize: true,
+                rotate: false,
             }),
             1.0,
         );
@@ -260,12 +262,14 @@ pub fn octaves(ctx: &Context) -> Result<Section, String> {
                 basis,
                 octaves,
                 normalize: false,
+                rotate: false,
             })
         } else {
             NodeKind::Fbm(Fbm {
                 basis,
                 octaves,
                 normalize: false,
+                rotate: false,
             })
         }
     };
@@ -331,6 +335,7 @@ pub fn detail(ctx: &Context) -> Result<Section, String> {
             basis: Basis::Gradient,
             octaves: 8,
             normalize: true,
+            rotate: false,
         }),
         1.0,
     );

@@ -24,6 +24,7 @@ fn pcg_graph() -> Graph {
             basis: Basis::ValuePcg,
             octaves: 4,
             normalize: true,
+            rotate: false,
         }),
     );
     g.connect(warp, "p", fbm, "p");
@@ -33,6 +34,7 @@ fn pcg_graph() -> Graph {
             basis: Basis::Simplex,
             octaves: 3,
             normalize: false,
+            rotate: false,
         }),
     );
     g.set_input(turbulence, "scale", Value::Float(1.7));

@@ -16,6 +16,7 @@ fn fbm_graph() -> Graph {
             basis: Basis::Gradient,
             octaves: 8,
             normalize: true,
+            rotate: false,
         }),
     );
     graph.set_input(fbm, "scale", Value::Float(1.0));

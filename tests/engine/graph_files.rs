@@ -123,6 +123,7 @@ fn out_of_range_settings_and_unknown_pins_are_errors() {
             basis: veneer::graph::Basis::Gradient,
             octaves: 65,
             normalize: false,
+            rotate: false,
         }),
     );
     let messages: Vec<String> = veneer::graph::check(&graph)

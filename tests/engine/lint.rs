@@ -57,6 +57,7 @@ fn fractal_parameters_and_octave_budgets() {
         basis: Basis::ValuePcg,
         octaves: 6,
         normalize: false,
+        rotate: false,
     }));
     graph.set_input(node, "gain", Value::Float(1.2));
     assert_lint(&graph, node, "does not converge");
@@ -67,12 +68,14 @@ fn fractal_parameters_and_octave_budgets() {
         basis: Basis::Gradient,
         octaves: 64,
         normalize: true,
+        rotate: false,
     }));
     assert_lint(&graph, node, "past f32's integer precision");
     let (graph, _) = with_node(NodeKind::Fbm(Fbm {
         basis: Basis::Gradient,
         octaves: 16,
         normalize: true,
+        rotate: false,
     }));
     assert!(
         lints(&graph).is_empty(),

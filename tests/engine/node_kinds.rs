@@ -60,7 +60,8 @@ fn sources(graph: &mut Graph) -> Sources {
     }
 }
 
-/// A graph showing `kind`'s outputs as the albedo.
+/// A graph showing `kind`'s outputs as the albedo (a lone output as it is, several as
+/// their first three channels).
 fn graph_for(kind: &NodeKind) -> Graph {
     let mut graph = Graph::default();
     let sources = sources(&mut graph);
@@ -71,7 +72,7 @@ fn graph_for(kind: &NodeKind) -> Graph {
     }
     for (index, pin) in signature.inputs.iter().enumerate() {
         let driven = matches!(pin.default, PinDefault::Required | PinDefault::Position)
-            || ["a", "b", "factor", "value"].contains(&pin.name)
+            || ["a", "b", "factor", "value", "color"].contains(&pin.name)
             || matches!(kind, NodeKind::Combine(Combine { .. }));
         if !driven {
             continue;
@@ -97,17 +98,19 @@ fn graph_for(kind: &NodeKind) -> Graph {
         );
         let mut channels = Vec::new();
         for output in outputs {
-            if output.ty == ValueType::Vec2 {
+            if output.ty == ValueType::Float {
+                channels.push((node, output.name));
+            } else {
                 let split = graph.add(
                     &format!("{} parts", output.name),
-                    NodeKind::Split(Split {
-                        ty: ValueType::Vec2,
-                    }),
+                    NodeKind::Split(Split { ty: output.ty }),
                 );
                 graph.connect(node, output.name, split, "v");
-                channels.extend([(split, "x"), (split, "y")]);
-            } else {
-                channels.push((node, output.name));
+                channels.extend(
+                    [(split, "x"), (split, "y"), (split, "z")]
+                        .iter()
+                        .take(output.ty.width()),
+                );
             }
         }
         for ((from, pin), channel) in channels.into_iter().zip(["x", "y", "z"]) {
@@ -317,6 +320,7 @@ fn named_degenerate_cases_stay_finite() {
         basis: Basis::Gradient,
         octaves: 64,
         normalize: true,
+        rotate: false,
     }));
     for p in [[0.3, 0.1, 0.7], [1.0e3, 0.0, -1.0e3], [1.0e7, 1.0e7, 1.0e7]] {
         assert!(finite(&graph, p), "64-octave fBm at {p:?}");

@@ -77,6 +77,21 @@ pub fn hue_saturation_value<R: Real>(c: V3<R>, hue_shift: R, saturation: R, valu
     hsv_to_rgb([h, s, v])
 }
 
+/// `veneer_hue_saturation_value_mix`: the adjusted colour blended over `c` by `factor`.
+pub fn hue_saturation_value_mix<R: Real>(
+    c: V3<R>,
+    hue_shift: R,
+    saturation: R,
+    value: R,
+    factor: R,
+) -> V3<R> {
+    colour_mix(
+        c,
+        hue_saturation_value(c, hue_shift, saturation, value),
+        factor,
+    )
+}
+
 /// `veneer_brightness_contrast`: Blender's max((1 + contrast) c + brightness - contrast / 2, 0).
 pub fn brightness_contrast<R: Real>(c: V3<R>, brightness: R, contrast: R) -> V3<R> {
     let limit = R::c(1.0e18);
