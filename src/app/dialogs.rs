@@ -158,9 +158,9 @@ impl Dialog {
                     ui.heading("Export shader");
                     ui.label("veneer_material for another engine; non-WGSL targets add the veneer_fragment entry point.");
                     let before = *target;
-                    let selected = Target::ALL.iter().find(|(t, _)| t == target).map(|(_, n)| *n).unwrap_or_default();
+                    let selected = target.name();
                     egui::ComboBox::from_label("language").selected_text(selected).show_ui(ui, |ui| {
-                        for (option, name) in Target::ALL {
+                        for (option, name, _) in Target::ALL {
                             ui.selectable_value(target, option, name);
                         }
                     });

@@ -6,23 +6,6 @@ use std::path::PathBuf;
 use veneer::codegen::ParamMode;
 use veneer::codegen::export::{Target, export};
 
-/// Shader languages `veneer compile` writes.
-#[derive(Clone, Copy, ValueEnum)]
-pub enum TargetArg {
-    /// WGSL module (the DESIGN contract).
-    Wgsl,
-    /// GLSL 450 core fragment shader.
-    Glsl,
-    /// GLSL ES 3.00 fragment shader.
-    GlslEs,
-    /// HLSL, shader model 5.1.
-    Hlsl,
-    /// Metal Shading Language 2.0.
-    Msl,
-    /// SPIR-V binary.
-    Spv,
-}
-
 /// How parameters appear in the output.
 #[derive(Clone, Copy, ValueEnum)]
 pub enum ParamsArg {
@@ -38,7 +21,7 @@ pub struct CompileArgs {
     graph: PathBuf,
     /// Shader language of the output.
     #[arg(long, value_enum, default_value = "wgsl")]
-    target: TargetArg,
+    target: Target,
     /// Parameters baked as constants or gathered in a uniform block.
     #[arg(long, value_enum, default_value = "baked")]
     params: ParamsArg,
@@ -49,14 +32,7 @@ pub struct CompileArgs {
 
 pub fn run(args: CompileArgs) -> Result<(), Failure> {
     let graph = load_graph(&args.graph)?;
-    let target = match args.target {
-        TargetArg::Wgsl => Target::Wgsl,
-        TargetArg::Glsl => Target::Glsl,
-        TargetArg::GlslEs => Target::GlslEs,
-        TargetArg::Hlsl => Target::Hlsl,
-        TargetArg::Msl => Target::Msl,
-        TargetArg::Spv => Target::Spirv,
-    };
+    let target = args.target;
     let params = match args.params {
         ParamsArg::Baked => ParamMode::Baked,
         ParamsArg::Uniform => ParamMode::Uniform,

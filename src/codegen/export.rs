@@ -9,7 +9,9 @@
 use super::{CompileError, CompileOptions, ParamMode, compile, validate};
 use crate::graph::Graph;
 
-/// A shader language Veneer exports to.
+/// A shader language Veneer exports to. Adding one is this file alone: a variant, its
+/// line in [`Target::ALL`], its extension and its arm in [`export`]; the command line,
+/// the editor's export dialog and the export tests list `ALL`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Target {
     Wgsl,
@@ -26,15 +28,24 @@ pub enum Target {
 }
 
 impl Target {
-    /// Every target, as named on the command line.
-    pub const ALL: [(Target, &str); 6] = [
-        (Target::Wgsl, "wgsl"),
-        (Target::Glsl, "glsl"),
-        (Target::GlslEs, "glsl-es"),
-        (Target::Hlsl, "hlsl"),
-        (Target::Msl, "msl"),
-        (Target::Spirv, "spv"),
+    /// Every target: its name on the command line and its description there.
+    pub const ALL: [(Target, &str, &str); 6] = [
+        (Target::Wgsl, "wgsl", "WGSL module (the DESIGN contract)"),
+        (Target::Glsl, "glsl", "GLSL 450 core fragment shader"),
+        (Target::GlslEs, "glsl-es", "GLSL ES 3.00 fragment shader"),
+        (Target::Hlsl, "hlsl", "HLSL, shader model 5.1"),
+        (Target::Msl, "msl", "Metal Shading Language 2.0"),
+        (Target::Spirv, "spv", "SPIR-V binary"),
     ];
+
+    /// The name on the command line.
+    pub fn name(self) -> &'static str {
+        Target::ALL
+            .iter()
+            .find(|(target, _, _)| *target == self)
+            .map(|(_, name, _)| *name)
+            .unwrap_or_default()
+    }
 
     /// The usual file extension.
     pub fn extension(self) -> &'static str {
@@ -45,6 +56,25 @@ impl Target {
             Target::Msl => "metal",
             Target::Spirv => "spv",
         }
+    }
+}
+
+impl clap::ValueEnum for Target {
+    fn value_variants<'a>() -> &'a [Self] {
+        const TARGETS: [Target; 6] = [
+            Target::ALL[0].0,
+            Target::ALL[1].0,
+            Target::ALL[2].0,
+            Target::ALL[3].0,
+            Target::ALL[4].0,
+            Target::ALL[5].0,
+        ];
+        &TARGETS
+    }
+
+    fn to_possible_value(&self) -> Option<clap::builder::PossibleValue> {
+        let (_, name, help) = Target::ALL.iter().find(|(target, _, _)| target == self)?;
+        Some(clap::builder::PossibleValue::new(*name).help(*help))
     }
 }
 

@@ -28,7 +28,7 @@ fn run_validator(tool: &str, file: &Path) {
 
 /// Exports `graph` to every target in both parameter modes and checks each output.
 fn export_everywhere(graph: &Graph, name: &str, dir: &Path) {
-    for (target, target_name) in Target::ALL {
+    for (target, target_name, _) in Target::ALL {
         for params in [ParamMode::Baked, ParamMode::Uniform] {
             let bytes = export(graph, target, params)
                 .unwrap_or_else(|e| panic!("{name} → {target_name}: {e}"));

@@ -100,7 +100,7 @@ fn large_materials_compile_to_part_functions_every_target_accepts() {
         );
         assert_eq!(module.node_spans.len(), 2_000);
     }
-    for (target, name) in Target::ALL {
+    for (target, name, _) in Target::ALL {
         veneer::codegen::export::export(&graph, target, ParamMode::Baked)
             .unwrap_or_else(|error| panic!("{name}: {error}"));
     }
