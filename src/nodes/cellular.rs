@@ -6,7 +6,7 @@ use super::emit::Emit;
 use super::formulas::real::{Real, V3, scale, splat};
 use super::formulas::{noise, shapes, worley_edge};
 use super::interval::{self, Interval, Lanes};
-use super::pins::{FLOAT, POSITION, Signature, VEC3, f, input, output};
+use super::pins::{FLOAT, POINT, SCALE, Signature, f, input, output};
 use super::ranges::Ranges;
 use super::settings::{Basis, METRICS, Metric, Setting, WORLEY_FEATURES, WorleyFeature, choice};
 use super::{Catalogue, Category, Configure, Definition, Evaluate};
@@ -63,8 +63,8 @@ impl Definition for Worley {
     fn signature(&self) -> Signature {
         Signature::new(
             vec![
-                input("p", VEC3, POSITION),
-                input("scale", FLOAT, f(1.0)).soft(0.0, 50.0),
+                POINT,
+                SCALE,
                 input("jitter", FLOAT, f(1.0)).limits(0.0, 1.0),
                 input("lacunarity", FLOAT, f(2.0)).soft(1.0, 4.0),
                 input("gain", FLOAT, f(0.5)).limits(0.0, 1.0),
@@ -206,8 +206,8 @@ impl Definition for WorleyEdge {
     fn signature(&self) -> Signature {
         Signature::new(
             vec![
-                input("p", VEC3, POSITION),
-                input("scale", FLOAT, f(1.0)).soft(0.0, 50.0),
+                POINT,
+                SCALE,
                 input("jitter", FLOAT, f(1.0)).limits(0.0, 1.0),
             ],
             vec![output("distance", FLOAT)],
@@ -223,8 +223,7 @@ impl Definition for WorleyEdge {
         io.uses("veneer_worley_edge");
     }
     fn ranges(&self, io: &mut Ranges) -> Vec<Lanes> {
-        let magnitude = io.reach("p") * io.float("scale").magnitude();
-        io.lattice(None, magnitude);
+        io.sampled(None);
         vec![interval::splat(Interval::UNIT)]
     }
 }

@@ -5,7 +5,7 @@ use super::emit::{Emit, value_literal};
 use super::formulas::real::{Real, V3, splat};
 use super::formulas::shapes;
 use super::interval::{self, Interval, Lanes, max_length};
-use super::pins::{FLOAT, POSITION, Signature, VEC3, f, input, output, v3};
+use super::pins::{FLOAT, POINT, Signature, VEC3, f, input, output, v3};
 use super::ranges::{Ranges, lanewise};
 use super::settings::{Basis, Setting, choice};
 use super::value::Value;
@@ -62,7 +62,7 @@ impl Definition for Transform {
     fn signature(&self) -> Signature {
         Signature::new(
             vec![
-                input("p", VEC3, POSITION),
+                POINT,
                 input("scale", VEC3, v3(1.0, 1.0, 1.0)).soft(0.0, 10.0),
                 input("rotation", VEC3, v3(0.0, 0.0, 0.0)).soft(-180.0, 180.0),
                 input("offset", VEC3, v3(0.0, 0.0, 0.0)).soft(-10.0, 10.0),
@@ -130,7 +130,7 @@ impl Definition for Project {
     fn signature(&self) -> Signature {
         Signature::new(
             vec![
-                input("p", VEC3, POSITION),
+                POINT,
                 input("origin", VEC3, v3(0.0, 0.0, 0.0)).soft(-10.0, 10.0),
                 input("direction", VEC3, v3(1.0, 0.0, 0.0)),
             ],
@@ -179,7 +179,7 @@ impl Definition for Cylindrical {
     fn signature(&self) -> Signature {
         Signature::new(
             vec![
-                input("p", VEC3, POSITION),
+                POINT,
                 input("origin", VEC3, v3(0.0, 0.0, 0.0)).soft(-10.0, 10.0),
                 input("axis", VEC3, v3(0.0, 1.0, 0.0)),
             ],
@@ -236,30 +236,19 @@ impl Definition for DomainWarp {
     fn title(&self) -> &'static str {
         "Domain warp"
     }
-    fn category(&self) -> Category {
-        Category::Coordinates
-    }
+    sampling_in!(Category::Coordinates);
     fn keywords(&self) -> &'static [&'static str] {
         &["distort", "displace", "warp", "noise"]
     }
     fn signature(&self) -> Signature {
         Signature::new(
             vec![
-                input("p", VEC3, POSITION),
+                POINT,
                 input("strength", FLOAT, f(1.0)).soft(0.0, 4.0),
                 input("scale", FLOAT, f(1.0)).soft(0.0, 20.0),
             ],
             vec![output("p", VEC3)],
         )
-    }
-    fn reads_surface(&self) -> bool {
-        false
-    }
-    fn basis(&self) -> Option<Basis> {
-        Some(self.basis)
-    }
-    fn check(&self) -> Option<String> {
-        None
     }
     fn emit(&self, io: &mut Emit) {
         let function = format!("veneer_warp_{}", self.basis.suffix());
@@ -272,8 +261,7 @@ impl Definition for DomainWarp {
         io.uses(&function);
     }
     fn ranges(&self, io: &mut Ranges) -> Vec<Lanes> {
-        let magnitude = io.reach("p") * io.float("scale").magnitude();
-        io.lattice(Some(self.basis), magnitude);
+        io.sampled(Some(self.basis));
         let reach = io.float("strength").magnitude();
         vec![
             io.input("p")
@@ -293,28 +281,4 @@ impl Evaluate for DomainWarp {
     }
 }
 
-impl Configure for DomainWarp {
-    fn settings(&mut self) -> Vec<Setting<'_>> {
-        vec![choice("basis", &mut self.basis, &Basis::ALL)]
-    }
-}
-
-impl Catalogue for DomainWarp {
-    fn menu() -> Vec<(String, Self)> {
-        Basis::ALL
-            .into_iter()
-            .map(|basis| {
-                (
-                    format!("Domain warp ({})", basis.menu_name()),
-                    DomainWarp { basis },
-                )
-            })
-            .collect()
-    }
-    fn examples() -> Vec<Self> {
-        Basis::ALL
-            .into_iter()
-            .map(|basis| DomainWarp { basis })
-            .collect()
-    }
-}
+basis_choice!(DomainWarp, "Domain warp");

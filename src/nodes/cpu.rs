@@ -50,12 +50,7 @@ impl<'a, R: Real> Eval<'a, R> {
     /// The value of input pin `pin`. A name the kind does not have is a bug in its
     /// definition (the registry test evaluates every kind).
     pub fn input(&self, pin: &str) -> V3<R> {
-        let index = self
-            .pins
-            .iter()
-            .position(|p| p.name == pin)
-            .unwrap_or_else(|| panic!("the node kind has no input '{pin}'"));
-        self.inputs[index]
+        self.inputs[super::pins::pin_index(self.pins, pin)]
     }
 
     /// The value of float input pin `pin`.

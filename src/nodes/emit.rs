@@ -112,12 +112,7 @@ impl<'a> Emit<'a> {
     /// The expression of input pin `pin`. A name the kind does not have is a bug in its
     /// definition (the registry test emits every kind).
     pub fn input(&self, pin: &str) -> &'a str {
-        let index = self
-            .pins
-            .iter()
-            .position(|p| p.name == pin)
-            .unwrap_or_else(|| panic!("the node kind has no input '{pin}'"));
-        &self.inputs[index]
+        &self.inputs[super::pins::pin_index(self.pins, pin)]
     }
 
     /// Every input expression, in pin order.

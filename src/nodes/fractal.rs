@@ -5,7 +5,7 @@ use super::emit::{Detail, Emit, float_literal};
 use super::formulas::real::{Real, V3, scale, splat};
 use super::formulas::{octaves, shapes};
 use super::interval::{Interval, Lanes};
-use super::pins::{FLOAT, POSITION, Signature, VEC3, f, input, output};
+use super::pins::{FLOAT, POINT, SCALE, Signature, f, input, output};
 use super::ranges::Ranges;
 use super::settings::{Basis, FractalMode, MAX_OCTAVES, MAX_OCTAVES_UI, Setting, choice};
 use super::{Catalogue, Category, Configure, Definition, Evaluate};
@@ -160,8 +160,8 @@ fractal_kind!(
 fn signature(amplitude: f64) -> Signature {
     Signature::new(
         vec![
-            input("p", VEC3, POSITION),
-            input("scale", FLOAT, f(1.0)).soft(0.0, 50.0),
+            POINT,
+            SCALE,
             input("lacunarity", FLOAT, f(2.0)).soft(1.0, 4.0),
             input("gain", FLOAT, f(0.5)).limits(0.0, 1.0),
             input("amplitude", FLOAT, f(amplitude)).soft(0.0, 2.0),

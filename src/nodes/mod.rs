@@ -37,6 +37,57 @@ macro_rules! computed_in {
     };
 }
 
+/// The parts of a definition for a kind that samples the lattice of its `basis` setting,
+/// in `category`, with no other settings to check.
+macro_rules! sampling_in {
+    ($category:expr) => {
+        fn category(&self) -> Category {
+            $category
+        }
+        fn reads_surface(&self) -> bool {
+            false
+        }
+        fn basis(&self) -> Option<Basis> {
+            Some(self.basis)
+        }
+        fn check(&self) -> Option<String> {
+            None
+        }
+    };
+}
+
+/// The settings and catalogue of a kind whose one setting is its lattice basis: a menu
+/// entry per basis, `"<menu name> (<basis>)"`, and every basis in the tests.
+macro_rules! basis_choice {
+    ($kind:ident, $menu:literal) => {
+        impl Configure for $kind {
+            fn settings(&mut self) -> Vec<Setting<'_>> {
+                vec![choice("basis", &mut self.basis, &Basis::ALL)]
+            }
+        }
+
+        impl Catalogue for $kind {
+            fn menu() -> Vec<(String, Self)> {
+                Basis::ALL
+                    .into_iter()
+                    .map(|basis| {
+                        (
+                            format!("{} ({})", $menu, basis.menu_name()),
+                            $kind { basis },
+                        )
+                    })
+                    .collect()
+            }
+            fn examples() -> Vec<Self> {
+                Basis::ALL
+                    .into_iter()
+                    .map(|basis| $kind { basis })
+                    .collect()
+            }
+        }
+    };
+}
+
 pub mod cpu;
 pub mod emit;
 mod file_form;

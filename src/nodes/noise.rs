@@ -6,7 +6,7 @@ use super::emit::Emit;
 use super::formulas::real::{Real, V3, scale, splat};
 use super::formulas::{fields, gabor, noise};
 use super::interval::{self, Interval, Lanes};
-use super::pins::{COLOR, FLOAT, POSITION, Signature, VEC3, f, input, output, v3};
+use super::pins::{COLOR, FLOAT, POINT, SCALE, Signature, VEC3, f, input, output, v3};
 use super::ranges::Ranges;
 use super::settings::{Basis, Setting, choice};
 use super::{Catalogue, Category, Configure, Definition, Evaluate};
@@ -22,11 +22,6 @@ macro_rules! kinds {
 }
 pub(super) use kinds;
 
-/// The basis choice both kinds offer.
-fn basis_setting(basis: &mut Basis) -> Vec<Setting<'_>> {
-    vec![choice("basis", basis, &Basis::ALL)]
-}
-
 /// A single octave of lattice noise.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[cfg_attr(feature = "arbitrary", derive(arbitrary::Arbitrary))]
@@ -38,31 +33,14 @@ impl Definition for Noise {
     fn title(&self) -> &'static str {
         "Noise"
     }
-    fn category(&self) -> Category {
-        Category::Noise
-    }
+    sampling_in!(Category::Noise);
     fn keywords(&self) -> &'static [&'static str] {
         &[
             "perlin", "value", "gradient", "simplex", "lattice", "texture",
         ]
     }
     fn signature(&self) -> Signature {
-        Signature::new(
-            vec![
-                input("p", VEC3, POSITION),
-                input("scale", FLOAT, f(1.0)).soft(0.0, 50.0),
-            ],
-            vec![output("value", FLOAT)],
-        )
-    }
-    fn reads_surface(&self) -> bool {
-        false
-    }
-    fn basis(&self) -> Option<Basis> {
-        Some(self.basis)
-    }
-    fn check(&self) -> Option<String> {
-        None
+        Signature::new(vec![POINT, SCALE], vec![output("value", FLOAT)])
     }
     fn emit(&self, io: &mut Emit) {
         let function = format!("veneer_noise_{}", self.basis.suffix());
@@ -74,8 +52,7 @@ impl Definition for Noise {
         io.uses(&function);
     }
     fn ranges(&self, io: &mut Ranges) -> Vec<Lanes> {
-        let magnitude = io.reach("p") * io.float("scale").magnitude();
-        io.lattice(Some(self.basis), magnitude);
+        io.sampled(Some(self.basis));
         super::unit_range()
     }
 }
@@ -87,26 +64,7 @@ impl Evaluate for Noise {
     }
 }
 
-impl Configure for Noise {
-    fn settings(&mut self) -> Vec<Setting<'_>> {
-        basis_setting(&mut self.basis)
-    }
-}
-
-impl Catalogue for Noise {
-    fn menu() -> Vec<(String, Self)> {
-        Basis::ALL
-            .into_iter()
-            .map(|basis| (format!("Noise ({})", basis.menu_name()), Noise { basis }))
-            .collect()
-    }
-    fn examples() -> Vec<Self> {
-        Basis::ALL
-            .into_iter()
-            .map(|basis| Noise { basis })
-            .collect()
-    }
-}
+basis_choice!(Noise, "Noise");
 
 /// A relief of noise as a bump: minus `strength` times the noise gradient.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -119,30 +77,19 @@ impl Definition for NoiseBump {
     fn title(&self) -> &'static str {
         "Noise bump"
     }
-    fn category(&self) -> Category {
-        Category::Noise
-    }
+    sampling_in!(Category::Noise);
     fn keywords(&self) -> &'static [&'static str] {
         &["bump", "normal", "relief", "roughness", "gradient"]
     }
     fn signature(&self) -> Signature {
         Signature::new(
             vec![
-                input("p", VEC3, POSITION),
-                input("scale", FLOAT, f(1.0)).soft(0.0, 50.0),
+                POINT,
+                SCALE,
                 input("strength", FLOAT, f(0.05)).soft(0.0, 1.0),
             ],
             vec![output("bump", VEC3)],
         )
-    }
-    fn reads_surface(&self) -> bool {
-        false
-    }
-    fn basis(&self) -> Option<Basis> {
-        Some(self.basis)
-    }
-    fn check(&self) -> Option<String> {
-        None
     }
     fn emit(&self, io: &mut Emit) {
         let function = format!("veneer_noise_bump_{}", self.basis.suffix());
@@ -155,8 +102,7 @@ impl Definition for NoiseBump {
         io.uses(&function);
     }
     fn ranges(&self, io: &mut Ranges) -> Vec<Lanes> {
-        let magnitude = io.reach("p") * io.float("scale").magnitude();
-        io.lattice(Some(self.basis), magnitude);
+        io.sampled(Some(self.basis));
         let reach = 4.0 * io.float("strength").magnitude();
         vec![interval::splat(Interval::new(-reach, reach))]
     }
@@ -173,37 +119,7 @@ impl Evaluate for NoiseBump {
     }
 }
 
-impl Configure for NoiseBump {
-    fn settings(&mut self) -> Vec<Setting<'_>> {
-        basis_setting(&mut self.basis)
-    }
-}
-
-impl Catalogue for NoiseBump {
-    fn menu() -> Vec<(String, Self)> {
-        Basis::ALL
-            .into_iter()
-            .map(|basis| {
-                (
-                    format!("Noise bump ({})", basis.menu_name()),
-                    NoiseBump { basis },
-                )
-            })
-            .collect()
-    }
-    fn examples() -> Vec<Self> {
-        Basis::ALL
-            .into_iter()
-            .map(|basis| NoiseBump { basis })
-            .collect()
-    }
-}
-
-/// Records the lattice hazards of a PCG-hashed noise sampled at `p * scale`.
-fn pcg_lattice(io: &mut Ranges) {
-    let magnitude = io.reach("p") * io.float("scale").magnitude();
-    io.lattice(None, magnitude);
-}
+basis_choice!(NoiseBump, "Noise bump");
 
 /// White noise (seed 003 §3.2): one random value per lattice cell of `p * scale`, and a
 /// random colour whose red is that value.
@@ -220,10 +136,7 @@ impl Definition for WhiteNoise {
     }
     fn signature(&self) -> Signature {
         Signature::new(
-            vec![
-                input("p", VEC3, POSITION),
-                input("scale", FLOAT, f(1.0)).soft(0.0, 50.0),
-            ],
+            vec![POINT, SCALE],
             vec![output("value", FLOAT), output("color", COLOR)],
         )
     }
@@ -241,7 +154,7 @@ impl Definition for WhiteNoise {
         io.outputs(vec![format!("{name}.x"), name.to_string()]);
     }
     fn ranges(&self, io: &mut Ranges) -> Vec<Lanes> {
-        pcg_lattice(io);
+        io.sampled(None);
         vec![interval::splat(Interval::UNIT); 2]
     }
 }
@@ -269,13 +182,7 @@ impl Definition for ValueGradientNoise {
         &["perlin", "value", "gradient", "lattice", "texture"]
     }
     fn signature(&self) -> Signature {
-        Signature::new(
-            vec![
-                input("p", VEC3, POSITION),
-                input("scale", FLOAT, f(1.0)).soft(0.0, 50.0),
-            ],
-            vec![output("value", FLOAT)],
-        )
+        Signature::new(vec![POINT, SCALE], vec![output("value", FLOAT)])
     }
     fn emit(&self, io: &mut Emit) {
         io.single(format!(
@@ -286,7 +193,7 @@ impl Definition for ValueGradientNoise {
         io.uses("veneer_noise_value_gradient");
     }
     fn ranges(&self, io: &mut Ranges) -> Vec<Lanes> {
-        pcg_lattice(io);
+        io.sampled(None);
         super::unit_range()
     }
 }
@@ -324,8 +231,8 @@ impl Definition for Gabor {
     fn signature(&self) -> Signature {
         Signature::new(
             vec![
-                input("p", VEC3, POSITION),
-                input("scale", FLOAT, f(1.0)).soft(0.0, 50.0),
+                POINT,
+                SCALE,
                 input("frequency", FLOAT, f(2.0)).soft(0.0, 10.0),
                 input("anisotropy", FLOAT, f(1.0)).limits(0.0, 1.0),
                 input("orientation", VEC3, v3(1.0, 0.0, 0.0)),
@@ -345,7 +252,7 @@ impl Definition for Gabor {
         io.uses("veneer_gabor");
     }
     fn ranges(&self, io: &mut Ranges) -> Vec<Lanes> {
-        pcg_lattice(io);
+        io.sampled(None);
         super::unit_range()
     }
 }

@@ -6,7 +6,7 @@ use super::emit::Emit;
 use super::formulas::real::{Real, V3, splat};
 use super::formulas::shapes;
 use super::interval::{self, Interval, Lanes};
-use super::pins::{FLOAT, POSITION, REQUIRED, Signature, VEC2, VEC3, f, input, output, v2, v3};
+use super::pins::{FLOAT, POINT, REQUIRED, Signature, VEC2, VEC3, f, input, output, v2, v3};
 use super::ranges::Ranges;
 use super::settings::Basis;
 use super::{Catalogue, Category, Definition, Evaluate};
@@ -120,7 +120,7 @@ impl Definition for Tiles {
     fn signature(&self) -> Signature {
         Signature::new(
             vec![
-                input("p", VEC3, POSITION),
+                POINT,
                 input("size", VEC2, v2(1.0, 1.0)).soft(0.0, 10.0),
                 input("gap", VEC2, v2(0.02, 0.02)).limits(0.0, 1.0),
                 input("row_offset", FLOAT, f(0.5)).limits(0.0, 1.0),
@@ -192,7 +192,7 @@ impl Definition for Rings {
     fn signature(&self) -> Signature {
         Signature::new(
             vec![
-                input("p", VEC3, POSITION),
+                POINT,
                 input("origin", VEC3, v3(0.0, 0.0, 0.0)).soft(-10.0, 10.0),
                 input("axis", VEC3, v3(0.0, 1.0, 0.0)),
                 input("frequency", FLOAT, f(1.0)).soft(0.0, 50.0),

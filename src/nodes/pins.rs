@@ -112,20 +112,28 @@ impl Signature {
     }
 }
 
+/// The index of input pin `name` among `pins`. A name the kind does not have is a bug
+/// in its definition (the registry test exercises every part of every kind).
+pub fn pin_index(pins: &[InputPin], name: &str) -> usize {
+    pins.iter()
+        .position(|pin| pin.name == name)
+        .unwrap_or_else(|| panic!("the node kind has no input '{name}'"))
+}
+
 /// A float default.
-pub fn f(x: f64) -> PinDefault {
+pub const fn f(x: f64) -> PinDefault {
     PinDefault::Const(Value::Float(x))
 }
 /// A vec2 default.
-pub fn v2(x: f64, y: f64) -> PinDefault {
+pub const fn v2(x: f64, y: f64) -> PinDefault {
     PinDefault::Const(Value::Vec2(x, y))
 }
 /// A vec3 default.
-pub fn v3(x: f64, y: f64, z: f64) -> PinDefault {
+pub const fn v3(x: f64, y: f64, z: f64) -> PinDefault {
     PinDefault::Const(Value::Vec3(x, y, z))
 }
 /// A colour default.
-pub fn rgb(r: f64, g: f64, b: f64) -> PinDefault {
+pub const fn rgb(r: f64, g: f64, b: f64) -> PinDefault {
     PinDefault::Const(Value::Color(r, g, b))
 }
 /// `x` in every component of a `ty` default.
@@ -152,6 +160,12 @@ pub const VEC3: ValueType = ValueType::Vec3;
 pub const COLOR: ValueType = ValueType::Color;
 pub const REQUIRED: PinDefault = PinDefault::Required;
 pub const POSITION: PinDefault = PinDefault::Position;
+
+/// The point a pattern samples: the surface position unless wired.
+pub const POINT: InputPin = input("p", VEC3, POSITION);
+
+/// How many lattice cells a noise spans per unit: its frequency.
+pub const SCALE: InputPin = input("scale", FLOAT, f(1.0)).soft(0.0, 50.0);
 
 /// Names of vector components, in order.
 pub const COMPONENTS: [&str; 3] = ["x", "y", "z"];

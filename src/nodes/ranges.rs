@@ -38,12 +38,7 @@ impl<'a> Ranges<'a> {
     /// The range of input pin `pin`. A name the kind does not have is a bug in its
     /// definition (the registry test lints every kind).
     pub fn input(&self, pin: &str) -> Lanes {
-        let index = self
-            .pins
-            .iter()
-            .position(|p| p.name == pin)
-            .unwrap_or_else(|| panic!("the node kind has no input '{pin}'"));
-        self.inputs[index]
+        self.inputs[super::pins::pin_index(self.pins, pin)]
     }
 
     /// The range of float input pin `pin`.
@@ -79,6 +74,12 @@ impl<'a> Ranges<'a> {
                 "uses the sine hash at coordinates up to {magnitude:.3e}; past {SINE_HASH_SAFE_COORDINATE:.0e} f32 can no longer tell neighbouring cells apart (use the PCG hash)"
             ));
         }
+    }
+
+    /// Records the hazards of lattice noise sampled at input `p` times input `scale`.
+    pub fn sampled(&mut self, basis: Option<Basis>) {
+        let magnitude = self.reach("p") * self.float("scale").magnitude();
+        self.lattice(basis, magnitude);
     }
 
     /// The hazards found.
