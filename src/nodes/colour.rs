@@ -284,7 +284,7 @@ adjustment!(
         let offset = brightness.sub(contrast.mul(Interval::point(0.5)));
         io.input("color").map(|c| {
             let y = c.mul(contrast.add(Interval::point(1.0))).add(offset);
-            Interval::new(y.lo.max(0.0), y.hi.max(0.0).min(3.0e38))
+            Interval::new(y.lo.max(0.0), y.hi.clamp(0.0, 3.0e38))
         })
     }
 );

@@ -164,7 +164,7 @@ pub fn tiles<R: Real>(
 /// Concentric rings about an axis.
 pub fn rings<R: Real>(p: V3<R>, origin: V3<R>, axis: V3<R>, frequency: R) -> R {
     let r = cylindrical(p, origin, axis)[1];
-    R::c(0.5) + R::c(0.5) * (R::c(6.283185307) * frequency * r).sin()
+    R::c(0.5) + R::c(0.5) * (R::c(std::f64::consts::TAU) * frequency * r).sin()
 }
 
 /// a / b; 0 where b is 0; clamped to the finite range.

@@ -1,0 +1,195 @@
+//! The right-hand panel: the live material on its mesh, time and light, the distance
+//! fields and picking their sources, and the selected node's thumbnail.
+
+use super::*;
+
+impl VeneerApp {
+    /// The selected node's output, flat, above the inspector.
+    pub(super) fn node_thumbnail(&mut self, ui: &mut Ui, node: egui_snarl::NodeId) {
+        let Some(probe) = probe::probe_graph(&self.document.graph, self.snarl[node].id) else {
+            return;
+        };
+        if self.render_state.is_none() {
+            return;
+        }
+        self.thumbnail.update(&probe);
+        let material = if self.thumbnail.errors.is_empty() {
+            material_frame(
+                &self.thumbnail,
+                &mut self.wgsl[Slot::Thumbnail as usize],
+                &probe,
+            )
+        } else {
+            None
+        };
+        ui.horizontal(|ui| {
+            preview::thumbnail(ui, &self.preview, material, egui::vec2(160.0, 160.0));
+            ui.weak("this node's output,\nflat over the preview square");
+        });
+    }
+
+    pub(super) fn preview_panel(&mut self, ui: &mut Ui) {
+        ui.horizontal(|ui| {
+            let shown = std::path::Path::new(&self.preview.mesh)
+                .file_name()
+                .map(|n| n.to_string_lossy().into_owned());
+            egui::ComboBox::from_id_salt("mesh")
+                .selected_text(shown.unwrap_or_default())
+                .show_ui(ui, |ui| {
+                    for name in crate::mesh::PRIMITIVES {
+                        if ui
+                            .selectable_label(self.preview.mesh == name, name)
+                            .clicked()
+                        {
+                            self.preview.mesh = name.to_string();
+                            self.preview.file = None;
+                        }
+                    }
+                    if ui.button("Mesh file…").clicked() {
+                        self.dialog = Some(Dialog::LoadMesh {
+                            path: String::new(),
+                        });
+                    }
+                });
+            ui.checkbox(&mut self.preview.flat, "flat albedo");
+            ui.checkbox(&mut self.live.full_detail, "every octave")
+                .on_hover_text("off: noise leaves out octaves finer than a pixel (less aliasing, faster far away)");
+            ui.label("background");
+            ui.color_edit_button_rgb(&mut self.preview.view.background);
+        });
+        let width = ui.available_width();
+        self.solve_fields();
+        let material = match (self.render_state.is_some(), self.fields.view) {
+            (false, _) => None,
+            (true, Some(slot)) => {
+                let graph = fields::field_view_graph(slot as u8);
+                self.field_view.update(&graph);
+                material_frame(&self.field_view, &mut self.field_view_wgsl, &graph).map(
+                    |mut frame| {
+                        frame.generation |= FIELD_VIEW_GENERATIONS;
+                        frame
+                    },
+                )
+            }
+            (true, None) => material_frame(
+                &self.live,
+                &mut self.wgsl[Slot::Main as usize],
+                &self.document.graph,
+            ),
+        };
+        if self.render_state.is_some() {
+            let response = preview::show(
+                ui,
+                &mut self.preview,
+                material,
+                egui::vec2(width, width.min(ui.available_height() * 0.55)),
+            );
+            self.pick_source(&response);
+        } else {
+            ui.label("(no GPU: preview unavailable)");
+        }
+        ui.horizontal(|ui| {
+            let label = if self.preview.playing { "⏸" } else { "▶" };
+            if ui
+                .button(label)
+                .on_hover_text("play / pause time")
+                .clicked()
+            {
+                self.preview.playing = !self.preview.playing;
+            }
+            ui.add(egui::Slider::new(&mut self.preview.view.time, 0.0..=20.0).text("time (s)"));
+        });
+        ui.horizontal(|ui| {
+            ui.label("light");
+            let light = &mut self.preview.view.light;
+            ui.add(
+                egui::DragValue::new(&mut light[0])
+                    .speed(0.02)
+                    .range(-1.0..=1.0),
+            );
+            ui.add(
+                egui::DragValue::new(&mut light[1])
+                    .speed(0.02)
+                    .range(-1.0..=1.0),
+            );
+            ui.add(
+                egui::DragValue::new(&mut light[2])
+                    .speed(0.02)
+                    .range(-1.0..=1.0),
+            );
+        });
+        fields::fields_panel(
+            ui,
+            &mut self.document.graph.preview.fields,
+            &mut self.fields,
+        );
+        if self.preview.playing {
+            let dt = ui.input(|input| input.stable_dt).min(0.1);
+            self.preview.view.time = (self.preview.view.time + dt) % 20.0;
+            ui.ctx().request_repaint();
+        }
+    }
+
+    /// Keeps the preview mesh's fields in step with the graph (solving in the background)
+    /// and hands the solved mesh to the preview.
+    pub(super) fn solve_fields(&mut self) {
+        let mut used = self
+            .live
+            .compiled
+            .as_ref()
+            .map(|c| c.uses().fields)
+            .unwrap_or_default();
+        if let Some(slot) = self.fields.view {
+            used[slot.min(3)] = true;
+        }
+        let name = self.preview.mesh.clone();
+        let preview = &self.preview;
+        self.fields.update(
+            &name,
+            || preview.plain_mesh(),
+            &self.document.graph.preview.fields,
+            used,
+        );
+        let mesh_prefix = format!("{name}|");
+        self.preview.prepared = self
+            .fields
+            .ready
+            .clone()
+            .filter(|(key, _)| key.starts_with(&mesh_prefix));
+    }
+
+    /// A click on the preview while picking adds (or removes) the vertex under it as a
+    /// source of the picked field.
+    pub(super) fn pick_source(&mut self, response: &egui::Response) {
+        let (Some(slot), Some(click)) = (self.fields.picking, response.interact_pointer_pos())
+        else {
+            return;
+        };
+        if !response.clicked() || self.preview.flat {
+            return;
+        }
+        let rect = response.rect;
+        let ndc = [
+            (click.x - rect.left()) / rect.width() * 2.0 - 1.0,
+            1.0 - (click.y - rect.top()) / rect.height() * 2.0,
+        ];
+        let (origin, direction) = self
+            .preview
+            .view
+            .ray(rect.width() / rect.height().max(1.0), ndc);
+        // The solved mesh has the plain one's vertices: no need to make it again.
+        let prepared = self.preview.prepared.as_ref().map(|(_, mesh)| mesh.clone());
+        let Some(mesh) = prepared.or_else(|| self.preview.plain_mesh()) else {
+            return;
+        };
+        let fields = &mut self.document.graph.preview.fields;
+        // Sources count vertices as the mesh file lists them.
+        if let (Some(vertex), Some(field)) = (
+            crate::mesh::pick_vertex(&mesh, origin, direction),
+            fields.get_mut(slot),
+        ) {
+            fields::toggle_source(field, mesh.file_vertex(vertex));
+            self.message = Some(format!("field {slot}: {} sources", field.sources.len()));
+        }
+    }
+}
