@@ -1,6 +1,6 @@
 //! Editors for pin values, shared by the node bodies and the inspector.
 
-use crate::graph::{Node, PinDefault, Value, ValueType};
+use crate::graph::{Node, PinDefault, PinRange, Value, ValueType};
 use egui::{Color32, DragValue, Ui};
 
 /// The colour of a pin (and its wires) by type.
@@ -13,11 +13,20 @@ pub fn type_color(ty: ValueType) -> Color32 {
     }
 }
 
-/// An editor for one value; returns whether it changed.
-pub fn value_editor(ui: &mut Ui, value: &mut Value, speed: f64) -> bool {
+/// An editor for one value offered within `range` (dragging steps by its step and
+/// stops at its limits; a value from a file outside them is kept until edited);
+/// returns whether it changed.
+pub fn value_editor(ui: &mut Ui, value: &mut Value, range: PinRange) -> bool {
     let drag = |ui: &mut Ui, x: &mut f64| {
-        ui.add(DragValue::new(x).speed(speed).max_decimals(4))
-            .changed()
+        let step = range.step(*x);
+        ui.add(
+            DragValue::new(x)
+                .speed(step)
+                .range(range.min..=range.max)
+                .clamp_existing_to_range(false)
+                .max_decimals(4),
+        )
+        .changed()
     };
     match value {
         Value::Float(x) => drag(ui, x),
@@ -34,27 +43,24 @@ pub fn value_editor(ui: &mut Ui, value: &mut Value, speed: f64) -> bool {
     }
 }
 
-/// The constant an unconnected input of `node` currently has (its own or the default).
-pub fn input_value(node: &Node, pin: &str) -> Option<Value> {
+/// The constant an unconnected input of `node` currently has (its own or the default),
+/// and the range the kind offers it in.
+pub fn input_value(node: &Node, pin: &str) -> Option<(Value, PinRange)> {
     let (_, spec) = node.kind.signature().input(pin).map(|(i, p)| (i, *p))?;
-    match (node.inputs.get(pin), spec.default) {
-        (Some(value), _) => Some(value.convert(spec.ty)),
-        (None, PinDefault::Const(value)) => Some(value),
-        _ => None,
-    }
+    let value = match (node.inputs.get(pin), spec.default) {
+        (Some(value), _) => value.convert(spec.ty),
+        (None, PinDefault::Const(value)) => value,
+        _ => return None,
+    };
+    Some((value, spec.range))
 }
 
 /// An editor for the constant of input `pin` of `node`; stores the value only when edited.
 pub fn input_editor(ui: &mut Ui, node: &mut Node, pin: &str) -> bool {
-    let Some(mut value) = input_value(node, pin) else {
+    let Some((mut value, range)) = input_value(node, pin) else {
         return false;
     };
-    let magnitude = value
-        .components()
-        .iter()
-        .fold(0.0f64, |m, c| m.max(c.abs()));
-    let speed = (magnitude * 0.01).clamp(0.001, 10.0);
-    let changed = value_editor(ui, &mut value, speed);
+    let changed = value_editor(ui, &mut value, range);
     if changed {
         node.inputs.insert(pin.to_string(), value);
     }

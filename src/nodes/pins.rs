@@ -33,9 +33,11 @@ impl PinRange {
         soft_max: 1.0,
     };
 
-    /// The drag step: a two-hundredth of the soft span.
-    pub fn step(&self) -> f64 {
-        (self.soft_max - self.soft_min) / 200.0
+    /// The drag step for a value of `magnitude`: a two-hundredth of the soft span, or a
+    /// hundredth of the value when that is more (large values drag as fast as small ones).
+    pub fn step(&self, magnitude: f64) -> f64 {
+        let span = self.soft_max - self.soft_min;
+        (span / 200.0).max(magnitude.abs() / 100.0).min(1.0e6)
     }
 }
 
