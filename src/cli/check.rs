@@ -55,10 +55,10 @@ pub fn run(args: CheckArgs) -> Result<(), Failure> {
                 for line in veneer::messages::summarise(lines) {
                     note(format!("{}: {line}", path.display()))?;
                 }
-                let warnings = if lints.is_empty() {
-                    String::new()
-                } else {
-                    format!(" ({} warnings)", lints.len())
+                let warnings = match lints.len() {
+                    0 => String::new(),
+                    1 => " (1 warning)".to_string(),
+                    count => format!(" ({count} warnings)"),
                 };
                 out(format!("{}: ok{warnings}", path.display()))?;
             }
