@@ -24,6 +24,7 @@ pub fn value_editor(ui: &mut Ui, value: &mut Value, range: PinRange) -> bool {
                 .speed(step)
                 .range(range.min..=range.max)
                 .clamp_existing_to_range(false)
+                .min_decimals(1)
                 .max_decimals(4),
         )
         .changed()
