@@ -45,6 +45,7 @@ impl VeneerApp {
                 Ok(None)
             }
             Action::Recover(saved) => {
+                let saved = *saved;
                 self.load(Document::recovered(saved.graph, saved.original));
                 // This window autosaves the work now; then the old file can go.
                 match self.autosave.write_now(&self.document) {

@@ -60,7 +60,7 @@ pub enum Action {
     /// Drop the unsaved changes and go on.
     Discard(Pending),
     /// Open autosaved work (and remove its recovery file once this window has it).
-    Recover(Recovery),
+    Recover(Box<Recovery>),
     /// Forget autosaved work: remove this recovery file.
     ForgetRecovery(PathBuf),
 }
@@ -433,9 +433,10 @@ impl Dialog {
                 dialog => (Some(dialog), None),
             },
             Some(Choice::Recover(index)) => match self {
-                Dialog::Recover(mut saved) if index < saved.len() => {
-                    (None, Some(Action::Recover(saved.swap_remove(index))))
-                }
+                Dialog::Recover(mut saved) if index < saved.len() => (
+                    None,
+                    Some(Action::Recover(Box::new(saved.swap_remove(index)))),
+                ),
                 dialog => (Some(dialog), None),
             },
             Some(Choice::Forget(index)) => match self {
@@ -488,7 +489,9 @@ impl Dialog {
             Dialog::Replace(path) => Action::SaveAs(path.clone()),
             // The safe choice: keep the unsaved changes and stay.
             Dialog::Discard(_) | Dialog::Message(_) => return (None, None),
-            Dialog::Recover(saved) if !saved.is_empty() => Action::Recover(saved[0].clone()),
+            Dialog::Recover(saved) if !saved.is_empty() => {
+                Action::Recover(Box::new(saved[0].clone()))
+            }
             // Nothing typed yet: stay.
             _ => return (Some(self), None),
         };
@@ -616,11 +619,11 @@ impl Dialog {
             Dialog::Recover(saved) => {
                 ui.heading("Recover unsaved work?");
                 ui.label(if saved.len() == 1 {
-                    "Veneer did not exit cleanly last time. Autosaved work is available:"
+                    "Veneer ended last time with work that was not saved. It was autosaved:"
                         .to_string()
                 } else {
                     format!(
-                        "Veneer did not exit cleanly. Autosaved work of {} windows is available:",
+                        "{} Veneer windows ended with work that was not saved. It was autosaved:",
                         saved.len()
                     )
                 });

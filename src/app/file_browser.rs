@@ -68,7 +68,8 @@ impl Browser {
         let dialog = FileDialog::new()
             .id("veneer file browser")
             .initial_directory(folder)
-            .default_size([760.0, 480.0]);
+            .default_size([760.0, 480.0])
+            .anchor(egui::Align2::CENTER_CENTER, [0.0, 0.0]);
         let dialog = match purpose {
             Purpose::Pick {
                 title,

@@ -24,9 +24,13 @@ pub const MESSAGE_SECONDS: f64 = 6.0;
 
 /// A menu entry with its shortcut on the right.
 fn entry(ui: &mut Ui, label: &str, shortcut: &str, enabled: bool) -> bool {
-    let clicked = ui
-        .add_enabled(enabled, egui::Button::new(label).shortcut_text(shortcut))
-        .clicked();
+    let response = ui.add_enabled(enabled, egui::Button::new(label).shortcut_text(shortcut));
+    // Screen readers (and tests) know the entry by its name, and its shortcut as such.
+    response.widget_info(|| egui::WidgetInfo::labeled(egui::WidgetType::Button, enabled, label));
+    ui.ctx().accesskit_node_builder(response.id, |node| {
+        node.set_keyboard_shortcut(shortcut);
+    });
+    let clicked = response.clicked();
     if clicked {
         // Close the menu, whatever clicked the entry: a dialog it opens has the keyboard.
         ui.close();

@@ -98,7 +98,7 @@ pub fn orphans(base: &Path) -> Vec<Recovery> {
             (!alive).then_some(recovery)
         })
         .collect();
-    found.sort_by(|a, b| b.saved.cmp(&a.saved));
+    found.sort_by_key(|recovery| std::cmp::Reverse(recovery.saved));
     found
 }
 
@@ -123,13 +123,24 @@ fn running(pid: u32, started: Option<u64>) -> bool {
         // SAFETY: signal 0 only checks that the process exists; nothing is sent.
         let exists = unsafe { libc::kill(pid_t, 0) } == 0
             || std::io::Error::last_os_error().raw_os_error() == Some(libc::EPERM);
-        exists && (started.is_none() || start_time(pid) == started)
+        exists && !ended(pid) && (started.is_none() || start_time(pid) == started)
     }
     #[cfg(not(unix))]
     {
         let _ = started;
         true
     }
+}
+
+/// Whether process `pid` has ended but is not reaped yet (a zombie; Linux).
+fn ended(pid: u32) -> bool {
+    let Ok(stat) = std::fs::read_to_string(format!("/proc/{pid}/stat")) else {
+        return false;
+    };
+    let state = stat
+        .rsplit_once(')')
+        .and_then(|(_, rest)| rest.split_whitespace().next());
+    matches!(state, Some("Z" | "X"))
 }
 
 /// When process `pid` started, in clock ticks since boot (Linux), if known.
@@ -350,6 +361,19 @@ mod tests {
             assert!(running(parent, Some(started)));
             assert!(!running(parent, Some(started + 1)));
         }
+    }
+
+    #[test]
+    fn a_process_that_ended_but_is_not_reaped_is_gone() {
+        let mut child = std::process::Command::new("true").spawn().unwrap();
+        let pid = child.id();
+        // Not waited for yet: a zombie once it has ended.
+        std::thread::sleep(std::time::Duration::from_millis(300));
+        if cfg!(target_os = "linux") {
+            assert!(!running(pid, None), "a zombie counts as gone");
+        }
+        child.wait().unwrap();
+        assert!(!running(pid, None));
     }
 
     #[test]
