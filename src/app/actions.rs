@@ -18,7 +18,7 @@ impl VeneerApp {
             }
             Action::SaveAs(path) => self.document.save_as(&path).map(|()| {
                 self.remember(&path);
-                recovery::clear(&self.recovery_file);
+                self.autosave.forget();
                 Some(format!("saved {}", path.display()))
             }),
             Action::ExportShader {
@@ -39,15 +39,28 @@ impl VeneerApp {
                 Ok(None)
             }
             Action::Discard(pending) => {
+                // The user dropped this work: it is not to be offered for recovery.
+                self.autosave.forget();
                 self.perform(pending);
                 Ok(None)
             }
             Action::Recover(saved) => {
+                let saved = *saved;
                 self.load(Document::recovered(saved.graph, saved.original));
-                Ok(None)
+                // This window autosaves the work now; then the old file can go.
+                match self.autosave.write_now(&self.document) {
+                    Ok(()) => {
+                        recovery::clear(&saved.file);
+                        Ok(None)
+                    }
+                    Err(error) => Err(format!(
+                        "recovered, but cannot autosave it ({error}); {} is kept",
+                        saved.file.display()
+                    )),
+                }
             }
-            Action::ForgetRecovery => {
-                recovery::clear(&self.recovery_file);
+            Action::ForgetRecovery(file) => {
+                recovery::clear(&file);
                 Ok(None)
             }
         };
@@ -55,6 +68,20 @@ impl VeneerApp {
             Ok(Some(message)) => self.message = Some(message),
             Ok(None) => {}
             Err(error) => self.dialog = Some(Dialog::Message(error)),
+        }
+    }
+
+    /// Autosaves unsaved work (or removes the window's recovery file once the document is
+    /// clean); on SIGTERM, SIGINT or SIGHUP, autosaves and closes the window.
+    pub(super) fn autosave_tick(&mut self, ctx: &egui::Context) {
+        let now = ctx.input(|input| input.time);
+        if let Err(error) = self.autosave.tick(now, &self.document) {
+            self.message = Some(format!("autosave failed: {error}"));
+        }
+        if recovery::termination_requested() && !self.allowed_to_close {
+            // Unsaved work stays for the next start; a clean document leaves nothing.
+            let _ = self.autosave.write_now(&self.document);
+            self.allowed_to_close = true;
         }
     }
 

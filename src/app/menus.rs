@@ -2,32 +2,83 @@
 
 use super::*;
 
+const fn command(key: Key) -> KeyboardShortcut {
+    KeyboardShortcut::new(Modifiers::COMMAND, key)
+}
+const fn command_shift(key: Key) -> KeyboardShortcut {
+    KeyboardShortcut::new(Modifiers::COMMAND.plus(Modifiers::SHIFT), key)
+}
+
+const NEW: KeyboardShortcut = command(Key::N);
+const OPEN: KeyboardShortcut = command(Key::O);
+const SAVE: KeyboardShortcut = command(Key::S);
+const SAVE_AS: KeyboardShortcut = command_shift(Key::S);
+const EXPORT_SHADER: KeyboardShortcut = command(Key::E);
+const EXPORT_PNG: KeyboardShortcut = command_shift(Key::E);
+const UNDO: KeyboardShortcut = command(Key::Z);
+const REDO: KeyboardShortcut = command_shift(Key::Z);
+const DUPLICATE: KeyboardShortcut = command(Key::D);
+
+/// Seconds a status message stays (fading over the last one).
+pub const MESSAGE_SECONDS: f64 = 6.0;
+
+/// A menu entry with its shortcut on the right.
+fn entry(ui: &mut Ui, label: &str, shortcut: &str, enabled: bool) -> bool {
+    let response = ui.add_enabled(enabled, egui::Button::new(label).shortcut_text(shortcut));
+    // Screen readers (and tests) know the entry by its name, and its shortcut as such.
+    response.widget_info(|| egui::WidgetInfo::labeled(egui::WidgetType::Button, enabled, label));
+    ui.ctx().accesskit_node_builder(response.id, |node| {
+        node.set_keyboard_shortcut(shortcut);
+    });
+    let clicked = response.clicked();
+    if clicked {
+        // Close the menu, whatever clicked the entry: a dialog it opens has the keyboard.
+        ui.close();
+    }
+    clicked
+}
+
+/// A menu entry for a keyboard shortcut, with the shortcut on the right.
+fn shortcut_entry(ui: &mut Ui, label: &str, shortcut: &KeyboardShortcut, enabled: bool) -> bool {
+    let text = ui.ctx().format_shortcut(shortcut);
+    entry(ui, label, &text, enabled)
+}
+
 impl VeneerApp {
     pub(super) fn shortcuts(&mut self, ctx: &egui::Context) {
+        if self.dialog.is_some() {
+            // A dialog has the keyboard (Enter, Escape, typing): nothing reaches the graph.
+            return;
+        }
         let typing = ctx.memory(|memory| memory.focused().is_some());
-        let pressed = |modifiers, key| {
-            ctx.input_mut(|input| input.consume_shortcut(&KeyboardShortcut::new(modifiers, key)))
-        };
-        let command = Modifiers::COMMAND;
-        if pressed(command | Modifiers::SHIFT, Key::Z) {
+        let pressed =
+            |shortcut: KeyboardShortcut| ctx.input_mut(|input| input.consume_shortcut(&shortcut));
+        // Shift variants first: Ctrl+S also matches Ctrl+Shift+S.
+        if pressed(REDO) {
             self.redo();
-        } else if pressed(command, Key::Z) {
+        } else if pressed(UNDO) {
             self.undo();
         }
-        if pressed(command, Key::S) {
+        if pressed(SAVE_AS) {
+            self.dialog = Some(Dialog::save_as(&self.document));
+        } else if pressed(SAVE) {
             self.save();
         }
-        if pressed(command, Key::O) {
-            self.dialog = Some(Dialog::Open {
-                path: String::new(),
-            });
+        if pressed(EXPORT_PNG) {
+            self.dialog = Some(Dialog::export_png(&self.document));
+        } else if pressed(EXPORT_SHADER) {
+            self.dialog = Some(Dialog::export_shader(&self.document));
         }
-        if pressed(command, Key::N) {
+        if pressed(OPEN) {
+            self.dialog = Some(Dialog::open());
+        }
+        if pressed(NEW) {
             self.guard(Pending::New);
         }
-        if pressed(command, Key::D) {
+        if pressed(DUPLICATE) {
             clipboard::duplicate(&mut self.snarl, &self.selection);
         }
+        let pressed = |modifiers, key| pressed(KeyboardShortcut::new(modifiers, key));
         if typing {
             return;
         }
@@ -49,6 +100,9 @@ impl VeneerApp {
 
     /// Copy and paste travel as events (the platform clipboard holds RON text).
     pub(super) fn clipboard(&mut self, ctx: &egui::Context) {
+        if self.dialog.is_some() {
+            return;
+        }
         let events = ctx.input(|input| input.events.clone());
         for event in events {
             match event {
@@ -68,13 +122,11 @@ impl VeneerApp {
     pub(super) fn menu_bar(&mut self, ui: &mut Ui) {
         egui::MenuBar::new().ui(ui, |ui| {
             ui.menu_button("File", |ui| {
-                if ui.button("New").clicked() {
+                if shortcut_entry(ui, "New", &NEW, true) {
                     self.guard(Pending::New);
                 }
-                if ui.button("Open…").clicked() {
-                    self.dialog = Some(Dialog::Open {
-                        path: String::new(),
-                    });
+                if shortcut_entry(ui, "Open…", &OPEN, true) {
+                    self.dialog = Some(Dialog::open());
                 }
                 ui.menu_button("Open preset", |ui| {
                     for (name, _) in PRESETS {
@@ -90,40 +142,34 @@ impl VeneerApp {
                         }
                     }
                 });
-                if ui.button("Save").clicked() {
+                if shortcut_entry(ui, "Save", &SAVE, true) {
                     self.save();
                 }
-                if ui.button("Save as…").clicked() {
+                if shortcut_entry(ui, "Save as…", &SAVE_AS, true) {
                     self.dialog = Some(Dialog::save_as(&self.document));
                 }
                 ui.separator();
-                if ui.button("Export shader…").clicked() {
+                if shortcut_entry(ui, "Export shader…", &EXPORT_SHADER, true) {
                     self.dialog = Some(Dialog::export_shader(&self.document));
                 }
-                if ui.button("Export PNG…").clicked() {
+                if shortcut_entry(ui, "Export PNG…", &EXPORT_PNG, true) {
                     self.dialog = Some(Dialog::export_png(&self.document));
                 }
             });
             ui.menu_button("Edit", |ui| {
-                if ui
-                    .add_enabled(self.document.history.can_undo(), egui::Button::new("Undo"))
-                    .clicked()
-                {
+                if shortcut_entry(ui, "Undo", &UNDO, self.document.history.can_undo()) {
                     self.undo();
                 }
-                if ui
-                    .add_enabled(self.document.history.can_redo(), egui::Button::new("Redo"))
-                    .clicked()
-                {
+                if shortcut_entry(ui, "Redo", &REDO, self.document.history.can_redo()) {
                     self.redo();
                 }
-                if ui.button("Add node…").clicked() {
+                if entry(ui, "Add node…", "Space", true) {
                     self.quick_add = true;
                 }
-                if ui.button("Duplicate").clicked() {
+                if shortcut_entry(ui, "Duplicate", &DUPLICATE, true) {
                     clipboard::duplicate(&mut self.snarl, &self.selection);
                 }
-                if ui.button("Frame all").clicked() {
+                if entry(ui, "Frame all", "F", true) {
                     self.frame = Some(Framing::All);
                 }
                 if ui
@@ -150,6 +196,7 @@ impl VeneerApp {
     }
 
     pub(super) fn status_bar(&mut self, ui: &mut Ui) {
+        let mut stale = false;
         ui.horizontal(|ui| {
             match self.live.status(&self.document.graph) {
                 Some(error) => {
@@ -173,16 +220,47 @@ impl VeneerApp {
                 }
             }
             if let Some(message) = &self.message {
-                ui.separator();
-                ui.label(message);
+                // A message fades out after a few seconds (a new one starts again).
+                let id = egui::Id::new("status message");
+                let now = ui.input(|input| input.time);
+                let since = match ui.data(|data| data.get_temp::<(String, f64)>(id)) {
+                    Some((shown, since)) if shown == *message => since,
+                    _ => {
+                        ui.data_mut(|data| data.insert_temp(id, (message.clone(), now)));
+                        now
+                    }
+                };
+                let left = MESSAGE_SECONDS - (now - since);
+                if left <= 0.0 {
+                    stale = true;
+                } else {
+                    let opacity = left.min(1.0) as f32;
+                    ui.separator();
+                    ui.label(
+                        egui::RichText::new(message)
+                            .color(ui.visuals().text_color().gamma_multiply(opacity)),
+                    );
+                    // Repaint to fade (no faster than twice the frame time), then to go.
+                    let frame = 2.0 * f64::from(ui.input(|input| input.predicted_dt));
+                    let wait = if left > 1.0 { left - 1.0 } else { 0.05 };
+                    ui.ctx()
+                        .request_repaint_after(std::time::Duration::from_secs_f64(
+                            wait.max(frame).min(left + 0.01),
+                        ));
+                }
             }
             ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
+                let plural =
+                    |n: usize, word: &str| format!("{n} {word}{}", if n == 1 { "" } else { "s" });
                 ui.weak(format!(
-                    "{} nodes · {} compiles",
-                    self.document.graph.nodes.len(),
-                    self.live.compiles
+                    "{} · {}",
+                    plural(self.document.graph.nodes.len(), "node"),
+                    plural(self.live.compiles as usize, "compile")
                 ));
             });
         });
+        if stale {
+            self.message = None;
+        }
     }
 }

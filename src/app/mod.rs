@@ -7,6 +7,7 @@ mod clipboard;
 mod dialogs;
 mod document;
 mod fields;
+mod file_browser;
 mod graph_view;
 mod history;
 mod inspector;
@@ -49,9 +50,6 @@ pub fn run(path: Option<PathBuf>) -> Result<(), String> {
     .map_err(|error| format!("cannot open the editor window: {error}"))
 }
 
-/// Seconds between autosaves of unsaved work.
-const AUTOSAVE_SECONDS: f64 = 5.0;
-
 /// The editor's state.
 pub struct VeneerApp {
     pub document: Document,
@@ -74,7 +72,10 @@ pub struct VeneerApp {
     quick_add: bool,
     frame: Option<Framing>,
     recent: Vec<PathBuf>,
-    last_autosave: f64,
+    /// This window's autosave of unsaved work.
+    autosave: recovery::Autosave,
+    /// The file browser a path dialog opened.
+    browser: file_browser::Browser,
     /// The material code handed to each preview slot, shared between frames.
     wgsl: [Option<(u64, Arc<str>)>; 2],
     /// The preview mesh's distance fields: solving, picking sources, viewing.
@@ -84,7 +85,7 @@ pub struct VeneerApp {
     field_view_wgsl: Option<(u64, Arc<str>)>,
     render_state: Option<eframe::egui_wgpu::RenderState>,
     allowed_to_close: bool,
-    /// Where unsaved work is autosaved.
+    /// Beside which windows autosave unsaved work (and the recent files are kept).
     recovery_file: PathBuf,
     /// The window title last sent.
     title: String,
@@ -93,11 +94,13 @@ pub struct VeneerApp {
 impl VeneerApp {
     /// The editor on `path` (or the wood preset), autosaving to the default recovery file.
     pub fn new(cc: &eframe::CreationContext<'_>, path: Option<PathBuf>) -> VeneerApp {
+        recovery::watch_termination(&cc.egui_ctx);
         VeneerApp::with_recovery_file(cc, path, recovery::default_path())
     }
 
-    /// The editor on `path` (or the wood preset), autosaving to `recovery_file`, with the
-    /// preview's GPU resources installed. Offers the recovery file's content if there is one.
+    /// The editor on `path` (or the wood preset), autosaving beside `recovery_file` to a
+    /// file of its own, with the preview's GPU resources installed. Offers the work that
+    /// windows which did not exit cleanly left there.
     pub fn with_recovery_file(
         cc: &eframe::CreationContext<'_>,
         path: Option<PathBuf>,
@@ -124,7 +127,8 @@ impl VeneerApp {
             quick_add: false,
             frame: Some(Framing::Output),
             recent: recovery::load_recent(&recovery_file),
-            last_autosave: 0.0,
+            autosave: recovery::Autosave::new(recovery::window_file(&recovery_file)),
+            browser: Default::default(),
             wgsl: [None, None],
             fields: Default::default(),
             field_view: LiveMaterial::default(),
@@ -137,8 +141,9 @@ impl VeneerApp {
         if let Some(path) = path {
             app.open(path);
         }
-        if let Some(recovery) = recovery::pending(&app.recovery_file) {
-            app.dialog = Some(Dialog::Recover(recovery));
+        let orphans = recovery::orphans(&app.recovery_file);
+        if !orphans.is_empty() {
+            app.dialog = Some(Dialog::Recover(orphans));
         }
         app.live.update(&app.document.graph);
         app
@@ -217,7 +222,7 @@ impl VeneerApp {
             }
             Pending::Quit => {
                 self.allowed_to_close = true;
-                recovery::clear(&self.recovery_file);
+                self.autosave.forget();
             }
         }
     }
@@ -228,7 +233,7 @@ impl VeneerApp {
             Ok(path) => {
                 self.remember(&path);
                 self.message = Some(format!("saved {}", path.display()));
-                recovery::clear(&self.recovery_file);
+                self.autosave.forget();
             }
             Err(_) if self.document.path.is_none() => {
                 self.dialog = Some(Dialog::save_as(&self.document))
@@ -295,6 +300,10 @@ impl VeneerApp {
         };
         let widget = SnarlWidget::new().id_salt("graph");
         let response = widget.show(&mut self.snarl, &mut viewer, ui);
+        if self.dialog.is_some() {
+            // A click on a dialog is not for the node under it.
+            self.clicked = before;
+        }
         if self.clicked.is_none() && !response.clicked() {
             self.clicked = before.filter(|node| self.snarl.get_node(*node).is_some());
         }
@@ -349,17 +358,7 @@ impl VeneerApp {
             ctx.send_viewport_cmd(egui::ViewportCommand::Title(title.clone()));
             self.title = title;
         }
-        let now = ctx.input(|input| input.time);
-        if self.document.is_dirty() && now - self.last_autosave > AUTOSAVE_SECONDS {
-            self.last_autosave = now;
-            let saved = recovery::Recovery {
-                original: self.document.path.clone(),
-                graph: self.document.graph.clone(),
-            };
-            if let Err(error) = recovery::autosave(&self.recovery_file, &saved) {
-                self.message = Some(format!("autosave failed: {error}"));
-            }
-        }
+        self.autosave_tick(ctx);
     }
 
     fn handle_close(&mut self, ctx: &egui::Context) {
@@ -368,7 +367,7 @@ impl VeneerApp {
                 ctx.send_viewport_cmd(egui::ViewportCommand::CancelClose);
                 self.dialog = Some(Dialog::Discard(Pending::Quit));
             } else {
-                recovery::clear(&self.recovery_file);
+                self.autosave.forget();
             }
         }
         if self.allowed_to_close {
@@ -458,7 +457,7 @@ impl eframe::App for VeneerApp {
         if let Some(dialog) = self.dialog.take() {
             // A dialog's action may open another dialog (an open that fails shows a
             // message): that one wins over the dialog staying open.
-            let (still_open, action) = dialog.show(&ctx, &self.document);
+            let (still_open, action) = dialog.show(&ctx, &self.document, &mut self.browser);
             if let Some(action) = action {
                 self.apply(action);
             }
@@ -469,7 +468,7 @@ impl eframe::App for VeneerApp {
 
     fn on_exit(&mut self) {
         if !self.document.is_dirty() {
-            recovery::clear(&self.recovery_file);
+            self.autosave.forget();
         }
     }
 }

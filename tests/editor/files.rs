@@ -161,10 +161,11 @@ fn unsaved_work_survives_killing_the_editor() {
     child.kill().expect("kill");
     child.wait().expect("reaped");
     let edited = std::fs::read_to_string(&marker).expect("marker");
-    assert!(
-        dir.join("recovery.ron").exists(),
-        "autosave wrote the recovery file"
-    );
+    let autosaved = std::fs::read_dir(&dir)
+        .expect("scratch folder")
+        .flatten()
+        .any(|entry| entry.file_name().to_string_lossy().starts_with("recovery-"));
+    assert!(autosaved, "autosave wrote the window's recovery file");
 
     let mut restarted = editor(&dir, None);
     assert!(shows(&restarted, "Recover unsaved work?"));
