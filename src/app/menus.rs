@@ -26,7 +26,10 @@ impl VeneerApp {
             self.guard(Pending::New);
         }
         if pressed(command, Key::D) {
-            clipboard::duplicate(&mut self.snarl, &self.selection);
+            self.duplicate_at_mouse(ctx);
+        }
+        if pressed(command, Key::G) {
+            self.frame_selection();
         }
         if typing {
             return;
@@ -41,9 +44,12 @@ impl VeneerApp {
         if pressed(Modifiers::NONE, Key::F) {
             self.frame = Some(Framing::All);
         }
-        if pressed(Modifiers::NONE, Key::Space) || pressed(Modifiers::NONE, Key::Tab) {
-            self.quick_add = true;
-            self.search.clear();
+        if pressed(Modifiers::NONE, Key::Space) {
+            self.open_add_node(ctx, None, Some(" "));
+        } else if pressed(Modifiers::NONE, Key::Tab) {
+            self.open_add_node(ctx, None, Some("\t"));
+        } else if pressed(Modifiers::SHIFT, Key::A) {
+            self.open_add_node(ctx, None, Some("A"));
         }
     }
 
@@ -56,9 +62,7 @@ impl VeneerApp {
                     ctx.copy_text(clipboard::copy(&self.snarl, &self.selection));
                 }
                 egui::Event::Paste(text) if ctx.memory(|m| m.focused().is_none()) => {
-                    if let Err(error) = clipboard::paste(&mut self.snarl, &text) {
-                        self.message = Some(format!("nothing pasted: {error}"));
-                    }
+                    self.paste_at_mouse(ctx, &text);
                 }
                 _ => {}
             }
@@ -118,10 +122,10 @@ impl VeneerApp {
                     self.redo();
                 }
                 if ui.button("Add node…").clicked() {
-                    self.quick_add = true;
+                    self.open_add_node(ui.ctx(), None, None);
                 }
                 if ui.button("Duplicate").clicked() {
-                    clipboard::duplicate(&mut self.snarl, &self.selection);
+                    self.duplicate_at_mouse(ui.ctx());
                 }
                 if ui.button("Frame all").clicked() {
                     self.frame = Some(Framing::All);
@@ -133,11 +137,7 @@ impl VeneerApp {
                     )
                     .clicked()
                 {
-                    if let Some(frame) =
-                        graph_view::frame_around(&self.snarl, &self.selection, "Comment")
-                    {
-                        self.document.graph.frames.push(frame);
-                    }
+                    self.frame_selection();
                 }
                 if ui.button("Arrange nodes").clicked() {
                     let mut graph = graph_from_snarl(&self.snarl, &self.document.graph);
@@ -178,11 +178,20 @@ impl VeneerApp {
             }
             ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
                 ui.weak(format!(
-                    "{} nodes · {} compiles",
-                    self.document.graph.nodes.len(),
-                    self.live.compiles
+                    "{} · {}",
+                    counted(self.document.graph.nodes.len(), "node"),
+                    counted(self.live.compiles as usize, "compile")
                 ));
             });
         });
+    }
+}
+
+/// "1 node", "2 nodes".
+fn counted(count: usize, noun: &str) -> String {
+    if count == 1 {
+        format!("1 {noun}")
+    } else {
+        format!("{count} {noun}s")
     }
 }
