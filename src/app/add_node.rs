@@ -66,6 +66,9 @@ impl AddNode {
 /// Where the pointer sits over a new node's top-left corner: over its title, a little in.
 const GRAB: Vec2 = Vec2::new(40.0, 12.0);
 
+/// A new frame's tint (as `frame_around` gives).
+const FRAME_COLOR: (f32, f32, f32) = (0.45, 0.65, 0.95);
+
 /// The search popup's layer and text box.
 fn popup_id() -> Id {
     Id::new("veneer-add-node")
@@ -146,12 +149,14 @@ impl VeneerApp {
             }
         }
         let dangling = search.dropped.as_ref().map(DroppedWire::dangling);
+        let selected = !self.selection.is_empty();
         let usable = |entry: &Entry| match (&entry.item, dangling) {
-            (_, None) => true,
+            (Item::Node(_), None) | (Item::Frame, None) => true,
+            (Item::FrameSelection, None) => selected,
             (Item::Node(kind), Some(dangling)) => {
                 catalogue::compatible_pin(kind, dangling).is_some()
             }
-            (Item::Frame, Some(_)) => false,
+            (_, Some(_)) => false,
         };
         let entries: Vec<Entry> = if search.text.trim().is_empty() {
             catalogue::entries()
@@ -260,7 +265,19 @@ impl VeneerApp {
     fn add_entry(&mut self, entry: Entry, search: Search) {
         let kind = match entry.item {
             Item::Frame => {
-                self.add_frame(search.graph);
+                self.document.graph.frames.push(crate::graph::Frame {
+                    title: "Comment".into(),
+                    min: (search.graph.x - GRAB.x, search.graph.y - GRAB.y),
+                    max: (
+                        search.graph.x - GRAB.x + 400.0,
+                        search.graph.y - GRAB.y + 260.0,
+                    ),
+                    color: FRAME_COLOR,
+                });
+                return;
+            }
+            Item::FrameSelection => {
+                self.frame_selection();
                 return;
             }
             Item::Node(kind) => kind,
@@ -291,19 +308,6 @@ impl VeneerApp {
         }
         // The new node is the selected one, its settings in the inspector.
         self.clicked = Some(id);
-    }
-
-    /// A comment frame around the selected nodes, or an empty one at `at` (graph space).
-    fn add_frame(&mut self, at: Pos2) {
-        let frame = frame_around(&self.snarl, &self.selection, "Comment").unwrap_or_else(|| {
-            crate::graph::Frame {
-                title: "Comment".into(),
-                min: (at.x - GRAB.x, at.y - GRAB.y),
-                max: (at.x - GRAB.x + 400.0, at.y - GRAB.y + 260.0),
-                color: (0.45, 0.65, 0.95),
-            }
-        });
-        self.document.graph.frames.push(frame);
     }
 
     /// Ctrl+G and *Edit → Frame selected nodes*: a comment frame around the selection.

@@ -9,8 +9,10 @@ use crate::graph::{Category, NodeKind, ValueType};
 pub enum Item {
     /// A node of this kind.
     Node(NodeKind),
-    /// A comment frame, around the selected nodes or at the mouse.
+    /// An empty comment frame at the mouse.
     Frame,
+    /// A comment frame around the selected nodes (offered when some are selected).
+    FrameSelection,
 }
 
 /// One entry of the add-node search.
@@ -32,7 +34,7 @@ impl Entry {
     pub fn group(&self) -> &'static str {
         match &self.item {
             Item::Node(kind) => kind.category().name(),
-            Item::Frame => LAYOUT,
+            Item::Frame | Item::FrameSelection => LAYOUT,
         }
     }
 
@@ -48,13 +50,15 @@ impl Entry {
                     definition.keywords().join(" ")
                 )
             }
-            Item::Frame => format!("{} {}", self.name, FRAME_WORDS.join(" ")),
+            Item::Frame | Item::FrameSelection => {
+                format!("{} {}", self.name, FRAME_WORDS.join(" "))
+            }
         }
         .to_lowercase()
     }
 }
 
-/// All entries, in menu order: the registry's, category by category, then the frame.
+/// All entries, in menu order: the registry's, category by category, then the frames.
 pub fn entries() -> Vec<Entry> {
     let mut entries: Vec<Entry> = NodeKind::menu()
         .into_iter()
@@ -65,12 +69,16 @@ pub fn entries() -> Vec<Entry> {
         .collect();
     let rank = |entry: &Entry| match &entry.item {
         Item::Node(kind) => Category::ALL.iter().position(|c| *c == kind.category()),
-        Item::Frame => None,
+        Item::Frame | Item::FrameSelection => None,
     };
     entries.sort_by_key(|entry| rank(entry));
     entries.push(Entry {
         name: "Frame (comment)".into(),
         item: Item::Frame,
+    });
+    entries.push(Entry {
+        name: "Frame around selected nodes (Ctrl+G)".into(),
+        item: Item::FrameSelection,
     });
     entries
 }
@@ -168,6 +176,7 @@ mod tests {
             assert_eq!(search(word)[0].item, Item::Frame, "{word}");
         }
         assert_eq!(entries().last().map(Entry::group), Some(LAYOUT));
+        assert_eq!(search("frame sel")[0].item, Item::FrameSelection);
     }
 
     #[test]

@@ -281,6 +281,9 @@ impl VeneerApp {
         let mut hint = None;
         let mut dropped = None;
         self.add.set_graph_rect(ui.max_rect());
+        // Node titles and pin names are not text to select: a click on a title selects
+        // the node, and Ctrl+C copies the node, not the title.
+        ui.style_mut().interaction.selectable_labels = false;
         let frame = self.frame.take().map(|framing| (ui.max_rect(), framing));
         let before = self.clicked.take();
         let mut viewer = Viewer {

@@ -64,6 +64,12 @@ fn newest(harness: &Editor) -> veneer::graph::Node {
         .expect("a node")
 }
 
+/// Where the only label `text` is on screen, in the graph (whose widgets report graph
+/// coordinates).
+fn in_graph(harness: &Editor, text: &str) -> egui::Rect {
+    harness.state().graph_to_screen() * harness.get_by_label(text).rect()
+}
+
 /// Where a node's top-left corner is on screen.
 fn on_screen(harness: &Editor, position: (f32, f32)) -> Pos2 {
     harness.state().graph_to_screen() * Pos2::new(position.0, position.1)
@@ -218,13 +224,7 @@ fn a_click_on_the_search_does_not_reach_the_node_under_it() {
     let mut harness = editor(&dir, None);
     new_graph(&mut harness);
     // Open the search with the mouse on the material node's title.
-    let title = harness
-        .query_by(|node| {
-            node.role() == egui::accesskit::Role::TextRun
-                && node.value().as_deref() == Some("material")
-        })
-        .expect("the material node's title")
-        .rect();
+    let title = in_graph(&harness, "material");
     hover(&mut harness, title.left_center() + egui::vec2(4.0, 0.0));
     key(&mut harness, Modifiers::NONE, Key::Space, Some(" "));
     // Its text box lies over the material node: a click on it stays in the search.
@@ -275,7 +275,18 @@ fn pasted_and_duplicated_nodes_land_at_the_mouse_in_their_layout() {
         "{corner:?} is not at the mouse {mouse:?}"
     );
 
-    // Ctrl+C copies the selection as text; Ctrl+V pastes it at the mouse.
+    // Ctrl+C copies the clicked node as text (not its title); Ctrl+V pastes it at the mouse.
+    let title = on_screen(&harness, original.position) + egui::vec2(40.0, 12.0);
+    hover(&mut harness, title);
+    harness.drag_at(title);
+    harness.run();
+    harness.event(Event::PointerButton {
+        pos: title,
+        button: egui::PointerButton::Primary,
+        pressed: false,
+        modifiers: Modifiers::NONE,
+    });
+    harness.run();
     harness.event(Event::Copy);
     harness.step();
     let copied = harness
@@ -288,6 +299,10 @@ fn pasted_and_duplicated_nodes_land_at_the_mouse_in_their_layout() {
             _ => None,
         })
         .expect("Ctrl+C copied the selected node");
+    assert!(
+        copied.contains("nodes"),
+        "Ctrl+C copied {copied:?}, not the node"
+    );
     harness.run();
     let mouse = Pos2::new(420.0, 250.0);
     hover(&mut harness, mouse);
@@ -334,14 +349,24 @@ fn frames_come_from_the_search_and_ctrl_g() {
         "no node added"
     );
 
-    // Ctrl+G frames the selected node.
+    // With a node selected, the search also offers a frame around it, and so does Ctrl+G.
     crate::support::select_node(&mut harness, "material");
+    hover(&mut harness, Pos2::new(150.0, 200.0));
+    key(&mut harness, Modifiers::NONE, Key::Space, Some(" "));
+    typing(&mut harness, "frame around");
+    key(&mut harness, Modifiers::NONE, Key::Enter, None);
     key(&mut harness, Modifiers::COMMAND, Key::G, None);
     let graph = &harness.state().document.graph;
-    assert_eq!(graph.frames.len(), 2);
+    assert_eq!(graph.frames.len(), 3);
     let (x, y) = graph.nodes[0].position;
-    let frame = &graph.frames[1];
-    assert!(frame.min.0 < x && frame.min.1 < y && frame.max.0 > x && frame.max.1 > y);
+    for frame in &graph.frames[1..] {
+        assert!(
+            frame.min.0 < x && frame.min.1 < y && frame.max.0 > x && frame.max.1 > y,
+            "{frame:?} is not around the material at {:?}",
+            (x, y)
+        );
+    }
+    assert_eq!(graph.nodes.len(), 1, "no node added");
 }
 
 #[test]
@@ -362,13 +387,7 @@ fn a_wire_dropped_on_empty_canvas_offers_the_nodes_it_fits_and_connects_the_pick
     add_by_keyboard(&mut harness, Pos2::new(150.0, 200.0), SPACE, "noise");
     let noise = newest(&harness);
     // Drag from the noise's output pin (right of its "value" label) to empty canvas.
-    let label = harness
-        .query_by(|node| {
-            node.role() == egui::accesskit::Role::TextRun
-                && node.value().as_deref() == Some("value")
-        })
-        .expect("the noise's output")
-        .rect();
+    let label = in_graph(&harness, "value");
     let pin = Pos2::new(label.max.x + 4.0, label.center().y);
     let drop = Pos2::new(250.0, 600.0);
     hover(&mut harness, pin);
