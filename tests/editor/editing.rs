@@ -93,7 +93,7 @@ fn a_parameter_edit_changes_the_preview_without_recompiling_and_undo_restores_it
     let compiles = harness.state().live.compiles;
     select_node(&mut harness, "material");
     // Type a much lower shininess into the inspector's drag value: a broad highlight.
-    retype_drag_value(&mut harness, "24.0", "2");
+    retype_drag_value(&mut harness, "24", "2");
     assert!(harness.state().document.is_dirty());
     let edited = preview_pixels(&screen(&mut harness));
     assert_ne!(original, edited, "the preview shows the new colour");
