@@ -1,44 +1,116 @@
-//! Every node kind the editor offers, grouped by category, with search and the
-//! compatibility filter for wires dropped on empty space.
+//! Every item the add-node search offers: the registry's node kinds, category by
+//! category, then a comment frame; the search ranks them, and wires dropped on empty space
+//! only get the kinds they can attach to.
 
 use crate::graph::{Category, NodeKind, ValueType};
 
-/// One entry of the add-node menu.
+/// What an entry adds.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Item {
+    /// A node of this kind.
+    Node(NodeKind),
+    /// An empty comment frame at the mouse.
+    Frame,
+    /// A comment frame around the selected nodes (offered when some are selected).
+    FrameSelection,
+}
+
+/// One entry of the add-node search.
 #[derive(Clone, Debug)]
 pub struct Entry {
     /// Menu text, e.g. "fBm (gradient)".
     pub name: String,
-    pub kind: NodeKind,
+    pub item: Item,
 }
 
-/// All entries, in menu order: the registry's, category by category.
+/// The group a frame is listed in, after the node categories.
+pub const LAYOUT: &str = "Layout";
+
+/// Words the search finds a frame by (peers call it a comment, a group, a box).
+const FRAME_WORDS: &[&str] = &["frame", "comment", "group", "box", "note", "backdrop"];
+
+impl Entry {
+    /// The heading the entry is listed under.
+    pub fn group(&self) -> &'static str {
+        match &self.item {
+            Item::Node(kind) => kind.category().name(),
+            Item::Frame | Item::FrameSelection => LAYOUT,
+        }
+    }
+
+    /// The text the search matches: name, title and search words, lower case.
+    fn haystack(&self) -> String {
+        match &self.item {
+            Item::Node(kind) => {
+                let definition = kind.definition();
+                format!(
+                    "{} {} {}",
+                    self.name,
+                    definition.title(),
+                    definition.keywords().join(" ")
+                )
+            }
+            Item::Frame | Item::FrameSelection => {
+                format!("{} {}", self.name, FRAME_WORDS.join(" "))
+            }
+        }
+        .to_lowercase()
+    }
+}
+
+/// All entries, in menu order: the registry's, category by category, then the frames.
 pub fn entries() -> Vec<Entry> {
     let mut entries: Vec<Entry> = NodeKind::menu()
         .into_iter()
-        .map(|(name, kind)| Entry { name, kind })
+        .map(|(name, kind)| Entry {
+            name,
+            item: Item::Node(kind),
+        })
         .collect();
-    let rank = |kind: &NodeKind| Category::ALL.iter().position(|c| *c == kind.category());
-    entries.sort_by_key(|entry| rank(&entry.kind));
+    let rank = |entry: &Entry| match &entry.item {
+        Item::Node(kind) => Category::ALL.iter().position(|c| *c == kind.category()),
+        Item::Frame | Item::FrameSelection => None,
+    };
+    entries.sort_by_key(|entry| rank(entry));
+    entries.push(Entry {
+        name: "Frame (comment)".into(),
+        item: Item::Frame,
+    });
+    entries.push(Entry {
+        name: "Frame around selected nodes (Ctrl+G)".into(),
+        item: Item::FrameSelection,
+    });
     entries
 }
 
-/// Entries whose name contains every word of `query` (case-insensitive).
+/// Entries matching every word of `query` (case-insensitive) in their name, title or
+/// search words, best first: names equal to the query, then names starting with it, then
+/// names containing every word, then the rest; menu order within each.
 pub fn search(query: &str) -> Vec<Entry> {
-    let words: Vec<String> = query.split_whitespace().map(str::to_lowercase).collect();
-    entries()
+    let query = query.trim().to_lowercase();
+    let words: Vec<&str> = query.split_whitespace().collect();
+    let mut found: Vec<(u8, Entry)> = entries()
         .into_iter()
         .filter(|entry| {
-            let definition = entry.kind.definition();
-            let name = format!(
-                "{} {} {}",
-                entry.name,
-                definition.title(),
-                definition.keywords().join(" ")
-            )
-            .to_lowercase();
-            words.iter().all(|word| name.contains(word))
+            let haystack = entry.haystack();
+            words.iter().all(|word| haystack.contains(word))
         })
-        .collect()
+        .map(|entry| {
+            let name = entry.name.to_lowercase();
+            let rank = if name == query {
+                0
+            } else if name.starts_with(&query) {
+                1
+            } else if words.iter().all(|word| name.contains(word)) {
+                2
+            } else {
+                3
+            };
+            (rank, entry)
+        })
+        .collect();
+    found.sort_by_key(|(rank, _)| *rank);
+    found.into_iter().map(|(_, entry)| entry).collect()
 }
 
 /// Which end of a dropped wire the new node must offer.
@@ -75,7 +147,7 @@ mod tests {
         let all = entries();
         for category in Category::ALL {
             assert!(
-                all.iter().any(|e| e.kind.category() == category),
+                all.iter().any(|e| e.group() == category.name()),
                 "{} is empty",
                 category.name()
             );
@@ -89,6 +161,22 @@ mod tests {
         assert_eq!(found.len(), 1);
         assert_eq!(found[0].name, "fBm (gradient)");
         assert!(search("zebra").is_empty());
+    }
+
+    #[test]
+    fn search_ranks_names_before_search_words_and_finds_frames() {
+        let found = search("noise");
+        assert!(found.len() > 3);
+        assert!(
+            found[0].name.to_lowercase().starts_with("noise"),
+            "{:?}",
+            found.iter().map(|e| &e.name).collect::<Vec<_>>()
+        );
+        for word in ["frame", "Comment", "group"] {
+            assert_eq!(search(word)[0].item, Item::Frame, "{word}");
+        }
+        assert_eq!(entries().last().map(Entry::group), Some(LAYOUT));
+        assert_eq!(search("frame sel")[0].item, Item::FrameSelection);
     }
 
     #[test]

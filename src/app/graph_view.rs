@@ -2,7 +2,8 @@
 //! stays the saved, ordered truth; the `Snarl` is rebuilt from it when it is replaced
 //! (open, undo) and read back after every frame of editing.
 
-use super::catalogue::{self, Dangling};
+use super::add_node::DroppedWire;
+use super::catalogue::Dangling;
 use super::widgets::{input_editor, type_color};
 use crate::graph::{Graph, Node, NodeId, PinDefault, PinRef, Wire};
 use egui::{Color32, Pos2, RichText, Ui};
@@ -132,8 +133,8 @@ pub struct Viewer<'a> {
     pub warnings: &'a BTreeMap<NodeId, String>,
     /// A message for the status bar (e.g. why a wire was refused).
     pub hint: &'a mut Option<String>,
-    /// The add-node menu's search text.
-    pub search: &'a mut String,
+    /// Set when a wire is dropped on empty canvas: the add-node search opens for it.
+    pub dropped: &'a mut Option<DroppedWire>,
     /// When set, move the view this frame to show these nodes in this screen rectangle.
     pub frame: Option<(egui::Rect, Framing)>,
     /// The node selected by a plain click (snarl itself selects only with Shift or a
@@ -145,75 +146,6 @@ pub struct Viewer<'a> {
     pub transform: &'a mut egui::emath::TSTransform,
     /// Comment frames to draw behind the nodes.
     pub frames: &'a [crate::graph::Frame],
-}
-
-impl Viewer<'_> {
-    fn insert(
-        &mut self,
-        snarl: &mut Snarl<Node>,
-        pos: Pos2,
-        kind: crate::graph::NodeKind,
-    ) -> egui_snarl::NodeId {
-        let node = Node::new(next_node_id(snarl), kind);
-        snarl.insert_node(pos, node)
-    }
-
-    /// The add-node menu: a search box, then matches (or categories when it is empty).
-    /// `dangling` limits the offer to nodes a dropped wire can attach to.
-    pub fn add_node_menu(
-        &mut self,
-        ui: &mut Ui,
-        dangling: Option<Dangling>,
-    ) -> Option<catalogue::Entry> {
-        let search = ui.add(
-            egui::TextEdit::singleline(self.search)
-                .hint_text("search nodes…")
-                .desired_width(180.0),
-        );
-        if !search.has_focus() && self.search.is_empty() {
-            search.request_focus();
-        }
-        let usable = |entry: &catalogue::Entry| {
-            dangling.is_none_or(|d| catalogue::compatible_pin(&entry.kind, d).is_some())
-        };
-        let mut chosen = None;
-        if self.search.trim().is_empty() {
-            for category in crate::graph::Category::ALL {
-                let entries: Vec<_> = catalogue::entries()
-                    .into_iter()
-                    .filter(|e| e.kind.category() == category && usable(e))
-                    .collect();
-                if entries.is_empty() {
-                    continue;
-                }
-                ui.menu_button(category.name(), |ui| {
-                    for entry in entries {
-                        if ui.button(&entry.name).clicked() {
-                            chosen = Some(entry);
-                        }
-                    }
-                });
-            }
-        } else {
-            egui::ScrollArea::vertical()
-                .max_height(320.0)
-                .show(ui, |ui| {
-                    for entry in catalogue::search(self.search)
-                        .into_iter()
-                        .filter(|e| usable(e))
-                    {
-                        if ui.button(&entry.name).clicked() {
-                            chosen = Some(entry);
-                        }
-                    }
-                });
-        }
-        if chosen.is_some() {
-            self.search.clear();
-            ui.close();
-        }
-        chosen
-    }
 }
 
 impl SnarlViewer<Node> for Viewer<'_> {
@@ -280,12 +212,20 @@ impl SnarlViewer<Node> for Viewer<'_> {
             .layer_transform_to_global(ui.layer_id())
             .unwrap_or_default();
         let on_screen = to_screen * rect;
-        let clicked = ui.input(|input| {
-            input.pointer.primary_clicked()
-                && input
-                    .pointer
-                    .interact_pos()
-                    .is_some_and(|pos| on_screen.contains(pos))
+        let pointer = ui.input(|input| {
+            input
+                .pointer
+                .primary_clicked()
+                .then(|| input.pointer.interact_pos())
+                .flatten()
+        });
+        // A click on a popup, menu or dialog above the node is not a click on the node.
+        let clicked = pointer.is_some_and(|pos| {
+            on_screen.contains(pos)
+                && ui
+                    .ctx()
+                    .layer_id_at(pos)
+                    .is_none_or(|layer| layer.order == egui::Order::Background)
         });
         if clicked {
             *self.clicked = Some(node);
@@ -387,57 +327,21 @@ impl SnarlViewer<Node> for Viewer<'_> {
         snarl.connect(from.id, to.id);
     }
 
-    fn has_graph_menu(&mut self, _: Pos2, _: &mut Snarl<Node>) -> bool {
-        true
-    }
-
-    fn show_graph_menu(&mut self, pos: Pos2, ui: &mut Ui, snarl: &mut Snarl<Node>) {
-        ui.label("Add node");
-        if let Some(entry) = self.add_node_menu(ui, None) {
-            self.insert(snarl, pos, entry.kind);
-        }
-    }
-
-    fn has_dropped_wire_menu(&mut self, _: AnyPins, _: &mut Snarl<Node>) -> bool {
-        true
-    }
-
-    fn show_dropped_wire_menu(
-        &mut self,
-        pos: Pos2,
-        ui: &mut Ui,
-        src_pins: AnyPins,
-        snarl: &mut Snarl<Node>,
-    ) {
-        let dangling = match src_pins {
-            AnyPins::Out([pin, ..]) => {
-                Dangling::FromOutput(snarl[pin.node].kind.signature().outputs[pin.output].ty)
-            }
-            AnyPins::In([pin, ..]) => {
-                Dangling::IntoInput(snarl[pin.node].kind.signature().inputs[pin.input].ty)
-            }
-            _ => return,
+    /// A wire dropped on empty canvas opens the add-node search (the app's, at the mouse)
+    /// offering only the kinds it can attach to; snarl's own menu stays shut.
+    fn has_dropped_wire_menu(&mut self, src_pins: AnyPins, snarl: &mut Snarl<Node>) -> bool {
+        *self.dropped = match src_pins {
+            AnyPins::Out(pins @ [pin, ..]) => Some(DroppedWire::Out(
+                Dangling::FromOutput(snarl[pin.node].kind.signature().outputs[pin.output].ty),
+                pins.to_vec(),
+            )),
+            AnyPins::In(pins @ [pin, ..]) => Some(DroppedWire::In(
+                Dangling::IntoInput(snarl[pin.node].kind.signature().inputs[pin.input].ty),
+                pins.to_vec(),
+            )),
+            _ => None,
         };
-        ui.label("Add and connect");
-        let Some(entry) = self.add_node_menu(ui, Some(dangling)) else {
-            return;
-        };
-        let pin = catalogue::compatible_pin(&entry.kind, dangling)
-            .expect("only compatible entries are offered");
-        let node = self.insert(snarl, pos, entry.kind);
-        match src_pins {
-            AnyPins::Out(pins) => {
-                for from in pins {
-                    snarl.connect(*from, InPinId { node, input: pin });
-                }
-            }
-            AnyPins::In(pins) => {
-                for to in pins {
-                    snarl.drop_inputs(*to);
-                    snarl.connect(OutPinId { node, output: pin }, *to);
-                }
-            }
-        }
+        false
     }
 
     fn has_node_menu(&mut self, _: &Node) -> bool {
@@ -453,14 +357,9 @@ impl SnarlViewer<Node> for Viewer<'_> {
         snarl: &mut Snarl<Node>,
     ) {
         if ui.button("Duplicate").clicked() {
-            let mut copy = snarl[node].clone();
-            copy.id = next_node_id(snarl);
-            let position = snarl
-                .get_node_info(node)
-                .map(|info| info.pos)
-                .unwrap_or_default()
-                + egui::vec2(30.0, 30.0);
-            snarl.insert_node(position, copy);
+            // Where the menu opened (where the node was right-clicked), in graph space.
+            let at = self.transform.inverse() * ui.min_rect().min;
+            super::clipboard::duplicate(snarl, &[node], at);
             ui.close();
         }
         if ui.button("Delete").clicked() {

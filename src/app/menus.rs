@@ -18,6 +18,7 @@ const EXPORT_PNG: KeyboardShortcut = command_shift(Key::E);
 const UNDO: KeyboardShortcut = command(Key::Z);
 const REDO: KeyboardShortcut = command_shift(Key::Z);
 const DUPLICATE: KeyboardShortcut = command(Key::D);
+const FRAME_SELECTION: KeyboardShortcut = command(Key::G);
 
 /// Seconds a status message stays (fading over the last one).
 pub const MESSAGE_SECONDS: f64 = 6.0;
@@ -76,7 +77,10 @@ impl VeneerApp {
             self.guard(Pending::New);
         }
         if pressed(DUPLICATE) {
-            clipboard::duplicate(&mut self.snarl, &self.selection);
+            self.duplicate_at_mouse(ctx);
+        }
+        if pressed(FRAME_SELECTION) {
+            self.frame_selection();
         }
         let pressed = |modifiers, key| pressed(KeyboardShortcut::new(modifiers, key));
         if typing {
@@ -92,9 +96,12 @@ impl VeneerApp {
         if pressed(Modifiers::NONE, Key::F) {
             self.frame = Some(Framing::All);
         }
-        if pressed(Modifiers::NONE, Key::Space) || pressed(Modifiers::NONE, Key::Tab) {
-            self.quick_add = true;
-            self.search.clear();
+        if pressed(Modifiers::NONE, Key::Space) {
+            self.open_add_node(ctx, None, Some(" "));
+        } else if pressed(Modifiers::NONE, Key::Tab) {
+            self.open_add_node(ctx, None, Some("\t"));
+        } else if pressed(Modifiers::SHIFT, Key::A) {
+            self.open_add_node(ctx, None, Some("A"));
         }
     }
 
@@ -110,9 +117,7 @@ impl VeneerApp {
                     ctx.copy_text(clipboard::copy(&self.snarl, &self.selection));
                 }
                 egui::Event::Paste(text) if ctx.memory(|m| m.focused().is_none()) => {
-                    if let Err(error) = clipboard::paste(&mut self.snarl, &text) {
-                        self.message = Some(format!("nothing pasted: {error}"));
-                    }
+                    self.paste_at_mouse(ctx, &text);
                 }
                 _ => {}
             }
@@ -164,26 +169,21 @@ impl VeneerApp {
                     self.redo();
                 }
                 if entry(ui, "Add node…", "Space", true) {
-                    self.quick_add = true;
+                    self.open_add_node(ui.ctx(), None, None);
                 }
                 if shortcut_entry(ui, "Duplicate", &DUPLICATE, true) {
-                    clipboard::duplicate(&mut self.snarl, &self.selection);
+                    self.duplicate_at_mouse(ui.ctx());
                 }
                 if entry(ui, "Frame all", "F", true) {
                     self.frame = Some(Framing::All);
                 }
-                if ui
-                    .add_enabled(
-                        !self.selection.is_empty(),
-                        egui::Button::new("Frame selected nodes"),
-                    )
-                    .clicked()
-                {
-                    if let Some(frame) =
-                        graph_view::frame_around(&self.snarl, &self.selection, "Comment")
-                    {
-                        self.document.graph.frames.push(frame);
-                    }
+                if shortcut_entry(
+                    ui,
+                    "Frame selected nodes",
+                    &FRAME_SELECTION,
+                    !self.selection.is_empty(),
+                ) {
+                    self.frame_selection();
                 }
                 if ui.button("Arrange nodes").clicked() {
                     let mut graph = graph_from_snarl(&self.snarl, &self.document.graph);
@@ -250,17 +250,24 @@ impl VeneerApp {
                 }
             }
             ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
-                let plural =
-                    |n: usize, word: &str| format!("{n} {word}{}", if n == 1 { "" } else { "s" });
                 ui.weak(format!(
                     "{} · {}",
-                    plural(self.document.graph.nodes.len(), "node"),
-                    plural(self.live.compiles as usize, "compile")
+                    counted(self.document.graph.nodes.len(), "node"),
+                    counted(self.live.compiles as usize, "compile")
                 ));
             });
         });
         if stale {
             self.message = None;
         }
+    }
+}
+
+/// "1 node", "2 nodes".
+fn counted(count: usize, noun: &str) -> String {
+    if count == 1 {
+        format!("1 {noun}")
+    } else {
+        format!("{count} {noun}s")
     }
 }

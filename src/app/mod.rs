@@ -2,6 +2,7 @@
 //! the inspector on the right, a status bar below. Behind the default `gui` feature.
 
 mod actions;
+mod add_node;
 mod catalogue;
 mod clipboard;
 mod dialogs;
@@ -66,10 +67,9 @@ pub struct VeneerApp {
     graph_transform: egui::emath::TSTransform,
     /// A message for the status bar (saved, exported, refused wire…).
     pub message: Option<String>,
-    search: String,
     dialog: Option<Dialog>,
-    /// The add-node search opened by Space or Tab.
-    quick_add: bool,
+    /// The add-node search (Space, Tab, Shift+A) and where the graph is on screen.
+    add: add_node::AddNode,
     frame: Option<Framing>,
     recent: Vec<PathBuf>,
     /// This window's autosave of unsaved work.
@@ -122,9 +122,8 @@ impl VeneerApp {
             clicked: None,
             graph_transform: Default::default(),
             message: None,
-            search: String::new(),
             dialog: None,
-            quick_add: false,
+            add: Default::default(),
             frame: Some(Framing::Output),
             recent: recovery::load_recent(&recovery_file),
             autosave: recovery::Autosave::new(recovery::window_file(&recovery_file)),
@@ -285,13 +284,18 @@ impl VeneerApp {
 
     fn graph_panel(&mut self, ui: &mut Ui) {
         let mut hint = None;
+        let mut dropped = None;
+        self.add.set_graph_rect(ui.max_rect());
+        // Node titles and pin names are not text to select: a click on a title selects
+        // the node, and Ctrl+C copies the node, not the title.
+        ui.style_mut().interaction.selectable_labels = false;
         let frame = self.frame.take().map(|framing| (ui.max_rect(), framing));
         let before = self.clicked.take();
         let mut viewer = Viewer {
             errors: &self.live.errors,
             warnings: &self.live.warnings,
             hint: &mut hint,
-            search: &mut self.search,
+            dropped: &mut dropped,
             frame,
             clicked: &mut self.clicked,
             selected: before,
@@ -314,32 +318,11 @@ impl VeneerApp {
         if hint.is_some() {
             self.message = hint;
         }
-        if self.quick_add {
-            let mut open = true;
-            egui::Window::new("Add node")
-                .open(&mut open)
-                .collapsible(false)
-                .show(ui.ctx(), |ui| {
-                    let mut viewer = Viewer {
-                        errors: &self.live.errors,
-                        warnings: &self.live.warnings,
-                        hint: &mut None,
-                        search: &mut self.search,
-                        frame: None,
-                        clicked: &mut None,
-                        selected: None,
-                        transform: &mut Default::default(),
-                        frames: &[],
-                    };
-                    if let Some(entry) = viewer.add_node_menu(ui, None) {
-                        let position = clipboard::free_position(&self.snarl);
-                        let id = graph_view::next_node_id(&self.snarl);
-                        self.snarl.insert_node(position, Node::new(id, entry.kind));
-                        self.quick_add = false;
-                    }
-                });
-            self.quick_add &= open;
+        // A right click on empty canvas, or a wire dropped there, opens the add-node search.
+        if dropped.is_some() || response.secondary_clicked() {
+            self.open_add_node(ui.ctx(), dropped, None);
         }
+        self.add_node_popup(ui.ctx());
     }
 
     /// After the panels: read the edited graph back, recompile if needed, commit undo steps, autosave.

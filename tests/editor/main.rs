@@ -1,6 +1,7 @@
 //! The editor driven for real through egui_kittest, rendering through wgpu on the
 //! machine's adapter (lavapipe or llvmpipe on CI).
 
+mod add_node;
 mod dialogs;
 mod editing;
 mod files;

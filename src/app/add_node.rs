@@ -1,0 +1,334 @@
+//! The add-node search, as in Blender: Space, Tab, Shift+A, *Edit → Add node*, a right
+//! click on empty canvas or a wire dropped there open it at the mouse (the graph's centre
+//! when the mouse is elsewhere) with its text box focused. Typing filters, Up and Down
+//! move the highlight, Enter or a click picks, Escape or a click elsewhere closes. The
+//! node appears under the mouse; a dropped wire is connected to it. Pastes and duplicates
+//! land at the mouse too, and comment frames are added from the same search or Ctrl+G.
+
+use super::VeneerApp;
+use super::catalogue::{self, Dangling, Entry, Item};
+use super::graph_view::{frame_around, next_node_id};
+use crate::graph::Node;
+use egui::{Id, Key, Modifiers, Pos2, Rect, Vec2};
+use egui_snarl::{InPinId, OutPinId};
+
+/// A wire dropped on empty canvas: the end that dangles and the pins it starts from.
+#[derive(Clone, Debug, PartialEq)]
+pub enum DroppedWire {
+    /// Dragged out of these outputs: the new node's input takes them.
+    Out(Dangling, Vec<OutPinId>),
+    /// Dragged out of these inputs: the new node's output feeds them.
+    In(Dangling, Vec<InPinId>),
+}
+
+impl DroppedWire {
+    fn dangling(&self) -> Dangling {
+        match self {
+            DroppedWire::Out(dangling, _) | DroppedWire::In(dangling, _) => *dangling,
+        }
+    }
+}
+
+/// The open search.
+#[derive(Clone, Debug)]
+pub struct Search {
+    /// The popup's top-left corner on screen (the mouse when it opened).
+    screen: Pos2,
+    /// Where a new node goes, in graph coordinates.
+    graph: Pos2,
+    text: String,
+    /// Index of the highlighted entry among those shown.
+    highlight: usize,
+    /// Set when the highlight moved by key, so the list scrolls to it.
+    scroll: bool,
+    /// The wire the new node is for, if any.
+    dropped: Option<DroppedWire>,
+    /// The text the key that opened the search types, kept out of the search when it
+    /// arrives in the frame after the key (as when events come one frame each).
+    swallow: Option<(u64, String)>,
+}
+
+/// The add-node search's state and what placing needs: where the graph is on screen.
+#[derive(Clone, Debug, Default)]
+pub struct AddNode {
+    search: Option<Search>,
+    /// The graph panel's rectangle on screen (as last shown).
+    graph_rect: Option<Rect>,
+}
+
+impl AddNode {
+    /// Remembers where the graph panel is on screen.
+    pub fn set_graph_rect(&mut self, rect: Rect) {
+        self.graph_rect = Some(rect);
+    }
+}
+
+/// Where the pointer sits over a new node's top-left corner: over its title, a little in.
+const GRAB: Vec2 = Vec2::new(40.0, 12.0);
+
+/// A new frame's tint (as `frame_around` gives).
+const FRAME_COLOR: (f32, f32, f32) = (0.45, 0.65, 0.95);
+
+/// The search popup's layer and text box.
+fn popup_id() -> Id {
+    Id::new("veneer-add-node")
+}
+
+fn text_id() -> Id {
+    popup_id().with("text")
+}
+
+impl VeneerApp {
+    /// The mouse on screen when it is over the graph, else the graph's centre; and that
+    /// point in graph coordinates.
+    pub(super) fn placement(&self, ctx: &egui::Context) -> (Pos2, Pos2) {
+        let rect = self.add.graph_rect.unwrap_or_else(|| ctx.content_rect());
+        let screen = ctx
+            .input(|input| input.pointer.hover_pos())
+            .filter(|pos| rect.contains(*pos))
+            .unwrap_or_else(|| rect.center());
+        (screen, self.graph_transform.inverse() * screen)
+    }
+
+    /// Opens the add-node search at the mouse, for `dropped` if a wire was dropped.
+    /// The text `typed` by the key that opened it (" " for Space, "A" for Shift+A) does
+    /// not go into the search.
+    pub(super) fn open_add_node(
+        &mut self,
+        ctx: &egui::Context,
+        dropped: Option<DroppedWire>,
+        typed: Option<&str>,
+    ) {
+        let (screen, graph) = self.placement(ctx);
+        let swallowed = ctx.input_mut(|input| {
+            let before = input.events.len();
+            input.events.retain(
+                |event| !matches!(event, egui::Event::Text(text) if Some(text.as_str()) == typed),
+            );
+            input.events.len() < before
+        });
+        let swallow = typed
+            .filter(|_| !swallowed)
+            .map(|text| (ctx.cumulative_pass_nr() + 1, text.to_string()));
+        self.add.search = Some(Search {
+            screen,
+            graph,
+            text: String::new(),
+            highlight: 0,
+            scroll: false,
+            dropped,
+            swallow,
+        });
+        ctx.memory_mut(|memory| memory.request_focus(text_id()));
+        ctx.request_repaint();
+    }
+
+    fn close_add_node(&mut self, ctx: &egui::Context) {
+        self.add.search = None;
+        ctx.memory_mut(|memory| memory.surrender_focus(text_id()));
+    }
+
+    /// Shows the add-node search if it is open, and adds what is picked.
+    pub(super) fn add_node_popup(&mut self, ctx: &egui::Context) {
+        let Some(search) = self.add.search.as_mut() else {
+            return;
+        };
+        if self.dialog.is_some() {
+            self.close_add_node(ctx);
+            return;
+        }
+        if let Some((pass, text)) = search.swallow.take() {
+            if pass == ctx.cumulative_pass_nr() {
+                ctx.input_mut(|input| {
+                    input
+                        .events
+                        .retain(|event| !matches!(event, egui::Event::Text(t) if *t == text))
+                });
+            } else if pass > ctx.cumulative_pass_nr() {
+                search.swallow = Some((pass, text));
+            }
+        }
+        let dangling = search.dropped.as_ref().map(DroppedWire::dangling);
+        let selected = !self.selection.is_empty();
+        let usable = |entry: &Entry| match (&entry.item, dangling) {
+            (Item::Node(_), None) | (Item::Frame, None) => true,
+            (Item::FrameSelection, None) => selected,
+            (Item::Node(kind), Some(dangling)) => {
+                catalogue::compatible_pin(kind, dangling).is_some()
+            }
+            (_, Some(_)) => false,
+        };
+        let entries: Vec<Entry> = if search.text.trim().is_empty() {
+            catalogue::entries()
+        } else {
+            catalogue::search(&search.text)
+        }
+        .into_iter()
+        .filter(usable)
+        .collect();
+
+        // The search takes the keys it answers before its text box sees them.
+        let key = |key| ctx.input_mut(|input| input.consume_key(Modifiers::NONE, key));
+        let last = entries.len().saturating_sub(1);
+        if key(Key::ArrowDown) {
+            search.highlight = (search.highlight + 1).min(last);
+            search.scroll = true;
+        }
+        if key(Key::ArrowUp) {
+            search.highlight = search.highlight.saturating_sub(1);
+            search.scroll = true;
+        }
+        search.highlight = search.highlight.min(last);
+        let mut picked = key(Key::Enter).then_some(search.highlight);
+        if key(Key::Escape) {
+            self.close_add_node(ctx);
+            return;
+        }
+
+        let title = if dangling.is_some() {
+            "Add and connect"
+        } else {
+            "Add node"
+        };
+        let browsing = search.text.trim().is_empty();
+        let shown = egui::Area::new(popup_id())
+            .order(egui::Order::Foreground)
+            .fixed_pos(search.screen)
+            .constrain(true)
+            .show(ctx, |ui| {
+                egui::Frame::popup(ui.style()).show(ui, |ui| {
+                    ui.set_width(240.0);
+                    ui.label(egui::RichText::new(title).strong());
+                    if !ui.memory(|memory| memory.has_focus(text_id())) {
+                        ui.memory_mut(|memory| memory.request_focus(text_id()));
+                    }
+                    let edit = ui.add(
+                        egui::TextEdit::singleline(&mut search.text)
+                            .id(text_id())
+                            .hint_text("search nodes…")
+                            .desired_width(f32::INFINITY),
+                    );
+                    if edit.changed() {
+                        search.highlight = 0;
+                        search.scroll = true;
+                    }
+                    ui.separator();
+                    egui::ScrollArea::vertical()
+                        .max_height(320.0)
+                        .auto_shrink([false, true])
+                        .show(ui, |ui| {
+                            let mut group = "";
+                            for (index, entry) in entries.iter().enumerate() {
+                                if browsing && entry.group() != group {
+                                    group = entry.group();
+                                    ui.label(egui::RichText::new(group).weak().small());
+                                }
+                                let row = ui.add(
+                                    egui::Button::selectable(
+                                        index == search.highlight,
+                                        &entry.name,
+                                    )
+                                    .min_size(egui::vec2(ui.available_width(), 0.0)),
+                                );
+                                if index == search.highlight && search.scroll {
+                                    row.scroll_to_me(None);
+                                }
+                                if row.clicked() {
+                                    picked = Some(index);
+                                }
+                            }
+                            if entries.is_empty() {
+                                ui.weak("nothing matches");
+                            }
+                        });
+                    search.scroll = false;
+                });
+            });
+
+        let pressed_elsewhere = ctx.input(|input| {
+            input.pointer.any_pressed()
+                && input
+                    .pointer
+                    .interact_pos()
+                    .is_some_and(|pos| !shown.response.rect.contains(pos))
+        });
+        if let Some(entry) = picked.and_then(|index| entries.into_iter().nth(index)) {
+            let search = self.add.search.clone().expect("the search is open");
+            self.close_add_node(ctx);
+            self.add_entry(entry, search);
+        } else if pressed_elsewhere {
+            self.close_add_node(ctx);
+        }
+    }
+
+    /// Adds what `entry` names where `search` was opened, wired to its dropped wire.
+    fn add_entry(&mut self, entry: Entry, search: Search) {
+        let kind = match entry.item {
+            Item::Frame => {
+                self.document.graph.frames.push(crate::graph::Frame {
+                    title: "Comment".into(),
+                    min: (search.graph.x - GRAB.x, search.graph.y - GRAB.y),
+                    max: (
+                        search.graph.x - GRAB.x + 400.0,
+                        search.graph.y - GRAB.y + 260.0,
+                    ),
+                    color: FRAME_COLOR,
+                });
+                return;
+            }
+            Item::FrameSelection => {
+                self.frame_selection();
+                return;
+            }
+            Item::Node(kind) => kind,
+        };
+        let pin = search
+            .dropped
+            .as_ref()
+            .and_then(|wire| catalogue::compatible_pin(&kind, wire.dangling()));
+        let node = Node::new(next_node_id(&self.snarl), kind);
+        let id = self.snarl.insert_node(search.graph - GRAB, node);
+        match (search.dropped, pin) {
+            (Some(DroppedWire::Out(_, pins)), Some(input)) => {
+                for from in pins {
+                    if self.snarl.get_node(from.node).is_some() {
+                        self.snarl.connect(from, InPinId { node: id, input });
+                    }
+                }
+            }
+            (Some(DroppedWire::In(_, pins)), Some(output)) => {
+                for to in pins {
+                    if self.snarl.get_node(to.node).is_some() {
+                        self.snarl.drop_inputs(to);
+                        self.snarl.connect(OutPinId { node: id, output }, to);
+                    }
+                }
+            }
+            _ => {}
+        }
+        // The new node is the selected one, its settings in the inspector.
+        self.clicked = Some(id);
+    }
+
+    /// Ctrl+G and *Edit → Frame selected nodes*: a comment frame around the selection.
+    pub(super) fn frame_selection(&mut self) {
+        match frame_around(&self.snarl, &self.selection, "Comment") {
+            Some(frame) => self.document.graph.frames.push(frame),
+            None => self.message = Some("select the nodes to frame first".into()),
+        }
+    }
+
+    /// Pastes copied nodes at the mouse.
+    pub(super) fn paste_at_mouse(&mut self, ctx: &egui::Context, text: &str) {
+        let (_, at) = self.placement(ctx);
+        if let Err(error) = super::clipboard::paste(&mut self.snarl, text, at) {
+            self.message = Some(format!("nothing pasted: {error}"));
+        }
+    }
+
+    /// Duplicates the selected nodes at the mouse.
+    pub(super) fn duplicate_at_mouse(&mut self, ctx: &egui::Context) {
+        let (_, at) = self.placement(ctx);
+        super::clipboard::duplicate(&mut self.snarl, &self.selection, at);
+    }
+}
