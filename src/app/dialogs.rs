@@ -10,11 +10,12 @@
 //! they appear, so that a click meant for the dialog before never lands on them.
 
 use super::Document;
+use super::dialog_frame::{Choice, Frame, default_path, typed_path};
 use super::file_browser::{Browsed, Browser, Purpose};
 use super::recovery::Recovery;
 use crate::codegen::ParamMode;
 use crate::codegen::export::Target;
-use egui::{Context, Id, Key, Modal, Ui};
+use egui::{Context, Id, Key, Modal};
 use std::hash::{Hash, Hasher};
 use std::path::PathBuf;
 
@@ -94,104 +95,6 @@ pub enum Dialog {
     Message(String),
 }
 
-/// What the user chose in a dialog this frame.
-enum Choice {
-    /// The default button, or Enter.
-    Confirm,
-    /// Cancel, or Escape.
-    Cancel,
-    /// Open the file browser.
-    Browse,
-    /// Save the unsaved changes first.
-    Save,
-    /// Drop the unsaved changes, or replace the file.
-    Destroy,
-    /// Recover the autosaved work at this index.
-    Recover(usize),
-    /// Forget the autosaved work at this index.
-    Forget(usize),
-}
-
-/// What one frame of a dialog knows and collects.
-struct Frame {
-    /// The dialog's first frame (or the first after the browser closed): focus its field
-    /// or default button.
-    first: bool,
-    /// Destructive buttons respond (the dialog has been up for [`ARM_SECONDS`]).
-    armed: bool,
-    /// Widgets that act on Enter themselves when focused (buttons, check boxes).
-    claims: Vec<Id>,
-    choice: Option<Choice>,
-}
-
-impl Frame {
-    fn choose(&mut self, clicked: bool, choice: Choice) {
-        if clicked && self.choice.is_none() {
-            self.choice = Some(choice);
-        }
-    }
-
-    /// A plain button.
-    fn button(&mut self, ui: &mut Ui, label: &str, choice: Choice) {
-        let response = ui.button(label);
-        self.claims.push(response.id);
-        self.choose(response.clicked(), choice);
-    }
-
-    /// The button Enter presses: focused when the dialog opens.
-    fn default_button(&mut self, ui: &mut Ui, label: &str, choice: Choice) {
-        let response = ui.button(label);
-        if self.first {
-            response.request_focus();
-        }
-        self.claims.push(response.id);
-        self.choose(response.clicked(), choice);
-    }
-
-    /// A button that loses or overwrites work: enabled once the dialog has been up a moment.
-    fn destructive_button(&mut self, ui: &mut Ui, label: &str, choice: Choice) {
-        let response = ui.add_enabled(self.armed, egui::Button::new(label));
-        self.claims.push(response.id);
-        self.choose(response.clicked(), choice);
-    }
-
-    /// A check box (Enter toggles it when focused).
-    fn checkbox(&mut self, ui: &mut Ui, value: &mut bool, label: &str) {
-        let response = ui.checkbox(value, label);
-        self.claims.push(response.id);
-    }
-
-    /// The path field: full width, focused with its text selected when the dialog opens.
-    fn path_field(&mut self, ui: &mut Ui, path: &mut String) {
-        let mut output = egui::TextEdit::singleline(path)
-            .desired_width(f32::INFINITY)
-            .hint_text("type a path, or Browse…")
-            .show(ui);
-        if self.first {
-            output.response.request_focus();
-            let all = egui::text::CCursorRange::two(
-                egui::text::CCursor::new(0),
-                egui::text::CCursor::new(path.chars().count()),
-            );
-            output.state.cursor.set_char_range(Some(all));
-            output.state.store(ui.ctx(), output.response.id);
-        }
-    }
-
-    /// The bottom row of a path dialog: Browse on the left; Cancel and the confirm
-    /// button (rightmost) on the right.
-    fn path_buttons(&mut self, ui: &mut Ui, confirm: &str) {
-        ui.add_space(4.0);
-        ui.horizontal(|ui| {
-            self.button(ui, "Browse…", Choice::Browse);
-            ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
-                self.button(ui, confirm, Choice::Confirm);
-                self.button(ui, "Cancel", Choice::Cancel);
-            });
-        });
-    }
-}
-
 /// Which dialog is up, for the state kept between its frames.
 #[derive(Clone, Copy)]
 struct Opened {
@@ -200,54 +103,6 @@ struct Opened {
     at: f64,
     /// Whether its field or default button still needs the focus.
     focus: bool,
-}
-
-fn default_path(document: &Document, extension: &str) -> String {
-    let stem = document
-        .path
-        .as_ref()
-        .and_then(|p| p.file_stem())
-        .map(|s| s.to_string_lossy().into_owned())
-        .unwrap_or_else(|| {
-            if document.graph.name.is_empty() {
-                "material".into()
-            } else {
-                document.graph.name.to_lowercase().replace(' ', "_")
-            }
-        });
-    let file = format!("{stem}.{extension}");
-    // Beside the document's file, if it has one.
-    match document.path.as_ref().and_then(|p| p.parent()) {
-        Some(folder) if !folder.as_os_str().is_empty() => folder.join(file).display().to_string(),
-        _ => file,
-    }
-}
-
-/// The path the user typed: trimmed, with a leading `~` for the home folder.
-fn typed_path(text: &str) -> PathBuf {
-    let text = text.trim();
-    match (text.strip_prefix("~/"), std::env::var_os("HOME")) {
-        (Some(rest), Some(home)) => PathBuf::from(home).join(rest),
-        _ if text == "~" => std::env::var_os("HOME")
-            .map(PathBuf::from)
-            .unwrap_or_default(),
-        _ => PathBuf::from(text),
-    }
-}
-
-/// How long ago `time` was, in words.
-fn ago(time: Option<std::time::SystemTime>) -> String {
-    let Some(elapsed) = time.and_then(|t| t.elapsed().ok()) else {
-        return String::new();
-    };
-    let minutes = elapsed.as_secs() / 60;
-    match minutes {
-        0 => ", autosaved less than a minute ago".into(),
-        1 => ", autosaved a minute ago".into(),
-        2..=119 => format!(", autosaved {minutes} minutes ago"),
-        _ if minutes < 48 * 60 => format!(", autosaved {} hours ago", minutes / 60),
-        _ => format!(", autosaved {} days ago", minutes / (24 * 60)),
-    }
 }
 
 impl Dialog {
@@ -510,159 +365,6 @@ impl Dialog {
             ),
             // Recovery files stay, to be offered at the next start.
             _ => (None, None),
-        }
-    }
-
-    fn contents(&mut self, ui: &mut Ui, document: &Document, frame: &mut Frame) {
-        match self {
-            Dialog::Open { path } => {
-                ui.heading("Open graph");
-                frame.path_field(ui, path);
-                frame.path_buttons(ui, "Open");
-            }
-            Dialog::SaveAs { path } => {
-                ui.heading("Save graph as");
-                frame.path_field(ui, path);
-                frame.path_buttons(ui, "Save");
-            }
-            Dialog::ExportShader {
-                path,
-                target,
-                uniform,
-            } => {
-                ui.heading("Export shader");
-                ui.label("veneer_material for another engine; non-WGSL targets add the veneer_fragment entry point.");
-                frame.path_field(ui, path);
-                let before = *target;
-                let combo = egui::ComboBox::from_label("language")
-                    .selected_text(target.name())
-                    .show_ui(ui, |ui| {
-                        for (option, name, _) in Target::ALL {
-                            ui.selectable_value(target, option, name);
-                        }
-                    });
-                frame.claims.push(combo.response.id);
-                if *target != before {
-                    *path = std::path::Path::new(path.trim())
-                        .with_extension(target.extension())
-                        .display()
-                        .to_string();
-                }
-                frame.checkbox(
-                    ui,
-                    uniform,
-                    "parameters as a uniform block (instead of baked constants)",
-                );
-                frame.path_buttons(ui, "Export");
-            }
-            Dialog::ExportPng { path, size, flat } => {
-                ui.heading("Export PNG");
-                frame.path_field(ui, path);
-                ui.add(egui::Slider::new(size, 16..=4096).text("size (px)"));
-                frame.checkbox(
-                    ui,
-                    flat,
-                    "flat albedo over the preview square (instead of the lit mesh)",
-                );
-                frame.path_buttons(ui, "Export");
-            }
-            Dialog::LoadMesh { path } => {
-                ui.heading("Preview on a mesh file");
-                ui.label(format!(
-                    "OBJ, STL, PLY or glTF ({})",
-                    crate::mesh::EXTENSIONS.join(", ")
-                ));
-                frame.path_field(ui, path);
-                frame.path_buttons(ui, "Load");
-            }
-            Dialog::Replace(path) => {
-                ui.heading("Replace file?");
-                ui.label(format!(
-                    "{} already exists. Replace it with this graph?",
-                    path.display()
-                ));
-                ui.add_space(4.0);
-                ui.horizontal(|ui| {
-                    frame.destructive_button(ui, "Replace", Choice::Destroy);
-                    ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
-                        frame.default_button(ui, "Cancel", Choice::Cancel);
-                    });
-                });
-            }
-            Dialog::Discard(pending) => {
-                ui.heading("Unsaved changes");
-                let name = document.title();
-                let name = name.trim_end_matches(" — Veneer").trim_start_matches("* ");
-                let then = match pending {
-                    Pending::New => "starting a new graph".to_string(),
-                    Pending::Open(path) => format!(
-                        "opening {}",
-                        path.file_name()
-                            .map(|n| n.to_string_lossy().into_owned())
-                            .unwrap_or_else(|| path.display().to_string())
-                    ),
-                    Pending::Preset(name) => format!("opening the {name} preset"),
-                    Pending::Quit => "quitting".to_string(),
-                };
-                ui.label(format!(
-                    "{name} has changes that are not saved. Save them before {then}?"
-                ));
-                ui.add_space(4.0);
-                ui.horizontal(|ui| {
-                    frame.destructive_button(ui, "Save", Choice::Save);
-                    frame.destructive_button(ui, "Discard", Choice::Destroy);
-                    ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
-                        frame.default_button(ui, "Cancel", Choice::Cancel);
-                    });
-                });
-            }
-            Dialog::Recover(saved) => {
-                ui.heading("Recover unsaved work?");
-                ui.label(if saved.len() == 1 {
-                    "Veneer ended last time with work that was not saved. It was autosaved:"
-                        .to_string()
-                } else {
-                    format!(
-                        "{} Veneer windows ended with work that was not saved. It was autosaved:",
-                        saved.len()
-                    )
-                });
-                for (index, recovery) in saved.iter().enumerate() {
-                    let from = recovery
-                        .original
-                        .as_ref()
-                        .map(|p| p.display().to_string())
-                        .unwrap_or_else(|| format!("an unsaved graph ({})", recovery.graph.name));
-                    ui.horizontal(|ui| {
-                        frame.destructive_button(ui, "Discard", Choice::Forget(index));
-                        ui.label(format!("{from}{}", ago(recovery.saved)));
-                        ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
-                            if index == 0 {
-                                frame.default_button(ui, "Recover", Choice::Recover(index));
-                            } else {
-                                frame.button(ui, "Recover", Choice::Recover(index));
-                            }
-                        });
-                    });
-                }
-                ui.add_space(4.0);
-                ui.horizontal(|ui| {
-                    ui.weak("Later keeps it for the next start.");
-                    ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
-                        frame.button(ui, "Later", Choice::Cancel);
-                    });
-                });
-            }
-            Dialog::Message(message) => {
-                ui.heading("Veneer");
-                ui.label(message.as_str());
-                ui.add_space(4.0);
-                ui.horizontal(|ui| {
-                    ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
-                        frame.default_button(ui, "OK", Choice::Confirm);
-                    });
-                });
-            }
         }
     }
 }

@@ -5,6 +5,8 @@ mod actions;
 mod add_node;
 mod catalogue;
 mod clipboard;
+mod dialog_contents;
+mod dialog_frame;
 mod dialogs;
 mod document;
 mod fields;
