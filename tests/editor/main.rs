@@ -6,4 +6,5 @@ mod dialogs;
 mod editing;
 mod files;
 mod geotextures;
+mod real_window;
 mod support;
