@@ -46,6 +46,8 @@ pub struct Search {
     /// The text the key that opened the search types, kept out of the search when it
     /// arrives in the frame after the key (as when events come one frame each).
     swallow: Option<(u64, String)>,
+    /// Enter came in the same frame as typed letters: pick once the list shows them.
+    confirm: bool,
 }
 
 /// The add-node search's state and what placing needs: where the graph is on screen.
@@ -118,6 +120,7 @@ impl VeneerApp {
             scroll: false,
             dropped,
             swallow,
+            confirm: false,
         });
         ctx.memory_mut(|memory| memory.request_focus(text_id()));
         ctx.request_repaint();
@@ -179,7 +182,22 @@ impl VeneerApp {
             search.scroll = true;
         }
         search.highlight = search.highlight.min(last);
-        let mut picked = key(Key::Enter).then_some(search.highlight);
+        // Enter typed in the same frame as letters picks from the list those letters give,
+        // shown next frame (a fast typist or a script sends them together).
+        let letters = ctx.input(|input| {
+            input
+                .events
+                .iter()
+                .any(|event| matches!(event, egui::Event::Text(_)))
+        });
+        let enter = key(Key::Enter);
+        let mut picked = if letters {
+            search.confirm |= enter;
+            ctx.request_repaint();
+            None
+        } else {
+            (enter || std::mem::take(&mut search.confirm)).then_some(search.highlight)
+        };
         if key(Key::Escape) {
             self.close_add_node(ctx);
             return;
