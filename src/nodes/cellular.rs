@@ -1,12 +1,11 @@
 //! Cellular noise: Worley's feature distances, one octave or fractal.
 
-use super::coordinates::plain_catalogue;
 use super::cpu::Eval;
 use super::emit::Emit;
 use super::formulas::real::{Real, V3, scale, splat};
 use super::formulas::{noise, shapes, worley_edge};
 use super::interval::{self, Interval, Lanes};
-use super::pins::{FLOAT, POINT, SCALE, Signature, f, input, output};
+use super::pins::{FLOAT, InputPin, POINT, SCALE, Signature, f, input, output};
 use super::ranges::Ranges;
 use super::settings::{Basis, METRICS, Metric, Setting, WORLEY_FEATURES, WorleyFeature, choice};
 use super::{Catalogue, Category, Configure, Definition, Evaluate};
@@ -21,6 +20,9 @@ macro_rules! kinds {
     };
 }
 pub(super) use kinds;
+
+/// How far feature points stray from their cell centres (0: a regular grid).
+const JITTER: InputPin = input("jitter", FLOAT, f(1.0)).limits(0.0, 1.0);
 
 /// The integer the WGSL library uses for a Worley feature.
 pub fn worley_feature_index(feature: WorleyFeature) -> i32 {
@@ -65,7 +67,7 @@ impl Definition for Worley {
             vec![
                 POINT,
                 SCALE,
-                input("jitter", FLOAT, f(1.0)).limits(0.0, 1.0),
+                JITTER,
                 input("lacunarity", FLOAT, f(2.0)).soft(1.0, 4.0),
                 input("gain", FLOAT, f(0.5)).limits(0.0, 1.0),
             ],
@@ -204,14 +206,7 @@ impl Definition for WorleyEdge {
         ]
     }
     fn signature(&self) -> Signature {
-        Signature::new(
-            vec![
-                POINT,
-                SCALE,
-                input("jitter", FLOAT, f(1.0)).limits(0.0, 1.0),
-            ],
-            vec![output("distance", FLOAT)],
-        )
+        Signature::new(vec![POINT, SCALE, JITTER], vec![output("distance", FLOAT)])
     }
     fn emit(&self, io: &mut Emit) {
         io.single(format!(

@@ -2,7 +2,6 @@
 //! brightness/contrast, gamma, invert, levels) and blend modes, as Blender's colour
 //! nodes compute them.
 
-use super::coordinates::plain_catalogue;
 use super::cpu::Eval;
 use super::emit::{Emit, float_literal, value_literal};
 use super::formulas::real::{Real, V3};

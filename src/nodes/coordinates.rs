@@ -22,21 +22,6 @@ macro_rules! kinds {
 }
 pub(super) use kinds;
 
-/// The menu entry and test example of a kind without settings.
-macro_rules! plain_catalogue {
-    ($kind:ident) => {
-        impl Catalogue for $kind {
-            fn menu() -> Vec<(String, Self)> {
-                vec![($kind.title().into(), $kind)]
-            }
-            fn examples() -> Vec<Self> {
-                vec![$kind]
-            }
-        }
-    };
-}
-pub(super) use plain_catalogue;
-
 /// The distance from `origin` a point can have, warning when `axis` can be zero (shared
 /// by the kinds that measure along or around an axis).
 pub(super) fn axis_reach(io: &mut Ranges, origin: &str, axis: &str) -> f64 {
@@ -236,7 +221,7 @@ impl Definition for DomainWarp {
     fn title(&self) -> &'static str {
         "Domain warp"
     }
-    sampling_in!(Category::Coordinates);
+    computed_in!(Category::Coordinates, sampling);
     fn keywords(&self) -> &'static [&'static str] {
         &["distort", "displace", "warp", "noise"]
     }

@@ -1,7 +1,6 @@
 //! Distance-field patterns (seed 003): fronts spreading over a field, nested layers,
 //! isolines.
 
-use super::coordinates::plain_catalogue;
 use super::cpu::Eval;
 use super::emit::Emit;
 use super::formulas::fields::{front, isolines};

@@ -1,7 +1,6 @@
 //! Mapping: interpolating, clamping, stepping and carrying values from one range to
 //! another.
 
-use super::coordinates::plain_catalogue;
 use super::cpu::Eval;
 use super::emit::Emit;
 use super::formulas::real::{Real, V3, map, splat};

@@ -14,20 +14,24 @@
 //! the checks, codegen, the evaluator, the lint and the tests that enumerate
 //! [`NodeKind::examples`] pick it up.
 
-/// The parts of a definition for a kind that computes from its inputs alone (reads
-/// nothing of the surface, samples no lattice), in `category`; with `unchecked`, also
-/// that it has no settings to check.
+/// The parts of a definition for a kind that reads nothing of the surface, in
+/// `category`: with no lattice (`computed_in!(category)`), also with no settings to
+/// check (`computed_in!(category, unchecked)`), or sampling the lattice of its `basis`
+/// setting, its only setting (`computed_in!(category, sampling)`).
 macro_rules! computed_in {
-    ($category:expr) => {
+    (@parts $category:expr, |$this:ident| $basis:expr) => {
         fn category(&self) -> Category {
             $category
         }
         fn reads_surface(&self) -> bool {
             false
         }
-        fn basis(&self) -> Option<Basis> {
-            None
+        fn basis(&$this) -> Option<Basis> {
+            $basis
         }
+    };
+    ($category:expr) => {
+        computed_in!(@parts $category, |self| None);
     };
     ($category:expr, unchecked) => {
         computed_in!($category);
@@ -35,23 +39,24 @@ macro_rules! computed_in {
             None
         }
     };
-}
-
-/// The parts of a definition for a kind that samples the lattice of its `basis` setting,
-/// in `category`, with no other settings to check.
-macro_rules! sampling_in {
-    ($category:expr) => {
-        fn category(&self) -> Category {
-            $category
-        }
-        fn reads_surface(&self) -> bool {
-            false
-        }
-        fn basis(&self) -> Option<Basis> {
-            Some(self.basis)
-        }
+    ($category:expr, sampling) => {
+        computed_in!(@parts $category, |self| Some(self.basis));
         fn check(&self) -> Option<String> {
             None
+        }
+    };
+}
+
+/// The menu entry (its title) and test example of a kind without settings.
+macro_rules! plain_catalogue {
+    ($kind:ident) => {
+        impl Catalogue for $kind {
+            fn menu() -> Vec<(String, Self)> {
+                vec![($kind.title().into(), $kind)]
+            }
+            fn examples() -> Vec<Self> {
+                vec![$kind]
+            }
         }
     };
 }

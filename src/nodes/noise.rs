@@ -1,6 +1,5 @@
 //! Noise: one octave of lattice noise, and its gradient as a bump.
 
-use super::coordinates::plain_catalogue;
 use super::cpu::Eval;
 use super::emit::Emit;
 use super::formulas::real::{Real, V3, scale, splat};
@@ -33,7 +32,7 @@ impl Definition for Noise {
     fn title(&self) -> &'static str {
         "Noise"
     }
-    sampling_in!(Category::Noise);
+    computed_in!(Category::Noise, sampling);
     fn keywords(&self) -> &'static [&'static str] {
         &[
             "perlin", "value", "gradient", "simplex", "lattice", "texture",
@@ -77,7 +76,7 @@ impl Definition for NoiseBump {
     fn title(&self) -> &'static str {
         "Noise bump"
     }
-    sampling_in!(Category::Noise);
+    computed_in!(Category::Noise, sampling);
     fn keywords(&self) -> &'static [&'static str] {
         &["bump", "normal", "relief", "roughness", "gradient"]
     }

@@ -1,6 +1,5 @@
 //! The material output.
 
-use super::coordinates::plain_catalogue;
 use super::cpu::Eval;
 use super::emit::Emit;
 use super::formulas::real::{Real, V3};

@@ -1,6 +1,6 @@
 //! Patterns: bands, waves, tiles and rings.
 
-use super::coordinates::{axis_reach, plain_catalogue};
+use super::coordinates::axis_reach;
 use super::cpu::Eval;
 use super::emit::Emit;
 use super::formulas::real::{Real, V3, splat};

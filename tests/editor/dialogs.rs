@@ -4,7 +4,7 @@
 //! dialog before, a file browser, and recovery that never offers discarded or saved work
 //! and keeps one file per window.
 
-use crate::support::{editor, press, scratch, shows};
+use crate::support::{child_editor, child_folder, editor, press, run_until_killed, scratch, shows};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use std::path::{Path, PathBuf};
@@ -571,15 +571,12 @@ fn the_work_of_a_gone_window_is_offered_and_recovered_once() {
     assert!(!dialog_up(&other, "Recover unsaved work?"));
 }
 
-/// The variable that makes [`discarded_session_child`] run: the folder it works in.
-const CHILD_FOLDER: &str = "VENEER_DISCARDED_SESSION_FOLDER";
-
 /// The child half of [`discarded_work_is_not_offered_after_a_kill`]: edits, lets the
 /// edit be autosaved, discards it by opening a preset, then runs until it is killed.
 #[test]
 #[ignore = "run by discarded_work_is_not_offered_after_a_kill in a process of its own"]
 fn discarded_session_child() {
-    let Some(dir) = std::env::var_os(CHILD_FOLDER).map(PathBuf::from) else {
+    let Some(dir) = child_folder() else {
         return;
     };
     let mut harness = editor(&dir, None);
@@ -600,38 +597,13 @@ fn discarded_session_child() {
     harness.run();
     assert_eq!(harness.state().document.graph.name, "Marble");
     std::fs::write(dir.join("discarded"), "").expect("marker");
-    loop {
-        harness.step();
-        std::thread::sleep(std::time::Duration::from_millis(10));
-    }
+    run_until_killed(&mut harness);
 }
 
 #[test]
 fn discarded_work_is_not_offered_after_a_kill() {
     let dir = scratch("dialog-discarded");
-    let mut child = std::process::Command::new(std::env::current_exe().expect("test binary"))
-        .args([
-            "--exact",
-            "dialogs::discarded_session_child",
-            "--ignored",
-            "--nocapture",
-        ])
-        .env(CHILD_FOLDER, &dir)
-        .stdout(std::process::Stdio::null())
-        .spawn()
-        .expect("the child editor starts");
-    let marker = dir.join("discarded");
-    let started = std::time::Instant::now();
-    while !marker.exists() {
-        if let Some(status) = child.try_wait().expect("child status") {
-            panic!("the child editor ended before it was killed: {status}");
-        }
-        assert!(
-            started.elapsed() < std::time::Duration::from_secs(300),
-            "the child editor did not get to discard"
-        );
-        std::thread::sleep(std::time::Duration::from_millis(50));
-    }
+    let mut child = child_editor("dialogs::discarded_session_child", &dir, "discarded");
     // A plain `kill`: SIGTERM.
     let pid = libc::pid_t::try_from(child.id()).unwrap();
     // SAFETY: sends SIGTERM to the child this test started.

@@ -1,7 +1,10 @@
 //! Files in the real editor: save and reload byte-identically, bad files refused with a
 //! message, presets from the menu, and unsaved work recovered after a crash.
 
-use crate::support::{editor, press, scratch, select_node, shows, type_into_field};
+use crate::support::{
+    child_editor, child_folder, editor, press, run_until_killed, scratch, select_node, shows,
+    type_into_field,
+};
 use egui_kittest::kittest::Queryable;
 
 #[test]
@@ -92,16 +95,13 @@ fn presets_open_from_the_menu() {
     assert!(harness.state().live.errors.is_empty());
 }
 
-/// The variable that makes [`killed_session_child`] run: the folder it works in.
-const CHILD_FOLDER: &str = "VENEER_KILLED_SESSION_FOLDER";
-
 /// The child half of [`unsaved_work_survives_killing_the_editor`]: edits the wood preset
 /// in an editor autosaving into the folder the parent names, writes what the graph is
 /// then to `edited.ron`, and goes on running until it is killed.
 #[test]
 #[ignore = "run by unsaved_work_survives_killing_the_editor in a process of its own"]
 fn killed_session_child() {
-    let Some(dir) = std::env::var_os(CHILD_FOLDER).map(std::path::PathBuf::from) else {
+    let Some(dir) = child_folder() else {
         return;
     };
     let mut harness = editor(&dir, None);
@@ -125,38 +125,14 @@ fn killed_session_child() {
     harness.run();
     let edited = veneer::graph::to_ron(&harness.state().document.graph);
     veneer::fsutil::write_atomic(&dir.join("edited.ron"), edited.as_bytes()).expect("marker");
-    loop {
-        harness.step();
-        std::thread::sleep(std::time::Duration::from_millis(10));
-    }
+    run_until_killed(&mut harness);
 }
 
 #[test]
 fn unsaved_work_survives_killing_the_editor() {
     let dir = scratch("killed");
-    let mut child = std::process::Command::new(std::env::current_exe().expect("test binary"))
-        .args([
-            "--exact",
-            "files::killed_session_child",
-            "--ignored",
-            "--nocapture",
-        ])
-        .env(CHILD_FOLDER, &dir)
-        .stdout(std::process::Stdio::null())
-        .spawn()
-        .expect("the child editor starts");
+    let mut child = child_editor("files::killed_session_child", &dir, "edited.ron");
     let marker = dir.join("edited.ron");
-    let started = std::time::Instant::now();
-    while !marker.exists() {
-        if let Some(status) = child.try_wait().expect("child status") {
-            panic!("the child editor ended before it was killed: {status}");
-        }
-        assert!(
-            started.elapsed() < std::time::Duration::from_secs(300),
-            "the child editor did not get to its edit"
-        );
-        std::thread::sleep(std::time::Duration::from_millis(50));
-    }
     // SIGKILL mid-session: no clean exit, no chance to save.
     child.kill().expect("kill");
     child.wait().expect("reaped");

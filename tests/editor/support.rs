@@ -142,3 +142,44 @@ pub fn retype_drag_value(harness: &mut Harness<'static, VeneerApp>, shown: &str,
     harness.run();
     press(harness, egui::Key::Enter, false);
 }
+
+/// The variable that names the folder a child editor works in (see [`child_editor`]).
+pub const CHILD_FOLDER: &str = "VENEER_CHILD_EDITOR_FOLDER";
+
+/// The folder a child editor test works in, when this process is one (else `None`).
+pub fn child_folder() -> Option<PathBuf> {
+    std::env::var_os(CHILD_FOLDER).map(PathBuf::from)
+}
+
+/// Runs the ignored test `test` of this binary as a child editor working in `dir`, and
+/// waits until it has written `marker` in `dir` (it must keep running until killed).
+pub fn child_editor(test: &str, dir: &Path, marker: &str) -> std::process::Child {
+    let mut child = std::process::Command::new(std::env::current_exe().expect("test binary"))
+        .args(["--exact", test, "--ignored", "--nocapture"])
+        .env(CHILD_FOLDER, dir)
+        .stdout(std::process::Stdio::null())
+        .spawn()
+        .expect("the child editor starts");
+    let marker = dir.join(marker);
+    let started = std::time::Instant::now();
+    while !marker.exists() {
+        if let Some(status) = child.try_wait().expect("child status") {
+            panic!("the child editor {test} ended before it was killed: {status}");
+        }
+        assert!(
+            started.elapsed() < std::time::Duration::from_secs(300),
+            "the child editor {test} did not write {}",
+            marker.display()
+        );
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
+    child
+}
+
+/// Keeps a child editor's window running until the parent kills it.
+pub fn run_until_killed(harness: &mut Harness<'static, VeneerApp>) -> ! {
+    loop {
+        harness.step();
+        std::thread::sleep(std::time::Duration::from_millis(10));
+    }
+}
