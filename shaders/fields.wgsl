@@ -1,11 +1,15 @@
 //! Materials driven by geodesic distance fields (seed 003): propagation fronts, nested
 //! layers, isolines, and bump reliefs of noise.
 
-// How much of the surface a material spreading from the sources covers: 1 where
-// `distance + noise` is at most `threshold`, falling smoothly to 0 over `width` beyond
-// it (seed 003's smoothstep front, measured from the threshold); a hard edge at width 0.
-fn veneer_front(distance: f32, threshold: f32, width: f32, noise: f32) -> f32 {
-    return 1.0 - veneer_smoothstep(threshold, threshold + max(width, 0.0), distance + noise);
+// How much of the surface a material spreading from the sources covers: 1 near them,
+// falling smoothly to 0 where `distance + noise` passes the threshold; the fall is
+// centred `centre` widths past the threshold and spans `softness` widths either side
+// (seed 003's smoothstep fronts: §5.2.4 is centre 1, softness 1/2; C.4 and C.5 are
+// centre 0, softness 1); a hard edge at width 0.
+fn veneer_front(distance: f32, threshold: f32, width: f32, noise: f32, centre: f32, softness: f32) -> f32 {
+    let w = max(width, 0.0);
+    let s = max(softness, 0.0);
+    return 1.0 - veneer_smoothstep(threshold + (centre - s) * w, threshold + (centre + s) * w, distance + noise);
 }
 
 // 1 on the lines where `value` is a multiple of `spacing`, falling to 0 at `width` from

@@ -87,7 +87,8 @@ fn veneer_mesh_fragment(input: VeneerVertexOut) -> @location(0) vec4f {
     let h = normalize(l + v);
     let lambert = max(dot(n, l), 0.0);
     let highlight = select(0.0, pow(max(dot(n, h), 0.0), max(material.shininess, 1.0)), lambert > 0.0);
-    let lit = material.albedo * (view.ambient + (1.0 - view.ambient) * lambert) + material.specular * highlight;
+    let lit = material.albedo * (view.ambient + (1.0 - view.ambient) * lambert) + material.specular * highlight
+        + material.emission;
     let color = select(lit, material.albedo, view.unlit == 1u);
     return vec4f(clamp(color, vec3f(0.0), vec3f(1.0)), 1.0);
 }

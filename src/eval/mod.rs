@@ -20,6 +20,8 @@ pub struct Material<R> {
     pub shininess: R,
     pub bump: [R; 3],
     pub height: R,
+    /// Light the surface gives off whatever the lighting (seed 003's ambient glow).
+    pub emission: [R; 3],
 }
 
 impl<R: Real> Material<R> {
@@ -32,6 +34,7 @@ impl<R: Real> Material<R> {
             shininess: io.float("shininess"),
             bump: io.input("bump"),
             height: io.float("height"),
+            emission: io.input("emission"),
         }
     }
 }

@@ -40,6 +40,7 @@ impl Definition for Material {
                 input("shininess", FLOAT, f(32.0)).soft(1.0, 256.0),
                 input("bump", VEC3, v3(0.0, 0.0, 0.0)),
                 input("height", FLOAT, f(0.0)).soft(-0.2, 0.2),
+                input("emission", COLOR, rgb(0.0, 0.0, 0.0)).soft(0.0, 1.0),
             ],
             vec![],
         )

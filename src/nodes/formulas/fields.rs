@@ -5,12 +5,22 @@ use super::real::{Real, V3, add, scale};
 use super::shapes::smoothstep;
 use crate::nodes::settings::Basis;
 
-/// `veneer_front`: 1 up to the threshold, 0 beyond `threshold + width`.
-pub fn front<R: Real>(distance: R, threshold: R, width: R, noise: R) -> R {
+/// `veneer_front`: how much a material spreading from the sources covers, 1 near them
+/// and 0 far away. The transition is centred `centre` widths past the threshold and
+/// spans `softness` widths on either side of that:
+/// `1 − smoothstep(T + (c − s)·w, T + (c + s)·w, distance + noise)`.
+///
+/// The defaults (c = s = ½) are Veneer's first front (0 beyond `T + w`); seed 003's
+/// §5.2.4, C.2 and C.3 `smoothstep(d − w/2, d + w/2, T + w)` is c = 1, s = ½, and its
+/// C.4 and C.5 `smoothstep(d − w, d + w, T + n)` is c = 0, s = 1 with the noise
+/// negated (the thesis adds it to the threshold, the node to the distance).
+pub fn front<R: Real>(distance: R, threshold: R, width: R, noise: R, centre: R, softness: R) -> R {
+    let width = width.max(R::c(0.0));
+    let softness = softness.max(R::c(0.0));
     R::c(1.0)
         - smoothstep(
-            threshold,
-            threshold + width.max(R::c(0.0)),
+            threshold + (centre - softness) * width,
+            threshold + (centre + softness) * width,
             distance + noise,
         )
 }
