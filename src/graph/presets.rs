@@ -3,7 +3,7 @@
 use super::Graph;
 
 /// Every preset: its file stem and RON text.
-pub const PRESETS: [(&str, &str); 10] = [
+pub const PRESETS: [(&str, &str); 15] = [
     ("wood", include_str!("../../graphs/wood.ron")),
     ("marble", include_str!("../../graphs/marble.ron")),
     (
@@ -26,6 +26,26 @@ pub const PRESETS: [(&str, &str); 10] = [
     ("water_lava", include_str!("../../graphs/water_lava.ron")),
     ("waves", include_str!("../../graphs/waves.ron")),
     ("isolines", include_str!("../../graphs/isolines.ron")),
+    (
+        "thesis_c2_sand_water",
+        include_str!("../../graphs/thesis_c2_sand_water.ron"),
+    ),
+    (
+        "thesis_c3_moss_granite",
+        include_str!("../../graphs/thesis_c3_moss_granite.ron"),
+    ),
+    (
+        "thesis_c4_paint_metal_rust",
+        include_str!("../../graphs/thesis_c4_paint_metal_rust.ron"),
+    ),
+    (
+        "thesis_c5_water_lava",
+        include_str!("../../graphs/thesis_c5_water_lava.ron"),
+    ),
+    (
+        "thesis_c6_waves",
+        include_str!("../../graphs/thesis_c6_waves.ron"),
+    ),
 ];
 
 /// The embedded preset called `name`.

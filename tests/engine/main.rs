@@ -24,6 +24,7 @@ mod node_kinds;
 mod presets;
 mod properties;
 mod report;
+mod seed003_reference;
 mod seed_reference;
 mod snapshots;
 mod support;

@@ -1,0 +1,405 @@
+//! The faithful GeoTexture presets (`graphs/thesis_c*.ron`) against transcriptions of
+//! seed 003's appendix C fragment shaders, C.2 to C.6 (the pattern part: everything up
+//! to the lighting), written from the thesis's GLSL and not from the node code.
+//!
+//! Each transcription is evaluated at the same surface points, field values and times as
+//! the CPU evaluator runs the preset graph, and every material channel is compared:
+//! diffuse colour (albedo), specular colour, shininess, bump (the thesis adds one scalar
+//! to every component of the normal), alpha, emission (the thesis's ambient colour) and
+//! height (C.6's displacement). Both run in f64 and differ only by rounding (the node
+//! graph orders some sums differently), so the tolerance is 1e-7.
+//!
+//! The thesis leaves its uniforms (`distanceThreshold`, `thresholdLayer1..3`,
+//! `bumpScale`, `stripeWidth`, `frequency`) to the application; each `const` below is the
+//! value the preset shows in a labelled Constant node. Its noise primitives (`snoise`,
+//! `fractalsum`, `turbulence`, `fractalcell`, appendices A and B) are built here from our
+//! simplex and Worley bases, whose own tests pin them; the loops are the thesis's
+//! `for (f = 1.0; f < 5.0; f *= 2.0) value += noise(p * f) / f`.
+
+use crate::support::root;
+use veneer::eval::{Evaluator, Material, Surface};
+use veneer::nodes::formulas::noise;
+use veneer::nodes::settings::{Basis, Metric};
+
+type V3 = [f64; 3];
+type V4 = [f64; 4];
+
+/// What one fragment's pattern gives the lighting.
+#[derive(Debug)]
+struct Channels {
+    diffuse: V3,
+    specular: V3,
+    shininess: f64,
+    bump: f64,
+    alpha: f64,
+    emission: V3,
+    height: f64,
+}
+
+impl Channels {
+    /// An opaque, flat, unlit-nothing fragment of diffuse colour `diffuse`.
+    fn new(diffuse: V3, specular: V3, shininess: f64) -> Channels {
+        Channels {
+            diffuse,
+            specular,
+            shininess,
+            bump: 0.0,
+            alpha: 1.0,
+            emission: [0.0; 3],
+            height: 0.0,
+        }
+    }
+}
+
+// ---- GLSL built-ins and appendices A and B
+
+fn smoothstep(edge0: f64, edge1: f64, x: f64) -> f64 {
+    if edge0 == edge1 {
+        // GLSL leaves equal edges undefined; (x - e0) / 0 clamps to a step on drivers.
+        return if x > edge0 { 1.0 } else { 0.0 };
+    }
+    let t = ((x - edge0) / (edge1 - edge0)).clamp(0.0, 1.0);
+    t * t * (3.0 - 2.0 * t)
+}
+
+fn mix(a: f64, b: f64, t: f64) -> f64 {
+    a * (1.0 - t) + b * t
+}
+
+fn mix3(a: V3, b: V3, t: f64) -> V3 {
+    [0, 1, 2].map(|i| mix(a[i], b[i], t))
+}
+
+fn mix4(a: V4, b: V4, t: f64) -> V4 {
+    [0, 1, 2, 3].map(|i| mix(a[i], b[i], t))
+}
+
+fn times(p: V3, s: f64) -> V3 {
+    p.map(|c| c * s)
+}
+
+fn rgb(v: V4) -> V3 {
+    [v[0], v[1], v[2]]
+}
+
+fn snoise(p: V3) -> f64 {
+    noise::signed(Basis::Simplex, p)
+}
+
+/// `sum over f = 1, 2, 4 of octave(p * f) / f`.
+fn octaves(p: V3, octave: impl Fn(V3) -> f64) -> f64 {
+    let mut value = 0.0;
+    let mut f = 1.0;
+    while f < 5.0 {
+        value += octave(times(p, f)) / f;
+        f *= 2.0;
+    }
+    value
+}
+
+fn fractalsum(p: V3) -> f64 {
+    octaves(p, snoise)
+}
+
+fn turbulence(p: V3) -> f64 {
+    octaves(p, |q| snoise(q).abs())
+}
+
+/// `fractalcell(p, 1.0, 5.0, 2.0).x`: the fractal sum of the nearest feature distance.
+fn fractalcell_x(p: V3) -> f64 {
+    octaves(p, |q| noise::worley(q, 1.0, Metric::Euclidean)[0])
+}
+
+/// `position * cellScale + time * 0.5`, the flowing Worley domain of C.2, C.3 and C.5.
+fn flowing(p: V3, cell_scale: f64, time: f64) -> V3 {
+    times(p, cell_scale).map(|c| c + time * 0.5)
+}
+
+// ---- C.2 to C.6
+
+/// C.2's `distanceThreshold` (a uniform in the thesis).
+const C2_THRESHOLD: f64 = 0.3;
+
+fn c2_sand_water(p: V3, d: [f64; 2], time: f64) -> Channels {
+    let fv_specular = [0.549, 0.528, 0.164];
+    let fv_diffuse_water = [0.177, 0.503, 0.413];
+    let fv_diffuse_land = [0.894, 0.969, 0.755];
+    let (bump_scale, sand_noise_scale, cell_scale, shore_width) = (0.15, 1000.0, 7.0, 0.0485);
+    let distance_value = d[0];
+    let shore = 1.0
+        - smoothstep(
+            distance_value - shore_width * 0.5,
+            distance_value + shore_width * 0.5,
+            C2_THRESHOLD + shore_width,
+        );
+    let water_bump = fractalcell_x(flowing(p, cell_scale, time));
+    let sand_bump = snoise(times(p, sand_noise_scale));
+    let mut out = Channels::new(mix3(fv_diffuse_land, fv_diffuse_water, shore), fv_specular, 12.0);
+    out.bump = mix(sand_bump, water_bump, shore) * bump_scale;
+    out
+}
+
+/// C.3's `distanceThreshold`.
+const C3_THRESHOLD: f64 = 0.25;
+
+fn c3_moss_granite(p: V3, d: [f64; 2], time: f64) -> Channels {
+    let fv_specular = [0.549, 0.528, 0.164];
+    let fv_diffuse_granite = [0.222, 0.219, 0.174];
+    let fv_diffuse_moss = [0.094, 0.142, 0.061];
+    let bump_scale = 1.0;
+    let (granite_noise_scale, moss_noise_scale, cell_scale, shore_width) = (115.0, 163.0, 7.0, 0.1);
+    let distance_value = d[0];
+    let shore = 1.0
+        - smoothstep(
+            distance_value - shore_width * 0.5,
+            distance_value + shore_width * 0.5,
+            C3_THRESHOLD + shore_width,
+        );
+    let moss_cells = 1.0 - fractalcell_x(flowing(p, cell_scale, time));
+    let bump = mix(
+        moss_cells + turbulence(times(p, moss_noise_scale)),
+        turbulence(times(p, granite_noise_scale)) * 0.5,
+        shore,
+    ) * bump_scale;
+    // fvTotalSpecular = mix(0, fvSpecular * pow(...), shore), added at half strength.
+    let specular = fv_specular.map(|c| mix(0.0, c, shore) * 0.5);
+    let mut out = Channels::new(mix3(fv_diffuse_moss, fv_diffuse_granite, shore), specular, 12.0);
+    out.bump = bump;
+    out
+}
+
+/// C.4's `thresholdLayer1..3` and `bumpScale`.
+const C4_THRESHOLDS: [f64; 3] = [0.6, 0.4, 0.15];
+const C4_BUMP_SCALE: f64 = 0.1;
+
+fn c4_paint_metal_rust(p: V3, d: [f64; 2], _time: f64) -> Channels {
+    let [threshold_layer1, threshold_layer2, threshold_layer3] = C4_THRESHOLDS;
+    let (fv_specular1, fv_diffuse1, mut bump1) = ([1.0; 4], [0.11, 0.16, 0.48, 1.0], 1.0);
+    let (fv_specular2, mut fv_diffuse2, mut bump2) =
+        ([0.18, 0.18, 0.18, 1.0], [0.64, 0.64, 0.64, 1.0], 0.8);
+    let (fv_specular3, mut fv_diffuse3, mut bump3) =
+        ([0.0, 0.0, 0.0, 1.0], [0.29, 0.17, 0.13, 1.0], 1.0);
+    let (metal_noise_scale, rust_noise_scale) = (5.0, 4.62);
+    let (rust_border_noise_scale, rust_border_noise_scale2, paint_border_noise_scale) =
+        (0.0, 10.0, 0.0);
+    let distance_value = d[0];
+    let threshold_width = 0.005;
+    let threshold1 = smoothstep(
+        distance_value - threshold_width,
+        distance_value + threshold_width,
+        threshold_layer1 + snoise(times(p, paint_border_noise_scale)),
+    );
+    let threshold2 = smoothstep(
+        distance_value - 0.08,
+        distance_value + 0.08,
+        threshold_layer2 + snoise(times(p, rust_border_noise_scale)),
+    );
+    let threshold3 = smoothstep(
+        distance_value - 0.0,
+        distance_value + 0.0,
+        threshold_layer3 + snoise(times(p, rust_border_noise_scale2)) * 0.01,
+    );
+    // vec4 -= float subtracts from every component, alpha included.
+    let metal = fractalsum(times(p, metal_noise_scale)) * 0.1;
+    fv_diffuse2 = fv_diffuse2.map(|c| c - metal);
+    let rust = fractalsum(times(p, rust_noise_scale));
+    let stain = rust * (distance_value - threshold_layer2.clamp(0.0, 1.5) - 0.5) * 0.3;
+    fv_diffuse3 = fv_diffuse3.map(|c| c - stain);
+    let alpha_mod = (rust * (distance_value - threshold_layer2 - 0.5) * 16.0).clamp(0.0, 1000.0);
+    fv_diffuse3[3] -= 0.1 * alpha_mod;
+
+    let nest = |a: V4, b: V4, c: V4| {
+        mix4(
+            mix4(mix4(a, b, threshold1), c, threshold2),
+            [0.0; 4],
+            threshold3,
+        )
+    };
+    let fv_diffuse = nest(fv_diffuse1, fv_diffuse2, fv_diffuse3);
+    let fv_specular = nest(fv_specular1, fv_specular2, fv_specular3);
+
+    bump1 *= -threshold1;
+    bump2 *= snoise(times(p, 400.0)) * 0.025;
+    let length3 = fv_diffuse3.iter().map(|c| c * c).sum::<f64>().sqrt();
+    bump3 = bump2 + length3 * 0.5 * bump3;
+    let bump = mix(
+        mix(mix(bump1, bump2, threshold1), bump3, threshold2),
+        0.0,
+        threshold3,
+    );
+
+    let mut out = Channels::new(rgb(fv_diffuse), rgb(fv_specular), 60.0);
+    out.bump = bump * C4_BUMP_SCALE;
+    out.alpha = fv_diffuse[3];
+    out
+}
+
+/// C.5's `thresholdLayer1..2` and `bumpScale`.
+const C5_THRESHOLDS: [f64; 2] = [0.45, 0.3];
+const C5_BUMP_SCALE: f64 = 0.1;
+
+fn c5_water_lava(p: V3, d: [f64; 2], time: f64) -> Channels {
+    let [threshold_layer1, threshold_layer2] = C5_THRESHOLDS;
+    let (cell_scale, rock_noise_scale, lava_border_noise_range) = (65.16720, 47.0, 0.03);
+    let (fv_ambient1, fv_specular1, mut fv_diffuse1, mut bump1) =
+        ([0.39, 0.09, 0.09], [0.79, 0.76, 0.24], [0.27, 0.08, 0.06], -0.04);
+    let (fv_ambient2, fv_specular2, fv_diffuse2, mut bump2) =
+        ([0.0; 3], [0.78, 0.78, 0.78], [0.21, 0.43, 0.48], -0.16);
+    let (fv_ambient3, fv_specular3, fv_diffuse3, mut bump3) =
+        ([0.0; 3], [0.07, 0.07, 0.07], [0.14, 0.14, 0.14], 0.66);
+    let (distance_value1, distance_value2) = (d[0], d[1]);
+    let (threshold_width1, threshold_width2) = (0.01, 0.05);
+    let threshold1 = smoothstep(
+        distance_value1 - threshold_width1,
+        distance_value1 + threshold_width1,
+        threshold_layer1 + snoise(times(p, 10.0)) * lava_border_noise_range,
+    );
+    let threshold2 = smoothstep(
+        distance_value2 - threshold_width2,
+        distance_value2 + threshold_width2,
+        threshold_layer2,
+    );
+    let worley = fractalcell_x(flowing(p, cell_scale, time));
+    bump1 *= worley;
+    bump1 -= 1.0;
+    let glow = [0.20, 0.15, 0.05];
+    fv_diffuse1 = [0, 1, 2].map(|i| fv_diffuse1[i] + glow[i] * worley);
+    bump2 *= worley;
+    bump3 *= turbulence(times(p, rock_noise_scale));
+
+    let nest = |rock: V3, lava: V3, water: V3| mix3(mix3(rock, lava, threshold1), water, threshold2);
+    let mut out = Channels::new(
+        nest(fv_diffuse3, fv_diffuse1, fv_diffuse2),
+        nest(fv_specular3, fv_specular1, fv_specular2),
+        26.0,
+    );
+    out.emission = nest(fv_ambient3, fv_ambient1, fv_ambient2);
+    out.bump = mix(mix(bump3, bump1, threshold1), bump2, threshold2) * C5_BUMP_SCALE;
+    out
+}
+
+/// C.6's `stripeWidth`, `frequency` and `bumpScale`; `animation2` is the time.
+const C6_STRIPE_WIDTH: f64 = 0.5;
+const C6_FREQUENCY: f64 = 120.0;
+const C6_BUMP_SCALE: f64 = 0.02;
+
+/// One wave of C.6.3 (the tessellation evaluation shader's displacement).
+fn c6_wave(distance_value: f64, animation2: f64) -> f64 {
+    let (stripe_width, animation) = (C6_STRIPE_WIDTH, 0.0);
+    let north = smoothstep(
+        distance_value - stripe_width * 0.5,
+        distance_value + stripe_width * 0.5,
+        animation,
+    );
+    let south = 1.0
+        - smoothstep(
+            distance_value - stripe_width * 0.5,
+            distance_value + stripe_width * 0.5,
+            animation + stripe_width,
+        );
+    let bump = north + south;
+    let isolines = (animation2 + distance_value * (C6_FREQUENCY * (1.0 - distance_value))).sin()
+        * (1.0 - distance_value);
+    (1.0 - bump) * isolines
+}
+
+fn c6_waves(_p: V3, d: [f64; 2], time: f64) -> Channels {
+    let mut bump = c6_wave(d[0], time);
+    if d[1] > 0.0 {
+        bump += c6_wave(d[1], time);
+    }
+    // C.6.4: grey diffuse, white specular of power 60.
+    let mut out = Channels::new([0.5; 3], [1.0; 3], 60.0);
+    out.height = bump * C6_BUMP_SCALE;
+    out
+}
+
+// ---- the comparison
+
+/// A small deterministic generator (SplitMix64) for sample points.
+struct Samples(u64);
+
+impl Samples {
+    fn unit(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        (z ^ (z >> 31)) as f64 / u64::MAX as f64
+    }
+
+    /// A distance value: uniform on [0, 1] half the time, otherwise within 0.1 of one
+    /// of `edges` (where the fronts are narrow).
+    fn distance(&mut self, edges: &[f64]) -> f64 {
+        if edges.is_empty() || self.unit() < 0.5 {
+            return self.unit();
+        }
+        let edge = edges[(self.unit() * edges.len() as f64) as usize % edges.len()];
+        (edge + (self.unit() - 0.5) * 0.2).clamp(0.0, 1.0)
+    }
+}
+
+fn check(preset: &str, edges: [&[f64]; 2], reference: fn(V3, [f64; 2], f64) -> Channels) {
+    let graph = veneer::graph::load(&root(&format!("graphs/{preset}.ron"))).expect("preset loads");
+    let evaluator = Evaluator::new(&graph).expect("preset checks");
+    let mut samples = Samples(0x5eed_0003);
+    let mut worst = 0.0_f64;
+    for _ in 0..3000 {
+        let position = [0, 1, 2].map(|_| samples.unit() * 2.0 - 1.0);
+        let fields = [samples.distance(edges[0]), samples.distance(edges[1])];
+        let time = samples.unit() * 20.0;
+        let mut surface = Surface::<f64>::at(position);
+        surface.fields = [fields[0], fields[1], 0.0, 0.0];
+        surface.time = time;
+        let ours: Material<f64> = evaluator.eval(&surface);
+        let thesis = reference(position, fields, time);
+        let pairs = [
+            ("diffuse", ours.albedo, thesis.diffuse),
+            ("specular", ours.specular, thesis.specular),
+            ("bump", ours.bump, [thesis.bump; 3]),
+            ("emission", ours.emission, thesis.emission),
+            ("alpha", [ours.alpha; 3], [thesis.alpha; 3]),
+            ("shininess", [ours.shininess; 3], [thesis.shininess; 3]),
+            ("height", [ours.height; 3], [thesis.height; 3]),
+        ];
+        for (channel, a, b) in pairs {
+            let error = (0..3).map(|i| (a[i] - b[i]).abs()).fold(0.0, f64::max);
+            worst = worst.max(error);
+            assert!(
+                error <= 1e-7,
+                "{preset}: {channel} is {a:?}, the thesis gives {b:?} at position {position:?}, \
+                 fields {fields:?}, time {time}"
+            );
+        }
+    }
+    eprintln!("{preset}: largest difference from the thesis {worst:e}");
+}
+
+#[test]
+fn c2_sand_water_matches_the_thesis() {
+    check("thesis_c2_sand_water", [&[C2_THRESHOLD + 0.0485], &[]], c2_sand_water);
+}
+
+#[test]
+fn c3_moss_granite_matches_the_thesis() {
+    check("thesis_c3_moss_granite", [&[C3_THRESHOLD + 0.1], &[]], c3_moss_granite);
+}
+
+#[test]
+fn c4_paint_metal_rust_matches_the_thesis() {
+    check("thesis_c4_paint_metal_rust", [&C4_THRESHOLDS, &[]], c4_paint_metal_rust);
+}
+
+#[test]
+fn c5_water_lava_matches_the_thesis() {
+    check(
+        "thesis_c5_water_lava",
+        [&C5_THRESHOLDS[..1], &C5_THRESHOLDS[1..]],
+        c5_water_lava,
+    );
+}
+
+#[test]
+fn c6_waves_match_the_thesis() {
+    check("thesis_c6_waves", [&[0.0, C6_STRIPE_WIDTH], &[0.0, C6_STRIPE_WIDTH]], c6_waves);
+}
