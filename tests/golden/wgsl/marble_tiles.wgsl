@@ -16,6 +16,7 @@ struct VeneerMaterial {
     shininess: f32,
     bump: vec3f,      // perturbation added to the normal before lighting; 0 when flat
     height: f32,      // displacement along the normal
+    emission: vec3f,  // light given off whatever the lighting, added to the lit colour; 0 when none
 }
 
 // ---- shaders/patterns.wgsl
@@ -218,5 +219,6 @@ fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
         80.0f, // shininess
         vec3f(0.0f, 0.0f, 0.0f), // bump
         0.0f, // height
+        vec3f(0.0f, 0.0f, 0.0f), // emission
     );
 }

@@ -16,6 +16,7 @@ struct VeneerMaterial {
     shininess: f32,
     bump: vec3f,      // perturbation added to the normal before lighting; 0 when flat
     height: f32,      // displacement along the normal
+    emission: vec3f,  // light given off whatever the lighting, added to the lit colour; 0 when none
 }
 
 // ---- shaders/hash.wgsl
@@ -142,11 +143,15 @@ fn veneer_smoothstep(edge0: f32, edge1: f32, x: f32) -> f32 {
 
 // ---- shaders/fields.wgsl
 
-// How much of the surface a material spreading from the sources covers: 1 where
-// `distance + noise` is at most `threshold`, falling smoothly to 0 over `width` beyond
-// it (seed 003's smoothstep front, measured from the threshold); a hard edge at width 0.
-fn veneer_front(distance: f32, threshold: f32, width: f32, noise: f32) -> f32 {
-    return 1.0 - veneer_smoothstep(threshold, threshold + max(width, 0.0), distance + noise);
+// How much of the surface a material spreading from the sources covers: 1 near them,
+// falling smoothly to 0 where `distance + noise` passes the threshold; the fall is
+// centred `centre` widths past the threshold and spans `softness` widths either side
+// (seed 003's smoothstep fronts: §5.2.4 is centre 1, softness 1/2; C.4 and C.5 are
+// centre 0, softness 1); a hard edge at width 0.
+fn veneer_front(distance: f32, threshold: f32, width: f32, noise: f32, centre: f32, softness: f32) -> f32 {
+    let w = max(width, 0.0);
+    let s = max(softness, 0.0);
+    return 1.0 - veneer_smoothstep(threshold + (centre - s) * w, threshold + (centre + s) * w, distance + noise);
 }
 
 // A relief of basis noise at `p * scale` as a bump: minus `strength` times the noise
@@ -182,7 +187,7 @@ fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     // Mix 'metal colour' (#8)
     let metal_colour: vec3f = mix(vec3f(0.5f, 0.52f, 0.55f), vec3f(0.68f, 0.7f, 0.72f), metal_stains);
     // Layers 'albedo layers' (#11)
-    let albedo_layers: vec3f = mix(mix(mix(vec3f(0.1f, 0.22f, 0.6f), metal_colour, veneer_front(s.fields.x, metal_edge, 0.02f, 0.0f)), rust_colour, veneer_front(s.fields.x, rust_edge, 0.02f, 0.0f)), vec3f(0.16f, 0.08f, 0.05f), veneer_front(s.fields.x, deep_rust_edge, 0.02f, 0.0f));
+    let albedo_layers: vec3f = mix(mix(mix(vec3f(0.1f, 0.22f, 0.6f), metal_colour, veneer_front(s.fields.x, metal_edge, 0.02f, 0.0f, 0.5f, 0.5f)), rust_colour, veneer_front(s.fields.x, rust_edge, 0.02f, 0.0f, 0.5f, 0.5f)), vec3f(0.16f, 0.08f, 0.05f), veneer_front(s.fields.x, deep_rust_edge, 0.02f, 0.0f, 0.5f, 0.5f));
     // Math 'hole edge' (#13)
     let hole_edge: f32 = ageing + 0.1f;
     // Noise 'hole noise' (#14)
@@ -190,15 +195,15 @@ fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     // Math 'hole wobble' (#15)
     let hole_wobble: f32 = hole_noise * 0.06f;
     // Front 'eaten' (#16)
-    let eaten: f32 = veneer_front(s.fields.x, hole_edge, 0.005f, hole_wobble);
+    let eaten: f32 = veneer_front(s.fields.x, hole_edge, 0.005f, hole_wobble, 0.5f, 0.5f);
     // Unary 'solid' (#20)
     let solid: f32 = 1.0 - eaten;
     // Layers 'specular layers' (#12)
-    let specular_layers: vec3f = mix(mix(mix(vec3f(0.6f, 0.6f, 0.6f), vec3f(0.8f, 0.8f, 0.78f), veneer_front(s.fields.x, metal_edge, 0.02f, 0.0f)), vec3f(0.03f, 0.02f, 0.02f), veneer_front(s.fields.x, rust_edge, 0.02f, 0.0f)), vec3f(0.0f, 0.0f, 0.0f), veneer_front(s.fields.x, deep_rust_edge, 0.02f, 0.0f));
+    let specular_layers: vec3f = mix(mix(mix(vec3f(0.6f, 0.6f, 0.6f), vec3f(0.8f, 0.8f, 0.78f), veneer_front(s.fields.x, metal_edge, 0.02f, 0.0f, 0.5f, 0.5f)), vec3f(0.03f, 0.02f, 0.02f), veneer_front(s.fields.x, rust_edge, 0.02f, 0.0f, 0.5f, 0.5f)), vec3f(0.0f, 0.0f, 0.0f), veneer_front(s.fields.x, deep_rust_edge, 0.02f, 0.0f, 0.5f, 0.5f));
     // Noise bump 'flake bump' (#17)
     let flake_bump: vec3f = veneer_noise_bump_simplex(s.position, 18.0f, 0.3f);
     // Front 'rusted' (#19)
-    let rusted: f32 = veneer_front(s.fields.x, rust_edge, 0.02f, 0.0f);
+    let rusted: f32 = veneer_front(s.fields.x, rust_edge, 0.02f, 0.0f, 0.5f, 0.5f);
     // Mix 'bump' (#18)
     let bump: vec3f = mix(vec3f(0.0f, 0.0f, 0.0f), flake_bump, rusted);
     // Material 'material' (#21)
@@ -209,5 +214,6 @@ fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
         60.0f, // shininess
         bump, // bump
         0.0f, // height
+        vec3f(0.0f, 0.0f, 0.0f), // emission
     );
 }

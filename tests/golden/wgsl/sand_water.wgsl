@@ -16,6 +16,7 @@ struct VeneerMaterial {
     shininess: f32,
     bump: vec3f,      // perturbation added to the normal before lighting; 0 when flat
     height: f32,      // displacement along the normal
+    emission: vec3f,  // light given off whatever the lighting, added to the lit colour; 0 when none
 }
 
 // ---- shaders/hash.wgsl
@@ -127,11 +128,15 @@ fn veneer_smoothstep(edge0: f32, edge1: f32, x: f32) -> f32 {
 
 // ---- shaders/fields.wgsl
 
-// How much of the surface a material spreading from the sources covers: 1 where
-// `distance + noise` is at most `threshold`, falling smoothly to 0 over `width` beyond
-// it (seed 003's smoothstep front, measured from the threshold); a hard edge at width 0.
-fn veneer_front(distance: f32, threshold: f32, width: f32, noise: f32) -> f32 {
-    return 1.0 - veneer_smoothstep(threshold, threshold + max(width, 0.0), distance + noise);
+// How much of the surface a material spreading from the sources covers: 1 near them,
+// falling smoothly to 0 where `distance + noise` passes the threshold; the fall is
+// centred `centre` widths past the threshold and spans `softness` widths either side
+// (seed 003's smoothstep fronts: §5.2.4 is centre 1, softness 1/2; C.4 and C.5 are
+// centre 0, softness 1); a hard edge at width 0.
+fn veneer_front(distance: f32, threshold: f32, width: f32, noise: f32, centre: f32, softness: f32) -> f32 {
+    let w = max(width, 0.0);
+    let s = max(softness, 0.0);
+    return 1.0 - veneer_smoothstep(threshold + (centre - s) * w, threshold + (centre + s) * w, distance + noise);
 }
 
 // ---- shaders/gradient.wgsl
@@ -242,7 +247,7 @@ fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     // Math 'threshold' (#4)
     let threshold: f32 = tide + 0.3f;
     // Front 'shore' (#5)
-    let shore: f32 = veneer_front(s.fields.x, threshold, 0.05f, 0.0f);
+    let shore: f32 = veneer_front(s.fields.x, threshold, 0.05f, 0.0f, 0.5f, 0.5f);
     // Mix 'colour' (#13)
     let colour: vec3f = mix(water_shade, vec3f(0.894f, 0.969f, 0.755f), shore);
     // Noise bump 'water ripples' (#11)
@@ -259,5 +264,6 @@ fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
         12.0f, // shininess
         bump, // bump
         0.0f, // height
+        vec3f(0.0f, 0.0f, 0.0f), // emission
     );
 }

@@ -16,6 +16,7 @@ struct VeneerMaterial {
     shininess: f32,
     bump: vec3f,      // perturbation added to the normal before lighting; 0 when flat
     height: f32,      // displacement along the normal
+    emission: vec3f,  // light given off whatever the lighting, added to the lit colour; 0 when none
 }
 
 // ---- shaders/fractal.wgsl
@@ -284,11 +285,15 @@ fn veneer_smoothstep(edge0: f32, edge1: f32, x: f32) -> f32 {
 
 // ---- shaders/fields.wgsl
 
-// How much of the surface a material spreading from the sources covers: 1 where
-// `distance + noise` is at most `threshold`, falling smoothly to 0 over `width` beyond
-// it (seed 003's smoothstep front, measured from the threshold); a hard edge at width 0.
-fn veneer_front(distance: f32, threshold: f32, width: f32, noise: f32) -> f32 {
-    return 1.0 - veneer_smoothstep(threshold, threshold + max(width, 0.0), distance + noise);
+// How much of the surface a material spreading from the sources covers: 1 near them,
+// falling smoothly to 0 where `distance + noise` passes the threshold; the fall is
+// centred `centre` widths past the threshold and spans `softness` widths either side
+// (seed 003's smoothstep fronts: §5.2.4 is centre 1, softness 1/2; C.4 and C.5 are
+// centre 0, softness 1); a hard edge at width 0.
+fn veneer_front(distance: f32, threshold: f32, width: f32, noise: f32, centre: f32, softness: f32) -> f32 {
+    let w = max(width, 0.0);
+    let s = max(softness, 0.0);
+    return 1.0 - veneer_smoothstep(threshold + (centre - s) * w, threshold + (centre + s) * w, distance + noise);
 }
 
 // A relief of basis noise at `p * scale` as a bump: minus `strength` times the noise
@@ -339,7 +344,7 @@ fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     // Math 'viscosity' (#8)
     let viscosity: f32 = lava_edge_noise * 0.1f;
     // Front 'lava' (#10)
-    let lava: f32 = veneer_front(s.fields.y, lava_reach, 0.03f, viscosity);
+    let lava: f32 = veneer_front(s.fields.y, lava_reach, 0.03f, viscosity, 0.5f, 0.5f);
     // Mix 'with lava' (#17)
     let with_lava: vec3f = mix(ground_colour, lava_colour, lava);
     // Worley 'water cells' (#15)
@@ -349,7 +354,7 @@ fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     // Math 'water reach' (#5)
     let water_reach: f32 = flow + 0.3f;
     // Front 'water' (#9)
-    let water: f32 = veneer_front(s.fields.x, water_reach, 0.03f, 0.0f);
+    let water: f32 = veneer_front(s.fields.x, water_reach, 0.03f, 0.0f, 0.5f, 0.5f);
     // Mix 'with water' (#18)
     let with_water: vec3f = mix(with_lava, water_colour, water);
     // Mix 'specular' (#22)
@@ -368,5 +373,6 @@ fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
         40.0f, // shininess
         bump, // bump
         0.0f, // height
+        vec3f(0.0f, 0.0f, 0.0f), // emission
     );
 }

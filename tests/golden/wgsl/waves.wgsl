@@ -16,6 +16,7 @@ struct VeneerMaterial {
     shininess: f32,
     bump: vec3f,      // perturbation added to the normal before lighting; 0 when flat
     height: f32,      // displacement along the normal
+    emission: vec3f,  // light given off whatever the lighting, added to the lit colour; 0 when none
 }
 
 // ---- shaders/math.wgsl
@@ -70,5 +71,6 @@ fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
         80.0f, // shininess
         vec3f(0.0f, 0.0f, 0.0f), // bump
         height_scale, // height
+        vec3f(0.0f, 0.0f, 0.0f), // emission
     );
 }
