@@ -228,25 +228,27 @@ fn veneer_fractal_sum_simplex(p: vec3f, octaves: i32, lacunarity: f32, gain: f32
 fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     // Front 'sand (1 - shore)' (#5)
     let sand_1_shore: f32 = veneer_front(s.fields.x, 0.3f, 0.0485f, 0.0f, 1.0f, 0.5f);
-    // Mix 'diffuse' (#14)
+    // Mix 'diffuse' (#15)
     let diffuse: vec3f = mix(vec3f(0.177f, 0.503f, 0.413f), vec3f(0.894f, 0.969f, 0.755f), sand_1_shore);
     // Math 'cell space' (#6)
     let cell_space: vec3f = s.position * vec3f(7.0f, 7.0f, 7.0f);
-    // Math 'flow' (#7)
-    let flow: f32 = s.time * 0.5f;
-    // Math 'flowing cell space' (#8)
+    // Clamp 'flow time' (#7)
+    let flow_time: f32 = min(max(s.time, f32(0.0f)), f32(10000.0f));
+    // Math 'flow' (#8)
+    let flow: f32 = flow_time * 0.5f;
+    // Math 'flowing cell space' (#9)
     let flowing_cell_space: vec3f = cell_space + vec3f(flow);
-    // Worley 'worley' (#9)
+    // Worley 'worley' (#10)
     let worley: f32 = veneer_worley_fractal(flowing_cell_space * 1.0f, 1.0f, 0, 0, 3, 2.0f, 0.5f);
-    // Math 'sand space' (#10)
+    // Math 'sand space' (#11)
     let sand_space: vec3f = s.position * vec3f(1000.0f, 1000.0f, 1000.0f);
-    // Fractal sum 'sandBump' (#11)
+    // Fractal sum 'sandBump' (#12)
     let sand_bump: f32 = veneer_fractal_sum_simplex(sand_space * 1.0f, 1, 2.0f, 0.5f, 1.0f, false, 1000000000.0f);
-    // Mix 'bump' (#12)
+    // Mix 'bump' (#13)
     let bump: f32 = mix(worley, sand_bump, sand_1_shore);
-    // Math 'bumpScale' (#13)
+    // Math 'bumpScale' (#14)
     let bump_scale: f32 = bump * 0.15f;
-    // Material 'material' (#15)
+    // Material 'material' (#16)
     return VeneerMaterial(
         diffuse, // albedo
         1.0f, // alpha

@@ -230,35 +230,37 @@ fn veneer_worley_fractal(p: vec3f, jitter: f32, metric: i32, feature: i32, octav
 fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     // Front 'moss (1 - shore)' (#5)
     let moss_1_shore: f32 = veneer_front(s.fields.x, 0.25f, 0.1f, 0.0f, 1.0f, 0.5f);
-    // Mix 'diffuse' (#18)
+    // Mix 'diffuse' (#19)
     let diffuse: vec3f = mix(vec3f(0.222f, 0.219f, 0.174f), vec3f(0.094f, 0.142f, 0.061f), moss_1_shore);
-    // Mix 'specular' (#19)
+    // Mix 'specular' (#20)
     let specular: vec3f = mix(vec3f(0.2745f, 0.264f, 0.082f), vec3f(0.0f, 0.0f, 0.0f), moss_1_shore);
-    // Math 'granite space' (#14)
+    // Math 'granite space' (#15)
     let granite_space: vec3f = s.position * vec3f(115.0f, 115.0f, 115.0f);
-    // Turbulence 'granite turbulence' (#15)
+    // Turbulence 'granite turbulence' (#16)
     let granite_turbulence: f32 = veneer_turbulence_simplex(granite_space * 1.0f, 3, 2.0f, 0.5f, 1.0f, false, 1000000000.0f);
-    // Math 'granite bump' (#16)
+    // Math 'granite bump' (#17)
     let granite_bump: f32 = granite_turbulence * 0.5f;
     // Math 'cell space' (#6)
     let cell_space: vec3f = s.position * vec3f(7.0f, 7.0f, 7.0f);
-    // Math 'flow' (#7)
-    let flow: f32 = s.time * 0.5f;
-    // Math 'flowing cell space' (#8)
+    // Clamp 'flow time' (#7)
+    let flow_time: f32 = min(max(s.time, f32(0.0f)), f32(10000.0f));
+    // Math 'flow' (#8)
+    let flow: f32 = flow_time * 0.5f;
+    // Math 'flowing cell space' (#9)
     let flowing_cell_space: vec3f = cell_space + vec3f(flow);
-    // Worley 'worley' (#9)
+    // Worley 'worley' (#10)
     let worley: f32 = veneer_worley_fractal(flowing_cell_space * 1.0f, 1.0f, 0, 0, 3, 2.0f, 0.5f);
-    // Unary 'mossCells' (#10)
+    // Unary 'mossCells' (#11)
     let moss_cells: f32 = 1.0 - worley;
-    // Math 'moss space' (#11)
+    // Math 'moss space' (#12)
     let moss_space: vec3f = s.position * vec3f(163.0f, 163.0f, 163.0f);
-    // Turbulence 'moss turbulence' (#12)
+    // Turbulence 'moss turbulence' (#13)
     let moss_turbulence: f32 = veneer_turbulence_simplex(moss_space * 1.0f, 3, 2.0f, 0.5f, 1.0f, false, 1000000000.0f);
-    // Math 'moss bump' (#13)
+    // Math 'moss bump' (#14)
     let moss_bump: f32 = moss_cells + moss_turbulence;
-    // Mix 'bump' (#17)
+    // Mix 'bump' (#18)
     let bump: f32 = mix(granite_bump, moss_bump, moss_1_shore);
-    // Material 'material' (#20)
+    // Material 'material' (#21)
     return VeneerMaterial(
         diffuse, // albedo
         1.0f, // alpha

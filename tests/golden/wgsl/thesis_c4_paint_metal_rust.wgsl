@@ -157,14 +157,18 @@ fn veneer_front(distance: f32, threshold: f32, width: f32, noise: f32, centre: f
 // ---- the material graph
 
 fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
-    // Math 'rust border space' (#8)
-    let rust_border_space: vec3f = s.position * vec3f(10.0f, 10.0f, 10.0f);
-    // Fractal sum 'rust border snoise' (#9)
-    let rust_border_snoise: f32 = veneer_fractal_sum_simplex(rust_border_space * 1.0f, 1, 2.0f, 0.5f, 1.0f, false, 1000000000.0f);
-    // Math 'rust border noise' (#10)
-    let rust_border_noise: f32 = rust_border_snoise * 0.01f;
-    // Math 'threshold3 edge' (#11)
-    let threshold3_edge: f32 = 0.15f + rust_border_noise;
+    // Math 'metal space' (#13)
+    let metal_space: vec3f = s.position * vec3f(5.0f, 5.0f, 5.0f);
+    // Fractal sum 'metal fractalsum' (#14)
+    let metal_fractalsum: f32 = veneer_fractal_sum_simplex(metal_space * 1.0f, 3, 2.0f, 0.5f, 1.0f, false, 1000000000.0f);
+    // Math 'metal stain' (#15)
+    let metal_stain: f32 = metal_fractalsum * 0.1f;
+    // Math 'fvDiffuse2 rgb' (#16)
+    let fv_diffuse2_rgb: vec3f = vec3f(0.64f, 0.64f, 0.64f) - vec3f(metal_stain);
+    // Front 'threshold1' (#12)
+    let threshold1: f32 = veneer_front(s.fields.x, 0.6f, 0.005f, 0.0f, 0.0f, 1.0f);
+    // Mix 'fvDiffuse (paint, metal)' (#46)
+    let fv_diffuse_paint_metal: vec3f = mix(vec3f(0.11f, 0.16f, 0.48f), fv_diffuse2_rgb, threshold1);
     // Math 'rust space' (#18)
     let rust_space: vec3f = s.position * vec3f(4.62f, 4.62f, 4.62f);
     // Fractal sum 'rust fractalsum' (#19)
@@ -179,16 +183,26 @@ fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     let rust_stain: f32 = rust_noise_depth * 0.3f;
     // Math 'fvDiffuse3 rgb' (#25)
     let fv_diffuse3_rgb: vec3f = vec3f(0.29f, 0.17f, 0.13f) - vec3f(rust_stain);
-    // Math 'metal space' (#13)
-    let metal_space: vec3f = s.position * vec3f(5.0f, 5.0f, 5.0f);
-    // Fractal sum 'metal fractalsum' (#14)
-    let metal_fractalsum: f32 = veneer_fractal_sum_simplex(metal_space * 1.0f, 3, 2.0f, 0.5f, 1.0f, false, 1000000000.0f);
-    // Math 'metal stain' (#15)
-    let metal_stain: f32 = metal_fractalsum * 0.1f;
-    // Math 'fvDiffuse2 rgb' (#16)
-    let fv_diffuse2_rgb: vec3f = vec3f(0.64f, 0.64f, 0.64f) - vec3f(metal_stain);
-    // Layers 'fvDiffuse' (#44)
-    let fv_diffuse: vec3f = mix(mix(mix(vec3f(0.11f, 0.16f, 0.48f), fv_diffuse2_rgb, veneer_front(s.fields.x, 0.6f, 0.005f, 0.0f, 0.0f, 1.0f)), fv_diffuse3_rgb, veneer_front(s.fields.x, 0.4f, 0.08f, 0.0f, 0.0f, 1.0f)), vec3f(0.0f, 0.0f, 0.0f), veneer_front(s.fields.x, threshold3_edge, 0.0f, 0.0f, 0.0f, 1.0f));
+    // Front 'threshold2' (#44)
+    let threshold2: f32 = veneer_front(s.fields.x, 0.4f, 0.08f, 0.0f, 0.0f, 1.0f);
+    // Mix 'fvDiffuse (rust)' (#47)
+    let fv_diffuse_rust: vec3f = mix(fv_diffuse_paint_metal, fv_diffuse3_rgb, threshold2);
+    // Math 'rust border space' (#8)
+    let rust_border_space: vec3f = s.position * vec3f(10.0f, 10.0f, 10.0f);
+    // Fractal sum 'rust border snoise' (#9)
+    let rust_border_snoise: f32 = veneer_fractal_sum_simplex(rust_border_space * 1.0f, 1, 2.0f, 0.5f, 1.0f, false, 1000000000.0f);
+    // Math 'rust border noise' (#10)
+    let rust_border_noise: f32 = rust_border_snoise * 0.01f;
+    // Math 'threshold3 edge' (#11)
+    let threshold3_edge: f32 = 0.15f + rust_border_noise;
+    // Step 'threshold3' (#45)
+    let threshold3: f32 = step(f32(s.fields.x), threshold3_edge);
+    // Mix 'fvDiffuse' (#48)
+    let fv_diffuse: vec3f = mix(fv_diffuse_rust, vec3f(0.0f, 0.0f, 0.0f), threshold3);
+    // Math 'fvDiffuse2 alpha' (#17)
+    let fv_diffuse2_alpha: f32 = 1.0f - metal_stain;
+    // Mix 'alpha (paint, metal)' (#52)
+    let alpha_paint_metal: f32 = mix(1.0f, fv_diffuse2_alpha, threshold1);
     // Math 'rust alpha' (#31)
     let rust_alpha: f32 = 1.0f - rust_stain;
     // Math 'past layer 2 (unclamped)' (#26)
@@ -205,12 +219,18 @@ fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     let holes: f32 = fv_diffuse3alpha_mod * 0.1f;
     // Math 'fvDiffuse3 alpha' (#33)
     let fv_diffuse3_alpha: f32 = rust_alpha - holes;
-    // Math 'fvDiffuse2 alpha' (#17)
-    let fv_diffuse2_alpha: f32 = 1.0f - metal_stain;
-    // Layers 'alpha' (#46)
-    let alpha: f32 = mix(mix(mix(1.0f, fv_diffuse2_alpha, veneer_front(s.fields.x, 0.6f, 0.005f, 0.0f, 0.0f, 1.0f)), fv_diffuse3_alpha, veneer_front(s.fields.x, 0.4f, 0.08f, 0.0f, 0.0f, 1.0f)), 0.0f, veneer_front(s.fields.x, threshold3_edge, 0.0f, 0.0f, 0.0f, 1.0f));
-    // Layers 'fvSpecular' (#45)
-    let fv_specular: vec3f = mix(mix(mix(vec3f(1.0f, 1.0f, 1.0f), vec3f(0.18f, 0.18f, 0.18f), veneer_front(s.fields.x, 0.6f, 0.005f, 0.0f, 0.0f, 1.0f)), vec3f(0.0f, 0.0f, 0.0f), veneer_front(s.fields.x, 0.4f, 0.08f, 0.0f, 0.0f, 1.0f)), vec3f(0.0f, 0.0f, 0.0f), veneer_front(s.fields.x, threshold3_edge, 0.0f, 0.0f, 0.0f, 1.0f));
+    // Mix 'alpha (rust)' (#53)
+    let alpha_rust: f32 = mix(alpha_paint_metal, fv_diffuse3_alpha, threshold2);
+    // Mix 'alpha' (#54)
+    let alpha: f32 = mix(alpha_rust, 0.0f, threshold3);
+    // Mix 'fvSpecular (paint, metal)' (#49)
+    let fv_specular_paint_metal: vec3f = mix(vec3f(1.0f, 1.0f, 1.0f), vec3f(0.18f, 0.18f, 0.18f), threshold1);
+    // Mix 'fvSpecular (rust)' (#50)
+    let fv_specular_rust: vec3f = mix(fv_specular_paint_metal, vec3f(0.0f, 0.0f, 0.0f), threshold2);
+    // Mix 'fvSpecular' (#51)
+    let fv_specular: vec3f = mix(fv_specular_rust, vec3f(0.0f, 0.0f, 0.0f), threshold3);
+    // Unary 'bump1' (#34)
+    let bump1: f32 = -(threshold1);
     // Math 'metal grain space' (#35)
     let metal_grain_space: vec3f = s.position * vec3f(400.0f, 400.0f, 400.0f);
     // Fractal sum 'metal grain' (#36)
@@ -219,6 +239,8 @@ fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     let metal_grain_x0_025: f32 = metal_grain * 0.025f;
     // Math 'bump2' (#38)
     let bump2: f32 = metal_grain_x0_025 * 0.8f;
+    // Mix 'bump (paint, metal)' (#55)
+    let bump_paint_metal: f32 = mix(bump1, bump2, threshold1);
     // Length 'rust rgb length' (#39)
     let rust_rgb_length: f32 = length(fv_diffuse3_rgb);
     // Combine 'fvDiffuse3 rgb length and alpha' (#40)
@@ -229,15 +251,13 @@ fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     let rust_relief: f32 = length_fv_diffuse3 * 0.5f;
     // Math 'bump3' (#43)
     let bump3: f32 = bump2 + rust_relief;
-    // Front 'threshold1' (#12)
-    let threshold1: f32 = veneer_front(s.fields.x, 0.6f, 0.005f, 0.0f, 0.0f, 1.0f);
-    // Unary 'bump1' (#34)
-    let bump1: f32 = -(threshold1);
-    // Layers 'bump' (#47)
-    let bump: f32 = mix(mix(mix(bump1, bump2, veneer_front(s.fields.x, 0.6f, 0.005f, 0.0f, 0.0f, 1.0f)), bump3, veneer_front(s.fields.x, 0.4f, 0.08f, 0.0f, 0.0f, 1.0f)), 0.0f, veneer_front(s.fields.x, threshold3_edge, 0.0f, 0.0f, 0.0f, 1.0f));
-    // Math 'bump * bumpScale' (#48)
+    // Mix 'bump (rust)' (#56)
+    let bump_rust: f32 = mix(bump_paint_metal, bump3, threshold2);
+    // Mix 'bump' (#57)
+    let bump: f32 = mix(bump_rust, 0.0f, threshold3);
+    // Math 'bump * bumpScale' (#58)
     let bump_bump_scale: f32 = bump * 0.1f;
-    // Material 'material' (#49)
+    // Material 'material' (#59)
     return VeneerMaterial(
         fv_diffuse, // albedo
         alpha, // alpha

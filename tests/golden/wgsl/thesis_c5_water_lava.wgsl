@@ -268,15 +268,17 @@ fn veneer_turbulence_simplex(p: vec3f, octaves: i32, lacunarity: f32, gain: f32,
 fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     // Math 'cell space' (#14)
     let cell_space: vec3f = s.position * vec3f(65.1672f, 65.1672f, 65.1672f);
-    // Math 'flow' (#15)
-    let flow: f32 = s.time * 0.5f;
-    // Math 'flowing cell space' (#16)
+    // Clamp 'flow time' (#15)
+    let flow_time: f32 = min(max(s.time, f32(0.0f)), f32(10000.0f));
+    // Math 'flow' (#16)
+    let flow: f32 = flow_time * 0.5f;
+    // Math 'flowing cell space' (#17)
     let flowing_cell_space: vec3f = cell_space + vec3f(flow);
-    // Worley 'worley' (#17)
+    // Worley 'worley' (#18)
     let worley: f32 = veneer_worley_fractal(flowing_cell_space * 1.0f, 1.0f, 0, 0, 3, 2.0f, 0.5f);
-    // Math 'lava cells' (#20)
+    // Math 'lava cells' (#21)
     let lava_cells: vec3f = vec3f(worley) * vec3f(0.2f, 0.15f, 0.05f);
-    // Math 'fvDiffuse1' (#21)
+    // Math 'fvDiffuse1' (#22)
     let fv_diffuse1: vec3f = vec3f(0.27f, 0.08f, 0.06f) + lava_cells;
     // Math 'lava border space' (#8)
     let lava_border_space: vec3f = s.position * vec3f(10.0f, 10.0f, 10.0f);
@@ -288,39 +290,39 @@ fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     let lava_edge: f32 = 0.45f + lava_border_noise_range;
     // Front 'threshold1' (#12)
     let threshold1: f32 = veneer_front(s.fields.x, lava_edge, 0.01f, 0.0f, 0.0f, 1.0f);
-    // Mix 'fvDiffuse (rock, lava)' (#26)
+    // Mix 'fvDiffuse (rock, lava)' (#27)
     let fv_diffuse_rock_lava: vec3f = mix(vec3f(0.14f, 0.14f, 0.14f), fv_diffuse1, threshold1);
     // Front 'threshold2' (#13)
     let threshold2: f32 = veneer_front(s.fields.y, 0.3f, 0.05f, 0.0f, 0.0f, 1.0f);
-    // Mix 'fvDiffuse' (#27)
+    // Mix 'fvDiffuse' (#28)
     let fv_diffuse: vec3f = mix(fv_diffuse_rock_lava, vec3f(0.21f, 0.43f, 0.48f), threshold2);
-    // Mix 'fvSpecular (rock, lava)' (#28)
+    // Mix 'fvSpecular (rock, lava)' (#29)
     let fv_specular_rock_lava: vec3f = mix(vec3f(0.07f, 0.07f, 0.07f), vec3f(0.79f, 0.76f, 0.24f), threshold1);
-    // Mix 'fvSpecular' (#29)
+    // Mix 'fvSpecular' (#30)
     let fv_specular: vec3f = mix(fv_specular_rock_lava, vec3f(0.78f, 0.78f, 0.78f), threshold2);
-    // Math 'rock space' (#23)
+    // Math 'rock space' (#24)
     let rock_space: vec3f = s.position * vec3f(47.0f, 47.0f, 47.0f);
-    // Turbulence 'rock turbulence' (#24)
+    // Turbulence 'rock turbulence' (#25)
     let rock_turbulence: f32 = veneer_turbulence_simplex(rock_space * 1.0f, 3, 2.0f, 0.5f, 1.0f, false, 1000000000.0f);
-    // Math 'bump3' (#25)
+    // Math 'bump3' (#26)
     let bump3: f32 = rock_turbulence * 0.66f;
-    // Math 'bump1 * worley' (#18)
+    // Math 'bump1 * worley' (#19)
     let bump1_worley: f32 = worley * -0.04f;
-    // Math 'bump1' (#19)
+    // Math 'bump1' (#20)
     let bump1: f32 = bump1_worley + -1.0f;
-    // Mix 'bump (rock, lava)' (#32)
+    // Mix 'bump (rock, lava)' (#33)
     let bump_rock_lava: f32 = mix(bump3, bump1, threshold1);
-    // Math 'bump2' (#22)
+    // Math 'bump2' (#23)
     let bump2: f32 = worley * -0.16f;
-    // Mix 'bump' (#33)
+    // Mix 'bump' (#34)
     let bump: f32 = mix(bump_rock_lava, bump2, threshold2);
-    // Math 'bump * bumpScale' (#34)
+    // Math 'bump * bumpScale' (#35)
     let bump_bump_scale: f32 = bump * 0.1f;
-    // Mix 'fvAmbient (rock, lava)' (#30)
+    // Mix 'fvAmbient (rock, lava)' (#31)
     let fv_ambient_rock_lava: vec3f = mix(vec3f(0.0f, 0.0f, 0.0f), vec3f(0.39f, 0.09f, 0.09f), threshold1);
-    // Mix 'fvAmbient' (#31)
+    // Mix 'fvAmbient' (#32)
     let fv_ambient: vec3f = mix(fv_ambient_rock_lava, vec3f(0.0f, 0.0f, 0.0f), threshold2);
-    // Material 'material' (#35)
+    // Material 'material' (#36)
     return VeneerMaterial(
         fv_diffuse, // albedo
         1.0f, // alpha
