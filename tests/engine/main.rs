@@ -8,6 +8,7 @@ mod cli_contract;
 mod compile_once;
 mod cpu_gpu;
 mod detail;
+mod emission;
 mod errors;
 mod export;
 mod fuzz_regressions;

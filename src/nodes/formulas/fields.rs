@@ -46,3 +46,38 @@ pub fn noise_bump<R: Real>(basis: Basis, p: V3<R>, scale_by: R, strength: R) -> 
     };
     scale([axis(0), axis(1), axis(2)], -strength)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::front;
+    use crate::nodes::formulas::shapes::smoothstep;
+
+    /// Distances across every transition below.
+    fn distances() -> impl Iterator<Item = f64> {
+        (0..=400).map(|i| f64::from(i) / 400.0)
+    }
+
+    #[test]
+    fn the_default_placement_is_the_first_front_exactly() {
+        let (threshold, width, noise) = (0.3, 0.07, 0.01);
+        for d in distances() {
+            let first = 1.0 - smoothstep(threshold, threshold + width, d + noise);
+            assert_eq!(front(d, threshold, width, noise, 0.5, 0.5), first);
+        }
+    }
+
+    #[test]
+    fn the_thesis_fronts_are_placements() {
+        let (threshold, width, noise) = (0.3, 0.07, 0.02);
+        for d in distances() {
+            // §5.2.4, C.2, C.3: smoothstep(d - w/2, d + w/2, T + w), 50% at T + w.
+            let shore = smoothstep(d - width * 0.5, d + width * 0.5, threshold + width);
+            assert!((front(d, threshold, width, 0.0, 1.0, 0.5) - shore).abs() < 1e-12);
+            // C.4, C.5: smoothstep(d - w, d + w, T + noise), the noise on the threshold.
+            let centred = smoothstep(d - width, d + width, threshold + noise);
+            let ours = front(d, threshold + noise, width, 0.0, 0.0, 1.0);
+            assert!((ours - centred).abs() < 1e-12);
+        }
+        assert!((front(0.37, 0.3, 0.07, 0.0, 1.0, 0.5) - 0.5).abs() < 1e-12);
+    }
+}
