@@ -146,6 +146,8 @@ pub struct Viewer<'a> {
     pub transform: &'a mut egui::emath::TSTransform,
     /// Comment frames to draw behind the nodes.
     pub frames: &'a [crate::graph::Frame],
+    /// Node thumbnails: which nodes show one, and the drawn tiles.
+    pub thumbnails: &'a mut super::thumbnails::Thumbnails,
 }
 
 impl SnarlViewer<Node> for Viewer<'_> {
@@ -344,6 +346,22 @@ impl SnarlViewer<Node> for Viewer<'_> {
         false
     }
 
+    fn has_body(&mut self, node: &Node) -> bool {
+        self.thumbnails.shows(node.id) && !node.kind.signature().outputs.is_empty()
+    }
+
+    /// The node's thumbnail (blank until first drawn).
+    fn show_body(
+        &mut self,
+        node: egui_snarl::NodeId,
+        _: &[InPin],
+        _: &[OutPin],
+        ui: &mut Ui,
+        snarl: &mut Snarl<Node>,
+    ) {
+        super::thumbnails::show_tile(ui, self.thumbnails, &snarl[node]);
+    }
+
     fn has_node_menu(&mut self, _: &Node) -> bool {
         true
     }
@@ -362,8 +380,19 @@ impl SnarlViewer<Node> for Viewer<'_> {
             super::clipboard::duplicate(snarl, &[node], at);
             ui.close();
         }
+        let id = snarl[node].id;
         if ui.button("Delete").clicked() {
             snarl.remove_node(node);
+            ui.close();
+        }
+        let hidden = self.thumbnails.hidden.contains(&id);
+        let label = if hidden { "Show thumbnail" } else { "Hide thumbnail" };
+        if ui.button(label).clicked() {
+            if hidden {
+                self.thumbnails.hidden.remove(&id);
+            } else {
+                self.thumbnails.hidden.insert(id);
+            }
             ui.close();
         }
     }

@@ -20,11 +20,14 @@ mod preview;
 mod preview_panel;
 mod probe;
 mod recovery;
+mod thumbnail_worker;
+mod thumbnails;
 mod widgets;
 
 pub use crate::graph::{PRESETS, preset};
 pub use document::Document;
 pub use live::LiveMaterial;
+pub use thumbnails::{TILE_PIXELS, Thumbnails};
 
 use crate::graph::{Graph, Node};
 use dialogs::{Dialog, Pending};
@@ -60,6 +63,8 @@ pub struct VeneerApp {
     pub live: LiveMaterial,
     /// The selected node's output, compiled for its thumbnail.
     pub thumbnail: LiveMaterial,
+    /// Thumbnails on the nodes and on hovered wires.
+    pub thumbnails: thumbnails::Thumbnails,
     preview: PreviewState,
     /// Nodes selected in the graph (snarl ids).
     selection: Vec<egui_snarl::NodeId>,
@@ -120,6 +125,7 @@ impl VeneerApp {
             document: Document::new(wood, None),
             live: LiveMaterial::default(),
             thumbnail: LiveMaterial::default(),
+            thumbnails: Default::default(),
             selection: Vec::new(),
             clicked: None,
             graph_transform: Default::default(),
@@ -303,6 +309,7 @@ impl VeneerApp {
             selected: before,
             transform: &mut self.graph_transform,
             frames: &self.document.graph.frames,
+            thumbnails: &mut self.thumbnails,
         };
         let widget = SnarlWidget::new().id_salt("graph");
         let response = widget.show(&mut self.snarl, &mut viewer, ui);
@@ -335,6 +342,9 @@ impl VeneerApp {
         }
         self.live.update(&self.document.graph);
         self.live.lint(&self.document.graph);
+        let time = self.preview.view.time;
+        self.thumbnails
+            .update(ctx, &self.document.graph, None, time);
         if !ctx.input(|input| input.pointer.any_down()) {
             self.document.history.commit(&self.document.graph);
         }
