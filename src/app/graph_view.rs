@@ -346,12 +346,12 @@ impl SnarlViewer<Node> for Viewer<'_> {
         false
     }
 
-    fn has_body(&mut self, node: &Node) -> bool {
+    fn has_footer(&mut self, node: &Node) -> bool {
         self.thumbnails.shows(node.id) && !node.kind.signature().outputs.is_empty()
     }
 
-    /// The node's thumbnail (blank until first drawn).
-    fn show_body(
+    /// The node's thumbnail, below its pins (blank until first drawn).
+    fn show_footer(
         &mut self,
         node: egui_snarl::NodeId,
         _: &[InPin],

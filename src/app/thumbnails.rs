@@ -269,6 +269,11 @@ impl Thumbnails {
         self.pixels = pixels;
     }
 
+    /// The output pins that have a tile, in tile order.
+    pub fn pins(&self) -> &[PinRef] {
+        &self.pins
+    }
+
     /// Whether every tile has been drawn as it is now (nothing sent or waiting).
     pub fn settled(&self) -> bool {
         !self.in_flight && self.ready.iter().all(|ready| *ready)
