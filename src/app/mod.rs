@@ -23,6 +23,8 @@ mod recovery;
 mod thumbnail_worker;
 mod thumbnails;
 mod widgets;
+mod wire_pointer;
+mod wires;
 
 pub use crate::graph::{PRESETS, preset};
 pub use document::Document;
@@ -65,6 +67,12 @@ pub struct VeneerApp {
     pub thumbnail: LiveMaterial,
     /// Thumbnails on the nodes and on hovered wires.
     pub thumbnails: thumbnails::Thumbnails,
+    /// Where pins and nodes were drawn in the last frame.
+    spots: wires::SharedSpots,
+    /// The output carried by the wire under the pointer.
+    hovered_wire: Option<crate::graph::PinRef>,
+    /// The node the primary button went down on, and where it was then.
+    node_drag: Option<(egui_snarl::NodeId, egui::Pos2)>,
     preview: PreviewState,
     /// Nodes selected in the graph (snarl ids).
     selection: Vec<egui_snarl::NodeId>,
@@ -126,6 +134,9 @@ impl VeneerApp {
             live: LiveMaterial::default(),
             thumbnail: LiveMaterial::default(),
             thumbnails: Default::default(),
+            spots: Default::default(),
+            hovered_wire: None,
+            node_drag: None,
             selection: Vec::new(),
             clicked: None,
             graph_transform: Default::default(),
@@ -278,6 +289,21 @@ impl VeneerApp {
         self.graph_transform
     }
 
+    /// Where the pin `pin` (an output when `output`) was drawn last frame, on screen.
+    pub fn pin_on_screen(&self, pin: &crate::graph::PinRef, output: bool) -> Option<egui::Pos2> {
+        let (id, node) = self.snarl.node_ids().find(|(_, node)| node.id == pin.node)?;
+        let signature = node.kind.signature();
+        let spots = self.spots.borrow();
+        let at = if output {
+            let output = signature.output(&pin.pin)?.0;
+            spots.output(egui_snarl::OutPinId { node: id, output })?
+        } else {
+            let input = signature.input(&pin.pin)?.0;
+            spots.input(egui_snarl::InPinId { node: id, input })?
+        };
+        Some(self.graph_transform * at)
+    }
+
     /// Number of material pipelines the preview has built (0 without a GPU).
     pub fn pipelines_built(&self) -> u64 {
         let Some(state) = &self.render_state else {
@@ -310,9 +336,12 @@ impl VeneerApp {
             transform: &mut self.graph_transform,
             frames: &self.document.graph.frames,
             thumbnails: &mut self.thumbnails,
+            spots: self.spots.clone(),
         };
+        *self.spots.borrow_mut() = Default::default();
         let widget = SnarlWidget::new().id_salt("graph");
         let response = widget.show(&mut self.snarl, &mut viewer, ui);
+        self.wire_pointer(ui);
         if self.dialog.is_some() {
             // A click on a dialog is not for the node under it.
             self.clicked = before;
@@ -344,7 +373,7 @@ impl VeneerApp {
         self.live.lint(&self.document.graph);
         let time = self.preview.view.time;
         self.thumbnails
-            .update(ctx, &self.document.graph, None, time);
+            .update(ctx, &self.document.graph, self.hovered_wire.as_ref(), time);
         if !ctx.input(|input| input.pointer.any_down()) {
             self.document.history.commit(&self.document.graph);
         }
