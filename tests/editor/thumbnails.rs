@@ -244,3 +244,87 @@ fn a_parameter_edit_redraws_only_the_tiles_it_reaches_without_recompiling() {
     assert_eq!(app.thumbnails.tiles_drawn, (tiles + reached.len()) as u64);
     assert_eq!(app.thumbnails.atlas.compiles, compiles, "a value edit never recompiles");
 }
+
+/// The middle of the wire from `from` to `to` on screen (snarl's curves pass through
+/// the middle of their two pins).
+fn wire_middle(harness: &Harness<'static, VeneerApp>, from: &PinRef, to: &PinRef) -> egui::Pos2 {
+    let app = harness.state();
+    let a = app.pin_on_screen(from, true).expect("the output is drawn");
+    let b = app.pin_on_screen(to, false).expect("the input is drawn");
+    a.lerp(b, 0.5)
+}
+
+#[test]
+fn hovering_a_wire_shows_the_value_it_carries() {
+    let (mut graph, _, _, split) = simple_graph();
+    let material = graph.nodes.iter().find(|n| n.kind == NodeKind::Material).unwrap().id;
+    // The split's second output (z: a ramp from top to bottom) is no node's thumbnail.
+    graph.connect(split, "z", material, "alpha");
+    let mut harness = open("thumbnail-wire", &graph);
+    let z = PinRef::new(split, "z");
+    assert!(!harness.state().thumbnails.pins().contains(&z));
+    let middle = wire_middle(&harness, &z, &PinRef::new(material, "alpha"));
+    harness.hover_at(middle);
+    settle(&mut harness);
+    assert!(crate::support::shows(&harness, "across · z"), "the tooltip names the wire");
+    let tile = harness.state().thumbnails.tile_pixels(&z).expect("the wire's tile");
+    for (i, j) in [(5, 2), (30, 33), (60, 61)] {
+        let got = tile[(j * TILE_PIXELS + i) as usize];
+        let want = expected(&graph, &z, ValueType::Float, i, j);
+        assert!(
+            (0..3).all(|k| got[k].abs_diff(want[k]) <= 1),
+            "({i}, {j}): {got:?}, the CPU says {want:?}"
+        );
+    }
+    // Off the wire, no tooltip.
+    harness.hover_at(middle + egui::vec2(0.0, 60.0));
+    harness.run_steps(2);
+    assert!(!crate::support::shows(&harness, "across · z"));
+}
+
+#[test]
+fn a_node_dropped_on_a_wire_is_inserted_and_one_undo_takes_it_out() {
+    let (mut graph, colour, _, _) = simple_graph();
+    let material = graph.nodes.iter().find(|n| n.kind == NodeKind::Material).unwrap().id;
+    let tint = graph.add(
+        "tint",
+        NodeKind::Constant(Constant {
+            ty: ValueType::Color,
+        }),
+    );
+    graph.node_mut(tint).unwrap().position = (220.0, 360.0);
+    let mut harness = open("thumbnail-drop", &graph);
+    let before = harness.state().document.graph.clone();
+    let target = wire_middle(&harness, &PinRef::new(colour, "value"), &PinRef::new(material, "albedo"));
+    // Drag the tint node by its title onto the middle of the wire, in steps.
+    let grab = harness.state().graph_to_screen() * harness.get_by_label("tint").rect().center();
+    harness.event(egui::Event::PointerMoved(grab));
+    harness.event(egui::Event::PointerButton {
+        pos: grab,
+        button: egui::PointerButton::Primary,
+        pressed: true,
+        modifiers: Default::default(),
+    });
+    harness.step();
+    for k in 1..=10 {
+        harness.event(egui::Event::PointerMoved(grab.lerp(target, k as f32 / 10.0)));
+        harness.step();
+    }
+    harness.event(egui::Event::PointerButton {
+        pos: target,
+        button: egui::PointerButton::Primary,
+        pressed: false,
+        modifiers: Default::default(),
+    });
+    harness.run_steps(3);
+    let graph = &harness.state().document.graph;
+    let into = |node: NodeId, pin: &str| graph.wire_into(node, pin).map(|w| w.from.clone());
+    assert_eq!(into(tint, "value"), Some(PinRef::new(colour, "value")));
+    assert_eq!(into(material, "albedo"), Some(PinRef::new(tint, "value")));
+    press(&mut harness, egui::Key::Z, true);
+    assert_eq!(
+        harness.state().document.graph,
+        before,
+        "one undo puts the wire and the node back"
+    );
+}
