@@ -29,7 +29,8 @@ mod wires;
 pub use crate::graph::{PRESETS, preset};
 pub use document::Document;
 pub use live::LiveMaterial;
-pub use thumbnails::{TILE_PIXELS, Thumbnails};
+pub use probe::{AtlasGraph, atlas_graph};
+pub use thumbnails::{TILE_PIXELS, Thumbnails, placement, tile_params};
 
 use crate::graph::{Graph, Node};
 use dialogs::{Dialog, Pending};

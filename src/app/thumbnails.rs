@@ -181,13 +181,7 @@ impl Thumbnails {
                 continue;
             }
             self.sent[index] = Some(key);
-            let mut tile = values.clone();
-            for (slot, param) in slots.iter().enumerate() {
-                if let Some(k) = self.selectors.iter().position(|s| *s == param.node) {
-                    tile[slot][0] = if k == index { 1.0 } else { 0.0 };
-                }
-            }
-            tiles.push((index, tile));
+            tiles.push((index, tile_params(&values, slots, &self.selectors, index)));
         }
         if tiles.is_empty() {
             return;
@@ -312,6 +306,24 @@ impl Thumbnails {
         }
         Some(tile)
     }
+}
+
+/// The parameter values that make the atlas module show tile `index`: `values` (the
+/// atlas graph's, see [`param_values`]) with every selector's factor 0 but tile
+/// `index`'s, which is 1.
+pub fn tile_params(
+    values: &[[f32; 4]],
+    slots: &[crate::codegen::ParamSlot],
+    selectors: &[NodeId],
+    index: usize,
+) -> Vec<[f32; 4]> {
+    let mut tile = values.to_vec();
+    for (slot, param) in slots.iter().enumerate() {
+        if let Some(k) = selectors.iter().position(|s| *s == param.node) {
+            tile[slot][0] = if k == index { 1.0 } else { 0.0 };
+        }
+    }
+    tile
 }
 
 /// The square every tile samples: the preview's placement (centre ± size in x and z,
