@@ -5,6 +5,7 @@
 use super::add_node::DroppedWire;
 use super::catalogue::Dangling;
 use super::widgets::{input_editor, type_color};
+use super::wires::{PinSide, SpottedPin};
 use crate::graph::{Graph, Node, NodeId, PinDefault, PinRef, Wire};
 use egui::{Color32, Pos2, RichText, Ui};
 use egui_snarl::ui::{AnyPins, PinInfo, SnarlPin, SnarlViewer};
@@ -97,7 +98,7 @@ pub fn next_node_id(snarl: &Snarl<Node>) -> NodeId {
 }
 
 /// Whether a wire from `from` to `to` would close a cycle (`from` already depends on `to`).
-fn would_cycle(snarl: &Snarl<Node>, from: egui_snarl::NodeId, to: egui_snarl::NodeId) -> bool {
+pub(super) fn would_cycle(snarl: &Snarl<Node>, from: egui_snarl::NodeId, to: egui_snarl::NodeId) -> bool {
     let mut stack = vec![from];
     let mut seen = std::collections::BTreeSet::new();
     while let Some(node) = stack.pop() {
@@ -146,6 +147,10 @@ pub struct Viewer<'a> {
     pub transform: &'a mut egui::emath::TSTransform,
     /// Comment frames to draw behind the nodes.
     pub frames: &'a [crate::graph::Frame],
+    /// Node thumbnails: which nodes show one, and the drawn tiles.
+    pub thumbnails: &'a mut super::thumbnails::Thumbnails,
+    /// Receives where pins and nodes are drawn.
+    pub spots: super::wires::SharedSpots,
 }
 
 impl SnarlViewer<Node> for Viewer<'_> {
@@ -206,6 +211,7 @@ impl SnarlViewer<Node> for Viewer<'_> {
         ui: &mut Ui,
         _: &mut Snarl<Node>,
     ) {
+        self.spots.borrow_mut().nodes.insert(node, rect);
         // Nodes live in a zoomed and panned layer; the pointer is in screen space.
         let to_screen = ui
             .ctx()
@@ -291,9 +297,13 @@ impl SnarlViewer<Node> for Viewer<'_> {
                 }
             }
         }
-        PinInfo::circle()
-            .with_fill(type_color(spec.ty))
-            .with_wire_color(type_color(spec.ty))
+        SpottedPin {
+            info: PinInfo::circle()
+                .with_fill(type_color(spec.ty))
+                .with_wire_color(type_color(spec.ty)),
+            pin: PinSide::In(pin.id),
+            spots: self.spots.clone(),
+        }
     }
 
     fn show_output(
@@ -304,9 +314,13 @@ impl SnarlViewer<Node> for Viewer<'_> {
     ) -> impl SnarlPin + 'static {
         let spec = snarl[pin.id.node].kind.signature().outputs[pin.id.output];
         ui.label(spec.name);
-        PinInfo::circle()
-            .with_fill(type_color(spec.ty))
-            .with_wire_color(type_color(spec.ty))
+        SpottedPin {
+            info: PinInfo::circle()
+                .with_fill(type_color(spec.ty))
+                .with_wire_color(type_color(spec.ty)),
+            pin: PinSide::Out(pin.id),
+            spots: self.spots.clone(),
+        }
     }
 
     fn connect(&mut self, from: &OutPin, to: &InPin, snarl: &mut Snarl<Node>) {
@@ -344,6 +358,22 @@ impl SnarlViewer<Node> for Viewer<'_> {
         false
     }
 
+    fn has_footer(&mut self, node: &Node) -> bool {
+        self.thumbnails.shows(node.id) && !node.kind.signature().outputs.is_empty()
+    }
+
+    /// The node's thumbnail, below its pins (blank until first drawn).
+    fn show_footer(
+        &mut self,
+        node: egui_snarl::NodeId,
+        _: &[InPin],
+        _: &[OutPin],
+        ui: &mut Ui,
+        snarl: &mut Snarl<Node>,
+    ) {
+        super::thumbnails::show_tile(ui, self.thumbnails, &snarl[node]);
+    }
+
     fn has_node_menu(&mut self, _: &Node) -> bool {
         true
     }
@@ -362,8 +392,19 @@ impl SnarlViewer<Node> for Viewer<'_> {
             super::clipboard::duplicate(snarl, &[node], at);
             ui.close();
         }
+        let id = snarl[node].id;
         if ui.button("Delete").clicked() {
             snarl.remove_node(node);
+            ui.close();
+        }
+        let hidden = self.thumbnails.hidden.contains(&id);
+        let label = if hidden { "Show thumbnail" } else { "Hide thumbnail" };
+        if ui.button(label).clicked() {
+            if hidden {
+                self.thumbnails.hidden.remove(&id);
+            } else {
+                self.thumbnails.hidden.insert(id);
+            }
             ui.close();
         }
     }

@@ -31,7 +31,7 @@ pub struct LiveMaterial {
 /// What decides the generated code: nodes with their kinds and settings, and the wires.
 /// Labels, positions, constant values, frames and preview settings are left out: they
 /// never need a recompile.
-fn structure_key(graph: &Graph) -> String {
+pub(super) fn structure_key(graph: &Graph) -> String {
     let mut skeleton = graph.clone();
     skeleton.name.clear();
     skeleton.frames.clear();

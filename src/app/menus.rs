@@ -19,6 +19,8 @@ const UNDO: KeyboardShortcut = command(Key::Z);
 const REDO: KeyboardShortcut = command_shift(Key::Z);
 const DUPLICATE: KeyboardShortcut = command(Key::D);
 const FRAME_SELECTION: KeyboardShortcut = command(Key::G);
+/// Node thumbnails on or off (plain T, outside text fields).
+const THUMBNAILS: Key = Key::T;
 
 /// Seconds a status message stays (fading over the last one).
 pub const MESSAGE_SECONDS: f64 = 6.0;
@@ -95,6 +97,9 @@ impl VeneerApp {
         }
         if pressed(Modifiers::NONE, Key::F) {
             self.frame = Some(Framing::All);
+        }
+        if pressed(Modifiers::NONE, THUMBNAILS) {
+            self.thumbnails.enabled = !self.thumbnails.enabled;
         }
         if pressed(Modifiers::NONE, Key::Space) {
             self.open_add_node(ctx, None, Some(" "));
@@ -190,6 +195,12 @@ impl VeneerApp {
                     crate::graph::layout::arrange(&mut graph);
                     self.snarl = snarl_from_graph(&graph);
                     self.frame = Some(Framing::All);
+                }
+            });
+            ui.menu_button("View", |ui| {
+                let shown = self.thumbnails.enabled;
+                if entry(ui, &format!("{} Node thumbnails", if shown { "☑" } else { "☐" }), "T", true) {
+                    self.thumbnails.enabled = !shown;
                 }
             });
         });

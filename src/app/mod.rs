@@ -20,11 +20,17 @@ mod preview;
 mod preview_panel;
 mod probe;
 mod recovery;
+mod thumbnail_worker;
+mod thumbnails;
 mod widgets;
+mod wire_pointer;
+mod wires;
 
 pub use crate::graph::{PRESETS, preset};
 pub use document::Document;
 pub use live::LiveMaterial;
+pub use probe::{AtlasGraph, atlas_graph};
+pub use thumbnails::{TILE_PIXELS, Thumbnails, placement, tile_params};
 
 use crate::graph::{Graph, Node};
 use dialogs::{Dialog, Pending};
@@ -60,6 +66,14 @@ pub struct VeneerApp {
     pub live: LiveMaterial,
     /// The selected node's output, compiled for its thumbnail.
     pub thumbnail: LiveMaterial,
+    /// Thumbnails on the nodes and on hovered wires.
+    pub thumbnails: thumbnails::Thumbnails,
+    /// Where pins and nodes were drawn in the last frame.
+    spots: wires::SharedSpots,
+    /// The output carried by the wire under the pointer.
+    hovered_wire: Option<crate::graph::PinRef>,
+    /// The node the primary button went down on, and where it was then.
+    node_drag: Option<(egui_snarl::NodeId, egui::Pos2)>,
     preview: PreviewState,
     /// Nodes selected in the graph (snarl ids).
     selection: Vec<egui_snarl::NodeId>,
@@ -120,6 +134,10 @@ impl VeneerApp {
             document: Document::new(wood, None),
             live: LiveMaterial::default(),
             thumbnail: LiveMaterial::default(),
+            thumbnails: Default::default(),
+            spots: Default::default(),
+            hovered_wire: None,
+            node_drag: None,
             selection: Vec::new(),
             clicked: None,
             graph_transform: Default::default(),
@@ -272,6 +290,21 @@ impl VeneerApp {
         self.graph_transform
     }
 
+    /// Where the pin `pin` (an output when `output`) was drawn last frame, on screen.
+    pub fn pin_on_screen(&self, pin: &crate::graph::PinRef, output: bool) -> Option<egui::Pos2> {
+        let (id, node) = self.snarl.node_ids().find(|(_, node)| node.id == pin.node)?;
+        let signature = node.kind.signature();
+        let spots = self.spots.borrow();
+        let at = if output {
+            let output = signature.output(&pin.pin)?.0;
+            spots.output(egui_snarl::OutPinId { node: id, output })?
+        } else {
+            let input = signature.input(&pin.pin)?.0;
+            spots.input(egui_snarl::InPinId { node: id, input })?
+        };
+        Some(self.graph_transform * at)
+    }
+
     /// Number of material pipelines the preview has built (0 without a GPU).
     pub fn pipelines_built(&self) -> u64 {
         let Some(state) = &self.render_state else {
@@ -303,9 +336,13 @@ impl VeneerApp {
             selected: before,
             transform: &mut self.graph_transform,
             frames: &self.document.graph.frames,
+            thumbnails: &mut self.thumbnails,
+            spots: self.spots.clone(),
         };
+        *self.spots.borrow_mut() = Default::default();
         let widget = SnarlWidget::new().id_salt("graph");
         let response = widget.show(&mut self.snarl, &mut viewer, ui);
+        self.wire_pointer(ui);
         if self.dialog.is_some() {
             // A click on a dialog is not for the node under it.
             self.clicked = before;
@@ -335,6 +372,9 @@ impl VeneerApp {
         }
         self.live.update(&self.document.graph);
         self.live.lint(&self.document.graph);
+        let time = self.preview.view.time;
+        self.thumbnails
+            .update(ctx, &self.document.graph, self.hovered_wire.as_ref(), time);
         if !ctx.input(|input| input.pointer.any_down()) {
             self.document.history.commit(&self.document.graph);
         }

@@ -1,40 +1,137 @@
-//! The graph behind a node's thumbnail: the same graph with the node's first output
-//! shown as the material's albedo.
+//! The graphs behind thumbnails: the same graph with one node's output shown as the
+//! material's albedo (the inspector's thumbnail), or with many outputs side by side, a
+//! parameter picking which (the node thumbnails' atlas).
+//!
+//! How an output shows as a colour: a colour as itself, a float as grey, a vec2 as red
+//! and green (blue 0), a vec3 remapped from [-1, 1] to [0, 1] (`v * 0.5 + 0.5`), each
+//! clamped to [0, 1] when drawn.
 
-use crate::graph::{Graph, NodeId, NodeKind, ValueType};
-use crate::nodes::{Combine, Split};
+use crate::graph::{Graph, MathOp, NodeId, NodeKind, PinRef, Value, ValueType};
+use crate::nodes::{Combine, Math, Mix, Split};
 
-/// `graph` with the first output of `node` wired into the material's albedo (a vec2 as
-/// red and green), or `None` for the material node itself and nodes without outputs.
+/// `graph` with the first output of `node` wired into the material's albedo, or `None`
+/// for the material node itself and nodes without outputs.
 pub fn probe_graph(graph: &Graph, node: NodeId) -> Option<Graph> {
     let output = *graph.node(node)?.kind.signature().outputs.first()?;
-    let material = graph
-        .nodes
-        .iter()
-        .find(|n| n.kind == NodeKind::Material)?
-        .id;
+    let material = material_of(graph)?;
     let mut probe = graph.clone();
-    if output.ty == ValueType::Vec2 {
-        let split = probe.add(
-            "probe split",
-            NodeKind::Split(Split {
-                ty: ValueType::Vec2,
-            }),
-        );
-        let combine = probe.add(
-            "probe colour",
-            NodeKind::Combine(Combine {
+    let (colour, pin) = as_colour(&mut probe, &PinRef::new(node, output.name), output.ty);
+    probe.connect(colour, pin, material, "albedo");
+    Some(probe)
+}
+
+/// The graph behind the thumbnail atlas (see [`atlas_graph`]).
+pub struct AtlasGraph {
+    /// The material shows tile k's pin where the factor of `selectors[k]` is 1 and every
+    /// other selector's is 0.
+    pub graph: Graph,
+    /// The output each tile shows, in tile order.
+    pub pins: Vec<PinRef>,
+    /// The Mix node whose `factor` selects each tile.
+    pub selectors: Vec<NodeId>,
+}
+
+/// `graph` with the material's albedo showing one of `pins` (outputs of its nodes),
+/// chosen by uniform parameters: a chain of colour Mix nodes, one per pin, each mixing
+/// the chain so far with its pin's colour by a factor left as a parameter. The
+/// material's other inputs are cut, so only the nodes the pins read get code.
+/// `None` when the graph has no material or no pin is an output of its nodes.
+pub fn atlas_graph(graph: &Graph, pins: &[PinRef]) -> Option<AtlasGraph> {
+    let material = material_of(graph)?;
+    let mut atlas = graph.clone();
+    atlas.wires.retain(|wire| wire.to.node != material);
+    if let Some(node) = atlas.node_mut(material) {
+        node.inputs.clear();
+    }
+    let (mut shown, mut selectors, mut chain) = (Vec::new(), Vec::new(), None);
+    for pin in pins {
+        let Some(output) = graph
+            .node(pin.node)
+            .and_then(|node| node.kind.signature().output(&pin.pin).map(|(_, o)| *o))
+        else {
+            continue;
+        };
+        let (colour, colour_pin) = as_colour(&mut atlas, pin, output.ty);
+        let tile = atlas.add(
+            "thumbnail tile",
+            NodeKind::Mix(Mix {
                 ty: ValueType::Color,
             }),
         );
-        probe.connect(node, output.name, split, "v");
-        probe.connect(split, "x", combine, "x");
-        probe.connect(split, "y", combine, "y");
-        probe.connect(combine, "v", material, "albedo");
-    } else {
-        probe.connect(node, output.name, material, "albedo");
+        atlas.connect(colour, colour_pin, tile, "b");
+        if let Some(previous) = chain {
+            atlas.connect(previous, "result", tile, "a");
+        }
+        chain = Some(tile);
+        shown.push(pin.clone());
+        selectors.push(tile);
     }
-    Some(probe)
+    atlas.connect(chain?, "result", material, "albedo");
+    Some(AtlasGraph {
+        graph: atlas,
+        pins: shown,
+        selectors,
+    })
+}
+
+fn material_of(graph: &Graph) -> Option<NodeId> {
+    graph
+        .nodes
+        .iter()
+        .find(|n| n.kind == NodeKind::Material)
+        .map(|n| n.id)
+}
+
+/// Adds to `graph` what shows `pin` (of type `ty`) as a colour (see the module's
+/// comment); returns the node and output pin that give the colour.
+fn as_colour(graph: &mut Graph, pin: &PinRef, ty: ValueType) -> (NodeId, &'static str) {
+    let source = graph
+        .node(pin.node)
+        .and_then(|node| node.kind.signature().output(&pin.pin).map(|(_, o)| o.name))
+        .unwrap_or("value");
+    match ty {
+        ValueType::Float | ValueType::Color => (pin.node, source),
+        ValueType::Vec2 => {
+            let split = graph.add(
+                "probe split",
+                NodeKind::Split(Split {
+                    ty: ValueType::Vec2,
+                }),
+            );
+            let combine = graph.add(
+                "probe colour",
+                NodeKind::Combine(Combine {
+                    ty: ValueType::Color,
+                }),
+            );
+            graph.connect(pin.node, source, split, "v");
+            graph.connect(split, "x", combine, "x");
+            graph.connect(split, "y", combine, "y");
+            (combine, "v")
+        }
+        ValueType::Vec3 => {
+            let half = Value::Vec3(0.5, 0.5, 0.5);
+            let scale = graph.add(
+                "probe half",
+                NodeKind::Math(Math {
+                    op: MathOp::Multiply,
+                    ty: ValueType::Vec3,
+                }),
+            );
+            let shift = graph.add(
+                "probe colour",
+                NodeKind::Math(Math {
+                    op: MathOp::Add,
+                    ty: ValueType::Vec3,
+                }),
+            );
+            graph.connect(pin.node, source, scale, "a");
+            graph.set_input(scale, "b", half);
+            graph.connect(scale, "result", shift, "a");
+            graph.set_input(shift, "b", half);
+            (shift, "result")
+        }
+    }
 }
 
 #[cfg(test)]
@@ -55,6 +152,27 @@ mod tests {
                     None => assert_eq!(node.kind, NodeKind::Material),
                 }
             }
+        }
+    }
+
+    #[test]
+    fn every_output_of_the_presets_compiles_in_one_atlas() {
+        for (name, _) in crate::app::PRESETS {
+            let graph = crate::app::preset(name).unwrap();
+            let pins: Vec<PinRef> = graph
+                .nodes
+                .iter()
+                .flat_map(|node| {
+                    let outputs = node.kind.signature().outputs;
+                    outputs
+                        .iter()
+                        .map(|output| PinRef::new(node.id, output.name))
+                        .collect::<Vec<_>>()
+                })
+                .collect();
+            let atlas = atlas_graph(&graph, &pins).unwrap();
+            assert_eq!(atlas.pins, pins);
+            compile(&atlas.graph, &Default::default()).unwrap_or_else(|e| panic!("{name}: {e}"));
         }
     }
 }

@@ -14,6 +14,8 @@ use veneer::nodes::Worley;
 fn opens_on_the_wood_preset_with_the_material_on_a_sphere() {
     let dir = scratch("open");
     let mut harness = editor(&dir, None);
+    // The node thumbnails come from another thread: the snapshot waits for them.
+    crate::thumbnails::settle(&mut harness);
     let image = screen(&mut harness);
     let app = harness.state();
     assert_eq!(app.document.graph.name, "Wood");

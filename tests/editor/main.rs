@@ -8,3 +8,4 @@ mod files;
 mod geotextures;
 mod real_window;
 mod support;
+mod thumbnails;

@@ -1,0 +1,387 @@
+//! Thumbnails of node outputs in the graph: which outputs get a tile, the atlas graph
+//! compiled once per structure (parameters are uniforms), which tiles changed since they
+//! were drawn, and the egui texture the drawn atlas lands in.
+//!
+//! A tile shows one output pin over the preview square (see `probe.rs` for how each
+//! type maps to a colour). Tiles go to the drawing thread only when something upstream
+//! of their pin changed: a node's kind, settings or constants, a wire, the placement, the
+//! code, or the time for tiles that read it.
+
+use super::live::LiveMaterial;
+use super::probe::atlas_graph;
+use super::thumbnail_worker::{Done, Job, Worker};
+use crate::codegen::param_values;
+use crate::graph::{Graph, NodeId, NodeKind, PinRef};
+use crate::render::{AtlasLayout, FlatRect};
+use std::collections::{BTreeMap, BTreeSet};
+use std::hash::{Hash, Hasher};
+use std::sync::Arc;
+
+/// A tile's width and height in pixels.
+pub const TILE_PIXELS: u32 = 64;
+/// Tiles to a row of the atlas.
+const ATLAS_COLUMNS: u32 = 8;
+
+/// The thumbnails' state, kept by the app between frames.
+pub struct Thumbnails {
+    /// Thumbnails on nodes at all (View menu, T).
+    pub enabled: bool,
+    /// Nodes whose thumbnail is switched off (node menu).
+    pub hidden: BTreeSet<NodeId>,
+    /// The atlas graph's compiles (a parameter edit never adds one).
+    pub atlas: LiveMaterial,
+    /// Output pins with a tile, in tile order.
+    pins: Vec<PinRef>,
+    /// The Mix node selecting each tile (see `probe::AtlasGraph`).
+    selectors: Vec<NodeId>,
+    layout: AtlasLayout,
+    /// What each tile was last sent to draw (`None`: never, or since the layout changed).
+    sent: Vec<Option<u64>>,
+    /// Whether each tile has pixels in the texture for the current layout.
+    ready: Vec<bool>,
+    /// Nodes whose code fails to compile: left out with what reads them, until the
+    /// graph's structure changes.
+    broken: (String, BTreeSet<NodeId>),
+    texture: Option<egui::TextureHandle>,
+    /// The atlas as last read back (RGBA8 rows).
+    pixels: Vec<u8>,
+    worker: Option<Worker>,
+    in_flight: bool,
+    /// Tiles drawn so far (a tile drawn twice counts twice).
+    pub tiles_drawn: u64,
+    /// The pins drawn by the last job to come back.
+    pub last_drawn: Vec<PinRef>,
+    /// Why the last draw failed, if it did.
+    pub error: Option<String>,
+}
+
+impl Default for Thumbnails {
+    fn default() -> Thumbnails {
+        Thumbnails {
+            enabled: true,
+            hidden: BTreeSet::new(),
+            atlas: LiveMaterial::default(),
+            pins: Vec::new(),
+            selectors: Vec::new(),
+            layout: AtlasLayout::for_tiles(0, ATLAS_COLUMNS, TILE_PIXELS),
+            sent: Vec::new(),
+            ready: Vec::new(),
+            broken: Default::default(),
+            texture: None,
+            pixels: Vec::new(),
+            worker: None,
+            in_flight: false,
+            tiles_drawn: 0,
+            last_drawn: Vec::new(),
+            error: None,
+        }
+    }
+}
+
+/// The nodes each node reads, directly.
+fn readers_graph(graph: &Graph) -> BTreeMap<NodeId, Vec<NodeId>> {
+    let mut reads: BTreeMap<NodeId, Vec<NodeId>> = BTreeMap::new();
+    for wire in &graph.wires {
+        reads.entry(wire.to.node).or_default().push(wire.from.node);
+    }
+    reads
+}
+
+/// `node` and every node it reads, directly or not.
+fn upstream(reads: &BTreeMap<NodeId, Vec<NodeId>>, node: NodeId) -> BTreeSet<NodeId> {
+    let mut seen = BTreeSet::new();
+    let mut stack = vec![node];
+    while let Some(node) = stack.pop() {
+        if seen.insert(node) {
+            stack.extend(reads.get(&node).into_iter().flatten().copied());
+        }
+    }
+    seen
+}
+
+impl Thumbnails {
+    /// Whether `node` shows its thumbnail.
+    pub fn shows(&self, node: NodeId) -> bool {
+        self.enabled && !self.hidden.contains(&node)
+    }
+
+    /// The pins that get a tile: the first output of every node that shows its
+    /// thumbnail, and `hovered` (the wire under the pointer), minus broken ones.
+    fn wanted(&self, graph: &Graph, hovered: Option<&PinRef>) -> Vec<PinRef> {
+        let reads = readers_graph(graph);
+        let mut pins: BTreeSet<PinRef> = graph
+            .nodes
+            .iter()
+            .filter(|node| self.shows(node.id))
+            .filter_map(|node| {
+                let output = node.kind.signature().outputs.first()?.name;
+                Some(PinRef::new(node.id, output))
+            })
+            .collect();
+        pins.extend(hovered.cloned());
+        pins.retain(|pin| upstream(&reads, pin.node).is_disjoint(&self.broken.1));
+        pins.into_iter().collect()
+    }
+
+    /// Brings the tiles in step with `graph`: recompiles the atlas if its structure
+    /// changed, sends the tiles whose inputs changed to the drawing thread, and takes in
+    /// what it drew. `hovered` is the output pin of the wire under the pointer.
+    pub fn update(
+        &mut self,
+        ctx: &egui::Context,
+        graph: &Graph,
+        hovered: Option<&PinRef>,
+        time: f32,
+    ) {
+        self.receive(ctx);
+        let structure = super::live::structure_key(graph);
+        if self.broken.0 != structure {
+            self.broken = (structure, BTreeSet::new());
+        }
+        // A node that fails to compile is left out (with what reads it) and the rest
+        // compiled again; each round leaves out at least one more node.
+        let atlas = loop {
+            let pins = self.wanted(graph, hovered);
+            let Some(atlas) = atlas_graph(graph, &pins) else {
+                self.pins.clear();
+                return;
+            };
+            self.atlas.update(&atlas.graph);
+            let failed: Vec<NodeId> = self.atlas.errors.keys().flatten().copied().collect();
+            if failed.is_empty() || failed.iter().all(|node| self.broken.1.contains(node)) {
+                break atlas;
+            }
+            self.broken.1.extend(failed);
+        };
+        let Some(compiled) = &self.atlas.compiled else {
+            return;
+        };
+        if !self.atlas.errors.is_empty() {
+            return;
+        }
+        let layout = AtlasLayout::for_tiles(atlas.pins.len(), ATLAS_COLUMNS, TILE_PIXELS);
+        if atlas.pins != self.pins || layout != self.layout {
+            self.sent = vec![None; atlas.pins.len()];
+            self.ready = vec![false; atlas.pins.len()];
+            self.pins = atlas.pins;
+            self.layout = layout;
+        }
+        self.selectors = atlas.selectors;
+        if self.in_flight {
+            return;
+        }
+        let reads = readers_graph(graph);
+        let rect = placement(graph);
+        let slots = &compiled.module.params;
+        let values = param_values(&atlas.graph, slots);
+        let mut tiles = Vec::new();
+        for (index, pin) in self.pins.iter().enumerate() {
+            let key = tile_key(graph, &reads, pin, self.atlas.generation, rect, time);
+            if self.sent[index] == Some(key) {
+                continue;
+            }
+            self.sent[index] = Some(key);
+            tiles.push((index, tile_params(&values, slots, &self.selectors, index)));
+        }
+        if tiles.is_empty() {
+            return;
+        }
+        let wake = ctx.clone();
+        let worker = self
+            .worker
+            .get_or_insert_with(|| Worker::start(move || wake.request_repaint()));
+        worker.send(Job {
+            generation: self.atlas.generation,
+            wgsl: Arc::from(compiled.source()),
+            slots: slots.len(),
+            layout: self.layout,
+            rect,
+            time,
+            tiles,
+        });
+        self.in_flight = true;
+    }
+
+    /// Takes in a finished job: its tiles' pixels go into the texture.
+    fn receive(&mut self, ctx: &egui::Context) {
+        let Some(worker) = &self.worker else {
+            return;
+        };
+        let done = match worker.try_done() {
+            Ok(Some(done)) => done,
+            Ok(None) => return,
+            Err(()) => {
+                self.worker = None;
+                self.in_flight = false;
+                return;
+            }
+        };
+        self.in_flight = false;
+        let Done {
+            layout,
+            tiles,
+            pixels,
+        } = done;
+        let pixels = match pixels {
+            Ok(pixels) => pixels,
+            Err(error) => {
+                self.error = Some(error);
+                return;
+            }
+        };
+        self.error = None;
+        self.tiles_drawn += tiles.len() as u64;
+        self.last_drawn = tiles
+            .iter()
+            .filter_map(|index| self.pins.get(*index).cloned())
+            .collect();
+        if layout != self.layout {
+            return;
+        }
+        let (width, height) = layout.size();
+        let image = egui::ColorImage::from_rgba_unmultiplied(
+            [width as usize, height as usize],
+            &pixels,
+        );
+        let options = egui::TextureOptions::LINEAR;
+        match &mut self.texture {
+            Some(texture) if texture.size() == [width as usize, height as usize] => {
+                for index in &tiles {
+                    let (x, y) = layout.origin(*index);
+                    let tile = TILE_PIXELS as usize;
+                    let part = image.region_by_pixels([x as usize, y as usize], [tile, tile]);
+                    texture.set_partial([x as usize, y as usize], part, options);
+                }
+            }
+            _ => self.texture = Some(ctx.load_texture("node thumbnails", image, options)),
+        }
+        for index in tiles {
+            if let Some(ready) = self.ready.get_mut(index) {
+                *ready = true;
+            }
+        }
+        self.pixels = pixels;
+    }
+
+    /// The output pins that have a tile, in tile order.
+    pub fn pins(&self) -> &[PinRef] {
+        &self.pins
+    }
+
+    /// Whether every tile has been drawn as it is now (nothing sent or waiting).
+    pub fn settled(&self) -> bool {
+        !self.in_flight && self.ready.iter().all(|ready| *ready)
+    }
+
+    /// The texture and the part of it showing `pin`, once drawn.
+    pub fn tile(&self, pin: &PinRef) -> Option<(egui::TextureId, egui::Rect)> {
+        let index = self.pins.iter().position(|p| p == pin)?;
+        if !*self.ready.get(index)? {
+            return None;
+        }
+        let texture = self.texture.as_ref()?;
+        let (width, height) = self.layout.size();
+        let (x, y) = self.layout.origin(index);
+        let tile = TILE_PIXELS as f32;
+        let min = egui::pos2(x as f32 / width as f32, y as f32 / height as f32);
+        let size = egui::vec2(tile / width as f32, tile / height as f32);
+        Some((texture.id(), egui::Rect::from_min_size(min, size)))
+    }
+
+    /// The RGBA8 pixels of `pin`'s tile, rows from the top, once drawn.
+    pub fn tile_pixels(&self, pin: &PinRef) -> Option<Vec<[u8; 4]>> {
+        let index = self.pins.iter().position(|p| p == pin)?;
+        if !*self.ready.get(index)? {
+            return None;
+        }
+        let (width, _) = self.layout.size();
+        let (x, y) = self.layout.origin(index);
+        let mut tile = Vec::with_capacity((TILE_PIXELS * TILE_PIXELS) as usize);
+        for row in y..y + TILE_PIXELS {
+            for column in x..x + TILE_PIXELS {
+                let at = ((row * width + column) * 4) as usize;
+                let pixel = self.pixels.get(at..at + 4)?;
+                tile.push([pixel[0], pixel[1], pixel[2], pixel[3]]);
+            }
+        }
+        Some(tile)
+    }
+}
+
+/// The parameter values that make the atlas module show tile `index`: `values` (the
+/// atlas graph's, see [`param_values`]) with every selector's factor 0 but tile
+/// `index`'s, which is 1.
+pub fn tile_params(
+    values: &[[f32; 4]],
+    slots: &[crate::codegen::ParamSlot],
+    selectors: &[NodeId],
+    index: usize,
+) -> Vec<[f32; 4]> {
+    let mut tile = values.to_vec();
+    for (slot, param) in slots.iter().enumerate() {
+        if let Some(k) = selectors.iter().position(|s| *s == param.node) {
+            tile[slot][0] = if k == index { 1.0 } else { 0.0 };
+        }
+    }
+    tile
+}
+
+/// The square every tile samples: the preview's placement (centre ± size in x and z,
+/// at the centre's y), as the inspector's thumbnail shows it.
+pub fn placement(graph: &Graph) -> FlatRect {
+    let (x, y, z) = graph.preview.center;
+    let size = graph.preview.size;
+    FlatRect {
+        x0: x - size,
+        z0: z - size,
+        x1: x + size,
+        z1: z + size,
+        y,
+    }
+}
+
+/// What a tile shows depends on: its pin, the nodes upstream of it (kinds, settings,
+/// constants) and the wires between them, the code, the placement, and the time when
+/// some node upstream reads it.
+fn tile_key(
+    graph: &Graph,
+    reads: &BTreeMap<NodeId, Vec<NodeId>>,
+    pin: &PinRef,
+    generation: u64,
+    rect: FlatRect,
+    time: f32,
+) -> u64 {
+    let mut hasher = std::collections::hash_map::DefaultHasher::new();
+    pin.hash(&mut hasher);
+    generation.hash(&mut hasher);
+    format!("{rect:?}").hash(&mut hasher);
+    let nodes = upstream(reads, pin.node);
+    for id in &nodes {
+        if let Some(node) = graph.node(*id) {
+            format!("{:?}{:?}", node.kind, node.inputs).hash(&mut hasher);
+            if node.kind == NodeKind::Time {
+                time.to_bits().hash(&mut hasher);
+            }
+        }
+    }
+    for wire in graph.wires.iter().filter(|w| nodes.contains(&w.to.node)) {
+        wire.hash(&mut hasher);
+    }
+    hasher.finish()
+}
+
+/// The thumbnail of `node` as a node body shows it: its tile, or an empty square of the
+/// same size until the tile is first drawn.
+pub fn show_tile(ui: &mut egui::Ui, thumbnails: &Thumbnails, node: &crate::graph::Node) {
+    let size = egui::Vec2::splat(TILE_PIXELS as f32);
+    let output = node.kind.signature().outputs.first().map(|o| o.name);
+    let tile = output.and_then(|output| thumbnails.tile(&PinRef::new(node.id, output)));
+    match tile {
+        Some((texture, uv)) => {
+            ui.add(egui::Image::new((texture, size)).uv(uv));
+        }
+        None => {
+            ui.allocate_exact_size(size, egui::Sense::hover());
+        }
+    }
+}
