@@ -89,7 +89,7 @@ impl VeneerApp {
             .input(|input| input.pointer.hover_pos())
             .filter(|pos| rect.contains(*pos))
             .unwrap_or_else(|| rect.center());
-        (screen, self.graph_transform.inverse() * screen)
+        (screen, self.navigation.transform.inverse() * screen)
     }
 
     /// Opens the add-node search at the mouse, for `dropped` if a wire was dropped.

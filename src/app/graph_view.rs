@@ -117,15 +117,6 @@ pub(super) fn would_cycle(snarl: &Snarl<Node>, from: egui_snarl::NodeId, to: egu
     false
 }
 
-/// How to place the view when a graph is opened or F is pressed.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Framing {
-    /// Fit every node (F).
-    All,
-    /// Readable size, the material output near the right edge (on open).
-    Output,
-}
-
 /// The snarl viewer: how nodes, pins and menus look and what edits do.
 pub struct Viewer<'a> {
     /// Compile errors by node, shown on the nodes.
@@ -136,15 +127,13 @@ pub struct Viewer<'a> {
     pub hint: &'a mut Option<String>,
     /// Set when a wire is dropped on empty canvas: the add-node search opens for it.
     pub dropped: &'a mut Option<DroppedWire>,
-    /// When set, move the view this frame to show these nodes in this screen rectangle.
-    pub frame: Option<(egui::Rect, Framing)>,
     /// The node selected by a plain click (snarl itself selects only with Shift or a
     /// rectangle); set here when a node is clicked this frame.
     pub clicked: &'a mut Option<egui_snarl::NodeId>,
     /// The node selected before this frame, drawn highlighted.
     pub selected: Option<egui_snarl::NodeId>,
-    /// Receives the view's graph-to-screen transform each frame.
-    pub transform: &'a mut egui::emath::TSTransform,
+    /// The view's transform (which this viewer imposes on the snarl) and node sizes.
+    pub navigation: &'a mut super::navigation::Navigation,
     /// Comment frames to draw behind the nodes.
     pub frames: &'a [crate::graph::Frame],
     /// Node thumbnails: which nodes show one, and the drawn tiles.
@@ -191,17 +180,12 @@ impl SnarlViewer<Node> for Viewer<'_> {
         }
     }
 
-    fn current_transform(
-        &mut self,
-        to_global: &mut egui::emath::TSTransform,
-        snarl: &mut Snarl<Node>,
-    ) {
-        self.apply_framing(to_global, snarl);
-        *self.transform = *to_global;
+    fn current_transform(&mut self, to_global: &mut egui::emath::TSTransform, _: &mut Snarl<Node>) {
+        *to_global = self.navigation.transform;
     }
 
     fn title(&mut self, node: &Node) -> String {
-        node.display_name().to_string()
+        super::node_text::title(node)
     }
 
     fn final_node_rect(
@@ -212,6 +196,7 @@ impl SnarlViewer<Node> for Viewer<'_> {
         _: &mut Snarl<Node>,
     ) {
         self.spots.borrow_mut().nodes.insert(node, rect);
+        self.navigation.measured(node, rect);
         // Nodes live in a zoomed and panned layer; the pointer is in screen space.
         let to_screen = ui
             .ctx()
@@ -250,12 +235,15 @@ impl SnarlViewer<Node> for Viewer<'_> {
         let node = &snarl[id];
         let selected = self.selected == Some(id);
         ui.horizontal(|ui| {
-            let title = RichText::new(node.display_name()).strong();
+            let title = RichText::new(super::node_text::title(node))
+                .strong()
+                .size(super::navigation::title_size(self.navigation.transform.scaling));
             ui.label(if selected {
                 title.color(Color32::from_rgb(255, 190, 80))
             } else {
                 title
-            });
+            })
+            .on_hover_text(super::node_text::kind_tip(&node.kind));
             if let Some(warning) = self.warnings.get(&node.id) {
                 ui.label(RichText::new("⚠").color(Color32::from_rgb(230, 180, 60)))
                     .on_hover_text(warning);
@@ -265,6 +253,24 @@ impl SnarlViewer<Node> for Viewer<'_> {
                     .on_hover_text(error);
             }
         });
+    }
+
+    fn has_body(&mut self, node: &Node) -> bool {
+        matches!(node.kind, crate::graph::NodeKind::ColorRamp(_))
+    }
+
+    /// A colour ramp shows its gradient.
+    fn show_body(
+        &mut self,
+        id: egui_snarl::NodeId,
+        _: &[InPin],
+        _: &[OutPin],
+        ui: &mut Ui,
+        snarl: &mut Snarl<Node>,
+    ) {
+        if let crate::graph::NodeKind::ColorRamp(ramp) = &snarl[id].kind {
+            super::ramp_bar::ramp_bar(ui, ramp, 160.0);
+        }
     }
 
     fn inputs(&mut self, node: &Node) -> usize {
@@ -283,7 +289,8 @@ impl SnarlViewer<Node> for Viewer<'_> {
     ) -> impl SnarlPin + 'static {
         let node = &mut snarl[pin.id.node];
         let spec = node.kind.signature().inputs[pin.id.input];
-        ui.label(spec.name);
+        ui.label(spec.name)
+            .on_hover_text(super::node_text::input_tip(&spec));
         if pin.remotes.is_empty() {
             match spec.default {
                 PinDefault::Const(_) => {
@@ -313,7 +320,8 @@ impl SnarlViewer<Node> for Viewer<'_> {
         snarl: &mut Snarl<Node>,
     ) -> impl SnarlPin + 'static {
         let spec = snarl[pin.id.node].kind.signature().outputs[pin.id.output];
-        ui.label(spec.name);
+        ui.label(spec.name)
+            .on_hover_text(super::node_text::output_tip(&spec));
         SpottedPin {
             info: PinInfo::circle()
                 .with_fill(type_color(spec.ty))
@@ -388,7 +396,7 @@ impl SnarlViewer<Node> for Viewer<'_> {
     ) {
         if ui.button("Duplicate").clicked() {
             // Where the menu opened (where the node was right-clicked), in graph space.
-            let at = self.transform.inverse() * ui.min_rect().min;
+            let at = self.navigation.transform.inverse() * ui.min_rect().min;
             super::clipboard::duplicate(snarl, &[node], at);
             ui.close();
         }
@@ -407,47 +415,6 @@ impl SnarlViewer<Node> for Viewer<'_> {
             }
             ui.close();
         }
-    }
-}
-
-impl Viewer<'_> {
-    /// Moves the view as `frame` asks, once.
-    fn apply_framing(&mut self, to_global: &mut egui::emath::TSTransform, snarl: &Snarl<Node>) {
-        let Some((viewport, framing)) = self.frame.take() else {
-            return;
-        };
-        let positions: Vec<Pos2> = snarl.nodes_pos().map(|(pos, _)| pos).collect();
-        if positions.is_empty() {
-            return;
-        }
-        // Positions are nodes' top-left corners: leave room for a node's size.
-        let node_size = egui::vec2(260.0, 200.0);
-        let bounds =
-            egui::Rect::from_points(&positions)
-                .expand(40.0)
-                .union(egui::Rect::from_min_size(
-                    positions
-                        .iter()
-                        .fold(Pos2::new(f32::MIN, f32::MIN), |a, p| a.max(*p)),
-                    node_size,
-                ));
-        let fit = (viewport.width() / bounds.width()).min(viewport.height() / bounds.height());
-        let (scale, focus) = match framing {
-            Framing::All => (fit.clamp(0.1, 1.5), bounds.center()),
-            Framing::Output => {
-                let output = snarl
-                    .nodes_pos()
-                    .find(|(_, node)| node.kind == crate::graph::NodeKind::Material);
-                let anchor = output
-                    .map(|(pos, _)| pos + node_size * 0.5)
-                    .unwrap_or(bounds.center());
-                let scale = fit.max(0.65).min(1.2);
-                let shift = (viewport.width() * 0.5 - node_size.x * scale).max(0.0) / scale;
-                (scale, Pos2::new(anchor.x - shift, anchor.y))
-            }
-        };
-        to_global.scaling = scale;
-        to_global.translation = viewport.center().to_vec2() - focus.to_vec2() * scale;
     }
 }
 

@@ -61,6 +61,11 @@ fn ramp_editor(ui: &mut Ui, stops: &mut Vec<RampStop>, interpolation: &mut RampI
     if combo(ui, "interpolation", &names, &mut selected) {
         *interpolation = RAMP_INTERPOLATIONS[selected];
     }
+    let ramp = crate::nodes::ColorRamp {
+        stops: stops.clone(),
+        interpolation: *interpolation,
+    };
+    super::ramp_bar::ramp_bar(ui, &ramp, ui.available_width().max(80.0));
     let mut remove = None;
     for (index, stop) in stops.iter_mut().enumerate() {
         ui.horizontal(|ui| {
@@ -78,7 +83,7 @@ fn ramp_editor(ui: &mut Ui, stops: &mut Vec<RampStop>, interpolation: &mut RampI
             if ui.color_edit_button_rgb(&mut rgb).changed() {
                 stop.color = (f64::from(rgb[0]), f64::from(rgb[1]), f64::from(rgb[2]));
             }
-            if ui.small_button("✕").on_hover_text("remove stop").clicked() {
+            if ui.small_button("×").on_hover_text("remove stop").clicked() {
                 remove = Some(index);
             }
         });

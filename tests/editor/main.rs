@@ -6,6 +6,7 @@ mod dialogs;
 mod editing;
 mod files;
 mod geotextures;
+mod navigation;
 mod real_window;
 mod support;
 mod thumbnails;

@@ -67,6 +67,12 @@ fn add_wire_save_and_reopen_in_a_real_window() {
     session.step("start the editor on a copy of the marble preset");
     session.start_editor(&copy, "marble copy.ron — Veneer");
     let whole = full(&session.shot());
+    session.settled(whole);
+
+    // The graph opens framed, filling the canvas: zoom out about its top-left corner.
+    session.step("make room: the wheel zooms out about the pointer");
+    session.move_mouse((12, 40));
+    session.xdotool(&["click", "--repeat", "2", "--delay", "100", "5"]);
     let first = session.settled(whole);
 
     session.step("find empty canvas for two nodes");

@@ -17,8 +17,11 @@ pub fn scratch(name: &str) -> PathBuf {
 /// preset), autosaving into `dir`.
 pub fn editor(dir: &Path, graph: Option<PathBuf>) -> Harness<'static, VeneerApp> {
     let recovery = dir.join("recovery.ron");
+    // A graph just opened is framed again over its first frames, as its nodes' sizes
+    // settle: `run` may take a few more steps than egui's default four.
     let mut harness = Harness::builder()
         .with_size(egui::vec2(1400.0, 900.0))
+        .with_max_steps(16)
         .wgpu()
         .build_eframe(move |cc| VeneerApp::with_recovery_file(cc, graph, recovery));
     // Steps, not `run`: a graph with distance fields keeps repainting while they solve.

@@ -218,7 +218,7 @@ fn every_preset_module_defines_exactly_the_contract_and_prefixes_the_rest() {
         let material = struct_fields(&module, "VeneerMaterial");
         assert_eq!(
             material,
-            ["albedo", "alpha", "specular", "shininess", "bump", "height"]
+            ["albedo", "alpha", "specular", "shininess", "bump", "height", "emission"]
         );
     }
 }

@@ -78,6 +78,6 @@ mod tests {
             let ours = front(d, threshold + noise, width, 0.0, 0.0, 1.0);
             assert!((ours - centred).abs() < 1e-12);
         }
-        assert!((front(0.37, 0.3, 0.07, 0.0, 1.0, 0.5) - 0.5).abs() < 1e-12);
+        assert!((front(0.37_f64, 0.3, 0.07, 0.0, 1.0, 0.5) - 0.5).abs() < 1e-12);
     }
 }
