@@ -8,7 +8,6 @@ use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
 use veneer::codegen::{CompileOptions, Detail};
 use veneer::eval::{Evaluator, Surface};
-use veneer::nodes::Constant;
 use veneer::render::{FlatRect, FlatRenderer, GpuContext};
 
 #[path = "../tests/engine/big_graphs.rs"]
@@ -129,74 +128,6 @@ fn cpu_eval(c: &mut Criterion) {
                 .iter()
                 .map(|p| evaluator.eval(&Surface::<f64>::at(*p)).albedo[0])
                 .sum::<f64>()
-        })
-    });
-    group.finish();
-}
-
-/// The editor's live loop on the wood preset: a parameter edit (rewrite the uniform values)
-/// against a structural edit (recompile with parameters as uniforms and build the new
-/// preview pipeline), both on the CPU side as the editor does them.
-fn live_edit(c: &mut Criterion) {
-    use veneer::app::LiveMaterial;
-    use veneer::graph::{NodeKind, Value, ValueType};
-    let gpu = GpuContext::new().expect("a wgpu adapter");
-    let mut graph = veneer::graph::load(std::path::Path::new(WOOD)).expect("wood preset");
-    let mut live = LiveMaterial::default();
-    live.update(&graph);
-    let ring_phase = graph
-        .nodes
-        .iter()
-        .find(|n| n.label == "ring phase")
-        .expect("ring phase")
-        .id;
-    let material = graph
-        .nodes
-        .iter()
-        .find(|n| n.kind == NodeKind::Material)
-        .expect("material")
-        .id;
-    let mut group = c.benchmark_group(format!(
-        "live edit of wood on {}",
-        gpu.adapter_description()
-    ));
-    group.sample_size(20);
-    let mut frequency = 0.5;
-    group.bench_function("parameter edit: uniform values only (baseline)", |b| {
-        b.iter(|| {
-            frequency += 0.001;
-            graph.set_input(ring_phase, "b", Value::Float(frequency));
-            assert!(!live.update(&graph));
-            live.params(&graph)
-        })
-    });
-    // Alternate between two structures so that every iteration really recompiles.
-    let constant = graph.add(
-        "specular level",
-        NodeKind::Constant(Constant {
-            ty: ValueType::Color,
-        }),
-    );
-    let mut wired = false;
-    group.bench_function("structural edit: recompile + new pipeline", |b| {
-        b.iter(|| {
-            wired = !wired;
-            if wired {
-                graph.connect(constant, "value", material, "specular");
-            } else {
-                graph
-                    .wires
-                    .retain(|wire| !(wire.to.node == material && wire.to.pin == "specular"));
-            }
-            assert!(live.update(&graph));
-            let module = &live.compiled.as_ref().expect("compiles").module;
-            let pipeline = veneer::render::MeshPipeline::new(
-                &gpu.device,
-                &module.source,
-                module.params.len(),
-                module.uses,
-            );
-            pipeline.expect("pipeline builds")
         })
     });
     group.finish();
@@ -323,7 +254,6 @@ criterion_group!(
     flat_render,
     compile,
     cpu_eval,
-    live_edit,
     bake_marble,
     large_graphs,
     huge_graphs,

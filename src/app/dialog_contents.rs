@@ -86,7 +86,7 @@ impl Dialog {
             }
             Dialog::Discard(pending) => {
                 ui.heading("Unsaved changes");
-                let name = document.title();
+                let name = document.title(document.is_dirty());
                 let name = name.trim_end_matches(" — Veneer").trim_start_matches("* ");
                 let then = match pending {
                     Pending::New => "starting a new graph".to_string(),

@@ -2,7 +2,7 @@
 //! its undo history.
 
 use super::history::History;
-use crate::graph::{Graph, to_ron};
+use crate::graph::Graph;
 use std::path::{Path, PathBuf};
 
 /// A graph open in the editor.
@@ -10,8 +10,9 @@ pub struct Document {
     pub graph: Graph,
     /// The file it was opened from or saved to (`None`: a preset or a new graph).
     pub path: Option<PathBuf>,
-    /// Canonical text of the graph as last loaded or saved, to tell whether it is dirty.
-    saved: String,
+    /// The graph as last loaded or saved, to tell whether it is dirty (`None`: never
+    /// saved as it is, like recovered work).
+    saved: Option<Graph>,
     pub history: History,
 }
 
@@ -19,7 +20,7 @@ impl Document {
     /// A document for `graph`, clean, as loaded from `path`.
     pub fn new(graph: Graph, path: Option<PathBuf>) -> Document {
         Document {
-            saved: to_ron(&graph),
+            saved: Some(graph.clone()),
             history: History::new(graph.clone()),
             graph,
             path,
@@ -29,7 +30,7 @@ impl Document {
     /// A document that starts dirty (recovered work, never saved as such).
     pub fn recovered(graph: Graph, path: Option<PathBuf>) -> Document {
         Document {
-            saved: String::new(),
+            saved: None,
             history: History::new(graph.clone()),
             graph,
             path,
@@ -38,7 +39,7 @@ impl Document {
 
     /// Whether the graph differs from what was last loaded or saved.
     pub fn is_dirty(&self) -> bool {
-        to_ron(&self.graph) != self.saved
+        self.saved.as_ref() != Some(&self.graph)
     }
 
     /// Writes the graph to its file (atomically).
@@ -55,13 +56,13 @@ impl Document {
     pub fn save_as(&mut self, path: &Path) -> Result<(), String> {
         crate::graph::save(&self.graph, path)
             .map_err(|error| format!("{}: cannot save: {error}", path.display()))?;
-        self.saved = to_ron(&self.graph);
+        self.saved = Some(self.graph.clone());
         self.path = Some(path.to_path_buf());
         Ok(())
     }
 
-    /// The window title: file name (or graph name), with a star when dirty.
-    pub fn title(&self) -> String {
+    /// The window title: file name (or graph name), with a star when `dirty`.
+    pub fn title(&self, dirty: bool) -> String {
         let name = match &self.path {
             Some(path) => path
                 .file_name()
@@ -70,6 +71,6 @@ impl Document {
             None if self.graph.name.is_empty() => "untitled".to_string(),
             None => self.graph.name.clone(),
         };
-        format!("{}{name} — Veneer", if self.is_dirty() { "* " } else { "" })
+        format!("{}{name} — Veneer", if dirty { "* " } else { "" })
     }
 }

@@ -193,10 +193,13 @@ impl SnarlViewer<Node> for Viewer<'_> {
         node: egui_snarl::NodeId,
         rect: egui::Rect,
         ui: &mut Ui,
-        _: &mut Snarl<Node>,
+        snarl: &mut Snarl<Node>,
     ) {
         self.spots.borrow_mut().nodes.insert(node, rect);
-        self.navigation.measured(node, rect);
+        // A node folded while off screen keeps the size it has open.
+        if snarl.get_node_info(node).is_some_and(|info| info.open) {
+            self.navigation.measured(node, rect);
+        }
         // Nodes live in a zoomed and panned layer; the pointer is in screen space.
         let to_screen = ui
             .ctx()

@@ -112,15 +112,18 @@ fn ramp_editor(ui: &mut Ui, stops: &mut Vec<RampStop>, interpolation: &mut RampI
     stops.sort_by(|a, b| a.position.total_cmp(&b.position));
 }
 
-/// Outputs of other nodes that could feed an input of type `ty` (never closing a cycle).
+/// Outputs of other nodes that could feed an input of type `ty` of `target` (never
+/// closing a cycle: nodes that read `target`, directly or not, are left out). Linear in
+/// the graph: asked only while the choice is open.
 fn candidates(
     snarl: &Snarl<Node>,
     target: egui_snarl::NodeId,
     ty: ValueType,
 ) -> Vec<(OutPinId, String)> {
+    let readers = readers_of(snarl, target);
     let mut found = Vec::new();
     for (id, node) in snarl.node_ids() {
-        if id == target || depends_on(snarl, id, target) {
+        if readers.contains(&id) {
             continue;
         }
         for (index, pin) in node.kind.signature().outputs.iter().enumerate() {
@@ -130,7 +133,7 @@ fn candidates(
                         node: id,
                         output: index,
                     },
-                    format!("{} · {}", node.display_name(), pin.name),
+                    source_name(node, pin.name),
                 ));
             }
         }
@@ -138,24 +141,28 @@ fn candidates(
     found
 }
 
-/// Whether `node` (transitively) reads from `source`.
-fn depends_on(snarl: &Snarl<Node>, node: egui_snarl::NodeId, source: egui_snarl::NodeId) -> bool {
-    let mut stack = vec![node];
-    let mut seen = std::collections::BTreeSet::new();
-    while let Some(current) = stack.pop() {
-        if current == source {
-            return true;
-        }
-        if seen.insert(current) {
-            stack.extend(
-                snarl
-                    .wires()
-                    .filter(|(_, to)| to.node == current)
-                    .map(|(from, _)| from.node),
-            );
+/// How a choice names the output `pin` of `node`.
+fn source_name(node: &Node, pin: &str) -> String {
+    format!("{} · {}", node.display_name(), pin)
+}
+
+/// `source` and every node that reads it, directly or not.
+fn readers_of(
+    snarl: &Snarl<Node>,
+    source: egui_snarl::NodeId,
+) -> std::collections::HashSet<egui_snarl::NodeId> {
+    let mut readers: std::collections::HashMap<_, Vec<_>> = std::collections::HashMap::new();
+    for (from, to) in snarl.wires() {
+        readers.entry(from.node).or_insert_with(Vec::new).push(to.node);
+    }
+    let mut reached = std::collections::HashSet::new();
+    let mut stack = vec![source];
+    while let Some(node) = stack.pop() {
+        if reached.insert(node) {
+            stack.extend(readers.get(&node).into_iter().flatten().copied());
         }
     }
-    false
+    reached
 }
 
 /// Shows the inspector for node `id` of `snarl`.
@@ -195,14 +202,16 @@ pub fn show(
             input: index,
         };
         let source = snarl.in_pin(pin_id).remotes.first().copied();
-        let options = candidates(snarl, id, pin.ty);
         ui.horizontal(|ui| {
             ui.colored_label(type_color(pin.ty), pin.name);
             let current = match source {
-                Some(from) => options
-                    .iter()
-                    .find(|(o, _)| *o == from)
-                    .map(|(_, name)| name.clone())
+                Some(from) => snarl
+                    .get_node(from.node)
+                    .and_then(|node| {
+                        let signature = node.kind.signature();
+                        let output = signature.outputs.get(from.output)?;
+                        Some(source_name(node, output.name))
+                    })
                     .unwrap_or_default(),
                 None => match pin.default {
                     PinDefault::Const(_) => "constant".to_string(),
@@ -215,7 +224,7 @@ pub fn show(
                 .selected_text(current)
                 .show_ui(ui, |ui| {
                     ui.selectable_value(&mut chosen, None, "no wire");
-                    for (option, name) in &options {
+                    for (option, name) in &candidates(snarl, id, pin.ty) {
                         ui.selectable_value(&mut chosen, Some(*option), name);
                     }
                 });

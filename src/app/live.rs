@@ -7,11 +7,18 @@ use crate::codegen::{
 use crate::graph::{Graph, NodeId};
 use std::collections::BTreeMap;
 
+/// The most parameter slots a uniform block takes: 16 KiB, what every device offers.
+/// Past it parameters go to a storage buffer (uniform blocks are kept below it: reads
+/// from them are known to be uniform, which some drivers, lavapipe among them, need for
+/// the screen-space derivatives of footprint-aware noise to come out clean).
+pub const UNIFORM_SLOTS: usize = 1024;
+
 /// The material the preview shows, kept in step with the edited graph.
 #[derive(Default)]
 pub struct LiveMaterial {
-    /// Structure of the graph last compiled (nodes, kinds and settings, wires).
-    structure: Option<String>,
+    /// Structure of the graph last compiled (nodes, kinds and settings, wires), and the
+    /// detail it was compiled with.
+    structure: Option<(Graph, bool)>,
     /// The last graph that compiled, in uniform mode.
     pub compiled: Option<Compiled>,
     /// Errors of the last compile, by node (`None`: not tied to a node).
@@ -26,12 +33,14 @@ pub struct LiveMaterial {
     linted: Option<Graph>,
     /// Noise detail: footprint-aware unless the user asks for every octave.
     pub full_detail: bool,
+    /// Parameters past [`UNIFORM_SLOTS`] in a storage buffer instead of a uniform block.
+    storage: bool,
 }
 
 /// What decides the generated code: nodes with their kinds and settings, and the wires.
 /// Labels, positions, constant values, frames and preview settings are left out: they
 /// never need a recompile.
-pub(super) fn structure_key(graph: &Graph) -> String {
+pub(super) fn structure(graph: &Graph) -> Graph {
     let mut skeleton = graph.clone();
     skeleton.name.clear();
     skeleton.frames.clear();
@@ -41,13 +50,23 @@ pub(super) fn structure_key(graph: &Graph) -> String {
         node.inputs.clear();
         node.position = (0.0, 0.0);
     }
-    crate::graph::to_ron(&skeleton)
+    skeleton
 }
 
 impl LiveMaterial {
+    /// A live material that moves its parameters to a storage buffer when they pass
+    /// what a uniform block holds, so that graphs of any size compile for the preview
+    /// ([`ParamMode::Storage`]).
+    pub fn in_storage() -> LiveMaterial {
+        LiveMaterial {
+            storage: true,
+            ..LiveMaterial::default()
+        }
+    }
+
     /// Recompiles if the graph's structure changed since the last call; returns whether it did.
     pub fn update(&mut self, graph: &Graph) -> bool {
-        let key = format!("{}|{}", structure_key(graph), self.full_detail);
+        let key = (structure(graph), self.full_detail);
         if self.structure.as_ref() == Some(&key) {
             return false;
         }
@@ -59,11 +78,19 @@ impl LiveMaterial {
         } else {
             Detail::Footprint
         };
-        let options = CompileOptions {
+        let mut options = CompileOptions {
             params: ParamMode::Uniform,
             detail,
         };
-        match compile(graph, &options) {
+        let mut result = compile(graph, &options);
+        let slots = |result: &Result<Compiled, _>| {
+            result.as_ref().map_or(0, |c: &Compiled| c.module.params.len())
+        };
+        if self.storage && slots(&result) > UNIFORM_SLOTS {
+            options.params = ParamMode::Storage;
+            result = compile(graph, &options);
+        }
+        match result {
             Ok(compiled) => {
                 // Nodes the output does not reach are pruned: the code may well be unchanged.
                 if self

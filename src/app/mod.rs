@@ -20,9 +20,12 @@ mod navigation;
 mod node_text;
 mod preview;
 mod preview_panel;
+mod preview_worker;
 mod probe;
 mod ramp_bar;
 mod recovery;
+mod sync;
+mod thumbnail_keys;
 mod thumbnail_worker;
 mod thumbnails;
 mod widgets;
@@ -31,8 +34,9 @@ mod wires;
 
 pub use crate::graph::{PRESETS, preset};
 pub use document::Document;
-pub use live::LiveMaterial;
+pub use live::{LiveMaterial, UNIFORM_SLOTS};
 pub use probe::{AtlasGraph, atlas_graph};
+pub use sync::FrameProfile;
 pub use thumbnails::{TILE_PIXELS, Thumbnails, placement, tile_params};
 
 use crate::graph::{Graph, Node};
@@ -42,7 +46,8 @@ use egui_snarl::Snarl;
 use egui_snarl::ui::SnarlWidget;
 use graph_view::{Viewer, graph_from_snarl, snarl_from_graph};
 use navigation::{Framing, Navigation};
-use preview::{MaterialFrame, PreviewState, PreviewTargets, Slot};
+use preview::{MaterialFrame, PreviewState, Previews};
+use preview_worker::Slot;
 use std::path::PathBuf;
 use std::sync::Arc;
 
@@ -79,6 +84,8 @@ pub struct VeneerApp {
     /// The node the primary button went down on, and where it was then.
     node_drag: Option<(egui_snarl::NodeId, egui::Pos2)>,
     preview: PreviewState,
+    /// The pictures of the preview and of the selected node, drawn on another thread.
+    previews: Previews,
     /// Nodes selected in the graph (snarl ids).
     selection: Vec<egui_snarl::NodeId>,
     /// The node picked by a plain click.
@@ -95,19 +102,28 @@ pub struct VeneerApp {
     autosave: recovery::Autosave,
     /// The file browser a path dialog opened.
     browser: file_browser::Browser,
-    /// The material code handed to each preview slot, shared between frames.
-    wgsl: [Option<(u64, Arc<str>)>; 2],
+    /// The material handed to each preview slot (main, node), kept between frames.
+    frames: [FrameCache; 2],
+    /// The selected node's output as a graph of its own, for the graph revision and
+    /// node it was made for.
+    probe: Option<((u64, crate::graph::NodeId), Option<Graph>)>,
     /// The preview mesh's distance fields: solving, picking sources, viewing.
     fields: fields::FieldState,
     /// The field view's material (a colour scale with isolines of one field).
     field_view: LiveMaterial,
-    field_view_wgsl: Option<(u64, Arc<str>)>,
+    field_view_frame: FrameCache,
     render_state: Option<eframe::egui_wgpu::RenderState>,
     allowed_to_close: bool,
     /// Beside which windows autosave unsaved work (and the recent files are kept).
     recovery_file: PathBuf,
     /// The window title last sent.
     title: String,
+    /// How many times the graph has changed, and what followed which change.
+    revision: sync::Revision,
+    /// Where the main thread's time went in the last frame.
+    pub profile: FrameProfile,
+    /// Whether the document had unsaved changes at the last revision.
+    dirty: bool,
 }
 
 impl VeneerApp {
@@ -126,17 +142,14 @@ impl VeneerApp {
         recovery_file: PathBuf,
     ) -> VeneerApp {
         let render_state = cc.wgpu_render_state.clone();
-        if let Some(state) = &render_state {
-            let resources = PreviewTargets::new(&state.device, state.target_format);
-            state.renderer.write().callback_resources.insert(resources);
-        }
         let wood = preset("wood").expect("the wood preset is embedded");
         let mut app = VeneerApp {
             preview: PreviewState::for_graph(&wood.preview),
             snarl: snarl_from_graph(&wood),
             document: Document::new(wood, None),
-            live: LiveMaterial::default(),
-            thumbnail: LiveMaterial::default(),
+            previews: Previews::new(&cc.egui_ctx, render_state.is_some()),
+            live: LiveMaterial::in_storage(),
+            thumbnail: LiveMaterial::in_storage(),
             thumbnails: Default::default(),
             spots: Default::default(),
             hovered_wire: None,
@@ -150,14 +163,18 @@ impl VeneerApp {
             recent: recovery::load_recent(&recovery_file),
             autosave: recovery::Autosave::new(recovery::window_file(&recovery_file)),
             browser: Default::default(),
-            wgsl: [None, None],
+            frames: Default::default(),
+            probe: None,
             fields: Default::default(),
-            field_view: LiveMaterial::default(),
-            field_view_wgsl: None,
+            field_view: LiveMaterial::in_storage(),
+            field_view_frame: FrameCache::default(),
             render_state,
             allowed_to_close: false,
             recovery_file,
             title: String::new(),
+            revision: Default::default(),
+            profile: Default::default(),
+            dirty: false,
         };
         app.navigation.frame(Framing::Open);
         if let Some(path) = path {
@@ -318,16 +335,37 @@ impl VeneerApp {
         Some(self.navigation.transform * at)
     }
 
-    /// Number of material pipelines the preview has built (0 without a GPU).
+    /// Number of materials the preview has built pipelines for (0 without a GPU).
     pub fn pipelines_built(&self) -> u64 {
-        let Some(state) = &self.render_state else {
-            return 0;
-        };
-        let renderer = state.renderer.read();
-        let targets = renderer.callback_resources.get::<PreviewTargets>();
-        targets
-            .map(|PreviewTargets(slots)| slots[Slot::Main as usize].pipelines_built)
-            .unwrap_or(0)
+        self.previews.materials_built()
+    }
+
+    /// How many times the graph has changed since the editor started, and how many
+    /// frames read the graph view back to find out (frames without input never do).
+    pub fn revision(&self) -> (u64, u64) {
+        (self.revision.number, self.revision.reads)
+    }
+
+    /// How finely the preview's image on screen was drawn: a draft while something is
+    /// dragged, full at rest (`None` before the first image).
+    pub fn preview_quality(&self) -> Option<crate::render::Quality> {
+        self.previews.quality()
+    }
+
+    /// Why the preview could not draw its newest material, if it could not.
+    pub fn preview_error(&self) -> Option<&str> {
+        self.previews.error()
+    }
+
+    /// The time the preview shows, and whether it plays.
+    pub fn preview_time(&self) -> (f32, bool) {
+        (self.preview.view.time, self.preview.playing)
+    }
+
+    /// Whether the previews show, at full quality, what was last asked of them (they
+    /// are drawn on another thread: tests wait for this before looking).
+    pub fn preview_settled(&self) -> bool {
+        self.previews.settled()
     }
 
     fn graph_panel(&mut self, ui: &mut Ui) {
@@ -340,6 +378,9 @@ impl VeneerApp {
         let modifiers =
             self.navigation
                 .before(ui.ctx(), ui.max_rect(), &self.snarl, &self.selection);
+        self.navigation.cull(&mut self.snarl);
+        // Folding and unfolding off-screen nodes is instant (it is not the user's).
+        ui.style_mut().animation_time = 0.0;
         let before = self.clicked.take();
         let mut viewer = Viewer {
             errors: &self.live.errors,
@@ -379,28 +420,6 @@ impl VeneerApp {
         self.add_node_popup(ui.ctx());
     }
 
-    /// After the panels: read the edited graph back, recompile if needed, commit undo steps, autosave.
-    fn after_edits(&mut self, ctx: &egui::Context) {
-        let graph = graph_from_snarl(&self.snarl, &self.document.graph);
-        if graph != self.document.graph {
-            self.document.graph = graph;
-        }
-        self.live.update(&self.document.graph);
-        self.live.lint(&self.document.graph);
-        let time = self.preview.view.time;
-        self.thumbnails
-            .update(ctx, &self.document.graph, self.hovered_wire.as_ref(), time);
-        if !ctx.input(|input| input.pointer.any_down()) {
-            self.document.history.commit(&self.document.graph);
-        }
-        let title = self.document.title();
-        if title != self.title {
-            ctx.send_viewport_cmd(egui::ViewportCommand::Title(title.clone()));
-            self.title = title;
-        }
-        self.autosave_tick(ctx);
-    }
-
     fn handle_close(&mut self, ctx: &egui::Context) {
         if ctx.input(|input| input.viewport().close_requested()) && !self.allowed_to_close {
             if self.document.is_dirty() {
@@ -420,27 +439,45 @@ impl VeneerApp {
 /// one for the graph's material of the same generation.
 const FIELD_VIEW_GENERATIONS: u64 = 1 << 48;
 
-/// What a preview should draw this frame: `live`'s code (shared through `cache` until it
-/// changes) and its parameter values for `graph`.
+/// What a preview's material is made of, kept between frames: the code (shared until
+/// it changes) and the parameter values (worked out again only when the graph changes).
+#[derive(Default)]
+struct FrameCache {
+    code: Option<(u64, Arc<str>)>,
+    /// The values, for the code generation and graph revision they were worked out for.
+    params: Option<((u64, u64), Arc<[[f32; 4]]>)>,
+}
+
+/// What a preview should draw this frame: `live`'s code and its parameter values for
+/// `graph` at `revision` (taken from `cache` while neither changed).
 fn material_frame(
     live: &LiveMaterial,
-    cache: &mut Option<(u64, Arc<str>)>,
+    cache: &mut FrameCache,
     graph: &Graph,
+    revision: u64,
 ) -> Option<MaterialFrame> {
     let module = &live.compiled.as_ref()?.module;
     if cache
+        .code
         .as_ref()
         .is_none_or(|(generation, _)| *generation != live.generation)
     {
-        *cache = Some((live.generation, Arc::from(module.source.as_str())));
+        cache.code = Some((live.generation, Arc::from(module.source.as_str())));
     }
-    let wgsl = cache.as_ref().map(|(_, code)| code.clone())?;
+    let key = (live.generation, revision);
+    if cache.params.as_ref().is_none_or(|(seen, _)| *seen != key) {
+        cache.params = Some((key, live.params(graph).into()));
+    }
+    let wgsl = cache.code.as_ref().map(|(_, code)| code.clone())?;
+    let params = cache.params.as_ref().map(|(_, params)| params.clone())?;
     Some(MaterialFrame {
-        generation: live.generation,
-        wgsl,
-        slots: module.params.len(),
-        uses: module.uses,
-        params: live.params(graph),
+        code: crate::render::LiveMaterialCode {
+            generation: live.generation,
+            wgsl,
+            slots: module.params.len(),
+            uses: module.uses,
+        },
+        params,
     })
 }
 
@@ -471,7 +508,9 @@ fn frames_editor(ui: &mut Ui, frames: &mut Vec<crate::graph::Frame>) {
 
 impl eframe::App for VeneerApp {
     fn ui(&mut self, ui: &mut Ui, _frame: &mut eframe::Frame) {
+        let started = std::time::Instant::now();
         let ctx = ui.ctx().clone();
+        self.previews.receive(&ctx);
         self.shortcuts(&ctx);
         self.clipboard(&ctx);
         egui::Panel::top("menu").show(ui, |ui| self.menu_bar(ui));
@@ -493,7 +532,6 @@ impl eframe::App for VeneerApp {
             });
         });
         egui::CentralPanel::default().show(ui, |ui| self.graph_panel(ui));
-        self.after_edits(&ctx);
         if let Some(dialog) = self.dialog.take() {
             // A dialog's action may open another dialog (an open that fails shows a
             // message): that one wins over the dialog staying open.
@@ -503,7 +541,10 @@ impl eframe::App for VeneerApp {
             }
             self.dialog = self.dialog.take().or(still_open);
         }
+        // After the dialogs too, so that what their buttons did (save, open) shows now.
+        self.after_edits(&ctx);
         self.handle_close(&ctx);
+        self.profile.total = started.elapsed();
     }
 
     fn on_exit(&mut self) {

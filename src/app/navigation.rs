@@ -36,6 +36,11 @@ const MARGIN: f32 = 30.0;
 const UNMEASURED: Vec2 = egui::vec2(240.0, 160.0);
 /// Pins stick out of a node's rectangle by about this much (graph units).
 const PIN_REACH: f32 = 10.0;
+/// Graphs of more nodes than this fold the nodes far off screen (see [`Navigation::cull`]).
+const CULL_FROM: usize = 200;
+/// How far around the screen nodes stay open, in screens (so that none is seen folded).
+const CULL_MARGIN: f32 = 0.5;
+
 /// Frames a framing follows the nodes' sizes for: egui settles a node's size over its
 /// first frames, and thumbnails arrive after it.
 const FRAMING_FRAMES: u8 = 12;
@@ -68,6 +73,8 @@ pub struct Navigation {
     selecting: bool,
     /// Every node's rectangle when last drawn, in graph coordinates.
     rects: Vec<(egui_snarl::NodeId, Rect)>,
+    /// Where the graph is on screen (`None` before the first frame).
+    viewport: Option<Rect>,
 }
 
 impl Navigation {
@@ -96,6 +103,7 @@ impl Navigation {
         selection: &[egui_snarl::NodeId],
     ) -> egui::Modifiers {
         self.rects.retain(|(id, _)| snarl.get_node(*id).is_some());
+        self.viewport = Some(viewport);
         self.apply_framing(viewport, snarl, selection);
         let (pointer, modifiers) = ctx.input(|input| (input.pointer.latest_pos(), input.modifiers));
         let on_canvas = pointer.filter(|pos| {
@@ -132,6 +140,43 @@ impl Navigation {
     /// After the graph is shown: puts back the modifiers [`Navigation::before`] changed.
     pub fn after(&self, ctx: &Context, modifiers: egui::Modifiers) {
         ctx.input_mut(|input| input.modifiers = modifiers);
+    }
+
+    /// Folds the nodes of a big graph that are far off screen, and opens them again as
+    /// they come near, so that egui lays out only their headers: off-screen nodes cost
+    /// next to nothing. The fold is the view's alone (graph files do not keep it), and
+    /// graphs of up to [`CULL_FROM`] nodes are left as they are.
+    pub fn cull(&self, snarl: &mut Snarl<Node>) {
+        let Some(viewport) = self.viewport else {
+            return;
+        };
+        if snarl.node_ids().count() <= CULL_FROM {
+            return;
+        }
+        let near = viewport.expand2(viewport.size() * CULL_MARGIN);
+        let near = self.transform.inverse() * near;
+        let changes: Vec<(egui_snarl::NodeId, bool)> = snarl
+            .node_ids()
+            .filter_map(|(id, _)| {
+                let open = self.node_rect(snarl, id).is_some_and(|rect| near.intersects(rect));
+                let info = snarl.get_node_info(id)?;
+                (info.open != open).then_some((id, open))
+            })
+            .collect();
+        for (id, open) in changes {
+            snarl.open_node(id, open);
+        }
+    }
+
+    /// The nodes whose rectangle, when last drawn, was at least partly on screen.
+    pub fn on_screen(&self) -> impl Iterator<Item = egui_snarl::NodeId> + '_ {
+        self.rects
+            .iter()
+            .filter(|(_, rect)| {
+                self.viewport
+                    .is_some_and(|viewport| viewport.intersects(self.transform * *rect))
+            })
+            .map(|(id, _)| *id)
     }
 
     /// Whether the screen point `pos` is on a node (or one of its pins).

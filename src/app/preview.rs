@@ -1,12 +1,48 @@
-//! The preview panel: the live material on a mesh (or flat, unlit, from above), drawn
-//! through an egui_wgpu paint callback. The pipeline is rebuilt only when the material's
-//! code changes; camera, time and parameters are uniforms written every frame.
+//! The preview panel's picture: the live material on a mesh (or flat, unlit, from above)
+//! and the selected node's output, drawn by the preview thread
+//! ([`super::preview_worker`]) and shown as egui textures. Each mesh (and the flat view)
+//! keeps its own camera; while anything is dragged the preview draws drafts, and refines
+//! when the pointer is let go.
 
+use super::preview_worker::{MeshChoice, Request, Slot, Worker};
 use crate::graph::Preview;
-use crate::render::{GpuMesh, MeshPipeline, MeshTarget, MeshView, Projection};
-use eframe::egui_wgpu::{self, wgpu};
-use egui::{Sense, Ui};
+use crate::render::{LiveMaterialCode, MeshView, Projection, Quality};
+use egui::{Sense, TextureHandle, TextureOptions, Ui};
+use std::collections::BTreeMap;
 use std::sync::Arc;
+use std::time::Instant;
+
+/// Where a camera looks from: orbit angles, distance and target.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Camera {
+    yaw: f32,
+    pitch: f32,
+    distance: f32,
+    target: [f32; 3],
+}
+
+impl Camera {
+    fn of(view: &MeshView) -> Camera {
+        Camera {
+            yaw: view.yaw,
+            pitch: view.pitch,
+            distance: view.distance,
+            target: view.target,
+        }
+    }
+
+    fn apply(self, view: &mut MeshView) {
+        view.yaw = self.yaw;
+        view.pitch = self.pitch;
+        view.distance = self.distance;
+        view.target = self.target;
+    }
+}
+
+/// The camera every mesh starts with, and a reset returns to.
+fn default_camera() -> Camera {
+    Camera::of(&MeshView::for_preview(&Preview::default()))
+}
 
 /// What the preview shows and from where; kept by the app between frames.
 pub struct PreviewState {
@@ -21,7 +57,16 @@ pub struct PreviewState {
     /// Show the albedo flat from above instead of lit on the mesh.
     pub flat: bool,
     pub playing: bool,
+    /// The cameras of the meshes (and of the flat view) not shown now.
+    cameras: BTreeMap<String, Camera>,
+    /// Whose camera `view` holds.
+    camera_of: String,
+    /// When time last advanced, while playing.
+    last_tick: Option<Instant>,
 }
+
+/// The flat view's key among the cameras.
+const FLAT_CAMERA: &str = "\u{0}flat";
 
 impl PreviewState {
     /// The default preview of a graph.
@@ -33,6 +78,9 @@ impl PreviewState {
             view: MeshView::for_preview(preview),
             flat: false,
             playing: false,
+            cameras: BTreeMap::new(),
+            camera_of: preview.mesh.clone(),
+            last_tick: None,
         }
     }
 
@@ -44,7 +92,8 @@ impl PreviewState {
             .or_else(|| self.file.clone())
     }
 
-    /// Takes the placement (centre and size in texture space) of `preview`, keeping the camera.
+    /// Takes the placement (centre and size in texture space) of `preview` for a graph
+    /// just opened: the time starts again from 0, paused, and every camera resets.
     pub fn follow(&mut self, preview: &Preview) {
         self.view.center = [
             preview.center.0 as f32,
@@ -52,208 +101,222 @@ impl PreviewState {
             preview.center.2 as f32,
         ];
         self.view.size = preview.size as f32;
+        self.view.time = 0.0;
+        self.playing = false;
+        self.last_tick = None;
+        self.cameras.clear();
+        default_camera().apply(&mut self.view);
+    }
+
+    /// Puts the camera of what is shown back where it starts.
+    pub fn reset_camera(&mut self) {
+        default_camera().apply(&mut self.view);
+    }
+
+    /// Whose camera the view should hold now: the flat view's or the mesh's.
+    fn camera_key(&self) -> String {
+        if self.flat {
+            FLAT_CAMERA.to_string()
+        } else {
+            self.mesh.clone()
+        }
+    }
+
+    /// Swaps cameras when the mesh or the flat view changed: each keeps its own, so a
+    /// zoom on one mesh does not crop the next.
+    fn switch_camera(&mut self) {
+        let key = self.camera_key();
+        if key == self.camera_of {
+            return;
+        }
+        let old = std::mem::replace(&mut self.camera_of, key.clone());
+        self.cameras.insert(old, Camera::of(&self.view));
+        self.cameras
+            .remove(&key)
+            .unwrap_or_else(default_camera)
+            .apply(&mut self.view);
+    }
+
+    /// Advances time while playing, by the wall-clock time since the last frame (`now`),
+    /// so animations run in real time whatever the frame rate; after a stall of over a
+    /// quarter second time goes on from where it was.
+    pub fn tick(&mut self, now: Instant) {
+        if !self.playing {
+            self.last_tick = None;
+            return;
+        }
+        let dt = self.last_tick.map_or(0.0, |last| {
+            now.saturating_duration_since(last).as_secs_f32().min(0.25)
+        });
+        self.last_tick = Some(now);
+        self.view.time = (self.view.time + dt) % 20.0;
+    }
+
+    /// The mesh to draw: the solved one, the loaded file, or a primitive by name.
+    fn mesh_choice(&self) -> MeshChoice {
+        if self.flat {
+            return MeshChoice {
+                key: "plane".into(),
+                mesh: None,
+            };
+        }
+        match (&self.prepared, &self.file) {
+            (Some((key, mesh)), _) => MeshChoice {
+                key: key.clone(),
+                mesh: Some(Arc::clone(mesh)),
+            },
+            // A file is kept only while `mesh` names it.
+            (None, Some(file)) => MeshChoice {
+                key: self.mesh.clone(),
+                mesh: Some(Arc::clone(file)),
+            },
+            _ => MeshChoice {
+                key: self.mesh.clone(),
+                mesh: None,
+            },
+        }
+    }
+
+    /// The view as drawn: the flat view looks straight down, unlit.
+    fn frame_view(&self) -> MeshView {
+        let mut view = self.view.clone();
+        if self.flat {
+            view.projection = Projection::TopDown {
+                extent: self.view.distance / 3.6,
+            };
+            view.unlit = true;
+        }
+        view
     }
 }
 
-/// The material the callback draws: its code (uniform mode) and parameter values.
+/// The material a preview draws: its code and its parameter values.
 #[derive(Clone)]
 pub struct MaterialFrame {
-    /// Changes whenever the code does.
-    pub generation: u64,
-    pub wgsl: Arc<str>,
-    pub slots: usize,
-    /// What of the surface the material uses (height, bump, fields).
-    pub uses: crate::codegen::SurfaceUse,
-    pub params: Vec<[f32; 4]>,
+    pub code: LiveMaterialCode,
+    pub params: Arc<[[f32; 4]]>,
 }
 
-/// Which preview a callback draws: the big one or the selected node's thumbnail.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Slot {
-    Main = 0,
-    Thumbnail = 1,
+/// One preview's picture on the UI side: the newest image drawn and what was asked.
+#[derive(Default)]
+struct Shown {
+    texture: Option<TextureHandle>,
+    /// The last request posted and its number.
+    posted: Option<(u64, Request)>,
+    /// The number of the request whose image is shown, and how finely it was drawn.
+    shown: u64,
+    quality: Option<Quality>,
+    /// Why the newest request could not be drawn (the previous image stays).
+    error: Option<String>,
+    materials_built: u64,
 }
 
-/// The GPU objects of both previews, kept in egui_wgpu's callback resources.
-pub struct PreviewTargets(pub [PreviewResources; 2]);
-
-impl PreviewTargets {
-    /// Both previews' resources for egui's target format.
-    pub fn new(device: &wgpu::Device, target_format: wgpu::TextureFormat) -> PreviewTargets {
-        PreviewTargets([
-            PreviewResources::new(device, target_format),
-            PreviewResources::new(device, target_format),
-        ])
-    }
+/// Both previews, drawn by one thread with its own device.
+pub struct Previews {
+    worker: Option<Worker>,
+    shown: [Shown; 2],
+    next_id: u64,
 }
 
-/// GPU objects of one preview that live across frames.
-pub struct PreviewResources {
-    pipeline: Option<(u64, MeshPipeline)>,
-    /// An error from building the newest pipeline; the previous one stays in use.
-    pub pipeline_error: Option<String>,
-    mesh: Option<(String, GpuMesh)>,
-    target: Option<(MeshTarget, wgpu::BindGroup)>,
-    blit: wgpu::RenderPipeline,
-    sampler: wgpu::Sampler,
-    /// How many pipelines have been built (for tests and the status bar).
-    pub pipelines_built: u64,
-}
-
-impl PreviewResources {
-    /// Creates the blit pipeline for egui's target format.
-    pub fn new(device: &wgpu::Device, target_format: wgpu::TextureFormat) -> PreviewResources {
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("preview blit"),
-            source: wgpu::ShaderSource::Wgsl(include_str!("../../shaders/render_blit.wgsl").into()),
-        });
-        let fragment = if target_format.is_srgb() {
-            "veneer_blit_fragment_srgb"
-        } else {
-            "veneer_blit_fragment"
-        };
-        let entry_points = ("veneer_blit_vertex", fragment);
-        let blit = crate::render::fullscreen_pipeline(
-            device,
-            "preview blit",
-            &module,
-            entry_points,
-            target_format,
-        );
-        let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
-            label: Some("preview"),
-            mag_filter: wgpu::FilterMode::Linear,
-            min_filter: wgpu::FilterMode::Linear,
-            ..Default::default()
-        });
-        PreviewResources {
-            pipeline: None,
-            pipeline_error: None,
-            mesh: None,
-            target: None,
-            blit,
-            sampler,
-            pipelines_built: 0,
+impl Previews {
+    /// The previews, drawing through a thread of their own when there is a GPU (the
+    /// editor's window has a wgpu renderer).
+    pub fn new(ctx: &egui::Context, gpu: bool) -> Previews {
+        let wake = ctx.clone();
+        Previews {
+            worker: gpu.then(|| Worker::start(move || wake.request_repaint())),
+            shown: Default::default(),
+            next_id: 1,
         }
     }
 
-    fn sync(&mut self, device: &wgpu::Device, frame: &PreviewCallback) {
-        if let Some(material) = &frame.material {
-            let current = self.pipeline.as_ref().map(|(generation, _)| *generation);
-            if current != Some(material.generation) {
-                match MeshPipeline::new(device, &material.wgsl, material.slots, material.uses) {
-                    Ok(pipeline) => {
-                        self.pipeline = Some((material.generation, pipeline));
-                        self.pipeline_error = None;
-                        self.pipelines_built += 1;
-                    }
-                    Err(error) => self.pipeline_error = Some(error.to_string()),
-                }
-            }
-        }
-        let prepared = frame.prepared.as_ref().filter(|_| !frame.flat);
-        let mesh_key = match (frame.flat, prepared) {
-            (true, _) => "plane",
-            (false, Some((key, _))) => key.as_str(),
-            (false, None) => frame.mesh.as_str(),
-        };
-        if self.mesh.as_ref().is_none_or(|(key, _)| key != mesh_key) {
-            // Uploaded from where it is: the solved mesh, a primitive, the loaded file
-            // or, failing all, the sphere.
-            let file = frame.file.as_deref().filter(|_| !frame.flat);
-            let generated = match prepared {
-                Some(_) => None,
-                None => crate::mesh::primitive(mesh_key).or_else(|| {
-                    file.is_none()
-                        .then(|| crate::mesh::primitive("sphere").expect("sphere exists"))
-                }),
-            };
-            let mesh = prepared
-                .map(|(_, mesh)| mesh.as_ref())
-                .or(generated.as_ref())
-                .or(file)
-                .expect("one of them is present");
-            self.mesh = Some((mesh_key.to_string(), GpuMesh::new(device, mesh)));
-        }
-        if self
-            .target
-            .as_ref()
-            .is_none_or(|(target, _)| target.size() != frame.size)
-        {
-            let target = MeshTarget::new(device, frame.size.0, frame.size.1);
-            let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("preview blit"),
-                layout: &self.blit.get_bind_group_layout(0),
-                entries: &[
-                    wgpu::BindGroupEntry {
-                        binding: 0,
-                        resource: wgpu::BindingResource::TextureView(&target.resolved_view),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 1,
-                        resource: wgpu::BindingResource::Sampler(&self.sampler),
-                    },
-                ],
-            });
-            self.target = Some((target, group));
-        }
-    }
-}
-
-/// One frame of the preview.
-pub struct PreviewCallback {
-    slot: Slot,
-    material: Option<MaterialFrame>,
-    mesh: String,
-    file: Option<Arc<crate::mesh::Mesh>>,
-    prepared: Option<(String, Arc<crate::mesh::Mesh>)>,
-    view: MeshView,
-    flat: bool,
-    size: (u32, u32),
-}
-
-impl egui_wgpu::CallbackTrait for PreviewCallback {
-    fn prepare(
-        &self,
-        device: &wgpu::Device,
-        queue: &wgpu::Queue,
-        _screen: &egui_wgpu::ScreenDescriptor,
-        encoder: &mut wgpu::CommandEncoder,
-        resources: &mut egui_wgpu::CallbackResources,
-    ) -> Vec<wgpu::CommandBuffer> {
-        let Some(PreviewTargets(slots)) = resources.get_mut::<PreviewTargets>() else {
-            return Vec::new();
-        };
-        let state = &mut slots[self.slot as usize];
-        state.sync(device, self);
-        let (Some((_, pipeline)), Some((_, mesh)), Some((target, _))) =
-            (&state.pipeline, &state.mesh, &state.target)
-        else {
-            return Vec::new();
-        };
-        let aspect = self.size.0 as f32 / self.size.1.max(1) as f32;
-        pipeline.write_view(queue, &self.view, aspect);
-        if let Some(material) = &self.material {
-            pipeline.write_params(queue, &material.params);
-        }
-        pipeline.encode(encoder, target, mesh, self.view.background);
-        Vec::new()
+    /// Whether previews are drawn at all.
+    pub fn available(&self) -> bool {
+        self.worker.is_some()
     }
 
-    fn paint(
-        &self,
-        _info: egui::PaintCallbackInfo,
-        pass: &mut wgpu::RenderPass<'static>,
-        resources: &egui_wgpu::CallbackResources,
-    ) {
-        let Some(PreviewTargets(slots)) = resources.get::<PreviewTargets>() else {
+    /// Takes the frames drawn since the last call into the textures.
+    pub fn receive(&mut self, ctx: &egui::Context) {
+        let Some(worker) = &self.worker else {
             return;
         };
-        let state = &slots[self.slot as usize];
-        if let (Some(_), Some((_, group))) = (&state.pipeline, &state.target) {
-            pass.set_pipeline(&state.blit);
-            pass.set_bind_group(0, group, &[]);
-            pass.draw(0..3, 0..1);
+        for drawn in worker.drawn() {
+            let shown = &mut self.shown[drawn.slot as usize];
+            shown.materials_built = drawn.materials_built;
+            shown.shown = shown.shown.max(drawn.id);
+            match drawn.image {
+                Ok(image) => {
+                    shown.error = None;
+                    shown.quality = Some(drawn.quality);
+                    match &mut shown.texture {
+                        Some(texture) => texture.set(image, TextureOptions::LINEAR),
+                        None => {
+                            let name = format!("preview {:?}", drawn.slot);
+                            shown.texture =
+                                Some(ctx.load_texture(name, image, TextureOptions::LINEAR));
+                        }
+                    }
+                }
+                Err(error) => shown.error = Some(error),
+            }
+        }
+    }
+
+    /// Posts `request` for `slot` unless it is what was posted last.
+    fn post(&mut self, slot: Slot, request: Request) {
+        let Some(worker) = &self.worker else {
+            return;
+        };
+        let shown = &mut self.shown[slot as usize];
+        if shown
+            .posted
+            .as_ref()
+            .is_some_and(|(_, posted)| *posted == request)
+        {
+            return;
+        }
+        let id = self.next_id;
+        self.next_id += 1;
+        shown.posted = Some((id, request.clone()));
+        worker.post(slot, id, request);
+    }
+
+    /// Whether every preview shows, at full quality, the last thing asked of it.
+    pub fn settled(&self) -> bool {
+        self.shown.iter().all(|shown| match &shown.posted {
+            None => true,
+            Some((id, request)) => shown.shown >= *id && request.quality == Quality::Full,
+        })
+    }
+
+    /// Materials the main preview has built pipelines for.
+    pub fn materials_built(&self) -> u64 {
+        self.shown[Slot::Main as usize].materials_built
+    }
+
+    /// How finely the main preview's image on screen was drawn (`None`: no image yet).
+    pub fn quality(&self) -> Option<Quality> {
+        self.shown[Slot::Main as usize].quality
+    }
+
+    /// Why the main preview could not draw its newest material, if it could not.
+    pub fn error(&self) -> Option<&str> {
+        self.shown[Slot::Main as usize].error.as_deref()
+    }
+
+    /// Draws the newest picture of `slot` into `rect` (the background until there is one).
+    fn paint(&self, ui: &Ui, slot: Slot, rect: egui::Rect, background: [f32; 3]) {
+        match &self.shown[slot as usize].texture {
+            Some(texture) => {
+                let uv = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
+                ui.painter()
+                    .image(texture.id(), rect, uv, egui::Color32::WHITE);
+            }
+            None => {
+                let [r, g, b] = background;
+                let colour = egui::Rgba::from_rgb(r, g, b);
+                ui.painter().rect_filled(rect, 0.0, colour);
+            }
         }
     }
 }
@@ -263,46 +326,40 @@ impl egui_wgpu::CallbackTrait for PreviewCallback {
 pub fn show(
     ui: &mut Ui,
     state: &mut PreviewState,
+    previews: &mut Previews,
     material: Option<MaterialFrame>,
     size: egui::Vec2,
 ) -> egui::Response {
-    draw(ui, state, material, size, Slot::Main, true)
+    state.switch_camera();
+    let (rect, response) = ui.allocate_exact_size(size, Sense::click_and_drag());
+    steer(ui, state, &response);
+    let request = material.map(|material| request(ui, state, material, rect));
+    draw(ui, previews, Slot::Main, request, rect, state.view.background);
+    response
 }
 
 /// Shows a node's thumbnail: the flat view of `state`'s placement, not interactive.
 pub fn thumbnail(
     ui: &mut Ui,
     state: &PreviewState,
+    previews: &mut Previews,
     material: Option<MaterialFrame>,
     size: egui::Vec2,
 ) -> egui::Response {
-    let mut flat = PreviewState {
-        mesh: state.mesh.clone(),
-        file: None,
-        prepared: None,
-        view: state.view.clone(),
-        flat: true,
-        playing: false,
-    };
+    let mut flat = PreviewState::for_graph(&Preview::default());
+    flat.flat = true;
+    flat.view = state.view.clone();
     flat.view.distance = 3.6;
     flat.view.target = [0.0; 3];
-    draw(ui, &mut flat, material, size, Slot::Thumbnail, false)
+    let (rect, response) = ui.allocate_exact_size(size, Sense::hover());
+    let request = material.map(|material| request(ui, &flat, material, rect));
+    draw(ui, previews, Slot::Node, request, rect, flat.view.background);
+    response
 }
 
-fn draw(
-    ui: &mut Ui,
-    state: &mut PreviewState,
-    material: Option<MaterialFrame>,
-    size: egui::Vec2,
-    slot: Slot,
-    interactive: bool,
-) -> egui::Response {
-    let sense = if interactive {
-        Sense::click_and_drag()
-    } else {
-        Sense::hover()
-    };
-    let (rect, response) = ui.allocate_exact_size(size, sense);
+/// Orbits, pans and zooms `state`'s camera as the pointer on `response` asks.
+fn steer(ui: &Ui, state: &mut PreviewState, response: &egui::Response) {
+    let rect = response.rect;
     let view = &mut state.view;
     if response.dragged_by(egui::PointerButton::Primary) && !state.flat {
         let delta = response.drag_delta();
@@ -327,25 +384,85 @@ fn draw(
         let scroll = ui.input(|input| input.smooth_scroll_delta.y);
         view.distance = (view.distance * (-scroll * 0.002).exp()).clamp(0.3, 50.0);
     }
-    let mut frame_view = view.clone();
-    if state.flat {
-        frame_view.projection = Projection::TopDown {
-            extent: view.distance / 3.6,
-        };
-        frame_view.unlit = true;
-    }
+}
+
+/// What to draw of `state` with `material` into `rect`: a draft while any pointer
+/// button is held (a slider, an orbit, a node being moved), else the full picture.
+fn request(ui: &Ui, state: &PreviewState, material: MaterialFrame, rect: egui::Rect) -> Request {
     let pixels = (rect.size() * ui.ctx().pixels_per_point()).round();
-    let callback = PreviewCallback {
-        slot,
-        material,
-        mesh: state.mesh.clone(),
-        file: state.file.clone(),
-        prepared: state.prepared.clone(),
-        view: frame_view,
-        flat: state.flat,
+    let dragging = ui.input(|input| input.pointer.any_down());
+    Request {
+        material: material.code,
+        params: material.params,
+        mesh: state.mesh_choice(),
+        view: state.frame_view(),
         size: (pixels.x.max(1.0) as u32, pixels.y.max(1.0) as u32),
-    };
-    ui.painter()
-        .add(egui_wgpu::Callback::new_paint_callback(rect, callback));
-    response
+        quality: if dragging {
+            Quality::Draft
+        } else {
+            Quality::Full
+        },
+    }
+}
+
+fn draw(
+    ui: &Ui,
+    previews: &mut Previews,
+    slot: Slot,
+    request: Option<Request>,
+    rect: egui::Rect,
+    background: [f32; 3],
+) {
+    if let Some(request) = request {
+        previews.post(slot, request);
+    }
+    previews.paint(ui, slot, rect, background);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::time::Duration;
+
+    #[test]
+    fn time_plays_by_the_wall_clock_whatever_the_frame_rate() {
+        let mut state = PreviewState::for_graph(&Preview::default());
+        let start = Instant::now();
+        state.tick(start);
+        assert_eq!(state.view.time, 0.0, "paused: time stands still");
+        state.playing = true;
+        // Eight frames a second for two seconds, then a stall of three seconds.
+        for frame in 0..=16 {
+            state.tick(start + Duration::from_millis(125 * frame));
+        }
+        assert!((state.view.time - 2.0).abs() < 1e-4, "{}", state.view.time);
+        state.tick(start + Duration::from_secs(5));
+        assert!((state.view.time - 2.25).abs() < 1e-4, "a stall adds a quarter second");
+        state.follow(&Preview::default());
+        assert_eq!((state.view.time, state.playing), (0.0, false), "a new graph starts at 0");
+    }
+
+    #[test]
+    fn each_mesh_and_the_flat_view_keep_their_own_camera() {
+        let mut state = PreviewState::for_graph(&Preview::default());
+        state.switch_camera();
+        state.view.distance = 1.0;
+        state.view.yaw = 90.0;
+        state.mesh = "cube".into();
+        state.switch_camera();
+        assert_eq!(Camera::of(&state.view), default_camera(), "the cube starts afresh");
+        state.view.distance = 7.0;
+        state.flat = true;
+        state.switch_camera();
+        assert_eq!(Camera::of(&state.view), default_camera(), "so does the flat view");
+        state.flat = false;
+        state.mesh = "sphere".into();
+        state.switch_camera();
+        assert_eq!((state.view.distance, state.view.yaw), (1.0, 90.0), "the sphere's own");
+        state.reset_camera();
+        assert_eq!(Camera::of(&state.view), default_camera());
+        state.mesh = "cube".into();
+        state.switch_camera();
+        assert_eq!(state.view.distance, 7.0, "the cube's own");
+    }
 }

@@ -6,24 +6,29 @@ use super::*;
 impl VeneerApp {
     /// The selected node's output, flat, above the inspector.
     pub(super) fn node_thumbnail(&mut self, ui: &mut Ui, node: egui_snarl::NodeId) {
-        let Some(probe) = probe::probe_graph(&self.document.graph, self.snarl[node].id) else {
-            return;
-        };
-        if self.render_state.is_none() {
+        if !self.previews.available() {
             return;
         }
-        self.thumbnail.update(&probe);
+        let key = (self.revision.number, self.snarl[node].id);
+        if self.probe.as_ref().is_none_or(|(seen, _)| *seen != key) {
+            let probe = probe::probe_graph(&self.document.graph, key.1);
+            if let Some(probe) = &probe {
+                self.thumbnail.update(probe);
+            }
+            self.probe = Some((key, probe));
+        }
+        let Some((_, Some(probe))) = &self.probe else {
+            return;
+        };
         let material = if self.thumbnail.errors.is_empty() {
-            material_frame(
-                &self.thumbnail,
-                &mut self.wgsl[Slot::Thumbnail as usize],
-                &probe,
-            )
+            let cache = &mut self.frames[Slot::Node as usize];
+            material_frame(&self.thumbnail, cache, probe, key.0)
         } else {
             None
         };
         ui.horizontal(|ui| {
-            preview::thumbnail(ui, &self.preview, material, egui::vec2(160.0, 160.0));
+            let size = egui::vec2(160.0, 160.0);
+            preview::thumbnail(ui, &self.preview, &mut self.previews, material, size);
             ui.weak("this node's output,\nflat over the preview square");
         });
     }
@@ -59,28 +64,30 @@ impl VeneerApp {
         });
         let width = ui.available_width();
         self.solve_fields();
-        let material = match (self.render_state.is_some(), self.fields.view) {
+        let material = match (self.previews.available(), self.fields.view) {
             (false, _) => None,
             (true, Some(slot)) => {
                 let graph = fields::field_view_graph(slot as u8);
                 self.field_view.update(&graph);
-                material_frame(&self.field_view, &mut self.field_view_wgsl, &graph).map(
+                material_frame(&self.field_view, &mut self.field_view_frame, &graph, 0).map(
                     |mut frame| {
-                        frame.generation |= FIELD_VIEW_GENERATIONS;
+                        frame.code.generation |= FIELD_VIEW_GENERATIONS;
                         frame
                     },
                 )
             }
             (true, None) => material_frame(
                 &self.live,
-                &mut self.wgsl[Slot::Main as usize],
+                &mut self.frames[Slot::Main as usize],
                 &self.document.graph,
+                self.revision.number,
             ),
         };
-        if self.render_state.is_some() {
+        if self.previews.available() {
             let response = preview::show(
                 ui,
                 &mut self.preview,
+                &mut self.previews,
                 material,
                 egui::vec2(width, width.min(ui.available_height() * 0.55)),
             );
@@ -98,7 +105,17 @@ impl VeneerApp {
                 self.preview.playing = !self.preview.playing;
             }
             ui.add(egui::Slider::new(&mut self.preview.view.time, 0.0..=20.0).text("time (s)"));
+            if ui
+                .button("reset view")
+                .on_hover_text("put this mesh's camera back where it starts")
+                .clicked()
+            {
+                self.preview.reset_camera();
+            }
         });
+        if let Some(error) = self.previews.error() {
+            ui.colored_label(ui.visuals().warn_fg_color, format!("preview: {error}"));
+        }
         ui.horizontal(|ui| {
             ui.label("light");
             let light = &mut self.preview.view.light;
@@ -123,9 +140,8 @@ impl VeneerApp {
             &mut self.document.graph.preview.fields,
             &mut self.fields,
         );
+        self.preview.tick(std::time::Instant::now());
         if self.preview.playing {
-            let dt = ui.input(|input| input.stable_dt).min(0.1);
-            self.preview.view.time = (self.preview.view.time + dt) % 20.0;
             ui.ctx().request_repaint();
         }
     }

@@ -11,9 +11,9 @@ use super::live::LiveMaterial;
 use super::probe::atlas_graph;
 use super::thumbnail_worker::{Done, Job, Worker};
 use crate::codegen::param_values;
-use crate::graph::{Graph, NodeId, NodeKind, PinRef};
+use crate::graph::{Graph, NodeId, PinRef};
 use crate::render::{AtlasLayout, FlatRect};
-use std::collections::{BTreeMap, BTreeSet};
+use std::collections::BTreeSet;
 use std::hash::{Hash, Hasher};
 use std::sync::Arc;
 
@@ -21,6 +21,8 @@ use std::sync::Arc;
 pub const TILE_PIXELS: u32 = 64;
 /// Tiles to a row of the atlas.
 const ATLAS_COLUMNS: u32 = 8;
+/// The most tiles drawn: past it only nodes on screen get one.
+pub const MAX_TILES: usize = 256;
 
 /// The thumbnails' state, kept by the app between frames.
 pub struct Thumbnails {
@@ -41,7 +43,7 @@ pub struct Thumbnails {
     ready: Vec<bool>,
     /// Nodes whose code fails to compile: left out with what reads them, until the
     /// graph's structure changes.
-    broken: (String, BTreeSet<NodeId>),
+    broken: (Graph, BTreeSet<NodeId>),
     texture: Option<egui::TextureHandle>,
     /// The atlas as last read back (RGBA8 rows).
     pixels: Vec<u8>,
@@ -53,6 +55,18 @@ pub struct Thumbnails {
     pub last_drawn: Vec<PinRef>,
     /// Why the last draw failed, if it did.
     pub error: Option<String>,
+    /// What the tiles were last brought in step with; nothing is done again until it
+    /// changes or a job comes back.
+    seen: Option<Seen>,
+}
+
+/// What the tiles depend on besides the drawing thread: the graph's revision, the
+/// time and which pins would get a tile.
+#[derive(Clone, PartialEq)]
+struct Seen {
+    revision: u64,
+    time: u32,
+    pins: Vec<PinRef>,
 }
 
 impl Default for Thumbnails {
@@ -74,29 +88,9 @@ impl Default for Thumbnails {
             tiles_drawn: 0,
             last_drawn: Vec::new(),
             error: None,
+            seen: None,
         }
     }
-}
-
-/// The nodes each node reads, directly.
-fn readers_graph(graph: &Graph) -> BTreeMap<NodeId, Vec<NodeId>> {
-    let mut reads: BTreeMap<NodeId, Vec<NodeId>> = BTreeMap::new();
-    for wire in &graph.wires {
-        reads.entry(wire.to.node).or_default().push(wire.from.node);
-    }
-    reads
-}
-
-/// `node` and every node it reads, directly or not.
-fn upstream(reads: &BTreeMap<NodeId, Vec<NodeId>>, node: NodeId) -> BTreeSet<NodeId> {
-    let mut seen = BTreeSet::new();
-    let mut stack = vec![node];
-    while let Some(node) = stack.pop() {
-        if seen.insert(node) {
-            stack.extend(reads.get(&node).into_iter().flatten().copied());
-        }
-    }
-    seen
 }
 
 impl Thumbnails {
@@ -105,11 +99,16 @@ impl Thumbnails {
         self.enabled && !self.hidden.contains(&node)
     }
 
-    /// The pins that get a tile: the first output of every node that shows its
-    /// thumbnail, and `hovered` (the wire under the pointer), minus broken ones.
-    fn wanted(&self, graph: &Graph, hovered: Option<&PinRef>) -> Vec<PinRef> {
-        let reads = readers_graph(graph);
-        let mut pins: BTreeSet<PinRef> = graph
+    /// The pins that would get a tile: the first output of every node that shows its
+    /// thumbnail and, in graphs with more of them than [`MAX_TILES`], only of those on
+    /// screen (`on_screen`), up to that many; and `hovered` (the wire under the pointer).
+    fn candidates(
+        &self,
+        graph: &Graph,
+        hovered: Option<&PinRef>,
+        on_screen: &dyn Fn(NodeId) -> bool,
+    ) -> Vec<PinRef> {
+        let all: Vec<PinRef> = graph
             .nodes
             .iter()
             .filter(|node| self.shows(node.id))
@@ -118,30 +117,57 @@ impl Thumbnails {
                 Some(PinRef::new(node.id, output))
             })
             .collect();
+        let mut pins: BTreeSet<PinRef> = if all.len() > MAX_TILES {
+            let shown = all.into_iter().filter(|pin| on_screen(pin.node));
+            shown.take(MAX_TILES).collect()
+        } else {
+            all.into_iter().collect()
+        };
         pins.extend(hovered.cloned());
-        pins.retain(|pin| upstream(&reads, pin.node).is_disjoint(&self.broken.1));
         pins.into_iter().collect()
     }
 
-    /// Brings the tiles in step with `graph`: recompiles the atlas if its structure
-    /// changed, sends the tiles whose inputs changed to the drawing thread, and takes in
-    /// what it drew. `hovered` is the output pin of the wire under the pointer.
+    /// The candidates that get a tile: those not reading a node that fails to compile.
+    fn wanted(&self, graph: &Graph, candidates: &[PinRef]) -> Vec<PinRef> {
+        let tainted = super::thumbnail_keys::downstream_of(graph, &self.broken.1);
+        let mut pins = candidates.to_vec();
+        pins.retain(|pin| !tainted.contains(&pin.node));
+        pins
+    }
+
+    /// Brings the tiles in step with `graph` at `revision` (which changes whenever the
+    /// graph does): recompiles the atlas if its structure changed, sends the tiles whose
+    /// inputs changed to the drawing thread, and takes in what it drew. `hovered` is the
+    /// output pin of the wire under the pointer. Does nothing when neither these nor
+    /// the thread's work changed since the last call.
     pub fn update(
         &mut self,
         ctx: &egui::Context,
         graph: &Graph,
+        revision: u64,
         hovered: Option<&PinRef>,
         time: f32,
+        on_screen: &dyn Fn(NodeId) -> bool,
     ) {
-        self.receive(ctx);
-        let structure = super::live::structure_key(graph);
+        let received = self.receive(ctx);
+        let seen = Seen {
+            revision,
+            time: time.to_bits(),
+            pins: self.candidates(graph, hovered, on_screen),
+        };
+        if !received && self.seen.as_ref() == Some(&seen) {
+            return;
+        }
+        let candidates = seen.pins.clone();
+        self.seen = Some(seen);
+        let structure = super::live::structure(graph);
         if self.broken.0 != structure {
             self.broken = (structure, BTreeSet::new());
         }
         // A node that fails to compile is left out (with what reads it) and the rest
         // compiled again; each round leaves out at least one more node.
         let atlas = loop {
-            let pins = self.wanted(graph, hovered);
+            let pins = self.wanted(graph, &candidates);
             let Some(atlas) = atlas_graph(graph, &pins) else {
                 self.pins.clear();
                 return;
@@ -170,13 +196,13 @@ impl Thumbnails {
         if self.in_flight {
             return;
         }
-        let reads = readers_graph(graph);
+        let upstream = super::thumbnail_keys::upstream_hashes(graph, time);
         let rect = placement(graph);
         let slots = &compiled.module.params;
         let values = param_values(&atlas.graph, slots);
         let mut tiles = Vec::new();
         for (index, pin) in self.pins.iter().enumerate() {
-            let key = tile_key(graph, &reads, pin, self.atlas.generation, rect, time);
+            let key = tile_key(&upstream, pin, self.atlas.generation, rect);
             if self.sent[index] == Some(key) {
                 continue;
             }
@@ -202,18 +228,19 @@ impl Thumbnails {
         self.in_flight = true;
     }
 
-    /// Takes in a finished job: its tiles' pixels go into the texture.
-    fn receive(&mut self, ctx: &egui::Context) {
+    /// Takes in a finished job (its tiles' pixels go into the texture); returns whether
+    /// one came back.
+    fn receive(&mut self, ctx: &egui::Context) -> bool {
         let Some(worker) = &self.worker else {
-            return;
+            return false;
         };
         let done = match worker.try_done() {
             Ok(Some(done)) => done,
-            Ok(None) => return,
+            Ok(None) => return false,
             Err(()) => {
                 self.worker = None;
                 self.in_flight = false;
-                return;
+                return true;
             }
         };
         self.in_flight = false;
@@ -226,7 +253,7 @@ impl Thumbnails {
             Ok(pixels) => pixels,
             Err(error) => {
                 self.error = Some(error);
-                return;
+                return true;
             }
         };
         self.error = None;
@@ -236,7 +263,7 @@ impl Thumbnails {
             .filter_map(|index| self.pins.get(*index).cloned())
             .collect();
         if layout != self.layout {
-            return;
+            return true;
         }
         let (width, height) = layout.size();
         let image = egui::ColorImage::from_rgba_unmultiplied(
@@ -261,6 +288,7 @@ impl Thumbnails {
             }
         }
         self.pixels = pixels;
+        true
     }
 
     /// The output pins that have a tile, in tile order.
@@ -318,9 +346,11 @@ pub fn tile_params(
     index: usize,
 ) -> Vec<[f32; 4]> {
     let mut tile = values.to_vec();
+    let selected = selectors.get(index);
+    let selectors: rustc_hash::FxHashSet<&NodeId> = selectors.iter().collect();
     for (slot, param) in slots.iter().enumerate() {
-        if let Some(k) = selectors.iter().position(|s| *s == param.node) {
-            tile[slot][0] = if k == index { 1.0 } else { 0.0 };
+        if selectors.contains(&param.node) {
+            tile[slot][0] = if selected == Some(&param.node) { 1.0 } else { 0.0 };
         }
     }
     tile
@@ -342,31 +372,18 @@ pub fn placement(graph: &Graph) -> FlatRect {
 
 /// What a tile shows depends on: its pin, the nodes upstream of it (kinds, settings,
 /// constants) and the wires between them, the code, the placement, and the time when
-/// some node upstream reads it.
+/// some node upstream reads it — `upstream` holds all but the pin, code and placement.
 fn tile_key(
-    graph: &Graph,
-    reads: &BTreeMap<NodeId, Vec<NodeId>>,
+    upstream: &rustc_hash::FxHashMap<NodeId, u64>,
     pin: &PinRef,
     generation: u64,
     rect: FlatRect,
-    time: f32,
 ) -> u64 {
     let mut hasher = std::collections::hash_map::DefaultHasher::new();
     pin.hash(&mut hasher);
     generation.hash(&mut hasher);
     format!("{rect:?}").hash(&mut hasher);
-    let nodes = upstream(reads, pin.node);
-    for id in &nodes {
-        if let Some(node) = graph.node(*id) {
-            format!("{:?}{:?}", node.kind, node.inputs).hash(&mut hasher);
-            if node.kind == NodeKind::Time {
-                time.to_bits().hash(&mut hasher);
-            }
-        }
-    }
-    for wire in graph.wires.iter().filter(|w| nodes.contains(&w.to.node)) {
-        wire.hash(&mut hasher);
-    }
+    upstream.get(&pin.node).hash(&mut hasher);
     hasher.finish()
 }
 

@@ -19,7 +19,7 @@ use crate::graph::{self, CheckError, Graph, NodeId, NodeKind, Preview};
 use crate::nodes::emit::{self, Emit};
 use naming::Namer;
 use parts::Block;
-use rustc_hash::FxHashSet;
+use rustc_hash::{FxHashMap, FxHashSet};
 use std::ops::Range;
 
 /// How unconnected inputs appear in generated WGSL.
@@ -31,8 +31,19 @@ pub enum ParamMode {
     /// As slots of one uniform block, `veneer_params` at `@group(1) @binding(0)`: every
     /// parameter is one `vec4f` (a float in `.x`, a vec2 in `.xy`, a vec3 or colour in
     /// `.xyz`), in the order of [`WgslModule::params`]. Editing a value then only means
-    /// rewriting the buffer (the editor's live preview).
+    /// rewriting the buffer.
     Uniform,
+    /// The slots of [`ParamMode::Uniform`], laid out the same way, in a read-only storage
+    /// buffer at the same binding: no size limit (a uniform block holds 4,096 slots at the
+    /// least a device must offer), so the editor's live preview takes graphs of any size.
+    Storage,
+}
+
+impl ParamMode {
+    /// Whether parameters are slots of a buffer rather than literals.
+    pub fn has_slots(self) -> bool {
+        self != ParamMode::Baked
+    }
 }
 
 /// One parameter slot of a uniform-mode module.
@@ -46,10 +57,13 @@ pub struct ParamSlot {
 /// The values of a uniform-mode module's parameters for `graph`, one `vec4f` per slot:
 /// the node's constant for the pin, or the pin's default.
 pub fn param_values(graph: &Graph, slots: &[ParamSlot]) -> Vec<[f32; 4]> {
+    // Looked up by id: graphs of thousands of nodes have thousands of slots.
+    let nodes: FxHashMap<NodeId, &graph::Node> =
+        graph.nodes.iter().map(|node| (node.id, node)).collect();
     slots
         .iter()
         .map(|slot| {
-            let value = graph.node(slot.node).and_then(|node| {
+            let value = nodes.get(&slot.node).and_then(|node| {
                 let pin = node.kind.signature().input(slot.pin).map(|(_, pin)| *pin)?;
                 match (node.inputs.get(slot.pin), pin.default) {
                     (Some(value), _) => Some(value.convert(slot.ty)),
@@ -315,8 +329,8 @@ fn fold(checked: &graph::check::CheckedNode, from: &[Option<&Emitted>]) -> Optio
         .then_some(values)
 }
 
-/// The uniform block of a uniform-mode module, with its layout spelled out.
-fn params_block(graph: &CheckedGraph, params: &[ParamSlot]) -> String {
+/// The parameter block of a module with slots (uniform or storage), its layout spelled out.
+fn params_block(graph: &CheckedGraph, params: &[ParamSlot], mode: ParamMode) -> String {
     let mut text = String::from(
         "\n// Parameters: one vec4f per slot (float in .x, vec2 in .xy, vec3/colour in .xyz).\n",
     );
@@ -333,8 +347,9 @@ fn params_block(graph: &CheckedGraph, params: &[ParamSlot]) -> String {
         ));
     }
     text.push_str(&format!(
-        "struct veneer_parameters {{\n    values: array<vec4f, {}>,\n}}\n\n@group(1) @binding(0) var<uniform> veneer_params: veneer_parameters;\n",
-        params.len()
+        "struct veneer_parameters {{\n    values: array<vec4f, {}>,\n}}\n\n@group(1) @binding(0) var<{}> veneer_params: veneer_parameters;\n",
+        params.len(),
+        if mode == ParamMode::Storage { "storage, read" } else { "uniform" }
     ));
     text
 }
@@ -396,7 +411,7 @@ pub fn compile_checked(
             .zip(&checked.signature.inputs)
             .zip(&from)
             .map(|((source, pin), from)| {
-                let slots = (mode == ParamMode::Uniform).then_some(&mut params);
+                let slots = mode.has_slots().then_some(&mut params);
                 input_expression(source, pin, node.id, *from, slots)
             })
             .collect();
@@ -467,7 +482,7 @@ pub fn compile_checked(
         source.push('\n');
     }
     if !params.is_empty() {
-        source.push_str(&params_block(graph, &params));
+        source.push_str(&params_block(graph, &params, mode));
     }
     let mut family = "";
     for item in &items {

@@ -104,8 +104,8 @@ pub fn mesh_with_fields(
 pub fn baked_parameters(compiled: &Compiled) -> Result<(), RenderError> {
     match compiled.options.params {
         ParamMode::Baked => Ok(()),
-        ParamMode::Uniform => Err(RenderError::Invalid(
-            "the material was compiled with its parameters in a uniform block; renders and bakes take baked parameters".into(),
+        ParamMode::Uniform | ParamMode::Storage => Err(RenderError::Invalid(
+            "the material was compiled with its parameters in a buffer; renders and bakes take baked parameters".into(),
         )),
     }
 }

@@ -169,9 +169,11 @@ const SAMPLES: u32 = 4;
 const ENTRY_POINTS: &str = include_str!("../../shaders/render_mesh.wgsl");
 const DISPLACED_ENTRY_POINT: &str = include_str!("../../shaders/render_mesh_displaced.wgsl");
 
-/// Multisampled colour and depth targets plus the resolved image, of one size.
+/// Colour and depth targets of one size and sample count, plus the resolved image.
 pub struct MeshTarget {
-    multisampled: wgpu::TextureView,
+    /// The multisampled colour target (`None` with one sample: the pass draws straight
+    /// into the resolved image).
+    multisampled: Option<wgpu::TextureView>,
     depth: wgpu::TextureView,
     /// The resolved image (sampled by the editor, read back by headless renders).
     pub resolved: wgpu::Texture,
@@ -179,8 +181,14 @@ pub struct MeshTarget {
 }
 
 impl MeshTarget {
-    /// Targets of `width`×`height` pixels.
+    /// Targets of `width`×`height` pixels with the headless renders' 4× multisampling.
     pub fn new(device: &wgpu::Device, width: u32, height: u32) -> MeshTarget {
+        MeshTarget::with_samples(device, width, height, SAMPLES)
+    }
+
+    /// Targets of `width`×`height` pixels and `samples` samples a pixel (1 or 4), for a
+    /// pipeline built with the same count.
+    pub fn with_samples(device: &wgpu::Device, width: u32, height: u32, samples: u32) -> MeshTarget {
         let texture = |label, format, samples, usage| {
             device.create_texture(&wgpu::TextureDescriptor {
                 label: Some(label),
@@ -202,9 +210,11 @@ impl MeshTarget {
             attachment | wgpu::TextureUsages::COPY_SRC | wgpu::TextureUsages::TEXTURE_BINDING;
         let resolved = texture("mesh resolved", COLOR_FORMAT, 1, readable);
         MeshTarget {
-            multisampled: texture("mesh colour", COLOR_FORMAT, SAMPLES, attachment)
-                .create_view(&Default::default()),
-            depth: texture("mesh depth", DEPTH_FORMAT, SAMPLES, attachment)
+            multisampled: (samples > 1).then(|| {
+                texture("mesh colour", COLOR_FORMAT, samples, attachment)
+                    .create_view(&Default::default())
+            }),
+            depth: texture("mesh depth", DEPTH_FORMAT, samples, attachment)
                 .create_view(&Default::default()),
             resolved_view: resolved.create_view(&Default::default()),
             resolved,
@@ -235,6 +245,19 @@ impl MeshPipeline {
         material_wgsl: &str,
         param_slots: usize,
         uses: SurfaceUse,
+    ) -> Result<MeshPipeline, RenderError> {
+        MeshPipeline::with_samples(device, material_wgsl, param_slots, uses, SAMPLES)
+    }
+
+    /// [`MeshPipeline::new`] for targets of `samples` samples a pixel (1 or 4; see
+    /// [`MeshTarget::with_samples`]). The parameter buffer binds as a uniform block or
+    /// as a storage buffer, as the module declares it.
+    pub fn with_samples(
+        device: &wgpu::Device,
+        material_wgsl: &str,
+        param_slots: usize,
+        uses: SurfaceUse,
+        samples: u32,
     ) -> Result<MeshPipeline, RenderError> {
         let displaced = uses.displacement;
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
@@ -278,7 +301,7 @@ impl MeshPipeline {
                 bias: Default::default(),
             }),
             multisample: wgpu::MultisampleState {
-                count: SAMPLES,
+                count: samples,
                 ..Default::default()
             },
             fragment: Some(wgpu::FragmentState {
@@ -297,7 +320,9 @@ impl MeshPipeline {
             device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),
                 size: size as u64,
-                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                usage: wgpu::BufferUsages::UNIFORM
+                    | wgpu::BufferUsages::STORAGE
+                    | wgpu::BufferUsages::COPY_DST,
                 mapped_at_creation: false,
             })
         };
@@ -371,12 +396,19 @@ impl MeshPipeline {
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("mesh"),
             color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: &target.multisampled,
+                view: target.multisampled.as_ref().unwrap_or(&target.resolved_view),
                 depth_slice: None,
-                resolve_target: Some(&target.resolved_view),
+                resolve_target: target
+                    .multisampled
+                    .as_ref()
+                    .map(|_| &target.resolved_view),
                 ops: wgpu::Operations {
                     load: wgpu::LoadOp::Clear(wgpu::Color { r, g, b, a: 1.0 }),
-                    store: wgpu::StoreOp::Discard,
+                    store: if target.multisampled.is_some() {
+                        wgpu::StoreOp::Discard
+                    } else {
+                        wgpu::StoreOp::Store
+                    },
                 },
             })],
             depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {

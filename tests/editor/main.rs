@@ -8,5 +8,6 @@ mod files;
 mod geotextures;
 mod navigation;
 mod real_window;
+mod responsiveness;
 mod support;
 mod thumbnails;

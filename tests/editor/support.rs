@@ -29,9 +29,33 @@ pub fn editor(dir: &Path, graph: Option<PathBuf>) -> Harness<'static, VeneerApp>
     harness
 }
 
-/// The rendered window.
+/// The rendered window, once the previews (drawn on their own thread) show what was
+/// last asked of them.
 pub fn screen(harness: &mut Harness<'static, VeneerApp>) -> image::RgbaImage {
+    settle_previews(harness);
     harness.render().expect("the window renders")
+}
+
+/// Steps the editor until its previews show, at full quality, what was last asked of
+/// them (at most a minute: the software rasteriser compiles slowly).
+pub fn settle_previews(harness: &mut Harness<'static, VeneerApp>) {
+    settle_previews_within(harness, 60);
+}
+
+/// [`settle_previews`], waiting at most `seconds`.
+pub fn settle_previews_within(harness: &mut Harness<'static, VeneerApp>, seconds: u64) {
+    let started = std::time::Instant::now();
+    // One step posts what the last frame changed; settled means drawn and taken in.
+    harness.step();
+    while !harness.state().preview_settled() {
+        assert!(
+            started.elapsed() < std::time::Duration::from_secs(seconds),
+            "the preview did not catch up within {seconds} s"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(5));
+        harness.step();
+    }
+    harness.step();
 }
 
 /// Pixels of the preview panel (the right side, above the controls).

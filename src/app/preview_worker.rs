@@ -1,0 +1,232 @@
+//! The thread that draws the editor's previews (the material on its mesh, and the
+//! selected node's output) on a wgpu device of its own. The UI thread only posts what
+//! to draw and shows the newest image that came back, so a driver compiling a new
+//! pipeline, or a slow frame, never holds up a click: the last good image stays on
+//! screen meanwhile. Each preview keeps one request waiting at most — a newer one
+//! replaces it — so the thread always draws the latest state.
+
+use crate::mesh::Mesh;
+use crate::render::{GpuContext, LiveMaterialCode, LiveRenderer, MeshView, Quality};
+use std::sync::mpsc::{Receiver, Sender, channel};
+use std::sync::{Arc, Condvar, Mutex};
+
+/// Which preview a request is for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Slot {
+    /// The material on the preview mesh.
+    Main = 0,
+    /// The selected node's output, flat.
+    Node = 1,
+}
+
+/// The mesh a preview draws.
+#[derive(Clone)]
+pub struct MeshChoice {
+    /// What identifies it: a primitive's name, a file's path, or the solved mesh's key.
+    pub key: String,
+    /// The mesh itself, or `None` for the primitive `key` names (the sphere when `key`
+    /// names none), made on the drawing thread.
+    pub mesh: Option<Arc<Mesh>>,
+}
+
+impl PartialEq for MeshChoice {
+    fn eq(&self, other: &MeshChoice) -> bool {
+        self.key == other.key
+            && match (&self.mesh, &other.mesh) {
+                (Some(a), Some(b)) => Arc::ptr_eq(a, b),
+                (None, None) => true,
+                _ => false,
+            }
+    }
+}
+
+/// One frame to draw.
+#[derive(Clone, PartialEq)]
+pub struct Request {
+    pub material: LiveMaterialCode,
+    pub params: Arc<[[f32; 4]]>,
+    pub mesh: MeshChoice,
+    pub view: MeshView,
+    /// The preview's size in pixels (drafts draw at half of it).
+    pub size: (u32, u32),
+    pub quality: Quality,
+}
+
+/// A frame drawn, or why it could not be.
+pub struct Drawn {
+    pub slot: Slot,
+    /// The number the request was posted under.
+    pub id: u64,
+    /// How finely it was drawn.
+    pub quality: Quality,
+    pub image: Result<egui::ColorImage, String>,
+    /// Materials built so far for this slot.
+    pub materials_built: u64,
+}
+
+/// Requests waiting, one per slot, and whether the UI has gone.
+#[derive(Default)]
+struct Mailbox {
+    waiting: [Option<(u64, Request)>; 2],
+    closed: bool,
+}
+
+/// The UI thread's end: posts requests, receives frames; dropping it ends the thread.
+pub struct Worker {
+    mailbox: Arc<(Mutex<Mailbox>, Condvar)>,
+    drawn: Receiver<Drawn>,
+}
+
+impl Worker {
+    /// Starts the thread; `wake` is called after each frame (the UI repaints then).
+    pub fn start(wake: impl Fn() + Send + 'static) -> Worker {
+        let mailbox = Arc::new((Mutex::new(Mailbox::default()), Condvar::new()));
+        let (sender, drawn) = channel();
+        let shared = Arc::clone(&mailbox);
+        std::thread::Builder::new()
+            .name("veneer preview".into())
+            .spawn(move || run(&shared, &sender, wake))
+            .expect("the preview thread starts");
+        Worker { mailbox, drawn }
+    }
+
+    /// Posts `request` for `slot` under the number `id`, replacing one still waiting.
+    pub fn post(&self, slot: Slot, id: u64, request: Request) {
+        let (lock, wakeup) = &*self.mailbox;
+        if let Ok(mut mailbox) = lock.lock() {
+            mailbox.waiting[slot as usize] = Some((id, request));
+            wakeup.notify_one();
+        }
+    }
+
+    /// Frames drawn since the last call.
+    pub fn drawn(&self) -> Vec<Drawn> {
+        self.drawn.try_iter().collect()
+    }
+}
+
+impl Drop for Worker {
+    fn drop(&mut self) {
+        let (lock, wakeup) = &*self.mailbox;
+        if let Ok(mut mailbox) = lock.lock() {
+            mailbox.closed = true;
+            wakeup.notify_one();
+        }
+    }
+}
+
+/// What the thread does next.
+enum Task {
+    Draw(Slot, u64, Request),
+    /// Nothing waits: build the draft pipeline of the material just drawn, so that the
+    /// first drag after an edit does not wait for it.
+    Prepare(Slot, LiveMaterialCode),
+}
+
+fn run(mailbox: &(Mutex<Mailbox>, Condvar), drawn: &Sender<Drawn>, wake: impl Fn()) {
+    let gpu = GpuContext::new().map_err(|error| error.to_string());
+    let mut renderers = [LiveRenderer::default(), LiveRenderer::default()];
+    let mut primitives: [Option<(String, Arc<Mesh>)>; 2] = [None, None];
+    let mut idle: Option<(Slot, LiveMaterialCode)> = None;
+    while let Some(task) = next_task(mailbox, &mut idle) {
+        match task {
+            Task::Draw(slot, id, request) => {
+                let renderer = &mut renderers[slot as usize];
+                let image = gpu.as_ref().map_err(Clone::clone).and_then(|gpu| {
+                    let mesh = resolve(&mut primitives[slot as usize], &request.mesh);
+                    draw(gpu, renderer, &request, &mesh)
+                });
+                if image.is_ok() && request.quality == Quality::Full {
+                    idle = Some((slot, request.material.clone()));
+                }
+                let reply = Drawn {
+                    slot,
+                    id,
+                    quality: request.quality,
+                    image,
+                    materials_built: renderer.materials_built,
+                };
+                if drawn.send(reply).is_err() {
+                    return;
+                }
+                wake();
+            }
+            Task::Prepare(slot, material) => {
+                if let Ok(gpu) = &gpu {
+                    // A failure shows when a draft is drawn.
+                    let _ = renderers[slot as usize].prepare(gpu, &material, Quality::Draft);
+                }
+            }
+        }
+    }
+}
+
+/// Waits for a request (slot order) or, with none waiting, hands out the idle task;
+/// `None` once the UI has gone.
+fn next_task(
+    mailbox: &(Mutex<Mailbox>, Condvar),
+    idle: &mut Option<(Slot, LiveMaterialCode)>,
+) -> Option<Task> {
+    let (lock, wakeup) = mailbox;
+    let mut waiting = lock.lock().ok()?;
+    loop {
+        if waiting.closed {
+            return None;
+        }
+        for slot in [Slot::Main, Slot::Node] {
+            if let Some((id, request)) = waiting.waiting[slot as usize].take() {
+                return Some(Task::Draw(slot, id, request));
+            }
+        }
+        if let Some((slot, material)) = idle.take() {
+            return Some(Task::Prepare(slot, material));
+        }
+        waiting = wakeup.wait(waiting).ok()?;
+    }
+}
+
+/// The mesh `choice` names, making a primitive only when the name changes.
+fn resolve(cache: &mut Option<(String, Arc<Mesh>)>, choice: &MeshChoice) -> Arc<Mesh> {
+    if let Some(mesh) = &choice.mesh {
+        return Arc::clone(mesh);
+    }
+    if let Some((key, mesh)) = cache.as_ref()
+        && *key == choice.key
+    {
+        return Arc::clone(mesh);
+    }
+    let mesh = crate::mesh::primitive(&choice.key)
+        .or_else(|| crate::mesh::primitive("sphere"))
+        .expect("the sphere exists");
+    let mesh = Arc::new(mesh);
+    *cache = Some((choice.key.clone(), Arc::clone(&mesh)));
+    mesh
+}
+
+fn draw(
+    gpu: &GpuContext,
+    renderer: &mut LiveRenderer,
+    request: &Request,
+    mesh: &Mesh,
+) -> Result<egui::ColorImage, String> {
+    let (size, mut pixels) = renderer
+        .render(
+            gpu,
+            &request.material,
+            &request.params,
+            &request.mesh.key,
+            mesh,
+            &request.view,
+            request.size,
+            request.quality,
+        )
+        .map_err(|error| error.to_string())?;
+    // The preview is opaque whatever alpha the material has (holes show the background).
+    for pixel in pixels.chunks_exact_mut(4) {
+        pixel[3] = 255;
+    }
+    Ok(egui::ColorImage::from_rgba_premultiplied(
+        [size.0 as usize, size.1 as usize],
+        &pixels,
+    ))
+}

@@ -1,0 +1,144 @@
+//! Keeping the document in step with the graph view after each frame's panels, and
+//! measuring where the main thread's time goes. Whole-graph work happens only on frames
+//! where the user may have edited (input arrived) and, past the cheap comparison that
+//! finds an edit, only when something changed: each change bumps the graph's revision,
+//! and the compile, the lint, the thumbnails, the undo history and the title follow it.
+
+use super::VeneerApp;
+use super::graph_view::graph_from_snarl;
+use crate::graph::{Graph, NodeId};
+use std::time::{Duration, Instant};
+
+/// The graph's revision: bumped on every change, and the revision each follower (the
+/// compile, the lint, the undo history) last took in.
+#[derive(Default)]
+pub(super) struct Revision {
+    pub number: u64,
+    /// Frames that read the graph view back (for tests: idle frames never do).
+    pub reads: u64,
+    /// The graph at `number`, to tell a change from a frame that changed nothing.
+    seen: Graph,
+    /// The revision compiled, and with which noise detail (a setting of the preview's).
+    compiled: Option<(u64, bool)>,
+    linted: u64,
+    committed: u64,
+}
+
+/// Where the main thread's time went in one frame of the editor.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct FrameProfile {
+    /// The whole of [`eframe::App::ui`]: laying out the panels and everything below.
+    pub total: Duration,
+    /// Reading the graph view back into the document and finding whether it changed.
+    pub sync: Duration,
+    /// Deciding whether to recompile, and recompiling.
+    pub compile: Duration,
+    pub lint: Duration,
+    /// Bringing the node thumbnails in step (the drawing is on another thread).
+    pub thumbnails: Duration,
+    /// Undo history, title and autosave.
+    pub history: Duration,
+}
+
+impl FrameProfile {
+    /// The time spent laying out and drawing the panels (egui and egui-snarl): the
+    /// whole frame less the document's upkeep.
+    pub fn panels(&self) -> Duration {
+        self.total
+            .saturating_sub(self.sync + self.compile + self.lint + self.thumbnails + self.history)
+    }
+}
+
+/// Whether the user may have edited this frame: input other than pointer movement
+/// arrived, or a button is held or was let go (drags, clicks). Repaints for animation,
+/// the previews or thumbnails coming back do no whole-graph work.
+fn may_edit(ctx: &egui::Context) -> bool {
+    ctx.input(|input| {
+        input.pointer.any_down()
+            || input.pointer.any_released()
+            || input.events.iter().any(|event| {
+                !matches!(
+                    event,
+                    egui::Event::PointerMoved(_) | egui::Event::MouseMoved(_)
+                )
+            })
+    })
+}
+
+impl VeneerApp {
+    /// After the panels: reads the edited graph back, recompiles if needed, commits undo
+    /// steps, autosaves (the frame's total is filled in when it ends).
+    pub(super) fn after_edits(&mut self, ctx: &egui::Context) {
+        let mut clock = Instant::now();
+        let mut lap = || {
+            let now = Instant::now();
+            std::mem::replace(&mut clock, now).elapsed()
+        };
+        let pointer_down = ctx.input(|input| input.pointer.any_down());
+        // The first frame takes in the graph the editor opened on.
+        if self.revision.number == 0 || may_edit(ctx) {
+            self.revision.reads += 1;
+            let graph = graph_from_snarl(&self.snarl, &self.document.graph);
+            if graph != self.document.graph {
+                self.document.graph = graph;
+            }
+            // Edits made to the document directly (fields, frames, picking, undo) too.
+            if self.document.graph != self.revision.seen {
+                self.revision.seen = self.document.graph.clone();
+                self.revision.number += 1;
+            }
+            // Saving (and undoing to what was saved) changes this without an edit.
+            self.dirty = self.document.is_dirty();
+        }
+        let revision = self.revision.number;
+        let sync = lap();
+        let compile_key = Some((revision, self.live.full_detail));
+        if self.revision.compiled != compile_key {
+            self.revision.compiled = compile_key;
+            self.live.update(&self.document.graph);
+        }
+        let compile = lap();
+        // The lint waits for a drag to end (it reads every constant).
+        if self.revision.linted != revision && !pointer_down {
+            self.revision.linted = revision;
+            self.live.lint(&self.document.graph);
+        }
+        let lint = lap();
+        let time = self.preview.view.time;
+        let hovered = self.hovered_wire.as_ref();
+        // Asked only of graphs with more nodes than tiles.
+        let visible = std::cell::OnceCell::new();
+        let on_screen = |node: NodeId| {
+            visible
+                .get_or_init(|| {
+                    let shown = self.navigation.on_screen();
+                    let ids = shown.filter_map(|id| self.snarl.get_node(id).map(|n| n.id));
+                    ids.collect::<rustc_hash::FxHashSet<NodeId>>()
+                })
+                .contains(&node)
+        };
+        let graph = &self.document.graph;
+        self.thumbnails
+            .update(ctx, graph, revision, hovered, time, &on_screen);
+        let thumbnails = lap();
+        if self.revision.committed != revision && !pointer_down {
+            self.revision.committed = revision;
+            self.document.history.commit(&self.document.graph);
+        }
+        let title = self.document.title(self.dirty);
+        if title != self.title {
+            ctx.send_viewport_cmd(egui::ViewportCommand::Title(title.clone()));
+            self.title = title;
+        }
+        self.autosave_tick(ctx);
+        let history = lap();
+        self.profile = FrameProfile {
+            total: Duration::ZERO,
+            sync,
+            compile,
+            lint,
+            thumbnails,
+            history,
+        };
+    }
+}

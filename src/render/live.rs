@@ -1,0 +1,162 @@
+//! The editor's live preview on the GPU: one material with its parameters in a buffer,
+//! drawn on one mesh into an RGBA8 image. Pipelines are kept per code generation, so
+//! parameter, camera and time changes only rewrite buffers; drafts (while the user
+//! drags) draw at reduced resolution without multisampling, with a pipeline of their own.
+
+use super::mesh_view::{MeshPipeline, MeshTarget, MeshView};
+use super::readback::read_texture;
+use super::{GpuContext, GpuMesh, RenderError};
+use crate::codegen::SurfaceUse;
+use crate::mesh::Mesh;
+use std::sync::Arc;
+
+/// How finely a live frame is drawn.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Quality {
+    /// While something is being dragged: half the resolution each way, one sample.
+    Draft,
+    /// At rest: full resolution, 4× multisampled, as `veneer render` draws.
+    Full,
+}
+
+impl Quality {
+    /// Samples a pixel.
+    fn samples(self) -> u32 {
+        match self {
+            Quality::Draft => 1,
+            Quality::Full => 4,
+        }
+    }
+
+    /// The image size drawn for a view of `size` pixels.
+    pub fn scaled(self, size: (u32, u32)) -> (u32, u32) {
+        match self {
+            Quality::Draft => (size.0.div_ceil(2).max(1), size.1.div_ceil(2).max(1)),
+            Quality::Full => (size.0.max(1), size.1.max(1)),
+        }
+    }
+}
+
+/// The material a live frame draws; two are the same material when their generations
+/// (and so their code) are.
+#[derive(Clone, Debug)]
+pub struct LiveMaterialCode {
+    /// Changes whenever `wgsl` does (a new pipeline is built then).
+    pub generation: u64,
+    /// The module, with its parameters in a buffer (uniform or storage).
+    pub wgsl: Arc<str>,
+    /// Its parameter slots.
+    pub slots: usize,
+    /// What of the surface it uses (height, bump, fields).
+    pub uses: SurfaceUse,
+}
+
+impl PartialEq for LiveMaterialCode {
+    fn eq(&self, other: &LiveMaterialCode) -> bool {
+        // The generation changes with the code: no need to compare the code itself.
+        self.generation == other.generation && self.slots == other.slots
+    }
+}
+
+/// Draws live frames; keeps the pipelines of the newest material, the uploaded mesh and
+/// the targets between frames.
+#[derive(Default)]
+pub struct LiveRenderer {
+    /// The newest material's generation and its pipelines by quality (draft, full),
+    /// each built when first needed.
+    pipelines: Option<(u64, [Option<MeshPipeline>; 2])>,
+    mesh: Option<(String, GpuMesh)>,
+    target: Option<(Quality, MeshTarget)>,
+    /// Materials whose (first) pipeline was built, for tests and the status bar.
+    pub materials_built: u64,
+}
+
+impl LiveRenderer {
+    /// Draws `mesh` (uploaded again only when `mesh_key` changes) with `material` and
+    /// `params` as `view` sees it, at `size` pixels scaled by `quality`; returns the
+    /// image's size and its RGBA8 rows from the top.
+    #[allow(clippy::too_many_arguments)]
+    pub fn render(
+        &mut self,
+        gpu: &GpuContext,
+        material: &LiveMaterialCode,
+        params: &[[f32; 4]],
+        mesh_key: &str,
+        mesh: &Mesh,
+        view: &MeshView,
+        size: (u32, u32),
+        quality: Quality,
+    ) -> Result<((u32, u32), Vec<u8>), RenderError> {
+        let (width, height) = quality.scaled(size);
+        self.prepare(gpu, material, quality)?;
+        if self.mesh.as_ref().is_none_or(|(key, _)| key != mesh_key) {
+            self.mesh = Some((mesh_key.to_string(), GpuMesh::new(&gpu.device, mesh)));
+        }
+        let fits = self.target.as_ref().is_some_and(|(kind, target)| {
+            *kind == quality && target.size() == (width, height)
+        });
+        if !fits {
+            let target = MeshTarget::with_samples(&gpu.device, width, height, quality.samples());
+            self.target = Some((quality, target));
+        }
+        let pipeline = self.pipeline(quality).expect("prepared above");
+        let (_, gpu_mesh) = self.mesh.as_ref().expect("uploaded above");
+        let (_, target) = self.target.as_ref().expect("made above");
+        pipeline.write_view(&gpu.queue, view, width as f32 / height as f32);
+        pipeline.write_params(&gpu.queue, params);
+        let mut encoder = gpu
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("live preview"),
+            });
+        pipeline.encode(&mut encoder, target, gpu_mesh, view.background);
+        gpu.queue.submit([encoder.finish()]);
+        let pixels = read_texture(gpu, &target.resolved, 4)?;
+        gpu.take_errors()?;
+        Ok(((width, height), pixels))
+    }
+
+    /// Builds the pipeline `material` needs at `quality` unless it is built already.
+    pub fn prepare(
+        &mut self,
+        gpu: &GpuContext,
+        material: &LiveMaterialCode,
+        quality: Quality,
+    ) -> Result<(), RenderError> {
+        if self
+            .pipelines
+            .as_ref()
+            .is_none_or(|(generation, _)| *generation != material.generation)
+        {
+            self.pipelines = Some((material.generation, [None, None]));
+        }
+        let (_, built) = self.pipelines.as_mut().expect("set above");
+        if built[quality as usize].is_none() {
+            let fresh = built.iter().all(Option::is_none);
+            built[quality as usize] = Some(MeshPipeline::with_samples(
+                &gpu.device,
+                &material.wgsl,
+                material.slots,
+                material.uses,
+                quality.samples(),
+            )?);
+            if fresh {
+                self.materials_built += 1;
+            }
+        }
+        Ok(())
+    }
+
+    /// Whether the newest material's pipeline for `quality` is built.
+    pub fn has_pipeline(&self, generation: u64, quality: Quality) -> bool {
+        self.pipelines
+            .as_ref()
+            .is_some_and(|(built, pipelines)| {
+                *built == generation && pipelines[quality as usize].is_some()
+            })
+    }
+
+    fn pipeline(&self, quality: Quality) -> Option<&MeshPipeline> {
+        self.pipelines.as_ref()?.1[quality as usize].as_ref()
+    }
+}
