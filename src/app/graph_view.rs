@@ -196,8 +196,8 @@ impl SnarlViewer<Node> for Viewer<'_> {
         snarl: &mut Snarl<Node>,
     ) {
         self.spots.borrow_mut().nodes.insert(node, rect);
-        // A node folded while off screen keeps the size it has open.
-        if snarl.get_node_info(node).is_some_and(|info| info.open) {
+        // A node drawn lightly far off screen keeps the size it has in full.
+        if !self.navigation.is_far(snarl, node) {
             self.navigation.measured(node, rect);
         }
         // Nodes live in a zoomed and panned layer; the pointer is in screen space.
@@ -290,11 +290,16 @@ impl SnarlViewer<Node> for Viewer<'_> {
         ui: &mut Ui,
         snarl: &mut Snarl<Node>,
     ) -> impl SnarlPin + 'static {
+        let far = self.navigation.is_far(snarl, pin.id.node);
         let node = &mut snarl[pin.id.node];
         let spec = node.kind.signature().inputs[pin.id.input];
-        ui.label(spec.name)
-            .on_hover_text(super::node_text::input_tip(&spec));
-        if pin.remotes.is_empty() {
+        if far {
+            ui.allocate_space(ui.spacing().interact_size);
+        } else {
+            ui.label(spec.name)
+                .on_hover_text(super::node_text::input_tip(&spec));
+        }
+        if pin.remotes.is_empty() && !far {
             match spec.default {
                 PinDefault::Const(_) => {
                     input_editor(ui, node, spec.name);
@@ -323,8 +328,12 @@ impl SnarlViewer<Node> for Viewer<'_> {
         snarl: &mut Snarl<Node>,
     ) -> impl SnarlPin + 'static {
         let spec = snarl[pin.id.node].kind.signature().outputs[pin.id.output];
-        ui.label(spec.name)
-            .on_hover_text(super::node_text::output_tip(&spec));
+        if self.navigation.is_far(snarl, pin.id.node) {
+            ui.allocate_space(ui.spacing().interact_size);
+        } else {
+            ui.label(spec.name)
+                .on_hover_text(super::node_text::output_tip(&spec));
+        }
         SpottedPin {
             info: PinInfo::circle()
                 .with_fill(type_color(spec.ty))

@@ -208,6 +208,11 @@ impl VeneerApp {
                 if entry(ui, &format!("{} Node thumbnails", if shown { "☑" } else { "☐" }), "T", true) {
                     self.thumbnails.enabled = !shown;
                 }
+                let rate = self.show_frame_rate;
+                let label = format!("{} Frame rate", if rate { "☑" } else { "☐" });
+                if entry(ui, &label, "", true) {
+                    self.show_frame_rate = !rate;
+                }
             });
         });
     }
@@ -272,6 +277,15 @@ impl VeneerApp {
                     counted(self.document.graph.nodes.len(), "node"),
                     counted(self.live.compiles as usize, "compile")
                 ));
+                if let Some(rate) = self.profile.rate().filter(|_| self.show_frame_rate) {
+                    let main = self.profile.total.as_secs_f64() * 1e3;
+                    ui.weak(format!("{rate:.0} fps · main thread {main:.1} ms ·"))
+                        .on_hover_text(
+                            "while the editor redraws continuously: frames a second, and the \
+                             time the main thread spends on each (the rest is painting the \
+                             window and waiting)",
+                        );
+                }
             });
         });
         if stale {

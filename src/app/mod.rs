@@ -122,6 +122,10 @@ pub struct VeneerApp {
     revision: sync::Revision,
     /// Where the main thread's time went in the last frame.
     pub profile: FrameProfile,
+    /// When the last frame began.
+    frame_started: Option<std::time::Instant>,
+    /// Whether the status bar shows the frame rate (View → Frame rate).
+    show_frame_rate: bool,
     /// Whether the document had unsaved changes at the last revision.
     dirty: bool,
 }
@@ -174,6 +178,8 @@ impl VeneerApp {
             title: String::new(),
             revision: Default::default(),
             profile: Default::default(),
+            frame_started: None,
+            show_frame_rate: false,
             dirty: false,
         };
         app.navigation.frame(Framing::Open);
@@ -378,9 +384,6 @@ impl VeneerApp {
         let modifiers =
             self.navigation
                 .before(ui.ctx(), ui.max_rect(), &self.snarl, &self.selection);
-        self.navigation.cull(&mut self.snarl);
-        // Folding and unfolding off-screen nodes is instant (it is not the user's).
-        ui.style_mut().animation_time = 0.0;
         let before = self.clicked.take();
         let mut viewer = Viewer {
             errors: &self.live.errors,
@@ -509,6 +512,9 @@ fn frames_editor(ui: &mut Ui, frames: &mut Vec<crate::graph::Frame>) {
 impl eframe::App for VeneerApp {
     fn ui(&mut self, ui: &mut Ui, _frame: &mut eframe::Frame) {
         let started = std::time::Instant::now();
+        if let Some(before) = self.frame_started.replace(started) {
+            self.profile.interval = started - before;
+        }
         let ctx = ui.ctx().clone();
         self.previews.receive(&ctx);
         self.shortcuts(&ctx);

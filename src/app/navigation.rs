@@ -36,10 +36,12 @@ const MARGIN: f32 = 30.0;
 const UNMEASURED: Vec2 = egui::vec2(240.0, 160.0);
 /// Pins stick out of a node's rectangle by about this much (graph units).
 const PIN_REACH: f32 = 10.0;
-/// Graphs of more nodes than this fold the nodes far off screen (see [`Navigation::cull`]).
-const CULL_FROM: usize = 200;
-/// How far around the screen nodes stay open, in screens (so that none is seen folded).
-const CULL_MARGIN: f32 = 0.5;
+/// Graphs of more nodes than this draw nodes far off screen lightly (see
+/// [`Navigation::is_far`]).
+const LIGHT_FROM: usize = 200;
+/// How far around the screen nodes are drawn in full, in screens (so that none is seen
+/// drawn lightly).
+const NEAR_MARGIN: f32 = 0.5;
 
 /// Frames a framing follows the nodes' sizes for: egui settles a node's size over its
 /// first frames, and thumbnails arrive after it.
@@ -72,9 +74,12 @@ pub struct Navigation {
     /// A left-drag that began on empty canvas is drawing a selection rectangle.
     selecting: bool,
     /// Every node's rectangle when last drawn, in graph coordinates.
-    rects: Vec<(egui_snarl::NodeId, Rect)>,
+    rects: std::collections::HashMap<egui_snarl::NodeId, Rect>,
     /// Where the graph is on screen (`None` before the first frame).
     viewport: Option<Rect>,
+    /// In a big graph, the part of it (graph coordinates) near enough to the screen to
+    /// be drawn in full.
+    near: Option<Rect>,
 }
 
 impl Navigation {
@@ -85,10 +90,7 @@ impl Navigation {
 
     /// Records where a node was drawn this frame (graph coordinates).
     pub fn measured(&mut self, node: egui_snarl::NodeId, rect: Rect) {
-        match self.rects.iter_mut().find(|(id, _)| *id == node) {
-            Some(entry) => entry.1 = rect,
-            None => self.rects.push((node, rect)),
-        }
+        self.rects.insert(node, rect);
     }
 
     /// Before the graph is shown: moves the view as the input and any framing ask, and
@@ -102,9 +104,13 @@ impl Navigation {
         snarl: &Snarl<Node>,
         selection: &[egui_snarl::NodeId],
     ) -> egui::Modifiers {
-        self.rects.retain(|(id, _)| snarl.get_node(*id).is_some());
+        self.rects.retain(|id, _| snarl.get_node(*id).is_some());
         self.viewport = Some(viewport);
         self.apply_framing(viewport, snarl, selection);
+        self.near = (snarl.node_ids().count() > LIGHT_FROM).then(|| {
+            let near = viewport.expand2(viewport.size() * NEAR_MARGIN);
+            self.transform.inverse() * near
+        });
         let (pointer, modifiers) = ctx.input(|input| (input.pointer.latest_pos(), input.modifiers));
         let on_canvas = pointer.filter(|pos| {
             viewport.contains(*pos)
@@ -142,30 +148,14 @@ impl Navigation {
         ctx.input_mut(|input| input.modifiers = modifiers);
     }
 
-    /// Folds the nodes of a big graph that are far off screen, and opens them again as
-    /// they come near, so that egui lays out only their headers: off-screen nodes cost
-    /// next to nothing. The fold is the view's alone (graph files do not keep it), and
-    /// graphs of up to [`CULL_FROM`] nodes are left as they are.
-    pub fn cull(&self, snarl: &mut Snarl<Node>) {
-        let Some(viewport) = self.viewport else {
-            return;
-        };
-        if snarl.node_ids().count() <= CULL_FROM {
-            return;
-        }
-        let near = viewport.expand2(viewport.size() * CULL_MARGIN);
-        let near = self.transform.inverse() * near;
-        let changes: Vec<(egui_snarl::NodeId, bool)> = snarl
-            .node_ids()
-            .filter_map(|(id, _)| {
-                let open = self.node_rect(snarl, id).is_some_and(|rect| near.intersects(rect));
-                let info = snarl.get_node_info(id)?;
-                (info.open != open).then_some((id, open))
-            })
-            .collect();
-        for (id, open) in changes {
-            snarl.open_node(id, open);
-        }
+    /// Whether node `id` is far off screen in a big graph: its pins are then drawn
+    /// without their labels and value fields, so that off-screen nodes cost next to
+    /// nothing (graphs of up to [`LIGHT_FROM`] nodes are always drawn in full).
+    pub fn is_far(&self, snarl: &Snarl<Node>, id: egui_snarl::NodeId) -> bool {
+        self.near.is_some_and(|near| {
+            self.node_rect(snarl, id)
+                .is_some_and(|rect| !near.intersects(rect))
+        })
     }
 
     /// The nodes whose rectangle, when last drawn, was at least partly on screen.
@@ -174,7 +164,7 @@ impl Navigation {
             .iter()
             .filter(|(_, rect)| {
                 self.viewport
-                    .is_some_and(|viewport| viewport.intersects(self.transform * *rect))
+                    .is_some_and(|viewport| viewport.intersects(self.transform * **rect))
             })
             .map(|(id, _)| *id)
     }
@@ -183,8 +173,8 @@ impl Navigation {
     fn node_at(&self, pos: Pos2) -> bool {
         let graph_pos = self.transform.inverse() * pos;
         self.rects
-            .iter()
-            .any(|(_, rect)| rect.expand(PIN_REACH).contains(graph_pos))
+            .values()
+            .any(|rect| rect.expand(PIN_REACH).contains(graph_pos))
     }
 
     /// The wheel (and Ctrl+wheel, pinch) zooms about the cursor, easing in.
@@ -298,11 +288,10 @@ impl Navigation {
 
     /// Where node `id` is in graph coordinates: as last drawn, or estimated.
     fn node_rect(&self, snarl: &Snarl<Node>, id: egui_snarl::NodeId) -> Option<Rect> {
-        let measured = self.rects.iter().find(|(node, _)| *node == id);
         let estimated = || {
             let info = snarl.get_node_info(id)?;
             Some(Rect::from_min_size(info.pos, UNMEASURED))
         };
-        measured.map(|(_, rect)| *rect).or_else(estimated)
+        self.rects.get(&id).copied().or_else(estimated)
     }
 }
