@@ -398,7 +398,9 @@ impl VeneerApp {
             spots: self.spots.clone(),
         };
         *self.spots.borrow_mut() = Default::default();
-        let widget = SnarlWidget::new().id_salt("graph");
+        // In big graphs nodes off screen are not laid out at all (our egui-snarl patch).
+        let big = self.snarl.node_ids().count() > navigation::BIG_GRAPH;
+        let widget = SnarlWidget::new().id_salt("graph").cull_offscreen(big);
         let response = widget.show(&mut self.snarl, &mut viewer, ui);
         self.wire_pointer(ui);
         self.navigation.after(ui.ctx(), modifiers);

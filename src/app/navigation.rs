@@ -37,8 +37,8 @@ const UNMEASURED: Vec2 = egui::vec2(240.0, 160.0);
 /// Pins stick out of a node's rectangle by about this much (graph units).
 const PIN_REACH: f32 = 10.0;
 /// Graphs of more nodes than this draw nodes far off screen lightly (see
-/// [`Navigation::is_far`]).
-const LIGHT_FROM: usize = 200;
+/// [`Navigation::is_far`]), and skip the nodes off screen.
+pub const BIG_GRAPH: usize = 200;
 /// How far around the screen nodes are drawn in full, in screens (so that none is seen
 /// drawn lightly).
 const NEAR_MARGIN: f32 = 0.5;
@@ -107,7 +107,7 @@ impl Navigation {
         self.rects.retain(|id, _| snarl.get_node(*id).is_some());
         self.viewport = Some(viewport);
         self.apply_framing(viewport, snarl, selection);
-        self.near = (snarl.node_ids().count() > LIGHT_FROM).then(|| {
+        self.near = (snarl.node_ids().count() > BIG_GRAPH).then(|| {
             let near = viewport.expand2(viewport.size() * NEAR_MARGIN);
             self.transform.inverse() * near
         });
@@ -150,7 +150,7 @@ impl Navigation {
 
     /// Whether node `id` is far off screen in a big graph: its pins are then drawn
     /// without their labels and value fields, so that off-screen nodes cost next to
-    /// nothing (graphs of up to [`LIGHT_FROM`] nodes are always drawn in full).
+    /// nothing (graphs of up to [`BIG_GRAPH`] nodes are always drawn in full).
     pub fn is_far(&self, snarl: &Snarl<Node>, id: egui_snarl::NodeId) -> bool {
         self.near.is_some_and(|near| {
             self.node_rect(snarl, id)
