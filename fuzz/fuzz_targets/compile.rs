@@ -77,6 +77,7 @@ fuzz_target!(|fuzz: FuzzGraph| {
     for (mode, detail) in [
         (ParamMode::Baked, Detail::Full),
         (ParamMode::Uniform, Detail::Footprint),
+        (ParamMode::Storage, Detail::Footprint),
     ] {
         let options = CompileOptions {
             params: mode,

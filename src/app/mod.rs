@@ -450,8 +450,11 @@ const FIELD_VIEW_GENERATIONS: u64 = 1 << 48;
 struct FrameCache {
     code: Option<(u64, Arc<str>)>,
     /// The values, for the code generation and graph revision they were worked out for.
-    params: Option<((u64, u64), Arc<[[f32; 4]]>)>,
+    params: Option<(ParamsKey, Arc<[[f32; 4]]>)>,
 }
+
+/// A code generation and a graph revision.
+type ParamsKey = (u64, u64);
 
 /// What a preview should draw this frame: `live`'s code and its parameter values for
 /// `graph` at `revision` (taken from `cache` while neither changed).

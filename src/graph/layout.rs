@@ -94,7 +94,7 @@ fn depths(graph: &Graph) -> BTreeMap<NodeId, usize> {
             else {
                 continue;
             };
-            if to < from + 1 && from + 1 <= graph.nodes.len() {
+            if to < from + 1 && from < graph.nodes.len() {
                 depth.insert(wire.to.node, from + 1);
                 changed = true;
             }

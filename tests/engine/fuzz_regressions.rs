@@ -43,6 +43,7 @@ fn graphs_that_crashed_the_compiler_compile_or_are_rejected_by_the_check() {
         for (mode, detail) in [
             (ParamMode::Baked, Detail::Full),
             (ParamMode::Uniform, Detail::Footprint),
+            (ParamMode::Storage, Detail::Footprint),
         ] {
             let options = CompileOptions {
                 params: mode,

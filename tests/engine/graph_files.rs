@@ -270,6 +270,28 @@ fn uniform_mode_turns_every_constant_into_a_slot_and_validates() {
 }
 
 #[test]
+fn storage_mode_has_the_uniform_modes_slots_in_a_storage_buffer() {
+    for path in crate::support::presets() {
+        let graph = veneer::graph::load(&path).expect("preset loads");
+        let compiled = |mode| {
+            compile(&graph, &CompileOptions::with_params(mode))
+                .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+                .module
+        };
+        let (uniform, storage) = (compiled(ParamMode::Uniform), compiled(ParamMode::Storage));
+        assert_eq!(storage.params, uniform.params, "{}", path.display());
+        let declaration = "@group(1) @binding(0) var<storage, read> veneer_params: veneer_parameters;";
+        assert!(storage.source.contains(declaration));
+        assert_eq!(
+            storage.source.replace("var<storage, read>", "var<uniform>"),
+            uniform.source,
+            "{}: only the declaration differs",
+            path.display()
+        );
+    }
+}
+
+#[test]
 fn constant_subgraphs_fold_to_literals_and_surface_reads_do_not() {
     let mut graph = Graph::default();
     let sum = graph.add(

@@ -79,6 +79,7 @@ fn large_materials_compile_to_part_functions_every_target_accepts() {
     for (mode, detail) in [
         (ParamMode::Baked, Detail::Full),
         (ParamMode::Uniform, Detail::Footprint),
+        (ParamMode::Storage, Detail::Footprint),
     ] {
         let options = veneer::codegen::CompileOptions {
             params: mode,
