@@ -92,6 +92,7 @@ impl VeneerApp {
                 egui::vec2(width, width.min(ui.available_height() * 0.55)),
             );
             self.pick_source(&response);
+            self.fields_warning(ui, response.rect);
         } else {
             ui.label("(no GPU: preview unavailable)");
         }
@@ -144,6 +145,23 @@ impl VeneerApp {
         if self.preview.playing {
             ui.ctx().request_repaint();
         }
+    }
+
+    /// Over the bottom of the preview: why the material's distance fields could not be
+    /// solved on this mesh (a GeoTexture then shows as if no front had reached anywhere,
+    /// which can look like an empty preview).
+    fn fields_warning(&self, ui: &mut Ui, preview: egui::Rect) {
+        let Some(error) = &self.fields.error else {
+            return;
+        };
+        let text = egui::RichText::new(format!("⚠ fields not solved on this mesh: {error}"))
+            .color(egui::Color32::from_rgb(255, 170, 120))
+            .background_color(egui::Color32::from_black_alpha(200));
+        let band = egui::Rect::from_min_max(
+            preview.left_bottom() - egui::vec2(-6.0, 48.0),
+            preview.right_bottom() - egui::vec2(6.0, 6.0),
+        );
+        ui.put(band, egui::Label::new(text).wrap());
     }
 
     /// Keeps the preview mesh's fields in step with the graph (solving in the background)

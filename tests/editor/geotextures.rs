@@ -68,3 +68,25 @@ fn fields_solve_for_the_preview_and_a_click_on_the_mesh_adds_a_source() {
         "the field view replaces the material"
     );
 }
+
+#[test]
+fn fields_that_cannot_be_solved_on_the_shown_mesh_are_said_over_the_preview() {
+    let dir = scratch("fields-elsewhere");
+    let graph = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("graphs/isolines.ron");
+    let mut harness = editor(&dir, Some(graph));
+    wait_for_fields(&mut harness);
+    assert!(!crate::support::shows(&harness, "fields not solved"));
+    // The cube has fewer vertices than the preset's sources are numbered on genus2.
+    harness.get_by_value("genus2").click_accesskit();
+    harness.run();
+    harness.get_by_label("cube").click_accesskit();
+    for _ in 0..200 {
+        harness.step();
+        if crate::support::shows(&harness, "fields not solved on this mesh") {
+            return;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    panic!("no word over the preview that the fields cannot be solved on the cube");
+}
+
