@@ -201,7 +201,10 @@ fn preview_draws(c: &mut Criterion) {
     ));
     group.sample_size(20);
     for (name, quality) in [
-        ("at rest: full resolution, 4× multisampled (baseline)", Quality::Full),
+        (
+            "at rest: full resolution, 4× multisampled (baseline)",
+            Quality::Full,
+        ),
         ("while dragging: a draft", Quality::Draft),
     ] {
         group.bench_function(name, |b| {
@@ -249,16 +252,37 @@ fn structural_edit(c: &mut Criterion) {
     group.sample_size(10);
     let (code, mut params) = live_code(&graph, 0);
     renderer
-        .render(&gpu, &code, &params, "mesh", &mesh, &view, size, Quality::Full)
+        .render(
+            &gpu,
+            &code,
+            &params,
+            "mesh",
+            &mesh,
+            &view,
+            size,
+            Quality::Full,
+        )
         .expect("draws");
-    group.bench_function("parameter edit: new values, the pipeline it has (baseline)", |b| {
-        b.iter(|| {
-            params[0][0] += 0.001;
-            renderer
-                .render(&gpu, &code, &params, "mesh", &mesh, &view, size, Quality::Full)
-                .expect("draws")
-        })
-    });
+    group.bench_function(
+        "parameter edit: new values, the pipeline it has (baseline)",
+        |b| {
+            b.iter(|| {
+                params[0][0] += 0.001;
+                renderer
+                    .render(
+                        &gpu,
+                        &code,
+                        &params,
+                        "mesh",
+                        &mesh,
+                        &view,
+                        size,
+                        Quality::Full,
+                    )
+                    .expect("draws")
+            })
+        },
+    );
     // Alternate between two structures so that every iteration really recompiles.
     let constant = graph.add(
         "specular level",
@@ -282,7 +306,16 @@ fn structural_edit(c: &mut Criterion) {
                 generation += 1;
                 let (code, params) = live_code(&graph, generation);
                 renderer
-                    .render(&gpu, &code, &params, "mesh", &mesh, &view, size, Quality::Full)
+                    .render(
+                        &gpu,
+                        &code,
+                        &params,
+                        "mesh",
+                        &mesh,
+                        &view,
+                        size,
+                        Quality::Full,
+                    )
                     .expect("draws")
             })
         },
@@ -298,23 +331,26 @@ fn ui_while_compiling(c: &mut Criterion) {
     let mut group = c.benchmark_group("editor: wood, the UI while a new material compiles");
     group.sample_size(10);
     let mut wired = false;
-    group.bench_function("the first frame after a structural edit (main thread)", |b| {
-        b.iter_custom(|edits| {
-            let mut total = Duration::ZERO;
-            for _ in 0..edits {
-                // Toggle the flat view's "every octave" detail: a recompile of the material.
-                wired = !wired;
-                harness.state_mut().live.full_detail = wired;
-                let started = Instant::now();
-                harness.event(egui::Event::PointerMoved(egui::pos2(300.0, 300.0)));
-                harness.step();
-                harness.step();
-                total += started.elapsed() / 2;
-                settle(&mut harness);
-            }
-            total
-        })
-    });
+    group.bench_function(
+        "the first frame after a structural edit (main thread)",
+        |b| {
+            b.iter_custom(|edits| {
+                let mut total = Duration::ZERO;
+                for _ in 0..edits {
+                    // Toggle the flat view's "every octave" detail: a recompile of the material.
+                    wired = !wired;
+                    harness.state_mut().live.full_detail = wired;
+                    let started = Instant::now();
+                    harness.event(egui::Event::PointerMoved(egui::pos2(300.0, 300.0)));
+                    harness.step();
+                    harness.step();
+                    total += started.elapsed() / 2;
+                    settle(&mut harness);
+                }
+                total
+            })
+        },
+    );
     group.finish();
 }
 
@@ -366,15 +402,18 @@ fn big_graphs_frames(c: &mut Criterion) {
     let graph = big_graphs::chain(10_000);
     let mut group = c.benchmark_group("editor: a 10,000-node chain");
     group.sample_size(10);
-    group.bench_function("open: check and compile it for the preview (main thread)", |b| {
-        b.iter(|| {
-            let mut live = LiveMaterial::in_storage();
-            live.update(&graph);
-            let module = &live.compiled.as_ref().expect("it compiles").module;
-            assert!(module.params.len() > veneer::app::UNIFORM_SLOTS);
-            live
-        })
-    });
+    group.bench_function(
+        "open: check and compile it for the preview (main thread)",
+        |b| {
+            b.iter(|| {
+                let mut live = LiveMaterial::in_storage();
+                live.update(&graph);
+                let module = &live.compiled.as_ref().expect("it compiles").module;
+                assert!(module.params.len() > veneer::app::UNIFORM_SLOTS);
+                live
+            })
+        },
+    );
     group.finish();
 }
 

@@ -60,10 +60,18 @@ fn wood_thumbnails(c: &mut Criterion) {
         b.iter(|| flat.render(&gpu, rect, TILE_PIXELS, 0.0).expect("renders"))
     });
     group.bench_function("refresh every tile", |b| {
-        b.iter(|| renderer.render(&gpu, layout, rect, 0.0, &tiles).expect("renders"))
+        b.iter(|| {
+            renderer
+                .render(&gpu, layout, rect, 0.0, &tiles)
+                .expect("renders")
+        })
     });
     group.bench_function("refresh after a value edit (3 tiles)", |b| {
-        b.iter(|| renderer.render(&gpu, layout, rect, 0.0, &reached).expect("renders"))
+        b.iter(|| {
+            renderer
+                .render(&gpu, layout, rect, 0.0, &reached)
+                .expect("renders")
+        })
     });
     group.finish();
 }

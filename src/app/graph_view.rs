@@ -98,7 +98,11 @@ pub fn next_node_id(snarl: &Snarl<Node>) -> NodeId {
 }
 
 /// Whether a wire from `from` to `to` would close a cycle (`from` already depends on `to`).
-pub(super) fn would_cycle(snarl: &Snarl<Node>, from: egui_snarl::NodeId, to: egui_snarl::NodeId) -> bool {
+pub(super) fn would_cycle(
+    snarl: &Snarl<Node>,
+    from: egui_snarl::NodeId,
+    to: egui_snarl::NodeId,
+) -> bool {
     let mut stack = vec![from];
     let mut seen = std::collections::BTreeSet::new();
     while let Some(node) = stack.pop() {
@@ -238,9 +242,9 @@ impl SnarlViewer<Node> for Viewer<'_> {
         let node = &snarl[id];
         let selected = self.selected == Some(id);
         ui.horizontal(|ui| {
-            let title = RichText::new(super::node_text::title(node))
-                .strong()
-                .size(super::navigation::title_size(self.navigation.transform.scaling));
+            let title = RichText::new(super::node_text::title(node)).strong().size(
+                super::navigation::title_size(self.navigation.transform.scaling),
+            );
             ui.label(if selected {
                 title.color(Color32::from_rgb(255, 190, 80))
             } else {
@@ -418,7 +422,11 @@ impl SnarlViewer<Node> for Viewer<'_> {
             ui.close();
         }
         let hidden = self.thumbnails.hidden.contains(&id);
-        let label = if hidden { "Show thumbnail" } else { "Hide thumbnail" };
+        let label = if hidden {
+            "Show thumbnail"
+        } else {
+            "Hide thumbnail"
+        };
         if ui.button(label).clicked() {
             if hidden {
                 self.thumbnails.hidden.remove(&id);

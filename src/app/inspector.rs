@@ -153,7 +153,10 @@ fn readers_of(
 ) -> std::collections::HashSet<egui_snarl::NodeId> {
     let mut readers: std::collections::HashMap<_, Vec<_>> = std::collections::HashMap::new();
     for (from, to) in snarl.wires() {
-        readers.entry(from.node).or_insert_with(Vec::new).push(to.node);
+        readers
+            .entry(from.node)
+            .or_insert_with(Vec::new)
+            .push(to.node);
     }
     let mut reached = std::collections::HashSet::new();
     let mut stack = vec![source];

@@ -84,7 +84,9 @@ impl LiveMaterial {
         };
         let mut result = compile(graph, &options);
         let slots = |result: &Result<Compiled, _>| {
-            result.as_ref().map_or(0, |c: &Compiled| c.module.params.len())
+            result
+                .as_ref()
+                .map_or(0, |c: &Compiled| c.module.params.len())
         };
         if self.storage && slots(&result) > UNIFORM_SLOTS {
             options.params = ParamMode::Storage;

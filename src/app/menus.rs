@@ -205,7 +205,12 @@ impl VeneerApp {
             });
             ui.menu_button("View", |ui| {
                 let shown = self.thumbnails.enabled;
-                if entry(ui, &format!("{} Node thumbnails", if shown { "☑" } else { "☐" }), "T", true) {
+                if entry(
+                    ui,
+                    &format!("{} Node thumbnails", if shown { "☑" } else { "☐" }),
+                    "T",
+                    true,
+                ) {
                     self.thumbnails.enabled = !shown;
                 }
                 let rate = self.show_frame_rate;

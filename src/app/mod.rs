@@ -328,7 +328,10 @@ impl VeneerApp {
 
     /// Where the pin `pin` (an output when `output`) was drawn last frame, on screen.
     pub fn pin_on_screen(&self, pin: &crate::graph::PinRef, output: bool) -> Option<egui::Pos2> {
-        let (id, node) = self.snarl.node_ids().find(|(_, node)| node.id == pin.node)?;
+        let (id, node) = self
+            .snarl
+            .node_ids()
+            .find(|(_, node)| node.id == pin.node)?;
         let signature = node.kind.signature();
         let spots = self.spots.borrow();
         let at = if output {

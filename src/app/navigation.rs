@@ -271,10 +271,7 @@ impl Navigation {
                 Framing::All | Framing::Selection => (fit.min(1.0), framed.center()),
                 Framing::Open if fit >= OPEN_ZOOM => (fit.min(1.0), framed.center()),
                 // Too big to read whole: the top-left corner at the legible zoom.
-                Framing::Open => (
-                    OPEN_ZOOM,
-                    framed.min + viewport.size() / (2.0 * OPEN_ZOOM),
-                ),
+                Framing::Open => (OPEN_ZOOM, framed.min + viewport.size() / (2.0 * OPEN_ZOOM)),
             };
             let scaling = scaling.clamp(*ZOOM_RANGE.start(), *ZOOM_RANGE.end());
             self.transform = TSTransform {

@@ -334,7 +334,14 @@ pub fn show(
     let (rect, response) = ui.allocate_exact_size(size, Sense::click_and_drag());
     steer(ui, state, &response);
     let request = material.map(|material| request(ui, state, material, rect));
-    draw(ui, previews, Slot::Main, request, rect, state.view.background);
+    draw(
+        ui,
+        previews,
+        Slot::Main,
+        request,
+        rect,
+        state.view.background,
+    );
     response
 }
 
@@ -353,7 +360,14 @@ pub fn thumbnail(
     flat.view.target = [0.0; 3];
     let (rect, response) = ui.allocate_exact_size(size, Sense::hover());
     let request = material.map(|material| request(ui, &flat, material, rect));
-    draw(ui, previews, Slot::Node, request, rect, flat.view.background);
+    draw(
+        ui,
+        previews,
+        Slot::Node,
+        request,
+        rect,
+        flat.view.background,
+    );
     response
 }
 
@@ -437,9 +451,16 @@ mod tests {
         }
         assert!((state.view.time - 2.0).abs() < 1e-4, "{}", state.view.time);
         state.tick(start + Duration::from_secs(5));
-        assert!((state.view.time - 2.25).abs() < 1e-4, "a stall adds a quarter second");
+        assert!(
+            (state.view.time - 2.25).abs() < 1e-4,
+            "a stall adds a quarter second"
+        );
         state.follow(&Preview::default());
-        assert_eq!((state.view.time, state.playing), (0.0, false), "a new graph starts at 0");
+        assert_eq!(
+            (state.view.time, state.playing),
+            (0.0, false),
+            "a new graph starts at 0"
+        );
     }
 
     #[test]
@@ -450,15 +471,27 @@ mod tests {
         state.view.yaw = 90.0;
         state.mesh = "cube".into();
         state.switch_camera();
-        assert_eq!(Camera::of(&state.view), default_camera(), "the cube starts afresh");
+        assert_eq!(
+            Camera::of(&state.view),
+            default_camera(),
+            "the cube starts afresh"
+        );
         state.view.distance = 7.0;
         state.flat = true;
         state.switch_camera();
-        assert_eq!(Camera::of(&state.view), default_camera(), "so does the flat view");
+        assert_eq!(
+            Camera::of(&state.view),
+            default_camera(),
+            "so does the flat view"
+        );
         state.flat = false;
         state.mesh = "sphere".into();
         state.switch_camera();
-        assert_eq!((state.view.distance, state.view.yaw), (1.0, 90.0), "the sphere's own");
+        assert_eq!(
+            (state.view.distance, state.view.yaw),
+            (1.0, 90.0),
+            "the sphere's own"
+        );
         state.reset_camera();
         assert_eq!(Camera::of(&state.view), default_camera());
         state.mesh = "cube".into();

@@ -64,10 +64,16 @@ pub fn upstream_hashes(graph: &Graph, time: f32) -> FxHashMap<NodeId, u64> {
 }
 
 /// `broken` and every node that reads one of them, directly or not.
-pub fn downstream_of(graph: &Graph, broken: &std::collections::BTreeSet<NodeId>) -> FxHashSet<NodeId> {
+pub fn downstream_of(
+    graph: &Graph,
+    broken: &std::collections::BTreeSet<NodeId>,
+) -> FxHashSet<NodeId> {
     let mut readers: FxHashMap<NodeId, Vec<NodeId>> = FxHashMap::default();
     for wire in &graph.wires {
-        readers.entry(wire.from.node).or_default().push(wire.to.node);
+        readers
+            .entry(wire.from.node)
+            .or_default()
+            .push(wire.to.node);
     }
     let mut reached: FxHashSet<NodeId> = FxHashSet::default();
     let mut stack: Vec<NodeId> = broken.iter().copied().collect();
@@ -114,11 +120,15 @@ mod tests {
     fn a_chain_of_a_hundred_thousand_nodes_is_walked_without_recursion() {
         let mut graph = Graph::default();
         let mut previous = NodeId(1);
-        graph.nodes.push(crate::graph::Node::new(previous, NodeKind::Position));
+        graph
+            .nodes
+            .push(crate::graph::Node::new(previous, NodeKind::Position));
         let mut pin = "position";
         for k in 0..100_000 {
             let next = NodeId(k + 2);
-            graph.nodes.push(crate::graph::Node::new(next, NodeKind::Transform));
+            graph
+                .nodes
+                .push(crate::graph::Node::new(next, NodeKind::Transform));
             graph.wires.push(crate::graph::Wire {
                 from: crate::graph::PinRef::new(previous, pin),
                 to: crate::graph::PinRef::new(next, "p"),

@@ -266,10 +266,8 @@ impl Thumbnails {
             return true;
         }
         let (width, height) = layout.size();
-        let image = egui::ColorImage::from_rgba_unmultiplied(
-            [width as usize, height as usize],
-            &pixels,
-        );
+        let image =
+            egui::ColorImage::from_rgba_unmultiplied([width as usize, height as usize], &pixels);
         let options = egui::TextureOptions::LINEAR;
         match &mut self.texture {
             Some(texture) if texture.size() == [width as usize, height as usize] => {
@@ -350,7 +348,11 @@ pub fn tile_params(
     let selectors: rustc_hash::FxHashSet<&NodeId> = selectors.iter().collect();
     for (slot, param) in slots.iter().enumerate() {
         if selectors.contains(&param.node) {
-            tile[slot][0] = if selected == Some(&param.node) { 1.0 } else { 0.0 };
+            tile[slot][0] = if selected == Some(&param.node) {
+                1.0
+            } else {
+                0.0
+            };
         }
     }
     tile

@@ -23,7 +23,11 @@ impl VeneerApp {
         });
         let (pressed, down, released) = ctx.input(|input| {
             let pointer = &input.pointer;
-            (pointer.primary_pressed(), pointer.primary_down(), pointer.primary_released())
+            (
+                pointer.primary_pressed(),
+                pointer.primary_down(),
+                pointer.primary_released(),
+            )
         });
         self.hovered_wire = None;
         let (Some(pointer), true) = (pointer, on_graph) else {

@@ -98,7 +98,9 @@ impl Spots {
             to_2,
             to,
         ];
-        (0..=48).map(|k| bezier(&controls, k as f32 / 48.0)).collect()
+        (0..=48)
+            .map(|k| bezier(&controls, k as f32 / 48.0))
+            .collect()
     }
 
     /// Where `pin` (of `node`) was drawn.

@@ -7,9 +7,7 @@ use super::formulas::fields::{front, isolines};
 use super::formulas::real::{Real, V3, splat};
 use super::formulas::shapes::mix3;
 use super::interval::{Interval, Lanes};
-use super::pins::{
-    FLOAT, InputPin, REQUIRED, Signature, f, input, output, splat as splat_default,
-};
+use super::pins::{FLOAT, InputPin, REQUIRED, Signature, f, input, output, splat as splat_default};
 use super::ranges::{Ranges, lanewise};
 use super::settings::{Basis, Setting, TYPES, choice};
 use super::value::ValueType;

@@ -92,9 +92,10 @@ impl LiveRenderer {
         if self.mesh.as_ref().is_none_or(|(key, _)| key != mesh_key) {
             self.mesh = Some((mesh_key.to_string(), GpuMesh::new(&gpu.device, mesh)));
         }
-        let fits = self.target.as_ref().is_some_and(|(kind, target)| {
-            *kind == quality && target.size() == (width, height)
-        });
+        let fits = self
+            .target
+            .as_ref()
+            .is_some_and(|(kind, target)| *kind == quality && target.size() == (width, height));
         if !fits {
             let target = MeshTarget::with_samples(&gpu.device, width, height, quality.samples());
             self.target = Some((quality, target));
@@ -149,11 +150,9 @@ impl LiveRenderer {
 
     /// Whether the newest material's pipeline for `quality` is built.
     pub fn has_pipeline(&self, generation: u64, quality: Quality) -> bool {
-        self.pipelines
-            .as_ref()
-            .is_some_and(|(built, pipelines)| {
-                *built == generation && pipelines[quality as usize].is_some()
-            })
+        self.pipelines.as_ref().is_some_and(|(built, pipelines)| {
+            *built == generation && pipelines[quality as usize].is_some()
+        })
     }
 
     fn pipeline(&self, quality: Quality) -> Option<&MeshPipeline> {

@@ -188,7 +188,12 @@ impl MeshTarget {
 
     /// Targets of `width`×`height` pixels and `samples` samples a pixel (1 or 4), for a
     /// pipeline built with the same count.
-    pub fn with_samples(device: &wgpu::Device, width: u32, height: u32, samples: u32) -> MeshTarget {
+    pub fn with_samples(
+        device: &wgpu::Device,
+        width: u32,
+        height: u32,
+        samples: u32,
+    ) -> MeshTarget {
         let texture = |label, format, samples, usage| {
             device.create_texture(&wgpu::TextureDescriptor {
                 label: Some(label),
@@ -396,12 +401,12 @@ impl MeshPipeline {
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("mesh"),
             color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: target.multisampled.as_ref().unwrap_or(&target.resolved_view),
-                depth_slice: None,
-                resolve_target: target
+                view: target
                     .multisampled
                     .as_ref()
-                    .map(|_| &target.resolved_view),
+                    .unwrap_or(&target.resolved_view),
+                depth_slice: None,
+                resolve_target: target.multisampled.as_ref().map(|_| &target.resolved_view),
                 ops: wgpu::Operations {
                     load: wgpu::LoadOp::Clear(wgpu::Color { r, g, b, a: 1.0 }),
                     store: if target.multisampled.is_some() {

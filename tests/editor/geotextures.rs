@@ -89,4 +89,3 @@ fn fields_that_cannot_be_solved_on_the_shown_mesh_are_said_over_the_preview() {
     }
     panic!("no word over the preview that the fields cannot be solved on the cube");
 }
-

@@ -55,7 +55,10 @@ fn the_ui_answers_while_a_new_material_compiles_on_the_preview_thread() {
         "the frame came back before the new pipeline was built"
     );
     let during = preview_pixels(&harness.render().expect("renders"));
-    assert_eq!(during, before, "the last good material stays on screen meanwhile");
+    assert_eq!(
+        during, before,
+        "the last good material stays on screen meanwhile"
+    );
     let after = preview_pixels(&screen(&mut harness));
     assert_eq!(harness.state().pipelines_built(), 2);
     assert_ne!(after, before, "then the new material shows");
@@ -94,7 +97,10 @@ fn a_drag_draws_drafts_without_recompiling_and_refines_when_let_go() {
         harness.step();
         std::thread::sleep(std::time::Duration::from_millis(5));
     }
-    assert!(!harness.state().preview_settled(), "a draft is not the full picture");
+    assert!(
+        !harness.state().preview_settled(),
+        "a draft is not the full picture"
+    );
     for _ in 0..40 {
         at.x += 1.0;
         harness.event(Event::PointerMoved(at));
@@ -104,7 +110,10 @@ fn a_drag_draws_drafts_without_recompiling_and_refines_when_let_go() {
     settle_previews(&mut harness);
     assert_eq!(harness.state().preview_quality(), Some(Quality::Full));
     assert_eq!(harness.state().live.compiles, 1, "a drag never recompiles");
-    assert!(harness.state().document.is_dirty(), "the drag changed the shininess");
+    assert!(
+        harness.state().document.is_dirty(),
+        "the drag changed the shininess"
+    );
 }
 
 #[test]

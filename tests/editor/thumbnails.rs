@@ -16,8 +16,7 @@ pub fn settle(harness: &mut Harness<'static, VeneerApp>) {
     let started = std::time::Instant::now();
     loop {
         harness.step();
-        if harness.state().thumbnails.settled() && !harness.state().thumbnails.pins().is_empty()
-        {
+        if harness.state().thumbnails.settled() && !harness.state().thumbnails.pins().is_empty() {
             // One more frame, so the node bodies show the last tiles that came in.
             harness.step();
             return;
@@ -89,7 +88,11 @@ fn expected(graph: &Graph, pin: &PinRef, ty: ValueType, i: u32, j: u32) -> [u8; 
     surface.uv = [u as f32, v as f32];
     let albedo = evaluator.eval(&surface).albedo;
     albedo.map(|c| {
-        let c = if ty == ValueType::Vec3 { c * 0.5 + 0.5 } else { c };
+        let c = if ty == ValueType::Vec3 {
+            c * 0.5 + 0.5
+        } else {
+            c
+        };
         (255.0 * c.clamp(0.0, 1.0)).round() as u8
     })
 }
@@ -143,7 +146,9 @@ fn each_node_shows_its_output_as_the_cpu_evaluates_it() {
     let side = TILE_PIXELS as f32 * harness.state().graph_to_screen().scaling;
     let orange = image
         .pixels()
-        .filter(|p| p.0[0].abs_diff(204) <= 2 && p.0[1].abs_diff(77) <= 2 && p.0[2].abs_diff(26) <= 2)
+        .filter(|p| {
+            p.0[0].abs_diff(204) <= 2 && p.0[1].abs_diff(77) <= 2 && p.0[2].abs_diff(26) <= 2
+        })
         .count();
     assert!(
         orange as f32 >= side * side * 0.9,
@@ -196,7 +201,11 @@ fn thumbnails_switch_off_per_node_and_all_at_once() {
     harness.run();
     harness.get_by_label("☐ Node thumbnails").click();
     settle(&mut harness);
-    assert_eq!(shown(&harness), [colour, split], "the hidden node stays hidden");
+    assert_eq!(
+        shown(&harness),
+        [colour, split],
+        "the hidden node stays hidden"
+    );
     node_menu(&mut harness, "where", "Show thumbnail");
     settle(&mut harness);
     assert_eq!(shown(&harness), [colour, position, split]);
@@ -207,7 +216,10 @@ fn downstream(graph: &Graph, changed: NodeId) -> BTreeSet<NodeId> {
     let mut reached = BTreeSet::from([changed]);
     let mut readers: BTreeMap<NodeId, Vec<NodeId>> = BTreeMap::new();
     for wire in &graph.wires {
-        readers.entry(wire.from.node).or_default().push(wire.to.node);
+        readers
+            .entry(wire.from.node)
+            .or_default()
+            .push(wire.to.node);
     }
     let mut stack = vec![changed];
     while let Some(node) = stack.pop() {
@@ -227,22 +239,42 @@ fn a_parameter_edit_redraws_only_the_tiles_it_reaches_without_recompiling() {
     settle(&mut harness);
     let app = harness.state();
     let tiles = app.thumbnails.pins().len();
-    assert_eq!(tiles, app.document.graph.nodes.len() - 1, "every node but the material");
-    assert_eq!(app.thumbnails.tiles_drawn, tiles as u64, "each drawn once on opening");
+    assert_eq!(
+        tiles,
+        app.document.graph.nodes.len() - 1,
+        "every node but the material"
+    );
+    assert_eq!(
+        app.thumbnails.tiles_drawn, tiles as u64,
+        "each drawn once on opening"
+    );
     let compiles = app.thumbnails.atlas.compiles;
     let graph = app.document.graph.clone();
-    let tint = graph.nodes.iter().find(|n| n.label == "tint amount").unwrap().id;
+    let tint = graph
+        .nodes
+        .iter()
+        .find(|n| n.label == "tint amount")
+        .unwrap()
+        .id;
 
     select_node(&mut harness, "tint amount");
     retype_drag_value(&mut harness, "0.10", "0.3");
     settle(&mut harness);
     let app = harness.state();
-    let redrawn: BTreeSet<NodeId> = app.thumbnails.last_drawn.iter().map(|pin| pin.node).collect();
+    let redrawn: BTreeSet<NodeId> = app
+        .thumbnails
+        .last_drawn
+        .iter()
+        .map(|pin| pin.node)
+        .collect();
     let mut reached = downstream(&graph, tint);
     reached.retain(|node| graph.node(*node).unwrap().kind != NodeKind::Material);
     assert_eq!(redrawn, reached, "tint amount, tint shade, wood colour");
     assert_eq!(app.thumbnails.tiles_drawn, (tiles + reached.len()) as u64);
-    assert_eq!(app.thumbnails.atlas.compiles, compiles, "a value edit never recompiles");
+    assert_eq!(
+        app.thumbnails.atlas.compiles, compiles,
+        "a value edit never recompiles"
+    );
 }
 
 /// The middle of the wire from `from` to `to` on screen (snarl's curves pass through
@@ -257,7 +289,12 @@ fn wire_middle(harness: &Harness<'static, VeneerApp>, from: &PinRef, to: &PinRef
 #[test]
 fn hovering_a_wire_shows_the_value_it_carries() {
     let (mut graph, _, _, split) = simple_graph();
-    let material = graph.nodes.iter().find(|n| n.kind == NodeKind::Material).unwrap().id;
+    let material = graph
+        .nodes
+        .iter()
+        .find(|n| n.kind == NodeKind::Material)
+        .unwrap()
+        .id;
     // The split's second output (z: a ramp from top to bottom) is no node's thumbnail.
     graph.connect(split, "z", material, "alpha");
     let mut harness = open("thumbnail-wire", &graph);
@@ -266,8 +303,15 @@ fn hovering_a_wire_shows_the_value_it_carries() {
     let middle = wire_middle(&harness, &z, &PinRef::new(material, "alpha"));
     harness.hover_at(middle);
     settle(&mut harness);
-    assert!(crate::support::shows(&harness, "across · z"), "the tooltip names the wire");
-    let tile = harness.state().thumbnails.tile_pixels(&z).expect("the wire's tile");
+    assert!(
+        crate::support::shows(&harness, "across · z"),
+        "the tooltip names the wire"
+    );
+    let tile = harness
+        .state()
+        .thumbnails
+        .tile_pixels(&z)
+        .expect("the wire's tile");
     for (i, j) in [(5, 2), (30, 33), (60, 61)] {
         let got = tile[(j * TILE_PIXELS + i) as usize];
         let want = expected(&graph, &z, ValueType::Float, i, j);
@@ -285,7 +329,12 @@ fn hovering_a_wire_shows_the_value_it_carries() {
 #[test]
 fn a_node_dropped_on_a_wire_is_inserted_and_one_undo_takes_it_out() {
     let (mut graph, colour, _, _) = simple_graph();
-    let material = graph.nodes.iter().find(|n| n.kind == NodeKind::Material).unwrap().id;
+    let material = graph
+        .nodes
+        .iter()
+        .find(|n| n.kind == NodeKind::Material)
+        .unwrap()
+        .id;
     let tint = graph.add(
         "tint",
         NodeKind::Constant(Constant {
@@ -295,7 +344,11 @@ fn a_node_dropped_on_a_wire_is_inserted_and_one_undo_takes_it_out() {
     graph.node_mut(tint).unwrap().position = (220.0, 360.0);
     let mut harness = open("thumbnail-drop", &graph);
     let before = harness.state().document.graph.clone();
-    let target = wire_middle(&harness, &PinRef::new(colour, "value"), &PinRef::new(material, "albedo"));
+    let target = wire_middle(
+        &harness,
+        &PinRef::new(colour, "value"),
+        &PinRef::new(material, "albedo"),
+    );
     // Drag the tint node by its title onto the middle of the wire, in steps.
     let grab = harness.state().graph_to_screen() * harness.get_by_label("tint").rect().center();
     harness.event(egui::Event::PointerMoved(grab));
@@ -307,7 +360,9 @@ fn a_node_dropped_on_a_wire_is_inserted_and_one_undo_takes_it_out() {
     });
     harness.step();
     for k in 1..=10 {
-        harness.event(egui::Event::PointerMoved(grab.lerp(target, k as f32 / 10.0)));
+        harness.event(egui::Event::PointerMoved(
+            grab.lerp(target, k as f32 / 10.0),
+        ));
         harness.step();
     }
     harness.event(egui::Event::PointerButton {

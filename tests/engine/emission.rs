@@ -24,8 +24,14 @@ fn glowing(emission: Option<(f64, f64, f64)>) -> Graph {
 /// The sphere's mesh render as RGBA rows, 64×64.
 fn render(graph: &Graph) -> Vec<u8> {
     let compiled = veneer::codegen::compile(graph, &Default::default()).expect("compiles");
-    let image = render_material(gpu(), &compiled, &View::Mesh(Some("sphere".into())), 64, 0.0)
-        .expect("renders");
+    let image = render_material(
+        gpu(),
+        &compiled,
+        &View::Mesh(Some("sphere".into())),
+        64,
+        0.0,
+    )
+    .expect("renders");
     assert_eq!(image.channels, 4);
     image.pixels
 }
@@ -33,9 +39,13 @@ fn render(graph: &Graph) -> Vec<u8> {
 #[test]
 fn the_evaluator_returns_the_emission_and_black_by_default() {
     let surface = Surface::<f64>::at([0.1, 0.2, 0.3]);
-    let lit = Evaluator::new(&glowing(Some(GLOW))).expect("checks").eval(&surface);
+    let lit = Evaluator::new(&glowing(Some(GLOW)))
+        .expect("checks")
+        .eval(&surface);
     assert_eq!(lit.emission, [GLOW.0, GLOW.1, GLOW.2]);
-    let plain = Evaluator::new(&glowing(None)).expect("checks").eval(&surface);
+    let plain = Evaluator::new(&glowing(None))
+        .expect("checks")
+        .eval(&surface);
     assert_eq!(plain.emission, [0.0; 3]);
 }
 
@@ -64,5 +74,8 @@ fn the_preview_adds_the_emission_to_the_lit_colour_on_both_sides_of_the_light() 
             );
         }
     }
-    assert!(on_sphere >= 40, "the rows cross the sphere ({on_sphere} pixels)");
+    assert!(
+        on_sphere >= 40,
+        "the rows cross the sphere ({on_sphere} pixels)"
+    );
 }

@@ -218,7 +218,15 @@ fn every_preset_module_defines_exactly_the_contract_and_prefixes_the_rest() {
         let material = struct_fields(&module, "VeneerMaterial");
         assert_eq!(
             material,
-            ["albedo", "alpha", "specular", "shininess", "bump", "height", "emission"]
+            [
+                "albedo",
+                "alpha",
+                "specular",
+                "shininess",
+                "bump",
+                "height",
+                "emission"
+            ]
         );
     }
 }
@@ -280,7 +288,8 @@ fn storage_mode_has_the_uniform_modes_slots_in_a_storage_buffer() {
         };
         let (uniform, storage) = (compiled(ParamMode::Uniform), compiled(ParamMode::Storage));
         assert_eq!(storage.params, uniform.params, "{}", path.display());
-        let declaration = "@group(1) @binding(0) var<storage, read> veneer_params: veneer_parameters;";
+        let declaration =
+            "@group(1) @binding(0) var<storage, read> veneer_params: veneer_parameters;";
         assert!(storage.source.contains(declaration));
         assert_eq!(
             storage.source.replace("var<storage, read>", "var<uniform>"),

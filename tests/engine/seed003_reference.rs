@@ -134,7 +134,11 @@ fn c2_sand_water(p: V3, d: [f64; 2], time: f64) -> Channels {
         );
     let water_bump = fractalcell_x(flowing(p, cell_scale, time));
     let sand_bump = snoise(times(p, sand_noise_scale));
-    let mut out = Channels::new(mix3(fv_diffuse_land, fv_diffuse_water, shore), fv_specular, 12.0);
+    let mut out = Channels::new(
+        mix3(fv_diffuse_land, fv_diffuse_water, shore),
+        fv_specular,
+        12.0,
+    );
     out.bump = mix(sand_bump, water_bump, shore) * bump_scale;
     out
 }
@@ -163,7 +167,11 @@ fn c3_moss_granite(p: V3, d: [f64; 2], time: f64) -> Channels {
     ) * bump_scale;
     // fvTotalSpecular = mix(0, fvSpecular * pow(...), shore), added at half strength.
     let specular = fv_specular.map(|c| mix(0.0, c, shore) * 0.5);
-    let mut out = Channels::new(mix3(fv_diffuse_moss, fv_diffuse_granite, shore), specular, 12.0);
+    let mut out = Channels::new(
+        mix3(fv_diffuse_moss, fv_diffuse_granite, shore),
+        specular,
+        12.0,
+    );
     out.bump = bump;
     out
 }
@@ -241,8 +249,12 @@ const C5_BUMP_SCALE: f64 = 0.1;
 fn c5_water_lava(p: V3, d: [f64; 2], time: f64) -> Channels {
     let [threshold_layer1, threshold_layer2] = C5_THRESHOLDS;
     let (cell_scale, rock_noise_scale, lava_border_noise_range) = (65.16720, 47.0, 0.03);
-    let (fv_ambient1, fv_specular1, mut fv_diffuse1, mut bump1) =
-        ([0.39, 0.09, 0.09], [0.79, 0.76, 0.24], [0.27, 0.08, 0.06], -0.04);
+    let (fv_ambient1, fv_specular1, mut fv_diffuse1, mut bump1) = (
+        [0.39, 0.09, 0.09],
+        [0.79, 0.76, 0.24],
+        [0.27, 0.08, 0.06],
+        -0.04,
+    );
     let (fv_ambient2, fv_specular2, fv_diffuse2, mut bump2) =
         ([0.0; 3], [0.78, 0.78, 0.78], [0.21, 0.43, 0.48], -0.16);
     let (fv_ambient3, fv_specular3, fv_diffuse3, mut bump3) =
@@ -267,7 +279,8 @@ fn c5_water_lava(p: V3, d: [f64; 2], time: f64) -> Channels {
     bump2 *= worley;
     bump3 *= turbulence(times(p, rock_noise_scale));
 
-    let nest = |rock: V3, lava: V3, water: V3| mix3(mix3(rock, lava, threshold1), water, threshold2);
+    let nest =
+        |rock: V3, lava: V3, water: V3| mix3(mix3(rock, lava, threshold1), water, threshold2);
     let mut out = Channels::new(
         nest(fv_diffuse3, fv_diffuse1, fv_diffuse2),
         nest(fv_specular3, fv_specular1, fv_specular2),
@@ -377,17 +390,29 @@ fn check(preset: &str, edges: [&[f64]; 2], reference: fn(V3, [f64; 2], f64) -> C
 
 #[test]
 fn c2_sand_water_matches_the_thesis() {
-    check("thesis_c2_sand_water", [&[C2_THRESHOLD + 0.0485], &[]], c2_sand_water);
+    check(
+        "thesis_c2_sand_water",
+        [&[C2_THRESHOLD + 0.0485], &[]],
+        c2_sand_water,
+    );
 }
 
 #[test]
 fn c3_moss_granite_matches_the_thesis() {
-    check("thesis_c3_moss_granite", [&[C3_THRESHOLD + 0.1], &[]], c3_moss_granite);
+    check(
+        "thesis_c3_moss_granite",
+        [&[C3_THRESHOLD + 0.1], &[]],
+        c3_moss_granite,
+    );
 }
 
 #[test]
 fn c4_paint_metal_rust_matches_the_thesis() {
-    check("thesis_c4_paint_metal_rust", [&C4_THRESHOLDS, &[]], c4_paint_metal_rust);
+    check(
+        "thesis_c4_paint_metal_rust",
+        [&C4_THRESHOLDS, &[]],
+        c4_paint_metal_rust,
+    );
 }
 
 #[test]
@@ -401,5 +426,9 @@ fn c5_water_lava_matches_the_thesis() {
 
 #[test]
 fn c6_waves_match_the_thesis() {
-    check("thesis_c6_waves", [&[0.0, C6_STRIPE_WIDTH], &[0.0, C6_STRIPE_WIDTH]], c6_waves);
+    check(
+        "thesis_c6_waves",
+        [&[0.0, C6_STRIPE_WIDTH], &[0.0, C6_STRIPE_WIDTH]],
+        c6_waves,
+    );
 }
