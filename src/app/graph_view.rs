@@ -197,13 +197,10 @@ impl SnarlViewer<Node> for Viewer<'_> {
         node: egui_snarl::NodeId,
         rect: egui::Rect,
         ui: &mut Ui,
-        snarl: &mut Snarl<Node>,
+        _: &mut Snarl<Node>,
     ) {
         self.spots.borrow_mut().nodes.insert(node, rect);
-        // A node drawn lightly far off screen keeps the size it has in full.
-        if !self.navigation.is_far(snarl, node) {
-            self.navigation.measured(node, rect);
-        }
+        self.navigation.measured(node, rect);
         // Nodes live in a zoomed and panned layer; the pointer is in screen space.
         let to_screen = ui
             .ctx()
@@ -294,16 +291,11 @@ impl SnarlViewer<Node> for Viewer<'_> {
         ui: &mut Ui,
         snarl: &mut Snarl<Node>,
     ) -> impl SnarlPin + 'static {
-        let far = self.navigation.is_far(snarl, pin.id.node);
         let node = &mut snarl[pin.id.node];
         let spec = node.kind.signature().inputs[pin.id.input];
-        if far {
-            ui.allocate_space(ui.spacing().interact_size);
-        } else {
-            ui.label(spec.name)
-                .on_hover_text(super::node_text::input_tip(&spec));
-        }
-        if pin.remotes.is_empty() && !far {
+        ui.label(spec.name)
+            .on_hover_text(super::node_text::input_tip(&spec));
+        if pin.remotes.is_empty() {
             match spec.default {
                 PinDefault::Const(_) => {
                     input_editor(ui, node, spec.name);
@@ -332,12 +324,8 @@ impl SnarlViewer<Node> for Viewer<'_> {
         snarl: &mut Snarl<Node>,
     ) -> impl SnarlPin + 'static {
         let spec = snarl[pin.id.node].kind.signature().outputs[pin.id.output];
-        if self.navigation.is_far(snarl, pin.id.node) {
-            ui.allocate_space(ui.spacing().interact_size);
-        } else {
-            ui.label(spec.name)
-                .on_hover_text(super::node_text::output_tip(&spec));
-        }
+        ui.label(spec.name)
+            .on_hover_text(super::node_text::output_tip(&spec));
         SpottedPin {
             info: PinInfo::circle()
                 .with_fill(type_color(spec.ty))

@@ -126,7 +126,7 @@ pub struct VeneerApp {
     frame_started: Option<std::time::Instant>,
     /// Whether the status bar shows the frame rate (View → Frame rate).
     show_frame_rate: bool,
-    /// Whether the document had unsaved changes at the last revision.
+    /// Whether the document had unsaved changes when input last arrived.
     dirty: bool,
 }
 

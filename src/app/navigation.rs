@@ -36,12 +36,9 @@ const MARGIN: f32 = 30.0;
 const UNMEASURED: Vec2 = egui::vec2(240.0, 160.0);
 /// Pins stick out of a node's rectangle by about this much (graph units).
 const PIN_REACH: f32 = 10.0;
-/// Graphs of more nodes than this draw nodes far off screen lightly (see
-/// [`Navigation::is_far`]), and skip the nodes off screen.
+/// Graphs of more nodes than this skip the nodes off screen (egui-snarl's
+/// `cull_offscreen`, our patch).
 pub const BIG_GRAPH: usize = 200;
-/// How far around the screen nodes are drawn in full, in screens (so that none is seen
-/// drawn lightly).
-const NEAR_MARGIN: f32 = 0.5;
 
 /// Frames a framing follows the nodes' sizes for: egui settles a node's size over its
 /// first frames, and thumbnails arrive after it.
@@ -77,9 +74,6 @@ pub struct Navigation {
     rects: std::collections::HashMap<egui_snarl::NodeId, Rect>,
     /// Where the graph is on screen (`None` before the first frame).
     viewport: Option<Rect>,
-    /// In a big graph, the part of it (graph coordinates) near enough to the screen to
-    /// be drawn in full.
-    near: Option<Rect>,
 }
 
 impl Navigation {
@@ -107,10 +101,6 @@ impl Navigation {
         self.rects.retain(|id, _| snarl.get_node(*id).is_some());
         self.viewport = Some(viewport);
         self.apply_framing(viewport, snarl, selection);
-        self.near = (snarl.node_ids().count() > BIG_GRAPH).then(|| {
-            let near = viewport.expand2(viewport.size() * NEAR_MARGIN);
-            self.transform.inverse() * near
-        });
         let (pointer, modifiers) = ctx.input(|input| (input.pointer.latest_pos(), input.modifiers));
         let on_canvas = pointer.filter(|pos| {
             viewport.contains(*pos)
@@ -146,16 +136,6 @@ impl Navigation {
     /// After the graph is shown: puts back the modifiers [`Navigation::before`] changed.
     pub fn after(&self, ctx: &Context, modifiers: egui::Modifiers) {
         ctx.input_mut(|input| input.modifiers = modifiers);
-    }
-
-    /// Whether node `id` is far off screen in a big graph: its pins are then drawn
-    /// without their labels and value fields, so that off-screen nodes cost next to
-    /// nothing (graphs of up to [`BIG_GRAPH`] nodes are always drawn in full).
-    pub fn is_far(&self, snarl: &Snarl<Node>, id: egui_snarl::NodeId) -> bool {
-        self.near.is_some_and(|near| {
-            self.node_rect(snarl, id)
-                .is_some_and(|rect| !near.intersects(rect))
-        })
     }
 
     /// The nodes whose rectangle, when last drawn, was at least partly on screen.

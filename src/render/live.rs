@@ -148,13 +148,6 @@ impl LiveRenderer {
         Ok(())
     }
 
-    /// Whether the newest material's pipeline for `quality` is built.
-    pub fn has_pipeline(&self, generation: u64, quality: Quality) -> bool {
-        self.pipelines.as_ref().is_some_and(|(built, pipelines)| {
-            *built == generation && pipelines[quality as usize].is_some()
-        })
-    }
-
     fn pipeline(&self, quality: Quality) -> Option<&MeshPipeline> {
         self.pipelines.as_ref()?.1[quality as usize].as_ref()
     }

@@ -19,6 +19,15 @@ fn wait_for_fields(harness: &mut Harness<'static, VeneerApp>) {
     panic!("the fields were not solved in 12 s");
 }
 
+/// The editor on the isolines preset (two sources on genus2), its fields solved.
+fn isolines(scratch_name: &str) -> Harness<'static, VeneerApp> {
+    let dir = scratch(scratch_name);
+    let graph = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("graphs/isolines.ron");
+    let mut harness = editor(&dir, Some(graph));
+    wait_for_fields(&mut harness);
+    harness
+}
+
 fn sources(harness: &Harness<'static, VeneerApp>) -> Vec<u32> {
     harness.state().document.graph.preview.fields[0]
         .sources
@@ -27,10 +36,7 @@ fn sources(harness: &Harness<'static, VeneerApp>) -> Vec<u32> {
 
 #[test]
 fn fields_solve_for_the_preview_and_a_click_on_the_mesh_adds_a_source() {
-    let dir = scratch("fields");
-    let graph = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("graphs/isolines.ron");
-    let mut harness = editor(&dir, Some(graph));
-    wait_for_fields(&mut harness);
+    let mut harness = isolines("fields");
     let solved = preview_pixels(&screen(&mut harness));
     assert_eq!(sources(&harness).len(), 2);
 
@@ -71,10 +77,7 @@ fn fields_solve_for_the_preview_and_a_click_on_the_mesh_adds_a_source() {
 
 #[test]
 fn fields_that_cannot_be_solved_on_the_shown_mesh_are_said_over_the_preview() {
-    let dir = scratch("fields-elsewhere");
-    let graph = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("graphs/isolines.ron");
-    let mut harness = editor(&dir, Some(graph));
-    wait_for_fields(&mut harness);
+    let mut harness = isolines("fields-elsewhere");
     assert!(!crate::support::shows(&harness, "fields not solved"));
     // The cube has fewer vertices than the preset's sources are numbered on genus2.
     harness.get_by_value("genus2").click_accesskit();

@@ -56,6 +56,13 @@ fn drag(
     harness.run_steps(2);
 }
 
+/// The labels of the selected nodes, sorted.
+fn selected(harness: &Harness<'static, VeneerApp>) -> Vec<String> {
+    let mut labels = harness.state().selected_labels();
+    labels.sort();
+    labels
+}
+
 #[test]
 fn the_wheel_zooms_about_the_cursor() {
     let mut harness = editor(&scratch("nav-wheel"), None);
@@ -127,9 +134,7 @@ fn a_left_drag_on_empty_canvas_selects_shift_adds_ctrl_removes() {
         start,
         drift.center(),
     );
-    let mut selected = harness.state().selected_labels();
-    selected.sort();
-    assert_eq!(selected, ["grain drift", "trunk"]);
+    assert_eq!(selected(&harness), ["grain drift", "trunk"]);
     assert_eq!(
         harness.state().graph_to_screen(),
         transform_before,
@@ -143,9 +148,7 @@ fn a_left_drag_on_empty_canvas_selects_shift_adds_ctrl_removes() {
         left_of_tint,
         tint.center(),
     );
-    let mut selected = harness.state().selected_labels();
-    selected.sort();
-    assert_eq!(selected, ["grain drift", "tint", "trunk"]);
+    assert_eq!(selected(&harness), ["grain drift", "tint", "trunk"]);
     drag(
         &mut harness,
         PointerButton::Primary,
@@ -153,9 +156,7 @@ fn a_left_drag_on_empty_canvas_selects_shift_adds_ctrl_removes() {
         start,
         trunk.center(),
     );
-    let mut selected = harness.state().selected_labels();
-    selected.sort();
-    assert_eq!(selected, ["grain drift", "tint"]);
+    assert_eq!(selected(&harness), ["grain drift", "tint"]);
 }
 
 #[test]
