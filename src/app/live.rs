@@ -29,8 +29,6 @@ pub struct LiveMaterial {
     pub generation: u64,
     /// Numerical hazards of the graph, by node (one message per line).
     pub warnings: BTreeMap<NodeId, String>,
-    /// The graph the warnings were found for.
-    linted: Option<Graph>,
     /// Noise detail: footprint-aware unless the user asks for every octave.
     pub full_detail: bool,
     /// Parameters past [`UNIFORM_SLOTS`] in a storage buffer instead of a uniform block.
@@ -120,13 +118,9 @@ impl LiveMaterial {
         true
     }
 
-    /// Finds the numerical hazards of `graph` if it changed since the last call (constants
-    /// matter here, unlike for compiling).
+    /// Finds the numerical hazards of `graph` (constants matter here, unlike for
+    /// compiling); the editor calls it once per revision of the graph.
     pub fn lint(&mut self, graph: &Graph) {
-        if self.linted.as_ref() == Some(graph) {
-            return;
-        }
-        self.linted = Some(graph.clone());
         self.warnings.clear();
         if let Ok(checked) = crate::graph::check(graph) {
             for lint in crate::lint::lint(&checked, crate::lint::preview_positions(graph)) {
