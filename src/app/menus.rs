@@ -282,14 +282,17 @@ impl VeneerApp {
                     counted(self.document.graph.nodes.len(), "node"),
                     counted(self.live.compiles as usize, "compile")
                 ));
-                if let Some(rate) = self.profile.rate().filter(|_| self.show_frame_rate) {
-                    let main = self.profile.total.as_secs_f64() * 1e3;
-                    ui.weak(format!("{rate:.0} fps · main thread {main:.1} ms ·"))
-                        .on_hover_text(
-                            "while the editor redraws continuously: frames a second, and the \
-                             time the main thread spends on each (the rest is painting the \
-                             window and waiting)",
-                        );
+                if let Some(rate) = self.frame_clock.rate().filter(|_| self.show_frame_rate) {
+                    let main = rate.main_thread.as_secs_f64() * 1e3;
+                    ui.weak(format!(
+                        "{:.0} fps · main thread {main:.1} ms ·",
+                        rate.per_second
+                    ))
+                    .on_hover_text(
+                        "over the last second of continuous redrawing: frames a second, \
+                             and the time the main thread spends on each (the rest is \
+                             painting the window and waiting)",
+                    );
                 }
             });
         });

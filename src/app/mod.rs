@@ -3,6 +3,7 @@
 
 mod actions;
 mod add_node;
+mod allocator;
 mod catalogue;
 mod clipboard;
 mod dialog_contents;
@@ -11,6 +12,7 @@ mod dialogs;
 mod document;
 mod fields;
 mod file_browser;
+mod frame_clock;
 mod graph_view;
 mod history;
 mod inspector;
@@ -18,6 +20,7 @@ mod live;
 mod menus;
 mod navigation;
 mod node_text;
+mod painting;
 mod preview;
 mod preview_panel;
 mod preview_worker;
@@ -34,6 +37,7 @@ mod wires;
 
 pub use crate::graph::{PRESETS, preset};
 pub use document::Document;
+pub use frame_clock::{FRAME_LOG_HEADER, FrameLog};
 pub use live::{LiveMaterial, UNIFORM_SLOTS};
 pub use probe::{AtlasGraph, atlas_graph};
 pub use sync::FrameProfile;
@@ -52,7 +56,9 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 /// Opens the editor window on `path`, or on the wood preset.
-pub fn run(path: Option<PathBuf>) -> Result<(), String> {
+/// `frame_log` names a file that gets a line per frame (see [`FrameLog`]).
+pub fn run(path: Option<PathBuf>, frame_log: Option<PathBuf>) -> Result<(), String> {
+    let mut frame_log = frame_log.as_deref().map(FrameLog::create).transpose()?;
     let options = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default()
             .with_inner_size([1400.0, 860.0])
@@ -60,10 +66,15 @@ pub fn run(path: Option<PathBuf>) -> Result<(), String> {
         renderer: eframe::Renderer::Wgpu,
         ..Default::default()
     };
+    allocator::keep_freed_memory();
     eframe::run_native(
         "Veneer",
         options,
-        Box::new(move |cc| Ok(Box::new(VeneerApp::new(cc, path)))),
+        Box::new(move |cc| {
+            let mut app = VeneerApp::new(cc, path);
+            app.frame_log = frame_log.take();
+            Ok(Box::new(app))
+        }),
     )
     .map_err(|error| format!("cannot open the editor window: {error}"))
 }
@@ -122,8 +133,10 @@ pub struct VeneerApp {
     revision: sync::Revision,
     /// Where the main thread's time went in the last frame.
     pub profile: FrameProfile,
-    /// When the last frame began.
-    frame_started: Option<std::time::Instant>,
+    /// Frames a second and main-thread time over the last second.
+    frame_clock: frame_clock::FrameClock,
+    /// Where each frame is written down, when asked (`veneer edit --frame-log`).
+    frame_log: Option<FrameLog>,
     /// Whether the status bar shows the frame rate (View → Frame rate).
     show_frame_rate: bool,
     /// Whether the document had unsaved changes when input last arrived.
@@ -178,7 +191,8 @@ impl VeneerApp {
             title: String::new(),
             revision: Default::default(),
             profile: Default::default(),
-            frame_started: None,
+            frame_clock: Default::default(),
+            frame_log: None,
             show_frame_rate: false,
             dirty: false,
         };
@@ -403,7 +417,10 @@ impl VeneerApp {
         *self.spots.borrow_mut() = Default::default();
         // In big graphs nodes off screen are not laid out at all (our egui-snarl patch).
         let big = self.snarl.node_ids().count() > navigation::BIG_GRAPH;
-        let widget = SnarlWidget::new().id_salt("graph").cull_offscreen(big);
+        let widget = SnarlWidget::new()
+            .id_salt("graph")
+            .style(painting::graph_style(ui.style()))
+            .cull_offscreen(big);
         let response = widget.show(&mut self.snarl, &mut viewer, ui);
         self.wire_pointer(ui);
         self.navigation.after(ui.ctx(), modifiers);
@@ -520,9 +537,7 @@ fn frames_editor(ui: &mut Ui, frames: &mut Vec<crate::graph::Frame>) {
 impl eframe::App for VeneerApp {
     fn ui(&mut self, ui: &mut Ui, _frame: &mut eframe::Frame) {
         let started = std::time::Instant::now();
-        if let Some(before) = self.frame_started.replace(started) {
-            self.profile.interval = started - before;
-        }
+        let started_at = std::time::SystemTime::now();
         let ctx = ui.ctx().clone();
         self.previews.receive(&ctx);
         self.shortcuts(&ctx);
@@ -545,7 +560,14 @@ impl eframe::App for VeneerApp {
                 }
             });
         });
-        egui::CentralPanel::default().show(ui, |ui| self.graph_panel(ui));
+        let central = egui::CentralPanel::default()
+            .frame(painting::central_panel_frame(ui.style()))
+            .show(ui, |ui| {
+                let canvas = ui.max_rect();
+                self.graph_panel(ui);
+                canvas
+            });
+        painting::paint_panel_margin(ui, central.response.rect, central.inner);
         if let Some(dialog) = self.dialog.take() {
             // A dialog's action may open another dialog (an open that fails shows a
             // message): that one wins over the dialog staying open.
@@ -559,6 +581,19 @@ impl eframe::App for VeneerApp {
         self.after_edits(&ctx);
         self.handle_close(&ctx);
         self.profile.total = started.elapsed();
+        self.frame_clock.record(started, self.profile.total);
+        if let Some(log) = &mut self.frame_log {
+            log.record(
+                started_at,
+                self.profile.total,
+                self.revision.number,
+                self.live.compiles,
+            );
+        }
+    }
+
+    fn clear_color(&self, visuals: &egui::Visuals) -> [f32; 4] {
+        painting::clear_color(visuals)
     }
 
     fn on_exit(&mut self) {

@@ -206,6 +206,8 @@ struct Shown {
     /// The number of the request whose image is shown, and how finely it was drawn.
     shown: u64,
     quality: Option<Quality>,
+    /// The shown image's width in pixels and how long it took to draw.
+    drawn: Option<(usize, std::time::Duration)>,
     /// Why the newest request could not be drawn (the previous image stays).
     error: Option<String>,
     materials_built: u64,
@@ -248,6 +250,7 @@ impl Previews {
                 Ok(image) => {
                     shown.error = None;
                     shown.quality = Some(drawn.quality);
+                    shown.drawn = Some((image.width(), drawn.took));
                     match &mut shown.texture {
                         Some(texture) => texture.set(image, TextureOptions::LINEAR),
                         None => {
@@ -304,13 +307,29 @@ impl Previews {
         self.shown[Slot::Main as usize].error.as_deref()
     }
 
-    /// Draws the newest picture of `slot` into `rect` (the background until there is one).
+    /// Draws the newest picture of `slot` into `rect` (the background until there is one);
+    /// a draft of the material says how coarse it is and what it took.
     fn paint(&self, ui: &Ui, slot: Slot, rect: egui::Rect, background: [f32; 3]) {
-        match &self.shown[slot as usize].texture {
+        let shown = &self.shown[slot as usize];
+        match &shown.texture {
             Some(texture) => {
                 let uv = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
                 ui.painter()
                     .image(texture.id(), rect, uv, egui::Color32::WHITE);
+                // The node's small output picture would be covered by the note.
+                if let (Slot::Main, Some(Quality::Draft), Some((width, took))) =
+                    (slot, shown.quality, shown.drawn)
+                {
+                    let pixels = rect.width() * ui.ctx().pixels_per_point();
+                    let note = draft_note(pixels, width, took);
+                    ui.painter().text(
+                        rect.left_bottom() + egui::vec2(6.0, -6.0),
+                        egui::Align2::LEFT_BOTTOM,
+                        note,
+                        egui::FontId::proportional(11.0),
+                        ui.visuals().weak_text_color(),
+                    );
+                }
             }
             None => {
                 let [r, g, b] = background;
@@ -400,6 +419,21 @@ fn steer(ui: &Ui, state: &mut PreviewState, response: &egui::Response) {
     }
 }
 
+/// What a draft `width` pixels wide shown `pixels` wide says of itself: the fraction of
+/// the resolution it was drawn at and its drawing time.
+fn draft_note(pixels: f32, width: usize, took: std::time::Duration) -> String {
+    let divisor = (pixels / width.max(1) as f32).round().max(1.0);
+    let fraction = if divisor <= 1.0 {
+        "full".to_string()
+    } else {
+        format!("1/{divisor:.0}")
+    };
+    format!(
+        "draft: {fraction} resolution, {:.0} ms",
+        took.as_secs_f64() * 1e3
+    )
+}
+
 /// What to draw of `state` with `material` into `rect`: a draft while any pointer
 /// button is held (a slider, an orbit, a node being moved), else the full picture.
 fn request(ui: &Ui, state: &PreviewState, material: MaterialFrame, rect: egui::Rect) -> Request {
@@ -437,6 +471,17 @@ fn draw(
 mod tests {
     use super::*;
     use std::time::Duration;
+
+    #[test]
+    fn a_draft_says_its_resolution_and_time() {
+        let took = Duration::from_micros(12_400);
+        assert_eq!(draft_note(443.0, 111, took), "draft: 1/4 resolution, 12 ms");
+        assert_eq!(draft_note(443.0, 222, took), "draft: 1/2 resolution, 12 ms");
+        assert_eq!(
+            draft_note(443.0, 443, took),
+            "draft: full resolution, 12 ms"
+        );
+    }
 
     #[test]
     fn time_plays_by_the_wall_clock_whatever_the_frame_rate() {

@@ -59,6 +59,8 @@ pub struct Drawn {
     pub id: u64,
     /// How finely it was drawn.
     pub quality: Quality,
+    /// How long drawing it took, readback included.
+    pub took: std::time::Duration,
     pub image: Result<egui::ColorImage, String>,
     /// Materials built so far for this slot.
     pub materials_built: u64,
@@ -132,6 +134,7 @@ fn run(mailbox: &(Mutex<Mailbox>, Condvar), drawn: &Sender<Drawn>, wake: impl Fn
         match task {
             Task::Draw(slot, id, request) => {
                 let renderer = &mut renderers[slot as usize];
+                let started = std::time::Instant::now();
                 let image = gpu.as_ref().map_err(Clone::clone).and_then(|gpu| {
                     let mesh = resolve(&mut primitives[slot as usize], &request.mesh);
                     draw(gpu, renderer, &request, &mesh)
@@ -143,6 +146,7 @@ fn run(mailbox: &(Mutex<Mailbox>, Condvar), drawn: &Sender<Drawn>, wake: impl Fn
                     slot,
                     id,
                     quality: request.quality,
+                    took: started.elapsed(),
                     image,
                     materials_built: renderer.materials_built,
                 };

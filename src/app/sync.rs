@@ -38,19 +38,9 @@ pub struct FrameProfile {
     pub thumbnails: Duration,
     /// Undo history, title and autosave.
     pub history: Duration,
-    /// From the start of the frame before to the start of this one (the whole frame as
-    /// the user sees it: painting and waiting included).
-    pub interval: Duration,
 }
 
 impl FrameProfile {
-    /// Frames a second while the editor redraws continuously (dragging, playing), from
-    /// [`FrameProfile::interval`]; `None` when frames are half a second or more apart.
-    pub fn rate(&self) -> Option<f64> {
-        let seconds = self.interval.as_secs_f64();
-        (seconds > 0.0 && seconds < 0.5).then(|| 1.0 / seconds)
-    }
-
     /// The time spent laying out and drawing the panels (egui and egui-snarl): the
     /// whole frame less the document's upkeep.
     pub fn panels(&self) -> Duration {
@@ -144,7 +134,6 @@ impl VeneerApp {
         let history = lap();
         self.profile = FrameProfile {
             total: Duration::ZERO,
-            interval: self.profile.interval,
             sync,
             compile,
             lint,

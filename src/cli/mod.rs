@@ -29,6 +29,10 @@ enum Command {
     Edit {
         /// The graph file.
         graph: PathBuf,
+        /// Write a CSV line per frame to this file (when it began, the main thread's
+        /// milliseconds, the graph's revision and compile count), to measure the window.
+        #[arg(long, value_name = "FILE")]
+        frame_log: Option<PathBuf>,
     },
     /// Render a graph to a PNG: on a mesh with the preview lighting, or its albedo over a plane.
     Render(render::RenderArgs),
@@ -129,8 +133,8 @@ pub fn run() -> ExitCode {
 /// Runs a parsed command line's subcommand (the tests run commands in-process through it).
 pub fn execute(cli: Cli) -> Result<(), Failure> {
     match cli.command {
-        None => editor(None),
-        Some(Command::Edit { graph }) => editor(Some(graph)),
+        None => editor(None, None),
+        Some(Command::Edit { graph, frame_log }) => editor(Some(graph), frame_log),
         Some(Command::Render(args)) => render::run(args),
         Some(Command::Bake(args)) => bake::run(args),
         Some(Command::Compile(args)) => compile::run(args),
@@ -144,14 +148,14 @@ pub fn execute(cli: Cli) -> Result<(), Failure> {
 }
 
 /// Opens the node editor (or explains how to run headless when it was left out of the build).
-fn editor(graph: Option<PathBuf>) -> Result<(), Failure> {
+fn editor(graph: Option<PathBuf>, frame_log: Option<PathBuf>) -> Result<(), Failure> {
     #[cfg(feature = "gui")]
     {
-        veneer::app::run(graph).map_err(Failure::new)
+        veneer::app::run(graph, frame_log).map_err(Failure::new)
     }
     #[cfg(not(feature = "gui"))]
     {
-        let _ = graph;
+        let _ = (graph, frame_log);
         Err(Failure::new(
             "this build has no editor (built without the `gui` feature); render headless with\n  veneer render graphs/wood.ron -o wood.png",
         ))

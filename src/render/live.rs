@@ -1,19 +1,23 @@
 //! The editor's live preview on the GPU: one material with its parameters in a buffer,
 //! drawn on one mesh into an RGBA8 image. Pipelines are kept per code generation, so
 //! parameter, camera and time changes only rewrite buffers; drafts (while the user
-//! drags) draw at reduced resolution without multisampling, with a pipeline of their own.
+//! drags) draw at a resolution their own drawing time picks (`draft_scale`) without
+//! multisampling, with a pipeline of their own.
 
+use super::draft_scale::DraftScale;
 use super::mesh_view::{MeshPipeline, MeshTarget, MeshView};
 use super::readback::read_texture;
 use super::{GpuContext, GpuMesh, RenderError};
 use crate::codegen::SurfaceUse;
 use crate::mesh::Mesh;
 use std::sync::Arc;
+use std::time::Instant;
 
 /// How finely a live frame is drawn.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Quality {
-    /// While something is being dragged: half the resolution each way, one sample.
+    /// While something is being dragged: one sample, at a fraction of the resolution
+    /// each way that keeps drafts quick (a half to start with; see `DraftScale`).
     Draft,
     /// At rest: full resolution, 4× multisampled, as `veneer render` draws.
     Full,
@@ -25,14 +29,6 @@ impl Quality {
         match self {
             Quality::Draft => 1,
             Quality::Full => 4,
-        }
-    }
-
-    /// The image size drawn for a view of `size` pixels.
-    pub fn scaled(self, size: (u32, u32)) -> (u32, u32) {
-        match self {
-            Quality::Draft => (size.0.div_ceil(2).max(1), size.1.div_ceil(2).max(1)),
-            Quality::Full => (size.0.max(1), size.1.max(1)),
         }
     }
 }
@@ -67,14 +63,16 @@ pub struct LiveRenderer {
     pipelines: Option<(u64, [Option<MeshPipeline>; 2])>,
     mesh: Option<(String, GpuMesh)>,
     target: Option<(Quality, MeshTarget)>,
+    /// How coarse the next draft is, from the last drafts' drawing times.
+    pub draft_scale: DraftScale,
     /// Materials whose (first) pipeline was built, for tests and the status bar.
     pub materials_built: u64,
 }
 
 impl LiveRenderer {
     /// Draws `mesh` (uploaded again only when `mesh_key` changes) with `material` and
-    /// `params` as `view` sees it, at `size` pixels scaled by `quality`; returns the
-    /// image's size and its RGBA8 rows from the top.
+    /// `params` as `view` sees it, at `size` pixels (a draft at a fraction of them);
+    /// returns the image's size and its RGBA8 rows from the top.
     #[allow(clippy::too_many_arguments)]
     pub fn render(
         &mut self,
@@ -87,11 +85,16 @@ impl LiveRenderer {
         size: (u32, u32),
         quality: Quality,
     ) -> Result<((u32, u32), Vec<u8>), RenderError> {
-        let (width, height) = quality.scaled(size);
+        let (width, height) = match quality {
+            Quality::Draft => self.draft_scale.scaled(size),
+            Quality::Full => (size.0.max(1), size.1.max(1)),
+        };
         self.prepare(gpu, material, quality)?;
         if self.mesh.as_ref().is_none_or(|(key, _)| key != mesh_key) {
             self.mesh = Some((mesh_key.to_string(), GpuMesh::new(&gpu.device, mesh)));
         }
+        // The draw alone is timed for the draft scale (not building a pipeline).
+        let started = Instant::now();
         let fits = self
             .target
             .as_ref()
@@ -114,6 +117,9 @@ impl LiveRenderer {
         gpu.queue.submit([encoder.finish()]);
         let pixels = read_texture(gpu, &target.resolved, 4)?;
         gpu.take_errors()?;
+        if quality == Quality::Draft {
+            self.draft_scale.after_draft(started.elapsed());
+        }
         Ok(((width, height), pixels))
     }
 

@@ -2,6 +2,7 @@
 //! lit mesh render, and readback to images.
 
 mod context;
+mod draft_scale;
 mod flat;
 mod gpu_mesh;
 mod image;
@@ -15,6 +16,7 @@ mod timing;
 mod uv_bake;
 
 pub use context::{GpuContext, RenderError};
+pub use draft_scale::DraftScale;
 pub use flat::{FlatChannels, FlatRect, FlatRenderer, albedo_to_rgb8, flat_points};
 pub use gpu_mesh::GpuMesh;
 pub use image::{Image, View, baked_parameters, mesh_with_fields, preview_rect, render_material};

@@ -7,6 +7,7 @@ mod editing;
 mod files;
 mod geotextures;
 mod navigation;
+mod painting;
 mod real_window;
 mod responsiveness;
 mod support;

@@ -33,7 +33,26 @@ pub fn editor(dir: &Path, graph: Option<PathBuf>) -> Harness<'static, VeneerApp>
 /// last asked of them.
 pub fn screen(harness: &mut Harness<'static, VeneerApp>) -> image::RgbaImage {
     settle_previews(harness);
-    harness.render().expect("the window renders")
+    window_image(harness)
+}
+
+/// The window as the real one shows it. kittest clears to transparent where eframe
+/// clears to the app's clear colour (the graph canvas's, which the editor does not
+/// paint again), so kittest's render is laid over that colour.
+pub fn window_image(harness: &mut Harness<'static, VeneerApp>) -> image::RgbaImage {
+    let mut image = harness.render().expect("the window renders");
+    let visuals = harness.ctx.global_style().visuals.clone();
+    let clear = eframe::App::clear_color(harness.state(), &visuals);
+    for pixel in image.pixels_mut() {
+        // Premultiplied alpha, blended in gamma space as egui does.
+        let cover = 1.0 - f32::from(pixel[3]) / 255.0;
+        for (channel, below) in pixel.0.iter_mut().zip(clear) {
+            *channel = (f32::from(*channel) + below * 255.0 * cover)
+                .round()
+                .min(255.0) as u8;
+        }
+    }
+    image
 }
 
 /// Steps the editor until its previews show, at full quality, what was last asked of

@@ -1,0 +1,171 @@
+//! The frame rate the status bar shows (*View → Frame rate*): frames a second and the
+//! main thread's mean time per frame over the last second of continuous redrawing. One
+//! frame's interval alone jumps between 14 and 26 fps on a software rasteriser while a
+//! parameter is dragged; a second's worth reads steadily.
+
+use std::collections::VecDeque;
+use std::io::Write;
+use std::path::Path;
+use std::time::{Duration, Instant, SystemTime};
+
+/// How far back the rate looks.
+const WINDOW: Duration = Duration::from_secs(1);
+/// Frames further apart than this are not continuous redrawing: the count starts over.
+const PAUSE: Duration = Duration::from_millis(500);
+
+/// The starts of recent frames and the main thread's time in each.
+#[derive(Default)]
+pub struct FrameClock {
+    frames: VecDeque<(Instant, Duration)>,
+}
+
+/// What the clock read over its window.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FrameRate {
+    /// Frames a second.
+    pub per_second: f64,
+    /// The main thread's mean time per frame (the rest is painting and waiting).
+    pub main_thread: Duration,
+}
+
+impl FrameClock {
+    /// Notes a frame that began at `started` and whose main-thread work took
+    /// `main_thread` (known at the frame's end; the frame before's work is noted with
+    /// its start).
+    pub fn record(&mut self, started: Instant, main_thread: Duration) {
+        if let Some(&(last, _)) = self.frames.back()
+            && started.saturating_duration_since(last) > PAUSE
+        {
+            self.frames.clear();
+        }
+        self.frames.push_back((started, main_thread));
+        while let Some(&(first, _)) = self.frames.front()
+            && started.saturating_duration_since(first) > WINDOW
+        {
+            self.frames.pop_front();
+        }
+    }
+
+    /// The rate over the window, or `None` until two frames of continuous redrawing
+    /// were seen.
+    pub fn rate(&self) -> Option<FrameRate> {
+        let (&(first, _), &(last, _)) = (self.frames.front()?, self.frames.back()?);
+        let span = last.saturating_duration_since(first).as_secs_f64();
+        let intervals = self.frames.len() - 1;
+        if intervals == 0 || span <= 0.0 {
+            return None;
+        }
+        let work: Duration = self.frames.iter().map(|&(_, work)| work).sum();
+        Some(FrameRate {
+            per_second: intervals as f64 / span,
+            main_thread: work / self.frames.len() as u32,
+        })
+    }
+}
+
+/// `veneer edit --frame-log FILE`: one CSV line per frame, for measuring the real window
+/// from outside (`benches/editor_window.rs`): when the frame began (seconds since the
+/// Unix epoch), the main thread's time in it, and the graph's revision and compile count
+/// after it (a drag that edits bumps the revision; it must not recompile).
+pub struct FrameLog {
+    file: std::io::BufWriter<std::fs::File>,
+}
+
+/// The frame log's first line.
+pub const FRAME_LOG_HEADER: &str = "unix_seconds,main_thread_ms,revision,compiles";
+
+impl FrameLog {
+    /// Creates (or empties) `path` and writes the header.
+    pub fn create(path: &Path) -> Result<FrameLog, String> {
+        let failed = |error: std::io::Error| {
+            format!("{}: cannot write the frame log: {error}", path.display())
+        };
+        let mut file = std::io::BufWriter::new(std::fs::File::create(path).map_err(failed)?);
+        writeln!(file, "{FRAME_LOG_HEADER}").map_err(failed)?;
+        file.flush().map_err(failed)?;
+        Ok(FrameLog { file })
+    }
+
+    /// Writes one frame's line (and sends it on at once: the editor may be killed).
+    /// A write that fails is dropped: the log is for measuring, not for the work.
+    pub fn record(
+        &mut self,
+        started: SystemTime,
+        main_thread: Duration,
+        revision: u64,
+        compiles: u64,
+    ) {
+        let seconds = started
+            .duration_since(SystemTime::UNIX_EPOCH)
+            .unwrap_or_default()
+            .as_secs_f64();
+        let main = main_thread.as_secs_f64() * 1e3;
+        let _ = writeln!(self.file, "{seconds:.6},{main:.3},{revision},{compiles}")
+            .and_then(|()| self.file.flush());
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn clock_of(starts_ms: &[u64], work_ms: u64) -> FrameClock {
+        let origin = Instant::now();
+        let mut clock = FrameClock::default();
+        for &start in starts_ms {
+            clock.record(
+                origin + Duration::from_millis(start),
+                Duration::from_millis(work_ms),
+            );
+        }
+        clock
+    }
+
+    #[test]
+    fn counts_frames_over_the_last_second() {
+        // 50 ms apart for two seconds: 20 fps, the first second forgotten.
+        let starts: Vec<u64> = (0..=40).map(|frame| frame * 50).collect();
+        let clock = clock_of(&starts, 3);
+        let rate = clock.rate().expect("continuous frames");
+        assert!((rate.per_second - 20.0).abs() < 1e-9, "{rate:?}");
+        assert_eq!(rate.main_thread, Duration::from_millis(3));
+        assert_eq!(clock.frames.len(), 21);
+    }
+
+    #[test]
+    fn uneven_frames_read_as_their_mean() {
+        // Alternating 30 ms and 70 ms frames: 20 fps, not 14 or 33.
+        let mut starts = vec![0];
+        for frame in 0..20u64 {
+            starts.push(starts.last().unwrap() + if frame % 2 == 0 { 30 } else { 70 });
+        }
+        let rate = clock_of(&starts, 1).rate().expect("continuous frames");
+        assert!((rate.per_second - 20.0).abs() < 1e-9, "{rate:?}");
+    }
+
+    #[test]
+    fn the_frame_log_writes_a_line_a_frame() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("frames.csv");
+        let mut log = FrameLog::create(&path).unwrap();
+        let at = SystemTime::UNIX_EPOCH + Duration::from_millis(1_700_000_000_250);
+        log.record(at, Duration::from_micros(2_500), 7, 1);
+        let text = std::fs::read_to_string(&path).unwrap();
+        assert_eq!(
+            text,
+            format!("{FRAME_LOG_HEADER}\n1700000000.250000,2.500,7,1\n")
+        );
+        assert!(FrameLog::create(&dir.path().join("missing/frames.csv")).is_err());
+    }
+
+    #[test]
+    fn a_pause_starts_the_count_over() {
+        assert_eq!(clock_of(&[0], 1).rate(), None);
+        // Two frames, then a pause: the frame after it stands alone.
+        assert_eq!(clock_of(&[0, 40, 1000], 1).rate(), None);
+        let rate = clock_of(&[0, 40, 1000, 1100], 1)
+            .rate()
+            .expect("two frames");
+        assert!((rate.per_second - 10.0).abs() < 1e-9, "{rate:?}");
+    }
+}
