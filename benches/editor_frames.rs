@@ -126,6 +126,32 @@ fn dragged_frames(
     total
 }
 
+/// A part of the app's frame profile.
+type ProfilePart = fn(&veneer::app::FrameProfile) -> Duration;
+
+/// Benches `part` of the frames of a drag going on from `at` (back and forth: each
+/// sample turns).
+fn bench_dragged(
+    group: &mut criterion::BenchmarkGroup<'_, criterion::measurement::WallTime>,
+    name: &str,
+    harness: &mut Editor,
+    at: &mut egui::Pos2,
+    right: &mut bool,
+    part: ProfilePart,
+) {
+    group.bench_function(name, |b| {
+        b.iter_custom(|frames| {
+            *right = !*right;
+            let going_right = *right;
+            let step = |harness: &mut Editor, at: egui::Pos2| {
+                let next = drag_frame(harness, at, going_right);
+                (part(&harness.state().profile), next)
+            };
+            dragged_frames(harness, at, frames, step)
+        })
+    });
+}
+
 fn wood_drag(c: &mut Criterion) {
     let mut harness = editor(Path::new(WOOD));
     select(&mut harness, "material");
@@ -134,19 +160,11 @@ fn wood_drag(c: &mut Criterion) {
     let mut group = c.benchmark_group("editor: wood, a frame while a parameter is dragged");
     group.sample_size(20);
     group.measurement_time(Duration::from_secs(5));
-    let mut profiled = |name: &str, part: fn(&veneer::app::FrameProfile) -> Duration| {
-        group.bench_function(name, |b| {
-            b.iter_custom(|frames| {
-                right = !right;
-                let step = |harness: &mut Editor, at: egui::Pos2| {
-                    let next = drag_frame(harness, at, right);
-                    (part(&harness.state().profile), next)
-                };
-                dragged_frames(&mut harness, &mut at, frames, step)
-            })
-        });
+    let mut profiled = |name: &str, part: ProfilePart| {
+        bench_dragged(&mut group, name, &mut harness, &mut at, &mut right, part);
     };
     profiled("main thread: the app's whole frame", |p| p.total);
+    profiled("of which the main thread's CPU time", |p| p.cpu);
     profiled("of which: reading the graph back (sync)", |p| p.sync);
     profiled("of which: compile check", |p| p.compile);
     profiled("of which: lint", |p| p.lint);
@@ -394,16 +412,15 @@ fn big_graphs_frames(c: &mut Criterion) {
     });
     let mut at = grab(&mut harness, "1.0");
     let mut right = true;
-    group.bench_function("a frame while a parameter is dragged (main thread)", |b| {
-        b.iter_custom(|frames| {
-            right = !right;
-            let step = |harness: &mut Editor, at: egui::Pos2| {
-                let next = drag_frame(harness, at, right);
-                (harness.state().profile.total, next)
-            };
-            dragged_frames(&mut harness, &mut at, frames, step)
-        })
-    });
+    let parts: [(&str, ProfilePart); 2] = [
+        ("a frame while a parameter is dragged (main thread)", |p| {
+            p.total
+        }),
+        ("of which the main thread's CPU time", |p| p.cpu),
+    ];
+    for (name, part) in parts {
+        bench_dragged(&mut group, name, &mut harness, &mut at, &mut right, part);
+    }
     group.finish();
     drop(harness);
     let _ = std::fs::remove_file(&path);

@@ -63,6 +63,22 @@ impl FrameClock {
     }
 }
 
+/// The CPU time the calling thread has used (zero where the platform does not say).
+pub fn thread_cpu_time() -> Duration {
+    #[cfg(unix)]
+    {
+        let mut now = libc::timespec {
+            tv_sec: 0,
+            tv_nsec: 0,
+        };
+        // SAFETY: `clock_gettime` writes one `timespec`, which `now` is.
+        if unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut now) } == 0 {
+            return Duration::new(now.tv_sec as u64, now.tv_nsec as u32);
+        }
+    }
+    Duration::ZERO
+}
+
 /// `veneer edit --frame-log FILE`: one CSV line per frame, for measuring the real window
 /// from outside (`benches/editor_window.rs`): when the frame began (seconds since the
 /// Unix epoch), the main thread's time in it, and the graph's revision and compile count
@@ -141,6 +157,24 @@ mod tests {
         }
         let rate = clock_of(&starts, 1).rate().expect("continuous frames");
         assert!((rate.per_second - 20.0).abs() < 1e-9, "{rate:?}");
+    }
+
+    #[test]
+    fn thread_cpu_time_counts_work_and_not_sleep() {
+        let before = thread_cpu_time();
+        std::thread::sleep(Duration::from_millis(30));
+        let slept = thread_cpu_time() - before;
+        let started = Instant::now();
+        let mut sum = 0u64;
+        while started.elapsed() < Duration::from_millis(30) {
+            sum = sum.wrapping_add(std::hint::black_box(1));
+        }
+        let worked = thread_cpu_time() - before - slept;
+        assert!(slept < Duration::from_millis(10), "{slept:?} while asleep");
+        assert!(
+            worked > Duration::from_millis(10),
+            "{worked:?} while busy ({sum})"
+        );
     }
 
     #[test]

@@ -10,6 +10,7 @@ mod dialog_contents;
 mod dialog_frame;
 mod dialogs;
 mod document;
+mod drawing_thread;
 mod fields;
 mod file_browser;
 mod frame_clock;
@@ -538,6 +539,7 @@ impl eframe::App for VeneerApp {
     fn ui(&mut self, ui: &mut Ui, _frame: &mut eframe::Frame) {
         let started = std::time::Instant::now();
         let started_at = std::time::SystemTime::now();
+        let cpu_before = frame_clock::thread_cpu_time();
         let ctx = ui.ctx().clone();
         self.previews.receive(&ctx);
         self.shortcuts(&ctx);
@@ -581,6 +583,7 @@ impl eframe::App for VeneerApp {
         self.after_edits(&ctx);
         self.handle_close(&ctx);
         self.profile.total = started.elapsed();
+        self.profile.cpu = frame_clock::thread_cpu_time().saturating_sub(cpu_before);
         self.frame_clock.record(started, self.profile.total);
         if let Some(log) = &mut self.frame_log {
             log.record(

@@ -5,6 +5,7 @@
 //! screen meanwhile. Each preview keeps one request waiting at most — a newer one
 //! replaces it — so the thread always draws the latest state.
 
+use super::drawing_thread::DrawingThread;
 use crate::mesh::Mesh;
 use crate::render::{GpuContext, LiveMaterialCode, LiveRenderer, MeshView, Quality};
 use std::sync::mpsc::{Receiver, Sender, channel};
@@ -73,10 +74,12 @@ struct Mailbox {
     closed: bool,
 }
 
-/// The UI thread's end: posts requests, receives frames; dropping it ends the thread.
+/// The UI thread's end: posts requests, receives frames; dropping it ends the thread
+/// (and waits for it, see [`DrawingThread`]).
 pub struct Worker {
     mailbox: Arc<(Mutex<Mailbox>, Condvar)>,
     drawn: Receiver<Drawn>,
+    thread: DrawingThread,
 }
 
 impl Worker {
@@ -85,11 +88,12 @@ impl Worker {
         let mailbox = Arc::new((Mutex::new(Mailbox::default()), Condvar::new()));
         let (sender, drawn) = channel();
         let shared = Arc::clone(&mailbox);
-        std::thread::Builder::new()
-            .name("veneer preview".into())
-            .spawn(move || run(&shared, &sender, wake))
-            .expect("the preview thread starts");
-        Worker { mailbox, drawn }
+        let thread = DrawingThread::spawn("veneer preview", move || run(&shared, &sender, wake));
+        Worker {
+            mailbox,
+            drawn,
+            thread,
+        }
     }
 
     /// Posts `request` for `slot` under the number `id`, replacing one still waiting.
@@ -114,6 +118,7 @@ impl Drop for Worker {
             mailbox.closed = true;
             wakeup.notify_one();
         }
+        self.thread.wait();
     }
 }
 
@@ -233,4 +238,12 @@ fn draw(
         [size.0 as usize, size.1 as usize],
         &pixels,
     ))
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn a_dropped_worker_has_waited_for_its_thread_and_device() {
+        super::super::drawing_thread::assert_dropping_waits_for_the_thread(super::Worker::start);
+    }
 }

@@ -29,6 +29,9 @@ pub(super) struct Revision {
 pub struct FrameProfile {
     /// The whole of [`eframe::App::ui`]: laying out the panels and everything below.
     pub total: Duration,
+    /// The CPU time the main thread spent in it: `total` less the time other threads
+    /// (the previews, the driver's rasteriser) had the core.
+    pub cpu: Duration,
     /// Reading the graph view back into the document and finding whether it changed.
     pub sync: Duration,
     /// Deciding whether to recompile, and recompiling.
@@ -134,6 +137,7 @@ impl VeneerApp {
         let history = lap();
         self.profile = FrameProfile {
             total: Duration::ZERO,
+            cpu: Duration::ZERO,
             sync,
             compile,
             lint,

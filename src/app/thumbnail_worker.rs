@@ -2,6 +2,7 @@
 //! atlas pipeline when the code changes and draws the tiles asked for, so neither the
 //! pipeline build nor the draw and readback ever wait on the UI thread.
 
+use super::drawing_thread::DrawingThread;
 use crate::render::{AtlasLayout, FlatRect, GpuContext, ThumbnailRenderer};
 use std::sync::Arc;
 use std::sync::mpsc::{Receiver, Sender, TryRecvError, channel};
@@ -30,10 +31,12 @@ pub struct Done {
     pub pixels: Result<Vec<u8>, String>,
 }
 
-/// The drawing thread's end of the channels; dropping it ends the thread.
+/// The UI thread's end of the channels; dropping it ends the thread (and waits for it,
+/// see [`DrawingThread`]).
 pub struct Worker {
     jobs: Sender<Job>,
     done: Receiver<Done>,
+    thread: DrawingThread,
 }
 
 impl Worker {
@@ -41,30 +44,27 @@ impl Worker {
     pub fn start(wake: impl Fn() + Send + 'static) -> Worker {
         let (jobs, job_receiver) = channel::<Job>();
         let (done_sender, done) = channel();
-        std::thread::Builder::new()
-            .name("veneer thumbnails".into())
-            .spawn(move || {
-                let gpu = GpuContext::new().map_err(|error| error.to_string());
-                let mut renderer: Option<(u64, ThumbnailRenderer)> = None;
-                for job in job_receiver {
-                    let pixels = gpu
-                        .as_ref()
-                        .map_err(Clone::clone)
-                        .and_then(|gpu| draw(gpu, &mut renderer, &job));
-                    let tiles = job.tiles.iter().map(|(index, _)| *index).collect();
-                    let reply = Done {
-                        layout: job.layout,
-                        tiles,
-                        pixels,
-                    };
-                    if done_sender.send(reply).is_err() {
-                        break;
-                    }
-                    wake();
+        let thread = DrawingThread::spawn("veneer thumbnails", move || {
+            let gpu = GpuContext::new().map_err(|error| error.to_string());
+            let mut renderer: Option<(u64, ThumbnailRenderer)> = None;
+            for job in job_receiver {
+                let pixels = gpu
+                    .as_ref()
+                    .map_err(Clone::clone)
+                    .and_then(|gpu| draw(gpu, &mut renderer, &job));
+                let tiles = job.tiles.iter().map(|(index, _)| *index).collect();
+                let reply = Done {
+                    layout: job.layout,
+                    tiles,
+                    pixels,
+                };
+                if done_sender.send(reply).is_err() {
+                    break;
                 }
-            })
-            .expect("the thumbnail thread starts");
-        Worker { jobs, done }
+                wake();
+            }
+        });
+        Worker { jobs, done, thread }
     }
 
     /// Hands a job to the thread.
@@ -82,6 +82,18 @@ impl Worker {
     }
 }
 
+impl Drop for Worker {
+    fn drop(&mut self) {
+        // Hang up both channels: the thread stops at its next job or reply, whatever
+        // jobs are still queued.
+        let (jobs, _) = channel();
+        drop(std::mem::replace(&mut self.jobs, jobs));
+        let (_, done) = channel();
+        drop(std::mem::replace(&mut self.done, done));
+        self.thread.wait();
+    }
+}
+
 fn draw(
     gpu: &GpuContext,
     renderer: &mut Option<(u64, ThumbnailRenderer)>,
@@ -95,4 +107,12 @@ fn draw(
     renderer
         .render(gpu, job.layout, job.rect, job.time, &job.tiles)
         .map_err(|error| error.to_string())
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn a_dropped_worker_has_waited_for_its_thread_and_device() {
+        super::super::drawing_thread::assert_dropping_waits_for_the_thread(super::Worker::start);
+    }
 }
