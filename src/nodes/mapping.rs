@@ -1,5 +1,5 @@
-//! Mapping: interpolating, clamping, stepping and carrying values from one range to
-//! another.
+//! Mapping: interpolating, switching, clamping, stepping and carrying values from one
+//! range to another.
 
 use super::cpu::Eval;
 use super::emit::Emit;
@@ -18,7 +18,7 @@ macro_rules! kinds {
     ($registry:ident @gather [$($units:tt)*] [$($configured:tt)*] $($rest:tt)*) => {
         $registry!(@gather
             [$($units)* (Smoothstep, mapping) (Remap, mapping)]
-            [$($configured)* (Mix, mapping) (Clamp, mapping) (Step, mapping) (MapRange, mapping)]
+            [$($configured)* (Mix, mapping) (Switch, mapping) (Clamp, mapping) (Step, mapping) (MapRange, mapping)]
             $($rest)*);
     };
 }
@@ -79,6 +79,76 @@ impl Evaluate for Mix {
 }
 
 typed_settings!(Mix, TYPES, menu [("Mix", ValueType::Float), ("Mix colours", ValueType::Color)]);
+
+/// One of three inputs, picked by `choice` rounded to the nearest (0: `a`, 1: `b`, 2:
+/// `c`; below 0.5, and NaN, picks `a`, from 1.5 on `c`): Material Maker's and Substance
+/// Designer's Switch, for a graph that offers variants behind one parameter.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "arbitrary", derive(arbitrary::Arbitrary))]
+pub struct Switch {
+    pub ty: ValueType,
+}
+
+impl Definition for Switch {
+    computed_in!(Category::Math, unchecked);
+    fn title(&self) -> &'static str {
+        "Switch"
+    }
+    fn keywords(&self) -> &'static [&'static str] {
+        &["select", "choose", "if", "branch", "variant"]
+    }
+    fn signature(&self) -> Signature {
+        Signature::new(
+            vec![
+                input("a", self.ty, splat_default(self.ty, 0.0)).soft(0.0, 1.0),
+                input("b", self.ty, splat_default(self.ty, 0.5)).soft(0.0, 1.0),
+                input("c", self.ty, splat_default(self.ty, 1.0)).soft(0.0, 1.0),
+                input("choice", FLOAT, f(0.0)).limits(0.0, 2.0),
+            ],
+            vec![output("result", self.ty)],
+        )
+    }
+    fn emit(&self, io: &mut Emit) {
+        let choice = io.input("choice");
+        io.single(format!(
+            "select(select({}, {}, {choice} >= 0.5), {}, {choice} >= 1.5)",
+            io.input("a"),
+            io.input("b"),
+            io.input("c"),
+        ));
+    }
+    fn ranges(&self, io: &mut Ranges) -> Vec<Lanes> {
+        // The inputs the choice can pick, joined.
+        let choice = io.float("choice");
+        let picked = [
+            ("a", choice.lo < 0.5),
+            ("b", choice.hi >= 0.5 && choice.lo < 1.5),
+            ("c", choice.hi >= 1.5),
+        ];
+        picked
+            .into_iter()
+            .filter(|(_, possible)| *possible)
+            .map(|(pin, _)| io.input(pin))
+            .reduce(|joined, next| lanewise(&joined, &next, Interval::hull))
+            .map_or_else(|| vec![io.input("a")], |joined| vec![joined])
+    }
+}
+
+impl Evaluate for Switch {
+    fn eval<R: Real>(&self, io: &Eval<R>) -> Vec<V3<R>> {
+        let choice = io.float("choice");
+        let pin = if choice >= R::c(1.5) {
+            "c"
+        } else if choice >= R::c(0.5) {
+            "b"
+        } else {
+            "a"
+        };
+        vec![io.input(pin)]
+    }
+}
+
+typed_settings!(Switch, TYPES, menu [("Switch", ValueType::Float), ("Switch colours", ValueType::Color)]);
 
 /// Clamp every component between `min` and `max`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]

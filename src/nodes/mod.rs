@@ -122,7 +122,7 @@ pub use coordinates::DomainWarp;
 pub use fields::Layers;
 pub use fractal::{Fbm, FractalSum, Turbulence};
 pub use inputs::{Constant, Field};
-pub use mapping::{Clamp, MapRange, MapRangeMode, Mix, Step};
+pub use mapping::{Clamp, MapRange, MapRangeMode, Mix, Step, Switch};
 pub use math::{Math, Unary};
 pub use noise::{Noise, NoiseBump};
 pub use vectors::{Combine, Dot, Length, Normalize, Split};

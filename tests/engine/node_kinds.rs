@@ -72,7 +72,7 @@ fn graph_for(kind: &NodeKind) -> Graph {
     }
     for (index, pin) in signature.inputs.iter().enumerate() {
         let driven = matches!(pin.default, PinDefault::Required | PinDefault::Position)
-            || ["a", "b", "factor", "value", "color"].contains(&pin.name)
+            || ["a", "b", "c", "choice", "factor", "value", "color"].contains(&pin.name)
             || matches!(kind, NodeKind::Combine(Combine { .. }));
         if !driven {
             continue;
@@ -230,6 +230,64 @@ fn every_node_kind_agrees_between_cpu_and_gpu() {
         "CPU and GPU disagree:\n{}",
         failures.join("\n")
     );
+}
+
+/// The switch shows the input its choice picks (rounded to the nearest, clamped), on
+/// the GPU as on the CPU: the same image as that input wired straight to the albedo.
+#[test]
+fn the_switch_picks_the_input_its_choice_names() {
+    use veneer::nodes::Switch;
+    let wired = |choice: Option<f64>| {
+        let mut graph = Graph::default();
+        let sources = sources(&mut graph);
+        let material = graph.add("material", NodeKind::Material);
+        let picked = match choice {
+            Some(choice) => {
+                let switch = graph.add(
+                    "switch",
+                    NodeKind::Switch(Switch {
+                        ty: ValueType::Float,
+                    }),
+                );
+                graph.connect(sources.scalar, "x", switch, "a");
+                graph.connect(sources.other, "x", switch, "b");
+                graph.set_input(switch, "c", Value::Float(0.8));
+                graph.set_input(switch, "choice", Value::Float(choice));
+                (switch, "result")
+            }
+            None => (sources.scalar, "x"),
+        };
+        graph.connect(picked.0, picked.1, material, "albedo");
+        graph
+    };
+    let gpu = |graph: &Graph| {
+        let module = veneer::codegen::compile(graph, &Default::default()).unwrap();
+        flat_rgb8(&module.module.source, RECT, SIZE)
+    };
+    let only_a = gpu(&wired(None));
+    let grey = cpu_flat_rgb8(&wired(Some(2.0)), RECT, SIZE);
+    assert!(
+        grey.iter().all(|&channel| channel == 204),
+        "c is 0.8 everywhere"
+    );
+    for (choice, expected) in [
+        (0.0, &only_a),
+        (0.49, &only_a),
+        (-3.0, &only_a),
+        (2.0, &grey),
+        (9.0, &grey),
+    ] {
+        let graph = wired(Some(choice));
+        assert_eq!(&gpu(&graph), expected, "choice {choice} on the GPU");
+        assert_eq!(
+            &cpu_flat_rgb8(&graph, RECT, SIZE),
+            expected,
+            "choice {choice} on the CPU"
+        );
+    }
+    let b = gpu(&wired(Some(1.0)));
+    assert_ne!(b, only_a, "choice 1 shows b");
+    assert_eq!(gpu(&wired(Some(1.49))), b);
 }
 
 /// Every node kind at coordinates from 1e-6 to 1e7: the CPU evaluator in f32 and f64 and
