@@ -1,5 +1,6 @@
 //! The faithful GeoTexture presets (`graphs/thesis_c*.ron`) against transcriptions of
-//! seed 003's appendix C fragment shaders, C.2 to C.6 (the pattern part: everything up
+//! seed 003's appendix C fragment shaders, C.2 to C.6, and the brick preset against its
+//! §3.1 Cg shader (the pattern part: everything up
 //! to the lighting), written from the thesis's GLSL and not from the node code.
 //!
 //! Each transcription is evaluated at the same surface points, field values and times as
@@ -431,4 +432,86 @@ fn c6_waves_match_the_thesis() {
         [&[0.0, C6_STRIPE_WIDTH], &[0.0, C6_STRIPE_WIDTH]],
         c6_waves,
     );
+}
+
+// ---- §3.1: the procedural brick texture (Cg), `graphs/thesis_brick.ron`
+
+const BRICK_WIDTH: f64 = 0.25;
+const BRICK_HEIGHT: f64 = 0.08;
+const MORTAR_THICKNESS: f64 = 0.01;
+
+/// `brick_f` as the thesis writes it, at texture coordinates (s, t).
+fn brick_f(scoord: f64, tcoord: f64) -> V3 {
+    let (brick, mortar) = ([0.5, 0.15, 0.14], [0.5, 0.5, 0.5]);
+    let bm_width = BRICK_WIDTH + MORTAR_THICKNESS;
+    let bm_height = BRICK_HEIGHT + MORTAR_THICKNESS;
+    let mwf = MORTAR_THICKNESS * 0.5 / bm_width;
+    let mhf = MORTAR_THICKNESS * 0.5 / bm_height;
+    let step = |edge: f64, x: f64| if x >= edge { 1.0 } else { 0.0 };
+    let frac = |x: f64| x - x.floor();
+    let mut ss = scoord / bm_width;
+    let mut tt = tcoord / bm_height;
+    if frac(tt * 0.5) > 0.5 {
+        ss += 0.5;
+    }
+    ss -= ss.floor();
+    tt -= tt.floor();
+    let w = step(mwf, ss) - step(1.0 - mwf, ss);
+    let h = step(mhf, tt) - step(1.0 - mhf, tt);
+    [0, 1, 2].map(|i| mortar[i] + (brick[i] - mortar[i]) * w * h)
+}
+
+/// With its row jitter at 0 the preset is Fig. 3.1: the preset turns the thesis's plane
+/// so that the bricks lie along x in flat renders (s = −x, t = z; the pattern is the same
+/// under s → −s, the stagger being half a brick and the mortar centred on the joints).
+#[test]
+fn the_brick_preset_is_the_thesis_brick_shader_without_jitter() {
+    let mut graph = veneer::graph::load(&root("graphs/thesis_brick.ron")).expect("preset loads");
+    let jitter = graph
+        .nodes
+        .iter()
+        .find(|node| node.label == "rowJitter")
+        .expect("the preset's row jitter")
+        .id;
+    graph.set_input(jitter, "value", veneer::graph::Value::Float(0.0));
+    let evaluator = Evaluator::new(&graph).expect("preset checks");
+    let mut samples = Samples(0x5eed_0031);
+    let mut mortar = 0;
+    for _ in 0..3000 {
+        let (x, z) = (samples.unit() * 6.0 - 3.0, samples.unit() * 6.0 - 3.0);
+        let ours: Material<f64> = evaluator.eval(&Surface::<f64>::at([x, 0.0, z]));
+        let thesis = brick_f(-x, z);
+        mortar += usize::from((thesis[1] - 0.5).abs() < 1e-9);
+        let error = (0..3)
+            .map(|i| (ours.albedo[i] - thesis[i]).abs())
+            .fold(0.0, f64::max);
+        assert!(
+            error < 1e-12,
+            "at x = {x}, z = {z}: {:?} against {thesis:?}",
+            ours.albedo
+        );
+    }
+    // About 15% of the wall is mortar: the samples see both.
+    assert!((300..700).contains(&mortar), "{mortar} mortar samples");
+}
+
+#[test]
+fn the_brick_preset_jitters_its_rows() {
+    let graph = veneer::graph::load(&root("graphs/thesis_brick.ron")).expect("preset loads");
+    let evaluator = Evaluator::new(&graph).expect("preset checks");
+    // Along one line of the wall, each row's vertical joints move by its own amount:
+    // some points the thesis shader puts on a brick are mortar here, and the other way.
+    let differing = (0..2000)
+        .map(|index| {
+            let (x, z) = (
+                -2.0 + index as f64 * 0.002,
+                0.3 + (index % 37) as f64 * 0.09,
+            );
+            let ours: Material<f64> = evaluator.eval(&Surface::<f64>::at([x, 0.0, z]));
+            let thesis = brick_f(-x, z);
+            (0..3).any(|i| (ours.albedo[i] - thesis[i]).abs() > 1e-9)
+        })
+        .filter(|&differs| differs)
+        .count();
+    assert!(differing > 40, "only {differing} of 2000 points moved");
 }

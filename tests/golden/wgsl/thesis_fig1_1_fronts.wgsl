@@ -51,22 +51,22 @@ fn veneer_front(distance: f32, threshold: f32, width: f32, noise: f32, centre: f
 // ---- the material graph
 
 fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
-    // Math 'to the source in uv' (#7)
-    let to_the_source_in_uv: vec2f = s.uv - vec2f(0.0f, 0.5f);
-    // Length 'uv' (#8)
-    let uv_8: f32 = length(to_the_source_in_uv);
+    // Math 'from source (uv)' (#7)
+    let from_source_uv: vec2f = s.uv - vec2f(0.0f, 0.5f);
+    // Length 'uv length' (#8)
+    let uv_length: f32 = length(from_source_uv);
     // Math 'uv distance' (#9)
-    let uv_distance: f32 = uv_8 * 0.894427f;
-    // Math 'to the source in space' (#4)
-    let to_the_source_in_space: vec3f = s.position - vec3f(0.4f, 0.0f, 0.0f);
-    // Length 'euclidean' (#5)
-    let euclidean: f32 = length(to_the_source_in_space);
+    let uv_distance: f32 = uv_length * 0.894427f;
+    // Math 'from source (3D)' (#4)
+    let from_source_3d: vec3f = s.position - vec3f(0.4f, 0.0f, 0.0f);
+    // Length '3D length' (#5)
+    let n_3d_length: f32 = length(from_source_3d);
     // Math 'euclidean distance' (#6)
-    let euclidean_distance: f32 = euclidean * 0.714286f;
-    // Switch 'distance: 0 uv, 1 euclidean, 2 geodesic' (#10)
-    let distance_0_uv_1_euclidean_2_geodesic: f32 = select(select(uv_distance, euclidean_distance, 2.0f >= 0.5), s.fields.x, 2.0f >= 1.5);
+    let euclidean_distance: f32 = n_3d_length * 0.714286f;
+    // Switch 'uv · 3D · geodesic' (#10)
+    let uv_3d_geodesic: f32 = select(select(uv_distance, euclidean_distance, 2.0f >= 0.5), s.fields.x, 2.0f >= 1.5);
     // Front 'sand' (#12)
-    let sand: f32 = veneer_front(distance_0_uv_1_euclidean_2_geodesic, 0.5f, 0.0485f, 0.0f, 1.0f, 0.5f);
+    let sand: f32 = veneer_front(uv_3d_geodesic, 0.5f, 0.0485f, 0.0f, 1.0f, 0.5f);
     // Mix 'diffuse' (#13)
     let diffuse: vec3f = mix(vec3f(0.177f, 0.503f, 0.413f), vec3f(0.894f, 0.969f, 0.755f), sand);
     // Material 'material' (#14)
