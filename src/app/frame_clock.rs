@@ -1,7 +1,8 @@
-//! The frame rate the status bar shows (*View → Frame rate*): frames a second and the
-//! main thread's mean time per frame over the last second of continuous redrawing. One
-//! frame's interval alone jumps between 14 and 26 fps on a software rasteriser while a
-//! parameter is dragged; a second's worth reads steadily.
+//! Measuring the editor's frames. The frame rate the status bar shows (*View → Frame
+//! rate*): frames a second and the main thread's mean time per frame over the last
+//! second of continuous redrawing (one frame's interval alone jumps between 14 and 26
+//! fps on a software rasteriser while a parameter is dragged; a second's worth reads
+//! steadily); the main thread's CPU time; and the frame log `--frame-log` writes.
 
 use std::collections::VecDeque;
 use std::io::Write;
@@ -30,8 +31,7 @@ pub struct FrameRate {
 
 impl FrameClock {
     /// Notes a frame that began at `started` and whose main-thread work took
-    /// `main_thread` (known at the frame's end; the frame before's work is noted with
-    /// its start).
+    /// `main_thread` (called as that work ends).
     pub fn record(&mut self, started: Instant, main_thread: Duration) {
         if let Some(&(last, _)) = self.frames.back()
             && started.saturating_duration_since(last) > PAUSE
