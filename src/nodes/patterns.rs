@@ -2,11 +2,13 @@
 
 use super::coordinates::axis_reach;
 use super::cpu::Eval;
-use super::emit::Emit;
+use super::emit::{Detail, Emit};
 use super::formulas::real::{Real, V3, splat};
 use super::formulas::shapes;
 use super::interval::{self, Interval, Lanes};
-use super::pins::{FLOAT, POINT, REQUIRED, Signature, VEC2, VEC3, f, input, output, v2, v3};
+use super::pins::{
+    FLOAT, POINT, REQUIRED, Signature, VEC2, VEC3, f, input, output, pin_index, v2, v3,
+};
 use super::ranges::Ranges;
 use super::settings::Basis;
 use super::{Catalogue, Category, Definition, Evaluate};
@@ -135,9 +137,18 @@ impl Definition for Tiles {
     }
     fn emit(&self, io: &mut Emit) {
         io.uses("veneer_tiles");
+        let mut inputs = io.inputs().to_vec();
+        if io.detail == Detail::Footprint {
+            // Seed 004's antialiasing: the mortar box-filtered over the pixel's footprint
+            // (its `fwidth`), or over `blur` where that is wider.
+            io.uses("veneer_plane_footprint");
+            let blur = io.input("blur");
+            inputs[pin_index(io.pins(), "blur")] =
+                format!("max({blur}, veneer_plane_footprint({}))", io.input("p"));
+        }
         io.bind(
             "veneer_tiles_result",
-            format!("veneer_tiles({})", io.inputs().join(", ")),
+            format!("veneer_tiles({})", inputs.join(", ")),
         );
         let name = io.name();
         io.outputs(

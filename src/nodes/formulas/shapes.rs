@@ -127,11 +127,13 @@ fn tile_integral<R: Real>(x: R, gap: R) -> R {
     x.floor() * (R::c(1.0) - gap) + (x.fract() - gap).max(R::c(0.0))
 }
 
+/// Share of [x − width/2, x + width/2] covered by tile (`veneer_tile_coverage`).
 fn tile_coverage<R: Real>(x: R, gap: R, width: R) -> R {
     if width <= R::c(0.0) {
         R::step(gap, x.fract())
     } else {
-        (tile_integral(x + width, gap) - tile_integral(x, gap)) / width.max(R::c(1.0e-30))
+        let half = width * R::c(0.5);
+        (tile_integral(x + half, gap) - tile_integral(x - half, gap)) / width.max(R::c(1.0e-30))
     }
 }
 

@@ -26,11 +26,14 @@ fn veneer_tile_integral(x: vec2f, gap: vec2f) -> vec2f {
     return floor(x) * (1.0 - gap) + max(fract(x) - gap, vec2f(0.0));
 }
 
-// Share of [x, x + width] covered by tile: the box-filtered tile mask of seed 004,
-// a hard step where the width is 0.
+// Share of [x - width/2, x + width/2] covered by tile: the box-filtered tile mask of
+// seed 004, centred on the pixel (seed 004 filters [x, x + width], half a filter off,
+// which at joints narrower than a pixel is worse than no filter), a hard step where the
+// width is 0.
 fn veneer_tile_coverage(x: vec2f, gap: vec2f, width: vec2f) -> vec2f {
     let hard = step(gap, fract(x));
-    let soft = (veneer_tile_integral(x + width, gap) - veneer_tile_integral(x, gap)) / max(width, vec2f(1.0e-30));
+    let half = width * 0.5;
+    let soft = (veneer_tile_integral(x + half, gap) - veneer_tile_integral(x - half, gap)) / max(width, vec2f(1.0e-30));
     return select(soft, hard, width <= vec2f(0.0));
 }
 
