@@ -59,9 +59,9 @@ pub enum Detail {
     #[default]
     Full,
     /// Fractal nodes leave out octaves finer than the pixel footprint (from screen-space
-    /// derivatives of their input), fading the last one: less aliasing and less work in
-    /// the distance. Fragment stage only, so materials that displace vertices keep full
-    /// detail.
+    /// derivatives of their input), fading the last one, and tiles filter their joints
+    /// over it: less aliasing and less work in the distance. Fragment stage only, so
+    /// materials that displace vertices keep full detail.
     Footprint,
 }
 
