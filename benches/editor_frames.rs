@@ -264,12 +264,7 @@ fn structural_edit(c: &mut Criterion) {
     let mut graph = veneer::graph::load(Path::new(WOOD)).expect("wood preset");
     let mesh = veneer::mesh::primitive(&graph.preview.mesh).expect("the preview mesh");
     let view = MeshView::for_preview(&graph.preview);
-    let material = graph
-        .nodes
-        .iter()
-        .find(|n| n.kind == NodeKind::Material)
-        .expect("material")
-        .id;
+    let material = graph.material().expect("material").id;
     let size = (460, 400);
     let mut renderer = LiveRenderer::default();
     let mut group = c.benchmark_group(format!(
@@ -277,36 +272,27 @@ fn structural_edit(c: &mut Criterion) {
         gpu.adapter_description()
     ));
     group.sample_size(10);
-    let (code, mut params) = live_code(&graph, 0);
-    renderer
-        .render(
+    // The full draw of `code` with `params`, as the preview thread draws at rest.
+    let draw = |renderer: &mut LiveRenderer, code: &LiveMaterialCode, params: &[[f32; 4]]| {
+        renderer.render(
             &gpu,
-            &code,
-            &params,
+            code,
+            params,
             "mesh",
             &mesh,
             &view,
             size,
             Quality::Full,
         )
-        .expect("draws");
+    };
+    let (code, mut params) = live_code(&graph, 0);
+    draw(&mut renderer, &code, &params).expect("draws");
     group.bench_function(
         "parameter edit: new values, the pipeline it has (baseline)",
         |b| {
             b.iter(|| {
                 params[0][0] += 0.001;
-                renderer
-                    .render(
-                        &gpu,
-                        &code,
-                        &params,
-                        "mesh",
-                        &mesh,
-                        &view,
-                        size,
-                        Quality::Full,
-                    )
-                    .expect("draws")
+                draw(&mut renderer, &code, &params).expect("draws")
             })
         },
     );
@@ -332,18 +318,7 @@ fn structural_edit(c: &mut Criterion) {
                 }
                 generation += 1;
                 let (code, params) = live_code(&graph, generation);
-                renderer
-                    .render(
-                        &gpu,
-                        &code,
-                        &params,
-                        "mesh",
-                        &mesh,
-                        &view,
-                        size,
-                        Quality::Full,
-                    )
-                    .expect("draws")
+                draw(&mut renderer, &code, &params).expect("draws")
             })
         },
     );

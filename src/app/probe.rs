@@ -13,7 +13,7 @@ use crate::nodes::{Combine, Math, Mix, Split};
 /// for the material node itself and nodes without outputs.
 pub fn probe_graph(graph: &Graph, node: NodeId) -> Option<Graph> {
     let output = *graph.node(node)?.kind.signature().outputs.first()?;
-    let material = material_of(graph)?;
+    let material = graph.material()?.id;
     let mut probe = graph.clone();
     let (colour, pin) = as_colour(&mut probe, &PinRef::new(node, output.name), output.ty);
     probe.connect(colour, pin, material, "albedo");
@@ -37,7 +37,7 @@ pub struct AtlasGraph {
 /// material's other inputs are cut, so only the nodes the pins read get code.
 /// `None` when the graph has no material or no pin is an output of its nodes.
 pub fn atlas_graph(graph: &Graph, pins: &[PinRef]) -> Option<AtlasGraph> {
-    let material = material_of(graph)?;
+    let material = graph.material()?.id;
     let mut atlas = graph.clone();
     atlas.wires.retain(|wire| wire.to.node != material);
     if let Some(node) = atlas.node_mut(material) {
@@ -72,14 +72,6 @@ pub fn atlas_graph(graph: &Graph, pins: &[PinRef]) -> Option<AtlasGraph> {
         pins: shown,
         selectors,
     })
-}
-
-fn material_of(graph: &Graph) -> Option<NodeId> {
-    graph
-        .nodes
-        .iter()
-        .find(|n| n.kind == NodeKind::Material)
-        .map(|n| n.id)
 }
 
 /// Adds to `graph` what shows `pin` (of type `ty`) as a colour (see the module's

@@ -195,6 +195,14 @@ impl Default for Graph {
 }
 
 impl Graph {
+    /// The graph's Material node (the first, should a graph that does not check have
+    /// several).
+    pub fn material(&self) -> Option<&Node> {
+        self.nodes
+            .iter()
+            .find(|node| node.kind == NodeKind::Material)
+    }
+
     /// The node with `id`.
     pub fn node(&self, id: NodeId) -> Option<&Node> {
         self.nodes.iter().find(|node| node.id == id)

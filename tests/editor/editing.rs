@@ -77,15 +77,7 @@ fn adds_a_node_through_the_search_menu_and_wires_it_from_the_inspector() {
     // Wire the new node into the material's alpha through the inspector's connect choice.
     wire_into_alpha(&mut harness, "Worley · value");
     let graph = &harness.state().document.graph;
-    let wire = graph.wire_into(
-        graph
-            .nodes
-            .iter()
-            .find(|n| n.kind == NodeKind::Material)
-            .unwrap()
-            .id,
-        "alpha",
-    );
+    let wire = graph.wire_into(graph.material().unwrap().id, "alpha");
     assert_eq!(wire.map(|w| w.from.node), Some(worley));
     assert_eq!(
         harness.state().live.compiles,

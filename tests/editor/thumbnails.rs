@@ -71,12 +71,7 @@ fn simple_graph() -> (Graph, NodeId, NodeId, NodeId) {
 /// The colour a tile pixel should have: `pin` wired into the albedo (a vec3 through
 /// `v * 0.5 + 0.5`), evaluated on the CPU at the pixel's centre, as 8-bit.
 fn expected(graph: &Graph, pin: &PinRef, ty: ValueType, i: u32, j: u32) -> [u8; 3] {
-    let material = graph
-        .nodes
-        .iter()
-        .find(|n| n.kind == NodeKind::Material)
-        .unwrap()
-        .id;
+    let material = graph.material().unwrap().id;
     let mut probe = graph.clone();
     probe.connect(pin.node, &pin.pin, material, "albedo");
     let evaluator = Evaluator::new(&probe).unwrap();
@@ -289,12 +284,7 @@ fn wire_middle(harness: &Harness<'static, VeneerApp>, from: &PinRef, to: &PinRef
 #[test]
 fn hovering_a_wire_shows_the_value_it_carries() {
     let (mut graph, _, _, split) = simple_graph();
-    let material = graph
-        .nodes
-        .iter()
-        .find(|n| n.kind == NodeKind::Material)
-        .unwrap()
-        .id;
+    let material = graph.material().unwrap().id;
     // The split's second output (z: a ramp from top to bottom) is no node's thumbnail.
     graph.connect(split, "z", material, "alpha");
     let mut harness = open("thumbnail-wire", &graph);
@@ -329,12 +319,7 @@ fn hovering_a_wire_shows_the_value_it_carries() {
 #[test]
 fn a_node_dropped_on_a_wire_is_inserted_and_one_undo_takes_it_out() {
     let (mut graph, colour, _, _) = simple_graph();
-    let material = graph
-        .nodes
-        .iter()
-        .find(|n| n.kind == NodeKind::Material)
-        .unwrap()
-        .id;
+    let material = graph.material().unwrap().id;
     let tint = graph.add(
         "tint",
         NodeKind::Constant(Constant {
