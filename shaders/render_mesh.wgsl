@@ -63,7 +63,7 @@ fn veneer_texture_position(position: vec3f) -> vec3f {
 }
 
 @fragment
-fn veneer_mesh_fragment(input: VeneerVertexOut) -> @location(0) vec4f {
+fn veneer_mesh_fragment(input: VeneerVertexOut, @builtin(front_facing) front: bool) -> @location(0) vec4f {
     let view = veneer_mesh_view;
     let normal = normalize(input.normal);
     let surface = VeneerSurface(veneer_texture_position(input.position), normal, input.uv, input.fields, view.time);
@@ -73,8 +73,9 @@ fn veneer_mesh_fragment(input: VeneerVertexOut) -> @location(0) vec4f {
     if VENEER_HEIGHT {
         relief = veneer_height_bump(input.position, normal, material.height / max(view.placement.w, 1.0e-6));
     }
-    // Eaten-away surfaces: what the material makes transparent is cut out.
-    if material.alpha < 0.5 {
+    // VENEER_MIN_ALPHA, VENEER_MAX_ALPHA (set by the pipeline): the alphas this pass
+    // draws; what is below a cutoff is cut out, what another pass draws is left to it.
+    if material.alpha < VENEER_MIN_ALPHA || material.alpha >= VENEER_MAX_ALPHA {
         discard;
     }
     // VENEER_RELIEF (set by the pipeline): a bump or a height perturbs the normal.
@@ -82,6 +83,9 @@ fn veneer_mesh_fragment(input: VeneerVertexOut) -> @location(0) vec4f {
     if VENEER_RELIEF {
         n = normalize(normal + material.bump + relief);
     }
+    // A back face (drawn where the material can be cut away or see-through) is lit
+    // from its own side.
+    n = select(-n, n, front);
     let l = view.light_direction.xyz;
     let v = normalize(view.eye.xyz - input.position);
     let h = normalize(l + v);
@@ -90,5 +94,7 @@ fn veneer_mesh_fragment(input: VeneerVertexOut) -> @location(0) vec4f {
     let lit = material.albedo * (view.ambient + (1.0 - view.ambient) * lambert) + material.specular * highlight
         + material.emission;
     let color = select(lit, material.albedo, view.unlit == 1u);
-    return vec4f(clamp(color, vec3f(0.0), vec3f(1.0)), 1.0);
+    // VENEER_BLENDED (set by the pipeline): this pass blends by the material's alpha.
+    let alpha = select(1.0, clamp(material.alpha, 0.0, 1.0), VENEER_BLENDED);
+    return vec4f(clamp(color, vec3f(0.0), vec3f(1.0)), alpha);
 }

@@ -4,7 +4,7 @@
 use crate::codegen::{
     CompileError, CompileOptions, Compiled, Detail, ParamMode, compile, param_values,
 };
-use crate::graph::{Graph, NodeId};
+use crate::graph::{AlphaMode, Graph, NodeId, Value};
 use std::collections::BTreeMap;
 
 /// The most parameter slots a uniform block takes: 16 KiB, what every device offers.
@@ -45,8 +45,26 @@ pub(super) fn structure(graph: &Graph) -> Graph {
     skeleton.preview = Default::default();
     for node in &mut skeleton.nodes {
         node.label.clear();
-        node.inputs.clear();
         node.position = (0.0, 0.0);
+        if node.kind == crate::graph::NodeKind::Material {
+            // What the material's unwired bump, height and alpha are decides what the
+            // pipeline does (`SurfaceUse`): kept as a class (zero or not, below the
+            // alpha that shows or not), so that crossing a class recompiles and nothing
+            // else does.
+            let opaque_from = match graph.alpha {
+                AlphaMode::Mask { cutoff } => cutoff,
+                AlphaMode::Blend | AlphaMode::Opaque => 1.0,
+            };
+            for (pin, value) in &mut node.inputs {
+                let class = match pin.as_str() {
+                    "alpha" => value.components()[0] < opaque_from,
+                    _ => value.components() != [0.0; 3],
+                };
+                *value = Value::Float(f64::from(u8::from(class)));
+            }
+        } else {
+            node.inputs.clear();
+        }
     }
     skeleton
 }

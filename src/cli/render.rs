@@ -1,10 +1,12 @@
 //! `veneer render`: a graph to a PNG, lit on a mesh or flat over a plane.
 
+use super::output::note;
 use super::{Failure, in_file, load_graph, write_output};
 use clap::Args;
 use std::path::PathBuf;
 use veneer::codegen::{CompileOptions, Detail};
-use veneer::render::{FlatRect, GpuContext, View, render_material};
+use veneer::graph::Tessellation;
+use veneer::render::{FlatRect, GpuContext, Relief, View, render_material_with};
 
 /// How much noise detail to compute.
 #[derive(Clone, Copy, clap::ValueEnum)]
@@ -47,6 +49,33 @@ pub struct RenderArgs {
     /// Noise detail.
     #[arg(long, value_enum, default_value = "full")]
     detail: DetailName,
+    /// Refine a displaced mesh until its triangles are within PX pixels of the displaced
+    /// surface (adaptive tessellation; `off` draws the mesh's own triangles). Default:
+    /// the graph's preview setting.
+    #[arg(long, value_name = "PX|off", value_parser = parse_tessellation)]
+    tessellate: Option<TessellationChoice>,
+    /// Show the material's height by moving the vertices (displaced) or as bump only.
+    #[arg(long, value_enum, default_value = "displaced")]
+    relief: Relief,
+}
+
+/// `--tessellate`: off, or a tolerance in pixels.
+#[derive(Clone, Copy)]
+pub struct TessellationChoice(Option<Tessellation>);
+
+fn parse_tessellation(text: &str) -> Result<TessellationChoice, String> {
+    if text == "off" {
+        return Ok(TessellationChoice(None));
+    }
+    let tolerance: f64 = text
+        .parse()
+        .map_err(|_| format!("'{text}' is neither a number of pixels nor 'off'"))?;
+    let tessellation = Tessellation {
+        tolerance,
+        ..Tessellation::default()
+    };
+    tessellation.refinement().validate()?;
+    Ok(TessellationChoice(Some(tessellation)))
 }
 
 pub fn parse_flat(text: &str) -> Result<FlatRect, String> {
@@ -73,13 +102,29 @@ pub fn parse_flat(text: &str) -> Result<FlatRect, String> {
 pub fn run(args: RenderArgs) -> Result<(), Failure> {
     let graph = load_graph(&args.graph)?;
     let options = CompileOptions::with_detail(args.detail.into());
-    let compiled =
+    let mut compiled =
         veneer::codegen::compile(&graph, &options).map_err(|error| in_file(&args.graph, error))?;
+    if let Some(TessellationChoice(choice)) = args.tessellate {
+        compiled.preview.tessellation = choice;
+    }
     let view = match args.flat {
         Some(rect) => View::Flat(rect),
         None => View::Mesh(args.mesh),
     };
     let gpu = GpuContext::new()?;
-    let image = render_material(&gpu, &compiled, &view, args.size, args.time)?;
-    write_output(Some(&args.output), &image.to_png()?)
+    let rendered = render_material_with(&gpu, &compiled, &view, args.size, args.time, args.relief)?;
+    if let Some(tessellated) = rendered.tessellated {
+        let (before, after) = tessellated.triangles;
+        note(format!(
+            "{}: tessellated {before} triangles into {after} ({} levels){}",
+            args.graph.display(),
+            tessellated.levels,
+            if tessellated.limited {
+                "; warning: stopped at the triangle limit, short of the tolerance"
+            } else {
+                ""
+            }
+        ))?;
+    }
+    write_output(Some(&args.output), &rendered.image.to_png()?)
 }

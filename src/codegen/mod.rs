@@ -15,7 +15,7 @@ pub use crate::nodes::emit::{Detail, float_literal, value_literal};
 pub use validate::{ValidationError, validate};
 
 use crate::graph::check::{CheckedGraph, InputSource};
-use crate::graph::{self, CheckError, Graph, NodeId, NodeKind, Preview};
+use crate::graph::{self, AlphaMode, CheckError, Graph, NodeId, NodeKind, Preview};
 use crate::nodes::emit::{self, Emit};
 use naming::Namer;
 use parts::Block;
@@ -93,8 +93,22 @@ pub struct WgslModule {
     pub uses: SurfaceUse,
 }
 
+/// What a mesh pipeline does with a material's alpha.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum AlphaUse {
+    /// The surface is opaque everywhere (the alpha is 1 or ignored): back faces are
+    /// culled.
+    #[default]
+    Opaque,
+    /// Fragments with alpha below the cutoff are cut out; back faces are drawn.
+    Mask(f32),
+    /// Opaque fragments are drawn first, then the see-through ones blended back to
+    /// front; back faces are drawn.
+    Blend,
+}
+
 /// What of the surface a material needs beyond position, normal and uv.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct SurfaceUse {
     /// Which of the four distance fields some node reads.
     pub fields: [bool; 4],
@@ -102,6 +116,8 @@ pub struct SurfaceUse {
     pub displacement: bool,
     /// Whether the bump output can be non-zero (the shading normal is perturbed).
     pub bump: bool,
+    /// What the alpha output asks of the pipeline.
+    pub alpha: AlphaUse,
 }
 
 impl SurfaceUse {
@@ -119,6 +135,16 @@ impl SurfaceUse {
         let material = graph.material();
         uses.bump = non_zero(material.input("bump"));
         uses.displacement = non_zero(material.input("height"));
+        let alpha_below = |level: f64| match material.input("alpha") {
+            Some(InputSource::Const(value)) => value.components()[0] < level,
+            _ => true,
+        };
+        uses.alpha = match graph.alpha {
+            AlphaMode::Opaque => AlphaUse::Opaque,
+            AlphaMode::Mask { cutoff } if alpha_below(cutoff) => AlphaUse::Mask(cutoff as f32),
+            AlphaMode::Blend if alpha_below(1.0) => AlphaUse::Blend,
+            AlphaMode::Mask { .. } | AlphaMode::Blend => AlphaUse::Opaque,
+        };
         uses
     }
 }

@@ -61,6 +61,8 @@ impl CheckedNode {
 #[derive(Clone, Debug)]
 pub struct CheckedGraph {
     pub name: String,
+    /// How the material's alpha shows (the graph's setting).
+    pub alpha: super::AlphaMode,
     /// Needed nodes, every node after the nodes it reads; the material node is last.
     pub order: Vec<CheckedNode>,
     /// The position of each node in `order`.
@@ -401,6 +403,14 @@ pub fn check(graph: &Graph) -> Result<CheckedGraph, Vec<CheckError>> {
     for problem in graph.preview.problems() {
         checker.error(None, problem);
     }
+    if let super::AlphaMode::Mask { cutoff } = graph.alpha
+        && !(0.0..=1.0).contains(&cutoff)
+    {
+        checker.error(
+            None,
+            format!("the alpha cutoff {cutoff} must be a number from 0 to 1"),
+        );
+    }
     checker.index_wires();
     for (node, signature) in graph.nodes.iter().zip(&signatures) {
         checker.check_settings(node);
@@ -444,6 +454,7 @@ pub fn check(graph: &Graph) -> Result<CheckedGraph, Vec<CheckError>> {
     }
     Ok(CheckedGraph {
         name: graph.name.clone(),
+        alpha: graph.alpha,
         order,
         index,
     })

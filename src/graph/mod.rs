@@ -138,6 +138,54 @@ pub struct Preview {
     /// k from `fields[k]`); at most four.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub fields: Vec<FieldSource>,
+    /// Whether a displaced material's mesh is refined where its height needs it (the
+    /// thesis's adaptive tessellation); `None` draws the mesh's own triangles.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tessellation: Option<Tessellation>,
+}
+
+/// Adaptive tessellation of displaced meshes: edges are halved until the displaced
+/// surface is within `tolerance` pixels of its triangles on screen, at most `levels`
+/// times.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Tessellation {
+    /// Pixels the drawn triangles may stray from the displaced surface.
+    #[serde(default = "Tessellation::default_tolerance")]
+    pub tolerance: f64,
+    /// The most times an edge of the mesh is halved.
+    #[serde(default = "Tessellation::default_levels")]
+    pub levels: u32,
+}
+
+impl Tessellation {
+    fn default_tolerance() -> f64 {
+        0.5
+    }
+
+    fn default_levels() -> u32 {
+        6
+    }
+
+    /// The most triangles a refined mesh may have (about 100 MB of vertices).
+    pub const MAX_TRIANGLES: usize = 2_000_000;
+
+    /// The refinement these settings ask for.
+    pub fn refinement(&self) -> crate::mesh::Refinement {
+        crate::mesh::Refinement {
+            tolerance_px: self.tolerance as f32,
+            max_levels: self.levels,
+            max_triangles: Tessellation::MAX_TRIANGLES,
+        }
+    }
+}
+
+impl Default for Tessellation {
+    fn default() -> Tessellation {
+        Tessellation {
+            tolerance: Tessellation::default_tolerance(),
+            levels: Tessellation::default_levels(),
+        }
+    }
 }
 
 impl Default for Preview {
@@ -147,6 +195,7 @@ impl Default for Preview {
             center: (0.0, 0.0, 0.0),
             size: 1.0,
             fields: Vec::new(),
+            tessellation: None,
         }
     }
 }
@@ -167,6 +216,41 @@ pub struct Graph {
     /// Comment frames drawn behind groups of nodes in the editor.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub frames: Vec<Frame>,
+    /// How the material's alpha shows: cut out below a cutoff (the default), blended,
+    /// or ignored.
+    #[serde(default, skip_serializing_if = "AlphaMode::is_default")]
+    pub alpha: AlphaMode,
+}
+
+/// How a material's alpha shows where it is below 1 (glTF's `alphaMode`, Blender's
+/// blend mode). Wherever the alpha can fall below 1, the preview draws back faces too,
+/// so the inside of a mesh shows through what is cut away or see-through.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub enum AlphaMode {
+    /// Alpha is ignored: the surface is opaque everywhere.
+    Opaque,
+    /// The surface is cut out where the alpha is below `cutoff`, opaque elsewhere.
+    Mask { cutoff: f64 },
+    /// The surface is as opaque as its alpha: what is behind shows through in
+    /// proportion (the thesis's figure 5.7).
+    Blend,
+}
+
+impl AlphaMode {
+    /// The cutoff of the default mode (what the preview always did).
+    pub const DEFAULT_CUTOFF: f64 = 0.5;
+
+    fn is_default(&self) -> bool {
+        *self == AlphaMode::default()
+    }
+}
+
+impl Default for AlphaMode {
+    fn default() -> AlphaMode {
+        AlphaMode::Mask {
+            cutoff: AlphaMode::DEFAULT_CUTOFF,
+        }
+    }
 }
 
 /// A titled, coloured box behind a group of nodes: a comment in the editor, no effect
@@ -190,6 +274,7 @@ impl Default for Graph {
             nodes: vec![],
             wires: vec![],
             frames: vec![],
+            alpha: AlphaMode::default(),
         }
     }
 }

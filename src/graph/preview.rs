@@ -38,6 +38,11 @@ impl Preview {
                 problems.push(format!("preview field {slot}: {error}"));
             }
         }
+        if let Some(tessellation) = &self.tessellation
+            && let Err(error) = tessellation.refinement().validate()
+        {
+            problems.push(format!("preview {error}"));
+        }
         problems
     }
 }

@@ -9,6 +9,7 @@ mod load;
 mod obj;
 mod pick;
 mod primitives;
+mod refine;
 
 pub use analysis::{MeshReport, analyse, vertex_components, weld};
 pub use file_vertices::FileVertices;
@@ -18,6 +19,7 @@ pub use pick::pick_vertex;
 pub use primitives::{
     DETAIL_COST, MAX_DETAIL, MAX_GENUS2_DETAIL, PRIMITIVES, primitive, sphere, torus,
 };
+pub use refine::{Refined, Refinement, SurfacePoint, refine_for_displacement};
 
 /// The mesh a preview or render shows for `name`: a primitive, or else a mesh file
 /// fitted to the unit sphere.

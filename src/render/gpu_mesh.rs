@@ -22,6 +22,16 @@ struct Part {
     vertices: wgpu::Buffer,
     indices: wgpu::Buffer,
     index_count: u32,
+    /// What drawing the part's triangles back to front needs, when asked for.
+    depth_order: Option<DepthOrder>,
+}
+
+/// A part's triangles, their centres, and the index buffer they are sorted into for
+/// each view (blended surfaces are drawn back to front).
+struct DepthOrder {
+    triangles: Vec<[u32; 3]>,
+    centres: Vec<glam::Vec3>,
+    sorted: wgpu::Buffer,
 }
 
 /// A mesh uploaded to the GPU.
@@ -53,8 +63,62 @@ impl GpuMesh {
         }
     }
 
+    /// Draws every triangle in the order the last [`GpuMesh::sort_back_to_front`] put
+    /// them (within each part).
+    pub fn draw_back_to_front(&self, pass: &mut wgpu::RenderPass<'_>) {
+        for part in &self.parts {
+            let order = part
+                .depth_order
+                .as_ref()
+                .expect("uploaded with a depth order");
+            pass.set_vertex_buffer(0, part.vertices.slice(..));
+            pass.set_index_buffer(order.sorted.slice(..), wgpu::IndexFormat::Uint32);
+            pass.draw_indexed(0..part.index_count, 0, 0..1);
+        }
+    }
+
+    /// Whether the mesh was uploaded with what sorting its triangles needs.
+    pub fn sorts(&self) -> bool {
+        self.parts.iter().all(|part| part.depth_order.is_some())
+    }
+
+    /// Sorts the triangles of each part by the distance of their centres from `eye`,
+    /// farthest first, for [`GpuMesh::draw_back_to_front`] (ties in triangle order, so
+    /// the same view draws the same picture).
+    pub fn sort_back_to_front(&self, queue: &wgpu::Queue, eye: glam::Vec3) {
+        use rayon::prelude::*;
+        for part in &self.parts {
+            let Some(order) = &part.depth_order else {
+                continue;
+            };
+            let mut keys: Vec<(u32, u32)> = order
+                .centres
+                .par_iter()
+                .enumerate()
+                // Distances are positive: their bits order as they do; farthest first.
+                .map(|(k, c)| (u32::MAX - c.distance_squared(eye).to_bits(), k as u32))
+                .collect();
+            keys.par_sort_unstable();
+            let indices: Vec<u32> = keys
+                .iter()
+                .flat_map(|&(_, k)| order.triangles[k as usize])
+                .collect();
+            queue.write_buffer(&order.sorted, 0, bytemuck::cast_slice(&indices));
+        }
+    }
+
     /// Uploads `mesh`, in as many parts as the device's buffer size limit asks for.
     pub fn new(device: &wgpu::Device, mesh: &Mesh) -> GpuMesh {
+        GpuMesh::upload(device, mesh, false)
+    }
+
+    /// [`GpuMesh::new`] keeping what drawing the triangles back to front needs (for
+    /// blended surfaces; see [`GpuMesh::sort_back_to_front`]).
+    pub fn with_depth_order(device: &wgpu::Device, mesh: &Mesh) -> GpuMesh {
+        GpuMesh::upload(device, mesh, true)
+    }
+
+    fn upload(device: &wgpu::Device, mesh: &Mesh, depth_order: bool) -> GpuMesh {
         let limit = device.limits().max_buffer_size;
         let max_vertices = usize::try_from(limit / VERTEX_BYTES).unwrap_or(usize::MAX);
         // Whole triangles per part.
@@ -80,6 +144,29 @@ impl GpuMesh {
                     wgpu::BufferUsages::INDEX,
                 ),
                 index_count: indices.len() as u32,
+                depth_order: depth_order.then(|| {
+                    let triangles: Vec<[u32; 3]> = indices
+                        .chunks_exact(3)
+                        .map(|t| [t[0], t[1], t[2]])
+                        .collect();
+                    let centres = triangles
+                        .iter()
+                        .map(|t| {
+                            t.iter().fold(glam::Vec3::ZERO, |sum, &v| {
+                                sum + glam::Vec3::from(vertices[v as usize].position)
+                            }) / 3.0
+                        })
+                        .collect();
+                    DepthOrder {
+                        triangles,
+                        centres,
+                        sorted: buffer(
+                            "mesh indices, back to front",
+                            bytemuck::cast_slice(&indices),
+                            wgpu::BufferUsages::INDEX | wgpu::BufferUsages::COPY_DST,
+                        ),
+                    }
+                }),
             })
             .collect();
         GpuMesh { parts }

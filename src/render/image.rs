@@ -1,6 +1,8 @@
 //! Rendering a compiled material to an 8-bit image, as `veneer render`, snapshots and
 //! the editor's PNG export do.
 
+use super::mesh_view::Relief;
+use super::tessellation::{Tessellated, tessellate};
 use super::{
     FlatRect, FlatRenderer, GpuContext, MeshRenderer, MeshView, RenderError, albedo_to_rgb8,
 };
@@ -112,7 +114,6 @@ pub fn baked_parameters(compiled: &Compiled) -> Result<(), RenderError> {
 
 /// Renders a compiled material as `view` at size×size pixels and time `time`, with the
 /// detail it was compiled with (snapshots and the CPU reference expect every octave).
-/// The module must have baked parameters (the default).
 pub fn render_material(
     gpu: &GpuContext,
     compiled: &Compiled,
@@ -120,15 +121,38 @@ pub fn render_material(
     size: u32,
     time: f32,
 ) -> Result<Image, RenderError> {
+    Ok(render_material_with(gpu, compiled, view, size, time, Relief::Displaced)?.image)
+}
+
+/// A rendered image and how its mesh was tessellated.
+pub struct Rendered {
+    pub image: Image,
+    /// What adaptive tessellation did (`None` when the mesh was drawn as it is).
+    pub tessellated: Option<Tessellated>,
+}
+
+/// [`render_material`] showing the material's height as `relief`; a displaced material
+/// whose preview asks for tessellation has its mesh refined for this view first.
+pub fn render_material_with(
+    gpu: &GpuContext,
+    compiled: &Compiled,
+    view: &View,
+    size: u32,
+    time: f32,
+    relief: Relief,
+) -> Result<Rendered, RenderError> {
     baked_parameters(compiled)?;
     let module = &compiled.module;
-    let flat = |rect: FlatRect| -> Result<Image, RenderError> {
+    let flat = |rect: FlatRect| -> Result<Rendered, RenderError> {
         let pixels = FlatRenderer::new(gpu, &module.source)?.render(gpu, rect, size, time)?;
-        Ok(Image {
-            width: size,
-            height: size,
-            channels: 3,
-            pixels: albedo_to_rgb8(&pixels),
+        Ok(Rendered {
+            image: Image {
+                width: size,
+                height: size,
+                channels: 3,
+                pixels: albedo_to_rgb8(&pixels),
+            },
+            tessellated: None,
         })
     };
     let preview = &compiled.preview;
@@ -137,16 +161,38 @@ pub fn render_material(
         View::PreviewFlat => flat(preview_rect(preview)),
         View::Mesh(name) => {
             let name = name.as_deref().unwrap_or(&preview.mesh);
-            let mesh = mesh_with_fields(preview, name, &module.uses, |_, _| {})?;
+            let mut mesh = mesh_with_fields(preview, name, &module.uses, |_, _| {})?;
             let mut mesh_view = MeshView::for_preview(preview);
             mesh_view.time = time;
-            let renderer = MeshRenderer::new(gpu, &module.source, module.uses)?;
+            let tessellated = match preview.tessellation {
+                Some(settings) if module.uses.displacement && relief == Relief::Displaced => {
+                    let before = mesh.triangle_count();
+                    let refined = tessellate(
+                        &compiled.checked,
+                        &mesh,
+                        &mesh_view,
+                        size,
+                        &settings.refinement(),
+                    );
+                    mesh = refined.mesh;
+                    Some(Tessellated {
+                        levels: refined.levels,
+                        triangles: (before, mesh.triangle_count()),
+                        limited: refined.limited,
+                    })
+                }
+                _ => None,
+            };
+            let renderer = MeshRenderer::with_relief(gpu, &module.source, module.uses, relief)?;
             let pixels = renderer.render(gpu, &mesh, &mesh_view, size)?;
-            Ok(Image {
-                width: size,
-                height: size,
-                channels: 4,
-                pixels: pixels.into_flattened(),
+            Ok(Rendered {
+                image: Image {
+                    width: size,
+                    height: size,
+                    channels: 4,
+                    pixels: pixels.into_flattened(),
+                },
+                tessellated,
             })
         }
     }

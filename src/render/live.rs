@@ -90,8 +90,18 @@ impl LiveRenderer {
             Quality::Full => (size.0.max(1), size.1.max(1)),
         };
         self.prepare(gpu, material, quality)?;
-        if self.mesh.as_ref().is_none_or(|(key, _)| key != mesh_key) {
-            self.mesh = Some((mesh_key.to_string(), GpuMesh::new(&gpu.device, mesh)));
+        let blends = self.pipeline(quality).is_some_and(MeshPipeline::blends);
+        if self
+            .mesh
+            .as_ref()
+            .is_none_or(|(key, uploaded)| key != mesh_key || (blends && !uploaded.sorts()))
+        {
+            let uploaded = if blends {
+                GpuMesh::with_depth_order(&gpu.device, mesh)
+            } else {
+                GpuMesh::new(&gpu.device, mesh)
+            };
+            self.mesh = Some((mesh_key.to_string(), uploaded));
         }
         // The draw alone is timed for the draft scale (not building a pipeline).
         let started = Instant::now();
@@ -108,6 +118,7 @@ impl LiveRenderer {
         let (_, target) = self.target.as_ref().expect("made above");
         pipeline.write_view(&gpu.queue, view, width as f32 / height as f32);
         pipeline.write_params(&gpu.queue, params);
+        pipeline.sort(&gpu.queue, gpu_mesh, view);
         let mut encoder = gpu
             .device
             .create_command_encoder(&wgpu::CommandEncoderDescriptor {

@@ -2,7 +2,7 @@
 //! material on a mesh, in tiles when the image is larger than a tile, so any size the
 //! machine has memory for renders within the device's texture and buffer limits.
 
-use super::mesh_view::{MeshPipeline, MeshTarget, MeshView, tile_crop};
+use super::mesh_view::{MeshPipeline, MeshTarget, MeshView, Relief, SAMPLES, tile_crop};
 use super::readback::read_texture;
 use super::tiles::{image_buffer, paste, tile_size, tiles};
 use super::{GpuContext, GpuMesh, RenderError};
@@ -25,8 +25,25 @@ impl MeshRenderer {
         material_wgsl: &str,
         uses: SurfaceUse,
     ) -> Result<MeshRenderer, RenderError> {
+        MeshRenderer::with_relief(gpu, material_wgsl, uses, Relief::Displaced)
+    }
+
+    /// [`MeshRenderer::new`] showing the material's height as `relief`.
+    pub fn with_relief(
+        gpu: &GpuContext,
+        material_wgsl: &str,
+        uses: SurfaceUse,
+        relief: Relief,
+    ) -> Result<MeshRenderer, RenderError> {
         Ok(MeshRenderer {
-            pipeline: MeshPipeline::new(&gpu.device, material_wgsl, 0, uses)?,
+            pipeline: MeshPipeline::with_relief(
+                &gpu.device,
+                material_wgsl,
+                0,
+                uses,
+                SAMPLES,
+                relief,
+            )?,
         })
     }
 
@@ -59,7 +76,12 @@ impl MeshRenderer {
         }
         let mut image = image_buffer::<[u8; 4]>(size, PIXEL_BYTES)?;
         let tile = tile.min(tile_size(gpu));
-        let mesh = GpuMesh::new(&gpu.device, mesh);
+        let mesh = if self.pipeline.blends() {
+            GpuMesh::with_depth_order(&gpu.device, mesh)
+        } else {
+            GpuMesh::new(&gpu.device, mesh)
+        };
+        self.pipeline.sort(&gpu.queue, &mesh, view);
         for (origin, extent) in tiles(size, tile) {
             let target = MeshTarget::new(&gpu.device, extent.0, extent.1);
             let crop = tile_crop(size, origin, extent);

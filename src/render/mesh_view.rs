@@ -3,7 +3,7 @@
 //! editor's live preview.
 
 use super::{GpuMesh, RenderError, shader_source};
-use crate::codegen::SurfaceUse;
+use crate::codegen::{AlphaUse, SurfaceUse};
 use crate::graph::Preview;
 use glam::{Mat4, Vec3};
 
@@ -15,6 +15,10 @@ pub enum Projection {
     /// Straight down the y axis at a square of half-width `extent` (the flat 2D view).
     TopDown { extent: f32 },
 }
+
+/// The cameras' near and far planes (mesh units from the eye).
+const NEAR_PLANE: f32 = 0.05;
+const FAR_PLANE: f32 = 200.0;
 
 /// Camera, light and placement of a mesh render.
 #[derive(Clone, Debug, PartialEq)]
@@ -82,14 +86,28 @@ impl MeshView {
         (near, (far - near).normalize_or(Vec3::NEG_Z))
     }
 
+    /// How many pixels one mesh unit at `position` spans in an image `image_height`
+    /// pixels high (perspective: at the point's depth, never nearer than the near plane).
+    pub fn pixels_per_unit(&self, image_height: u32, position: Vec3) -> f32 {
+        let half_height = image_height as f32 * 0.5;
+        match self.projection {
+            Projection::Perspective { fov } => {
+                let forward = (Vec3::from(self.target) - self.eye()).normalize_or(Vec3::NEG_Z);
+                let depth = (position - self.eye()).dot(forward).max(NEAR_PLANE);
+                half_height / ((fov.to_radians() * 0.5).tan() * depth)
+            }
+            Projection::TopDown { extent } => half_height / extent.max(f32::MIN_POSITIVE),
+        }
+    }
+
     fn view_projection(&self, aspect: f32) -> Mat4 {
         match self.projection {
             Projection::Perspective { fov } => {
                 let projection = glam::camera::rh::proj::directx::perspective(
                     fov.to_radians(),
                     aspect,
-                    0.05,
-                    200.0,
+                    NEAR_PLANE,
+                    FAR_PLANE,
                 );
                 projection
                     * glam::camera::rh::view::look_at_mat4(
@@ -100,8 +118,9 @@ impl MeshView {
             }
             Projection::TopDown { extent } => {
                 let (w, h) = (extent * aspect.max(1.0), extent / aspect.min(1.0));
-                let projection =
-                    glam::camera::rh::proj::directx::orthographic(-w, w, -h, h, 0.05, 200.0);
+                let projection = glam::camera::rh::proj::directx::orthographic(
+                    -w, w, -h, h, NEAR_PLANE, FAR_PLANE,
+                );
                 let eye = Vec3::from(self.target) + Vec3::Y * 10.0;
                 projection
                     * glam::camera::rh::view::look_at_mat4(
@@ -162,10 +181,23 @@ struct MeshViewUniform {
     padding: u32,
 }
 
+/// How a material's height shows on the mesh.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
+pub enum Relief {
+    /// The vertices move along their normals and the relief shades as bump (the
+    /// silhouette changes).
+    #[default]
+    Displaced,
+    /// The relief shades as bump only; the vertices stay (the thesis's bump-mapping
+    /// variant of figure 5.10).
+    Bump,
+}
+
 /// Colour format of offscreen mesh renders.
 pub const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
-const SAMPLES: u32 = 4;
+/// Samples a pixel of headless mesh renders.
+pub(super) const SAMPLES: u32 = 4;
 const ENTRY_POINTS: &str = include_str!("../../shaders/render_mesh.wgsl");
 const DISPLACED_ENTRY_POINT: &str = include_str!("../../shaders/render_mesh_displaced.wgsl");
 
@@ -232,19 +264,75 @@ impl MeshTarget {
     }
 }
 
-/// The render pipeline of one material on meshes, with its view (and parameter) uniforms.
-pub struct MeshPipeline {
+/// One draw of a mesh pipeline: its pipeline and the bind groups made for its layout.
+struct MeshPass {
     pipeline: wgpu::RenderPipeline,
-    view: wgpu::Buffer,
     view_group: wgpu::BindGroup,
-    params: Option<(wgpu::Buffer, wgpu::BindGroup)>,
+    params_group: Option<wgpu::BindGroup>,
+    /// Whether it blends, drawing the triangles back to front.
+    blended: bool,
+}
+
+/// Which fragments a pass draws: alpha in `min..max`; a blended pass writes its alpha
+/// for blending and no depth.
+struct PassKind {
+    min_alpha: f32,
+    max_alpha: f32,
+    blended: bool,
+}
+
+/// Alphas at or above this are opaque in a blended material (within an 8-bit step).
+const OPAQUE_ALPHA: f32 = 1.0 - 1.0 / 512.0;
+/// An alpha bound no fragment reaches (well within f32, as WGSL literals must be).
+const NO_ALPHA_LIMIT: f32 = 3.0e38;
+/// Alphas below this add nothing visible to a blended picture.
+const INVISIBLE_ALPHA: f32 = 1.0 / 512.0;
+
+impl PassKind {
+    /// The passes a material's alpha asks for.
+    fn for_alpha(alpha: AlphaUse) -> Vec<PassKind> {
+        let opaque = |min_alpha| PassKind {
+            min_alpha,
+            max_alpha: NO_ALPHA_LIMIT,
+            blended: false,
+        };
+        match alpha {
+            AlphaUse::Opaque => vec![opaque(-NO_ALPHA_LIMIT)],
+            AlphaUse::Mask(cutoff) => vec![opaque(cutoff)],
+            AlphaUse::Blend => vec![
+                opaque(OPAQUE_ALPHA),
+                PassKind {
+                    min_alpha: INVISIBLE_ALPHA,
+                    max_alpha: OPAQUE_ALPHA,
+                    blended: true,
+                },
+            ],
+        }
+    }
+
+    /// The WGSL constants the entry points read for this pass.
+    fn constants(&self) -> String {
+        format!(
+            "const VENEER_MIN_ALPHA: f32 = {:?};\nconst VENEER_MAX_ALPHA: f32 = {:?};\nconst VENEER_BLENDED: bool = {};\n",
+            self.min_alpha, self.max_alpha, self.blended
+        )
+    }
+}
+
+/// The render pipeline of one material on meshes, with its view (and parameter) uniforms:
+/// one pass for opaque and cut-out materials, two for blended ones (the opaque parts,
+/// then the see-through parts back to front over them).
+pub struct MeshPipeline {
+    passes: Vec<MeshPass>,
+    view: wgpu::Buffer,
+    params: Option<wgpu::Buffer>,
 }
 
 impl MeshPipeline {
     /// Builds the pipeline for a material module; `param_slots` is the number of slots
     /// of a uniform-mode module (0 when its parameters are baked); `uses` says whether
-    /// the material's height moves the vertices and whether it perturbs the normal, so
-    /// that materials without them pay for neither.
+    /// the material's height moves the vertices, whether it perturbs the normal and what
+    /// its alpha does, so that materials without them pay for none.
     pub fn new(
         device: &wgpu::Device,
         material_wgsl: &str,
@@ -264,63 +352,25 @@ impl MeshPipeline {
         uses: SurfaceUse,
         samples: u32,
     ) -> Result<MeshPipeline, RenderError> {
-        let displaced = uses.displacement;
-        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-        // Height work (vertex displacement, relief shading) only for materials with a
-        // height, normal perturbation only for materials with a bump or a height.
-        let height = format!(
-            "const VENEER_HEIGHT: bool = {displaced};\nconst VENEER_RELIEF: bool = {};\n",
-            displaced || uses.bump
-        );
-        let entry_points = if displaced {
-            format!("{height}{ENTRY_POINTS}\n{DISPLACED_ENTRY_POINT}")
-        } else {
-            format!("{height}{ENTRY_POINTS}")
-        };
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("mesh render"),
-            source: wgpu::ShaderSource::Wgsl(shader_source(material_wgsl, &entry_points).into()),
-        });
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("mesh render"),
-            layout: None,
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some(if displaced {
-                    "veneer_mesh_vertex_displaced"
-                } else {
-                    "veneer_mesh_vertex"
-                }),
-                compilation_options: Default::default(),
-                buffers: &[Some(GpuMesh::layout())],
-            },
-            primitive: wgpu::PrimitiveState {
-                cull_mode: Some(wgpu::Face::Back),
-                ..Default::default()
-            },
-            depth_stencil: Some(wgpu::DepthStencilState {
-                format: DEPTH_FORMAT,
-                depth_write_enabled: Some(true),
-                depth_compare: Some(wgpu::CompareFunction::Less),
-                stencil: Default::default(),
-                bias: Default::default(),
-            }),
-            multisample: wgpu::MultisampleState {
-                count: samples,
-                ..Default::default()
-            },
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("veneer_mesh_fragment"),
-                compilation_options: Default::default(),
-                targets: &[Some(COLOR_FORMAT.into())],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
-        if let Some(error) = pollster::block_on(scope.pop()) {
-            return Err(RenderError::Gpu(format!("mesh render pipeline: {error}")));
-        }
+        MeshPipeline::with_relief(
+            device,
+            material_wgsl,
+            param_slots,
+            uses,
+            samples,
+            Relief::Displaced,
+        )
+    }
+
+    /// [`MeshPipeline::with_samples`] showing the material's height as `relief`.
+    pub fn with_relief(
+        device: &wgpu::Device,
+        material_wgsl: &str,
+        param_slots: usize,
+        uses: SurfaceUse,
+        samples: u32,
+        relief: Relief,
+    ) -> Result<MeshPipeline, RenderError> {
         let uniform = |label, size: usize| {
             device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),
@@ -331,29 +381,52 @@ impl MeshPipeline {
                 mapped_at_creation: false,
             })
         };
-        let group = |index, buffer: &wgpu::Buffer| {
-            device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("mesh uniforms"),
-                layout: &pipeline.get_bind_group_layout(index),
-                entries: &[wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: buffer.as_entire_binding(),
-                }],
-            })
-        };
         let view = uniform("mesh view", std::mem::size_of::<MeshViewUniform>());
-        let view_group = group(0, &view);
-        let params = (param_slots > 0).then(|| {
-            let buffer = uniform("material parameters", param_slots * 16);
-            let bind_group = group(1, &buffer);
-            (buffer, bind_group)
-        });
+        let params = (param_slots > 0).then(|| uniform("material parameters", param_slots * 16));
+        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let passes = PassKind::for_alpha(uses.alpha)
+            .iter()
+            .map(|kind| {
+                let pipeline = pass_pipeline(device, material_wgsl, uses, samples, relief, kind);
+                let group = |index, buffer: &wgpu::Buffer| {
+                    device.create_bind_group(&wgpu::BindGroupDescriptor {
+                        label: Some("mesh uniforms"),
+                        layout: &pipeline.get_bind_group_layout(index),
+                        entries: &[wgpu::BindGroupEntry {
+                            binding: 0,
+                            resource: buffer.as_entire_binding(),
+                        }],
+                    })
+                };
+                MeshPass {
+                    view_group: group(0, &view),
+                    params_group: params.as_ref().map(|buffer| group(1, buffer)),
+                    pipeline,
+                    blended: kind.blended,
+                }
+            })
+            .collect();
+        if let Some(error) = pollster::block_on(scope.pop()) {
+            return Err(RenderError::Gpu(format!("mesh render pipeline: {error}")));
+        }
         Ok(MeshPipeline {
-            pipeline,
+            passes,
             view,
-            view_group,
             params,
         })
+    }
+
+    /// Whether the pipeline blends: meshes it draws need uploading with
+    /// [`GpuMesh::with_depth_order`] and sorting for each view ([`MeshPipeline::sort`]).
+    pub fn blends(&self) -> bool {
+        self.passes.iter().any(|pass| pass.blended)
+    }
+
+    /// Sorts `mesh`'s triangles back to front for `view` when the pipeline blends.
+    pub fn sort(&self, queue: &wgpu::Queue, mesh: &GpuMesh, view: &MeshView) {
+        if self.blends() {
+            mesh.sort_back_to_front(queue, view.eye());
+        }
     }
 
     /// Writes the camera, light and time for the next draw into a target of `aspect` (w / h).
@@ -379,7 +452,7 @@ impl MeshPipeline {
 
     /// Writes the parameter values of a uniform-mode material (ignored when baked).
     pub fn write_params(&self, queue: &wgpu::Queue, values: &[[f32; 4]]) {
-        if let Some((buffer, _)) = &self.params {
+        if let Some(buffer) = &self.params {
             let fits = (buffer.size() / 16) as usize;
             queue.write_buffer(
                 buffer,
@@ -426,11 +499,101 @@ impl MeshPipeline {
             }),
             ..Default::default()
         });
-        pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, &self.view_group, &[]);
-        if let Some((_, group)) = &self.params {
-            pass.set_bind_group(1, group, &[]);
+        for draw in &self.passes {
+            pass.set_pipeline(&draw.pipeline);
+            pass.set_bind_group(0, &draw.view_group, &[]);
+            if let Some(group) = &draw.params_group {
+                pass.set_bind_group(1, group, &[]);
+            }
+            if draw.blended {
+                mesh.draw_back_to_front(&mut pass);
+            } else {
+                mesh.draw(&mut pass);
+            }
         }
-        mesh.draw(&mut pass);
     }
+}
+
+/// The pipeline of one pass of a material: `kind` says which fragments it draws and
+/// whether it blends; back faces are culled only where the material is opaque.
+fn pass_pipeline(
+    device: &wgpu::Device,
+    material_wgsl: &str,
+    uses: SurfaceUse,
+    samples: u32,
+    relief: Relief,
+    kind: &PassKind,
+) -> wgpu::RenderPipeline {
+    let displaced = uses.displacement && relief == Relief::Displaced;
+    // Height work (vertex displacement, relief shading) only for materials with a
+    // height, normal perturbation only for materials with a bump or a height.
+    let constants = format!(
+        "const VENEER_HEIGHT: bool = {};\nconst VENEER_RELIEF: bool = {};\n{}",
+        uses.displacement,
+        uses.displacement || uses.bump,
+        kind.constants()
+    );
+    let entry_points = if displaced {
+        format!("{constants}{ENTRY_POINTS}\n{DISPLACED_ENTRY_POINT}")
+    } else {
+        format!("{constants}{ENTRY_POINTS}")
+    };
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some("mesh render"),
+        source: wgpu::ShaderSource::Wgsl(shader_source(material_wgsl, &entry_points).into()),
+    });
+    let blend = kind.blended.then_some(wgpu::BlendState {
+        color: wgpu::BlendComponent {
+            src_factor: wgpu::BlendFactor::SrcAlpha,
+            dst_factor: wgpu::BlendFactor::OneMinusSrcAlpha,
+            operation: wgpu::BlendOperation::Add,
+        },
+        // The image stays opaque: alpha = a + (1 - a) * 1.
+        alpha: wgpu::BlendComponent {
+            src_factor: wgpu::BlendFactor::One,
+            dst_factor: wgpu::BlendFactor::OneMinusSrcAlpha,
+            operation: wgpu::BlendOperation::Add,
+        },
+    });
+    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some("mesh render"),
+        layout: None,
+        vertex: wgpu::VertexState {
+            module: &module,
+            entry_point: Some(if displaced {
+                "veneer_mesh_vertex_displaced"
+            } else {
+                "veneer_mesh_vertex"
+            }),
+            compilation_options: Default::default(),
+            buffers: &[Some(GpuMesh::layout())],
+        },
+        primitive: wgpu::PrimitiveState {
+            cull_mode: (uses.alpha == AlphaUse::Opaque).then_some(wgpu::Face::Back),
+            ..Default::default()
+        },
+        depth_stencil: Some(wgpu::DepthStencilState {
+            format: DEPTH_FORMAT,
+            depth_write_enabled: Some(!kind.blended),
+            depth_compare: Some(wgpu::CompareFunction::Less),
+            stencil: Default::default(),
+            bias: Default::default(),
+        }),
+        multisample: wgpu::MultisampleState {
+            count: samples,
+            ..Default::default()
+        },
+        fragment: Some(wgpu::FragmentState {
+            module: &module,
+            entry_point: Some("veneer_mesh_fragment"),
+            compilation_options: Default::default(),
+            targets: &[Some(wgpu::ColorTargetState {
+                format: COLOR_FORMAT,
+                blend,
+                write_mask: wgpu::ColorWrites::ALL,
+            })],
+        }),
+        multiview_mask: None,
+        cache: None,
+    })
 }

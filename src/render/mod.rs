@@ -10,6 +10,7 @@ mod live;
 mod mesh_render;
 mod mesh_view;
 mod readback;
+mod tessellation;
 mod thumbnails;
 mod tiles;
 mod timing;
@@ -19,10 +20,14 @@ pub use context::{GpuContext, RenderError};
 pub use draft_scale::DraftScale;
 pub use flat::{FlatChannels, FlatRect, FlatRenderer, albedo_to_rgb8, flat_points};
 pub use gpu_mesh::GpuMesh;
-pub use image::{Image, View, baked_parameters, mesh_with_fields, preview_rect, render_material};
+pub use image::{
+    Image, Rendered, View, baked_parameters, mesh_with_fields, preview_rect, render_material,
+    render_material_with,
+};
 pub use live::{LiveMaterialCode, LiveRenderer, Quality};
 pub use mesh_render::MeshRenderer;
-pub use mesh_view::{COLOR_FORMAT, MeshPipeline, MeshTarget, MeshView, Projection};
+pub use mesh_view::{COLOR_FORMAT, MeshPipeline, MeshTarget, MeshView, Projection, Relief};
+pub use tessellation::{Tessellated, tessellate};
 pub use thumbnails::{AtlasLayout, ThumbnailRenderer};
 pub use tiles::{ensure_memory, tile_size};
 pub use timing::PassTimer;
