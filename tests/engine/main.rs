@@ -25,6 +25,7 @@ mod node_kinds;
 mod presets;
 mod properties;
 mod report;
+mod seed001_reference;
 mod seed003_reference;
 mod seed_reference;
 mod snapshots;
