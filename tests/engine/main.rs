@@ -27,6 +27,7 @@ mod properties;
 mod report;
 mod seed001_reference;
 mod seed003_reference;
+mod seed004_reference;
 mod seed_reference;
 mod snapshots;
 mod support;
