@@ -192,8 +192,14 @@ fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     let flagstones = veneer_tiles(s.position, vec2f(1.1f, 1.1f), vec2f(0.02f, 0.02f), 0.5f, 0.01f);
     // Split 'tile cell' (#3)
     let tile_cell = flagstones.cell;
+    // Unary 'minus height' (#17)
+    let minus_height: f32 = -(position_parts.y);
+    // Unary 'floor of minus height' (#18)
+    let floor_of_minus_height: f32 = floor(minus_height);
+    // Unary 'tile layer' (#19)
+    let tile_layer: f32 = -(floor_of_minus_height);
     // Combine 'tile id' (#4)
-    let tile_id: vec3f = vec3f(tile_cell.x, 0.0f, tile_cell.y);
+    let tile_id: vec3f = vec3f(tile_cell.x, tile_layer, tile_cell.y);
     // Noise 'tile noise' (#5)
     let tile_noise: f32 = veneer_noise_gradient(tile_id * 2.3f);
     // Remap 'vein slope' (#6)
