@@ -46,6 +46,22 @@ pub const PRESETS: [(&str, &str); 15] = [
         "thesis_c6_waves",
         include_str!("../../graphs/thesis_c6_waves.ron"),
     ),
+    (
+        "thesis_c6_waves_adaptive",
+        include_str!("../../graphs/thesis_c6_waves_adaptive.ron"),
+    ),
+    (
+        "thesis_fig1_1_fronts",
+        include_str!("../../graphs/thesis_fig1_1_fronts.ron"),
+    ),
+    (
+        "thesis_fig5_7_opacity",
+        include_str!("../../graphs/thesis_fig5_7_opacity.ron"),
+    ),
+    (
+        "thesis_brick",
+        include_str!("../../graphs/thesis_brick.ron"),
+    ),
 ];
 
 /// The embedded preset called `name`.
