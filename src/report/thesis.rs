@@ -121,7 +121,7 @@ pub fn distance_times(ctx: &Context) -> Result<Section, String> {
         let triangles = mesh.triangle_count();
         let mut row = vec![
             name.to_string(),
-            format!("{like} ({like_triangles})"),
+            format!("{like} ({like_triangles} triangles)"),
             triangles.to_string(),
         ];
         for (method, series) in methods.iter().zip(&mut series) {
@@ -329,7 +329,7 @@ pub fn frame_rates(ctx: &Context) -> Result<Section, String> {
         slug: "frame_rates",
         title: "Frame rates near and far (thesis Tables 5.2 and 5.3)".into(),
         text: format!(
-            "Seed 003's Tables 5.2 and 5.3 give the mean frames a second of each texture on each model near (the model close to the camera: many fragments) and far (few fragments), measured on an NVIDIA GeForce 8600 GT: near 3–18 fps and far 32–117 fps for the textures, 71–148 and 219–247 fps for the isolines. Here each texture is its appendix-C preset (C.2 water/sand, C.3 moss, C.4 rust, C.5 water/lava, the isolines preset and the C.6 waves, which the thesis timed separately on a GTS 450), on the meshes of *Distance-field time*, its field sources moved to the mesh's nearest vertices and its fields solved by heat on the whole mesh (no charts). A frame is {size}² pixels, 4× multisampled as `veneer render`, at time {TIME} s, the camera at distance {NEAR} (near) or {FAR} (far) from the mesh's centre with a 40° field of view; the covered columns are the share of the frame's pixels the mesh shows in. Frames a second are 1000 over the mean, over {} repetitions after a warm-up, of the frame's time measured by the adapter {} with {}. As in the thesis, the cost follows the fragments shaded and the texture's complexity, not the triangles or the number of fields.",
+            "Seed 003's Tables 5.2 and 5.3 give the mean frames a second of each texture on each model near (the model close to the camera: many fragments) and far (few fragments), measured on an NVIDIA GeForce 8600 GT: near 3–18 fps and far 32–117 fps for the textures, 71–148 and 219–247 fps for the isolines. Here each texture is its appendix-C preset (C.2 water/sand, C.3 moss, C.4 rust, C.5 water/lava, the isolines preset and the C.6 waves, which the thesis timed separately on a GTS 450), on the meshes of *Distance-field time*, its field sources moved to the mesh's nearest vertices and its fields solved by heat on the whole mesh (no charts). A frame is {size}² pixels, 4× multisampled as `veneer render`, at time {TIME} s, the camera at distance {NEAR} (near) or {FAR} (far) from the mesh's centre with a 40° field of view; the covered columns are the share of the frame's pixels the mesh shows in. Frames a second are 1000 over the mean, over {} repetitions after a warm-up, of the frame's time measured by the adapter {} with {}. As in the thesis, a near frame's cost follows the fragments shaded and the texture's complexity, not the number of fields; far frames also pay for what does not depend on the fragments (clearing and resolving the multisampled frame, the vertex stage, each triangle's set-up), which a software rasteriser feels most.",
             ctx.repetitions,
             ctx.gpu.adapter_description(),
             if timed_by == "wall clock" {
