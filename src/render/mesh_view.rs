@@ -470,6 +470,19 @@ impl MeshPipeline {
         mesh: &GpuMesh,
         background: [f32; 3],
     ) {
+        self.encode_timed(encoder, target, mesh, background, None);
+    }
+
+    /// [`MeshPipeline::encode`] with timestamps written at the pass's beginning and end
+    /// (see [`super::PassTimer`]).
+    pub fn encode_timed(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        target: &MeshTarget,
+        mesh: &GpuMesh,
+        background: [f32; 3],
+        timestamp_writes: Option<wgpu::RenderPassTimestampWrites<'_>>,
+    ) {
         let [r, g, b] = background.map(f64::from);
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("mesh"),
@@ -497,6 +510,7 @@ impl MeshPipeline {
                 }),
                 stencil_ops: None,
             }),
+            timestamp_writes,
             ..Default::default()
         });
         for draw in &self.passes {

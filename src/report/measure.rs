@@ -5,10 +5,10 @@ use crate::graph::Graph;
 use crate::render::{FlatRect, FlatRenderer, GpuContext, RenderError};
 use std::time::Instant;
 
-/// The median wall time of `runs` calls of `work` (after one untimed warm-up call, which
-/// pays for lazy pipeline and buffer creation), in milliseconds.
-pub fn median_ms(runs: usize, mut work: impl FnMut()) -> f64 {
-    median(runs, || {
+/// The wall time of each of `runs` calls of `work` (after one untimed warm-up call), in
+/// milliseconds.
+pub fn samples_ms(runs: usize, mut work: impl FnMut()) -> Vec<f64> {
+    samples(runs, || {
         let started = Instant::now();
         work();
         started.elapsed().as_secs_f64() * 1e3
@@ -17,11 +17,30 @@ pub fn median_ms(runs: usize, mut work: impl FnMut()) -> f64 {
 
 /// The median of `runs` values of `sample` (after one warm-up call whose value is left
 /// out).
-pub fn median(runs: usize, mut sample: impl FnMut() -> f64) -> f64 {
+pub fn median(runs: usize, sample: impl FnMut() -> f64) -> f64 {
+    median_of(&samples(runs, sample))
+}
+
+/// `runs` values of `sample` (at least one), after one warm-up call whose value is left
+/// out.
+pub fn samples(runs: usize, mut sample: impl FnMut() -> f64) -> Vec<f64> {
     sample();
-    let mut values: Vec<f64> = (0..runs.max(1)).map(|_| sample()).collect();
-    values.sort_by(f64::total_cmp);
-    values[values.len() / 2]
+    (0..runs.max(1)).map(|_| sample()).collect()
+}
+
+/// The median of `values` (the upper one of an even count; NaN when empty).
+pub fn median_of(values: &[f64]) -> f64 {
+    let mut sorted = values.to_vec();
+    sorted.sort_by(f64::total_cmp);
+    sorted.get(sorted.len() / 2).copied().unwrap_or(f64::NAN)
+}
+
+/// The mean of `values` and their standard deviation (sample, n − 1; 0 for one value).
+pub fn mean_deviation(values: &[f64]) -> (f64, f64) {
+    let n = values.len() as f64;
+    let mean = values.iter().sum::<f64>() / n;
+    let squares = values.iter().map(|v| (v - mean).powi(2)).sum::<f64>();
+    (mean, (squares / (n - 1.0).max(1.0)).sqrt())
 }
 
 /// The albedo at each point by the CPU evaluator in f32 or f64, and the time it took.

@@ -6,6 +6,7 @@ mod materials;
 mod measure;
 mod plot;
 mod table;
+mod thesis;
 
 pub use plot::{Plot, Series};
 pub use table::Table;
@@ -35,6 +36,8 @@ struct Context<'a> {
     timing_size: u32,
     max_octaves: u32,
     meshes: &'a [&'a str],
+    /// The stand-ins for the thesis's models (its Tables 5.1–5.3).
+    models: &'a [&'a str],
     progress: &'a dyn Fn(),
 }
 
@@ -50,8 +53,10 @@ struct Section {
 /// The number of progress steps a report takes (for a progress bar).
 pub fn steps(settings: &Settings) -> u64 {
     let meshes = if settings.quick { 2 } else { 4 };
-    // precision cases + hash rows + octave kinds + detail materials + meshes
-    (10 + 9) + 6 + 2 + 3 + meshes
+    // precision cases (presets, noise and fBm of each basis, Worley) + hash rows + octave
+    // kinds + detail materials + geodesic meshes + thesis models (field times, frames)
+    let precision = crate::graph::PRESETS.len() + 2 * crate::graph::Basis::ALL.len() + 1;
+    precision as u64 + 6 + 2 + 3 + meshes + 2 * thesis::MODELS.len() as u64
 }
 
 /// Measures everything and writes `report.md`, `<section>.csv` and `<section>.png` into
@@ -81,6 +86,11 @@ pub fn write(
         timing_size: if settings.quick { 256 } else { 1024 },
         max_octaves: if settings.quick { 6 } else { 10 },
         meshes,
+        models: if settings.quick {
+            &thesis::QUICK_MODELS
+        } else {
+            &thesis::MODELS
+        },
         progress,
     };
     let sections = [
@@ -89,6 +99,8 @@ pub fn write(
         materials::octaves(&ctx)?,
         geodesics::geodesics(&ctx)?,
         materials::detail(&ctx)?,
+        thesis::distance_times(&ctx)?,
+        thesis::frame_rates(&ctx)?,
     ];
     let write = |name: &str, bytes: &[u8]| {
         let path = folder.join(name);

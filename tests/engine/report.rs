@@ -1,22 +1,54 @@
-//! `veneer report --quick` writes every section: Markdown, a CSV per table, a PNG plot.
+//! `veneer report --quick` writes every section: Markdown, a CSV per table, a PNG plot;
+//! the thesis's tables hold finite, positive figures; the progress bar counts its steps.
 
 use crate::support::{temp_dir, veneer};
+use std::cell::Cell;
+
+/// The rows of a CSV the report wrote (no cell of these tables holds a comma), header
+/// first.
+fn rows(csv: &str) -> Vec<Vec<String>> {
+    csv.lines()
+        .map(|line| line.split(',').map(String::from).collect())
+        .collect()
+}
+
+/// The cell as a finite number (a share in percent as its fraction).
+fn finite(cell: &str) -> f64 {
+    let value: f64 = match cell.strip_suffix('%') {
+        Some(percent) => percent.parse::<f64>().map(|p| p / 100.0),
+        None => cell.parse(),
+    }
+    .unwrap_or_else(|_| panic!("{cell:?} is a number"));
+    assert!(value.is_finite(), "{cell:?} is finite");
+    value
+}
 
 #[test]
-fn a_quick_report_writes_every_section_with_its_table_and_plot() {
+fn a_quick_report_writes_every_section_and_the_thesis_tables_hold_finite_figures() {
     let dir = temp_dir("report");
-    let output = veneer()
-        .args(["report", "--quick", "--repetitions", "1", "-o"])
-        .arg(&dir)
-        .output()
-        .expect("veneer runs");
-    assert!(
-        output.status.success(),
-        "{}",
-        String::from_utf8_lossy(&output.stderr)
+    let gpu = crate::support::gpu();
+    let settings = veneer::report::Settings {
+        repetitions: 2,
+        quick: true,
+    };
+    let steps = Cell::new(0);
+    veneer::report::write(gpu, &settings, &dir, &|| steps.set(steps.get() + 1))
+        .expect("the report is written");
+    assert_eq!(
+        steps.get(),
+        veneer::report::steps(&settings),
+        "the progress bar's length"
     );
     let markdown = std::fs::read_to_string(dir.join("report.md")).expect("report.md");
-    for section in ["precision", "hashes", "octaves", "geodesics", "detail"] {
+    for section in [
+        "precision",
+        "hashes",
+        "octaves",
+        "geodesics",
+        "detail",
+        "distance_times",
+        "frame_rates",
+    ] {
         assert!(
             markdown.contains(&format!("({section}.png)")),
             "{section} plot linked"
@@ -26,11 +58,63 @@ fn a_quick_report_writes_every_section_with_its_table_and_plot() {
         let plot = image::open(dir.join(format!("{section}.png"))).expect("the plot decodes");
         assert_eq!((plot.width(), plot.height()), (800, 500));
     }
-    let adapter = crate::support::gpu().adapter_description();
+    let adapter = gpu.adapter_description();
     assert!(
         markdown.contains(&adapter),
         "the adapter is stated: {adapter}"
     );
+    assert!(markdown.contains("GeForce 8600 GT"), "the thesis's GPU");
+
+    let read = |name: &str| rows(&std::fs::read_to_string(dir.join(name)).expect(name));
+
+    // Table 5.1: a row per model, the mean and deviation of every method.
+    let times = read("distance_times.csv");
+    assert_eq!(
+        times[0][..3],
+        ["mesh", "thesis model of similar size", "triangles"]
+    );
+    assert_eq!(times.len(), 1 + 4, "four models");
+    for row in &times[1..] {
+        assert!(finite(&row[2]) >= 500.0, "{row:?}: triangles");
+        for pair in row[3..].chunks(2) {
+            assert!(finite(&pair[0]) > 0.0, "{row:?}: a mean time");
+            assert!(finite(&pair[1]) >= 0.0, "{row:?}: a deviation");
+        }
+        assert_eq!(row.len(), 3 + 2 * 4, "exact, heat, robust heat, Dijkstra");
+    }
+
+    // Tables 5.2 and 5.3: near and far frames a second of every texture on each model.
+    let frames = read("frame_rates.csv");
+    let header = &frames[0];
+    for texture in [
+        "Water/Sand",
+        "Moss",
+        "Rust",
+        "Water/Lava",
+        "Isolines",
+        "Waves",
+    ] {
+        for view in ["near", "far"] {
+            let column = format!("{texture} {view} fps");
+            assert!(header.contains(&column), "{column} in {header:?}");
+        }
+    }
+    assert_eq!(frames.len(), 1 + 4, "four models");
+    for row in &frames[1..] {
+        let (near, far) = (finite(&row[2]), finite(&row[3]));
+        assert!(
+            near > 0.3 && far > 0.0 && near > 4.0 * far && near <= 1.0,
+            "{row:?}: near, the mesh fills most of the frame; far, a little of it"
+        );
+        for fps in &row[4..row.len() - 1] {
+            assert!(finite(fps) > 0.0, "{row:?}: frames a second");
+        }
+        assert!(
+            ["GPU timestamps", "wall clock"].contains(&row[row.len() - 1].as_str()),
+            "{row:?}: how it was timed"
+        );
+    }
+
     let bad = veneer()
         .args(["report", "--repetitions", "0"])
         .output()
