@@ -64,15 +64,16 @@ impl GpuMesh {
     }
 
     /// Draws every triangle in the order the last [`GpuMesh::sort_back_to_front`] put
-    /// them (within each part).
+    /// them (within each part; in the mesh's order for a mesh uploaded without a depth
+    /// order).
     pub fn draw_back_to_front(&self, pass: &mut wgpu::RenderPass<'_>) {
         for part in &self.parts {
-            let order = part
+            let indices = part
                 .depth_order
                 .as_ref()
-                .expect("uploaded with a depth order");
+                .map_or(&part.indices, |order| &order.sorted);
             pass.set_vertex_buffer(0, part.vertices.slice(..));
-            pass.set_index_buffer(order.sorted.slice(..), wgpu::IndexFormat::Uint32);
+            pass.set_index_buffer(indices.slice(..), wgpu::IndexFormat::Uint32);
             pass.draw_indexed(0..part.index_count, 0, 0..1);
         }
     }

@@ -11,7 +11,7 @@ use crate::codegen::{CompileOptions, compile};
 use crate::geodesic::{self, Method};
 use crate::graph::FieldSource;
 use crate::mesh::Mesh;
-use crate::render::{GpuMesh, MeshRenderer, MeshView, PassTimer};
+use crate::render::{GpuMesh, MeshRenderer, MeshView, PassTimer, Relief};
 use glam::Vec3;
 
 /// The thesis's models (Table 5.1) and their triangle counts, in its order.
@@ -33,13 +33,18 @@ pub const QUICK_MODELS: [&str; 4] = ["torus:12", "genus2:8", "sphere:12", "scan:
 
 /// The thesis's textures (Tables 5.2 and 5.3, with the waves of §5.3.3 added) as the
 /// presets that transcribe them, and the names the thesis gives them.
-pub const TEXTURES: [(&str, &str); 6] = [
-    ("thesis_c2_sand_water", "Water/Sand"),
-    ("thesis_c3_moss_granite", "Moss"),
-    ("thesis_c4_paint_metal_rust", "Rust"),
-    ("thesis_c5_water_lava", "Water/Lava"),
-    ("isolines", "Isolines"),
-    ("thesis_c6_waves", "Waves"),
+/// The waves appear three times, as figure 5.10 compares them: displaced on the model's
+/// own triangles, shaded as bump only, and displaced with adaptive tessellation (the
+/// adaptive preset refines each view's mesh before it is timed).
+pub const TEXTURES: [(&str, &str, Relief); 8] = [
+    ("thesis_c2_sand_water", "Water/Sand", Relief::Displaced),
+    ("thesis_c3_moss_granite", "Moss", Relief::Displaced),
+    ("thesis_c4_paint_metal_rust", "Rust", Relief::Displaced),
+    ("thesis_c5_water_lava", "Water/Lava", Relief::Displaced),
+    ("isolines", "Isolines", Relief::Displaced),
+    ("thesis_c6_waves", "Waves", Relief::Displaced),
+    ("thesis_c6_waves_adaptive", "Waves, bump only", Relief::Bump),
+    ("thesis_c6_waves_adaptive", "Waves, tessellated", Relief::Displaced),
 ];
 
 /// Camera distances from the mesh's centre (vertical field of view 40°): near, the mesh
@@ -214,6 +219,8 @@ fn covered(pixels: &[[u8; 4]], background: [u8; 4]) -> f64 {
 struct Texture {
     label: &'static str,
     renderer: MeshRenderer,
+    /// The material and refinement of a texture drawn with adaptive tessellation.
+    tessellation: Option<(crate::graph::CheckedGraph, crate::mesh::Refinement)>,
     fields: Vec<FieldSource>,
     used: [bool; 4],
     preview: Mesh,
@@ -224,13 +231,18 @@ struct Texture {
 fn textures(ctx: &Context) -> Result<Vec<Texture>, String> {
     TEXTURES
         .iter()
-        .map(|&(preset, label)| {
+        .map(|&(preset, label, relief)| {
             let graph = crate::graph::preset(preset).ok_or(format!("{preset}: no preset"))?;
             let compiled =
                 compile(&graph, &CompileOptions::default()).map_err(|e| e.to_string())?;
             let module = &compiled.module;
-            let renderer = MeshRenderer::new(ctx.gpu, &module.source, module.uses)
+            let renderer = MeshRenderer::with_relief(ctx.gpu, &module.source, module.uses, relief)
                 .map_err(|e| e.to_string())?;
+            let tessellation = graph
+                .preview
+                .tessellation
+                .filter(|_| relief == Relief::Displaced)
+                .map(|settings| (compiled.checked.clone(), settings.refinement()));
             let preview =
                 crate::mesh::preview_mesh(&graph.preview.mesh).map_err(|e| e.to_string())?;
             let mut view = MeshView::for_preview(&graph.preview);
@@ -238,6 +250,7 @@ fn textures(ctx: &Context) -> Result<Vec<Texture>, String> {
             Ok(Texture {
                 label,
                 renderer,
+                tessellation,
                 fields: graph.preview.fields.clone(),
                 used: module.uses.fields,
                 preview,
@@ -284,10 +297,16 @@ pub fn frame_rates(ctx: &Context) -> Result<Section, String> {
             let fields = moved_fields(&texture.fields, &texture.preview, &mesh)?;
             geodesic::attach_fields(&mut textured, &fields, texture.used, |_, _| {})
                 .map_err(|e| format!("{} on `{name}`: {e}", texture.label))?;
-            let uploaded = GpuMesh::new(&ctx.gpu.device, &textured);
             let views = [NEAR, FAR].map(|distance| MeshView {
                 distance,
                 ..texture.view.clone()
+            });
+            // Each view's mesh: the model's, or refined for that view.
+            let drawn = views.each_ref().map(|view| match &texture.tessellation {
+                Some((graph, refinement)) => {
+                    crate::render::tessellate(graph, &textured, view, size, refinement).mesh
+                }
+                None => textured.clone(),
             });
             if t == 0 {
                 let frame = |view: &MeshView| {
@@ -301,6 +320,7 @@ pub fn frame_rates(ctx: &Context) -> Result<Section, String> {
                 coverage = [covered(&frame(&views[0])?, far[0]), covered(&far, far[0])];
             }
             for (v, view) in views.iter().enumerate() {
+                let uploaded = GpuMesh::new(&ctx.gpu.device, &drawn[v]);
                 let frame_ms = samples(ctx.repetitions, || {
                     texture
                         .renderer
@@ -329,7 +349,7 @@ pub fn frame_rates(ctx: &Context) -> Result<Section, String> {
         slug: "frame_rates",
         title: "Frame rates near and far (thesis Tables 5.2 and 5.3)".into(),
         text: format!(
-            "Seed 003's Tables 5.2 and 5.3 give the mean frames a second of each texture on each model near (the model close to the camera: many fragments) and far (few fragments), measured on an NVIDIA GeForce 8600 GT: near 3–18 fps and far 32–117 fps for the textures, 71–148 and 219–247 fps for the isolines. Here each texture is its appendix-C preset (C.2 water/sand, C.3 moss, C.4 rust, C.5 water/lava, the isolines preset and the C.6 waves, which the thesis timed separately on a GTS 450), on the meshes of *Distance-field time*, its field sources moved to the mesh's nearest vertices and its fields solved by heat on the whole mesh (no charts). A frame is {size}² pixels, 4× multisampled as `veneer render`, at time {TIME} s, the camera at distance {NEAR} (near) or {FAR} (far) from the mesh's centre with a 40° field of view; the covered columns are the share of the frame's pixels the mesh shows in. Frames a second are 1000 over the mean, over {} repetitions after a warm-up, of the frame's time measured by the adapter {} with {}. As in the thesis, a near frame's cost follows the fragments shaded and the texture's complexity, not the number of fields; far frames also pay for what does not depend on the fragments (clearing and resolving the multisampled frame, the vertex stage, each triangle's set-up), which a software rasteriser feels most.",
+            "Seed 003's Tables 5.2 and 5.3 give the mean frames a second of each texture on each model near (the model close to the camera: many fragments) and far (few fragments), measured on an NVIDIA GeForce 8600 GT: near 3–18 fps and far 32–117 fps for the textures, 71–148 and 219–247 fps for the isolines. Here each texture is its appendix-C preset (C.2 water/sand, C.3 moss, C.4 rust, C.5 water/lava, the isolines preset and the C.6 waves, which the thesis timed separately on a GTS 450: 390 fps shaded as bump, 360 fps displaced with hardware tessellation; here they are timed three ways, as its figure 5.10 compares them: displaced on the model's own triangles, shaded as bump only, and displaced with adaptive tessellation, the mesh refined for each view until the displaced surface is within 0.5 px of its triangles, which takes the CPU milliseconds a view that are not in the frame times), on the meshes of *Distance-field time*, its field sources moved to the mesh's nearest vertices and its fields solved by heat on the whole mesh (no charts). A frame is {size}² pixels, 4× multisampled as `veneer render`, at time {TIME} s, the camera at distance {NEAR} (near) or {FAR} (far) from the mesh's centre with a 40° field of view; the covered columns are the share of the frame's pixels the mesh shows in. Frames a second are 1000 over the mean, over {} repetitions after a warm-up, of the frame's time measured by the adapter {} with {}. As in the thesis, a near frame's cost follows the fragments shaded and the texture's complexity, not the number of fields; far frames also pay for what does not depend on the fragments (clearing and resolving the multisampled frame, the vertex stage, each triangle's set-up), which a software rasteriser feels most.",
             ctx.repetitions,
             ctx.gpu.adapter_description(),
             if timed_by == "wall clock" {
