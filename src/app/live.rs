@@ -110,12 +110,11 @@ impl LiveMaterial {
         }
         match result {
             Ok(compiled) => {
-                // Nodes the output does not reach are pruned: the code may well be unchanged.
-                if self
-                    .compiled
-                    .as_ref()
-                    .is_none_or(|old| old.source() != compiled.source())
-                {
+                // Nodes the output does not reach are pruned: the code may well be
+                // unchanged. What the pipeline does with it (alpha mode, relief) may not.
+                if self.compiled.as_ref().is_none_or(|old| {
+                    old.source() != compiled.source() || old.uses() != compiled.uses()
+                }) {
                     self.generation += 1;
                 }
                 self.compiled = Some(compiled);

@@ -44,7 +44,7 @@ pub use probe::{AtlasGraph, atlas_graph};
 pub use sync::FrameProfile;
 pub use thumbnails::{TILE_PIXELS, Thumbnails, placement, tile_params};
 
-use crate::graph::{Graph, Node};
+use crate::graph::{AlphaMode, Graph, Node};
 use dialogs::{Dialog, Pending};
 use egui::{Key, KeyboardShortcut, Modifiers, Ui};
 use egui_snarl::Snarl;
@@ -52,7 +52,7 @@ use egui_snarl::ui::SnarlWidget;
 use graph_view::{Viewer, graph_from_snarl, snarl_from_graph};
 use navigation::{Framing, Navigation};
 use preview::{MaterialFrame, PreviewState, Previews};
-use preview_worker::Slot;
+use preview_worker::{Slot, TessellationInput};
 use std::path::PathBuf;
 use std::sync::Arc;
 
@@ -124,6 +124,8 @@ pub struct VeneerApp {
     /// The field view's material (a colour scale with isolines of one field).
     field_view: LiveMaterial,
     field_view_frame: FrameCache,
+    /// The graph checked at a revision, for refining a displaced preview mesh.
+    tessellation_graph: Option<(u64, Arc<crate::graph::CheckedGraph>)>,
     render_state: Option<eframe::egui_wgpu::RenderState>,
     allowed_to_close: bool,
     /// Beside which windows autosave unsaved work (and the recent files are kept).
@@ -186,6 +188,7 @@ impl VeneerApp {
             fields: Default::default(),
             field_view: LiveMaterial::in_storage(),
             field_view_frame: FrameCache::default(),
+            tessellation_graph: None,
             render_state,
             allowed_to_close: false,
             recovery_file,
@@ -507,6 +510,7 @@ fn material_frame(
             uses: module.uses,
         },
         params,
+        tessellation: None,
     })
 }
 

@@ -4,7 +4,7 @@
 //! keeps its own camera; while anything is dragged the preview draws drafts, and refines
 //! when the pointer is let go.
 
-use super::preview_worker::{MeshChoice, Request, Slot, Worker};
+use super::preview_worker::{MeshChoice, Request, Slot, TessellationInput, Worker};
 use crate::graph::Preview;
 use crate::render::{LiveMaterialCode, MeshView, Projection, Quality};
 use egui::{Sense, TextureHandle, TextureOptions, Ui};
@@ -195,6 +195,8 @@ impl PreviewState {
 pub struct MaterialFrame {
     pub code: LiveMaterialCode,
     pub params: Arc<[[f32; 4]]>,
+    /// What refining a displaced mesh for the view needs, when the graph asks for it.
+    pub tessellation: Option<TessellationInput>,
 }
 
 /// One preview's picture on the UI side: the newest image drawn and what was asked.
@@ -442,6 +444,7 @@ fn request(ui: &Ui, state: &PreviewState, material: MaterialFrame, rect: egui::R
     Request {
         material: material.code,
         params: material.params,
+        tessellation: material.tessellation,
         mesh: state.mesh_choice(),
         view: state.frame_view(),
         size: (pixels.x.max(1.0) as u32, pixels.y.max(1.0) as u32),

@@ -81,7 +81,11 @@ impl VeneerApp {
                 &mut self.frames[Slot::Main as usize],
                 &self.document.graph,
                 self.revision.number,
-            ),
+            )
+            .map(|mut frame| {
+                frame.tessellation = self.tessellation_input(&frame);
+                frame
+            }),
         };
         if self.previews.available() {
             let response = preview::show(
@@ -136,6 +140,7 @@ impl VeneerApp {
                     .range(-1.0..=1.0),
             );
         });
+        self.surface_settings(ui);
         fields::fields_panel(
             ui,
             &mut self.document.graph.preview.fields,
@@ -145,6 +150,90 @@ impl VeneerApp {
         if self.preview.playing {
             ui.ctx().request_repaint();
         }
+    }
+
+    /// What the preview's drawing thread needs to refine the mesh of a displaced
+    /// material whose graph asks for tessellation (the graph checked once a revision).
+    fn tessellation_input(&mut self, frame: &MaterialFrame) -> Option<TessellationInput> {
+        let settings = self.document.graph.preview.tessellation?;
+        if !frame.code.uses.displacement || self.preview.flat {
+            return None;
+        }
+        let revision = self.revision.number;
+        if self
+            .tessellation_graph
+            .as_ref()
+            .is_none_or(|(seen, _)| *seen != revision)
+        {
+            let checked = crate::graph::check(&self.document.graph).ok()?;
+            self.tessellation_graph = Some((revision, Arc::new(checked)));
+        }
+        let (_, graph) = self.tessellation_graph.as_ref()?;
+        Some(TessellationInput {
+            revision,
+            graph: Arc::clone(graph),
+            refinement: settings.refinement(),
+        })
+    }
+
+    /// The material's alpha mode and the preview's adaptive tessellation.
+    fn surface_settings(&mut self, ui: &mut Ui) {
+        ui.horizontal(|ui| {
+            let alpha = &mut self.document.graph.alpha;
+            let name = |mode: &AlphaMode| match mode {
+                AlphaMode::Mask { .. } => "cut out",
+                AlphaMode::Blend => "blend",
+                AlphaMode::Opaque => "opaque",
+            };
+            ui.label("alpha");
+            egui::ComboBox::from_id_salt("alpha mode")
+                .selected_text(name(alpha))
+                .show_ui(ui, |ui| {
+                    for mode in [AlphaMode::default(), AlphaMode::Blend, AlphaMode::Opaque] {
+                        let same = std::mem::discriminant(&mode) == std::mem::discriminant(alpha);
+                        if ui.selectable_label(same, name(&mode)).clicked() && !same {
+                            *alpha = mode;
+                        }
+                    }
+                })
+                .response
+                .on_hover_text("cut out: holes where the alpha is below the cutoff; blend: see-through in proportion to the alpha; opaque: alpha ignored");
+            if let AlphaMode::Mask { cutoff } = alpha {
+                // The cutoff is built into the pipeline: applied when a drag ends, not
+                // at every step.
+                let id = ui.id().with("alpha cutoff");
+                let mut value = ui.data(|d| d.get_temp::<f64>(id)).unwrap_or(*cutoff);
+                let response = ui.add(
+                    egui::DragValue::new(&mut value)
+                        .speed(0.01)
+                        .range(0.0..=1.0)
+                        .prefix("cutoff "),
+                );
+                if response.dragged() {
+                    ui.data_mut(|d| d.insert_temp(id, value));
+                } else {
+                    ui.data_mut(|d| d.remove::<f64>(id));
+                    *cutoff = value;
+                }
+            }
+            let tessellation = &mut self.document.graph.preview.tessellation;
+            let mut on = tessellation.is_some();
+            if ui
+                .checkbox(&mut on, "tessellate")
+                .on_hover_text("refine a displaced mesh where its height needs it, until the displaced surface is within the tolerance of its triangles on screen (at rest; drafts reuse the last refinement)")
+                .changed()
+            {
+                *tessellation = on.then(crate::graph::Tessellation::default);
+            }
+            if let Some(settings) = tessellation {
+                ui.add(
+                    egui::DragValue::new(&mut settings.tolerance)
+                        .speed(0.02)
+                        .range(f64::from(crate::mesh::Refinement::MIN_TOLERANCE_PX)..=8.0)
+                        .suffix(" px"),
+                );
+            }
+        });
     }
 
     /// Over the bottom of the preview: why the material's distance fields could not be

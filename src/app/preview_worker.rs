@@ -6,7 +6,8 @@
 //! replaces it — so the thread always draws the latest state.
 
 use super::drawing_thread::DrawingThread;
-use crate::mesh::Mesh;
+use crate::graph::CheckedGraph;
+use crate::mesh::{Mesh, Refinement};
 use crate::render::{GpuContext, LiveMaterialCode, LiveRenderer, MeshView, Quality};
 use std::sync::mpsc::{Receiver, Sender, channel};
 use std::sync::{Arc, Condvar, Mutex};
@@ -41,11 +42,31 @@ impl PartialEq for MeshChoice {
     }
 }
 
+/// The material's graph as it is now (its constants baked) and the refinement asked
+/// for, for adaptive tessellation of a displaced mesh on the drawing thread.
+#[derive(Clone)]
+pub struct TessellationInput {
+    /// The graph revision `graph` was checked at.
+    pub revision: u64,
+    pub graph: Arc<CheckedGraph>,
+    pub refinement: Refinement,
+}
+
+impl PartialEq for TessellationInput {
+    fn eq(&self, other: &TessellationInput) -> bool {
+        // The graph changes with the revision: no need to compare it.
+        self.revision == other.revision && self.refinement == other.refinement
+    }
+}
+
 /// One frame to draw.
 #[derive(Clone, PartialEq)]
 pub struct Request {
     pub material: LiveMaterialCode,
     pub params: Arc<[[f32; 4]]>,
+    /// Set when the mesh is refined for the view (full-quality frames only; drafts
+    /// reuse the last refined mesh of the same material and mesh).
+    pub tessellation: Option<TessellationInput>,
     pub mesh: MeshChoice,
     pub view: MeshView,
     /// The preview's size in pixels (drafts draw at half of it).
@@ -134,14 +155,18 @@ fn run(mailbox: &(Mutex<Mailbox>, Condvar), drawn: &Sender<Drawn>, wake: impl Fn
     let gpu = GpuContext::new().map_err(|error| error.to_string());
     let mut renderers = [LiveRenderer::default(), LiveRenderer::default()];
     let mut primitives: [Option<(String, Arc<Mesh>)>; 2] = [None, None];
+    let mut refined = Refinements::default();
     let mut idle: Option<(Slot, LiveMaterialCode)> = None;
     while let Some(task) = next_task(mailbox, &mut idle) {
         match task {
-            Task::Draw(slot, id, request) => {
+            Task::Draw(slot, id, mut request) => {
                 let renderer = &mut renderers[slot as usize];
                 let started = std::time::Instant::now();
                 let image = gpu.as_ref().map_err(Clone::clone).and_then(|gpu| {
-                    let mesh = resolve(&mut primitives[slot as usize], &request.mesh);
+                    let mut mesh = resolve(&mut primitives[slot as usize], &request.mesh);
+                    if let Some(input) = request.tessellation.clone() {
+                        (request.mesh.key, mesh) = refined.mesh_for(&request, &input, mesh);
+                    }
                     draw(gpu, renderer, &request, &mesh)
                 });
                 if image.is_ok() && request.quality == Quality::Full {
@@ -191,6 +216,68 @@ fn next_task(
             return Some(Task::Prepare(slot, material));
         }
         waiting = wakeup.wait(waiting).ok()?;
+    }
+}
+
+/// The newest mesh refined for a view, and what it was refined for.
+#[derive(Default)]
+struct Refinements {
+    last: Option<RefinedMesh>,
+    /// Counts refinements, so that each refined mesh uploads under a key of its own.
+    made: u64,
+}
+
+struct RefinedMesh {
+    /// The base mesh's key, the graph revision and the refinement.
+    base: (String, u64),
+    input: TessellationInput,
+    view: MeshView,
+    size: (u32, u32),
+    key: String,
+    mesh: Arc<Mesh>,
+}
+
+impl Refinements {
+    /// The mesh to draw for `request` and its key: `base` refined for the request's view
+    /// when it is a full frame (the last refinement when nothing changed), and for a
+    /// draft the last refinement of the same mesh and revision (`base` if none).
+    fn mesh_for(
+        &mut self,
+        request: &Request,
+        input: &TessellationInput,
+        base: Arc<Mesh>,
+    ) -> (String, Arc<Mesh>) {
+        let of_base = (request.mesh.key.clone(), input.revision);
+        if let Some(last) = &self.last
+            && last.base == of_base
+            && (request.quality == Quality::Draft
+                || (last.input == *input && last.view == request.view && last.size == request.size))
+        {
+            return (last.key.clone(), Arc::clone(&last.mesh));
+        }
+        if request.quality == Quality::Draft {
+            return (request.mesh.key.clone(), base);
+        }
+        let mesh = crate::render::tessellate(
+            &input.graph,
+            &base,
+            &request.view,
+            request.size.1,
+            &input.refinement,
+        )
+        .mesh;
+        self.made += 1;
+        let refined = RefinedMesh {
+            base: of_base,
+            input: input.clone(),
+            view: request.view.clone(),
+            size: request.size,
+            key: format!("{}#refined{}", request.mesh.key, self.made),
+            mesh: Arc::new(mesh),
+        };
+        let drawn = (refined.key.clone(), Arc::clone(&refined.mesh));
+        self.last = Some(refined);
+        drawn
     }
 }
 

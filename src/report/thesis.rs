@@ -44,7 +44,11 @@ pub const TEXTURES: [(&str, &str, Relief); 8] = [
     ("isolines", "Isolines", Relief::Displaced),
     ("thesis_c6_waves", "Waves", Relief::Displaced),
     ("thesis_c6_waves_adaptive", "Waves, bump only", Relief::Bump),
-    ("thesis_c6_waves_adaptive", "Waves, tessellated", Relief::Displaced),
+    (
+        "thesis_c6_waves_adaptive",
+        "Waves, tessellated",
+        Relief::Displaced,
+    ),
 ];
 
 /// Camera distances from the mesh's centre (vertical field of view 40°): near, the mesh
