@@ -116,9 +116,10 @@ pub fn run(args: RenderArgs) -> Result<(), Failure> {
     if let Some(tessellated) = rendered.tessellated {
         let (before, after) = tessellated.triangles;
         note(format!(
-            "{}: tessellated {before} triangles into {after} ({} levels){}",
+            "{}: tessellated {before} triangles into {after} ({} level{}){}",
             args.graph.display(),
             tessellated.levels,
+            if tessellated.levels == 1 { "" } else { "s" },
             if tessellated.limited {
                 "; warning: stopped at the triangle limit, short of the tolerance"
             } else {
