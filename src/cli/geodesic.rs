@@ -71,15 +71,13 @@ pub fn run(args: GeodesicArgs) -> Result<(), Failure> {
         bar.enable_steady_tick(std::time::Duration::from_millis(200));
         bar
     });
-    let solving = Instant::now();
     let solved = geodesic::fields(&welded.mesh, &source_sets, args.method(), |done, _| {
         if let Some(bar) = &bar {
             bar.set_position(done as u64);
         }
     })
     .map_err(|e| Failure::new(format!("{}: {e}", args.mesh)))?;
-    let setup = solved.setup_time;
-    let solve_time = solving.elapsed().saturating_sub(setup);
+    let (setup, solve_time) = (solved.setup_time, solved.solve_time);
     if let Some(bar) = bar {
         bar.finish_and_clear();
     }

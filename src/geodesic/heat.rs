@@ -203,35 +203,49 @@ impl HeatSolver {
     }
 
     /// `−∇·X` at each vertex, where `X = −∇u/|∇u|` on each triangle (zero where the
-    /// heat is flat to rounding).
+    /// heat is flat to rounding). Each triangle's share is worked out in parallel, then
+    /// summed into the vertices in triangle order, so the result is the same on every run.
     fn divergence_of_normalised_gradient(&self, heat: &[f64]) -> Vec<f64> {
+        use rayon::prelude::*;
+        let shares: Vec<Option<[f64; 3]>> = self
+            .faces
+            .par_iter()
+            .zip(&self.corners)
+            .map(|(face, corner)| {
+                if corner.area <= 0.0 {
+                    return None;
+                }
+                let p = corner.layout;
+                let u = face.map(|v| heat[v as usize]);
+                let gradient = (0..3)
+                    .map(|i| {
+                        let edge = p[(i + 2) % 3] - p[(i + 1) % 3];
+                        u[i] * edge.perp()
+                    })
+                    .fold(DVec2::ZERO, |sum, g| sum + g)
+                    / (2.0 * corner.area);
+                // A gradient within rounding of the face's own values has no direction.
+                let length = gradient.length();
+                let scale = u.iter().fold(0.0f64, |m, v| m.max(v.abs()))
+                    / corner.lengths.iter().fold(0.0f64, |m, &l| m.max(l));
+                if !(length > 1.0e-9 * scale && length.is_finite()) {
+                    return None;
+                }
+                let x = -gradient / length;
+                Some([0, 1, 2].map(|i| {
+                    let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+                    let flux = corner.cotans[k] * (p[j] - p[i]).dot(x)
+                        + corner.cotans[j] * (p[k] - p[i]).dot(x);
+                    -0.5 * flux
+                }))
+            })
+            .collect();
         let mut divergence = vec![0.0; self.vertex_count];
-        for (face, corner) in self.faces.iter().zip(&self.corners) {
-            if corner.area <= 0.0 {
-                continue;
-            }
-            let p = corner.layout;
-            let u = face.map(|v| heat[v as usize]);
-            let gradient = (0..3)
-                .map(|i| {
-                    let edge = p[(i + 2) % 3] - p[(i + 1) % 3];
-                    u[i] * edge.perp()
-                })
-                .fold(DVec2::ZERO, |sum, g| sum + g)
-                / (2.0 * corner.area);
-            // A gradient within rounding of the face's own values has no direction.
-            let length = gradient.length();
-            let scale = u.iter().fold(0.0f64, |m, v| m.max(v.abs()))
-                / corner.lengths.iter().fold(0.0f64, |m, &l| m.max(l));
-            if !(length > 1.0e-9 * scale && length.is_finite()) {
-                continue;
-            }
-            let x = -gradient / length;
-            for i in 0..3 {
-                let (j, k) = ((i + 1) % 3, (i + 2) % 3);
-                let flux = corner.cotans[k] * (p[j] - p[i]).dot(x)
-                    + corner.cotans[j] * (p[k] - p[i]).dot(x);
-                divergence[face[i] as usize] -= 0.5 * flux;
+        for (face, share) in self.faces.iter().zip(shares) {
+            if let Some(share) = share {
+                for i in 0..3 {
+                    divergence[face[i] as usize] += share[i];
+                }
             }
         }
         divergence

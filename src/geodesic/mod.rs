@@ -48,6 +48,8 @@ pub struct Solved {
     pub fields: Vec<Vec<f64>>,
     /// Time spent on the set-up shared by all fields (the heat method's factorisation).
     pub setup_time: Duration,
+    /// Time spent computing the fields once set up (not freeing the set-up after).
+    pub solve_time: Duration,
     /// What the heat method's set-up did, when it ran.
     pub heat: Option<HeatSetup>,
     /// The method the fields were computed with: the one asked for, or the robust heat
@@ -86,6 +88,7 @@ pub fn fields(
     };
     let surface = (method == Method::Exact).then(|| Triangulation::from_mesh(mesh));
     let setup_time = started.elapsed();
+    let solving = Instant::now();
     let mut fields = Vec::with_capacity(source_sets.len());
     for (i, sources) in source_sets.iter().enumerate() {
         let mut within = |done: usize, _: usize| progress(i * n + done, total);
@@ -96,9 +99,11 @@ pub fn fields(
         });
         progress((i + 1) * n, total);
     }
+    let solve_time = solving.elapsed();
     Ok(Solved {
         fields,
         setup_time,
+        solve_time,
         heat: heat.map(|solver| solver.setup()),
         method,
         fallback,
