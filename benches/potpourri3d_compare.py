@@ -32,10 +32,10 @@ MESHES = ["torus:160", "genus2:60", "sphere:128"]
 SUMMARY_TIMES = ("set-up", "solve")
 
 
-def veneer_run(veneer, obj, csv):
-    """Runs `veneer geodesic` once and returns (set-up ms, solve ms, peak MB)."""
+def veneer_run(veneer, obj, csv, method="heat"):
+    """Runs `veneer geodesic` once from vertex 0 and returns (set-up ms, solve ms, peak MB)."""
     process = subprocess.Popen(
-        [veneer, "geodesic", obj, "--sources", "0", "--method", "heat", "-o", csv],
+        [veneer, "geodesic", obj, "--sources", "0", "--method", method, "-o", csv],
         stdout=subprocess.DEVNULL,
         stderr=subprocess.PIPE,
         text=True,

@@ -10,7 +10,7 @@
 
 use super::triangulation::{NO_TWIN, Triangulation, half_edge, split};
 use glam::DVec2;
-use std::cmp::Ordering;
+use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 
 /// Relative slack in comparisons of path lengths.
@@ -49,31 +49,59 @@ impl Window {
     }
 }
 
-/// Work waiting in the queue, ordered by the distance it starts from.
-enum Event {
-    Window(Window),
-    Vertex(u32),
+/// Work waiting in the queue: a window (by its place in the window store) or a vertex
+/// to settle, packed in a `u32` (the top bit says which).
+#[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+struct Event(u32);
+
+const VERTEX_EVENT: u32 = 1 << 31;
+
+/// The queue: events by the distance they start from, nearest first (ties by event, so
+/// the order is the same on every run). Distances are never negative, so their bits
+/// order as the numbers do: heap entries are 12 bytes of integers, compared inline,
+/// with the windows themselves in a store beside the heap (a heap of whole windows,
+/// compared as floats, took two thirds of the time).
+#[derive(Default)]
+struct Queue {
+    heap: BinaryHeap<Reverse<(u64, Event)>>,
+    /// Windows waiting, by slot; freed slots are reused.
+    windows: Vec<Window>,
+    free: Vec<u32>,
 }
 
-struct Queued {
-    key: f64,
-    event: Event,
-}
+impl Queue {
+    fn push(&mut self, key: f64, event: Event) {
+        self.heap.push(Reverse((key.max(0.0).to_bits(), event)));
+    }
 
-impl PartialEq for Queued {
-    fn eq(&self, other: &Self) -> bool {
-        self.key == other.key
+    fn push_vertex(&mut self, key: f64, v: u32) {
+        self.push(key, Event(v | VERTEX_EVENT));
     }
-}
-impl Eq for Queued {}
-impl PartialOrd for Queued {
-    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
-        Some(self.cmp(other))
+
+    fn push_window(&mut self, key: f64, window: Window) {
+        let slot = match self.free.pop() {
+            Some(slot) => {
+                self.windows[slot as usize] = window;
+                slot
+            }
+            None => {
+                self.windows.push(window);
+                (self.windows.len() - 1) as u32
+            }
+        };
+        self.push(key, Event(slot));
     }
-}
-impl Ord for Queued {
-    fn cmp(&self, other: &Self) -> Ordering {
-        other.key.total_cmp(&self.key)
+
+    /// The nearest event: its distance, and the vertex to settle or the window (taken
+    /// out of the store).
+    fn pop(&mut self) -> Option<(f64, Result<u32, Window>)> {
+        let Reverse((key, Event(event))) = self.heap.pop()?;
+        let key = f64::from_bits(key);
+        if event & VERTEX_EVENT != 0 {
+            return Some((key, Ok(event & !VERTEX_EVENT)));
+        }
+        self.free.push(event);
+        Some((key, Err(self.windows[event as usize])))
     }
 }
 
@@ -103,7 +131,7 @@ struct Propagation<'a> {
     bends: Vec<bool>,
     distance: Vec<f64>,
     splits: Vec<Option<Split>>,
-    queue: BinaryHeap<Queued>,
+    queue: Queue,
     /// Windows that may still be propagated; at zero, paths continue along edges only.
     budget: usize,
 }
@@ -134,7 +162,7 @@ impl<'a> Propagation<'a> {
             bends,
             distance: vec![f64::INFINITY; n],
             splits: vec![None; surface.faces.len() * 3],
-            queue: BinaryHeap::new(),
+            queue: Queue::default(),
             budget: (WINDOWS_PER_FACE * surface.faces.len()).max(MIN_WINDOWS),
         }
     }
@@ -147,9 +175,9 @@ impl<'a> Propagation<'a> {
             self.lower(s, 0.0);
         }
         let mut settled = 0;
-        while let Some(Queued { key, event }) = self.queue.pop() {
+        while let Some((key, event)) = self.queue.pop() {
             match event {
-                Event::Vertex(v) => {
+                Ok(v) => {
                     if key > self.distance[v as usize] {
                         continue;
                     }
@@ -161,23 +189,18 @@ impl<'a> Propagation<'a> {
                         self.emit_from_vertex(v);
                     }
                 }
-                Event::Window(window) => {
+                Err(window) => {
                     if self.budget > 0 && self.useful(&window) {
                         self.budget -= 1;
                         if self.budget == 0 {
                             // Out of windows (a degenerate mesh): finish along edges from
                             // every vertex reached so far, so each reachable vertex gets
                             // an upper bound instead of staying infinite.
-                            self.queue.extend(
-                                self.distance
-                                    .iter()
-                                    .enumerate()
-                                    .filter(|(_, d)| d.is_finite())
-                                    .map(|(v, &d)| Queued {
-                                        key: d,
-                                        event: Event::Vertex(v as u32),
-                                    }),
-                            );
+                            for (v, &d) in self.distance.iter().enumerate() {
+                                if d.is_finite() {
+                                    self.queue.push_vertex(d, v as u32);
+                                }
+                            }
                         }
                         self.propagate(&window);
                     }
@@ -192,20 +215,14 @@ impl<'a> Propagation<'a> {
     fn lower(&mut self, v: u32, d: f64) {
         if d < self.distance[v as usize] {
             self.distance[v as usize] = d;
-            self.queue.push(Queued {
-                key: d,
-                event: Event::Vertex(v),
-            });
+            self.queue.push_vertex(d, v);
         }
     }
 
     fn push(&mut self, window: Window) {
         let wide = window.b1 - window.b0 > 1.0e-10 * self.surface.length(window.edge);
         if wide && self.useful(&window) {
-            self.queue.push(Queued {
-                key: window.nearest(),
-                event: Event::Window(window),
-            });
+            self.queue.push_window(window.nearest(), window);
         }
     }
 
