@@ -113,8 +113,8 @@ struct Split {
     x: f64,
 }
 
-/// Exact distances from `sources` over `surface`; `progress(settled, vertices)` is
-/// called as vertices are settled. Vertices no source reaches are `inf`.
+/// Exact distances from `sources` over `surface`; `progress(reached, vertices)` is
+/// called as paths reach vertices. Vertices no source reaches are `inf`.
 pub fn exact_distances(
     surface: &Triangulation,
     sources: &[u32],
@@ -127,8 +127,11 @@ struct Propagation<'a> {
     surface: &'a Triangulation,
     /// For each vertex, the half-edges leaving it (one per triangle corner).
     around: Vec<Vec<u32>>,
-    /// Whether shortest paths may bend at the vertex.
+    /// Whether shortest paths may bend at the vertex (sources included: paths start
+    /// there): such a vertex lights the triangles around it when settled.
     bends: Vec<bool>,
+    /// Vertices some path has reached so far (for progress).
+    reached: usize,
     distance: Vec<f64>,
     splits: Vec<Option<Split>>,
     queue: Queue,
@@ -161,6 +164,7 @@ impl<'a> Propagation<'a> {
             around,
             bends,
             distance: vec![f64::INFINITY; n],
+            reached: 0,
             splits: vec![None; surface.faces.len() * 3],
             queue: Queue::default(),
             budget: (WINDOWS_PER_FACE * surface.faces.len()).max(MIN_WINDOWS),
@@ -169,23 +173,20 @@ impl<'a> Propagation<'a> {
 
     fn run(mut self, sources: &[u32], mut progress: impl FnMut(usize, usize)) -> Vec<f64> {
         let n = self.surface.vertex_count;
-        let mut is_source = vec![false; n];
         for &s in sources.iter().filter(|&&s| (s as usize) < n) {
-            is_source[s as usize] = true;
+            // A source lights its surroundings as a vertex where paths bend does.
+            self.bends[s as usize] = true;
             self.lower(s, 0.0);
         }
-        let mut settled = 0;
+        let mut reported = 0;
         while let Some((key, event)) = self.queue.pop() {
+            if self.reached >= reported + 4096 {
+                reported = self.reached;
+                progress(reported.min(n), n);
+            }
             match event {
                 Ok(v) => {
-                    if key > self.distance[v as usize] {
-                        continue;
-                    }
-                    settled += 1;
-                    if settled % 4096 == 0 {
-                        progress(settled.min(n), n);
-                    }
-                    if is_source[v as usize] || self.bends[v as usize] || self.budget == 0 {
+                    if key <= self.distance[v as usize] {
                         self.emit_from_vertex(v);
                     }
                 }
@@ -211,11 +212,19 @@ impl<'a> Propagation<'a> {
         self.distance
     }
 
-    /// Records a path of length `d` to `v` if it is shorter than the known one.
+    /// Records a path of length `d` to `v` if it is shorter than the known one; a vertex
+    /// that lights its surroundings (a source, a vertex where paths bend, every vertex
+    /// once the windows run out) is queued to do so from there. Other vertices are never
+    /// queued: windows alone carry paths past them (queuing them all put three vertex
+    /// events in the queue per window, for nothing).
     fn lower(&mut self, v: u32, d: f64) {
-        if d < self.distance[v as usize] {
+        let known = self.distance[v as usize];
+        if d < known {
+            self.reached += usize::from(known == f64::INFINITY);
             self.distance[v as usize] = d;
-            self.queue.push_vertex(d, v);
+            if self.bends[v as usize] || self.budget == 0 {
+                self.queue.push_vertex(d, v);
+            }
         }
     }
 
