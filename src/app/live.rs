@@ -2,9 +2,9 @@
 //! uniforms), a parameter edit does not; a failed compile keeps the last good material.
 
 use crate::codegen::{
-    CompileError, CompileOptions, Compiled, Detail, ParamMode, compile, param_values,
+    CompileError, CompileOptions, Compiled, Detail, ParamMode, SurfaceUse, compile, param_values,
 };
-use crate::graph::{AlphaMode, Graph, NodeId, Value};
+use crate::graph::{Graph, NodeId, Value};
 use std::collections::BTreeMap;
 
 /// The most parameter slots a uniform block takes: 16 KiB, what every device offers.
@@ -48,20 +48,14 @@ pub(super) fn structure(graph: &Graph) -> Graph {
         node.position = (0.0, 0.0);
         if node.kind == crate::graph::NodeKind::Material {
             // What the material's unwired bump, height and alpha are decides what the
-            // pipeline does (`SurfaceUse`): kept as a class (zero or not, below the
-            // alpha that shows or not), so that crossing a class recompiles and nothing
-            // else does.
-            let opaque_from = match graph.alpha {
-                AlphaMode::Mask { cutoff } => cutoff,
-                AlphaMode::Blend | AlphaMode::Opaque => 1.0,
-            };
-            for (pin, value) in &mut node.inputs {
-                let class = match pin.as_str() {
-                    "alpha" => value.components()[0] < opaque_from,
-                    _ => value.components() != [0.0; 3],
-                };
-                *value = Value::Float(f64::from(u8::from(class)));
-            }
+            // pipeline does: kept as whether each shows, so that crossing that line
+            // recompiles and nothing else does.
+            node.inputs.retain(|pin, value| {
+                SurfaceUse::input_shows(pin, value, graph.alpha).is_some_and(|shows| {
+                    *value = Value::Float(f64::from(u8::from(shows)));
+                    true
+                })
+            });
         } else {
             node.inputs.clear();
         }

@@ -228,8 +228,9 @@ struct Refinements {
 }
 
 struct RefinedMesh {
-    /// The base mesh's key, the graph revision and the refinement.
-    base: (String, u64),
+    /// The key of the mesh it refines.
+    base: String,
+    /// What it was refined for.
     input: TessellationInput,
     view: MeshView,
     size: (u32, u32),
@@ -238,18 +239,18 @@ struct RefinedMesh {
 }
 
 impl Refinements {
-    /// The mesh to draw for `request` and its key: `base` refined for the request's view
-    /// when it is a full frame (the last refinement when nothing changed), and for a
-    /// draft the last refinement of the same mesh and revision (`base` if none).
+    /// The mesh to draw for `request` and its key: `base` refined for the request's
+    /// material, view and size when it is a full frame (the last refinement when none of
+    /// them changed); for a draft, the last refinement of the same mesh, whatever it was
+    /// refined for (closer to the surface than the mesh itself), or `base` if none.
     fn mesh_for(
         &mut self,
         request: &Request,
         input: &TessellationInput,
         base: Arc<Mesh>,
     ) -> (String, Arc<Mesh>) {
-        let of_base = (request.mesh.key.clone(), input.revision);
         if let Some(last) = &self.last
-            && last.base == of_base
+            && last.base == request.mesh.key
             && (request.quality == Quality::Draft
                 || (last.input == *input && last.view == request.view && last.size == request.size))
         {
@@ -268,7 +269,7 @@ impl Refinements {
         .mesh;
         self.made += 1;
         let refined = RefinedMesh {
-            base: of_base,
+            base: request.mesh.key.clone(),
             input: input.clone(),
             view: request.view.clone(),
             size: request.size,

@@ -128,24 +128,39 @@ impl SurfaceUse {
                 uses.fields[field.slot as usize % 4] = true;
             }
         }
-        let non_zero = |input: Option<&InputSource>| match input {
-            Some(InputSource::Const(value)) => value.components() != [0.0; 3],
-            _ => true,
-        };
         let material = graph.material();
-        uses.bump = non_zero(material.input("bump"));
-        uses.displacement = non_zero(material.input("height"));
-        let alpha_below = |level: f64| match material.input("alpha") {
-            Some(InputSource::Const(value)) => value.components()[0] < level,
+        // A wired input can take any value.
+        let shows = |pin: &str| match material.input(pin) {
+            Some(InputSource::Const(value)) => {
+                SurfaceUse::input_shows(pin, value, graph.alpha).unwrap_or(true)
+            }
             _ => true,
         };
+        uses.bump = shows("bump");
+        uses.displacement = shows("height");
+        let alpha_shows = shows("alpha");
         uses.alpha = match graph.alpha {
-            AlphaMode::Opaque => AlphaUse::Opaque,
-            AlphaMode::Mask { cutoff } if alpha_below(cutoff) => AlphaUse::Mask(cutoff as f32),
-            AlphaMode::Blend if alpha_below(1.0) => AlphaUse::Blend,
-            AlphaMode::Mask { .. } | AlphaMode::Blend => AlphaUse::Opaque,
+            AlphaMode::Mask { cutoff } if alpha_shows => AlphaUse::Mask(cutoff as f32),
+            AlphaMode::Blend if alpha_shows => AlphaUse::Blend,
+            AlphaMode::Mask { .. } | AlphaMode::Blend | AlphaMode::Opaque => AlphaUse::Opaque,
         };
         uses
+    }
+
+    /// Whether an unwired input of the material node, at `value`, makes mesh pipelines
+    /// do work: a bump or height other than zero, an alpha that shows under the graph's
+    /// `alpha` mode (below the cutoff, or below 1 when blended); `None` for the inputs
+    /// that do not change the pipeline. The editor recompiles when an edit changes it.
+    pub fn input_shows(pin: &str, value: &graph::Value, alpha: AlphaMode) -> Option<bool> {
+        match pin {
+            "bump" | "height" => Some(value.components() != [0.0; 3]),
+            "alpha" => Some(match alpha {
+                AlphaMode::Mask { cutoff } => value.components()[0] < cutoff,
+                AlphaMode::Blend => value.components()[0] < 1.0,
+                AlphaMode::Opaque => false,
+            }),
+            _ => None,
+        }
     }
 }
 

@@ -12,7 +12,7 @@
 use super::Mesh;
 use glam::Vec3;
 use rayon::prelude::*;
-use rustc_hash::FxHashMap;
+use rustc_hash::{FxHashMap, FxHashSet};
 
 /// A point of the surface as the material sees it: the interpolated vertex attributes.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -71,8 +71,6 @@ pub struct Refined {
     pub levels: u32,
     /// Whether the triangle limit stopped refinement while edges were still too far off.
     pub limited: bool,
-    /// Heights the displacement was evaluated at (vertices and edge samples).
-    pub evaluations: usize,
 }
 
 /// Where along an edge its straightness is checked (besides its ends): uneven steps
@@ -126,51 +124,66 @@ pub fn refine_for_displacement(
         .into_par_iter()
         .map(|v| height(&point(&out, v)))
         .collect();
-    let mut evaluations = heights.len();
+    // Vertices and their heights never change, so an edge found straight and a triangle
+    // found flat stay so: each is judged once, not again at every level.
+    let mut straight: FxHashSet<(u32, u32)> = FxHashSet::default();
+    let mut flat: FxHashSet<[u32; 3]> = FxHashSet::default();
     let mut levels = 0;
     let mut limited = false;
     for _ in 0..refinement.max_levels {
         let edges = unique_edges(&out.indices);
         // Triangles whose inside strays: all their edges are halved.
-        let bulging: FxHashMap<(u32, u32), ()> = out
+        let judged: Vec<([u32; 3], bool)> = out
             .indices
             .par_chunks_exact(3)
-            .filter(|t| {
-                let corners = [0, 1, 2].map(|k| point(&out, t[k]));
-                let corner_heights = [0, 1, 2].map(|k| heights[t[k] as usize]);
-                strays_inside(
+            .map(|t| [t[0], t[1], t[2]])
+            .filter(|t| !flat.contains(t))
+            .map(|t| {
+                let corners = t.map(|v| point(&out, v));
+                let corner_heights = t.map(|v| heights[v as usize]);
+                let strays = strays_inside(
                     corners,
                     corner_heights,
                     refinement.tolerance_px,
                     height,
                     pixels_per_unit,
-                )
+                );
+                (t, strays)
             })
-            .flat_map_iter(|t| (0..3).map(move |k| (edge_key(t[k], t[(k + 1) % 3]), ())))
             .collect();
+        let mut bulging: FxHashSet<(u32, u32)> = FxHashSet::default();
+        for (t, strays) in judged {
+            if strays {
+                bulging.extend((0..3).map(|k| edge_key(t[k], t[(k + 1) % 3])));
+            } else {
+                flat.insert(t);
+            }
+        }
         // Each edge's verdict and, when split, its midpoint and the midpoint's height.
         let verdicts: Vec<Option<(SurfacePoint, f32)>> = edges
             .par_iter()
             .map(|&(a, b)| {
                 let ends = [point(&out, a), point(&out, b)];
-                let end_heights = [heights[a as usize], heights[b as usize]];
-                let verdict = split_edge(
-                    ends,
-                    end_heights,
-                    refinement.tolerance_px,
-                    height,
-                    pixels_per_unit,
-                );
+                let verdict = if straight.contains(&(a, b)) {
+                    None
+                } else {
+                    let end_heights = [heights[a as usize], heights[b as usize]];
+                    split_edge(
+                        ends,
+                        end_heights,
+                        refinement.tolerance_px,
+                        height,
+                        pixels_per_unit,
+                    )
+                };
                 verdict.or_else(|| {
-                    bulging.contains_key(&(a, b)).then(|| {
+                    bulging.contains(&(a, b)).then(|| {
                         let mid = interpolate(ends, 0.5);
                         (mid, height(&mid))
                     })
                 })
             })
             .collect();
-        evaluations +=
-            edges.len() * EDGE_SAMPLES.len() + out.triangle_count() * INTERIOR_SAMPLES.len();
         let splits = verdicts.iter().filter(|v| v.is_some()).count();
         if splits == 0 {
             break;
@@ -182,13 +195,18 @@ pub fn refine_for_displacement(
         }
         let mut midpoints: FxHashMap<(u32, u32), u32> = FxHashMap::default();
         for (&edge, verdict) in edges.iter().zip(verdicts) {
-            if let Some((mid, mid_height)) = verdict {
-                let index = out.push_vertex(mid.position, mid.normal, mid.uv);
-                if has_fields {
-                    out.fields.push(mid.fields);
+            match verdict {
+                Some((mid, mid_height)) => {
+                    let index = out.push_vertex(mid.position, mid.normal, mid.uv);
+                    if has_fields {
+                        out.fields.push(mid.fields);
+                    }
+                    heights.push(mid_height);
+                    midpoints.insert(edge, index);
                 }
-                heights.push(mid_height);
-                midpoints.insert(edge, index);
+                None => {
+                    straight.insert(edge);
+                }
             }
         }
         out.indices = split_triangles(&out, &midpoints);
@@ -198,19 +216,18 @@ pub fn refine_for_displacement(
         mesh: out,
         levels,
         limited,
-        evaluations,
     }
 }
 
 /// The edges of `indices`' triangles, each once as (smaller index, larger), in the order
 /// the triangles first use them (so the refined mesh is the same on every run).
 fn unique_edges(indices: &[u32]) -> Vec<(u32, u32)> {
-    let mut seen: FxHashMap<(u32, u32), ()> = FxHashMap::default();
+    let mut seen: FxHashSet<(u32, u32)> = FxHashSet::default();
     let mut edges = Vec::with_capacity(indices.len() / 2);
     for t in indices.chunks_exact(3) {
         for k in 0..3 {
             let edge = edge_key(t[k], t[(k + 1) % 3]);
-            if seen.insert(edge, ()).is_none() {
+            if seen.insert(edge) {
                 edges.push(edge);
             }
         }

@@ -1,7 +1,7 @@
 //! The flat render: a material's outputs over a rectangle of the plane y = Y.
 
 use super::tiles::{FORMAT, TileDraw, clear_pass, render_bands, render_tiled};
-use super::timing::PassTimer;
+use super::timing::time_pass;
 use super::{GpuContext, RenderError, shader_source};
 
 /// The part of the plane y = `y` that the image covers: x from `x0` to `x1` left to
@@ -185,40 +185,15 @@ impl FlatRenderer {
         size: u32,
         time: f32,
     ) -> Result<std::time::Duration, RenderError> {
-        let limit = super::tile_size(gpu);
-        if size == 0 || size > limit {
-            return Err(RenderError::Invalid(format!(
-                "a timed render is one tile: size {size} is outside 1..={limit}"
-            )));
-        }
-        self.write_view(gpu, rect, size, time, FlatChannels::AlbedoAlpha, (0, 0));
-        let target = gpu
-            .device
-            .create_texture(&super::tiles::target_descriptor(size, size))
-            .create_view(&Default::default());
-        let timer = PassTimer::new(gpu);
-        let mut encoder = gpu.device.create_command_encoder(&Default::default());
-        {
-            let writes = timer.as_ref().map(PassTimer::writes);
-            let mut pass = clear_pass(&mut encoder, &target, wgpu::Color::TRANSPARENT, writes);
+        time_pass(gpu, size, |encoder, writes| {
+            self.write_view(gpu, rect, size, time, FlatChannels::AlbedoAlpha, (0, 0));
+            let target = gpu
+                .device
+                .create_texture(&super::tiles::target_descriptor(size, size))
+                .create_view(&Default::default());
+            let mut pass = clear_pass(encoder, &target, wgpu::Color::TRANSPARENT, writes);
             self.draw(&mut pass);
-        }
-        if let Some(timer) = &timer {
-            timer.resolve(&mut encoder);
-        }
-        let started = std::time::Instant::now();
-        gpu.queue.submit([encoder.finish()]);
-        match timer {
-            Some(timer) => timer.read(gpu),
-            None => {
-                gpu.device
-                    .poll(wgpu::PollType::wait_indefinitely())
-                    .map_err(|error| {
-                        RenderError::Gpu(format!("waiting for the GPU failed: {error}"))
-                    })?;
-                Ok(started.elapsed())
-            }
-        }
+        })
     }
 
     fn write_view(

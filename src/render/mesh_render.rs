@@ -5,7 +5,8 @@
 use super::mesh_view::{MeshPipeline, MeshTarget, MeshView, Relief, SAMPLES, tile_crop};
 use super::readback::read_texture;
 use super::tiles::{image_buffer, paste, tile_size, tiles};
-use super::{GpuContext, GpuMesh, PassTimer, RenderError};
+use super::timing::time_pass;
+use super::{GpuContext, GpuMesh, RenderError};
 use crate::codegen::SurfaceUse;
 use crate::mesh::Mesh;
 
@@ -103,9 +104,7 @@ impl MeshRenderer {
     }
 
     /// The time the GPU takes to draw one size×size frame of an uploaded `mesh` (at most
-    /// one tile), without reading it back: the pass time from timestamp queries where the
-    /// device has them ([`PassTimer::supported`]), else the wall time from submitting the
-    /// pass to its completion.
+    /// one tile), without reading it back (see [`time_pass`]).
     pub fn frame_time(
         &self,
         gpu: &GpuContext,
@@ -113,42 +112,11 @@ impl MeshRenderer {
         view: &MeshView,
         size: u32,
     ) -> Result<std::time::Duration, RenderError> {
-        let limit = tile_size(gpu);
-        if size == 0 || size > limit {
-            return Err(RenderError::Invalid(format!(
-                "a timed frame is one tile: size {size} is outside 1..={limit}"
-            )));
-        }
-        let target = MeshTarget::new(&gpu.device, size, size);
-        self.pipeline.write_view(&gpu.queue, view, 1.0);
-        let timer = PassTimer::new(gpu);
-        let mut encoder = gpu
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                label: Some("timed mesh frame"),
-            });
-        self.pipeline.encode_timed(
-            &mut encoder,
-            &target,
-            mesh,
-            view.background,
-            timer.as_ref().map(PassTimer::writes),
-        );
-        if let Some(timer) = &timer {
-            timer.resolve(&mut encoder);
-        }
-        let started = std::time::Instant::now();
-        gpu.queue.submit([encoder.finish()]);
-        match timer {
-            Some(timer) => timer.read(gpu),
-            None => {
-                gpu.device
-                    .poll(wgpu::PollType::wait_indefinitely())
-                    .map_err(|error| {
-                        RenderError::Gpu(format!("waiting for the GPU failed: {error}"))
-                    })?;
-                Ok(started.elapsed())
-            }
-        }
+        time_pass(gpu, size, |encoder, writes| {
+            let target = MeshTarget::new(&gpu.device, size, size);
+            self.pipeline.write_view(&gpu.queue, view, 1.0);
+            self.pipeline
+                .encode_timed(encoder, &target, mesh, view.background, writes);
+        })
     }
 }

@@ -6,6 +6,46 @@ use super::readback::read_buffer;
 use super::{GpuContext, RenderError};
 use std::time::Duration;
 
+/// Times one render pass drawing at most one tile (`size`² pixels, checked first):
+/// `record` records it into the encoder with the timestamp writes it is given. The pass
+/// time from timestamps where the device has them ([`PassTimer::supported`]), else the
+/// wall time from submitting the pass to its completion.
+pub fn time_pass(
+    gpu: &GpuContext,
+    size: u32,
+    record: impl FnOnce(&mut wgpu::CommandEncoder, Option<wgpu::RenderPassTimestampWrites<'_>>),
+) -> Result<Duration, RenderError> {
+    let limit = super::tile_size(gpu);
+    if size == 0 || size > limit {
+        return Err(RenderError::Invalid(format!(
+            "a timed render is one tile: size {size} is outside 1..={limit}"
+        )));
+    }
+    let timer = PassTimer::new(gpu);
+    let mut encoder = gpu
+        .device
+        .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("timed pass"),
+        });
+    record(&mut encoder, timer.as_ref().map(PassTimer::writes));
+    if let Some(timer) = &timer {
+        timer.resolve(&mut encoder);
+    }
+    let started = std::time::Instant::now();
+    gpu.queue.submit([encoder.finish()]);
+    match timer {
+        Some(timer) => timer.read(gpu),
+        None => {
+            gpu.device
+                .poll(wgpu::PollType::wait_indefinitely())
+                .map_err(|error| {
+                    RenderError::Gpu(format!("waiting for the GPU failed: {error}"))
+                })?;
+            Ok(started.elapsed())
+        }
+    }
+}
+
 /// Two timestamp queries around one render pass, and the buffers to read them through.
 pub struct PassTimer {
     queries: wgpu::QuerySet,
