@@ -54,6 +54,19 @@ def veneer_run(veneer, obj, csv, method="heat"):
     return (*(times[label] for label in SUMMARY_TIMES), usage.ru_maxrss / 1024)
 
 
+def primitive_obj(veneer, folder, name):
+    """Writes the primitive `name` (welded) as an OBJ file in `folder`; returns its path."""
+    obj = str(Path(folder) / (name.replace(":", "_") + ".obj"))
+    subprocess.run([veneer, "mesh", name, "--weld", "1e-6", "--write", obj], check=True, capture_output=True)
+    return obj
+
+
+def relative_differences(ours, theirs):
+    """|ours - theirs| / theirs over the vertices farther than 10% of the largest distance."""
+    far = theirs > 0.1 * theirs.max()
+    return np.abs(ours[far] - theirs[far]) / theirs[far]
+
+
 def theirs(vertices, faces):
     """potpourri3d: (set-up ms, solve ms, field)."""
     started = time.perf_counter()
@@ -103,9 +116,8 @@ def main():
     print("-" * len(header))
     with tempfile.TemporaryDirectory() as folder:
         for name in args.meshes:
-            obj = str(Path(folder) / (name.replace(":", "_") + ".obj"))
+            obj = primitive_obj(args.veneer, folder, name)
             csv = str(Path(folder) / "field.csv")
-            subprocess.run([args.veneer, "mesh", name, "--weld", "1e-6", "--write", obj], check=True, capture_output=True)
             faces = pp3d.read_mesh(obj)[1]
             ours = [veneer_run(args.veneer, obj, csv) for _ in range(args.runs)]
             field_path = str(Path(folder) / "theirs.npy")
@@ -116,8 +128,7 @@ def main():
             their_solve = statistics.median(t[1] for t in their_runs)
             our_field = np.loadtxt(csv)
             their_field = np.load(field_path)
-            far = their_field > 0.1 * their_field.max()
-            difference = np.mean(np.abs(our_field[far] - their_field[far]) / their_field[far])
+            difference = np.mean(relative_differences(our_field, their_field))
             print(
                 f"{name:<12}{len(faces):>10}{our_setup:>11.1f}ms{their_setup:>7.1f}ms{our_setup / their_setup:>7.2f}"
                 f"{our_solve:>10.1f}ms{their_solve:>7.1f}ms{our_solve / their_solve:>7.2f}"

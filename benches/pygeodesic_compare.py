@@ -17,7 +17,6 @@ of both).
 
 import argparse
 import statistics
-import subprocess
 import tempfile
 import time
 from pathlib import Path
@@ -26,7 +25,7 @@ import numpy as np
 import potpourri3d as pp3d
 import pygeodesic.geodesic as geodesic
 
-from potpourri3d_compare import veneer_run
+from potpourri3d_compare import primitive_obj, relative_differences, veneer_run
 
 # A clean torus, a marching-tetrahedra surface with slivers, and a sphere with pole fans.
 MESHES = ["torus:160", "genus2:40", "sphere:64"]
@@ -51,17 +50,15 @@ def main():
     print("-" * len(header))
     with tempfile.TemporaryDirectory() as folder:
         for name in args.meshes:
-            obj = str(Path(folder) / (name.replace(":", "_") + ".obj"))
+            obj = primitive_obj(args.veneer, folder, name)
             csv = str(Path(folder) / "field.csv")
-            subprocess.run([args.veneer, "mesh", name, "--weld", "1e-6", "--write", obj], check=True, capture_output=True)
             vertices, faces = pp3d.read_mesh(obj)
             ours = statistics.median(veneer_run(args.veneer, obj, csv, "exact")[1] for _ in range(args.runs))
             their_runs = [theirs(vertices, faces) for _ in range(args.runs)]
             their_time = statistics.median(t[0] for t in their_runs)
             our_field = np.loadtxt(csv)
             their_field = their_runs[-1][1]
-            far = their_field > 0.1 * their_field.max()
-            errors = np.abs(our_field[far] - their_field[far]) / their_field[far]
+            errors = relative_differences(our_field, their_field)
             print(
                 f"{name:<12}{len(faces):>10}{ours:>9.0f}ms{their_time:>9.0f}ms{ours / their_time:>7.2f}"
                 f"{errors.mean():>12.2e}{errors.max():>11.2e}"

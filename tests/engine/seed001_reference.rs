@@ -18,7 +18,7 @@
 //! sides run in f64 and differ only by rounding (the graph sums the noise before the
 //! ring distance), so the tolerance is 1e-9.
 
-use crate::support::root;
+use crate::support::{Samples, root};
 use veneer::eval::{Evaluator, Material, Surface};
 use veneer::graph::{Graph, Value};
 use veneer::nodes::formulas::noise;
@@ -93,19 +93,6 @@ fn wood(u: &Uniforms, mc_position: V3) -> V3 {
         color = [0, 1, 2].map(|i| color[i] - u.light_wood[i] * u.dark_grains * noisevec[2]);
     }
     color
-}
-
-/// A small deterministic generator (SplitMix64) for sample points.
-struct Samples(u64);
-
-impl Samples {
-    fn unit(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        (z ^ (z >> 31)) as f64 / u64::MAX as f64
-    }
 }
 
 fn preset() -> Graph {

@@ -17,7 +17,7 @@
 //! simplex and Worley bases, whose own tests pin them; the loops are the thesis's
 //! `for (f = 1.0; f < 5.0; f *= 2.0) value += noise(p * f) / f`.
 
-use crate::support::root;
+use crate::support::{Samples, root};
 use veneer::eval::{Evaluator, Material, Surface};
 use veneer::nodes::formulas::noise;
 use veneer::nodes::settings::{Basis, Metric};
@@ -330,18 +330,7 @@ fn c6_waves(_p: V3, d: [f64; 2], time: f64) -> Channels {
 
 // ---- the comparison
 
-/// A small deterministic generator (SplitMix64) for sample points.
-struct Samples(u64);
-
 impl Samples {
-    fn unit(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        (z ^ (z >> 31)) as f64 / u64::MAX as f64
-    }
-
     /// A distance value: uniform on [0, 1] half the time, otherwise within 0.1 of one
     /// of `edges` (where the fronts are narrow).
     fn distance(&mut self, edges: &[f64]) -> f64 {

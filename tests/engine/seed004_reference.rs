@@ -19,7 +19,7 @@
 //!
 //! Both sides run in f64 and differ only by rounding, so the tolerance is 1e-9.
 
-use crate::support::root;
+use crate::support::{Samples, root};
 use veneer::eval::{Evaluator, Material, Surface};
 use veneer::graph::{Graph, Value};
 use veneer::nodes::formulas::noise;
@@ -115,18 +115,7 @@ fn flagstone(vertex_pos_mc: V3, joints: Joints) -> (V3, f64) {
     (colour, factor)
 }
 
-/// A small deterministic generator (SplitMix64) for sample points.
-struct Samples(u64);
-
 impl Samples {
-    fn unit(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        (z ^ (z >> 31)) as f64 / u64::MAX as f64
-    }
-
     /// A point with x and z in about [−5.5, 5.5] m (ten tiles each way) and y in
     /// [−2.5, 2.5] (the seed's tile id counts layers of 1 m in y too); half of them
     /// within a few hundredths of a tile of a joint, across x or along z.

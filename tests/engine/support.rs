@@ -125,3 +125,18 @@ pub fn run_veneer(args: &[&str]) -> std::process::Output {
         .output()
         .expect("the veneer binary runs")
 }
+
+/// A small deterministic generator (SplitMix64) for sample points; the seed tests add
+/// the kinds of points they need.
+pub struct Samples(pub u64);
+
+impl Samples {
+    /// The next number in [0, 1].
+    pub fn unit(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        (z ^ (z >> 31)) as f64 / u64::MAX as f64
+    }
+}
