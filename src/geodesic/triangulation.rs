@@ -148,17 +148,20 @@ impl Triangulation {
     pub fn angle_sums(&self) -> Vec<f64> {
         let mut sums = vec![0.0; self.vertex_count];
         for (f, face) in self.faces.iter().enumerate() {
-            let l = self.lengths[f];
             for k in 0..3 {
-                // The corner at vertex k lies between edges k and k + 2, across from k + 1.
-                let (a, b, opposite) = (l[k], l[(k + 2) % 3], l[(k + 1) % 3]);
-                let cos = ((a * a + b * b - opposite * opposite) / (2.0 * a * b)).clamp(-1.0, 1.0);
-                if cos.is_finite() {
-                    sums[face[k] as usize] += cos.acos();
-                }
+                sums[face[k] as usize] += self.corner_angle(f, k);
             }
         }
         sums
+    }
+
+    /// The angle of triangle `f` at its vertex `k`, between edges `k` and `k + 2` (across
+    /// from edge `k + 1`); 0 where the lengths give none.
+    pub fn corner_angle(&self, f: usize, k: usize) -> f64 {
+        let l = self.lengths[f];
+        let (a, b, opposite) = (l[k], l[(k + 2) % 3], l[(k + 1) % 3]);
+        let cos = ((a * a + b * b - opposite * opposite) / (2.0 * a * b)).clamp(-1.0, 1.0);
+        if cos.is_finite() { cos.acos() } else { 0.0 }
     }
 }
 
