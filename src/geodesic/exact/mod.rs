@@ -389,12 +389,13 @@ impl<'a> Propagation<'a> {
         let corners = face.vertices;
         let seen = DVec2::new(cross.clamp(w.b0, w.b1), 0.0);
         let far_vertex = corners[(k + 2) % 3];
-        let to_seen = match seen.x {
-            x if x == w.b0 => w.at_b0,
-            x if x == w.b1 => w.at_b1,
-            x => w.distance_at(x),
+        // Straight through the window where it sees c, else bending at its nearer end.
+        let through_c = w.sigma + s.distance(c);
+        let to_c = match seen.x {
+            x if x == w.b0 => w.at_b0 + seen.distance(c),
+            x if x == w.b1 => w.at_b1 + seen.distance(c),
+            _ => through_c,
         };
-        let to_c = to_seen + seen.distance(c);
         self.lower(far_vertex, to_c, |_| {
             // The corner at c runs from its edge to a (angle 0) towards b.
             let (to_a, to_seen) = (a - c, seen - c);
@@ -431,7 +432,6 @@ impl<'a> Propagation<'a> {
         // Rays through [b0, left_to] land on edge c→a, rays through [right_from, b1] on
         // edge b→c.
         let (mut left_to, mut right_from) = (w.b1.min(cross), w.b0.max(cross));
-        let through_c = w.sigma + s.distance(c);
         let best = self.splits[w.edge as usize];
         if through_c > best.distance * (1.0 + SLACK) {
             // Chen and Han's "one angle, one split": a shorter path to c crosses the edge
@@ -469,7 +469,8 @@ impl<'a> Propagation<'a> {
             };
             let end = ray(w.b1, b, c);
             let ends = (corners[(k + 1) % 3], far_vertex);
-            self.child(w, face.twins[(k + 1) % 3], (b, c), ends, end, start);
+            let edge = (b, c, face.lengths[(k + 1) % 3]);
+            self.child(w, face.twins[(k + 1) % 3], edge, ends, end, start);
         }
         if left_to > w.b0 {
             let start = ray(w.b0, c, a);
@@ -479,19 +480,20 @@ impl<'a> Propagation<'a> {
                 ray(left_to, c, a)
             };
             let ends = (far_vertex, corners[k]);
-            self.child(w, face.twins[(k + 2) % 3], (c, a), ends, end, start);
+            let edge = (c, a, face.lengths[(k + 2) % 3]);
+            self.child(w, face.twins[(k + 2) % 3], edge, ends, end, start);
         }
     }
 
     /// The child window across an edge of the parent's triangle (from `p` to `q` in the
-    /// parent's frame, from vertex `vertices.0` to `vertices.1`) into the triangle of
-    /// half-edge `across`, over the parameters `[t0, t1]` of `p + t(q − p)`, moved into
-    /// the frame of `across`.
+    /// parent's frame, `length` long, from vertex `vertices.0` to `vertices.1`) into the
+    /// triangle of half-edge `across`, over the parameters `[t0, t1]` of `p + t(q − p)`,
+    /// moved into the frame of `across`.
     fn child(
         &mut self,
         w: &Window,
         across: u32,
-        (p, q): (DVec2, DVec2),
+        (p, q, length): (DVec2, DVec2, f64),
         vertices: (u32, u32),
         t0: f64,
         t1: f64,
@@ -502,7 +504,6 @@ impl<'a> Propagation<'a> {
             return;
         }
         // The triangle across runs the edge from q to p, with this triangle below.
-        let length = p.distance(q);
         let along = (p - q) / length;
         let relative = w.source - q;
         let source = DVec2::new(relative.dot(along), relative.dot(along.perp()));

@@ -14,6 +14,8 @@ pub struct Queue {
     buckets: Vec<Bucket>,
     /// The bucket taken from: keys below it (rounding) join it.
     current: usize,
+    /// Emptied buckets, kept for their memory (fresh ones cost page faults as they grow).
+    spare: Vec<Bucket>,
 }
 
 #[derive(Default)]
@@ -28,13 +30,15 @@ impl Queue {
             width,
             buckets: Vec::new(),
             current: 0,
+            spare: Vec::new(),
         }
     }
 
     fn bucket(&mut self, key: f64) -> &mut Bucket {
         let index = ((key / self.width) as usize).max(self.current);
-        if index >= self.buckets.len() {
-            self.buckets.resize_with(index + 1, Bucket::default);
+        while index >= self.buckets.len() {
+            let bucket = self.spare.pop().unwrap_or_default();
+            self.buckets.push(bucket);
         }
         &mut self.buckets[index]
     }
@@ -57,7 +61,8 @@ impl Queue {
             if let Some(window) = bucket.windows.pop() {
                 return Some(Err(window));
             }
-            *bucket = Bucket::default();
+            let emptied = std::mem::take(bucket);
+            self.spare.push(emptied);
             self.current += 1;
         }
         None

@@ -31,11 +31,6 @@ impl Window {
         }
     }
 
-    /// The distance along this window's paths to the point `(x, 0)`.
-    pub fn distance_at(&self, x: f64) -> f64 {
-        self.sigma + self.source.distance(DVec2::new(x, 0.0))
-    }
-
     /// The smallest distance to any point of the interval.
     pub fn nearest(&self) -> f64 {
         if self.source.x <= self.b0 {
