@@ -4,10 +4,9 @@
 //! streaming writer compresses differently).
 
 use super::Format;
-use exr::block::chunk::Chunk;
+use super::exr_rle::compress_line;
+use exr::block::chunk::{Chunk, CompressedBlock, CompressedScanLineBlock};
 use exr::block::writer::ChunksWriter;
-use exr::block::{BlockIndex, UncompressedBlock};
-use exr::math::Vec2;
 use exr::meta::BlockDescription;
 use exr::meta::attribute::{ChannelDescription, LineOrder, SampleType, Text};
 use exr::meta::header::Header;
@@ -85,9 +84,10 @@ fn png_rows<W: Write>(
     writer.finish().map_err(io::Error::other)
 }
 
-/// 32-bit float RGBA EXR rows as RLE-compressed scan lines (one line a block),
-/// compressed on every core, then written in order by a thread of their own while the
-/// next rows compress (the file's writes wait on the disk, not the processor).
+/// 32-bit float RGBA EXR rows as RLE-compressed scan lines (one line a block, compressed
+/// by [`compress_line`], the same bytes as the `exr` crate's), on every core, then
+/// written in order by a thread of their own while the next rows compress (the file's
+/// writes wait on the disk, not the processor).
 fn exr_rows<W: Write + Seek + Send>(
     file: &mut W,
     size: u32,
@@ -107,7 +107,7 @@ fn exr_rows<W: Write + Seek + Send>(
             LineOrder::Increasing,
         );
     let mut next_line = 0usize;
-    exr::block::writer::write_chunks_with(file, vec![header].into(), true, |meta, writer| {
+    exr::block::writer::write_chunks_with(file, vec![header].into(), true, |_, writer| {
         std::thread::scope(|scope| {
             let (batches, to_write) = std::sync::mpsc::sync_channel::<Vec<Chunk>>(1);
             let file_writer = scope.spawn(move || -> exr::error::UnitResult {
@@ -118,29 +118,18 @@ fn exr_rows<W: Write + Seek + Send>(
             });
             let produced = produce(&mut |pixels: &[[f32; 4]]| -> io::Result<()> {
                 let first = next_line;
-                let compress = |(index, line): (usize, &[[f32; 4]])| {
-                    let mut data = Vec::with_capacity(width * 16);
-                    for (_, lane) in LANES {
-                        line.iter()
-                            .for_each(|p| data.extend_from_slice(&p[lane].to_ne_bytes()));
-                    }
-                    UncompressedBlock {
-                        index: BlockIndex {
-                            layer: 0,
-                            pixel_position: Vec2(0, first + index),
-                            pixel_size: Vec2(width, 1),
-                            level: Vec2(0, 0),
-                        },
-                        data,
-                    }
-                    .compress_to_chunk(&meta.headers)
-                    .map_err(io::Error::other)
-                };
+                let lanes = LANES.map(|(_, lane)| lane);
                 let chunks = pixels
                     .par_chunks(width)
                     .enumerate()
-                    .map(compress)
-                    .collect::<io::Result<Vec<_>>>()?;
+                    .map_init(Default::default, |scratch, (index, line)| Chunk {
+                        layer_index: 0,
+                        compressed_block: CompressedBlock::ScanLine(CompressedScanLineBlock {
+                            y_coordinate: (first + index) as i32,
+                            compressed_pixels_le: compress_line(line, &lanes, scratch),
+                        }),
+                    })
+                    .collect::<Vec<_>>();
                 next_line += chunks.len();
                 batches
                     .send(chunks)

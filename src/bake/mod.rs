@@ -6,6 +6,7 @@
 //! PNG bake also its 8- or 16-bit samples). UV bakes hold the whole map, to pad its islands.
 
 mod encode;
+mod exr_rle;
 mod maps;
 mod pipeline;
 
@@ -250,26 +251,29 @@ pub fn bake(
         Surface::Uv(..) => u64::from(size.div_ceil(tile)).pow(2),
     };
     let total = tiles_per_pass * settings.maps.len() as u64;
-    let mut written = Vec::new();
-    let mut spare = Vec::new();
-    for (index, map) in settings.maps.iter().enumerate() {
-        let channels = match map {
+    let paths: Vec<_> = (settings.maps.iter())
+        .map(|map| map_path(stem, *map, settings.format))
+        .collect();
+    let targets: Vec<_> = (settings.maps.iter().zip(&paths))
+        .map(|(map, path)| MapTarget {
+            path,
+            map: *map,
+            size,
+            format: settings.format,
+            spacing,
+            convention: settings.normal,
+        })
+        .collect();
+    let overlap = settings.format == Format::Exr;
+    pipeline::bake_maps(&targets, overlap, |index, sink| {
+        let channels = match targets[index].map {
             Map::Albedo | Map::Alpha => FlatChannels::AlbedoAlpha,
             Map::Specular | Map::Roughness => FlatChannels::SpecularShininess,
             Map::Height | Map::Normal => FlatChannels::HeightBump,
         };
         let base = index as u64 * tiles_per_pass;
         let report = |done: u32, _| progress(base + u64::from(done), total);
-        let path = map_path(stem, *map, settings.format);
-        let target = MapTarget {
-            path: &path,
-            map: *map,
-            size,
-            format: settings.format,
-            spacing,
-            convention: settings.normal,
-        };
-        pipeline::bake_map(&target, &mut spare, |sink| match &surface {
+        match &surface {
             Surface::Plane(flat, rect) => flat.render_channel_bands(
                 gpu,
                 *rect,
@@ -293,20 +297,21 @@ pub fn bake(
                 fill_uncovered(&mut pixels, size, UV_PADDING);
                 sink(0, pixels).map(drop)
             }
-        })?;
-        let bytes = std::fs::metadata(&path).map(|m| m.len()).unwrap_or(0);
-        written.push(BakedMap {
+        }
+    })?;
+    let written = (settings.maps.iter().zip(paths))
+        .map(|(map, path)| BakedMap {
             map: *map,
+            bytes: std::fs::metadata(&path).map(|m| m.len()).unwrap_or(0),
             path,
             size,
             format: settings.format,
-            bytes,
-        });
-    }
+        })
+        .collect();
     Ok(written)
 }
 
-/// Bytes of the band buffers a plane bake renders into (two circulate).
+/// Bytes of each band buffer a plane bake renders into.
 const BAND_BYTES: u64 = 128 << 20;
 
 /// Rows per band of a `size`² plane bake in tiles of `tile`²: as many as fit
@@ -316,15 +321,16 @@ pub fn band_rows(size: u32, tile: u32) -> u32 {
     (rows.min(u64::from(tile)) as u32).max(1)
 }
 
-/// Refuses, before any work, a plane bake the machine lacks the memory for: two bands,
-/// and for PNG the samples and the compressed stream.
+/// Refuses, before any work, a plane bake the machine lacks the memory for: the bands in
+/// flight (one rendering, one waiting and one converting per map being written; two
+/// maps at once for EXR), and for PNG the samples and the compressed stream.
 fn check_memory(size: u32, band_rows: u32, format: Format) -> Result<(), BakeError> {
     let pixels = u64::from(size) * u64::from(size);
-    let stream = match format {
-        Format::Png8 => 2 * 3 * pixels,
-        Format::Png16 => 2 * 6 * pixels,
-        Format::Exr => 0,
+    let (stream, bands_in_flight) = match format {
+        Format::Png8 => (2 * 3 * pixels, 3),
+        Format::Png16 => (2 * 6 * pixels, 3),
+        Format::Exr => (0, 5),
     };
-    let bands = 2 * u64::from(size) * u64::from(band_rows) * 16;
+    let bands = bands_in_flight * u64::from(size) * u64::from(band_rows) * 16;
     crate::render::ensure_memory(size, bands + stream).map_err(BakeError::from)
 }

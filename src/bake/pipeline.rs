@@ -1,7 +1,8 @@
-//! One map's bake as a pipeline: while the GPU renders band n + 1, a writer thread
-//! converts band n and encodes it into the map's temporary file. Two band buffers
-//! circulate between them (and on to the next map), so memory stays bounded and
-//! nothing is allocated per band.
+//! A bake's maps as one pipeline: while the GPU renders band n + 1, a writer thread
+//! converts band n and encodes it into its map's temporary file; the next map starts
+//! rendering while the writer of the one before finishes its last bands. Band buffers
+//! circulate between them (and on from map to map), so memory stays bounded and nothing
+//! is allocated per band.
 
 use super::encode::encode;
 use super::maps::{Converter, Map, NormalConvention};
@@ -9,6 +10,7 @@ use super::{BakeError, Format};
 use crate::render::RenderError;
 use std::path::Path;
 use std::sync::mpsc;
+use std::thread::ScopedJoinHandle;
 
 /// Where a renderer hands each band of rows: `sink(first row, pixels)` returns a buffer
 /// to fill next.
@@ -25,55 +27,93 @@ pub struct MapTarget<'p> {
     pub convention: NormalConvention,
 }
 
-/// Bakes one map: `render(sink)` renders the material outputs and hands every band, in
-/// order, to `sink`, while a writer thread converts and encodes them into `target.path`
-/// (atomically: on any failure the old file, if any, is unchanged). `spare` holds band
-/// buffers to reuse and gets them back afterwards.
-pub fn bake_map(
-    target: &MapTarget<'_>,
-    spare: &mut Vec<Vec<[f32; 4]>>,
-    render: impl FnOnce(&mut BandSink<'_>) -> Result<(), RenderError>,
+/// Bakes `targets` in order: `render(index, sink)` renders the material outputs of map
+/// `index` and hands every band, in order, to `sink`, while a writer thread converts
+/// and encodes them into the map's path (atomically: on any failure the old file, if
+/// any, is unchanged). With `overlap`, a map renders while the writer of the one before
+/// is still at work (two maps' writers at once: for EXR, whose writers hold a band
+/// each; PNG writers hold their whole image, so they go one at a time).
+pub fn bake_maps(
+    targets: &[MapTarget<'_>],
+    overlap: bool,
+    mut render: impl FnMut(usize, &mut BandSink<'_>) -> Result<(), RenderError>,
 ) -> Result<(), BakeError> {
-    // A rendezvous: the renderer waits while the writer is still on the band before.
-    let (full, bands) = mpsc::sync_channel::<Vec<[f32; 4]>>(0);
     let (free, recycled) = mpsc::channel::<Vec<[f32; 4]>>();
-    spare.drain(..).for_each(|buffer| drop(free.send(buffer)));
     std::thread::scope(|scope| {
-        let writer = scope.spawn(move || {
-            let mut converter =
-                Converter::new(target.map, target.size, target.spacing, target.convention);
-            crate::fsutil::write_atomic_with(target.path, |file| {
-                encode(file, target.size, target.format, |emit| {
-                    for mut band in bands {
-                        converter.band(&mut band, emit)?;
-                        let _ = free.send(band);
-                    }
-                    converter.finish(emit)
-                })
-            })
-        });
-        let mut writer_stopped = false;
-        let rendered = render(&mut |_, band| {
-            full.send(band).map_err(|_| {
-                writer_stopped = true;
-                RenderError::Stopped("the map writer stopped")
-            })?;
-            Ok(recycled.try_recv().unwrap_or_default())
-        });
-        drop(full);
-        let written = writer.join();
-        spare.extend(recycled.try_iter());
-        let path = || target.path.to_path_buf();
-        let written = written
+        let mut writing: Option<Writing<'_, '_>> = None;
+        for (index, target) in targets.iter().enumerate() {
+            if !overlap && let Some(before) = writing.take() {
+                before.finish()?;
+            }
+            // One band may wait while the writer is on the band before.
+            let (full, bands) = mpsc::sync_channel::<Vec<[f32; 4]>>(1);
+            let free = free.clone();
+            let writer = scope.spawn(move || write_map(target, bands, free));
+            let mut writer_stopped = false;
+            let rendered = render(index, &mut |_, band| {
+                full.send(band).map_err(|_| {
+                    writer_stopped = true;
+                    RenderError::Stopped("the map writer stopped")
+                })?;
+                Ok(recycled.try_recv().unwrap_or_default())
+            });
+            drop(full);
+            if let Some(before) = writing.replace(Writing {
+                target,
+                writer,
+                rendered,
+                writer_stopped,
+            }) {
+                before.finish()?;
+            }
+        }
+        writing.map_or(Ok(()), Writing::finish)
+    })
+}
+
+/// One map whose rendering is done and whose writer may still be at work.
+struct Writing<'scope, 'p> {
+    target: &'scope MapTarget<'p>,
+    writer: ScopedJoinHandle<'scope, std::io::Result<()>>,
+    rendered: Result<(), RenderError>,
+    writer_stopped: bool,
+}
+
+impl Writing<'_, '_> {
+    /// Waits for the writer; a render that failed first explains why the writer got too
+    /// few rows.
+    fn finish(self) -> Result<(), BakeError> {
+        let path = || self.target.path.to_path_buf();
+        let written = self
+            .writer
+            .join()
             .map_err(|_| BakeError::WriterPanicked { path: path() })?
             .map_err(|error| BakeError::Write {
                 path: path(),
                 error,
             });
-        match rendered {
-            // A render that failed first explains why the writer got too few rows.
-            Err(error) if !writer_stopped => Err(BakeError::from(error)),
+        match self.rendered {
+            Err(error) if !self.writer_stopped => Err(BakeError::from(error)),
             _ => written,
         }
+    }
+}
+
+/// The writer of one map: converts and encodes every band from `bands` into the map's
+/// temporary file, handing each buffer back through `free`.
+fn write_map(
+    target: &MapTarget<'_>,
+    bands: mpsc::Receiver<Vec<[f32; 4]>>,
+    free: mpsc::Sender<Vec<[f32; 4]>>,
+) -> std::io::Result<()> {
+    let mut converter = Converter::new(target.map, target.size, target.spacing, target.convention);
+    crate::fsutil::write_atomic_with(target.path, |file| {
+        encode(file, target.size, target.format, |emit| {
+            for mut band in bands {
+                converter.band(&mut band, emit)?;
+                let _ = free.send(band);
+            }
+            converter.finish(emit)
+        })
     })
 }
