@@ -109,10 +109,20 @@ impl Triangulation {
     /// Triangle `f` laid flat: corner 0 at the origin, corner 1 on the positive x axis,
     /// corner 2 above it.
     pub fn layout(&self, f: usize) -> [DVec2; 3] {
-        let [l01, l12, l20] = self.lengths[f];
-        let x = (l01 * l01 + l20 * l20 - l12 * l12) / (2.0 * l01);
-        let y = (l20 * l20 - x * x).max(0.0).sqrt();
-        [DVec2::ZERO, DVec2::new(l01, 0.0), DVec2::new(x, y)]
+        [
+            DVec2::ZERO,
+            DVec2::new(self.lengths[f][0], 0.0),
+            self.apex(f, 0),
+        ]
+    }
+
+    /// The corner of triangle `f` across from its edge `k`, in that edge's frame: the
+    /// edge from the origin along the positive x axis, the triangle above.
+    pub fn apex(&self, f: usize, k: usize) -> DVec2 {
+        let l = self.lengths[f];
+        let (length, l_bc, l_ca) = (l[k], l[(k + 1) % 3], l[(k + 2) % 3]);
+        let x = (length * length + l_ca * l_ca - l_bc * l_bc) / (2.0 * length);
+        DVec2::new(x, (l_ca * l_ca - x * x).max(0.0).sqrt())
     }
 
     /// The mean length over all half-edges (0 for no triangles).

@@ -90,13 +90,13 @@ impl Fans {
     /// The stretches of directions, corner by corner, in which a path reaching saddle
     /// vertex `v` from direction `back` (see [`Fans::direction`]) can go on shortest;
     /// `None` where the vertex's fan does not close (then every direction may be needed).
-    pub fn shadow(&self, v: u32, back: f64) -> Option<impl Iterator<Item = Lit> + '_> {
+    pub fn shadow(&self, v: u32, back: f64) -> Option<Vec<Lit>> {
         if !self.closed[v as usize] {
             return None;
         }
         let total = self.total[v as usize];
         let (from, to) = (back + PI - SHADOW_MARGIN, back + total - PI + SHADOW_MARGIN);
-        Some(self.corners[v as usize].iter().flat_map(move |&h| {
+        let lit = self.corners[v as usize].iter().flat_map(|&h| {
             let (start, angle) = (self.start[h as usize], self.angle[h as usize]);
             // The wedge may run past a full turn: look at it once more, a turn earlier.
             [0.0, total].into_iter().filter_map(move |turn| {
@@ -110,7 +110,8 @@ impl Fans {
                     to: hi,
                 })
             })
-        }))
+        });
+        Some(lit.collect())
     }
 }
 

@@ -22,7 +22,7 @@ use super::triangulation::{NO_TWIN, Triangulation, half_edge, split};
 use fan::Fans;
 use glam::DVec2;
 use queue::Queue;
-use window::{Ends, Window, apex, ray_hit};
+use window::{Ends, Window, ray_hit};
 
 /// Relative slack in comparisons of path lengths.
 const SLACK: f64 = 1.0e-12;
@@ -147,7 +147,7 @@ impl<'a> Propagation<'a> {
                     vertices: surface.faces[f],
                     twins: [0, 1, 2].map(|k| surface.twins[3 * f + k]),
                     lengths: surface.lengths[f],
-                    apex: [0, 1, 2].map(|k| apex(surface.lengths[f], k)),
+                    apex: [0, 1, 2].map(|k| surface.apex(f, k)),
                 })
                 .collect(),
             fans: Fans::new(surface),
@@ -285,9 +285,9 @@ impl<'a> Propagation<'a> {
         if self.budget == 0 {
             return;
         }
-        let shadow: Option<Vec<_>> = match self.arrival[v as usize] {
+        let shadow = match self.arrival[v as usize] {
             Some(arrival) if self.shadows && !self.lights_all[v as usize] => {
-                self.fans.shadow(v, arrival).map(Iterator::collect)
+                self.fans.shadow(v, arrival)
             }
             _ => None,
         };
@@ -439,15 +439,15 @@ impl<'a> Propagation<'a> {
             // cross that path inside the triangle, behind it, so they lose; and when the
             // window sees c, its rays on that whole side of c lose too (they cross the
             // better path before the edge).
-            let seen = cross > w.b0 && cross < w.b1;
+            let sees_c = cross > w.b0 && cross < w.b1;
             if best.x > cross {
-                right_from = if seen {
+                right_from = if sees_c {
                     f64::INFINITY
                 } else {
                     right_from.max(best.x)
                 };
             } else {
-                left_to = if seen {
+                left_to = if sees_c {
                     f64::NEG_INFINITY
                 } else {
                     left_to.min(best.x)

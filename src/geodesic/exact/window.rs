@@ -51,14 +51,6 @@ pub struct Ends {
     pub head: u32,
 }
 
-/// The far corner of a triangle with side `lengths` in the frame of its edge `k`: that
-/// edge from the origin along the positive x axis, the triangle above.
-pub fn apex(lengths: [f64; 3], k: usize) -> DVec2 {
-    let (length, l_bc, l_ca) = (lengths[k], lengths[(k + 1) % 3], lengths[(k + 2) % 3]);
-    let x = (length * length + l_ca * l_ca - l_bc * l_bc) / (2.0 * length);
-    DVec2::new(x, (l_ca * l_ca - x * x).max(0.0).sqrt())
-}
-
 /// Where the ray from `from` through `through` meets the line `p + t(q − p)`, as `t`.
 pub fn ray_hit(from: DVec2, through: DVec2, p: DVec2, q: DVec2) -> f64 {
     let direction = through - from;
