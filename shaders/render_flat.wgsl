@@ -8,7 +8,7 @@ struct VeneerFlatView {
     plane_y: f32,
     size: f32,            // the whole image's width and height in pixels
     time: f32,
-    channels: u32,        // 0: albedo, alpha; 1: specular, shininess; 2: height, bump
+    channels: u32,        // which outputs (render_channels.wgsl)
 }
 
 @group(0) @binding(0) var<uniform> veneer_flat_view: VeneerFlatView;
@@ -26,5 +26,7 @@ fn veneer_flat_fragment(@builtin(position) pixel: vec4f) -> @location(0) vec4u {
     let position = vec3f(view.rect.x + (view.rect.z - view.rect.x) * t.x, view.plane_y, view.rect.y + (view.rect.w - view.rect.y) * t.y);
     let surface = VeneerSurface(position, vec3f(0.0, 1.0, 0.0), vec2f(0.0), vec4f(0.0), view.time);
     let material = veneer_material(surface);
-    return veneer_bake_channels(material, view.channels);
+    // The plane's tangent frame: x along +x, y up the image (-z), z the normal (+y).
+    let frame = mat3x3f(vec3f(1.0, 0.0, 0.0), vec3f(0.0, 0.0, -1.0), vec3f(0.0, 1.0, 0.0));
+    return veneer_bake_channels(material, view.channels, frame);
 }

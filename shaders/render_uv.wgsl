@@ -7,7 +7,7 @@ struct VeneerUvView {
     tile: vec4f,       // this tile's first texel (xy) and size in texels (zw)
     size: f32,         // the whole map's width and height in texels
     time: f32,
-    channels: u32,     // 0: albedo, alpha; 1: specular, shininess; 2: height, bump
+    channels: u32,     // which outputs (render_channels.wgsl)
 }
 
 @group(0) @binding(0) var<uniform> veneer_uv_view: VeneerUvView;
@@ -42,6 +42,9 @@ fn veneer_uv_vertex(
 fn veneer_uv_fragment(input: VeneerUvOut) -> @location(0) vec4u {
     let view = veneer_uv_view;
     let position = input.position * view.placement.w + view.placement.xyz;
-    let material = veneer_material(VeneerSurface(position, normalize(input.normal), input.uv, input.fields, view.time));
-    return veneer_bake_channels(material, view.channels);
+    let normal = normalize(input.normal);
+    // Screen space is UV space here, so the frame's derivatives are the layout's own.
+    let frame = veneer_tangent_frame(input.position, normal, input.uv);
+    let material = veneer_material(VeneerSurface(position, normal, input.uv, input.fields, view.time));
+    return veneer_bake_channels(material, view.channels, frame);
 }

@@ -44,7 +44,7 @@ pub use probe::{AtlasGraph, atlas_graph};
 pub use sync::FrameProfile;
 pub use thumbnails::{TILE_PIXELS, Thumbnails, placement, tile_params};
 
-use crate::graph::{AlphaMode, Graph, Node};
+use crate::graph::{AlphaMode, Graph, Node, Shading};
 use dialogs::{Dialog, Pending};
 use egui::{Key, KeyboardShortcut, Modifiers, Ui};
 use egui_snarl::Snarl;

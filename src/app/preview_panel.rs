@@ -176,9 +176,23 @@ impl VeneerApp {
         })
     }
 
-    /// The material's alpha mode and the preview's adaptive tessellation.
+    /// The material's shading and alpha mode and the preview's adaptive tessellation.
     fn surface_settings(&mut self, ui: &mut Ui) {
         ui.horizontal(|ui| {
+            let shading = &mut self.document.graph.shading;
+            let shading_name = |shading: Shading| match shading {
+                Shading::BlinnPhong => "Blinn-Phong",
+                Shading::MetallicRoughness => "metallic-roughness",
+            };
+            egui::ComboBox::from_id_salt("shading")
+                .selected_text(shading_name(*shading))
+                .show_ui(ui, |ui| {
+                    for choice in [Shading::BlinnPhong, Shading::MetallicRoughness] {
+                        ui.selectable_value(shading, choice, shading_name(choice));
+                    }
+                })
+                .response
+                .on_hover_text("Blinn-Phong: albedo, specular and shininess under the seeds' lighting; metallic-roughness: base colour, metallic, roughness and occlusion shaded by GGX, as glTF and the engines do");
             let alpha = &mut self.document.graph.alpha;
             let name = |mode: &AlphaMode| match mode {
                 AlphaMode::Mask { .. } => "cut out",

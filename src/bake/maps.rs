@@ -1,5 +1,7 @@
 //! Turning rendered material outputs into texture maps.
 
+use crate::graph::Shading;
+use crate::render::FlatChannels;
 use rayon::prelude::*;
 
 /// A texture map a bake can write.
@@ -15,19 +17,32 @@ pub enum Map {
     Normal,
     /// Specular colour (RGB).
     Specular,
-    /// Roughness from the Blinn-Phong shininess n: sqrt(2 / (n + 2)) (grey).
+    /// Roughness (grey): the material's roughness under metallic-roughness shading;
+    /// under Blinn-Phong, from the shininess n as sqrt(2 / (n + 2)).
     Roughness,
+    /// Metallic (grey).
+    Metallic,
+    /// Ambient occlusion (grey).
+    Occlusion,
+    /// Emission × emission strength (RGB; PNG clamps to [0, 1], EXR keeps the value).
+    Emission,
+    /// Occlusion, roughness and metallic packed in R, G and B, as glTF and engines read them.
+    Orm,
 }
 
 impl Map {
     /// Every map, as named on the command line.
-    pub const ALL: [Map; 6] = [
+    pub const ALL: [Map; 10] = [
         Map::Albedo,
         Map::Alpha,
         Map::Height,
         Map::Normal,
         Map::Specular,
         Map::Roughness,
+        Map::Metallic,
+        Map::Occlusion,
+        Map::Emission,
+        Map::Orm,
     ];
 
     /// The map's name in file names and on the command line.
@@ -39,6 +54,23 @@ impl Map {
             Map::Normal => "normal",
             Map::Specular => "specular",
             Map::Roughness => "roughness",
+            Map::Metallic => "metallic",
+            Map::Occlusion => "occlusion",
+            Map::Emission => "emission",
+            Map::Orm => "orm",
+        }
+    }
+
+    /// The material outputs the map is made from.
+    pub fn channels(self) -> FlatChannels {
+        match self {
+            Map::Albedo | Map::Alpha => FlatChannels::AlbedoAlpha,
+            Map::Specular => FlatChannels::SpecularShininess,
+            Map::Height | Map::Normal => FlatChannels::HeightBump,
+            Map::Roughness | Map::Metallic | Map::Occlusion | Map::Orm => {
+                FlatChannels::MetallicRoughness
+            }
+            Map::Emission => FlatChannels::Emission,
         }
     }
 }
@@ -57,6 +89,7 @@ pub enum NormalConvention {
 /// row, so each band's last row waits, copied, for the next band (or [`Converter::finish`]).
 pub struct Converter {
     map: Map,
+    shading: Shading,
     size: usize,
     /// Plane distance between pixels in x and z.
     spacing: (f32, f32),
@@ -72,15 +105,18 @@ pub struct Converter {
 }
 
 impl Converter {
-    /// A converter for a `size`² `map` whose pixels lie `spacing` apart on the plane.
+    /// A converter for a `size`² `map` of a material shaded by `shading` whose pixels
+    /// lie `spacing` apart on the plane.
     pub fn new(
         map: Map,
+        shading: Shading,
         size: u32,
         spacing: (f64, f64),
         convention: NormalConvention,
     ) -> Converter {
         Converter {
             map,
+            shading,
             size: size as usize,
             spacing: (spacing.0 as f32, spacing.1 as f32),
             convention,
@@ -99,9 +135,9 @@ impl Converter {
     {
         let n = self.size;
         if self.map != Map::Normal {
-            let map = self.map;
+            let (map, shading) = (self.map, self.shading);
             band.par_chunks_mut(n)
-                .for_each(|row| row.iter_mut().for_each(|p| *p = pixel(map, *p)));
+                .for_each(|row| row.iter_mut().for_each(|p| *p = pixel(map, shading, *p)));
             return emit(band);
         }
         let rows = band.len() / n;
@@ -187,17 +223,24 @@ impl Converter {
     }
 }
 
-/// One pixel of a map other than the normal map from the rendered outputs.
-fn pixel(map: Map, p: [f32; 4]) -> [f32; 4] {
+/// One pixel of a map other than the normal map from the rendered outputs
+/// ([`Map::channels`]) of a material shaded by `shading`.
+fn pixel(map: Map, shading: Shading, p: [f32; 4]) -> [f32; 4] {
+    let grey = |v: f32| [v, v, v, 1.0];
+    // (metallic, roughness, occlusion, shininess) → the roughness the shading uses.
+    let roughness = |p: [f32; 4]| match shading {
+        Shading::MetallicRoughness => p[1],
+        Shading::BlinnPhong => (2.0 / (p[3].max(0.0) + 2.0)).sqrt(),
+    };
     match map {
         Map::Albedo | Map::Normal => p,
-        Map::Alpha => [p[3], p[3], p[3], 1.0],
-        Map::Height => [p[0], p[0], p[0], 1.0],
-        Map::Specular => [p[0], p[1], p[2], 1.0],
-        Map::Roughness => {
-            let roughness = (2.0 / (p[3].max(0.0) + 2.0)).sqrt();
-            [roughness, roughness, roughness, 1.0]
-        }
+        Map::Alpha => grey(p[3]),
+        Map::Height => grey(p[0]),
+        Map::Specular | Map::Emission => [p[0], p[1], p[2], 1.0],
+        Map::Roughness => grey(roughness(p)),
+        Map::Metallic => grey(p[0]),
+        Map::Occlusion => grey(p[2]),
+        Map::Orm => [p[2], roughness(p), p[0], 1.0],
     }
 }
 

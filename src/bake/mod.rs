@@ -7,16 +7,16 @@
 
 mod encode;
 mod exr_rle;
+mod gltf;
 mod maps;
 mod pipeline;
 
+pub use gltf::{GltfSettings, Packaging, export_gltf};
 pub use maps::{Converter, Map, NormalConvention, fill_uncovered};
 use pipeline::MapTarget;
 
 use crate::codegen::Compiled;
-use crate::render::{
-    FlatChannels, FlatRect, FlatRenderer, GpuContext, GpuMesh, RenderError, UvRenderer,
-};
+use crate::render::{FlatRect, FlatRenderer, GpuContext, GpuMesh, RenderError, UvRenderer};
 use std::path::{Path, PathBuf};
 
 /// File format of baked maps.
@@ -154,21 +154,7 @@ pub fn check_outputs(stems: &[&Path], settings: &BakeSettings) -> Result<(), Bak
     let mut needed: std::collections::BTreeMap<&Path, u64> = Default::default();
     let map_bytes = u64::from(settings.size).pow(2) * settings.format.max_bytes_per_pixel();
     for &stem in stems {
-        let folder = match stem.parent() {
-            Some(folder) if !folder.as_os_str().is_empty() => folder,
-            _ => Path::new("."),
-        };
-        if !folder.is_dir() {
-            let why = if folder.exists() {
-                "is not a folder"
-            } else {
-                "does not exist"
-            };
-            return Err(BakeError::Folder {
-                folder: folder.to_path_buf(),
-                why,
-            });
-        }
+        let folder = output_folder(stem)?;
         *needed.entry(folder).or_default() += map_bytes * settings.maps.len() as u64;
         for &map in &settings.maps {
             let path = map_path(stem, map, settings.format);
@@ -193,6 +179,27 @@ pub fn check_outputs(stems: &[&Path], settings: &BakeSettings) -> Result<(), Bak
         }
     }
     Ok(())
+}
+
+/// The folder a file at `path` goes to (`.` for a bare name), refused unless it is an
+/// existing folder.
+fn output_folder(path: &Path) -> Result<&Path, BakeError> {
+    let folder = match path.parent() {
+        Some(folder) if !folder.as_os_str().is_empty() => folder,
+        _ => Path::new("."),
+    };
+    if folder.is_dir() {
+        return Ok(folder);
+    }
+    let why = if folder.exists() {
+        "is not a folder"
+    } else {
+        "does not exist"
+    };
+    Err(BakeError::Folder {
+        folder: folder.to_path_buf(),
+        why,
+    })
 }
 
 /// Bakes a compiled material (parameters baked, the default) into `<stem>_<map>.<ext>`
@@ -258,6 +265,7 @@ pub fn bake(
         .map(|(map, path)| MapTarget {
             path,
             map: *map,
+            shading: compiled.checked.shading,
             size,
             format: settings.format,
             spacing,
@@ -266,11 +274,7 @@ pub fn bake(
         .collect();
     let overlap = settings.format == Format::Exr;
     pipeline::bake_maps(&targets, overlap, |index, sink| {
-        let channels = match targets[index].map {
-            Map::Albedo | Map::Alpha => FlatChannels::AlbedoAlpha,
-            Map::Specular | Map::Roughness => FlatChannels::SpecularShininess,
-            Map::Height | Map::Normal => FlatChannels::HeightBump,
-        };
+        let channels = targets[index].map.channels();
         let base = index as u64 * tiles_per_pass;
         let report = |done: u32, _| progress(base + u64::from(done), total);
         match &surface {

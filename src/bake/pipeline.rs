@@ -20,6 +20,8 @@ pub type BandSink<'s> = dyn FnMut(u32, Vec<[f32; 4]>) -> Result<Vec<[f32; 4]>, R
 pub struct MapTarget<'p> {
     pub path: &'p Path,
     pub map: Map,
+    /// The material's lighting model (which roughness the maps carry).
+    pub shading: crate::graph::Shading,
     pub size: u32,
     pub format: Format,
     /// Plane distance between pixels in x and z.
@@ -106,7 +108,13 @@ fn write_map(
     bands: mpsc::Receiver<Vec<[f32; 4]>>,
     free: mpsc::Sender<Vec<[f32; 4]>>,
 ) -> std::io::Result<()> {
-    let mut converter = Converter::new(target.map, target.size, target.spacing, target.convention);
+    let mut converter = Converter::new(
+        target.map,
+        target.shading,
+        target.size,
+        target.spacing,
+        target.convention,
+    );
     crate::fsutil::write_atomic_with(target.path, |file| {
         encode(file, target.size, target.format, |emit| {
             for mut band in bands {

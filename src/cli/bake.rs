@@ -6,7 +6,10 @@ use super::render::parse_flat;
 use clap::{Args, ValueEnum};
 use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
 use std::path::PathBuf;
-use veneer::bake::{BakeSettings, BakeSurface, BakedMap, Format, Map, NormalConvention, bake};
+use veneer::bake::{
+    BakeSettings, BakeSurface, BakedMap, Format, GltfSettings, Map, NormalConvention, bake,
+    export_gltf,
+};
 use veneer::codegen::{CompileOptions, compile};
 use veneer::render::{FlatRect, GpuContext};
 
@@ -36,7 +39,8 @@ pub struct BakeArgs {
     /// Width and height of every map in pixels (up to 8192 and beyond; rendered in tiles).
     #[arg(long, default_value_t = 1024)]
     size: u32,
-    /// Maps to write: albedo, alpha, height, normal, specular, roughness.
+    /// Maps to write: albedo, alpha, height, normal, specular, roughness, metallic,
+    /// occlusion, emission, orm (occlusion, roughness, metallic in R, G, B).
     #[arg(long, value_delimiter = ',', default_value = "albedo,normal,height", value_parser = parse_map)]
     maps: Vec<Map>,
     /// File format of the maps.
@@ -57,6 +61,12 @@ pub struct BakeArgs {
     /// Folder for the maps (`<graph>_<map>.<ext>`); default: next to each graph.
     #[arg(short, long)]
     out_dir: Option<PathBuf>,
+    /// Write a glTF 2.0 model instead of map files: the mesh (`--mesh`, default the
+    /// graph's preview mesh) with the material's maps baked into its UV layout as a
+    /// metallic-roughness material. `.glb` gives one file; `.gltf` writes its buffer and
+    /// PNGs beside it. One graph at a time.
+    #[arg(long, value_name = "OUT.glb|OUT.gltf", conflicts_with_all = ["flat", "out_dir", "maps", "format", "normal"])]
+    gltf: Option<PathBuf>,
     /// Print a JSON summary of what was written on stdout.
     #[arg(long)]
     json: bool,
@@ -77,6 +87,9 @@ fn parse_map(text: &str) -> Result<Map, String> {
 }
 
 pub fn run(args: BakeArgs) -> Result<(), Failure> {
+    if let Some(out) = &args.gltf {
+        return run_gltf(&args, out);
+    }
     let settings = BakeSettings {
         surface: match &args.mesh {
             Some(mesh) => BakeSurface::MeshUv(mesh.clone()),
@@ -192,4 +205,50 @@ pub fn run(args: BakeArgs) -> Result<(), Failure> {
     } else {
         Err(Failure::new(failures.join("\n")))
     }
+}
+
+/// `veneer bake GRAPH --gltf OUT`: one graph exported as a glTF model.
+fn run_gltf(args: &BakeArgs, out: &std::path::Path) -> Result<(), Failure> {
+    let [graph_path] = args.graphs.as_slice() else {
+        return Err(Failure::new(
+            "--gltf exports one graph at a time; give one graph file",
+        ));
+    };
+    if args.size == 0 {
+        return Err(Failure::new("--size must be at least 1"));
+    }
+    let graph = veneer::graph::load(graph_path)?;
+    let compiled = compile(&graph, &CompileOptions::default())
+        .map_err(|error| Failure::new(format!("{}: {error}", graph_path.display())))?;
+    let gpu = GpuContext::new()?;
+    let settings = GltfSettings {
+        mesh: args.mesh.clone(),
+        size: args.size,
+        time: args.time,
+    };
+    let bar = ProgressBar::new(0).with_style(
+        ProgressStyle::with_template("{prefix:>16} [{bar:40}] {pos}/{len} tiles {elapsed}")
+            .expect("valid template"),
+    );
+    bar.set_prefix("glTF");
+    let written = export_gltf(&gpu, &compiled, &settings, out, |done, total| {
+        bar.set_length(total);
+        bar.set_position(done);
+    })
+    .map_err(|error| Failure::new(format!("{}: {error}", graph_path.display())))?;
+    bar.finish_and_clear();
+    if args.json {
+        out_json(&written)?;
+    } else {
+        for path in &written {
+            let bytes = std::fs::metadata(path).map(|m| m.len()).unwrap_or(0);
+            note(format!("wrote {} ({bytes} bytes)", path.display()))?;
+        }
+    }
+    Ok(())
+}
+
+/// The files an export wrote, as a JSON list on stdout.
+fn out_json(written: &[PathBuf]) -> Result<(), Failure> {
+    Ok(out(serde_json::to_string_pretty(written)?)?)
 }

@@ -118,6 +118,11 @@ pub struct SurfaceUse {
     pub bump: bool,
     /// What the alpha output asks of the pipeline.
     pub alpha: AlphaUse,
+    /// Whether the tangent-space normal can differ from (0, 0, 1) (the shading normal
+    /// is tilted in the surface's tangent frame).
+    pub normal: bool,
+    /// The lighting model (the graph's setting).
+    pub shading: graph::Shading,
 }
 
 impl SurfaceUse {
@@ -138,6 +143,8 @@ impl SurfaceUse {
         };
         uses.bump = shows("bump");
         uses.displacement = shows("height");
+        uses.normal = shows("normal");
+        uses.shading = graph.shading;
         let alpha_shows = shows("alpha");
         uses.alpha = match graph.alpha {
             AlphaMode::Mask { cutoff } if alpha_shows => AlphaUse::Mask(cutoff as f32),
@@ -148,12 +155,13 @@ impl SurfaceUse {
     }
 
     /// Whether an unwired input of the material node, at `value`, makes mesh pipelines
-    /// do work: a bump or height other than zero, an alpha that shows under the graph's
+    /// do work: a bump or height other than zero, a tilted tangent-space normal, an alpha that shows under the graph's
     /// `alpha` mode (below the cutoff, or below 1 when blended); `None` for the inputs
     /// that do not change the pipeline. The editor recompiles when an edit changes it.
     pub fn input_shows(pin: &str, value: &graph::Value, alpha: AlphaMode) -> Option<bool> {
         match pin {
             "bump" | "height" => Some(value.components() != [0.0; 3]),
+            "normal" => Some(value.components() != [0.0, 0.0, 1.0]),
             "alpha" => Some(match alpha {
                 AlphaMode::Mask { cutoff } => value.components()[0] < cutoff,
                 AlphaMode::Blend => value.components()[0] < 1.0,

@@ -22,6 +22,16 @@ pub struct Material<R> {
     pub height: R,
     /// Light the surface gives off whatever the lighting (seed 003's ambient glow).
     pub emission: [R; 3],
+    /// Metallic-roughness shading: 0 dielectric to 1 metal.
+    pub metallic: R,
+    /// Perceptual roughness, 0 mirror to 1 matte.
+    pub roughness: R,
+    /// Tangent-space normal (x along +u, y up the image, z out of the surface).
+    pub normal: [R; 3],
+    /// Multiplies `emission`.
+    pub emission_strength: R,
+    /// Ambient occlusion, 1 unoccluded.
+    pub occlusion: R,
 }
 
 impl<R: Real> Material<R> {
@@ -35,6 +45,11 @@ impl<R: Real> Material<R> {
             bump: io.input("bump"),
             height: io.float("height"),
             emission: io.input("emission"),
+            metallic: io.float("metallic"),
+            roughness: io.float("roughness"),
+            normal: io.input("normal"),
+            emission_strength: io.float("emission_strength"),
+            occlusion: io.float("occlusion"),
         }
     }
 }

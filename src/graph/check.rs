@@ -63,6 +63,8 @@ pub struct CheckedGraph {
     pub name: String,
     /// How the material's alpha shows (the graph's setting).
     pub alpha: super::AlphaMode,
+    /// The lighting model (the graph's setting).
+    pub shading: super::Shading,
     /// Needed nodes, every node after the nodes it reads; the material node is last.
     pub order: Vec<CheckedNode>,
     /// The position of each node in `order`.
@@ -455,6 +457,7 @@ pub fn check(graph: &Graph) -> Result<CheckedGraph, Vec<CheckError>> {
     Ok(CheckedGraph {
         name: graph.name.clone(),
         alpha: graph.alpha,
+        shading: graph.shading,
         order,
         index,
     })

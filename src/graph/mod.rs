@@ -220,6 +220,28 @@ pub struct Graph {
     /// or ignored.
     #[serde(default, skip_serializing_if = "AlphaMode::is_default")]
     pub alpha: AlphaMode,
+    /// How the preview lights the material: Blinn-Phong (the seeds', the default) or
+    /// metallic-roughness (glTF 2.0's PBR model).
+    #[serde(default, skip_serializing_if = "Shading::is_default")]
+    pub shading: Shading,
+}
+
+/// The lighting model the preview and `veneer render` shade a material with. Every
+/// material returns every channel; the model says which ones the lighting reads.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, clap::ValueEnum)]
+pub enum Shading {
+    /// Albedo, specular colour and shininess under the seeds' key light and ambient.
+    #[default]
+    BlinnPhong,
+    /// Base colour (the albedo), metallic, roughness, occlusion and the tangent-space
+    /// normal: Cook-Torrance GGX under the key light and the environment.
+    MetallicRoughness,
+}
+
+impl Shading {
+    fn is_default(&self) -> bool {
+        *self == Shading::default()
+    }
 }
 
 /// How a material's alpha shows where it is below 1 (glTF's `alphaMode`, Blender's
@@ -275,6 +297,7 @@ impl Default for Graph {
             wires: vec![],
             frames: vec![],
             alpha: AlphaMode::default(),
+            shading: Shading::default(),
         }
     }
 }

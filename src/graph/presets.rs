@@ -3,7 +3,7 @@
 use super::Graph;
 
 /// Every preset: its file stem and RON text.
-pub const PRESETS: [(&str, &str); 19] = [
+pub const PRESETS: [(&str, &str); 22] = [
     ("wood", include_str!("../../graphs/wood.ron")),
     ("marble", include_str!("../../graphs/marble.ron")),
     (
@@ -57,6 +57,19 @@ pub const PRESETS: [(&str, &str); 19] = [
     (
         "thesis_fig5_7_opacity",
         include_str!("../../graphs/thesis_fig5_7_opacity.ron"),
+    ),
+    // Metallic-roughness versions of the seeds' materials.
+    (
+        "wood_polished",
+        include_str!("../../graphs/wood_polished.ron"),
+    ),
+    (
+        "marble_polished",
+        include_str!("../../graphs/marble_polished.ron"),
+    ),
+    (
+        "rusted_metal",
+        include_str!("../../graphs/rusted_metal.ron"),
     ),
     (
         "thesis_brick",

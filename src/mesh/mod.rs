@@ -10,6 +10,7 @@ mod obj;
 mod pick;
 mod primitives;
 mod refine;
+mod tangents;
 
 pub use analysis::{MeshReport, analyse, vertex_components, weld};
 pub use file_vertices::FileVertices;
@@ -20,6 +21,7 @@ pub use primitives::{
     DETAIL_COST, MAX_DETAIL, MAX_GENUS2_DETAIL, PRIMITIVES, primitive, sphere, torus,
 };
 pub use refine::{Refined, Refinement, SurfacePoint, refine_for_displacement};
+pub use tangents::{unit_normals, vertex_tangents};
 
 /// The mesh a preview or render shows for `name`: a primitive, or else a mesh file
 /// fitted to the unit sphere.

@@ -41,6 +41,12 @@ impl Definition for Material {
                 input("bump", VEC3, v3(0.0, 0.0, 0.0)),
                 input("height", FLOAT, f(0.0)).soft(-0.2, 0.2),
                 input("emission", COLOR, rgb(0.0, 0.0, 0.0)).soft(0.0, 1.0),
+                // Appended for metallic-roughness materials (glTF 2.0's channels).
+                input("metallic", FLOAT, f(0.0)).limits(0.0, 1.0),
+                input("roughness", FLOAT, f(0.5)).limits(0.0, 1.0),
+                input("normal", VEC3, v3(0.0, 0.0, 1.0)).limits(-1.0, 1.0),
+                input("emission_strength", FLOAT, f(1.0)).soft(0.0, 10.0),
+                input("occlusion", FLOAT, f(1.0)).limits(0.0, 1.0),
             ],
             vec![],
         )

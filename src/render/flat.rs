@@ -53,8 +53,12 @@ pub enum FlatChannels {
     AlbedoAlpha = 0,
     /// (specular r, g, b, shininess).
     SpecularShininess = 1,
-    /// (height, bump x, y, z).
+    /// (height, bump x, y, z plus the tangent-space normal's tilt).
     HeightBump = 2,
+    /// (metallic, roughness, occlusion, shininess).
+    MetallicRoughness = 3,
+    /// (emission × emission strength, 0).
+    Emission = 4,
 }
 
 #[repr(C)]
@@ -70,6 +74,7 @@ struct FlatViewUniform {
 }
 
 const ENTRY_POINTS: &str = concat!(
+    include_str!("../../shaders/render_tangent.wgsl"),
     include_str!("../../shaders/render_channels.wgsl"),
     include_str!("../../shaders/render_flat.wgsl")
 );

@@ -198,7 +198,10 @@ pub const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 /// Samples a pixel of headless mesh renders.
 pub(super) const SAMPLES: u32 = 4;
-const ENTRY_POINTS: &str = include_str!("../../shaders/render_mesh.wgsl");
+const ENTRY_POINTS: &str = concat!(
+    include_str!("../../shaders/render_tangent.wgsl"),
+    include_str!("../../shaders/render_mesh.wgsl")
+);
 const DISPLACED_ENTRY_POINT: &str = include_str!("../../shaders/render_mesh_displaced.wgsl");
 
 /// Colour and depth targets of one size and sample count, plus the resolved image.
@@ -542,9 +545,11 @@ fn pass_pipeline(
     // Height work (vertex displacement, relief shading) only for materials with a
     // height, normal perturbation only for materials with a bump or a height.
     let constants = format!(
-        "const VENEER_HEIGHT: bool = {};\nconst VENEER_RELIEF: bool = {};\n{}",
+        "const VENEER_HEIGHT: bool = {};\nconst VENEER_RELIEF: bool = {};\nconst VENEER_NORMAL: bool = {};\nconst VENEER_METALLIC_ROUGHNESS: bool = {};\n{}",
         uses.displacement,
-        uses.displacement || uses.bump,
+        uses.displacement || uses.bump || uses.normal,
+        uses.normal,
+        uses.shading == crate::graph::Shading::MetallicRoughness,
         kind.constants()
     );
     let entry_points = if displaced {

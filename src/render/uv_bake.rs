@@ -17,6 +17,7 @@ struct UvViewUniform {
 }
 
 const ENTRY_POINTS: &str = concat!(
+    include_str!("../../shaders/render_tangent.wgsl"),
     include_str!("../../shaders/render_channels.wgsl"),
     include_str!("../../shaders/render_uv.wgsl")
 );

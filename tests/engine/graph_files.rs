@@ -225,7 +225,13 @@ fn every_preset_module_defines_exactly_the_contract_and_prefixes_the_rest() {
                 "shininess",
                 "bump",
                 "height",
-                "emission"
+                "emission",
+                // Appended for metallic-roughness materials.
+                "metallic",
+                "roughness",
+                "normal",
+                "emission_strength",
+                "occlusion"
             ]
         );
     }

@@ -14,6 +14,7 @@ mod export;
 mod fuzz_regressions;
 mod geodesic;
 mod geodesic_files;
+mod gltf;
 mod graph_files;
 mod hostile_cli;
 mod hostile_files;

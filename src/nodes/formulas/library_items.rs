@@ -103,7 +103,7 @@ fn material(roots: &[&str], expr: &str) -> String {
     let p = s.position;
     let c = fract(vec3f(p.x * 0.31, p.y * 0.47, p.z * 0.73));
     let d = fract(vec3f(p.z * 0.53, p.x * 0.29, p.y * 0.61));
-    return VeneerMaterial({expr}, 1.0, vec3f(0.0), 1.0, vec3f(0.0), 0.0, vec3f(0.0));
+    return VeneerMaterial({expr}, 1.0, vec3f(0.0), 1.0, vec3f(0.0), 0.0, vec3f(0.0), 0.0, 0.5, vec3f(0.0, 0.0, 1.0), 1.0, 1.0);
 }}\n"
     ));
     source

@@ -8,5 +8,5 @@ fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     let bands = 0.5 + 0.5 * sin(x * 3.0 + 10.0 * warp);
     let veins = smoothstep(0.25, 0.75, bands);
     let color = mix(vec3f(0.20, 0.20, 0.25), vec3f(0.92, 0.92, 0.94), veins);
-    return VeneerMaterial(color, 1.0, vec3f(0.0), 1.0, vec3f(0.0), 0.0, vec3f(0.0));
+    return VeneerMaterial(color, 1.0, vec3f(0.0), 1.0, vec3f(0.0), 0.0, vec3f(0.0), 0.0, 0.5, vec3f(0.0, 0.0, 1.0), 1.0, 1.0);
 }

@@ -22,5 +22,5 @@ fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     var color = mix(vec3f(0.33, 0.17, 0.08), vec3f(0.62, 0.42, 0.22), ring_sharp);
     color *= mix(0.85, 1.05, grain);
     color *= 0.95 + 0.10 * seed_fbm(pos * 0.08 + 4.2);
-    return VeneerMaterial(color, 1.0, vec3f(0.0), 1.0, vec3f(0.0), 0.0, vec3f(0.0));
+    return VeneerMaterial(color, 1.0, vec3f(0.0), 1.0, vec3f(0.0), 0.0, vec3f(0.0), 0.0, 0.5, vec3f(0.0, 0.0, 1.0), 1.0, 1.0);
 }

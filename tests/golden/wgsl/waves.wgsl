@@ -17,6 +17,11 @@ struct VeneerMaterial {
     bump: vec3f,      // perturbation added to the normal before lighting; 0 when flat
     height: f32,      // displacement along the normal
     emission: vec3f,  // light given off whatever the lighting, added to the lit colour; 0 when none
+    metallic: f32,    // 0 dielectric .. 1 metal (metallic-roughness shading)
+    roughness: f32,   // perceptual roughness, 0 mirror .. 1 matte (metallic-roughness shading)
+    normal: vec3f,    // tangent-space normal (x along +u, y up the image, z out); (0, 0, 1) when flat
+    emission_strength: f32, // multiplies emission; 1 unless set
+    occlusion: f32,   // ambient occlusion, 1 unoccluded
 }
 
 // ---- shaders/math.wgsl
@@ -72,5 +77,10 @@ fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
         vec3f(0.0f, 0.0f, 0.0f), // bump
         height_scale, // height
         vec3f(0.0f, 0.0f, 0.0f), // emission
+        0.0f, // metallic
+        0.5f, // roughness
+        vec3f(0.0f, 0.0f, 1.0f), // normal
+        1.0f, // emission_strength
+        1.0f, // occlusion
     );
 }

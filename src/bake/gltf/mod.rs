@@ -1,0 +1,271 @@
+//! glTF 2.0 export (`veneer bake --gltf`): a material baked into the UV layout of its
+//! preview mesh (or another mesh) and wired into a `pbrMetallicRoughness` material —
+//! base colour (sRGB), occlusion-roughness-metallic packed as glTF reads it (R, G, B),
+//! an OpenGL-convention normal map, emission with `KHR_materials_emissive_strength`
+//! past 1 — on that mesh with its normals, UVs and tangents.
+
+mod document;
+
+pub use document::Packaging;
+use document::{MaterialData, MeshData, Texture};
+
+use super::maps::{Converter, Map, NormalConvention, fill_uncovered};
+use super::{BakeError, UV_PADDING};
+use crate::codegen::{AlphaUse, Compiled};
+use crate::graph::Shading;
+use crate::render::{FlatChannels, GpuContext, GpuMesh, UvRenderer};
+use serde_json::json;
+use std::path::{Path, PathBuf};
+
+/// What a glTF export bakes.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GltfSettings {
+    /// The primitive or mesh file to export (`None`: the graph's preview mesh).
+    pub mesh: Option<String>,
+    /// Width and height of every texture in pixels.
+    pub size: u32,
+    pub time: f32,
+}
+
+/// How the material's colours are stored in 8-bit sRGB textures: a metallic-roughness
+/// material's albedo and emission are linear and get the sRGB transfer function; a
+/// Blinn-Phong material's are the display values the seeds' lighting shows and are
+/// stored as they are.
+fn encode_colour(shading: Shading, linear: f32) -> f32 {
+    let c = linear.clamp(0.0, 1.0);
+    match shading {
+        Shading::BlinnPhong => c,
+        Shading::MetallicRoughness if c <= 0.003_130_8 => 12.92 * c,
+        Shading::MetallicRoughness => 1.055 * c.powf(1.0 / 2.4) - 0.055,
+    }
+}
+
+/// Occlusion below this counts (an 8-bit step under 1).
+const OCCLUDED: f32 = 1.0 - 1.0 / 512.0;
+
+/// Exports `compiled` (parameters baked) to `path` (`.glb`, or `.gltf` with its buffer and
+/// PNGs beside it), calling `progress(done, total)` as tiles render. Every file is written
+/// atomically; the paths written come back, the document first.
+pub fn export_gltf(
+    gpu: &GpuContext,
+    compiled: &Compiled,
+    settings: &GltfSettings,
+    path: &Path,
+    mut progress: impl FnMut(u64, u64),
+) -> Result<Vec<PathBuf>, BakeError> {
+    crate::render::baked_parameters(compiled)?;
+    let packaging = match path.extension().and_then(|e| e.to_str()) {
+        Some(e) if e.eq_ignore_ascii_case("gltf") => Packaging::Separate,
+        _ => Packaging::Binary,
+    };
+    let folder = super::output_folder(path)?;
+    let (module, preview) = (&compiled.module, &compiled.preview);
+    let uses = module.uses;
+    let name = settings.mesh.as_deref().unwrap_or(&preview.mesh);
+    let mesh = crate::render::mesh_with_fields(preview, name, &uses, |_, _| {})?;
+    if mesh.uv_area() < 1e-9 {
+        return Err(BakeError::NoUvLayout {
+            mesh: name.to_string(),
+        });
+    }
+    let shading = compiled.checked.shading;
+    let wants_normal = uses.bump || uses.displacement || uses.normal;
+    let mut passes = vec![
+        FlatChannels::AlbedoAlpha,
+        FlatChannels::MetallicRoughness,
+        FlatChannels::Emission,
+    ];
+    if wants_normal {
+        passes.push(FlatChannels::HeightBump);
+    }
+    let renderer = UvRenderer::new(gpu, &module.source)?;
+    let gpu_mesh = GpuMesh::new(&gpu.device, &mesh);
+    let center = preview.center;
+    let placement = (
+        [center.0 as f32, center.1 as f32, center.2 as f32],
+        preview.size as f32,
+    );
+    let size = settings.size;
+    let per_pass = u64::from(size.div_ceil(crate::render::tile_size(gpu))).pow(2);
+    let total = per_pass * passes.len() as u64;
+    let mut rendered = Vec::new();
+    for (index, channels) in passes.iter().enumerate() {
+        let base = index as u64 * per_pass;
+        let report = |done: u32, _| progress(base + u64::from(done), total);
+        let mut pixels = renderer.render_channels(
+            gpu,
+            &gpu_mesh,
+            placement,
+            size,
+            settings.time,
+            *channels,
+            report,
+        )?;
+        fill_uncovered(&mut pixels, size, UV_PADDING);
+        rendered.push(pixels);
+    }
+    let stem = path
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let texture_name = |what: &str| format!("{stem}_{what}.png");
+    let write_error = |error: std::io::Error| BakeError::Write {
+        path: path.to_path_buf(),
+        error,
+    };
+
+    let mut material = json!({ "name": compiled.checked.name.clone() });
+    let mut textures = Vec::new();
+    let mut extensions = Vec::new();
+    // Base colour, with alpha where the material's alpha shows.
+    let alpha = uses.alpha;
+    let colour = |v: f32| encode_colour(shading, v);
+    let base: Vec<[f32; 4]> = (rendered[0].iter())
+        .map(|p| [colour(p[0]), colour(p[1]), colour(p[2]), p[3]])
+        .collect();
+    textures.push(Texture {
+        file_name: texture_name("basecolor"),
+        png: png(&base, size, alpha != AlphaUse::Opaque).map_err(write_error)?,
+    });
+    material["pbrMetallicRoughness"] = json!({ "baseColorTexture": { "index": 0 } });
+    match alpha {
+        AlphaUse::Opaque => {}
+        AlphaUse::Mask(cutoff) => {
+            material["alphaMode"] = json!("MASK");
+            material["alphaCutoff"] = json!(cutoff);
+        }
+        AlphaUse::Blend => material["alphaMode"] = json!("BLEND"),
+    }
+    if alpha != AlphaUse::Opaque {
+        // The preview draws the back faces of what can be cut away or seen through.
+        material["doubleSided"] = json!(true);
+    }
+    // Occlusion, roughness, metallic in one texture.
+    let orm = convert(Map::Orm, shading, size, &rendered[1]);
+    let occluded = orm.iter().any(|p| p[0] < OCCLUDED);
+    textures.push(Texture {
+        file_name: texture_name("orm"),
+        png: png(&orm, size, false).map_err(write_error)?,
+    });
+    material["pbrMetallicRoughness"]["metallicRoughnessTexture"] = json!({ "index": 1 });
+    if occluded {
+        material["occlusionTexture"] = json!({ "index": 1 });
+    }
+    // Emission: the texture holds emission / its largest channel, the factor and the
+    // strength the rest.
+    let brightest = rendered[2]
+        .iter()
+        .flat_map(|p| [p[0], p[1], p[2]])
+        .fold(0.0f32, f32::max);
+    if brightest > 0.0 {
+        let scale = brightest.max(1.0);
+        let emission: Vec<[f32; 4]> = (rendered[2].iter())
+            .map(|p| {
+                [
+                    colour(p[0] / scale),
+                    colour(p[1] / scale),
+                    colour(p[2] / scale),
+                    1.0,
+                ]
+            })
+            .collect();
+        material["emissiveTexture"] = json!({ "index": textures.len() });
+        material["emissiveFactor"] = json!([1.0, 1.0, 1.0]);
+        textures.push(Texture {
+            file_name: texture_name("emission"),
+            png: png(&emission, size, false).map_err(write_error)?,
+        });
+        if scale > 1.0 {
+            material["extensions"] =
+                json!({ "KHR_materials_emissive_strength": { "emissiveStrength": scale } });
+            extensions.push("KHR_materials_emissive_strength");
+        }
+    }
+    let normals = crate::mesh::unit_normals(&mesh);
+    let tangents = wants_normal.then(|| crate::mesh::vertex_tangents(&mesh, &normals));
+    if wants_normal {
+        let texel = 2.0 * preview.size / f64::from(size);
+        let normal = convert_normal(size, (texel, texel), &rendered[3]);
+        material["normalTexture"] = json!({ "index": textures.len() });
+        textures.push(Texture {
+            file_name: texture_name("normal"),
+            png: png(&normal, size, false).map_err(write_error)?,
+        });
+    }
+    let data = MeshData {
+        positions: mesh.positions.clone(),
+        normals: normals.iter().map(|n| n.to_array()).collect(),
+        tangents,
+        uvs: mesh.uvs.clone(),
+        indices: mesh.indices.clone(),
+    };
+    let material = MaterialData {
+        json: material,
+        extensions,
+        textures,
+    };
+    let files = document::document(&stem, &data, &material, packaging);
+    let mut written = Vec::new();
+    for (file_name, bytes) in files {
+        let target = folder.join(&file_name);
+        crate::fsutil::write_atomic(&target, &bytes).map_err(|error| BakeError::Write {
+            path: target.clone(),
+            error,
+        })?;
+        written.push(target);
+    }
+    Ok(written)
+}
+
+/// A map other than the normal map from its rendered outputs.
+fn convert(map: Map, shading: Shading, size: u32, pixels: &[[f32; 4]]) -> Vec<[f32; 4]> {
+    let mut converted = pixels.to_vec();
+    let mut converter = Converter::new(map, shading, size, (1.0, 1.0), NormalConvention::OpenGl);
+    let keep = |_: &[[f32; 4]]| Ok::<(), std::convert::Infallible>(());
+    let _ = converter.band(&mut converted, &mut { keep });
+    converted
+}
+
+/// The OpenGL-convention normal map (glTF's) from the rendered (height, bump) outputs.
+fn convert_normal(size: u32, spacing: (f64, f64), pixels: &[[f32; 4]]) -> Vec<[f32; 4]> {
+    let mut converted = Vec::with_capacity(pixels.len());
+    let mut converter = Converter::new(
+        Map::Normal,
+        Shading::default(),
+        size,
+        spacing,
+        NormalConvention::OpenGl,
+    );
+    let mut collect = |rows: &[[f32; 4]]| {
+        converted.extend_from_slice(rows);
+        Ok::<(), std::convert::Infallible>(())
+    };
+    let mut band = pixels.to_vec();
+    let _ = converter.band(&mut band, &mut collect);
+    let _ = converter.finish(&mut collect);
+    converted
+}
+
+/// An 8-bit PNG (RGB, or RGBA with `alpha`) of values in [0, 1], rows from the top.
+fn png(pixels: &[[f32; 4]], size: u32, alpha: bool) -> std::io::Result<Vec<u8>> {
+    use image::ImageEncoder;
+    let channels = if alpha { 4 } else { 3 };
+    let samples: Vec<u8> = (pixels.iter())
+        .flat_map(|p| {
+            p[..channels]
+                .iter()
+                .map(|v| (255.0 * v.clamp(0.0, 1.0)).round() as u8)
+                .collect::<Vec<_>>()
+        })
+        .collect();
+    let mut bytes = Vec::new();
+    let colour = if alpha {
+        image::ExtendedColorType::Rgba8
+    } else {
+        image::ExtendedColorType::Rgb8
+    };
+    image::codecs::png::PngEncoder::new(&mut bytes)
+        .write_image(&samples, size, size, colour)
+        .map_err(std::io::Error::other)?;
+    Ok(bytes)
+}
