@@ -79,3 +79,20 @@ fn the_preview_adds_the_emission_to_the_lit_colour_on_both_sides_of_the_light() 
         "the rows cross the sphere ({on_sphere} pixels)"
     );
 }
+
+#[test]
+fn the_emission_strength_multiplies_the_emission_in_the_preview() {
+    let mut strong = glowing(Some((0.2, 0.1, 0.05)));
+    let material = strong.material().unwrap().id;
+    strong.set_input(material, "emission_strength", Value::Float(3.0));
+    let weak = render(&glowing(Some((0.2, 0.1, 0.05))));
+    let strong = render(&strong);
+    // At the sphere's centre, black and unshiny: the emission alone, 3× as bright.
+    let at = |image: &[u8]| image[(32 * 64 + 32) * 4] as f32;
+    assert!(
+        (at(&strong) - 3.0 * at(&weak)).abs() <= 2.0,
+        "{} vs {}",
+        at(&strong),
+        at(&weak)
+    );
+}

@@ -9,7 +9,8 @@ import path from 'node:path';
 const require = createRequire(import.meta.url);
 let validator;
 try {
-  validator = require(process.env.GLTF_VALIDATOR ?? 'gltf-validator');
+  const folder = process.env.GLTF_VALIDATOR;
+  validator = require(folder ? path.resolve(folder) : 'gltf-validator');
 } catch (error) {
   console.error(`gltf-validator is not installed (${error.message}); .ci/run installs it`);
   process.exit(2);

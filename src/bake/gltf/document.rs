@@ -82,18 +82,14 @@ pub fn document(
 ) -> Files {
     let mut buffer = Buffer::default();
     let mut accessors = Vec::new();
-    let mut accessor = |buffer: &mut Buffer,
-                        bytes: &[u8],
-                        target,
-                        kind: &str,
-                        count: usize,
-                        component| {
-        let view = buffer.view(bytes, Some(target));
-        accessors.push(
+    let mut accessor =
+        |buffer: &mut Buffer, bytes: &[u8], target, kind: &str, count: usize, component| {
+            let view = buffer.view(bytes, Some(target));
+            accessors.push(
             json!({ "bufferView": view, "componentType": component, "count": count, "type": kind }),
         );
-        accessors.len() - 1
-    };
+            accessors.len() - 1
+        };
     let indices = accessor(
         &mut buffer,
         bytemuck::cast_slice(&mesh.indices),
