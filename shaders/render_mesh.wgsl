@@ -9,6 +9,8 @@ struct VeneerMeshView {
     time: f32,
     ambient: f32,
     unlit: u32,            // 1: show the albedo only (the flat 2D view)
+    tone_map: u32,         // metallic-roughness: veneer_tone_map's kind
+    exposure_scale: f32,   // metallic-roughness: light × this before tone mapping
 }
 
 @group(0) @binding(0) var<uniform> veneer_mesh_view: VeneerMeshView;
@@ -132,7 +134,7 @@ fn veneer_mesh_fragment(input: VeneerVertexOut, @builtin(front_facing) front: bo
         let roughness = clamp(material.roughness, 0.0, 1.0);
         let direct = veneer_ggx_light(n, v, l, base, metallic, roughness) * VENEER_KEY_LIGHT;
         let ambient = veneer_ambient(n, v, base, metallic, roughness) * clamp(material.occlusion, 0.0, 1.0);
-        color = veneer_srgb_encode(direct + ambient + emitted);
+        color = veneer_srgb_encode(veneer_tone_map((direct + ambient + emitted) * view.exposure_scale, view.tone_map));
     } else {
         let h = normalize(l + v);
         let lambert = max(dot(n, l), 0.0);

@@ -6,7 +6,7 @@ use clap::Args;
 use std::path::PathBuf;
 use veneer::codegen::{CompileOptions, Detail};
 use veneer::graph::Tessellation;
-use veneer::render::{FlatRect, GpuContext, Relief, View, render_material_with};
+use veneer::render::{FlatRect, GpuContext, MeshLook, Relief, ToneMap, View, render_material_with};
 
 /// How much noise detail to compute.
 #[derive(Clone, Copy, clap::ValueEnum)]
@@ -57,6 +57,21 @@ pub struct RenderArgs {
     /// Show the material's height by moving the vertices (displaced) or as bump only.
     #[arg(long, value_enum, default_value = "displaced")]
     relief: Relief,
+    /// How a metallic-roughness material's light maps to the display (Blinn-Phong
+    /// materials show the seeds' lighting as it is).
+    #[arg(long, value_enum, default_value = "pbr-neutral")]
+    tone_map: ToneMap,
+    /// Exposure of a metallic-roughness material in stops (light × 2^EV).
+    #[arg(long, value_name = "EV", default_value_t = 0.0, allow_hyphen_values = true, value_parser = parse_exposure)]
+    exposure: f32,
+}
+
+/// `--exposure`: finite, within ±32 stops.
+fn parse_exposure(text: &str) -> Result<f32, String> {
+    match text.trim().parse::<f32>() {
+        Ok(ev) if ev.is_finite() && ev.abs() <= 32.0 => Ok(ev),
+        _ => Err(format!("'{text}' is not an exposure from -32 to 32 stops")),
+    }
 }
 
 /// `--tessellate`: off, or a tolerance in pixels.
@@ -112,7 +127,12 @@ pub fn run(args: RenderArgs) -> Result<(), Failure> {
         None => View::Mesh(args.mesh),
     };
     let gpu = GpuContext::new()?;
-    let rendered = render_material_with(&gpu, &compiled, &view, args.size, args.time, args.relief)?;
+    let look = MeshLook {
+        relief: args.relief,
+        tone_map: args.tone_map,
+        exposure: args.exposure,
+    };
+    let rendered = render_material_with(&gpu, &compiled, &view, args.size, args.time, look)?;
     if let Some(tessellated) = rendered.tessellated {
         let (before, after) = tessellated.triangles;
         note(format!(

@@ -121,7 +121,17 @@ pub fn render_material(
     size: u32,
     time: f32,
 ) -> Result<Image, RenderError> {
-    Ok(render_material_with(gpu, compiled, view, size, time, Relief::Displaced)?.image)
+    Ok(render_material_with(gpu, compiled, view, size, time, MeshLook::default())?.image)
+}
+
+/// How a mesh render shows its material, beyond what the graph says.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MeshLook {
+    /// How the height shows.
+    pub relief: Relief,
+    /// Metallic-roughness materials: the tone mapper and the exposure in stops.
+    pub tone_map: super::ToneMap,
+    pub exposure: f32,
 }
 
 /// A rendered image and how its mesh was tessellated.
@@ -131,7 +141,7 @@ pub struct Rendered {
     pub tessellated: Option<Tessellated>,
 }
 
-/// [`render_material`] showing the material's height as `relief`; a displaced material
+/// [`render_material`] with `look` (the height's relief, tone mapping); a displaced material
 /// whose preview asks for tessellation has its mesh refined for this view first.
 pub fn render_material_with(
     gpu: &GpuContext,
@@ -139,8 +149,9 @@ pub fn render_material_with(
     view: &View,
     size: u32,
     time: f32,
-    relief: Relief,
+    look: MeshLook,
 ) -> Result<Rendered, RenderError> {
+    let relief = look.relief;
     baked_parameters(compiled)?;
     let module = &compiled.module;
     let flat = |rect: FlatRect| -> Result<Rendered, RenderError> {
@@ -164,6 +175,8 @@ pub fn render_material_with(
             let mut mesh = mesh_with_fields(preview, name, &module.uses, |_, _| {})?;
             let mut mesh_view = MeshView::for_preview(preview);
             mesh_view.time = time;
+            mesh_view.tone_map = look.tone_map;
+            mesh_view.exposure = look.exposure;
             let tessellated = match preview.tessellation {
                 Some(settings) if module.uses.displacement && relief == Relief::Displaced => {
                     let before = mesh.triangle_count();

@@ -2,7 +2,7 @@
 //! (uploaded mesh, pipeline, offscreen target) are shared by headless renders and the
 //! editor's live preview.
 
-use super::{GpuMesh, RenderError, shader_source};
+use super::{GpuMesh, RenderError, ToneMap, shader_source};
 use crate::codegen::{AlphaUse, SurfaceUse};
 use crate::graph::Preview;
 use glam::{Mat4, Vec3};
@@ -41,6 +41,11 @@ pub struct MeshView {
     pub time: f32,
     /// Show the albedo only, without lighting.
     pub unlit: bool,
+    /// How metallic-roughness materials map scene light to the display (Blinn-Phong
+    /// materials show the seeds' lighting as it is).
+    pub tone_map: ToneMap,
+    /// Exposure of metallic-roughness materials in stops (light × 2^exposure).
+    pub exposure: f32,
 }
 
 impl MeshView {
@@ -63,6 +68,8 @@ impl MeshView {
             size: preview.size as f32,
             time: 0.0,
             unlit: false,
+            tone_map: ToneMap::default(),
+            exposure: 0.0,
         }
     }
 
@@ -144,7 +151,9 @@ impl MeshView {
             time: self.time,
             ambient: self.ambient,
             unlit: u32::from(self.unlit),
-            padding: 0,
+            tone_map: self.tone_map as u32,
+            exposure_scale: self.exposure.exp2(),
+            padding: [0; 3],
         }
     }
 }
@@ -178,7 +187,9 @@ struct MeshViewUniform {
     time: f32,
     ambient: f32,
     unlit: u32,
-    padding: u32,
+    tone_map: u32,
+    exposure_scale: f32,
+    padding: [u32; 3],
 }
 
 /// How a material's height shows on the mesh.
@@ -200,6 +211,7 @@ const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 pub(super) const SAMPLES: u32 = 4;
 const ENTRY_POINTS: &str = concat!(
     include_str!("../../shaders/render_tangent.wgsl"),
+    include_str!("../../shaders/tone_map.wgsl"),
     include_str!("../../shaders/render_mesh.wgsl")
 );
 const DISPLACED_ENTRY_POINT: &str = include_str!("../../shaders/render_mesh_displaced.wgsl");

@@ -14,6 +14,7 @@ mod tessellation;
 mod thumbnails;
 mod tiles;
 mod timing;
+mod tone_map;
 mod uv_bake;
 
 pub use context::{GpuContext, RenderError};
@@ -21,8 +22,8 @@ pub use draft_scale::DraftScale;
 pub use flat::{FlatChannels, FlatRect, FlatRenderer, albedo_to_rgb8, flat_points};
 pub use gpu_mesh::GpuMesh;
 pub use image::{
-    Image, Rendered, View, baked_parameters, mesh_with_fields, preview_rect, render_material,
-    render_material_with,
+    Image, MeshLook, Rendered, View, baked_parameters, mesh_with_fields, preview_rect,
+    render_material, render_material_with,
 };
 pub use live::{LiveMaterialCode, LiveRenderer, Quality};
 pub use mesh_render::MeshRenderer;
@@ -31,6 +32,7 @@ pub use tessellation::{Tessellated, tessellate};
 pub use thumbnails::{AtlasLayout, ThumbnailRenderer};
 pub use tiles::{ensure_memory, tile_size};
 pub use timing::PassTimer;
+pub use tone_map::ToneMap;
 pub use uv_bake::UvRenderer;
 
 /// WGSL of a material module combined with a renderer's entry points.

@@ -2,7 +2,7 @@
 //! normal maps follow the height field in both conventions, and an interrupted bake
 //! leaves no partial file.
 
-use crate::support::{difference, flat_rgb8, gpu, root};
+use crate::support::{difference, flat_rgb8, gpu, metallic_roughness, root};
 use veneer::bake::{BakeSettings, BakeSurface, Format, Map, NormalConvention, bake};
 use veneer::codegen::Compiled;
 use veneer::graph::{Graph, NodeKind, Value};
@@ -283,27 +283,6 @@ fn banded_exr_and_png_bakes_agree_across_band_seams() {
     }
 }
 
-/// A flat material whose tangent-space normal is `normal` and whose metallic-roughness
-/// channels are constants.
-fn tilted(normal: (f64, f64, f64)) -> Graph {
-    let mut graph = Graph {
-        shading: veneer::graph::Shading::MetallicRoughness,
-        ..Graph::default()
-    };
-    let material = graph.add("material", NodeKind::Material);
-    graph.set_input(
-        material,
-        "normal",
-        Value::Vec3(normal.0, normal.1, normal.2),
-    );
-    graph.set_input(material, "metallic", Value::Float(0.25));
-    graph.set_input(material, "roughness", Value::Float(0.75));
-    graph.set_input(material, "occlusion", Value::Float(0.5));
-    graph.set_input(material, "emission", Value::Color(1.0, 0.5, 0.0));
-    graph.set_input(material, "emission_strength", Value::Float(3.0));
-    graph
-}
-
 #[test]
 fn the_tangent_space_normal_lands_in_the_normal_map_in_the_plane_s_frame() {
     let rect = FlatRect {
@@ -331,24 +310,24 @@ fn the_tangent_space_normal_lands_in_the_normal_map_in_the_plane_s_frame() {
     };
     // Tilted along +u (x): red rises; up the image (y): OpenGL green rises.
     let (s, c) = (0.6f32, 0.8f32);
-    let red = texel(&tilted((0.6, 0.0, 0.8)), "u", Map::Normal);
+    let red = texel(&metallic_roughness((0.6, 0.0, 0.8)), "u", Map::Normal);
     assert!(
         (red[0] - (0.5 + 0.5 * s)).abs() < 1e-4 && (red[1] - 0.5).abs() < 1e-4,
         "{red:?}"
     );
     assert!((red[2] - (0.5 + 0.5 * c)).abs() < 1e-4, "{red:?}");
-    let green = texel(&tilted((0.0, 0.6, 0.8)), "v", Map::Normal);
+    let green = texel(&metallic_roughness((0.0, 0.6, 0.8)), "v", Map::Normal);
     assert!(
         (green[1] - (0.5 + 0.5 * s)).abs() < 1e-4 && (green[0] - 0.5).abs() < 1e-4,
         "{green:?}"
     );
     // A normal that is not unit is read as its direction; a flat one leaves the map flat.
-    let long = texel(&tilted((1.2, 0.0, 1.6)), "long", Map::Normal);
+    let long = texel(&metallic_roughness((1.2, 0.0, 1.6)), "long", Map::Normal);
     assert!((long[0] - red[0]).abs() < 1e-5, "{long:?} vs {red:?}");
-    let flat = texel(&tilted((0.0, 0.0, 1.0)), "flat", Map::Normal);
+    let flat = texel(&metallic_roughness((0.0, 0.0, 1.0)), "flat", Map::Normal);
     assert_eq!(flat[..3], [0.5, 0.5, 1.0]);
     // The metallic-roughness maps carry the channels; ORM packs them as glTF reads them.
-    let graph = tilted((0.0, 0.0, 1.0));
+    let graph = metallic_roughness((0.0, 0.0, 1.0));
     assert_eq!(texel(&graph, "m", Map::Metallic)[0], 0.25);
     assert_eq!(texel(&graph, "r", Map::Roughness)[0], 0.75);
     assert_eq!(texel(&graph, "o", Map::Occlusion)[0], 0.5);

@@ -4,12 +4,12 @@
 //! bytes; a metallic-roughness material's channels land in the glTF's textures and
 //! factors where glTF reads them.
 
-use crate::support::{gpu, presets, root, stem, temp_dir};
+use crate::support::{gpu, metallic_roughness, presets, root, stem, temp_dir};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use veneer::bake::{BakeError, GltfSettings, export_gltf};
 use veneer::codegen::{Compiled, compile};
-use veneer::graph::{Graph, NodeKind, Shading, Value};
+use veneer::graph::Graph;
 
 /// Runs the glTF-Validator on `files`; panics with its report unless every file is clean.
 fn validate(files: &[PathBuf]) {
@@ -96,37 +96,23 @@ fn a_gltf_with_its_files_beside_it_validates_and_the_same_bake_gives_the_same_by
     assert!(first == second, "a second export wrote other bytes");
 }
 
-/// A uniform metallic-roughness material: metal 0.8, roughness 0.3, occlusion 0.5,
-/// emission (0.5, 0.25, 0) at strength 4.
-fn uniform_metal() -> Graph {
-    let mut graph = Graph {
-        shading: Shading::MetallicRoughness,
-        name: "metal".into(),
-        ..Graph::default()
-    };
-    let material = graph.add("material", NodeKind::Material);
-    graph.set_input(material, "albedo", Value::Color(0.5, 0.5, 0.5));
-    graph.set_input(material, "metallic", Value::Float(0.8));
-    graph.set_input(material, "roughness", Value::Float(0.3));
-    graph.set_input(material, "occlusion", Value::Float(0.5));
-    graph.set_input(material, "emission", Value::Color(0.5, 0.25, 0.0));
-    graph.set_input(material, "emission_strength", Value::Float(4.0));
-    graph
-}
-
 #[test]
 fn metallic_roughness_channels_land_where_gltf_reads_them() {
     let dir = temp_dir("gltf-channels");
-    let written = export(&compiled(&uniform_metal()), &dir.join("metal.gltf")).expect("exports");
+    let written = export(
+        &compiled(&metallic_roughness((0.0, 0.0, 1.0))),
+        &dir.join("metal.gltf"),
+    )
+    .expect("exports");
     validate(&written[..1]);
     let document: serde_json::Value =
         serde_json::from_slice(&std::fs::read(&written[0]).unwrap()).unwrap();
     let material = &document["materials"][0];
-    // Emission 2.0 at its brightest: the texture holds emission / 2, the strength 2.
+    // Emission 3.0 at its brightest: the texture holds emission / 3, the strength 3.
     let strength = material["extensions"]["KHR_materials_emissive_strength"]["emissiveStrength"]
         .as_f64()
         .unwrap();
-    assert!((strength - 2.0).abs() < 1e-6, "{material}");
+    assert!((strength - 3.0).abs() < 1e-6, "{material}");
     assert_eq!(
         document["extensionsUsed"][0],
         "KHR_materials_emissive_strength"
@@ -150,13 +136,13 @@ fn metallic_roughness_channels_land_where_gltf_reads_them() {
         material["pbrMetallicRoughness"]["metallicRoughnessTexture"]["index"]
     );
     // R occlusion, G roughness, B metallic, at every texel (the islands are padded).
-    let expected = [0.5, 0.3, 0.8].map(|v: f64| (255.0 * v).round() as u8);
+    let expected = [0.5, 0.75, 0.25].map(|v: f64| (255.0 * v).round() as u8);
     assert!(
         orm.pixels().all(|p| p.0 == expected),
         "{:?}",
         orm.get_pixel(0, 0)
     );
-    // Base colour and emission are linear and stored sRGB-encoded: 0.5 → 188; emission (2, 1, 0) / 2 → (255, 188, 0).
+    // Base colour and emission are linear and stored sRGB-encoded: 0.5 → 188; emission (3, 1.5, 0) / 3 → (255, 188, 0).
     let base = texture(&material["pbrMetallicRoughness"]["baseColorTexture"]);
     assert_eq!(base.get_pixel(32, 32).0, [188, 188, 188]);
     let emission = texture(&material["emissiveTexture"]);

@@ -39,8 +39,18 @@ fn ripples(mesh: &str, tessellation: Option<f64>, relief: Relief) -> (Vec<u8>, O
         ..Tessellation::default()
     });
     let compiled = veneer::codegen::compile(&graph, &Default::default()).expect("compiles");
-    let rendered = render_material_with(gpu(), &compiled, &View::Mesh(None), SIZE, 0.0, relief)
-        .expect("renders");
+    let rendered = render_material_with(
+        gpu(),
+        &compiled,
+        &View::Mesh(None),
+        SIZE,
+        0.0,
+        veneer::render::MeshLook {
+            relief,
+            ..Default::default()
+        },
+    )
+    .expect("renders");
     (
         rendered.image.pixels,
         rendered.tessellated.map(|t| t.triangles.1),

@@ -140,3 +140,38 @@ impl Samples {
         (z ^ (z >> 31)) as f64 / u64::MAX as f64
     }
 }
+
+/// A metallic-roughness material (base colour 0.5, metallic 0.25, roughness 0.75,
+/// occlusion 0.5, emission (1, 0.5, 0) at strength 3) whose tangent-space normal is `normal` and whose metallic-roughness
+/// other channels are these constants.
+pub fn metallic_roughness(normal: (f64, f64, f64)) -> veneer::graph::Graph {
+    let mut graph = veneer::graph::Graph {
+        shading: veneer::graph::Shading::MetallicRoughness,
+        ..veneer::graph::Graph::default()
+    };
+    let material = graph.add("material", veneer::graph::NodeKind::Material);
+    graph.set_input(
+        material,
+        "albedo",
+        veneer::graph::Value::Color(0.5, 0.5, 0.5),
+    );
+    graph.set_input(
+        material,
+        "normal",
+        veneer::graph::Value::Vec3(normal.0, normal.1, normal.2),
+    );
+    graph.set_input(material, "metallic", veneer::graph::Value::Float(0.25));
+    graph.set_input(material, "roughness", veneer::graph::Value::Float(0.75));
+    graph.set_input(material, "occlusion", veneer::graph::Value::Float(0.5));
+    graph.set_input(
+        material,
+        "emission",
+        veneer::graph::Value::Color(1.0, 0.5, 0.0),
+    );
+    graph.set_input(
+        material,
+        "emission_strength",
+        veneer::graph::Value::Float(3.0),
+    );
+    graph
+}
