@@ -141,7 +141,7 @@ pub fn export_gltf(
         material["doubleSided"] = json!(true);
     }
     // Occlusion, roughness, metallic in one texture.
-    let orm = convert(Map::Orm, shading, size, &rendered[1]);
+    let orm = convert(Map::Orm, shading, size, (1.0, 1.0), &rendered[1]);
     let occluded = orm.iter().any(|p| p[0] < OCCLUDED);
     textures.push(Texture {
         file_name: texture_name("orm"),
@@ -185,7 +185,7 @@ pub fn export_gltf(
     let tangents = wants_normal.then(|| crate::mesh::vertex_tangents(&mesh, &normals));
     if wants_normal {
         let texel = 2.0 * preview.size / f64::from(size);
-        let normal = convert_normal(size, (texel, texel), &rendered[3]);
+        let normal = convert(Map::Normal, shading, size, (texel, texel), &rendered[3]);
         material["normalTexture"] = json!({ "index": textures.len() });
         textures.push(Texture {
             file_name: texture_name("normal"),
@@ -217,32 +217,24 @@ pub fn export_gltf(
     Ok(written)
 }
 
-/// A map other than the normal map from its rendered outputs.
-fn convert(map: Map, shading: Shading, size: u32, pixels: &[[f32; 4]]) -> Vec<[f32; 4]> {
-    let mut converted = pixels.to_vec();
-    let mut converter = Converter::new(map, shading, size, (1.0, 1.0), NormalConvention::OpenGl);
-    let keep = |_: &[[f32; 4]]| Ok::<(), std::convert::Infallible>(());
-    let _ = converter.band(&mut converted, &mut { keep });
-    converted
-}
-
-/// The OpenGL-convention normal map (glTF's) from the rendered (height, bump) outputs.
-fn convert_normal(size: u32, spacing: (f64, f64), pixels: &[[f32; 4]]) -> Vec<[f32; 4]> {
+/// A whole `map` (OpenGL-convention normals, as glTF requires) from its rendered
+/// outputs, texels `spacing` apart.
+fn convert(
+    map: Map,
+    shading: Shading,
+    size: u32,
+    spacing: (f64, f64),
+    pixels: &[[f32; 4]],
+) -> Vec<[f32; 4]> {
     let mut converted = Vec::with_capacity(pixels.len());
-    let mut converter = Converter::new(
-        Map::Normal,
-        Shading::default(),
-        size,
-        spacing,
-        NormalConvention::OpenGl,
-    );
+    let mut converter = Converter::new(map, shading, size, spacing, NormalConvention::OpenGl);
     let mut collect = |rows: &[[f32; 4]]| {
         converted.extend_from_slice(rows);
         Ok::<(), std::convert::Infallible>(())
     };
     let mut band = pixels.to_vec();
-    let _ = converter.band(&mut band, &mut collect);
-    let _ = converter.finish(&mut collect);
+    let Ok(()) = converter.band(&mut band, &mut collect);
+    let Ok(()) = converter.finish(&mut collect);
     converted
 }
 
