@@ -126,6 +126,12 @@ pub struct SurfaceUse {
 }
 
 impl SurfaceUse {
+    /// Whether the shading normal can differ from the mesh's: a bump, a height or a
+    /// tilted tangent-space normal.
+    pub fn perturbs_normal(&self) -> bool {
+        self.displacement || self.bump || self.normal
+    }
+
     fn of(graph: &CheckedGraph) -> SurfaceUse {
         let mut uses = SurfaceUse::default();
         for checked in &graph.order {

@@ -555,11 +555,11 @@ fn pass_pipeline(
 ) -> wgpu::RenderPipeline {
     let displaced = uses.displacement && relief == Relief::Displaced;
     // Height work (vertex displacement, relief shading) only for materials with a
-    // height, normal perturbation only for materials with a bump or a height.
+    // height, normal perturbation only for materials with a bump, a height or a tilt.
     let constants = format!(
         "const VENEER_HEIGHT: bool = {};\nconst VENEER_RELIEF: bool = {};\nconst VENEER_NORMAL: bool = {};\nconst VENEER_METALLIC_ROUGHNESS: bool = {};\n{}",
         uses.displacement,
-        uses.displacement || uses.bump || uses.normal,
+        uses.perturbs_normal(),
         uses.normal,
         uses.shading == crate::graph::Shading::MetallicRoughness,
         kind.constants()

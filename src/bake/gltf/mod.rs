@@ -69,7 +69,7 @@ pub fn export_gltf(
         });
     }
     let shading = compiled.checked.shading;
-    let wants_normal = uses.bump || uses.displacement || uses.normal;
+    let wants_normal = uses.perturbs_normal();
     let mut passes = vec![
         FlatChannels::AlbedoAlpha,
         FlatChannels::MetallicRoughness,
@@ -193,11 +193,11 @@ pub fn export_gltf(
         });
     }
     let data = MeshData {
-        positions: mesh.positions.clone(),
+        positions: mesh.positions,
         normals: normals.iter().map(|n| n.to_array()).collect(),
         tangents,
-        uvs: mesh.uvs.clone(),
-        indices: mesh.indices.clone(),
+        uvs: mesh.uvs,
+        indices: mesh.indices,
     };
     let material = MaterialData {
         json: material,
