@@ -1,8 +1,10 @@
 //! Entry points of the mesh preview: the material on a mesh, lit by the graph's shading
-//! (Blinn-Phong as in the seeds, or metallic-roughness).
+//! (Blinn-Phong as in the seeds, or metallic-roughness), whose `veneer_shade` the
+//! pipeline adds from render_lit_blinn_phong.wgsl or render_lit_metallic_roughness.wgsl.
 
 struct VeneerMeshView {
     view_projection: mat4x4f,
+    inverse_view_projection: mat4x4f,
     eye: vec4f,            // camera position, mesh space
     light_direction: vec4f, // towards the light, unit
     placement: vec4f,      // texture-space centre (xyz) and size (w) of the mesh
@@ -11,6 +13,9 @@ struct VeneerMeshView {
     unlit: u32,            // 1: show the albedo only (the flat 2D view)
     tone_map: u32,         // metallic-roughness: veneer_tone_map's kind
     exposure_scale: f32,   // metallic-roughness: light × this before tone mapping
+    key_light: f32,        // metallic-roughness: the key light's irradiance
+    environment_turn: vec2f, // metallic-roughness: cos, sin of the environment's turn about +y
+    backdrop: u32,         // metallic-roughness: what shows behind the mesh (Backdrop as u32)
 }
 
 @group(0) @binding(0) var<uniform> veneer_mesh_view: VeneerMeshView;
@@ -65,35 +70,6 @@ fn veneer_texture_position(position: vec3f) -> vec3f {
     return position * veneer_mesh_view.placement.w + veneer_mesh_view.placement.xyz;
 }
 
-// Cook-Torrance GGX (Trowbridge-Reitz distribution, Smith height-correlated
-// visibility, Schlick Fresnel) of the key light, as glTF 2.0's appendix B gives it,
-// with a Lambert diffuse for the dielectric part; radiance towards the eye per unit
-// light, cos θ included.
-fn veneer_ggx_light(n: vec3f, v: vec3f, l: vec3f, base: vec3f, metallic: f32, roughness: f32) -> vec3f {
-    let h = normalize(l + v);
-    let n_l = max(dot(n, l), 0.0);
-    let n_v = max(dot(n, v), 1.0e-4);
-    let n_h = max(dot(n, h), 0.0);
-    let v_h = max(dot(v, h), 0.0);
-    let alpha = max(roughness * roughness, 1.0e-3);
-    let alpha2 = alpha * alpha;
-    let f0 = mix(vec3f(0.04), base, metallic);
-    let fresnel = f0 + (1.0 - f0) * pow(1.0 - v_h, 5.0);
-    let d = n_h * n_h * (alpha2 - 1.0) + 1.0;
-    let distribution = alpha2 / (VENEER_PI * d * d);
-    let visibility = 0.5 / max(n_l * sqrt(n_v * n_v * (1.0 - alpha2) + alpha2) + n_v * sqrt(n_l * n_l * (1.0 - alpha2) + alpha2), 1.0e-8);
-    let diffuse = (1.0 - fresnel) * (1.0 - metallic) * base / VENEER_PI;
-    return (diffuse + fresnel * distribution * visibility) * n_l;
-}
-
-const VENEER_PI: f32 = 3.14159265358979;
-
-// The sRGB transfer function (linear light to the encoded value a display shows).
-fn veneer_srgb_encode(linear: vec3f) -> vec3f {
-    let c = clamp(linear, vec3f(0.0), vec3f(1.0));
-    return select(1.055 * pow(c, vec3f(1.0 / 2.4)) - 0.055, 12.92 * c, c <= vec3f(0.0031308));
-}
-
 @fragment
 fn veneer_mesh_fragment(input: VeneerVertexOut, @builtin(front_facing) front: bool) -> @location(0) vec4f {
     let view = veneer_mesh_view;
@@ -125,46 +101,11 @@ fn veneer_mesh_fragment(input: VeneerVertexOut, @builtin(front_facing) front: bo
     n = select(-n, n, front);
     let l = view.light_direction.xyz;
     let v = normalize(view.eye.xyz - input.position);
-    let emitted = material.emission * material.emission_strength;
-    var color: vec3f;
-    // VENEER_METALLIC_ROUGHNESS (set by the pipeline): the graph's shading.
-    if VENEER_METALLIC_ROUGHNESS {
-        let base = clamp(material.albedo, vec3f(0.0), vec3f(1.0));
-        let metallic = clamp(material.metallic, 0.0, 1.0);
-        let roughness = clamp(material.roughness, 0.0, 1.0);
-        let direct = veneer_ggx_light(n, v, l, base, metallic, roughness) * VENEER_KEY_LIGHT;
-        let ambient = veneer_ambient(n, v, base, metallic, roughness) * clamp(material.occlusion, 0.0, 1.0);
-        color = veneer_srgb_encode(veneer_tone_map((direct + ambient + emitted) * view.exposure_scale, view.tone_map));
-    } else {
-        let h = normalize(l + v);
-        let lambert = max(dot(n, l), 0.0);
-        let highlight = select(0.0, pow(max(dot(n, h), 0.0), max(material.shininess, 1.0)), lambert > 0.0);
-        color = material.albedo * (view.ambient + (1.0 - view.ambient) * lambert) + material.specular * highlight
-            + emitted;
-    }
+    // veneer_shade comes from the graph's shading: render_lit_blinn_phong.wgsl or
+    // render_lit_metallic_roughness.wgsl.
+    var color = veneer_shade(material, n, v, l);
     color = select(color, material.albedo, view.unlit == 1u);
     // VENEER_BLENDED (set by the pipeline): this pass blends by the material's alpha.
     let alpha = select(1.0, clamp(material.alpha, 0.0, 1.0), VENEER_BLENDED);
     return vec4f(clamp(color, vec3f(0.0), vec3f(1.0)), alpha);
-}
-
-// Irradiance of the key light (linear units) on metallic-roughness materials.
-const VENEER_KEY_LIGHT: f32 = 2.5;
-// The uniform sky light metallic-roughness materials see besides the key light.
-const VENEER_SKY: vec3f = vec3f(0.30, 0.32, 0.36);
-
-// What a uniform sky of radiance VENEER_SKY reflects: Lambert diffuse, and specular by
-// Karis's analytic fit of the split-sum environment BRDF ("Physically Based Shading on
-// Mobile", 2014).
-fn veneer_ambient(n: vec3f, v: vec3f, base: vec3f, metallic: f32, roughness: f32) -> vec3f {
-    let n_v = max(dot(n, v), 1.0e-4);
-    let c0 = vec4f(-1.0, -0.0275, -0.572, 0.022);
-    let c1 = vec4f(1.0, 0.0425, 1.04, -0.04);
-    let r = roughness * c0 + c1;
-    let a004 = min(r.x * r.x, exp2(-9.28 * n_v)) * r.x + r.y;
-    let scale_bias = vec2f(-1.04, 1.04) * a004 + r.zw;
-    let f0 = mix(vec3f(0.04), base, metallic);
-    let specular = f0 * scale_bias.x + scale_bias.y;
-    let diffuse = base * (1.0 - metallic) * (1.0 - specular);
-    return (diffuse + specular) * VENEER_SKY;
 }

@@ -30,7 +30,20 @@ impl VeneerApp {
             Action::ExportPng { path, size, flat } => self
                 .export_png(&path, size, flat)
                 .map(|()| Some(format!("exported {}", path.display()))),
+            Action::ExportGltf { path, size } => self.export_gltf(&path, size).map(|written| {
+                Some(format!(
+                    "exported {}",
+                    written
+                        .iter()
+                        .map(|p| p.display().to_string())
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ))
+            }),
             Action::LoadMesh(path) => self.load_mesh(&path).map(|()| None),
+            Action::LoadEnvironment(path) => self
+                .load_environment(&path)
+                .map(|name| Some(format!("lit by {name}"))),
             Action::SaveThen(pending) => {
                 self.save();
                 if !self.document.is_dirty() {
@@ -85,16 +98,22 @@ impl VeneerApp {
         }
     }
 
-    /// Renders the document as the preview shows it (or its flat albedo) into a PNG.
-    fn export_png(&self, path: &Path, size: u32, flat: bool) -> Result<(), String> {
+    /// A context on the window's GPU device, for exports.
+    fn export_gpu(&self) -> Result<crate::render::GpuContext, String> {
         let Some(state) = &self.render_state else {
             return Err("no GPU: cannot render".into());
         };
-        let gpu = crate::render::GpuContext::on_device(
+        Ok(crate::render::GpuContext::on_device(
             state.adapter.clone(),
             state.device.clone(),
             state.queue.clone(),
-        );
+        ))
+    }
+
+    /// Renders the document as the preview shows it (its lighting, environment and
+    /// tone mapping), or its flat albedo, into a PNG.
+    fn export_png(&self, path: &Path, size: u32, flat: bool) -> Result<(), String> {
+        let gpu = self.export_gpu()?;
         let view = if flat {
             crate::render::View::PreviewFlat
         } else {
@@ -102,11 +121,32 @@ impl VeneerApp {
         };
         let compiled = crate::codegen::compile(&self.document.graph, &CompileOptions::default())
             .map_err(|error| error.to_string())?;
-        let image =
-            crate::render::render_material(&gpu, &compiled, &view, size, self.preview.view.time)
-                .map_err(|error| error.to_string())?;
+        let image = crate::render::render_material_with(
+            &gpu,
+            &compiled,
+            &view,
+            size,
+            self.preview.view.time,
+            self.preview.look(),
+        )
+        .map_err(|error| error.to_string())?
+        .image;
         let png = image.to_png().map_err(|error| error.to_string())?;
         crate::fsutil::write_atomic(path, &png).map_err(|e| format!("{}: {e}", path.display()))
+    }
+
+    /// Bakes the document into a glTF file on the preview mesh; returns the files written.
+    fn export_gltf(&self, path: &Path, size: u32) -> Result<Vec<std::path::PathBuf>, String> {
+        let gpu = self.export_gpu()?;
+        let compiled = crate::codegen::compile(&self.document.graph, &CompileOptions::default())
+            .map_err(|error| error.to_string())?;
+        let settings = crate::bake::GltfSettings {
+            mesh: Some(self.preview.mesh.clone()),
+            size,
+            time: self.preview.view.time,
+        };
+        crate::bake::export_gltf(&gpu, &compiled, &settings, path, |_, _| {})
+            .map_err(|error| error.to_string())
     }
 }
 

@@ -61,6 +61,19 @@ impl Dialog {
                 );
                 frame.path_buttons(ui, "Export");
             }
+            Dialog::ExportGltf { path, size } => {
+                ui.heading("Export glTF");
+                ui.label("The material baked into the preview mesh's UV layout: base colour, metallic-roughness, occlusion, normal and emission maps (.glb, or .gltf with PNGs beside it)");
+                frame.path_field(ui, path);
+                ui.add(egui::Slider::new(size, 16..=4096).text("maps (px)"));
+                frame.path_buttons(ui, "Export");
+            }
+            Dialog::LoadEnvironment { path } => {
+                ui.heading("Light with an environment");
+                ui.label("An equirectangular HDR panorama (.hdr or .exr, twice as wide as high) lights metallic-roughness materials");
+                frame.path_field(ui, path);
+                frame.path_buttons(ui, "Load");
+            }
             Dialog::LoadMesh { path } => {
                 ui.heading("Preview on a mesh file");
                 ui.label(format!(

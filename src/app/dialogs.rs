@@ -54,8 +54,12 @@ pub enum Action {
         size: u32,
         flat: bool,
     },
+    /// Bake the material into a glTF 2.0 file on the preview mesh, maps `size` pixels.
+    ExportGltf { path: PathBuf, size: u32 },
     /// Show a mesh file in the preview.
     LoadMesh(String),
+    /// Light metallic-roughness previews with a panorama file.
+    LoadEnvironment(String),
     /// Save the unsaved changes, then go on if they were saved.
     SaveThen(Pending),
     /// Drop the unsaved changes and go on.
@@ -84,7 +88,14 @@ pub enum Dialog {
         size: u32,
         flat: bool,
     },
+    ExportGltf {
+        path: String,
+        size: u32,
+    },
     LoadMesh {
+        path: String,
+    },
+    LoadEnvironment {
         path: String,
     },
     /// Save as onto an existing file: asks before replacing it.
@@ -139,6 +150,14 @@ impl Dialog {
         }
     }
 
+    /// Bake the material into a glTF binary on the preview mesh.
+    pub fn export_gltf(document: &Document) -> Dialog {
+        Dialog::ExportGltf {
+            path: default_path(document, "glb"),
+            size: 1024,
+        }
+    }
+
     fn kind(&self) -> u64 {
         let mut hasher = std::collections::hash_map::DefaultHasher::new();
         std::mem::discriminant(self).hash(&mut hasher);
@@ -152,7 +171,9 @@ impl Dialog {
             | Dialog::SaveAs { path }
             | Dialog::ExportShader { path, .. }
             | Dialog::ExportPng { path, .. }
-            | Dialog::LoadMesh { path } => Some(path),
+            | Dialog::ExportGltf { path, .. }
+            | Dialog::LoadMesh { path }
+            | Dialog::LoadEnvironment { path } => Some(path),
             _ => None,
         }
     }
@@ -170,6 +191,11 @@ impl Dialog {
                 kind: "Meshes",
                 extensions: &crate::mesh::EXTENSIONS,
             },
+            Dialog::LoadEnvironment { .. } => Purpose::Pick {
+                title: "Light with an environment",
+                kind: "HDR panoramas",
+                extensions: &["hdr", "exr"],
+            },
             Dialog::SaveAs { .. } => Purpose::Save {
                 title: "Save graph as",
                 kind: "Veneer graph",
@@ -184,6 +210,11 @@ impl Dialog {
                 title: "Export PNG",
                 kind: "PNG image",
                 extension: "png",
+            },
+            Dialog::ExportGltf { .. } => Purpose::Save {
+                title: "Export glTF",
+                kind: "glTF binary",
+                extension: "glb",
             },
             _ => return None,
         })
@@ -220,7 +251,9 @@ impl Dialog {
                     match self {
                         // The browser asked before replacing a file.
                         Dialog::SaveAs { .. } => (None, Some(Action::SaveAs(path))),
-                        Dialog::Open { .. } | Dialog::LoadMesh { .. } => self.confirm(document),
+                        Dialog::Open { .. }
+                        | Dialog::LoadMesh { .. }
+                        | Dialog::LoadEnvironment { .. } => self.confirm(document),
                         // Exports go back to their options.
                         dialog => (Some(dialog), None),
                     }
@@ -338,8 +371,15 @@ impl Dialog {
                     flat: *flat,
                 }
             }
+            Dialog::ExportGltf { path, size } if !path.trim().is_empty() => Action::ExportGltf {
+                path: typed_path(path),
+                size: *size,
+            },
             Dialog::LoadMesh { path } if !path.trim().is_empty() => {
                 Action::LoadMesh(typed_path(path).display().to_string())
+            }
+            Dialog::LoadEnvironment { path } if !path.trim().is_empty() => {
+                Action::LoadEnvironment(typed_path(path).display().to_string())
             }
             Dialog::Replace(path) => Action::SaveAs(path.clone()),
             // The safe choice: keep the unsaved changes and stay.

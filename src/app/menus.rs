@@ -168,6 +168,9 @@ impl VeneerApp {
                 if shortcut_entry(ui, "Export PNG…", &EXPORT_PNG, true) {
                     self.dialog = Some(Dialog::export_png(&self.document));
                 }
+                if entry(ui, "Export glTF…", "", true) {
+                    self.dialog = Some(Dialog::export_gltf(&self.document));
+                }
             });
             ui.menu_button("Edit", |ui| {
                 if shortcut_entry(ui, "Undo", &UNDO, self.document.history.can_undo()) {

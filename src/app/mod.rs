@@ -220,6 +220,16 @@ impl VeneerApp {
         Ok(())
     }
 
+    /// Lights metallic-roughness previews with the panorama at `path`; returns its name.
+    pub fn load_environment(&mut self, path: &str) -> Result<String, String> {
+        let environment = crate::render::Environment::named(path).map_err(|e| e.to_string())?;
+        let name = environment.name.clone();
+        self.preview.environment = preview_worker::EnvironmentChoice(
+            (name != crate::render::SKY).then(|| Arc::new(environment)),
+        );
+        Ok(name)
+    }
+
     /// Replaces the document (after open, new, preset or recovery).
     fn load(&mut self, document: Document) {
         self.preview.follow(&document.graph.preview);

@@ -4,7 +4,9 @@
 //! keeps its own camera; while anything is dragged the preview draws drafts, and refines
 //! when the pointer is let go.
 
-use super::preview_worker::{MeshChoice, Request, Slot, TessellationInput, Worker};
+use super::preview_worker::{
+    EnvironmentChoice, MeshChoice, Request, Slot, TessellationInput, Worker,
+};
 use crate::graph::Preview;
 use crate::render::{LiveMaterialCode, MeshView, Projection, Quality};
 use egui::{Sense, TextureHandle, TextureOptions, Ui};
@@ -54,6 +56,9 @@ pub struct PreviewState {
     /// place of the plain mesh when present.
     pub prepared: Option<(String, Arc<crate::mesh::Mesh>)>,
     pub view: MeshView,
+    /// The environment lighting metallic-roughness materials (the sky until one is
+    /// opened).
+    pub environment: EnvironmentChoice,
     /// Show the albedo flat from above instead of lit on the mesh.
     pub flat: bool,
     pub playing: bool,
@@ -76,6 +81,7 @@ impl PreviewState {
             prepared: None,
             mesh: preview.mesh.clone(),
             view: MeshView::for_preview(preview),
+            environment: EnvironmentChoice::default(),
             flat: false,
             playing: false,
             cameras: BTreeMap::new(),
@@ -106,6 +112,20 @@ impl PreviewState {
         self.last_tick = None;
         self.cameras.clear();
         default_camera().apply(&mut self.view);
+    }
+
+    /// How a render of the preview shows its material: the preview's lighting,
+    /// environment, exposure and tone mapping.
+    pub fn look(&self) -> crate::render::MeshLook {
+        crate::render::MeshLook {
+            tone_map: self.view.tone_map,
+            exposure: self.view.exposure,
+            environment: self.environment.0.clone(),
+            environment_turn: self.view.environment_turn,
+            key_light: self.view.key_light,
+            backdrop: self.view.backdrop,
+            ..crate::render::MeshLook::default()
+        }
     }
 
     /// Puts the camera of what is shown back where it starts.
@@ -447,6 +467,7 @@ fn request(ui: &Ui, state: &PreviewState, material: MaterialFrame, rect: egui::R
         tessellation: material.tessellation,
         mesh: state.mesh_choice(),
         view: state.frame_view(),
+        environment: state.environment.clone(),
         size: (pixels.x.max(1.0) as u32, pixels.y.max(1.0) as u32),
         quality: if dragging {
             Quality::Draft

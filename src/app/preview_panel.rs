@@ -2,6 +2,7 @@
 //! fields and picking their sources, and the selected node's thumbnail.
 
 use super::*;
+use crate::render::{Backdrop, ToneMap};
 
 impl VeneerApp {
     /// The selected node's output, flat, above the inspector.
@@ -141,6 +142,7 @@ impl VeneerApp {
             );
         });
         self.surface_settings(ui);
+        self.lighting_settings(ui);
         fields::fields_panel(
             ui,
             &mut self.document.graph.preview.fields,
@@ -174,6 +176,78 @@ impl VeneerApp {
             graph: Arc::clone(graph),
             refinement: settings.refinement(),
         })
+    }
+
+    /// How metallic-roughness materials are lit and shown: the environment (the sky, or
+    /// a panorama file), its turn, the key light, exposure, tone mapper and backdrop.
+    fn lighting_settings(&mut self, ui: &mut Ui) {
+        if self.document.graph.shading != Shading::MetallicRoughness {
+            return;
+        }
+        ui.horizontal_wrapped(|ui| {
+            let lit_by = self
+                .preview
+                .environment
+                .0
+                .as_ref()
+                .map_or(crate::render::SKY.to_string(), |e| e.name.clone());
+            egui::ComboBox::from_id_salt("environment")
+                .selected_text(lit_by)
+                .show_ui(ui, |ui| {
+                    if ui
+                        .selectable_label(self.preview.environment.0.is_none(), crate::render::SKY)
+                        .clicked()
+                    {
+                        self.preview.environment = Default::default();
+                    }
+                    if ui.button("Environment file…").clicked() {
+                        self.dialog = Some(Dialog::LoadEnvironment {
+                            path: String::new(),
+                        });
+                    }
+                })
+                .response
+                .on_hover_text("the environment lighting the material: the procedural sky, or an equirectangular .hdr/.exr panorama");
+            let view = &mut self.preview.view;
+            ui.add(
+                egui::DragValue::new(&mut view.environment_turn)
+                    .speed(1.0)
+                    .range(-180.0..=180.0)
+                    .prefix("turn ")
+                    .suffix("°"),
+            )
+            .on_hover_text("turns the environment about the vertical axis");
+            ui.add(
+                egui::DragValue::new(&mut view.key_light)
+                    .speed(0.05)
+                    .range(0.0..=20.0)
+                    .prefix("key light "),
+            )
+            .on_hover_text("irradiance of the key light (0: the environment alone)");
+            ui.add(
+                egui::DragValue::new(&mut view.exposure)
+                    .speed(0.05)
+                    .range(-8.0..=8.0)
+                    .prefix("exposure ")
+                    .suffix(" EV"),
+            );
+            let tone_maps = [
+                (ToneMap::PbrNeutral, "PBR Neutral"),
+                (ToneMap::Aces, "ACES"),
+                (ToneMap::Agx, "AgX"),
+                (ToneMap::None, "no tone map"),
+            ];
+            choice(ui, "tone map", &mut view.tone_map, &tone_maps)
+                .on_hover_text("how scene light maps to the display: Khronos PBR Neutral keeps base colours true; ACES (fitted) and AgX are filmic");
+            let backdrops = [
+                (Backdrop::Blurred, "blurred"),
+                (Backdrop::Environment, "environment"),
+                (Backdrop::Colour, "colour"),
+            ];
+            ui.label("backdrop");
+            choice(ui, "backdrop", &mut view.backdrop, &backdrops)
+                .on_hover_text("what shows behind the mesh: the environment blurred or sharp, or the background colour");
+        });
     }
 
     /// The material's shading and alpha mode and the preview's adaptive tessellation.
@@ -329,4 +403,25 @@ impl VeneerApp {
             self.message = Some(format!("field {slot}: {} sources", field.sources.len()));
         }
     }
+}
+
+/// A combo box choosing `value` among `choices` (value, label), known by `id`.
+fn choice<T: Copy + PartialEq>(
+    ui: &mut Ui,
+    id: &str,
+    value: &mut T,
+    choices: &[(T, &str)],
+) -> egui::Response {
+    let shown = choices
+        .iter()
+        .find(|(option, _)| option == value)
+        .map_or("", |(_, label)| *label);
+    egui::ComboBox::from_id_salt(id)
+        .selected_text(shown)
+        .show_ui(ui, |ui| {
+            for (option, label) in choices {
+                ui.selectable_value(value, *option, *label);
+            }
+        })
+        .response
 }

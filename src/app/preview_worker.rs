@@ -8,7 +8,9 @@
 use super::drawing_thread::DrawingThread;
 use crate::graph::CheckedGraph;
 use crate::mesh::{Mesh, Refinement};
-use crate::render::{GpuContext, LiveMaterialCode, LiveRenderer, MeshView, Quality};
+use crate::render::{
+    Environment, EnvironmentMaps, GpuContext, LiveMaterialCode, LiveRenderer, MeshView, Quality,
+};
 use std::sync::mpsc::{Receiver, Sender, channel};
 use std::sync::{Arc, Condvar, Mutex};
 
@@ -59,6 +61,21 @@ impl PartialEq for TessellationInput {
     }
 }
 
+/// The environment lighting metallic-roughness materials: `None` for the procedural
+/// sky. Two choices are the same when they hold the same loaded environment.
+#[derive(Clone, Default)]
+pub struct EnvironmentChoice(pub Option<Arc<Environment>>);
+
+impl PartialEq for EnvironmentChoice {
+    fn eq(&self, other: &EnvironmentChoice) -> bool {
+        match (&self.0, &other.0) {
+            (Some(a), Some(b)) => Arc::ptr_eq(a, b),
+            (None, None) => true,
+            _ => false,
+        }
+    }
+}
+
 /// One frame to draw.
 #[derive(Clone, PartialEq)]
 pub struct Request {
@@ -69,6 +86,7 @@ pub struct Request {
     pub tessellation: Option<TessellationInput>,
     pub mesh: MeshChoice,
     pub view: MeshView,
+    pub environment: EnvironmentChoice,
     /// The preview's size in pixels (drafts draw at half of it).
     pub size: (u32, u32),
     pub quality: Quality,
@@ -156,6 +174,7 @@ fn run(mailbox: &(Mutex<Mailbox>, Condvar), drawn: &Sender<Drawn>, wake: impl Fn
     let mut renderers = [LiveRenderer::default(), LiveRenderer::default()];
     let mut primitives: [Option<(String, Arc<Mesh>)>; 2] = [None, None];
     let mut refined = Refinements::default();
+    let mut lit: Option<(EnvironmentChoice, Arc<EnvironmentMaps>)> = None;
     let mut idle: Option<(Slot, LiveMaterialCode)> = None;
     while let Some(task) = next_task(mailbox, &mut idle) {
         match task {
@@ -167,7 +186,8 @@ fn run(mailbox: &(Mutex<Mailbox>, Condvar), drawn: &Sender<Drawn>, wake: impl Fn
                     if let Some(input) = request.tessellation.clone() {
                         (request.mesh.key, mesh) = refined.mesh_for(&request, &input, mesh);
                     }
-                    draw(gpu, renderer, &request, &mesh)
+                    let maps = environment_maps(gpu, &mut lit, &request.environment)?;
+                    draw(gpu, renderer, &request, &mesh, &maps)
                 });
                 if image.is_ok() && request.quality == Quality::Full {
                     idle = Some((slot, request.material.clone()));
@@ -282,6 +302,27 @@ impl Refinements {
     }
 }
 
+/// The lighting maps of `choice`, derived only when the choice changes (the sky's are
+/// the device's own, derived once).
+fn environment_maps(
+    gpu: &GpuContext,
+    cache: &mut Option<(EnvironmentChoice, Arc<EnvironmentMaps>)>,
+    choice: &EnvironmentChoice,
+) -> Result<Arc<EnvironmentMaps>, String> {
+    if let Some((seen, maps)) = cache.as_ref()
+        && seen == choice
+    {
+        return Ok(Arc::clone(maps));
+    }
+    let maps = match &choice.0 {
+        None => gpu.sky(),
+        Some(environment) => EnvironmentMaps::new(gpu, environment).map(Arc::new),
+    }
+    .map_err(|error| error.to_string())?;
+    *cache = Some((choice.clone(), Arc::clone(&maps)));
+    Ok(maps)
+}
+
 /// The mesh `choice` names, making a primitive only when the name changes.
 fn resolve(cache: &mut Option<(String, Arc<Mesh>)>, choice: &MeshChoice) -> Arc<Mesh> {
     if let Some(mesh) = &choice.mesh {
@@ -305,6 +346,7 @@ fn draw(
     renderer: &mut LiveRenderer,
     request: &Request,
     mesh: &Mesh,
+    environment: &Arc<EnvironmentMaps>,
 ) -> Result<egui::ColorImage, String> {
     let (size, mut pixels) = renderer
         .render(
@@ -314,6 +356,7 @@ fn draw(
             &request.mesh.key,
             mesh,
             &request.view,
+            environment,
             request.size,
             request.quality,
         )

@@ -6,7 +6,10 @@ use clap::Args;
 use std::path::PathBuf;
 use veneer::codegen::{CompileOptions, Detail};
 use veneer::graph::Tessellation;
-use veneer::render::{FlatRect, GpuContext, MeshLook, Relief, ToneMap, View, render_material_with};
+use veneer::render::{
+    Backdrop, DEFAULT_KEY_LIGHT, Environment, FlatRect, GpuContext, MeshLook, Relief, SKY, ToneMap,
+    View, render_material_with,
+};
 
 /// How much noise detail to compute.
 #[derive(Clone, Copy, clap::ValueEnum)]
@@ -64,6 +67,36 @@ pub struct RenderArgs {
     /// Exposure of a metallic-roughness material in stops (light × 2^EV).
     #[arg(long, value_name = "EV", default_value_t = 0.0, allow_hyphen_values = true, value_parser = parse_exposure)]
     exposure: f32,
+    /// The environment lighting a metallic-roughness material: `sky` (procedural) or an
+    /// equirectangular .hdr or .exr panorama.
+    #[arg(long, value_name = "sky|FILE", default_value = SKY)]
+    environment: String,
+    /// Turn the environment about the vertical axis by DEG degrees.
+    #[arg(long, value_name = "DEG", default_value_t = 0.0, allow_hyphen_values = true, value_parser = parse_turn)]
+    environment_turn: f32,
+    /// Irradiance of the key light on a metallic-roughness material (0: the
+    /// environment alone).
+    #[arg(long, value_name = "E", default_value_t = DEFAULT_KEY_LIGHT, value_parser = parse_key_light)]
+    key_light: f32,
+    /// What shows behind a metallic-roughness material.
+    #[arg(long, value_enum, default_value = "blurred")]
+    backdrop: Backdrop,
+}
+
+/// `--environment-turn`: finite degrees, within ±3600.
+fn parse_turn(text: &str) -> Result<f32, String> {
+    match text.trim().parse::<f32>() {
+        Ok(degrees) if degrees.is_finite() && degrees.abs() <= 3600.0 => Ok(degrees),
+        _ => Err(format!("'{text}' is not a turn from -3600 to 3600 degrees")),
+    }
+}
+
+/// `--key-light`: finite, from 0 to 10⁴.
+fn parse_key_light(text: &str) -> Result<f32, String> {
+    match text.trim().parse::<f32>() {
+        Ok(irradiance) if (0.0..=1.0e4).contains(&irradiance) => Ok(irradiance),
+        _ => Err(format!("'{text}' is not a key light from 0 to 10000")),
+    }
 }
 
 /// `--exposure`: finite, within ±32 stops.
@@ -126,11 +159,19 @@ pub fn run(args: RenderArgs) -> Result<(), Failure> {
         Some(rect) => View::Flat(rect),
         None => View::Mesh(args.mesh),
     };
+    // A panorama that does not load fails before anything renders.
+    let environment = (args.environment != SKY)
+        .then(|| Environment::named(&args.environment).map(std::sync::Arc::new))
+        .transpose()?;
     let gpu = GpuContext::new()?;
     let look = MeshLook {
         relief: args.relief,
         tone_map: args.tone_map,
         exposure: args.exposure,
+        environment,
+        environment_turn: args.environment_turn,
+        key_light: args.key_light,
+        backdrop: args.backdrop,
     };
     let rendered = render_material_with(&gpu, &compiled, &view, args.size, args.time, look)?;
     if let Some(tessellated) = rendered.tessellated {

@@ -58,6 +58,8 @@ pub struct GpuContext {
     pub queue: wgpu::Queue,
     /// Errors wgpu raised outside any error scope (wgpu's default is to panic on them).
     uncaptured: Arc<Mutex<Vec<String>>>,
+    /// The procedural sky's lighting maps, derived when first asked for.
+    sky: Mutex<Option<Arc<super::EnvironmentMaps>>>,
 }
 
 impl GpuContext {
@@ -72,7 +74,24 @@ impl GpuContext {
     pub fn with_limits(
         narrow: impl FnOnce(wgpu::Limits) -> wgpu::Limits,
     ) -> Result<GpuContext, RenderError> {
-        let descriptor = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
+        Self::open(
+            wgpu::InstanceDescriptor::new_without_display_handle_from_env(),
+            narrow,
+        )
+    }
+
+    /// Opens the best adapter of `backends` alone, whatever `WGPU_BACKEND` says (for
+    /// checks that must hold on Vulkan and GL alike).
+    pub fn on_backends(backends: wgpu::Backends) -> Result<GpuContext, RenderError> {
+        let mut descriptor = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
+        descriptor.backends = backends;
+        Self::open(descriptor, |limits| limits)
+    }
+
+    fn open(
+        descriptor: wgpu::InstanceDescriptor,
+        narrow: impl FnOnce(wgpu::Limits) -> wgpu::Limits,
+    ) -> Result<GpuContext, RenderError> {
         let instance = wgpu::Instance::new(descriptor);
         let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
             power_preference: wgpu::PowerPreference::HighPerformance,
@@ -103,6 +122,7 @@ impl GpuContext {
             device,
             queue,
             uncaptured,
+            sky: Mutex::default(),
         })
     }
 
@@ -118,7 +138,26 @@ impl GpuContext {
             device,
             queue,
             uncaptured: Arc::default(),
+            sky: Mutex::default(),
         }
+    }
+
+    /// The lighting maps of the procedural sky, the default environment of
+    /// metallic-roughness materials (derived on this device the first time).
+    pub fn sky(&self) -> Result<Arc<super::EnvironmentMaps>, RenderError> {
+        let mut sky = self
+            .sky
+            .lock()
+            .map_err(|_| RenderError::Gpu("the sky's maps were lost to a panic".into()))?;
+        if let Some(maps) = sky.as_ref() {
+            return Ok(Arc::clone(maps));
+        }
+        let maps = Arc::new(super::EnvironmentMaps::new(
+            self,
+            &super::Environment::sky(),
+        )?);
+        *sky = Some(Arc::clone(&maps));
+        Ok(maps)
     }
 
     /// Fails with the errors wgpu raised outside error scopes since the last call (out of

@@ -125,13 +125,34 @@ pub fn render_material(
 }
 
 /// How a mesh render shows its material, beyond what the graph says.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct MeshLook {
     /// How the height shows.
     pub relief: Relief,
     /// Metallic-roughness materials: the tone mapper and the exposure in stops.
     pub tone_map: super::ToneMap,
     pub exposure: f32,
+    /// Metallic-roughness materials: the environment lighting them (`None`: the
+    /// procedural sky), turned about +y by `environment_turn` degrees, the key light's
+    /// irradiance, and what shows behind the mesh.
+    pub environment: Option<std::sync::Arc<super::Environment>>,
+    pub environment_turn: f32,
+    pub key_light: f32,
+    pub backdrop: super::Backdrop,
+}
+
+impl Default for MeshLook {
+    fn default() -> MeshLook {
+        MeshLook {
+            relief: Relief::default(),
+            tone_map: super::ToneMap::default(),
+            exposure: 0.0,
+            environment: None,
+            environment_turn: 0.0,
+            key_light: super::DEFAULT_KEY_LIGHT,
+            backdrop: super::Backdrop::default(),
+        }
+    }
 }
 
 /// A rendered image and how its mesh was tessellated.
@@ -177,6 +198,9 @@ pub fn render_material_with(
             mesh_view.time = time;
             mesh_view.tone_map = look.tone_map;
             mesh_view.exposure = look.exposure;
+            mesh_view.environment_turn = look.environment_turn;
+            mesh_view.key_light = look.key_light;
+            mesh_view.backdrop = look.backdrop;
             let tessellated = match preview.tessellation {
                 Some(settings) if module.uses.displacement && relief == Relief::Displaced => {
                     let before = mesh.triangle_count();
@@ -196,7 +220,10 @@ pub fn render_material_with(
                 }
                 _ => None,
             };
-            let renderer = MeshRenderer::with_relief(gpu, &module.source, module.uses, relief)?;
+            let mut renderer = MeshRenderer::with_relief(gpu, &module.source, module.uses, relief)?;
+            if let Some(environment) = &look.environment {
+                renderer.light_with(gpu, environment)?;
+            }
             let pixels = renderer.render(gpu, &mesh, &mesh_view, size)?;
             Ok(Rendered {
                 image: Image {

@@ -7,7 +7,7 @@
 use super::draft_scale::DraftScale;
 use super::mesh_view::{MeshPipeline, MeshTarget, MeshView};
 use super::readback::read_texture;
-use super::{GpuContext, GpuMesh, RenderError};
+use super::{EnvironmentMaps, GpuContext, GpuMesh, RenderError};
 use crate::codegen::SurfaceUse;
 use crate::mesh::Mesh;
 use std::sync::Arc;
@@ -71,8 +71,9 @@ pub struct LiveRenderer {
 
 impl LiveRenderer {
     /// Draws `mesh` (uploaded again only when `mesh_key` changes) with `material` and
-    /// `params` as `view` sees it, at `size` pixels (a draft at a fraction of them);
-    /// returns the image's size and its RGBA8 rows from the top.
+    /// `params` as `view` sees it, lit by `environment` where the material's shading
+    /// asks for one, at `size` pixels (a draft at a fraction of them); returns the
+    /// image's size and its RGBA8 rows from the top.
     #[allow(clippy::too_many_arguments)]
     pub fn render(
         &mut self,
@@ -82,6 +83,7 @@ impl LiveRenderer {
         mesh_key: &str,
         mesh: &Mesh,
         view: &MeshView,
+        environment: &Arc<EnvironmentMaps>,
         size: (u32, u32),
         quality: Quality,
     ) -> Result<((u32, u32), Vec<u8>), RenderError> {
@@ -90,6 +92,11 @@ impl LiveRenderer {
             Quality::Full => (size.0.max(1), size.1.max(1)),
         };
         self.prepare(gpu, material, quality)?;
+        if let Some((_, built)) = &mut self.pipelines
+            && let Some(pipeline) = &mut built[quality as usize]
+        {
+            pipeline.set_environment(&gpu.device, environment);
+        }
         let blends = self.pipeline(quality).is_some_and(MeshPipeline::blends);
         if self
             .mesh
@@ -124,7 +131,7 @@ impl LiveRenderer {
             .create_command_encoder(&wgpu::CommandEncoderDescriptor {
                 label: Some("live preview"),
             });
-        pipeline.encode(&mut encoder, target, gpu_mesh, view.background);
+        pipeline.encode(&mut encoder, target, gpu_mesh, view);
         gpu.queue.submit([encoder.finish()]);
         let pixels = read_texture(gpu, &target.resolved, 4)?;
         gpu.take_errors()?;

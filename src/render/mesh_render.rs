@@ -6,9 +6,10 @@ use super::mesh_view::{MeshPipeline, MeshTarget, MeshView, Relief, SAMPLES, tile
 use super::readback::read_texture;
 use super::tiles::{image_buffer, paste, tile_size, tiles};
 use super::timing::time_pass;
-use super::{GpuContext, GpuMesh, RenderError};
+use super::{Environment, EnvironmentMaps, GpuContext, GpuMesh, RenderError};
 use crate::codegen::SurfaceUse;
 use crate::mesh::Mesh;
+use std::sync::Arc;
 
 /// Bytes per pixel of a mesh image on its way out: RGBA8, and as much again encoding it.
 const PIXEL_BYTES: u64 = 8;
@@ -29,23 +30,34 @@ impl MeshRenderer {
         MeshRenderer::with_relief(gpu, material_wgsl, uses, Relief::Displaced)
     }
 
-    /// [`MeshRenderer::new`] showing the material's height as `relief`.
+    /// [`MeshRenderer::new`] showing the material's height as `relief`; a
+    /// metallic-roughness material is lit by the procedural sky.
     pub fn with_relief(
         gpu: &GpuContext,
         material_wgsl: &str,
         uses: SurfaceUse,
         relief: Relief,
     ) -> Result<MeshRenderer, RenderError> {
-        Ok(MeshRenderer {
-            pipeline: MeshPipeline::with_relief(
-                &gpu.device,
-                material_wgsl,
-                0,
-                uses,
-                SAMPLES,
-                relief,
-            )?,
-        })
+        let mut pipeline =
+            MeshPipeline::with_relief(&gpu.device, material_wgsl, 0, uses, SAMPLES, relief)?;
+        if pipeline.needs_environment() {
+            pipeline.set_environment(&gpu.device, &gpu.sky()?);
+        }
+        Ok(MeshRenderer { pipeline })
+    }
+
+    /// Lights a metallic-roughness material with `environment` instead of the sky (its
+    /// maps derived on the GPU first; Blinn-Phong materials ignore it).
+    pub fn light_with(
+        &mut self,
+        gpu: &GpuContext,
+        environment: &Environment,
+    ) -> Result<(), RenderError> {
+        if self.pipeline.needs_environment() {
+            let maps = Arc::new(EnvironmentMaps::new(gpu, environment)?);
+            self.pipeline.set_environment(&gpu.device, &maps);
+        }
+        Ok(())
     }
 
     /// Renders `mesh` into a size×size RGBA8 image (rows from the top), tile by tile
@@ -93,8 +105,7 @@ impl MeshRenderer {
                 .create_command_encoder(&wgpu::CommandEncoderDescriptor {
                     label: Some("mesh"),
                 });
-            self.pipeline
-                .encode(&mut encoder, &target, &mesh, view.background);
+            self.pipeline.encode(&mut encoder, &target, &mesh, view);
             gpu.queue.submit([encoder.finish()]);
             let pixels: Vec<[u8; 4]> =
                 bytemuck::pod_collect_to_vec(&read_texture(gpu, &target.resolved, 4)?);
@@ -116,7 +127,7 @@ impl MeshRenderer {
             let target = MeshTarget::new(&gpu.device, size, size);
             self.pipeline.write_view(&gpu.queue, view, 1.0);
             self.pipeline
-                .encode_timed(encoder, &target, mesh, view.background, writes);
+                .encode_timed(encoder, &target, mesh, view, writes);
         })
     }
 }

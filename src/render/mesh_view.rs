@@ -1,11 +1,13 @@
-//! The lit mesh render: a material on a mesh with Blinn-Phong lighting. The pieces
-//! (uploaded mesh, pipeline, offscreen target) are shared by headless renders and the
-//! editor's live preview.
+//! The lit mesh render: a material on a mesh, lit as its graph's shading says (the
+//! seeds' Blinn-Phong, or metallic-roughness under the key light and an environment).
+//! The pieces (uploaded mesh, pipeline, offscreen target) are shared by headless renders
+//! and the editor's live preview.
 
-use super::{GpuMesh, RenderError, ToneMap, shader_source};
+use super::{EnvironmentMaps, GpuMesh, RenderError, ToneMap, shader_source};
 use crate::codegen::{AlphaUse, SurfaceUse};
-use crate::graph::Preview;
+use crate::graph::{Preview, Shading};
 use glam::{Mat4, Vec3};
+use std::sync::Arc;
 
 /// How the camera looks at the mesh.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -46,6 +48,31 @@ pub struct MeshView {
     pub tone_map: ToneMap,
     /// Exposure of metallic-roughness materials in stops (light × 2^exposure).
     pub exposure: f32,
+    /// Irradiance of the key light on metallic-roughness materials (0: the environment
+    /// alone lights them).
+    pub key_light: f32,
+    /// How far the environment is turned about +y, in degrees (seen from above,
+    /// counter-clockwise).
+    pub environment_turn: f32,
+    /// What shows behind a metallic-roughness material.
+    pub backdrop: Backdrop,
+}
+
+/// The key light's irradiance on metallic-roughness materials by default (linear units;
+/// a white Lambertian surface facing it reflects 2.5 / π ≈ 0.8).
+pub const DEFAULT_KEY_LIGHT: f32 = 2.5;
+
+/// What shows behind a metallic-roughness material (Blinn-Phong materials, and the flat
+/// 2D view, always show the background colour).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
+pub enum Backdrop {
+    /// The view's flat background colour.
+    Colour = 0,
+    /// The environment as it is.
+    Environment = 1,
+    /// The environment blurred (as a GGX lobe of roughness 0.35 reflects it).
+    #[default]
+    Blurred = 2,
 }
 
 impl MeshView {
@@ -70,6 +97,9 @@ impl MeshView {
             unlit: false,
             tone_map: ToneMap::default(),
             exposure: 0.0,
+            key_light: DEFAULT_KEY_LIGHT,
+            environment_turn: 0.0,
+            backdrop: Backdrop::default(),
         }
     }
 
@@ -140,8 +170,11 @@ impl MeshView {
     }
 
     fn uniform(&self, aspect: f32, crop: Mat4) -> MeshViewUniform {
+        let view_projection = crop * self.view_projection(aspect);
+        let turn = self.environment_turn.to_radians();
         MeshViewUniform {
-            view_projection: (crop * self.view_projection(aspect)).to_cols_array_2d(),
+            view_projection: view_projection.to_cols_array_2d(),
+            inverse_view_projection: view_projection.inverse().to_cols_array_2d(),
             eye: self.eye().extend(1.0).to_array(),
             light_direction: Vec3::from(self.light)
                 .normalize_or(Vec3::Y)
@@ -153,6 +186,9 @@ impl MeshView {
             unlit: u32::from(self.unlit),
             tone_map: self.tone_map as u32,
             exposure_scale: self.exposure.exp2(),
+            key_light: self.key_light,
+            environment_turn: [turn.cos(), turn.sin()],
+            backdrop: self.backdrop as u32,
             padding: [0; 3],
         }
     }
@@ -181,6 +217,7 @@ pub fn tile_crop(size: u32, origin: (u32, u32), extent: (u32, u32)) -> Mat4 {
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
 struct MeshViewUniform {
     view_projection: [[f32; 4]; 4],
+    inverse_view_projection: [[f32; 4]; 4],
     eye: [f32; 4],
     light_direction: [f32; 4],
     placement: [f32; 4],
@@ -189,6 +226,9 @@ struct MeshViewUniform {
     unlit: u32,
     tone_map: u32,
     exposure_scale: f32,
+    key_light: f32,
+    environment_turn: [f32; 2],
+    backdrop: u32,
     padding: [u32; 3],
 }
 
@@ -211,8 +251,16 @@ const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 pub(super) const SAMPLES: u32 = 4;
 const ENTRY_POINTS: &str = concat!(
     include_str!("../../shaders/render_tangent.wgsl"),
-    include_str!("../../shaders/tone_map.wgsl"),
     include_str!("../../shaders/render_mesh.wgsl")
+);
+/// The seeds' lighting.
+const BLINN_PHONG: &str = include_str!("../../shaders/render_lit_blinn_phong.wgsl");
+/// Metallic-roughness lighting, its environment and the backdrop behind it.
+const METALLIC_ROUGHNESS: &str = concat!(
+    include_str!("../../shaders/tone_map.wgsl"),
+    include_str!("../../shaders/render_environment.wgsl"),
+    include_str!("../../shaders/render_lit_metallic_roughness.wgsl"),
+    include_str!("../../shaders/render_backdrop.wgsl")
 );
 const DISPLACED_ENTRY_POINT: &str = include_str!("../../shaders/render_mesh_displaced.wgsl");
 
@@ -282,7 +330,9 @@ impl MeshTarget {
 /// One draw of a mesh pipeline: its pipeline and the bind groups made for its layout.
 struct MeshPass {
     pipeline: wgpu::RenderPipeline,
-    view_group: wgpu::BindGroup,
+    /// The view uniform, with the environment's maps for metallic-roughness shading
+    /// (made by [`MeshPipeline::set_environment`]; until then `None`).
+    view_group: Option<wgpu::BindGroup>,
     params_group: Option<wgpu::BindGroup>,
     /// Whether it blends, drawing the triangles back to front.
     blended: bool,
@@ -339,6 +389,10 @@ impl PassKind {
 /// then the see-through parts back to front over them).
 pub struct MeshPipeline {
     passes: Vec<MeshPass>,
+    /// Metallic-roughness shading: what draws the backdrop, and its bind group.
+    backdrop: Option<(wgpu::RenderPipeline, Option<wgpu::BindGroup>)>,
+    /// The environment the bind groups hold (metallic-roughness shading).
+    environment: Option<Arc<EnvironmentMaps>>,
     view: wgpu::Buffer,
     params: Option<wgpu::Buffer>,
 }
@@ -399,36 +453,80 @@ impl MeshPipeline {
         let view = uniform("mesh view", std::mem::size_of::<MeshViewUniform>());
         let params = (param_slots > 0).then(|| uniform("material parameters", param_slots * 16));
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let lit_by_environment = uses.shading == Shading::MetallicRoughness;
+        let mut modules = Vec::new();
         let passes = PassKind::for_alpha(uses.alpha)
             .iter()
             .map(|kind| {
-                let pipeline = pass_pipeline(device, material_wgsl, uses, samples, relief, kind);
-                let group = |index, buffer: &wgpu::Buffer| {
-                    device.create_bind_group(&wgpu::BindGroupDescriptor {
-                        label: Some("mesh uniforms"),
-                        layout: &pipeline.get_bind_group_layout(index),
-                        entries: &[wgpu::BindGroupEntry {
-                            binding: 0,
-                            resource: buffer.as_entire_binding(),
-                        }],
-                    })
-                };
+                let module = mesh_module(device, material_wgsl, uses, relief, kind);
+                let pipeline = pass_pipeline(device, &module, uses, samples, relief, kind);
+                modules.push(module);
                 MeshPass {
-                    view_group: group(0, &view),
-                    params_group: params.as_ref().map(|buffer| group(1, buffer)),
+                    view_group: (!lit_by_environment)
+                        .then(|| view_group(device, &pipeline, &view, None)),
+                    params_group: params.as_ref().map(|buffer| {
+                        device.create_bind_group(&wgpu::BindGroupDescriptor {
+                            label: Some("material parameters"),
+                            layout: &pipeline.get_bind_group_layout(1),
+                            entries: &[wgpu::BindGroupEntry {
+                                binding: 0,
+                                resource: buffer.as_entire_binding(),
+                            }],
+                        })
+                    }),
                     pipeline,
                     blended: kind.blended,
                 }
             })
             .collect();
+        let backdrop =
+            lit_by_environment.then(|| (backdrop_pipeline(device, &modules[0], samples), None));
         if let Some(error) = pollster::block_on(scope.pop()) {
             return Err(RenderError::Gpu(format!("mesh render pipeline: {error}")));
         }
         Ok(MeshPipeline {
             passes,
+            backdrop,
+            environment: None,
             view,
             params,
         })
+    }
+
+    /// Whether the pipeline's shading samples an environment: metallic-roughness
+    /// pipelines draw nothing until [`MeshPipeline::set_environment`] gives them one.
+    pub fn needs_environment(&self) -> bool {
+        self.backdrop.is_some()
+    }
+
+    /// Lights a metallic-roughness pipeline with `environment` (nothing to do when it is
+    /// lit by it already, or when its shading is Blinn-Phong).
+    pub fn set_environment(&mut self, device: &wgpu::Device, environment: &Arc<EnvironmentMaps>) {
+        if !self.needs_environment()
+            || self
+                .environment
+                .as_ref()
+                .is_some_and(|lit| Arc::ptr_eq(lit, environment))
+        {
+            return;
+        }
+        for pass in &mut self.passes {
+            pass.view_group = Some(view_group(
+                device,
+                &pass.pipeline,
+                &self.view,
+                Some((environment, MESH_MAPS)),
+            ));
+        }
+        if let Some((pipeline, group)) = &mut self.backdrop {
+            *group = Some(view_group(
+                device,
+                pipeline,
+                &self.view,
+                Some((environment, BACKDROP_MAPS)),
+            ));
+        }
+        self.environment = Some(Arc::clone(environment));
     }
 
     /// Whether the pipeline blends: meshes it draws need uploading with
@@ -477,15 +575,16 @@ impl MeshPipeline {
         }
     }
 
-    /// Records a pass that clears `target` to `background` and draws `mesh` into it.
+    /// Records a pass that clears `target` to `view`'s background, draws its backdrop
+    /// (metallic-roughness shading) and draws `mesh` into it.
     pub fn encode(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         target: &MeshTarget,
         mesh: &GpuMesh,
-        background: [f32; 3],
+        view: &MeshView,
     ) {
-        self.encode_timed(encoder, target, mesh, background, None);
+        self.encode_timed(encoder, target, mesh, view, None);
     }
 
     /// [`MeshPipeline::encode`] with timestamps written at the pass's beginning and end
@@ -495,10 +594,10 @@ impl MeshPipeline {
         encoder: &mut wgpu::CommandEncoder,
         target: &MeshTarget,
         mesh: &GpuMesh,
-        background: [f32; 3],
+        view: &MeshView,
         timestamp_writes: Option<wgpu::RenderPassTimestampWrites<'_>>,
     ) {
-        let [r, g, b] = background.map(f64::from);
+        let [r, g, b] = view.background.map(f64::from);
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("mesh"),
             color_attachments: &[Some(wgpu::RenderPassColorAttachment {
@@ -528,9 +627,20 @@ impl MeshPipeline {
             timestamp_writes,
             ..Default::default()
         });
+        if let Some((pipeline, Some(group))) = &self.backdrop
+            && view.backdrop != Backdrop::Colour
+            && !view.unlit
+        {
+            pass.set_pipeline(pipeline);
+            pass.set_bind_group(0, group, &[]);
+            pass.draw(0..3, 0..1);
+        }
         for draw in &self.passes {
+            let Some(view_group) = &draw.view_group else {
+                continue;
+            };
             pass.set_pipeline(&draw.pipeline);
-            pass.set_bind_group(0, &draw.view_group, &[]);
+            pass.set_bind_group(0, view_group, &[]);
             if let Some(group) = &draw.params_group {
                 pass.set_bind_group(1, group, &[]);
             }
@@ -543,36 +653,132 @@ impl MeshPipeline {
     }
 }
 
+/// The shader module of one pass of a material: the material, the entry points and the
+/// lighting of its shading, specialised by constants for what it uses and what the pass
+/// draws.
+fn mesh_module(
+    device: &wgpu::Device,
+    material_wgsl: &str,
+    uses: SurfaceUse,
+    relief: Relief,
+    kind: &PassKind,
+) -> wgpu::ShaderModule {
+    let displaced = uses.displacement && relief == Relief::Displaced;
+    // Height work (vertex displacement, relief shading) only for materials with a
+    // height, normal perturbation only for materials with a bump, a height or a tilt.
+    let constants = format!(
+        "const VENEER_HEIGHT: bool = {};\nconst VENEER_RELIEF: bool = {};\nconst VENEER_NORMAL: bool = {};\n{}",
+        uses.displacement,
+        uses.perturbs_normal(),
+        uses.normal,
+        kind.constants()
+    );
+    let lighting = match uses.shading {
+        Shading::BlinnPhong => BLINN_PHONG,
+        Shading::MetallicRoughness => METALLIC_ROUGHNESS,
+    };
+    let displacement = if displaced { DISPLACED_ENTRY_POINT } else { "" };
+    let entry_points = format!("{constants}{ENTRY_POINTS}\n{lighting}\n{displacement}");
+    device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some("mesh render"),
+        source: wgpu::ShaderSource::Wgsl(shader_source(material_wgsl, &entry_points).into()),
+    })
+}
+
+/// The environment's bindings (render_environment.wgsl) the mesh passes read: the
+/// prefiltered chain, the irradiance, the BRDF table and the sampler.
+const MESH_MAPS: &[u32] = &[2, 3, 4, 5];
+/// The bindings the backdrop reads: the panorama, the prefiltered chain, the sampler.
+const BACKDROP_MAPS: &[u32] = &[1, 2, 5];
+
+/// The bind group of a pipeline's view uniform and, for metallic-roughness shading, the
+/// environment's maps it reads (`bindings` of render_environment.wgsl's).
+fn view_group(
+    device: &wgpu::Device,
+    pipeline: &wgpu::RenderPipeline,
+    view: &wgpu::Buffer,
+    environment: Option<(&EnvironmentMaps, &[u32])>,
+) -> wgpu::BindGroup {
+    let mut entries = vec![wgpu::BindGroupEntry {
+        binding: 0,
+        resource: view.as_entire_binding(),
+    }];
+    if let Some((maps, bindings)) = environment {
+        let texture = |binding, view| wgpu::BindGroupEntry {
+            binding,
+            resource: wgpu::BindingResource::TextureView(view),
+        };
+        let all = [
+            texture(1, &maps.source),
+            texture(2, &maps.prefiltered),
+            texture(3, &maps.irradiance),
+            texture(4, &maps.brdf),
+            wgpu::BindGroupEntry {
+                binding: 5,
+                resource: wgpu::BindingResource::Sampler(&maps.sampler),
+            },
+        ];
+        entries.extend(
+            all.into_iter()
+                .filter(|entry| bindings.contains(&entry.binding)),
+        );
+    }
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("mesh view"),
+        layout: &pipeline.get_bind_group_layout(0),
+        entries: &entries,
+    })
+}
+
+/// The pipeline that draws a metallic-roughness material's backdrop, behind the mesh.
+fn backdrop_pipeline(
+    device: &wgpu::Device,
+    module: &wgpu::ShaderModule,
+    samples: u32,
+) -> wgpu::RenderPipeline {
+    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some("backdrop"),
+        layout: None,
+        vertex: wgpu::VertexState {
+            module,
+            entry_point: Some("veneer_backdrop_vertex"),
+            compilation_options: Default::default(),
+            buffers: &[],
+        },
+        primitive: wgpu::PrimitiveState::default(),
+        depth_stencil: Some(wgpu::DepthStencilState {
+            format: DEPTH_FORMAT,
+            depth_write_enabled: Some(false),
+            depth_compare: Some(wgpu::CompareFunction::Always),
+            stencil: Default::default(),
+            bias: Default::default(),
+        }),
+        multisample: wgpu::MultisampleState {
+            count: samples,
+            ..Default::default()
+        },
+        fragment: Some(wgpu::FragmentState {
+            module,
+            entry_point: Some("veneer_backdrop_fragment"),
+            compilation_options: Default::default(),
+            targets: &[Some(COLOR_FORMAT.into())],
+        }),
+        multiview_mask: None,
+        cache: None,
+    })
+}
+
 /// The pipeline of one pass of a material: `kind` says which fragments it draws and
 /// whether it blends; back faces are culled only where the material is opaque.
 fn pass_pipeline(
     device: &wgpu::Device,
-    material_wgsl: &str,
+    module: &wgpu::ShaderModule,
     uses: SurfaceUse,
     samples: u32,
     relief: Relief,
     kind: &PassKind,
 ) -> wgpu::RenderPipeline {
     let displaced = uses.displacement && relief == Relief::Displaced;
-    // Height work (vertex displacement, relief shading) only for materials with a
-    // height, normal perturbation only for materials with a bump, a height or a tilt.
-    let constants = format!(
-        "const VENEER_HEIGHT: bool = {};\nconst VENEER_RELIEF: bool = {};\nconst VENEER_NORMAL: bool = {};\nconst VENEER_METALLIC_ROUGHNESS: bool = {};\n{}",
-        uses.displacement,
-        uses.perturbs_normal(),
-        uses.normal,
-        uses.shading == crate::graph::Shading::MetallicRoughness,
-        kind.constants()
-    );
-    let entry_points = if displaced {
-        format!("{constants}{ENTRY_POINTS}\n{DISPLACED_ENTRY_POINT}")
-    } else {
-        format!("{constants}{ENTRY_POINTS}")
-    };
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some("mesh render"),
-        source: wgpu::ShaderSource::Wgsl(shader_source(material_wgsl, &entry_points).into()),
-    });
     let blend = kind.blended.then_some(wgpu::BlendState {
         color: wgpu::BlendComponent {
             src_factor: wgpu::BlendFactor::SrcAlpha,
@@ -590,7 +796,7 @@ fn pass_pipeline(
         label: Some("mesh render"),
         layout: None,
         vertex: wgpu::VertexState {
-            module: &module,
+            module,
             entry_point: Some(if displaced {
                 "veneer_mesh_vertex_displaced"
             } else {
@@ -615,7 +821,7 @@ fn pass_pipeline(
             ..Default::default()
         },
         fragment: Some(wgpu::FragmentState {
-            module: &module,
+            module,
             entry_point: Some("veneer_mesh_fragment"),
             compilation_options: Default::default(),
             targets: &[Some(wgpu::ColorTargetState {

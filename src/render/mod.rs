@@ -3,6 +3,7 @@
 
 mod context;
 mod draft_scale;
+mod environment;
 mod flat;
 mod gpu_mesh;
 mod image;
@@ -19,6 +20,9 @@ mod uv_bake;
 
 pub use context::{GpuContext, RenderError};
 pub use draft_scale::DraftScale;
+pub use environment::{
+    Environment, EnvironmentError, EnvironmentMaps, SKY, direction_of, equirect_uv,
+};
 pub use flat::{FlatChannels, FlatRect, FlatRenderer, albedo_to_rgb8, flat_points};
 pub use gpu_mesh::GpuMesh;
 pub use image::{
@@ -27,7 +31,10 @@ pub use image::{
 };
 pub use live::{LiveMaterialCode, LiveRenderer, Quality};
 pub use mesh_render::MeshRenderer;
-pub use mesh_view::{COLOR_FORMAT, MeshPipeline, MeshTarget, MeshView, Projection, Relief};
+pub use mesh_view::{
+    Backdrop, COLOR_FORMAT, DEFAULT_KEY_LIGHT, MeshPipeline, MeshTarget, MeshView, Projection,
+    Relief,
+};
 pub use tessellation::{Tessellated, tessellate};
 pub use thumbnails::{AtlasLayout, ThumbnailRenderer};
 pub use tiles::{ensure_memory, tile_size};

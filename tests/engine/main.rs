@@ -19,6 +19,7 @@ mod graph_files;
 mod hostile_cli;
 mod hostile_files;
 mod hostile_scale;
+mod image_based_lighting;
 mod limits;
 mod lint;
 mod meshes;

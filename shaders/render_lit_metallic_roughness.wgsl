@@ -1,0 +1,60 @@
+//! Metallic-roughness lighting: Cook-Torrance GGX for the key light, split-sum
+//! image-based lighting from the environment (render_environment.wgsl), emission, then
+//! exposure, the tone mapper and sRGB encoding.
+
+const VENEER_PI: f32 = 3.14159265358979;
+
+// Cook-Torrance GGX (Trowbridge-Reitz distribution, Smith height-correlated
+// visibility, Schlick Fresnel) of the key light, as glTF 2.0's appendix B gives it,
+// with a Lambert diffuse for the dielectric part; radiance towards the eye per unit
+// light, cos θ included.
+fn veneer_ggx_light(n: vec3f, v: vec3f, l: vec3f, base: vec3f, metallic: f32, roughness: f32) -> vec3f {
+    let h = normalize(l + v);
+    let n_l = max(dot(n, l), 0.0);
+    let n_v = max(dot(n, v), 1.0e-4);
+    let n_h = max(dot(n, h), 0.0);
+    let v_h = max(dot(v, h), 0.0);
+    let alpha = max(roughness * roughness, 1.0e-3);
+    let alpha2 = alpha * alpha;
+    let f0 = mix(vec3f(0.04), base, metallic);
+    let fresnel = f0 + (1.0 - f0) * pow(1.0 - v_h, 5.0);
+    let d = n_h * n_h * (alpha2 - 1.0) + 1.0;
+    let distribution = alpha2 / (VENEER_PI * d * d);
+    let visibility = 0.5 / max(n_l * sqrt(n_v * n_v * (1.0 - alpha2) + alpha2) + n_v * sqrt(n_l * n_l * (1.0 - alpha2) + alpha2), 1.0e-8);
+    let diffuse = (1.0 - fresnel) * (1.0 - metallic) * base / VENEER_PI;
+    return (diffuse + fresnel * distribution * visibility) * n_l;
+}
+
+// What the environment reflects towards v (split sum, Karis 2013): prefiltered radiance
+// along the mirror direction times F0's directional albedo from the BRDF table, and
+// the irradiance times the diffuse share the specular leaves.
+fn veneer_image_based_light(n: vec3f, v: vec3f, base: vec3f, metallic: f32, roughness: f32) -> vec3f {
+    let n_v = max(dot(n, v), 1.0e-4);
+    let f0 = mix(vec3f(0.04), base, metallic);
+    let scale_bias = veneer_environment_brdf(n_v, roughness);
+    let specular_albedo = f0 * scale_bias.x + scale_bias.y;
+    let specular = veneer_environment_specular(reflect(-v, n), roughness) * specular_albedo;
+    let diffuse = veneer_environment_irradiance(n) * base * (1.0 - metallic) * (1.0 - specular_albedo);
+    return diffuse + specular;
+}
+
+// The sRGB transfer function (linear light to the encoded value a display shows).
+fn veneer_srgb_encode(linear: vec3f) -> vec3f {
+    let c = clamp(linear, vec3f(0.0), vec3f(1.0));
+    return select(1.055 * pow(c, vec3f(1.0 / 2.4)) - 0.055, 12.92 * c, c <= vec3f(0.0031308));
+}
+
+// Scene-linear light to the display: exposure, tone mapper, sRGB.
+fn veneer_display(light: vec3f) -> vec3f {
+    let view = veneer_mesh_view;
+    return veneer_srgb_encode(veneer_tone_map(light * view.exposure_scale, view.tone_map));
+}
+
+fn veneer_shade(material: VeneerMaterial, n: vec3f, v: vec3f, l: vec3f) -> vec3f {
+    let base = clamp(material.albedo, vec3f(0.0), vec3f(1.0));
+    let metallic = clamp(material.metallic, 0.0, 1.0);
+    let roughness = clamp(material.roughness, 0.0, 1.0);
+    let direct = veneer_ggx_light(n, v, l, base, metallic, roughness) * veneer_mesh_view.key_light;
+    let ambient = veneer_image_based_light(n, v, base, metallic, roughness) * clamp(material.occlusion, 0.0, 1.0);
+    return veneer_display(direct + ambient + material.emission * material.emission_strength);
+}
