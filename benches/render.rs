@@ -2,7 +2,9 @@
 //! - the flat render of the wood preset's generated WGSL against seed 000's wood
 //!   written by hand as one function (the shader a programmer would have written);
 //! - graph → validated WGSL against naga's parse + validate of the same text alone;
-//! - the CPU evaluator in f32 against f64.
+//! - the CPU evaluator in f32 against f64;
+//! - a metallic-roughness material lit by image-based lighting against the same graph
+//!   under the seeds' Blinn-Phong lighting, and deriving an environment's maps.
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
@@ -249,8 +251,80 @@ fn huge_ramps(c: &mut Criterion) {
     group.finish();
 }
 
+/// What image-based lighting costs: a 512² frame of `wood_polished` on the sphere with
+/// metallic-roughness shading (GGX key light, split-sum environment, tone mapping) against
+/// the same graph shaded Blinn-Phong (baseline); then deriving the maps of the
+/// procedural sky (512 × 256) and of a 2048 × 1024 panorama.
+fn image_based_lighting(c: &mut Criterion) {
+    use veneer::render::{Environment, EnvironmentMaps, GpuMesh, MeshRenderer, MeshView};
+    let gpu = GpuContext::new().expect("a wgpu adapter");
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/graphs/wood_polished.ron");
+    let graph = veneer::graph::load(std::path::Path::new(path)).expect("preset");
+    let mesh = veneer::mesh::primitive("sphere").expect("the sphere");
+    let uploaded = GpuMesh::new(&gpu.device, &mesh);
+    let view = MeshView::for_preview(&graph.preview);
+    let mut group = c.benchmark_group(format!(
+        "image-based lighting on {}",
+        gpu.adapter_description()
+    ));
+    group.sample_size(20);
+    for (label, shading) in [
+        (
+            "512² frame, Blinn-Phong (baseline)",
+            veneer::graph::Shading::BlinnPhong,
+        ),
+        (
+            "512² frame, metallic-roughness with IBL",
+            veneer::graph::Shading::MetallicRoughness,
+        ),
+    ] {
+        let graph = veneer::graph::Graph {
+            shading,
+            ..graph.clone()
+        };
+        let module = veneer::codegen::compile(&graph, &CompileOptions::default())
+            .expect("compiles")
+            .module;
+        let renderer = MeshRenderer::new(&gpu, &module.source, module.uses).expect("pipeline");
+        group.bench_function(label, |b| {
+            b.iter_custom(|iterations| {
+                (0..iterations)
+                    .map(|_| {
+                        renderer
+                            .frame_time(&gpu, &uploaded, &view, 512)
+                            .expect("renders")
+                    })
+                    .sum()
+            })
+        });
+    }
+    let panorama = Environment::from_fn("bench", 2048, |d| {
+        glam::Vec3::new(1.0 + d.y, 0.5 + 0.5 * d.x, 0.2 + d.z * d.z)
+    });
+    for (label, environment) in [
+        ("derive the sky's maps (512 × 256)", Environment::sky()),
+        ("derive a 2048 × 1024 panorama's maps", panorama),
+    ] {
+        group.bench_function(label, |b| {
+            b.iter(|| {
+                let maps = EnvironmentMaps::new(&gpu, &environment).expect("maps");
+                // Until the GPU has finished deriving them.
+                gpu.device
+                    .poll(wgpu::PollType::Wait {
+                        submission_index: None,
+                        timeout: None,
+                    })
+                    .expect("the GPU finishes");
+                black_box(maps)
+            })
+        });
+    }
+    group.finish();
+}
+
 criterion_group!(
     benches,
+    image_based_lighting,
     flat_render,
     compile,
     cpu_eval,

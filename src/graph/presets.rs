@@ -3,7 +3,7 @@
 use super::Graph;
 
 /// Every preset: its file stem and RON text.
-pub const PRESETS: [(&str, &str); 22] = [
+pub const PRESETS: [(&str, &str); 23] = [
     ("wood", include_str!("../../graphs/wood.ron")),
     ("marble", include_str!("../../graphs/marble.ron")),
     (
@@ -71,6 +71,7 @@ pub const PRESETS: [(&str, &str); 22] = [
         "rusted_metal",
         include_str!("../../graphs/rusted_metal.ron"),
     ),
+    ("lava_glow", include_str!("../../graphs/lava_glow.ron")),
     (
         "thesis_brick",
         include_str!("../../graphs/thesis_brick.ron"),

@@ -300,3 +300,56 @@ fn metallic_roughness_renders_match_a_hand_written_ggx_integral_of_the_environme
         }
     }
 }
+
+#[test]
+fn the_cli_lights_with_a_panorama_file_and_refuses_what_is_not_one() {
+    let dir = crate::support::temp_dir("environment_cli");
+    let render = |name: &str, extra: &[&str]| {
+        let output = dir.join(name);
+        let graph = crate::support::root("graphs/marble_polished.ron");
+        let mut args = vec![
+            "render",
+            graph.to_str().unwrap(),
+            "--size",
+            "32",
+            "-o",
+            output.to_str().unwrap(),
+        ];
+        args.extend_from_slice(extra);
+        (crate::support::run_veneer(&args), output)
+    };
+    let (sky, sky_png) = render("sky.png", &[]);
+    assert!(
+        sky.status.success(),
+        "{}",
+        String::from_utf8_lossy(&sky.stderr)
+    );
+    let panorama = crate::support::root("tests/environments/red_wall.hdr");
+    let (lit, lit_png) = render("lit.png", &["--environment", panorama.to_str().unwrap()]);
+    assert!(
+        lit.status.success(),
+        "{}",
+        String::from_utf8_lossy(&lit.stderr)
+    );
+    assert_ne!(
+        std::fs::read(&sky_png).unwrap(),
+        std::fs::read(&lit_png).unwrap()
+    );
+    let not_a_panorama = crate::support::root("tests/snapshots/wood.png");
+    let (refused, refused_png) = render(
+        "refused.png",
+        &["--environment", not_a_panorama.to_str().unwrap()],
+    );
+    let message = String::from_utf8_lossy(&refused.stderr);
+    assert_eq!(refused.status.code(), Some(1), "{message}");
+    assert!(
+        message.contains("wood.png") && message.contains(".hdr or .exr"),
+        "{message}"
+    );
+    assert!(
+        !refused_png.exists(),
+        "nothing is written for a refused environment"
+    );
+    let (negative, _) = render("negative.png", &["--key-light", "-1"]);
+    assert_eq!(negative.status.code(), Some(1));
+}
