@@ -1,6 +1,7 @@
 //! Derives the image-based lighting maps from an environment panorama, one full-target
 //! triangle per map level: the GGX-prefiltered specular chain (split-sum, n = v = r),
 //! the diffuse irradiance (over π) and the split-sum BRDF table (scale, bias of F0).
+//! Follows ggx.wgsl (its GGX terms and panorama mapping).
 
 struct VeneerBake {
     target_size: vec2f,
@@ -18,23 +19,10 @@ struct VeneerBake {
 @group(0) @binding(1) var veneer_bake_source: texture_2d<f32>;
 @group(0) @binding(2) var veneer_bake_sampler: sampler;
 
-const VENEER_BAKE_PI: f32 = 3.14159265358979;
-
 @vertex
 fn veneer_bake_vertex(@builtin(vertex_index) index: u32) -> @builtin(position) vec4f {
     let corner = vec2f(f32((index << 1u) & 2u), f32(index & 2u));
     return vec4f(corner * 2.0 - 1.0, 0.0, 1.0);
-}
-
-// The unit direction of panorama coordinates (v down from the top; see environment/mod.rs).
-fn veneer_bake_direction(uv: vec2f) -> vec3f {
-    let theta = uv.y * VENEER_BAKE_PI;
-    let phi = (uv.x - 0.5) * 2.0 * VENEER_BAKE_PI;
-    return vec3f(sin(theta) * sin(phi), cos(theta), -sin(theta) * cos(phi));
-}
-
-fn veneer_bake_uv(d: vec3f) -> vec2f {
-    return vec2f(0.5 + atan2(d.x, -d.z) / (2.0 * VENEER_BAKE_PI), acos(clamp(d.y, -1.0, 1.0)) / VENEER_BAKE_PI);
 }
 
 // The i-th of n points of the Hammersley set.
@@ -44,19 +32,13 @@ fn veneer_hammersley(i: u32, n: u32) -> vec2f {
 
 // A GGX-distributed half vector round `n` for roughness² `alpha`.
 fn veneer_ggx_half(xi: vec2f, alpha: f32, n: vec3f) -> vec3f {
-    let phi = 2.0 * VENEER_BAKE_PI * xi.x;
+    let phi = 2.0 * VENEER_PI * xi.x;
     let cos_theta = sqrt((1.0 - xi.y) / (1.0 + (alpha * alpha - 1.0) * xi.y));
     let sin_theta = sqrt(1.0 - cos_theta * cos_theta);
     let up = select(vec3f(1.0, 0.0, 0.0), vec3f(0.0, 0.0, 1.0), abs(n.z) < 0.999);
     let tangent = normalize(cross(up, n));
     let bitangent = cross(n, tangent);
     return normalize(tangent * (sin_theta * cos(phi)) + bitangent * (sin_theta * sin(phi)) + n * cos_theta);
-}
-
-fn veneer_ggx_distribution(n_h: f32, alpha: f32) -> f32 {
-    let alpha2 = alpha * alpha;
-    let d = n_h * n_h * (alpha2 - 1.0) + 1.0;
-    return alpha2 / (VENEER_BAKE_PI * d * d);
 }
 
 fn veneer_bake_uv_here(position: vec4f) -> vec2f {
@@ -69,12 +51,12 @@ fn veneer_bake_uv_here(position: vec4f) -> vec2f {
 // Colbert 2008), so a few hundred samples leave no noise.
 @fragment
 fn veneer_bake_prefilter(@builtin(position) position: vec4f) -> @location(0) vec4f {
-    let n = veneer_bake_direction(veneer_bake_uv_here(position));
+    let n = veneer_equirect_direction(veneer_bake_uv_here(position));
     if veneer_bake.roughness <= 0.0 {
-        return vec4f(textureSampleLevel(veneer_bake_source, veneer_bake_sampler, veneer_bake_uv(n), 0.0).rgb, 1.0);
+        return vec4f(textureSampleLevel(veneer_bake_source, veneer_bake_sampler, veneer_equirect_uv(n), 0.0).rgb, 1.0);
     }
     let alpha = veneer_bake.roughness * veneer_bake.roughness;
-    let texel_solid_angle = 4.0 * VENEER_BAKE_PI / veneer_bake.source_texels;
+    let texel_solid_angle = 4.0 * VENEER_PI / veneer_bake.source_texels;
     var sum = vec3f(0.0);
     var weight = 0.0;
     for (var i = 0u; i < veneer_bake.samples; i += 1u) {
@@ -86,7 +68,7 @@ fn veneer_bake_prefilter(@builtin(position) position: vec4f) -> @location(0) vec
             let pdf = veneer_ggx_distribution(max(dot(n, h), 0.0), alpha) * 0.25;
             let sample_solid_angle = 1.0 / (f32(veneer_bake.samples) * pdf + 1.0e-6);
             let level = clamp(0.5 * log2(sample_solid_angle / texel_solid_angle) + 1.0, 0.0, veneer_bake.source_levels - 1.0);
-            sum += textureSampleLevel(veneer_bake_source, veneer_bake_sampler, veneer_bake_uv(l), level).rgb * n_l;
+            sum += textureSampleLevel(veneer_bake_source, veneer_bake_sampler, veneer_equirect_uv(l), level).rgb * n_l;
             weight += n_l;
         }
     }
@@ -98,28 +80,23 @@ fn veneer_bake_prefilter(@builtin(position) position: vec4f) -> @location(0) vec
 // and its cosine.
 @fragment
 fn veneer_bake_irradiance(@builtin(position) position: vec4f) -> @location(0) vec4f {
-    let n = veneer_bake_direction(veneer_bake_uv_here(position));
+    let n = veneer_equirect_direction(veneer_bake_uv_here(position));
     let level = i32(veneer_bake.irradiance_level);
     let size = textureDimensions(veneer_bake_source, level);
-    let step = vec2f(2.0 * VENEER_BAKE_PI / f32(size.x), VENEER_BAKE_PI / f32(size.y));
+    let step = vec2f(2.0 * VENEER_PI / f32(size.x), VENEER_PI / f32(size.y));
     var sum = vec3f(0.0);
     for (var row = 0u; row < size.y; row += 1u) {
         let v = (f32(row) + 0.5) / f32(size.y);
-        let row_solid_angle = step.x * step.y * sin(v * VENEER_BAKE_PI);
+        let row_solid_angle = step.x * step.y * sin(v * VENEER_PI);
         for (var column = 0u; column < size.x; column += 1u) {
-            let d = veneer_bake_direction(vec2f((f32(column) + 0.5) / f32(size.x), v));
+            let d = veneer_equirect_direction(vec2f((f32(column) + 0.5) / f32(size.x), v));
             let cosine = dot(n, d);
             if cosine > 0.0 {
                 sum += textureLoad(veneer_bake_source, vec2u(column, row), level).rgb * (cosine * row_solid_angle);
             }
         }
     }
-    return vec4f(sum / VENEER_BAKE_PI, 1.0);
-}
-
-fn veneer_smith_visibility(n_v: f32, n_l: f32, alpha: f32) -> f32 {
-    let alpha2 = alpha * alpha;
-    return 0.5 / max(n_l * sqrt(n_v * n_v * (1.0 - alpha2) + alpha2) + n_v * sqrt(n_l * n_l * (1.0 - alpha2) + alpha2), 1.0e-8);
+    return vec4f(sum / VENEER_PI, 1.0);
 }
 
 // The split-sum table: for n·v along x and roughness along y, the scale and bias of F0

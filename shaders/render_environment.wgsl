@@ -1,6 +1,6 @@
 //! The environment's maps as the mesh preview reads them (render/environment/maps.rs
-//! derives them): panoramas looked up by direction, turned about +y by the view's
-//! `environment_turn`.
+//! derives them): panoramas looked up by direction (ggx.wgsl's mapping), turned about +y
+//! by the view's `environment_turn`.
 
 @group(0) @binding(1) var veneer_environment_source: texture_2d<f32>;
 @group(0) @binding(2) var veneer_environment_prefiltered: texture_2d<f32>;
@@ -8,17 +8,12 @@
 @group(0) @binding(4) var veneer_environment_brdf_table: texture_2d<f32>;
 @group(0) @binding(5) var veneer_environment_sampler: sampler;
 
-const VENEER_ENVIRONMENT_PI: f32 = 3.14159265358979;
-
 // Panorama coordinates of mesh-space direction `d` (the top row looks up, the centre
 // column along −z before the turn).
 fn veneer_environment_uv(d: vec3f) -> vec2f {
     let turn = veneer_mesh_view.environment_turn;
     // The environment turned by θ: look up the direction turned by −θ.
-    let e = vec3f(turn.x * d.x - turn.y * d.z, d.y, turn.y * d.x + turn.x * d.z);
-    let u = 0.5 + atan2(e.x, -e.z) / (2.0 * VENEER_ENVIRONMENT_PI);
-    let v = acos(clamp(e.y / max(length(e), 1.0e-20), -1.0, 1.0)) / VENEER_ENVIRONMENT_PI;
-    return vec2f(u, v);
+    return veneer_equirect_uv(vec3f(turn.x * d.x - turn.y * d.z, d.y, turn.y * d.x + turn.x * d.z));
 }
 
 // Radiance arriving from `d`, prefiltered for GGX of `roughness` (0 sharp … 1 matte).

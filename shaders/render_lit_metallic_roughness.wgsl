@@ -2,8 +2,6 @@
 //! image-based lighting from the environment (render_environment.wgsl), emission, then
 //! exposure, the tone mapper and sRGB encoding.
 
-const VENEER_PI: f32 = 3.14159265358979;
-
 // Cook-Torrance GGX (Trowbridge-Reitz distribution, Smith height-correlated
 // visibility, Schlick Fresnel) of the key light, as glTF 2.0's appendix B gives it,
 // with a Lambert diffuse for the dielectric part; radiance towards the eye per unit
@@ -15,12 +13,10 @@ fn veneer_ggx_light(n: vec3f, v: vec3f, l: vec3f, base: vec3f, metallic: f32, ro
     let n_h = max(dot(n, h), 0.0);
     let v_h = max(dot(v, h), 0.0);
     let alpha = max(roughness * roughness, 1.0e-3);
-    let alpha2 = alpha * alpha;
     let f0 = mix(vec3f(0.04), base, metallic);
     let fresnel = f0 + (1.0 - f0) * pow(1.0 - v_h, 5.0);
-    let d = n_h * n_h * (alpha2 - 1.0) + 1.0;
-    let distribution = alpha2 / (VENEER_PI * d * d);
-    let visibility = 0.5 / max(n_l * sqrt(n_v * n_v * (1.0 - alpha2) + alpha2) + n_v * sqrt(n_l * n_l * (1.0 - alpha2) + alpha2), 1.0e-8);
+    let distribution = veneer_ggx_distribution(n_h, alpha);
+    let visibility = veneer_smith_visibility(n_v, n_l, alpha);
     let diffuse = (1.0 - fresnel) * (1.0 - metallic) * base / VENEER_PI;
     return (diffuse + fresnel * distribution * visibility) * n_l;
 }

@@ -257,6 +257,7 @@ const ENTRY_POINTS: &str = concat!(
 const BLINN_PHONG: &str = include_str!("../../shaders/render_lit_blinn_phong.wgsl");
 /// Metallic-roughness lighting, its environment and the backdrop behind it.
 const METALLIC_ROUGHNESS: &str = concat!(
+    include_str!("../../shaders/ggx.wgsl"),
     include_str!("../../shaders/tone_map.wgsl"),
     include_str!("../../shaders/render_environment.wgsl"),
     include_str!("../../shaders/render_lit_metallic_roughness.wgsl"),

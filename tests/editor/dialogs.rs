@@ -174,11 +174,12 @@ type Opener = (&'static str, fn(&mut Editor));
 fn escape_cancels_every_dialog() {
     let dir = scratch("dialog-escape");
     let mut harness = editor(&dir, None);
-    let openers: [Opener; 5] = [
+    let openers: [Opener; 6] = [
         ("Open graph", |h| press(h, egui::Key::O, true)),
         ("Save graph as", |h| press(h, egui::Key::S, true)),
         ("Export shader", |h| from_file_menu(h, "Export shader")),
         ("Export PNG", |h| from_file_menu(h, "Export PNG")),
+        ("Export glTF", |h| from_file_menu(h, "Export glTF")),
         ("Preview on a mesh file", mesh_dialog),
     ];
     for (heading, open) in openers {
@@ -232,6 +233,15 @@ fn enter_confirms_every_dialog() {
     assert!(!dialog_up(&harness, "Export PNG"));
     let bytes = std::fs::read(&png).expect("Enter exported the PNG");
     assert_eq!(&bytes[1..4], b"PNG");
+
+    // Export glTF: the material baked onto the preview mesh, one binary file.
+    from_file_menu(&mut harness, "Export glTF");
+    let glb = dir.join("wood.glb");
+    type_text(&mut harness, &glb.display().to_string());
+    key(&mut harness, egui::Key::Enter);
+    assert!(!dialog_up(&harness, "Export glTF"));
+    let bytes = std::fs::read(&glb).expect("Enter exported the glTF");
+    assert_eq!(&bytes[..4], b"glTF");
 
     // Load mesh.
     mesh_dialog(&mut harness);
@@ -619,4 +629,36 @@ fn discarded_work_is_not_offered_after_a_kill() {
         !dialog_up(&restarted, "Recover unsaved work?"),
         "discarded work was offered for recovery"
     );
+}
+
+#[test]
+fn a_metallic_roughness_graph_is_lit_by_an_environment_file_chosen_in_the_lighting_row() {
+    let dir = scratch("environment");
+    let graph = Path::new(env!("CARGO_MANIFEST_DIR")).join("graphs/rusted_metal.ron");
+    let mut harness = editor(&dir, Some(graph));
+    assert!(shows(&harness, "backdrop"), "the lighting row shows");
+    harness.get_by_value("sky").click_accesskit();
+    harness.run();
+    harness.get_by_label("Environment file…").click_accesskit();
+    harness.run();
+    assert!(dialog_up(&harness, "Light with an environment"));
+    let panorama = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/environments/red_wall.hdr");
+    type_text(&mut harness, &panorama.display().to_string());
+    key(&mut harness, egui::Key::Enter);
+    assert!(!dialog_up(&harness, "Light with an environment"));
+    assert!(
+        shows(&harness, "red_wall.hdr"),
+        "the lighting row names the panorama"
+    );
+
+    // A file that is not a panorama is refused with a message; the panorama stays.
+    harness.get_by_value("red_wall.hdr").click_accesskit();
+    harness.run();
+    harness.get_by_label("Environment file…").click_accesskit();
+    harness.run();
+    type_text(&mut harness, &dir.join("missing.hdr").display().to_string());
+    key(&mut harness, egui::Key::Enter);
+    assert!(dialog_up(&harness, "Veneer"), "a message says why");
+    key(&mut harness, egui::Key::Escape);
+    assert!(shows(&harness, "red_wall.hdr"));
 }

@@ -235,10 +235,11 @@ impl<'a> Baker<'a> {
         environment: &Environment,
         source_levels: u32,
     ) -> Result<Baker<'a>, RenderError> {
-        let module = gpu.shader(
-            "environment bake",
-            include_str!("../../../shaders/environment_bake.wgsl"),
-        )?;
+        let code = concat!(
+            include_str!("../../../shaders/ggx.wgsl"),
+            include_str!("../../../shaders/environment_bake.wgsl")
+        );
+        let module = gpu.shader("environment bake", code)?;
         let pipeline = |entry| {
             gpu.checked("environment bake pipeline", || {
                 fullscreen_pipeline(
