@@ -220,10 +220,13 @@ pub fn render_material_with(
                 }
                 _ => None,
             };
-            let mut renderer = MeshRenderer::with_relief(gpu, &module.source, module.uses, relief)?;
-            if let Some(environment) = &look.environment {
-                renderer.light_with(gpu, environment)?;
-            }
+            let renderer = MeshRenderer::lit(
+                gpu,
+                &module.source,
+                module.uses,
+                relief,
+                look.environment.as_deref(),
+            )?;
             let pixels = renderer.render(gpu, &mesh, &mesh_view, size)?;
             Ok(Rendered {
                 image: Image {

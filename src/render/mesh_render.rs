@@ -38,26 +38,29 @@ impl MeshRenderer {
         uses: SurfaceUse,
         relief: Relief,
     ) -> Result<MeshRenderer, RenderError> {
+        MeshRenderer::lit(gpu, material_wgsl, uses, relief, None)
+    }
+
+    /// [`MeshRenderer::with_relief`] lighting a metallic-roughness material with
+    /// `environment` (`None`: the procedural sky, whose maps the context keeps), its maps
+    /// derived on the GPU first; Blinn-Phong materials need none and derive none.
+    pub fn lit(
+        gpu: &GpuContext,
+        material_wgsl: &str,
+        uses: SurfaceUse,
+        relief: Relief,
+        environment: Option<&Environment>,
+    ) -> Result<MeshRenderer, RenderError> {
         let mut pipeline =
             MeshPipeline::with_relief(&gpu.device, material_wgsl, 0, uses, SAMPLES, relief)?;
         if pipeline.needs_environment() {
-            pipeline.set_environment(&gpu.device, &gpu.sky()?);
+            let maps = match environment {
+                Some(environment) => Arc::new(EnvironmentMaps::new(gpu, environment)?),
+                None => gpu.sky()?,
+            };
+            pipeline.set_environment(&gpu.device, &maps);
         }
         Ok(MeshRenderer { pipeline })
-    }
-
-    /// Lights a metallic-roughness material with `environment` instead of the sky (its
-    /// maps derived on the GPU first; Blinn-Phong materials ignore it).
-    pub fn light_with(
-        &mut self,
-        gpu: &GpuContext,
-        environment: &Environment,
-    ) -> Result<(), RenderError> {
-        if self.pipeline.needs_environment() {
-            let maps = Arc::new(EnvironmentMaps::new(gpu, environment)?);
-            self.pipeline.set_environment(&gpu.device, &maps);
-        }
-        Ok(())
     }
 
     /// Renders `mesh` into a size×size RGBA8 image (rows from the top), tile by tile
