@@ -731,6 +731,18 @@ fn view_group(
     })
 }
 
+/// The depth state of the mesh targets' pipelines: `compare` against the depth, which
+/// the pipeline writes or not.
+fn depth_test(write: bool, compare: wgpu::CompareFunction) -> wgpu::DepthStencilState {
+    wgpu::DepthStencilState {
+        format: DEPTH_FORMAT,
+        depth_write_enabled: Some(write),
+        depth_compare: Some(compare),
+        stencil: Default::default(),
+        bias: Default::default(),
+    }
+}
+
 /// The pipeline that draws a metallic-roughness material's backdrop, behind the mesh.
 fn backdrop_pipeline(
     device: &wgpu::Device,
@@ -747,13 +759,7 @@ fn backdrop_pipeline(
             buffers: &[],
         },
         primitive: wgpu::PrimitiveState::default(),
-        depth_stencil: Some(wgpu::DepthStencilState {
-            format: DEPTH_FORMAT,
-            depth_write_enabled: Some(false),
-            depth_compare: Some(wgpu::CompareFunction::Always),
-            stencil: Default::default(),
-            bias: Default::default(),
-        }),
+        depth_stencil: Some(depth_test(false, wgpu::CompareFunction::Always)),
         multisample: wgpu::MultisampleState {
             count: samples,
             ..Default::default()
@@ -810,13 +816,7 @@ fn pass_pipeline(
             cull_mode: (uses.alpha == AlphaUse::Opaque).then_some(wgpu::Face::Back),
             ..Default::default()
         },
-        depth_stencil: Some(wgpu::DepthStencilState {
-            format: DEPTH_FORMAT,
-            depth_write_enabled: Some(!kind.blended),
-            depth_compare: Some(wgpu::CompareFunction::Less),
-            stencil: Default::default(),
-            bias: Default::default(),
-        }),
+        depth_stencil: Some(depth_test(!kind.blended, wgpu::CompareFunction::Less)),
         multisample: wgpu::MultisampleState {
             count: samples,
             ..Default::default()
