@@ -20,13 +20,9 @@ use glam::{DVec2, DVec3};
 /// shape squeezed by at most that factor in one direction.
 pub(super) const CONE_DEGREES: f64 = 50.0;
 
-/// A triangle smaller than this fraction of the mean triangle is a sliver: its normal
-/// says little (marching tetrahedra leave many such) and its distortion shows in no
-/// texel, so it may face up to [`SLIVER_CONE_DEGREES`] from a chart's axis rather than
-/// make a chart of its own.
-pub(super) const SLIVER_AREA: f64 = 0.05;
-
-/// Half the opening angle of the cone for slivers, in degrees.
+/// Half the opening angle of the cone for slivers, in degrees: a sliver's normal says
+/// little and its distortion shows in no texel, so it may face further from a chart's
+/// axis rather than make a chart of its own.
 pub(super) const SLIVER_CONE_DEGREES: f64 = 80.0;
 
 /// Steps towards the narrowest cone holding a set of normals.
@@ -144,7 +140,7 @@ impl<'a> ChartBuilder<'a> {
         let mean = ChartBuilder::round_mean_of(geometry, triangles)?;
         let frame = Frame::across(mean.axis);
         let mut corners = Vec::with_capacity(triangles.len());
-        for &t in triangles.iter().filter(|&&t| !mean.is_sliver(t)) {
+        for &t in triangles.iter().filter(|&&t| !geometry.is_sliver(t)) {
             let normal = geometry.normals[t as usize];
             let height = normal.dot(mean.axis);
             if height < FACING_MEAN {
@@ -177,21 +173,16 @@ impl<'a> ChartBuilder<'a> {
         Some(ChartBuilder::new(geometry, best))
     }
 
-    /// Whether triangle `t` is a sliver.
-    fn is_sliver(&self, t: u32) -> bool {
-        self.geometry.double_areas[t as usize] < SLIVER_AREA * self.geometry.mean_double_area
-    }
-
     /// How far triangle `t` faces from the axis: 0 along it, 2 against it.
     pub fn deviation(&self, t: u32) -> f64 {
         // `+ 0.0` turns -0 into 0, so that the bits of deviations order like them.
         (1.0 - self.geometry.normals[t as usize].dot(self.axis)).max(0.0) + 0.0
     }
 
-    /// Whether triangle `t` faces within the cone round the axis (a sliver's wider cone
+    /// Whether triangle `t` faces within the cone round the axis (the wider sliver cone
     /// for a sliver).
     pub fn faces(&self, t: u32) -> bool {
-        let cos_cone = if self.is_sliver(t) {
+        let cos_cone = if self.geometry.is_sliver(t) {
             self.cos_sliver_cone
         } else {
             self.cos_cone

@@ -1,6 +1,7 @@
 //! What the atlas needs to know about a mesh's triangles: their unit normals and areas,
-//! which are degenerate, and which share an edge (by position, so that vertices a loader
-//! split at a normal seam still join their triangles).
+//! which are degenerate or slivers, and which share an edge that is no crease (by
+//! position, so that vertices a loader split at a normal seam still join their
+//! triangles).
 
 use super::super::Mesh;
 use glam::DVec3;
@@ -8,6 +9,16 @@ use glam::DVec3;
 /// Twice a triangle's area below this fraction of the squared size of the mesh makes it
 /// degenerate: its normal means nothing, so it joins no chart.
 const DEGENERATE_AREA: f64 = 1e-12;
+
+/// A triangle smaller than this fraction of the mean triangle is a sliver: its normal
+/// says little (marching tetrahedra leave many such) and its distortion shows in no
+/// texel, so charts may take it facing further from their axis.
+const SLIVER_AREA: f64 = 0.05;
+
+/// Triangles (neither a sliver) whose normals are further apart than this, in degrees,
+/// meet at a crease: charts grow across no crease, so that the faces of a box, say,
+/// are not folded flat into one chart.
+const CREASE_DEGREES: f64 = 60.0;
 
 /// Signed distances within this fraction of the size of the mesh count as touching, not
 /// overlapping, when charts are checked for overlaps.
@@ -75,8 +86,7 @@ impl Geometry {
             }
         }
         let mean_double_area = double_areas.iter().sum::<f64>() / (edge_count / 3).max(1) as f64;
-        let (neighbour_start, neighbour_list) = neighbours(mesh, &triangles, &degenerate);
-        Geometry {
+        let mut geometry = Geometry {
             positions,
             triangles,
             normals,
@@ -85,9 +95,22 @@ impl Geometry {
             size,
             mean_edge: edge_sum / edge_count.max(1) as f64,
             mean_double_area,
-            neighbour_start,
-            neighbour_list,
-        }
+            neighbour_start: Vec::new(),
+            neighbour_list: Vec::new(),
+        };
+        (geometry.neighbour_start, geometry.neighbour_list) = neighbours(mesh, &geometry);
+        geometry
+    }
+
+    /// Whether triangle `t` is a sliver.
+    pub fn is_sliver(&self, t: u32) -> bool {
+        self.double_areas[t as usize] < SLIVER_AREA * self.mean_double_area
+    }
+
+    /// Whether triangles `a` and `b` (sharing an edge) meet at a crease.
+    fn crease(&self, a: u32, b: u32) -> bool {
+        let cos = self.normals[a as usize].dot(self.normals[b as usize]);
+        !self.is_sliver(a) && !self.is_sliver(b) && cos < CREASE_DEGREES.to_radians().cos()
     }
 
     /// The triangles sharing an edge with triangle `t` (none for a degenerate one).
@@ -108,9 +131,11 @@ impl Geometry {
     }
 }
 
-/// Neighbours of every triangle that is not degenerate through its edges, vertices taken
-/// as equal when their positions are bit for bit; all pairs at a non-manifold edge.
-fn neighbours(mesh: &Mesh, triangles: &[[u32; 3]], degenerate: &[bool]) -> (Vec<usize>, Vec<u32>) {
+/// Neighbours of every triangle that is not degenerate through its edges that are no
+/// crease, vertices taken as equal when their positions are bit for bit; all pairs at a
+/// non-manifold edge.
+fn neighbours(mesh: &Mesh, geometry: &Geometry) -> (Vec<usize>, Vec<u32>) {
+    let (triangles, degenerate) = (&geometry.triangles, &geometry.degenerate);
     let mut first_at: std::collections::HashMap<[u32; 3], u32> = Default::default();
     // `+ 0.0` makes -0 and 0 one position.
     let canonical: Vec<u32> = (mesh.positions.iter().enumerate())
@@ -137,7 +162,11 @@ fn neighbours(mesh: &Mesh, triangles: &[[u32; 3]], degenerate: &[bool]) -> (Vec<
     let mut pairs: Vec<(u32, u32)> = Vec::with_capacity(edges.len());
     for run in edges.chunk_by(|x, y| (x.0, x.1) == (y.0, y.1)) {
         for x in run {
-            pairs.extend(run.iter().filter(|y| y.2 != x.2).map(|y| (x.2, y.2)));
+            pairs.extend(
+                (run.iter())
+                    .filter(|y| y.2 != x.2 && !geometry.crease(x.2, y.2))
+                    .map(|y| (x.2, y.2)),
+            );
         }
     }
     pairs.sort_unstable();

@@ -127,11 +127,6 @@ pub(super) fn pack(charts: &[Vec<[DVec2; 3]>], gap: f64, resolution: u32) -> Lay
         .unwrap_or_else(|| shelf::pack(&lying, gap))
 }
 
-/// The smallest-area box round `points` (see [`Turn::lying`]): its size.
-pub(super) fn lying_box_size(points: &[DVec2]) -> DVec2 {
-    Turn::lying(&convex_hull(points)).size
-}
-
 /// The corners of the convex hull of `points`, counter-clockwise (Andrew's monotone
 /// chain); a single point for coincident points, nothing for none.
 pub(super) fn convex_hull(points: &[DVec2]) -> Vec<DVec2> {
@@ -198,6 +193,11 @@ fn smallest_gap(boxes: &[(DVec2, DVec2)]) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The smallest-area box round `points` (see [`Turn::lying`]): its size.
+    fn lying_box_size(points: &[DVec2]) -> DVec2 {
+        Turn::lying(&convex_hull(points)).size
+    }
 
     #[test]
     fn the_smallest_box_of_a_tilted_rectangle_is_the_rectangle_itself() {

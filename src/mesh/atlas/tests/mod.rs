@@ -47,6 +47,17 @@ fn a_lumpy_scan_without_uvs_unwraps() {
 }
 
 #[test]
+fn a_cube_of_quads_unwraps_into_its_six_faces() {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/meshes/cube_quads.ply");
+    let cube = crate::mesh::load(std::path::Path::new(path)).expect("the cube loads");
+    let measured = checked_atlas(&cube, 256);
+    assert_eq!(measured.charts, 6, "{measured:?}");
+    // Flat faces keep their shapes exactly.
+    assert!(measured.mean_shape > 1.0 - 1e-6, "{measured:?}");
+    assert!(measured.coverage > 0.5, "{measured:?}");
+}
+
+#[test]
 fn more_charts_than_a_small_texture_holds_pack_closer_than_the_gap() {
     // 300 separate triangles and 16² texels: with 4 texels between them they cannot
     // fit, so they are packed in shelves with the gap narrowed, still apart.
