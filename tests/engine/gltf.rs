@@ -1,8 +1,9 @@
 //! glTF 2.0 export (`veneer bake --gltf`): every preset, on a mesh with a UV layout or
-//! given an automatic atlas (the `genus2` ones), exports to a `.glb` that the Khronos glTF-Validator (installed by `.ci/run`) passes with no errors
-//! and no warnings, `.gltf` with its files beside it too; the same bake gives the same
-//! bytes; a metallic-roughness material's channels land in the glTF's textures and
-//! factors where glTF reads them.
+//! given an automatic atlas (the `genus2` ones), exports to a `.glb` that the Khronos
+//! glTF-Validator (installed by `.ci/run`) passes with no errors and no warnings, `.gltf`
+//! with its files beside it too; the same bake gives the same bytes; a
+//! metallic-roughness material's channels land in the glTF's textures and factors where
+//! glTF reads them.
 
 use crate::support::{gpu, metallic_roughness, presets, root, stem, temp_dir};
 use std::path::{Path, PathBuf};

@@ -193,22 +193,49 @@ impl<'a> ChartBuilder<'a> {
     /// Adds triangle `t` if it faces within the cone and its projection overlaps none
     /// of the chart's; says whether it did.
     pub fn try_add(&mut self, t: u32) -> bool {
-        let geometry = self.geometry;
-        if !self.faces(t) {
+        let Some(corners) = self.laid_down(t) else {
             return false;
+        };
+        self.insert(t, corners);
+        true
+    }
+
+    /// Adds all of `triangles` if every one faces within the cone and overlaps none of
+    /// the chart's or of the others' (the chart is left as it was when not); says
+    /// whether it did.
+    pub fn try_add_all(&mut self, triangles: &[u32]) -> bool {
+        let mut batch = ChartBuilder::new(self.geometry, self.axis);
+        for &t in triangles {
+            if self.laid_down(t).is_none() || !batch.try_add(t) {
+                return false;
+            }
         }
+        for (t, corners) in batch.triangles.into_iter().zip(batch.placed) {
+            self.insert(t, corners);
+        }
+        true
+    }
+
+    /// Where triangle `t` lies in the chart's plane, if it faces within the cone and
+    /// overlaps none of the chart's triangles there.
+    fn laid_down(&self, t: u32) -> Option<[DVec2; 3]> {
+        if !self.faces(t) {
+            return None;
+        }
+        let geometry = self.geometry;
         let corners = (geometry.triangles[t as usize])
             .map(|v| self.frame.project(geometry.positions[v as usize]));
         let touch = geometry.touch_distance();
-        if (self.grid.near(&corners))
-            .any(|other| interiors_overlap(&self.placed[other as usize], &corners, touch))
-        {
-            return false;
-        }
+        let overlaps = (self.grid.near(&corners))
+            .any(|other| interiors_overlap(&self.placed[other as usize], &corners, touch));
+        (!overlaps).then_some(corners)
+    }
+
+    /// Takes triangle `t`, lying at `corners`.
+    fn insert(&mut self, t: u32, corners: [DVec2; 3]) {
         self.grid.insert(self.placed.len() as u32, &corners);
         self.placed.push(corners);
         self.triangles.push(t);
-        true
     }
 
     /// The triangles taken so far.

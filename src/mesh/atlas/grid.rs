@@ -64,7 +64,9 @@ pub(super) fn bounds(corners: &[DVec2; 3]) -> (DVec2, DVec2) {
 /// which a corner counts as on the edge's line). Triangles sharing an edge or a corner
 /// only touch.
 pub(super) fn interiors_overlap(a: &[DVec2; 3], b: &[DVec2; 3], touch: f64) -> bool {
-    !(separates(a, b, touch) || separates(b, a, touch))
+    let ((a_min, a_max), (b_min, b_max)) = (bounds(a), bounds(b));
+    let boxes_meet = a_min.cmplt(b_max).all() && b_min.cmplt(a_max).all();
+    boxes_meet && !(separates(a, b, touch) || separates(b, a, touch))
 }
 
 /// Whether the line of an edge of `a` has all of `b` on its outer side (or within
@@ -72,8 +74,12 @@ pub(super) fn interiors_overlap(a: &[DVec2; 3], b: &[DVec2; 3], touch: f64) -> b
 fn separates(a: &[DVec2; 3], b: &[DVec2; 3], touch: f64) -> bool {
     (0..3).any(|k| {
         let (from, edge) = (a[k], a[(k + 1) % 3] - a[k]);
-        let limit = touch * edge.length();
-        b.iter().all(|&p| edge.perp_dot(p - from) <= limit)
+        // Distance × edge length, compared squared: no square root.
+        let limit_squared = touch * touch * edge.length_squared();
+        b.iter().all(|&p| {
+            let outward = edge.perp_dot(p - from);
+            outward <= 0.0 || outward * outward <= limit_squared
+        })
     })
 }
 

@@ -1,6 +1,7 @@
-//! Merging neighbouring charts wherever the two fit one cone (round their mean normal)
-//! and lie flat without overlapping: smallest charts first, each into the neighbour it
-//! shares the most edges with that takes it, until no more merge.
+//! Merging neighbouring charts wherever the two fit one cone (the larger one's, or one
+//! round their mean normal or their narrowest cone) and lie flat without overlapping:
+//! smallest charts first, each into the neighbour it shares the most edges with that
+//! takes it, until no more merge.
 
 use super::charts::ChartBuilder;
 use super::geometry::Geometry;
@@ -36,27 +37,28 @@ pub(super) fn merge<'a>(
                 continue;
             };
             let neighbours = neighbours_by_shared_edges(geometry, &chart, &chart_of, index);
-            let into = neighbours.into_iter().find_map(|other| {
+            let into = neighbours.into_iter().find(|&other| {
                 let pair = (index, grown[index], other, grown[other]);
+                let Some(target) = charts[other].as_mut() else {
+                    return false;
+                };
                 if refused.contains(&pair) {
-                    return None;
+                    return false;
                 }
-                let merged = union(geometry, charts[other].as_ref()?, &chart);
-                if merged.is_none() {
+                let joined = join(geometry, target, &chart);
+                if !joined {
                     refused.insert(pair);
                 }
-                Some((other, merged?))
+                joined
             });
             match into {
-                Some((other, union)) => {
+                Some(other) => {
                     for &t in chart.triangles() {
                         chart_of[t as usize] = other;
                     }
-                    charts[other] = Some(union);
                     grown[other] += 1;
                     merged = true;
                 }
-
                 None => charts[index] = Some(chart),
             }
         }
@@ -88,24 +90,31 @@ fn neighbours_by_shared_edges(
     neighbours.into_iter().map(|(other, _)| other).collect()
 }
 
-/// One chart of the triangles of `a` and `b`, if they all face within the cone round
-/// their mean normal or else round the narrowest cone's axis, and lie flat without
-/// overlapping.
-fn union<'a>(
-    geometry: &'a Geometry,
-    a: &ChartBuilder<'a>,
-    b: &ChartBuilder<'a>,
-) -> Option<ChartBuilder<'a>> {
+/// Joins chart `b` to chart `a` if their triangles fit one chart: round `a`'s axis when
+/// `b`'s fit it (only `b`'s triangles are checked then), else round the mean normal of
+/// both or the axis of the narrowest cone holding their normals. Says whether it did.
+fn join<'a>(geometry: &'a Geometry, a: &mut ChartBuilder<'a>, b: &ChartBuilder<'a>) -> bool {
+    if a.try_add_all(b.triangles()) {
+        return true;
+    }
     let both: Vec<u32> = a.triangles().iter().chain(b.triangles()).copied().collect();
-    let mean = ChartBuilder::round_mean_of(geometry, &both)?;
-    // The cone first: it is cheap and refuses most.
-    let mut builder = if both.iter().all(|&t| mean.faces(t)) {
-        mean
-    } else {
-        let narrowest = ChartBuilder::round_narrowest_cone_of(geometry, &both)?;
-        both.iter()
-            .all(|&t| narrowest.faces(t))
-            .then_some(narrowest)?
+    let Some(mean) = ChartBuilder::round_mean_of(geometry, &both) else {
+        return false;
     };
-    both.iter().all(|&t| builder.try_add(t)).then_some(builder)
+    // The cone first: it is cheap and refuses most.
+    let builder = if both.iter().all(|&t| mean.faces(t)) {
+        Some(mean)
+    } else {
+        ChartBuilder::round_narrowest_cone_of(geometry, &both)
+            .filter(|narrowest| both.iter().all(|&t| narrowest.faces(t)))
+    };
+    let Some(mut builder) = builder else {
+        return false;
+    };
+    if both.iter().all(|&t| builder.try_add(t)) {
+        *a = builder;
+        true
+    } else {
+        false
+    }
 }

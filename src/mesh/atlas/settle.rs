@@ -12,7 +12,7 @@ use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 
 /// How many times charts are regrown.
-const ROUNDS: usize = 4;
+const ROUNDS: usize = 2;
 
 /// What lying one chart radius (of a disc of the chart's area, or of the mean chart's
 /// if larger) from its centre costs,
@@ -97,6 +97,9 @@ fn regrow<'a>(geometry: &'a Geometry, charts: &[ChartBuilder<'a>]) -> Vec<ChartB
         regrowing.push(chart_regrowing);
     }
     let mut taken = vec![false; count];
+    // The last chart to queue each triangle: a chart queues a triangle at one cost, so
+    // once is enough.
+    let mut queued_by = vec![u32::MAX; count];
     while let Some(Reverse((_, chart, t))) = queue.pop() {
         let chart_regrowing = &mut regrowing[chart as usize];
         if taken[t as usize] || !chart_regrowing.builder.try_add(t) {
@@ -104,7 +107,8 @@ fn regrow<'a>(geometry: &'a Geometry, charts: &[ChartBuilder<'a>]) -> Vec<ChartB
         }
         taken[t as usize] = true;
         for &next in geometry.neighbours(t) {
-            if !taken[next as usize] {
+            if !taken[next as usize] && queued_by[next as usize] != chart {
+                queued_by[next as usize] = chart;
                 queue.push(Reverse((chart_regrowing.cost(next), chart, next)));
             }
         }
