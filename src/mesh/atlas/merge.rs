@@ -1,7 +1,7 @@
-//! Merging neighbouring charts wherever the two fit one cone (the larger one's, or one
-//! round their mean normal or their narrowest cone) and lie flat without overlapping:
-//! smallest charts first, each into the neighbour it shares the most edges with that
-//! takes it, until no more merge.
+//! Merging neighbouring charts wherever the two fit one cone (the cone of the chart
+//! joined, or one round their mean normal or round their narrowest cone) and lie flat
+//! without overlapping: smallest charts first, each into the neighbour it shares the
+//! most edges with that takes it, until no more merge.
 
 use super::charts::ChartBuilder;
 use super::geometry::Geometry;

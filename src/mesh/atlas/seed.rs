@@ -25,7 +25,8 @@ pub(super) fn grow_charts<'a>(geometry: &'a Geometry, taken: &mut [bool]) -> Vec
 
 /// The chart grown from `seed`: first round the seed's normal, then once more round
 /// the mean normal of what that gave (a better centred cone), keeping the larger.
-/// `visited` marks with `stamp` + 1 what this chart's growth has queued.
+/// `visited` marks what each growth has queued with a number of its own, made from
+/// `stamp` (one per chart).
 fn chart_from<'a>(
     geometry: &'a Geometry,
     seed: u32,

@@ -15,9 +15,8 @@ use std::collections::BinaryHeap;
 const ROUNDS: usize = 2;
 
 /// What lying one chart radius (of a disc of the chart's area, or of the mean chart's
-/// if larger) from its centre costs,
-/// against facing away from its axis (1 − cos of the angle): 0.2 is as much as facing
-/// 37° away.
+/// if larger) from its centre costs, against facing away from its axis (1 − cos of the
+/// angle): 0.2 is as much as facing 37° away.
 const COMPACTNESS: f64 = 0.2;
 
 /// The charts after [`ROUNDS`] rounds of regrowing.

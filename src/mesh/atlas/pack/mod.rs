@@ -3,8 +3,8 @@
 //! the gap too). Each chart is first turned to the smallest rectangle round it (over
 //! the directions of its convex hull's edges). Charts are packed by their shapes on a
 //! grid of cells ([`raster`]), so that they interlock and small ones fill the holes of
-//! large ones; when more charts than the grid can hold come, by their rectangles in
-//! shelves ([`shelf`]).
+//! large ones, unless their rectangles laid in shelves ([`shelf`]) fit at a larger
+//! scale (as when more charts come than the grid holds).
 
 mod bitmap;
 mod raster;
@@ -114,17 +114,21 @@ fn turned(direction: DVec2, point: DVec2) -> DVec2 {
 }
 
 /// Lays out charts, each given by its triangles in its plane (counter-clockwise), with
-/// at least `gap` between them, packed by shape on a grid of `resolution`² cells
-/// (cells no larger than the texels the gap counts, so the gap holds), or by rectangles
-/// when they do not fit the grid at any scale (with the gap narrowed as far as it takes
-/// to fit).
+/// at least `gap` between them: by shape on a grid of `resolution`² cells (cells no
+/// larger than the texels the gap counts, so the gap holds), unless their rectangles in
+/// shelves reach a scale the grid does not (then with the gap narrowed as far as it
+/// takes for the charts to fit at all).
 pub(super) fn pack(charts: &[Vec<[DVec2; 3]>], gap: f64, resolution: u32) -> Layout {
     let hulls: Vec<Vec<DVec2>> = (charts.iter())
         .map(|triangles| convex_hull(triangles.as_flattened()))
         .collect();
     let lying: Vec<Turn> = hulls.iter().map(|hull| Turn::lying(hull)).collect();
-    raster::pack(charts, &hulls, &lying, gap, resolution)
-        .unwrap_or_else(|| shelf::pack(&lying, gap))
+    let (shelves, shelves_gap) = shelf::pack(&lying, gap);
+    if shelves_gap < gap {
+        // Not even the gaps fit: the grid, which keeps them whole, cannot hold the charts.
+        return shelves;
+    }
+    raster::pack(charts, &hulls, &lying, gap, resolution, shelves.scale).unwrap_or(shelves)
 }
 
 /// The corners of the convex hull of `points`, counter-clockwise (Andrew's monotone

@@ -3,31 +3,27 @@
 //! it first fits, scanning rows upwards and cells rightwards, in the turn that reaches
 //! least high; a placed chart reserves its cells grown by the gap, so the next keeps
 //! clear of it. Larger charts go first, so smaller ones fill what is left round and
-//! inside them. The scale is the largest that fits, found by bisection.
+//! inside them. The scale is the largest that fits, found by bisection from one known
+//! to fit (the shelves') up to the one at which the charts would cover the square.
 
 use super::bitmap::Bitmap;
 use super::{Layout, Placement, Turn};
 use glam::DVec2;
 
-/// The first scale tried, as a fraction of the scale at which the charts would cover
-/// the square exactly; each next one is this fraction of the one before, until one fits.
-const STEP: f64 = 0.85;
-
-/// Scales tried going down before the grid is given up (0.85⁴⁰ ≈ 0.0015).
-const STEPS: usize = 40;
-
-/// Bisection steps between a scale that fits and one that does not.
-const BISECTIONS: usize = 4;
+/// Bisection steps between a scale that fits and the scale at which the charts would
+/// cover the square exactly.
+const BISECTIONS: usize = 6;
 
 /// Lays out charts (triangles in their planes, convex hulls, smallest boxes) on a grid
-/// of `resolution`² cells with `gap` (rounded up to whole cells) between them, or
-/// `None` when they do not fit at any scale tried.
+/// of `resolution`² cells with `gap` (rounded up to whole cells) between them, at a
+/// scale of at least `at_least`, or `None` when they do not fit there.
 pub(super) fn pack(
     charts: &[Vec<[DVec2; 3]>],
     hulls: &[Vec<DVec2>],
     lying: &[Turn],
     gap: f64,
     resolution: u32,
+    at_least: f64,
 ) -> Option<Layout> {
     let turns: Vec<[Turn; 4]> = (lying.iter().zip(hulls))
         .map(|(&turn, hull)| {
@@ -63,9 +59,8 @@ pub(super) fn pack(
     } else {
         1.0
     };
-    let (mut low, mut placements, mut high) = (1..=STEPS as i32)
-        .map(|step| covering * STEP.powi(step))
-        .find_map(|scale| Some((scale, attempt(scale)?, scale / STEP)))?;
+    let (mut low, mut high) = (at_least, covering.max(at_least));
+    let mut placements = attempt(low)?;
     for _ in 0..BISECTIONS {
         let middle = 0.5 * (low + high);
         if let Some(fitting) = attempt(middle) {
@@ -82,8 +77,8 @@ pub(super) fn pack(
 
 /// The grid charts are placed on: the unit square's `resolution`² cells, with `gap`
 /// cells more on every side so that the cells a chart reserves round itself always lie
-/// on the grid. Cells outside the square, less half the gap (rounded up), start
-/// taken.
+/// on the grid. Cells outside the square, and those within half the gap (rounded up) of
+/// its edges, start taken.
 struct Atlas {
     taken: Bitmap,
     gap: usize,
@@ -311,7 +306,15 @@ mod tests {
             .map(|c| convex_hull(c.as_flattened()))
             .collect();
         let lying: Vec<Turn> = hulls.iter().map(|h| Turn::lying(h)).collect();
-        let layout = pack(&charts, &hulls, &lying, 1.0 / 64.0, 64).expect("fits");
+        // From the scale the shelves reach, which puts the square beside the ring.
+        let (shelves, _) = super::super::shelf::pack(&lying, 1.0 / 64.0);
+        let layout = pack(&charts, &hulls, &lying, 1.0 / 64.0, 64, shelves.scale).expect("fits");
+        assert!(
+            layout.scale > shelves.scale * 1.2,
+            "{} {}",
+            layout.scale,
+            shelves.scale
+        );
         let outlines: Vec<Vec<DVec2>> = charts.iter().map(|c| c.as_flattened().to_vec()).collect();
         let boxes = placed_boxes(&layout, &outlines);
         // The ring fills most of the square's side, and the small square lies in its

@@ -6,8 +6,8 @@
 use super::{Layout, Placement, Turn};
 use glam::DVec2;
 
-/// Lays out charts turned by `turns` by their rectangles.
-pub(super) fn pack(turns: &[Turn], gap: f64) -> Layout {
+/// Lays out charts turned by `turns` by their rectangles: the layout and the gap kept.
+pub(super) fn pack(turns: &[Turn], gap: f64) -> (Layout, f64) {
     let sizes: Vec<DVec2> = turns.iter().map(|turn| turn.size).collect();
     let mut order: Vec<usize> = (0..sizes.len()).collect();
     order.sort_by(|&a, &b| {
@@ -45,10 +45,11 @@ pub(super) fn pack(turns: &[Turn], gap: f64) -> Layout {
     let placements = (turns.iter().zip(corners))
         .map(|(&turn, corner)| Placement { turn, corner })
         .collect();
-    Layout {
+    let layout = Layout {
         scale: low,
         placements,
-    }
+    };
+    (layout, gap)
 }
 
 /// The lower corners of boxes of `sizes` × `scale` laid in rows (shelves) in `order`,
@@ -82,7 +83,7 @@ mod tests {
         let turns: Vec<Turn> = (outlines.iter())
             .map(|outline| Turn::lying(&convex_hull(outline)))
             .collect();
-        pack(&turns, gap)
+        pack(&turns, gap).0
     }
 
     #[test]
