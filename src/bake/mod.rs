@@ -54,8 +54,9 @@ pub enum BakeSurface {
     /// Over a rectangle of a plane (`None`: the graph's preview square); tileable when the
     /// graph is periodic over the rectangle.
     Plane(Option<FlatRect>),
-    /// Into the UV layout of a primitive or a mesh file, placed as the graph's preview
-    /// places it. Seams are padded by growing covered texels outwards.
+    /// Into the UV layout of a primitive or a mesh file (an automatic atlas when it has
+    /// none, [`crate::mesh::Mesh::with_uv_atlas`]), placed as the graph's preview places
+    /// it. Seams are padded by growing covered texels outwards.
     MeshUv(String),
 }
 
@@ -83,8 +84,8 @@ pub struct BakedMap {
     pub bytes: u64,
 }
 
-/// A bake that failed: refused before any work (outputs, memory, a mesh without UVs),
-/// a render that failed, or a map that could not be written.
+/// A bake that failed: refused before any work (outputs, memory), a render that failed,
+/// or a map that could not be written.
 #[derive(Debug, thiserror::Error)]
 pub enum BakeError {
     /// The folder a map would go to is missing or not a folder.
@@ -110,11 +111,6 @@ pub enum BakeError {
         needed: u64,
         free: u64,
     },
-    /// A UV bake on a mesh whose texture coordinates cover no area.
-    #[error(
-        "{mesh} has no UV layout (its texture coordinates cover no area), so its maps would be uniform; bake over a plane instead, or give a mesh with UVs"
-    )]
-    NoUvLayout { mesh: String },
     /// The GPU, the mesh or its fields failed, or the bake is too large for memory.
     #[error(transparent)]
     Render(#[from] RenderError),
@@ -228,10 +224,10 @@ pub fn bake(
             )
         }
         BakeSurface::MeshUv(name) => {
-            let mesh = crate::render::mesh_with_fields(preview, name, &module.uses, |_, _| {})?;
-            if mesh.uv_area() < 1e-9 {
-                return Err(BakeError::NoUvLayout { mesh: name.clone() });
-            }
+            // A mesh without a UV layout gets an atlas, after its fields are solved on the
+            // connected mesh.
+            let mesh = crate::render::mesh_with_fields(preview, name, &module.uses, |_, _| {})?
+                .with_uv_layout(size);
             // The UV square is taken to span the preview square: normals are approximate.
             let texel = 2.0 * preview.size / f64::from(size);
             (

@@ -52,7 +52,8 @@ pub struct BakeArgs {
     /// The plane rectangle X0,Z0,X1,Z1,Y to bake (default: each graph's preview square).
     #[arg(long, value_name = "X0,Z0,X1,Z1,Y", value_parser = parse_flat, allow_hyphen_values = true, conflicts_with = "mesh")]
     flat: Option<FlatRect>,
-    /// Bake into the UV layout of this primitive or mesh file instead of over a plane.
+    /// Bake into the UV layout of this primitive or mesh file instead of over a plane (an
+    /// automatic atlas for a mesh without UVs).
     #[arg(long, value_name = "NAME|FILE")]
     mesh: Option<String>,
     /// Time in seconds.
@@ -62,9 +63,9 @@ pub struct BakeArgs {
     #[arg(short, long)]
     out_dir: Option<PathBuf>,
     /// Write a glTF 2.0 model instead of map files: the mesh (`--mesh`, default the
-    /// graph's preview mesh) with the material's maps baked into its UV layout as a
-    /// metallic-roughness material. `.glb` gives one file; `.gltf` writes its buffer and
-    /// PNGs beside it. One graph at a time.
+    /// graph's preview mesh) with the material's maps baked into its UV layout (an
+    /// automatic atlas for a mesh without UVs) as a metallic-roughness material. `.glb`
+    /// gives one file; `.gltf` writes its buffer and PNGs beside it. One graph at a time.
     #[arg(long, value_name = "OUT.glb|OUT.gltf", conflicts_with_all = ["flat", "out_dir", "maps", "format", "normal"])]
     gltf: Option<PathBuf>,
     /// Print a JSON summary of what was written on stdout.

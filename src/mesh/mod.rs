@@ -1,6 +1,7 @@
 //! Triangle meshes: procedural primitives and mesh files, for the preview and the CLI.
 
 mod analysis;
+mod atlas;
 mod file_vertices;
 mod gltf_buffers;
 mod gltf_scene;
@@ -13,6 +14,7 @@ mod refine;
 mod tangents;
 
 pub use analysis::{MeshReport, analyse, vertex_components, weld};
+pub use atlas::ATLAS_GAP_TEXELS;
 pub use file_vertices::FileVertices;
 pub use implicit::{double_torus, polygonize};
 pub use load::{EXTENSIONS, MeshError, from_bytes, load, vertex_normals};

@@ -204,12 +204,6 @@ fn a_uv_bake_fills_the_layout_and_pads_its_seams() {
             y: 0.0,
         },
     );
-    uv.surface = veneer::bake::BakeSurface::MeshUv("tests/meshes/cube_quads.ply".to_string());
-    let error = bake(gpu(), &compiled(&graph), &uv, &dir.join("no-uv"), |_, _| {});
-    assert!(
-        error.is_err_and(|e| e.to_string().contains("has no UV layout")),
-        "a mesh without UVs would bake uniform maps"
-    );
     uv.surface = veneer::bake::BakeSurface::MeshUv("sphere".to_string());
     let maps = bake(
         gpu(),
@@ -229,6 +223,45 @@ fn a_uv_bake_fills_the_layout_and_pads_its_seams() {
     let dark = image.pixels().filter(|p| p.0[0] < 100).count();
     let light = image.pixels().filter(|p| p.0[0] > 200).count();
     assert!(dark > 1000 && light > 1000, "{dark} dark, {light} light");
+}
+
+#[test]
+fn a_uv_bake_onto_a_mesh_without_uvs_bakes_into_an_atlas() {
+    let graph = veneer::graph::load(&root("graphs/marble.ron")).expect("preset");
+    let dir = scratch("uv-atlas");
+    let mut uv = settings(
+        256,
+        vec![Map::Albedo],
+        Format::Png8,
+        FlatRect {
+            x0: 0.0,
+            z0: 0.0,
+            x1: 1.0,
+            z1: 1.0,
+            y: 0.0,
+        },
+    );
+    // A cube of quads without texture coordinates: six square charts (cut at its
+    // edges), covering about 60% of the square, grown 8 texels by the padding.
+    uv.surface = veneer::bake::BakeSurface::MeshUv("tests/meshes/cube_quads.ply".to_string());
+    let maps = bake(gpu(), &compiled(&graph), &uv, &dir.join("cube"), |_, _| {})
+        .expect("bakes into an atlas");
+    let image = image::open(&maps[0].path).expect("a PNG").to_rgb8();
+    let texels = image.pixels().count() as f64;
+    let covered = image
+        .pixels()
+        .filter(|p| p.0.iter().any(|&c| c > 20))
+        .count() as f64;
+    assert!(
+        (0.6..0.95).contains(&(covered / texels)),
+        "{covered} of {texels} texels covered"
+    );
+    let dark = image
+        .pixels()
+        .filter(|p| p.0[0] < 100 && p.0[0] > 20)
+        .count();
+    let light = image.pixels().filter(|p| p.0[0] > 200).count();
+    assert!(dark > 500 && light > 500, "{dark} dark, {light} light");
 }
 
 #[test]

@@ -2,7 +2,8 @@
 //! preview mesh (or another mesh) and wired into a `pbrMetallicRoughness` material —
 //! base colour (sRGB), occlusion-roughness-metallic packed as glTF reads it (R, G, B),
 //! an OpenGL-convention normal map, emission with `KHR_materials_emissive_strength`
-//! past 1 — on that mesh with its normals, UVs and tangents.
+//! past 1 — on that mesh with its normals, UVs and tangents. A mesh without UVs gets an
+//! automatic atlas ([`crate::mesh::Mesh::with_uv_atlas`]).
 
 mod document;
 
@@ -62,12 +63,10 @@ pub fn export_gltf(
     let (module, preview) = (&compiled.module, &compiled.preview);
     let uses = module.uses;
     let name = settings.mesh.as_deref().unwrap_or(&preview.mesh);
-    let mesh = crate::render::mesh_with_fields(preview, name, &uses, |_, _| {})?;
-    if mesh.uv_area() < 1e-9 {
-        return Err(BakeError::NoUvLayout {
-            mesh: name.to_string(),
-        });
-    }
+    // A mesh without a UV layout gets an atlas, after its fields are solved on the
+    // connected mesh.
+    let mesh = crate::render::mesh_with_fields(preview, name, &uses, |_, _| {})?
+        .with_uv_layout(settings.size);
     let shading = compiled.checked.shading;
     let wants_normal = uses.perturbs_normal();
     let mut passes = vec![
