@@ -188,12 +188,10 @@ fn an_interrupted_bake_leaves_no_partial_file() {
     }
 }
 
-#[test]
-fn a_uv_bake_fills_the_layout_and_pads_its_seams() {
-    let graph = veneer::graph::load(&root("graphs/marble.ron")).expect("preset");
-    let dir = scratch("uv");
+/// An 8-bit albedo bake of `size`² into the UV layout of `mesh`.
+fn uv_albedo(size: u32, mesh: &str) -> BakeSettings {
     let mut uv = settings(
-        256,
+        size,
         vec![Map::Albedo],
         Format::Png8,
         FlatRect {
@@ -204,7 +202,15 @@ fn a_uv_bake_fills_the_layout_and_pads_its_seams() {
             y: 0.0,
         },
     );
-    uv.surface = veneer::bake::BakeSurface::MeshUv("sphere".to_string());
+    uv.surface = veneer::bake::BakeSurface::MeshUv(mesh.to_string());
+    uv
+}
+
+#[test]
+fn a_uv_bake_fills_the_layout_and_pads_its_seams() {
+    let graph = veneer::graph::load(&root("graphs/marble.ron")).expect("preset");
+    let dir = scratch("uv");
+    let uv = uv_albedo(256, "sphere");
     let maps = bake(
         gpu(),
         &compiled(&graph),
@@ -229,21 +235,9 @@ fn a_uv_bake_fills_the_layout_and_pads_its_seams() {
 fn a_uv_bake_onto_a_mesh_without_uvs_bakes_into_an_atlas() {
     let graph = veneer::graph::load(&root("graphs/marble.ron")).expect("preset");
     let dir = scratch("uv-atlas");
-    let mut uv = settings(
-        256,
-        vec![Map::Albedo],
-        Format::Png8,
-        FlatRect {
-            x0: 0.0,
-            z0: 0.0,
-            x1: 1.0,
-            z1: 1.0,
-            y: 0.0,
-        },
-    );
     // A cube of quads without texture coordinates: six square charts (cut at its
     // edges), covering about 60% of the square, grown 8 texels by the padding.
-    uv.surface = veneer::bake::BakeSurface::MeshUv("tests/meshes/cube_quads.ply".to_string());
+    let uv = uv_albedo(256, "tests/meshes/cube_quads.ply");
     let maps = bake(gpu(), &compiled(&graph), &uv, &dir.join("cube"), |_, _| {})
         .expect("bakes into an atlas");
     let image = image::open(&maps[0].path).expect("a PNG").to_rgb8();
