@@ -205,6 +205,7 @@ fn wood_drag(c: &mut Criterion) {
 /// at the size the preview has in the editor's window.
 fn preview_draws(c: &mut Criterion) {
     let gpu = GpuContext::new().expect("a wgpu adapter");
+    let sky = gpu.sky().expect("the default environment");
     let graph = veneer::graph::load(Path::new(WOOD)).expect("wood preset");
     let (code, params) = live_code(&graph, 1);
     let mesh = veneer::mesh::primitive(&graph.preview.mesh).expect("the preview mesh");
@@ -231,7 +232,7 @@ fn preview_draws(c: &mut Criterion) {
         group.bench_function(name, |b| {
             b.iter(|| {
                 renderer
-                    .render(&gpu, &code, &params, "mesh", &mesh, &view, size, quality)
+                    .render(&gpu, &code, &params, "mesh", &mesh, &view, &sky, size, quality)
                     .expect("draws")
             })
         });
@@ -261,6 +262,7 @@ fn live_code(graph: &Graph, generation: u64) -> (LiveMaterialCode, Vec<[f32; 4]>
 
 fn structural_edit(c: &mut Criterion) {
     let gpu = GpuContext::new().expect("a wgpu adapter");
+    let sky = gpu.sky().expect("the default environment");
     let mut graph = veneer::graph::load(Path::new(WOOD)).expect("wood preset");
     let mesh = veneer::mesh::primitive(&graph.preview.mesh).expect("the preview mesh");
     let view = MeshView::for_preview(&graph.preview);
@@ -281,6 +283,7 @@ fn structural_edit(c: &mut Criterion) {
             "mesh",
             &mesh,
             &view,
+            &sky,
             size,
             Quality::Full,
         )

@@ -71,6 +71,8 @@ pub struct BakeArgs {
     /// Print a JSON summary of what was written on stdout.
     #[arg(long)]
     json: bool,
+    #[command(flatten)]
+    parameters: super::parameters::ParameterArgs,
 }
 
 fn parse_map(text: &str) -> Result<Map, String> {
@@ -127,9 +129,9 @@ pub fn run(args: BakeArgs) -> Result<(), Failure> {
         .iter()
         .zip(&stems)
         .map(|(path, stem)| {
-            veneer::graph::load(path)
-                .map(|graph| (path, stem, graph))
-                .map_err(Failure::from)
+            let mut graph = veneer::graph::load(path)?;
+            args.parameters.apply(&mut graph, path)?;
+            Ok::<_, Failure>((path, stem, graph))
         })
         .collect::<Result<Vec<_>, _>>()?;
     // Every graph is checked and compiled once, here, before any GPU work; one that does
@@ -218,7 +220,8 @@ fn run_gltf(args: &BakeArgs, out: &std::path::Path) -> Result<(), Failure> {
     if args.size == 0 {
         return Err(Failure::new("--size must be at least 1"));
     }
-    let graph = veneer::graph::load(graph_path)?;
+    let mut graph = veneer::graph::load(graph_path)?;
+    args.parameters.apply(&mut graph, graph_path)?;
     let compiled = compile(&graph, &CompileOptions::default())
         .map_err(|error| Failure::new(format!("{}: {error}", graph_path.display())))?;
     let gpu = GpuContext::new()?;

@@ -3,16 +3,20 @@
 use super::{Failure, in_file, load_graph, write_output};
 use clap::{Args, ValueEnum};
 use std::path::PathBuf;
-use veneer::codegen::ParamMode;
-use veneer::codegen::export::{Target, export};
+use veneer::codegen::export::{Target, export_compiled};
+use veneer::codegen::{CompileOptions, ParamMode, compile, describe_parameters};
 
 /// How parameters appear in the output.
 #[derive(Clone, Copy, ValueEnum)]
 pub enum ParamsArg {
     /// As literal constants: no bindings needed.
     Baked,
-    /// As one uniform block (`veneer_params`, group 1 binding 0, one vec4 per slot).
+    /// The exposed parameters as named members of one uniform struct
+    /// (`veneer_params: VeneerParameters`, group 1 binding 0); every other constant baked.
     Uniform,
+    /// Every constant as a slot of one uniform block (`veneer_params`, group 1 binding
+    /// 0, one vec4 per slot), as the editor's live preview binds them.
+    Slots,
 }
 
 #[derive(Args)]
@@ -22,21 +26,48 @@ pub struct CompileArgs {
     /// Shader language of the output.
     #[arg(long, value_enum, default_value = "wgsl")]
     target: Target,
-    /// Parameters baked as constants or gathered in a uniform block.
+    /// Parameters baked as constants, exposed ones in a named uniform struct, or every
+    /// constant in a block of slots.
     #[arg(long, value_enum, default_value = "baked")]
     params: ParamsArg,
-    /// Output file (stdout when absent or `-`).
+    /// Output file (stdout when absent or `-`). When the graph exposes parameters, their
+    /// JSON description is written beside it as `<output stem>.parameters.json`.
     #[arg(short, long)]
     output: Option<PathBuf>,
+    /// Print the JSON description of the exposed parameters instead of the shader.
+    #[arg(long)]
+    describe: bool,
+    #[command(flatten)]
+    parameters: super::parameters::ParameterArgs,
 }
 
 pub fn run(args: CompileArgs) -> Result<(), Failure> {
-    let graph = load_graph(&args.graph)?;
-    let target = args.target;
+    let mut graph = load_graph(&args.graph)?;
+    args.parameters.apply(&mut graph, &args.graph)?;
     let params = match args.params {
         ParamsArg::Baked => ParamMode::Baked,
-        ParamsArg::Uniform => ParamMode::Uniform,
+        ParamsArg::Uniform => ParamMode::Named,
+        ParamsArg::Slots => ParamMode::Uniform,
     };
-    let bytes = export(&graph, target, params).map_err(|error| in_file(&args.graph, error))?;
-    write_output(args.output.as_ref(), &bytes)
+    let compiled = compile(&graph, &CompileOptions::with_params(params))
+        .map_err(|error| in_file(&args.graph, error))?;
+    let description = describe_parameters(&compiled);
+    if args.describe {
+        return write_output(args.output.as_ref(), description.as_bytes());
+    }
+    let bytes = export_compiled(&compiled, args.target).map_err(|error| in_file(&args.graph, error))?;
+    write_output(args.output.as_ref(), &bytes)?;
+    match &args.output {
+        Some(path) if path.as_os_str() != "-" && !compiled.checked.parameters.is_empty() => {
+            write_output(Some(&description_path(path)), description.as_bytes())
+        }
+        _ => Ok(()),
+    }
+}
+
+/// Where the parameter description of export `output` goes: `<stem>.parameters.json`
+/// in its folder.
+pub fn description_path(output: &std::path::Path) -> PathBuf {
+    let stem = output.file_stem().unwrap_or_default().to_string_lossy();
+    output.with_file_name(format!("{stem}.parameters.json"))
 }

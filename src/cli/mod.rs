@@ -7,6 +7,7 @@ mod fmt;
 mod geodesic;
 mod mesh;
 mod output;
+mod parameters;
 mod render;
 mod report;
 mod snapshot;

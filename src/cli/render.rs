@@ -36,6 +36,8 @@ pub struct RenderArgs {
     /// Output PNG.
     #[arg(short, long)]
     output: PathBuf,
+    #[command(flatten)]
+    parameters: super::parameters::ParameterArgs,
     /// Width and height of the image in pixels.
     #[arg(long, default_value_t = 512)]
     size: u32,
@@ -148,7 +150,8 @@ pub fn parse_flat(text: &str) -> Result<FlatRect, String> {
 }
 
 pub fn run(args: RenderArgs) -> Result<(), Failure> {
-    let graph = load_graph(&args.graph)?;
+    let mut graph = load_graph(&args.graph)?;
+    args.parameters.apply(&mut graph, &args.graph)?;
     let options = CompileOptions::with_detail(args.detail.into());
     let mut compiled =
         veneer::codegen::compile(&graph, &options).map_err(|error| in_file(&args.graph, error))?;

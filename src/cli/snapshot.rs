@@ -45,6 +45,10 @@ pub struct SnapshotArgs {
     /// Print a JSON summary on stdout instead of one line per graph.
     #[arg(long)]
     json: bool,
+    /// With parameter values, each golden is named `<graph>.<preset>.png` (with
+    /// `--preset`) so that presets of one graph share a folder.
+    #[command(flatten)]
+    parameters: super::parameters::ParameterArgs,
 }
 
 fn bad_input(message: String) -> Failure {
@@ -99,6 +103,10 @@ pub fn run(args: SnapshotArgs) -> Result<(), Failure> {
         size: args.size,
         time: args.time,
         tolerance,
+        parameters: args
+            .parameters
+            .overrides()
+            .map_err(|Failure(message, _)| bad_input(message))?,
     };
     if args.golden.exists() && !args.golden.is_dir() {
         return Err(bad_input(format!(
@@ -120,7 +128,10 @@ pub fn run(args: SnapshotArgs) -> Result<(), Failure> {
             .file_stem()
             .map(|s| s.to_string_lossy().into_owned())
             .unwrap_or_default();
-        let golden = args.golden.join(format!("{stem}.png"));
+        let golden = match &args.parameters.preset {
+            Some(preset) => args.golden.join(format!("{stem}.{preset}.png")),
+            None => args.golden.join(format!("{stem}.png")),
+        };
         let report = check(&gpu, graph, &golden, &settings, update)
             .map_err(|error| bad_input(error.to_string()))?;
         if !args.json {

@@ -6,7 +6,7 @@
 //! (naga reads only Vulkan-style GLSL, so GLSL ES 3.00 is checked by glslangValidator in
 //! the tests instead).
 
-use super::{CompileError, CompileOptions, ParamMode, compile, validate};
+use super::{CompileError, CompileOptions, Compiled, ParamMode, compile, validate};
 use crate::graph::Graph;
 
 /// A shader language Veneer exports to. Adding one is this file alone: a variant, its
@@ -96,9 +96,15 @@ const ENTRY_SOURCE: &str = include_str!("../../shaders/export_entry.wgsl");
 /// The graph as a shader for `target`, parameters baked or in a uniform block: text for
 /// the text languages, bytes for SPIR-V.
 pub fn export(graph: &Graph, target: Target, params: ParamMode) -> Result<Vec<u8>, ExportError> {
-    let module = compile(graph, &CompileOptions::with_params(params))?.module;
+    let compiled = compile(graph, &CompileOptions::with_params(params))?;
+    export_compiled(&compiled, target)
+}
+
+/// [`export`] of a graph compiled already.
+pub fn export_compiled(compiled: &Compiled, target: Target) -> Result<Vec<u8>, ExportError> {
+    let module = &compiled.module;
     if target == Target::Wgsl {
-        return Ok(module.source.into_bytes());
+        return Ok(module.source.clone().into_bytes());
     }
     let fail = |message: String| ExportError::Backend { target, message };
     let source = format!("{}\n{ENTRY_SOURCE}", module.source);

@@ -37,12 +37,16 @@ pub enum ParamMode {
     /// buffer at the same binding: no size limit (a uniform block holds 4,096 slots at the
     /// least a device must offer), so the editor's live preview takes graphs of any size.
     Storage,
+    /// The graph's exposed parameters (see `graph::parameters`) as named members of one
+    /// uniform struct, `veneer_params: VeneerParameters` at `@group(1) @binding(0)`,
+    /// every other constant baked: what engines set by name (`--params uniform`).
+    Named,
 }
 
 impl ParamMode {
-    /// Whether parameters are slots of a buffer rather than literals.
+    /// Whether every constant is a slot of a buffer rather than a literal.
     pub fn has_slots(self) -> bool {
-        self != ParamMode::Baked
+        matches!(self, ParamMode::Uniform | ParamMode::Storage)
     }
 }
 
@@ -89,6 +93,9 @@ pub struct WgslModule {
     pub module: naga::Module,
     /// Parameter slots (uniform mode only; empty when baked).
     pub params: Vec<ParamSlot>,
+    /// The members of `VeneerParameters`, one per exposed parameter in the order of
+    /// the checked graph's `parameters` (named mode only).
+    pub members: Vec<crate::graph::parameters::Member>,
     /// Which surface inputs the material reads, so renderers compute only those.
     pub uses: SurfaceUse,
 }
@@ -363,7 +370,11 @@ fn input_expression(
 /// The outputs of `checked` when all its inputs are constants (literals or outputs of
 /// folded nodes) and it reads nothing of the surface: a constant subgraph folds into
 /// literals. `None` when it cannot fold (or folds to a non-finite value).
-fn fold(checked: &graph::check::CheckedNode, from: &[Option<&Emitted>]) -> Option<Vec<[f32; 3]>> {
+fn fold(
+    checked: &graph::check::CheckedNode,
+    from: &[Option<&Emitted>],
+    bound: &[Option<String>],
+) -> Option<Vec<[f32; 3]>> {
     if checked.node.kind.definition().reads_surface() {
         return None;
     }
@@ -371,7 +382,9 @@ fn fold(checked: &graph::check::CheckedNode, from: &[Option<&Emitted>]) -> Optio
         .inputs
         .iter()
         .zip(from)
-        .map(|(source, from)| match *source {
+        .zip(bound)
+        .map(|((source, from), bound)| match *source {
+            InputSource::Const(_) if bound.is_some() => None,
             InputSource::Const(ref value) => Some(value.components().map(|c| c as f32)),
             InputSource::Wire { output, .. } => (*from)?.folded.as_ref()?.get(output).copied(),
             InputSource::Position => None,
@@ -409,6 +422,62 @@ fn params_block(graph: &CheckedGraph, params: &[ParamSlot], mode: ParamMode) -> 
     text
 }
 
+/// The members of the `VeneerParameters` struct for `parameters`: WGSL identifiers
+/// made from their names, laid out in order.
+pub fn parameter_members(
+    parameters: &[crate::graph::parameters::Exposed],
+) -> Vec<crate::graph::parameters::Member> {
+    let mut names = Namer::default();
+    crate::graph::parameters::members(parameters, |name, k| names.name(name, k))
+}
+
+/// The JSON description of the compiled graph's exposed parameters, written beside
+/// exports: names, `VeneerParameters` members and layout, types, defaults, ranges,
+/// hints and group paths.
+pub fn describe_parameters(compiled: &Compiled) -> String {
+    let parameters = &compiled.checked.parameters;
+    crate::graph::parameters::describe(parameters, &parameter_members(parameters))
+}
+
+/// The WGSL reading member `member` (of type `from`) as an input of type `to`.
+fn member_expression(member: &str, from: graph::ValueType, to: graph::ValueType) -> String {
+    let expression = format!("veneer_params.{member}");
+    match (from.width(), to.width()) {
+        (from_width, to_width) if from_width > to_width => {
+            format!("{expression}.{}", ["x", "xy"][to_width - 1])
+        }
+        _ => emit::convert(expression, from, to),
+    }
+}
+
+/// The `VeneerParameters` struct of a named-mode module, each member's parameter,
+/// byte offset and size spelled out (WGSL's uniform layout: f32 aligned to 4 bytes,
+/// vec2f to 8, vec3f to 16, the struct's size a multiple of 16, as in std140).
+fn named_block(graph: &CheckedGraph, members: &[crate::graph::parameters::Member]) -> String {
+    let mut text = String::from(
+        "\n// Exposed parameters, set by name: a uniform buffer at group 1, binding 0.\n",
+    );
+    let mut fields = String::new();
+    for (member, parameter) in members.iter().zip(&graph.parameters) {
+        text.push_str(&format!(
+            "//   {} '{}' ({}): bytes {}..{}\n",
+            member.name,
+            naming::comment(&parameter.name),
+            parameter.ty,
+            member.offset,
+            member.offset + member.size
+        ));
+        fields.push_str(&format!("    {}: {},\n", member.name, member.ty.wgsl()));
+    }
+    let size = members
+        .last()
+        .map_or(0, |m| (m.offset + m.size).div_ceil(16) * 16);
+    text.push_str(&format!(
+        "//   struct size: {size} bytes\nstruct VeneerParameters {{\n{fields}}}\n\n@group(1) @binding(0) var<uniform> veneer_params: VeneerParameters;\n"
+    ));
+    text
+}
+
 /// Compiles a graph checked by [`graph::check`] to a validated WGSL module, for callers
 /// that have the checked graph already (`veneer check` lints it meanwhile).
 pub fn compile_checked(
@@ -427,6 +496,18 @@ pub fn compile_checked(
         detail
     };
     let mut params = Vec::new();
+    let members = if mode == ParamMode::Named {
+        parameter_members(&graph.parameters)
+    } else {
+        Vec::new()
+    };
+    let member_of = |name: &str| {
+        graph
+            .parameters
+            .iter()
+            .position(|parameter| parameter.name == name)
+            .map(|k| (&members[k], graph.parameters[k].ty))
+    };
     let mut namer = Namer::default();
     let mut emitted: Vec<Emitted> = Vec::with_capacity(graph.order.len());
     let mut body: Vec<Block> = Vec::new();
@@ -443,8 +524,25 @@ pub fn compile_checked(
                 _ => None,
             })
             .collect();
-        if mode == ParamMode::Baked
-            && let Some(values) = fold(checked, &from)
+        // The member each input reads, for inputs that hold an exposed parameter.
+        let bound: Vec<Option<String>> = checked
+            .signature
+            .inputs
+            .iter()
+            .zip(&checked.inputs)
+            .map(|(pin, source)| {
+                let key = (node.id, pin.name.to_string());
+                match (mode, source) {
+                    (ParamMode::Named, InputSource::Const(_)) => {
+                        let (member, ty) = member_of(graph.bindings.get(&key)?)?;
+                        Some(member_expression(&member.name, ty, pin.ty))
+                    }
+                    _ => None,
+                }
+            })
+            .collect();
+        if matches!(mode, ParamMode::Baked | ParamMode::Named)
+            && let Some(values) = fold(checked, &from, &bound)
         {
             let outputs = checked
                 .signature
@@ -465,9 +563,13 @@ pub fn compile_checked(
             .iter()
             .zip(&checked.signature.inputs)
             .zip(&from)
-            .map(|((source, pin), from)| {
-                let slots = mode.has_slots().then_some(&mut params);
-                input_expression(source, pin, node.id, *from, slots)
+            .zip(&bound)
+            .map(|(((source, pin), from), bound)| match bound {
+                Some(expression) => expression.clone(),
+                None => {
+                    let slots = mode.has_slots().then_some(&mut params);
+                    input_expression(source, pin, node.id, *from, slots)
+                }
             })
             .collect();
         let reads: Vec<usize> = from.iter().filter_map(|from| (*from)?.block).collect();
@@ -539,6 +641,9 @@ pub fn compile_checked(
     if !params.is_empty() {
         source.push_str(&params_block(graph, &params, mode));
     }
+    if !members.is_empty() {
+        source.push_str(&named_block(graph, &members));
+    }
     let mut family = "";
     for item in &items {
         if item.family != family {
@@ -557,6 +662,7 @@ pub fn compile_checked(
         library,
         module: naga::Module::default(),
         params,
+        members,
         uses,
     };
     module.module = validate(&module.source).map_err(|mut error| {

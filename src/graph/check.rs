@@ -66,7 +66,12 @@ pub struct CheckedGraph {
     /// The lighting model (the graph's setting).
     pub shading: super::Shading,
     /// Needed nodes, every node after the nodes it reads; the material node is last.
+    /// Group nodes are inlined: nodes from groups carry their [`super::Origin`].
     pub order: Vec<CheckedNode>,
+    /// The parameters the graph exposes.
+    pub parameters: Vec<super::parameters::Exposed>,
+    /// Which inputs of the flattened nodes hold which exposed parameter's value.
+    pub bindings: super::group::Bindings,
     /// The position of each node in `order`.
     index: IdIndex,
 }
@@ -382,9 +387,74 @@ impl<'g> Checker<'g> {
 
 /// Checks a graph and orders the nodes its material output needs.
 ///
-/// Reports unknown pins, bad constants and settings, type mismatches, missing required
-/// inputs and cycles, each naming its node. Nodes the output does not reach are pruned.
+/// Inlines its groups first (a group that contains itself, an unknown group or pin is
+/// an error naming the groups), then reports unknown pins, bad constants and settings,
+/// type mismatches, missing required inputs and cycles, each naming its node (inside
+/// groups: `group 'bark' › node 'grain' (#3)`). Nodes the output does not reach are
+/// pruned.
 pub fn check(graph: &Graph) -> Result<CheckedGraph, Vec<CheckError>> {
+    let mut errors = parameter_problems(graph);
+    let parameters = super::parameters::exposed(graph);
+    let seeds = super::parameters::bindings(&parameters);
+    let (flat, bindings) = match super::group::flatten_traced(graph, seeds) {
+        Ok(flat) => flat,
+        Err(mut more) => {
+            errors.append(&mut more);
+            return Err(errors);
+        }
+    };
+    let mut checked = match check_flat(&flat) {
+        Ok(checked) if errors.is_empty() => checked,
+        Ok(_) => return Err(errors),
+        Err(mut more) => {
+            errors.append(&mut more);
+            return Err(errors);
+        }
+    };
+    checked.parameters = parameters;
+    checked.bindings = bindings;
+    Ok(checked)
+}
+
+/// Exposed parameters that name no input of the graph, or a name twice.
+fn parameter_problems(graph: &Graph) -> Vec<CheckError> {
+    let mut errors = Vec::new();
+    let mut names = std::collections::BTreeSet::new();
+    for parameter in &graph.parameters {
+        if !names.insert(parameter.name.as_str()) {
+            errors.push(CheckError {
+                node: None,
+                node_name: None,
+                message: format!("two parameters are named '{}'", parameter.name),
+            });
+        }
+        let Some(node) = graph.node(parameter.node) else {
+            errors.push(CheckError {
+                node: None,
+                node_name: None,
+                message: format!(
+                    "parameter '{}' exposes node #{}, which the graph does not have",
+                    parameter.name, parameter.node.0
+                ),
+            });
+            continue;
+        };
+        if node.kind.signature().input(&parameter.pin).is_none() {
+            errors.push(CheckError {
+                node: Some(node.id),
+                node_name: Some(node.to_string()),
+                message: format!(
+                    "parameter '{}' exposes input '{}', which the node does not have",
+                    parameter.name, parameter.pin
+                ),
+            });
+        }
+    }
+    errors
+}
+
+/// [`check`] of a graph without group nodes.
+fn check_flat(graph: &Graph) -> Result<CheckedGraph, Vec<CheckError>> {
     let signatures: Vec<Signature> = graph.nodes.iter().map(|n| n.kind.signature()).collect();
     let mut first_pin = Vec::with_capacity(graph.nodes.len() + 1);
     first_pin.push(0);
@@ -459,6 +529,8 @@ pub fn check(graph: &Graph) -> Result<CheckedGraph, Vec<CheckError>> {
         alpha: graph.alpha,
         shading: graph.shading,
         order,
+        parameters: Vec::new(),
+        bindings: Default::default(),
         index,
     })
 }

@@ -5,8 +5,13 @@ use crate::fsutil;
 use std::fmt;
 use std::path::{Path, PathBuf};
 
-/// The graph file format version this build writes.
-pub const CURRENT_VERSION: u32 = 1;
+/// The graph file format version this build writes for graphs with groups, exposed
+/// parameters or parameter presets; a graph without them is written as version
+/// [`PLAIN_VERSION`], which older Veneers read.
+pub const CURRENT_VERSION: u32 = 2;
+
+/// The version of graphs that use nothing version 2 added.
+pub const PLAIN_VERSION: u32 = 1;
 
 /// A graph file that could not be read.
 #[derive(Debug)]
@@ -54,7 +59,9 @@ pub fn from_ron(text: &str) -> Result<Graph, LoadError> {
             message: format!("{clipped}{}", if cut { "…" } else { "" }),
         }
     })?;
-    if graph.version != CURRENT_VERSION {
+    let mut graph = graph;
+    super::group::resolve(&mut graph);
+    if !(PLAIN_VERSION..=CURRENT_VERSION).contains(&graph.version) {
         let line = text
             .lines()
             .position(|line| line.trim_start().starts_with("version"))
@@ -63,7 +70,7 @@ pub fn from_ron(text: &str) -> Result<Graph, LoadError> {
             path: None,
             position: line,
             message: format!(
-                "unsupported graph version {} (this Veneer reads version {CURRENT_VERSION})",
+                "unsupported graph version {} (this Veneer reads versions {PLAIN_VERSION} to {CURRENT_VERSION})",
                 graph.version
             ),
         });
@@ -91,10 +98,12 @@ pub fn load(path: &Path) -> Result<Graph, LoadError> {
             format!("not UTF-8 text: byte 0x{:02X} is not a character", rest[0]),
         )
     })?;
-    from_ron(text).map_err(|err| LoadError {
+    let mut graph = from_ron(text).map_err(|err| LoadError {
         path: Some(path.to_path_buf()),
         ..err
-    })
+    })?;
+    super::library::refresh(&mut graph);
+    Ok(graph)
 }
 
 /// The 1-based line and column just after `valid` (UTF-8 text up to there), counting
@@ -113,13 +122,37 @@ fn end_position(valid: &[u8]) -> (usize, usize) {
 pub fn to_ron(graph: &Graph) -> String {
     let mut graph = graph.clone();
     graph.canonicalize();
-    let config = ron::ser::PrettyConfig::new()
-        .depth_limit(2)
-        .indentor("    ")
-        .struct_names(false);
-    let mut text = ron::ser::to_string_pretty(&graph, config).expect("graphs always serialise");
+    graph.version = if graph.uses_groups() {
+        CURRENT_VERSION
+    } else {
+        PLAIN_VERSION
+    };
+    // Groups go last, each written like a graph (a node per line), which one depth
+    // limit for the whole file cannot do.
+    let groups = std::mem::take(&mut graph.groups);
+    let mut text = pretty(&graph, 2);
+    if !groups.is_empty() {
+        let end = text.rfind(')').unwrap_or(text.len());
+        let mut block = String::from("    groups: {\n");
+        for (name, definition) in &groups {
+            let body = pretty(definition, 2);
+            let body = body.trim_end().replace('\n', "\n        ");
+            block.push_str(&format!("        {}: {body},\n", pretty(name, 0).trim_end()));
+        }
+        block.push_str("    },\n");
+        text.insert_str(end, &block);
+    }
     text.push('\n');
     text
+}
+
+/// `value` as pretty RON, structures nested past `depth` written on one line.
+fn pretty<T: serde::Serialize>(value: &T, depth: usize) -> String {
+    let config = ron::ser::PrettyConfig::new()
+        .depth_limit(depth)
+        .indentor("    ")
+        .struct_names(false);
+    ron::ser::to_string_pretty(value, config).expect("graphs always serialise")
 }
 
 /// Writes a graph atomically (temporary file, then rename).

@@ -2,6 +2,9 @@
 
 pub mod check;
 mod field;
+pub mod group;
+pub mod library;
+pub mod parameters;
 mod ids;
 mod io;
 pub mod layout;
@@ -66,6 +69,20 @@ pub struct Node {
     pub inputs: BTreeMap<String, Value>,
     /// Position in the editor canvas.
     pub position: (f32, f32),
+    /// Where a node inlined from a group came from (see [`group::flatten`]); `None` for
+    /// the nodes of a file. Not stored.
+    #[serde(skip)]
+    pub origin: Option<Box<Origin>>,
+}
+
+/// The group path of a node inlined from a group, so messages point into the group:
+/// `group 'bark' › node 'grain' (#3)`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Origin {
+    /// The group instances it sits in, outermost first, each as `group 'label'`.
+    pub groups: Vec<String>,
+    /// Its id inside its group's definition.
+    pub id: NodeId,
 }
 
 impl Node {
@@ -77,6 +94,7 @@ impl Node {
             kind,
             inputs: BTreeMap::new(),
             position: (0.0, 0.0),
+            origin: None,
         }
     }
 
@@ -99,7 +117,15 @@ impl fmt::Display for Node {
         } else {
             ""
         };
-        write!(f, "node '{name}{cut}' ({})", self.id)
+        match &self.origin {
+            Some(origin) => {
+                for group in &origin.groups {
+                    write!(f, "{group} › ")?;
+                }
+                write!(f, "node '{name}{cut}' ({})", origin.id)
+            }
+            None => write!(f, "node '{name}{cut}' ({})", self.id),
+        }
     }
 }
 
@@ -224,6 +250,16 @@ pub struct Graph {
     /// metallic-roughness (glTF 2.0's PBR model).
     #[serde(default, skip_serializing_if = "Shading::is_default")]
     pub shading: Shading,
+    /// Node groups (material functions) the graph's group nodes use, by name.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub groups: BTreeMap<String, group::GroupDef>,
+    /// Top-level input pins exposed as named parameters (group nodes' unwired inputs
+    /// are exposed too; see [`parameters::exposed`]).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub parameters: Vec<parameters::Parameter>,
+    /// Named sets of parameter values ("oak", "walnut"), by name.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub presets: BTreeMap<String, BTreeMap<String, Value>>,
 }
 
 /// The lighting model the preview and `veneer render` shade a material with. Every
@@ -290,7 +326,7 @@ pub struct Frame {
 impl Default for Graph {
     fn default() -> Graph {
         Graph {
-            version: CURRENT_VERSION,
+            version: io::PLAIN_VERSION,
             name: String::new(),
             preview: Preview::default(),
             nodes: vec![],
@@ -298,6 +334,9 @@ impl Default for Graph {
             frames: vec![],
             alpha: AlphaMode::default(),
             shading: Shading::default(),
+            groups: BTreeMap::new(),
+            parameters: Vec::new(),
+            presets: BTreeMap::new(),
         }
     }
 }
@@ -370,5 +409,16 @@ impl Graph {
         self.nodes.sort_by_key(|node| node.id);
         self.wires.sort();
         self.wires.dedup();
+        for definition in self.groups.values_mut() {
+            definition.nodes.sort_by_key(|node| node.id);
+            definition.wires.sort();
+            definition.wires.dedup();
+        }
+    }
+
+    /// Whether the graph uses what version 2 of the file format added (groups,
+    /// parameters, parameter presets).
+    pub fn uses_groups(&self) -> bool {
+        !self.groups.is_empty() || !self.parameters.is_empty() || !self.presets.is_empty()
     }
 }

@@ -68,6 +68,7 @@ impl TryFrom<NodeFile> for Node {
             kind: file.kind,
             inputs: file.inputs.values,
             position: file.position,
+            origin: None,
         };
         match file.inputs.repeated {
             Some(pin) => Err(format!("{node}: input '{pin}' is given twice")),

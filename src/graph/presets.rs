@@ -84,4 +84,8 @@ pub fn preset(name: &str) -> Option<Graph> {
         .iter()
         .find(|(stem, _)| *stem == name)
         .and_then(|(_, text)| super::from_ron(text).ok())
+        .map(|mut graph| {
+            super::library::refresh(&mut graph);
+            graph
+        })
 }

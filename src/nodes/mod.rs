@@ -108,6 +108,7 @@ mod colour;
 mod coordinates;
 mod fields;
 mod fractal;
+mod group;
 mod inputs;
 mod mapping;
 mod math;
@@ -121,6 +122,7 @@ pub use colour::{Blend, BlendMode, ColorRamp};
 pub use coordinates::DomainWarp;
 pub use fields::Layers;
 pub use fractal::{Fbm, FractalSum, Turbulence};
+pub use group::Group;
 pub use inputs::{Constant, Field};
 pub use mapping::{Clamp, MapRange, MapRangeMode, Mix, Step, Switch};
 pub use math::{Math, Unary};
@@ -149,11 +151,12 @@ pub enum Category {
     Math,
     Colour,
     Output,
+    Group,
 }
 
 impl Category {
     /// Every category, in menu order.
-    pub const ALL: [Category; 10] = [
+    pub const ALL: [Category; 11] = [
         Category::Input,
         Category::Coordinates,
         Category::Noise,
@@ -164,6 +167,7 @@ impl Category {
         Category::Math,
         Category::Colour,
         Category::Output,
+        Category::Group,
     ];
 
     /// The menu's name for the category.
@@ -179,6 +183,7 @@ impl Category {
             Category::Math => "Math",
             Category::Colour => "Colour",
             Category::Output => "Output",
+            Category::Group => "Groups",
         }
     }
 }
@@ -366,7 +371,7 @@ macro_rules! registry {
     };
 }
 
-registry!(@gather [] [] inputs coordinates noise fractal cellular patterns fields math mapping vectors colour output);
+registry!(@gather [] [] inputs coordinates noise fractal cellular patterns fields math mapping vectors colour output group);
 
 impl NodeKind {
     /// A short human-readable name (used for default labels and messages).

@@ -171,3 +171,22 @@ pub const SCALE: InputPin = input("scale", FLOAT, f(1.0)).soft(0.0, 50.0);
 
 /// Names of vector components, in order.
 pub const COMPONENTS: [&str; 3] = ["x", "y", "z"];
+
+/// `name` as a `'static` string, for pins whose names come from a file (a group's
+/// inputs and outputs): each distinct name is stored once for the life of the process,
+/// so memory grows with the names seen, not with the graphs loaded.
+pub fn intern(name: &str) -> &'static str {
+    use std::collections::HashSet;
+    use std::sync::{Mutex, OnceLock};
+    static NAMES: OnceLock<Mutex<HashSet<&'static str>>> = OnceLock::new();
+    let mut names = NAMES
+        .get_or_init(Default::default)
+        .lock()
+        .unwrap_or_else(|poisoned| poisoned.into_inner());
+    if let Some(known) = names.get(name) {
+        return known;
+    }
+    let stored: &'static str = Box::leak(name.to_owned().into_boxed_str());
+    names.insert(stored);
+    stored
+}

@@ -106,7 +106,7 @@ pub fn mesh_with_fields(
 pub fn baked_parameters(compiled: &Compiled) -> Result<(), RenderError> {
     match compiled.options.params {
         ParamMode::Baked => Ok(()),
-        ParamMode::Uniform | ParamMode::Storage => Err(RenderError::Invalid(
+        ParamMode::Uniform | ParamMode::Storage | ParamMode::Named => Err(RenderError::Invalid(
             "the material was compiled with its parameters in a buffer; renders and bakes take baked parameters".into(),
         )),
     }

@@ -26,6 +26,8 @@ pub struct Settings {
     pub time: f32,
     /// Overrides the tolerance the golden's sidecar declares.
     pub tolerance: Option<Tolerance>,
+    /// Values for the graph's exposed parameters.
+    pub parameters: crate::graph::parameters::Overrides,
 }
 
 impl Default for Settings {
@@ -36,6 +38,7 @@ impl Default for Settings {
             size: 256,
             time: 0.0,
             tolerance: None,
+            parameters: Default::default(),
         }
     }
 }
@@ -101,6 +104,13 @@ pub enum SnapshotError {
     /// The graph file could not be read or parsed.
     #[error(transparent)]
     Load(#[from] LoadError),
+    /// A parameter override does not fit the graph.
+    #[error("{graph}: {error}")]
+    Parameter {
+        graph: PathBuf,
+        #[source]
+        error: crate::graph::parameters::ParameterError,
+    },
     /// The graph does not compile.
     #[error("{graph}: {error}")]
     Compile {
@@ -205,7 +215,14 @@ pub fn check(
     settings: &Settings,
     update: bool,
 ) -> Result<Report, SnapshotError> {
-    let graph = crate::graph::load(graph_path)?;
+    let mut graph = crate::graph::load(graph_path)?;
+    settings
+        .parameters
+        .apply(&mut graph)
+        .map_err(|error| SnapshotError::Parameter {
+            graph: graph_path.to_path_buf(),
+            error,
+        })?;
     let compiled =
         crate::codegen::compile(&graph, &CompileOptions::default()).map_err(|error| {
             SnapshotError::Compile {

@@ -1,0 +1,418 @@
+//! Exposed parameters: the named values of a graph that stay changeable from the CLI
+//! (`--set`, `--params-file`, `--preset`), the editor and engines that load an export.
+//!
+//! A graph exposes its [`Parameter`] entries (top-level input pins given a name) and
+//! every unwired input of its group nodes, including the inputs those inherit from
+//! groups nested inside (see `graph::group`).
+
+use super::group::{self, Bindings, Hint, Interface};
+use super::{Graph, NodeId, PinRef, Value, ValueType};
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+
+/// A top-level input pin exposed under a name.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Parameter {
+    pub name: String,
+    pub node: NodeId,
+    pub pin: String,
+    /// The span offered (inclusive); the pin's own span when absent.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub range: Option<(f64, f64)>,
+    #[serde(default)]
+    pub hint: Hint,
+}
+
+/// One parameter a graph exposes, resolved: its type and current value.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Exposed {
+    pub name: String,
+    pub ty: ValueType,
+    /// The value the graph holds now (its default for engines).
+    pub value: Value,
+    pub range: Option<(f64, f64)>,
+    pub hint: Hint,
+    /// The groups it comes from, outermost first (empty for a top-level pin).
+    pub group_path: Vec<String>,
+    /// The top-level input that holds it.
+    pub target: PinRef,
+}
+
+/// The parameters `graph` exposes, in a stable order: its [`Parameter`] list, then the
+/// unwired inputs of its group nodes by node id. A name taken already is qualified by
+/// its node's label (`bark.scale`).
+pub fn exposed(graph: &Graph) -> Vec<Exposed> {
+    let mut list: Vec<Exposed> = Vec::new();
+    for parameter in &graph.parameters {
+        let Some(node) = graph.node(parameter.node) else {
+            continue;
+        };
+        let signature = node.kind.signature();
+        let Some((_, pin)) = signature.input(&parameter.pin) else {
+            continue;
+        };
+        let value = match (node.inputs.get(&parameter.pin), pin.default) {
+            (Some(value), _) => value.convert(pin.ty),
+            (None, super::PinDefault::Const(value)) => value,
+            (None, _) => Value::Float(0.0).convert(pin.ty),
+        };
+        let range = parameter.range.or_else(|| {
+            (pin.range.min.is_finite() && pin.range.max.is_finite())
+                .then_some((pin.range.min, pin.range.max))
+        });
+        list.push(Exposed {
+            name: parameter.name.clone(),
+            ty: pin.ty,
+            value,
+            range,
+            hint: parameter.hint.clone(),
+            group_path: Vec::new(),
+            target: PinRef::new(node.id, &parameter.pin),
+        });
+    }
+    let interfaces = group::interfaces(&graph.groups).unwrap_or_default();
+    let mut instances: Vec<_> = graph.nodes.iter().collect();
+    instances.sort_by_key(|node| node.id);
+    for node in instances {
+        let Some(interface) = group::group_name(node).and_then(|name| interfaces.get(name))
+        else {
+            continue;
+        };
+        list.extend(instance_parameters(graph, node, interface, &list));
+    }
+    list
+}
+
+/// The unwired inputs of group node `node`, named apart from `taken`.
+fn instance_parameters(
+    graph: &Graph,
+    node: &super::Node,
+    interface: &Interface,
+    taken: &[Exposed],
+) -> Vec<Exposed> {
+    let group = group::group_name(node).unwrap_or_default();
+    let mut found: Vec<Exposed> = Vec::new();
+    for entry in &interface.inputs {
+        let pin = &entry.input.name;
+        if graph.wire_into(node.id, pin).is_some() {
+            continue;
+        }
+        let used = |name: &str| taken.iter().chain(&found).any(|e| e.name == name);
+        let name = if used(pin) {
+            format!("{}.{pin}", node.display_name())
+        } else {
+            pin.clone()
+        };
+        let mut group_path = vec![group.to_string()];
+        if let group::Route::Inherited { .. } = entry.route {
+            group_path.push(inherited_from(pin));
+        }
+        found.push(Exposed {
+            name,
+            ty: entry.input.ty,
+            value: node
+                .inputs
+                .get(pin)
+                .map(|value| value.convert(entry.input.ty))
+                .unwrap_or(entry.input.default),
+            range: entry.input.range,
+            hint: entry.input.hint.clone(),
+            group_path,
+            target: PinRef::new(node.id, pin),
+        });
+    }
+    found
+}
+
+/// The inner instance an inherited input's name points to (`inner.scale` → `inner`),
+/// or the name itself.
+fn inherited_from(pin: &str) -> String {
+    pin.rsplit_once('.')
+        .map(|(inner, _)| inner.to_string())
+        .unwrap_or_else(|| pin.to_string())
+}
+
+/// The flat inputs each exposed parameter starts from: `(node, pin)` → name, the seed
+/// [`group::flatten_traced`] follows into the groups.
+pub fn bindings(exposed: &[Exposed]) -> Bindings {
+    exposed
+        .iter()
+        .map(|entry| {
+            (
+                (entry.target.node, entry.target.pin.clone()),
+                entry.name.clone(),
+            )
+        })
+        .collect()
+}
+
+/// Why a parameter could not be set.
+#[derive(Debug, thiserror::Error)]
+pub enum ParameterError {
+    #[error("no parameter named '{name}' ({})", list(.known))]
+    Unknown { name: String, known: Vec<String> },
+    #[error("parameter '{name}' takes a {ty}: {problem}")]
+    BadValue {
+        name: String,
+        ty: ValueType,
+        problem: String,
+    },
+    #[error("parameter '{name}' takes values from {min} to {max}; {value} is outside")]
+    OutOfRange {
+        name: String,
+        min: f64,
+        max: f64,
+        value: f64,
+    },
+    #[error("no parameter preset named '{name}' ({})", list(.known))]
+    UnknownPreset { name: String, known: Vec<String> },
+}
+
+/// `names` for a message: `parameters: a, b` or `the graph has none`.
+fn list(names: &[String]) -> String {
+    if names.is_empty() {
+        "the graph has none".to_string()
+    } else {
+        format!("known: {}", names.join(", "))
+    }
+}
+
+/// A parameter value as the CLI and parameter files give it: one number, or a list of
+/// two or three.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum Given {
+    Number(f64),
+    List(Vec<f64>),
+}
+
+impl Given {
+    /// Reads `0.7`, `0.1,0.2,0.3` or `#ff8800` (a colour in sRGB hex, stored as its
+    /// 0–1 components).
+    pub fn parse(text: &str) -> Result<Given, String> {
+        let text = text.trim();
+        if let Some(hex) = text.strip_prefix('#') {
+            if hex.len() != 6 || !hex.chars().all(|c| c.is_ascii_hexdigit()) {
+                return Err(format!("'{text}' is not a colour like #ff8800"));
+            }
+            let channel = |k: usize| f64::from(u8::from_str_radix(&hex[k..k + 2], 16).unwrap_or(0)) / 255.0;
+            return Ok(Given::List(vec![channel(0), channel(2), channel(4)]));
+        }
+        let numbers = text
+            .split(',')
+            .map(|part| {
+                part.trim()
+                    .parse::<f64>()
+                    .map_err(|_| format!("'{}' is not a number", part.trim()))
+            })
+            .collect::<Result<Vec<f64>, String>>()?;
+        Ok(match numbers.as_slice() {
+            [x] => Given::Number(*x),
+            _ => Given::List(numbers),
+        })
+    }
+
+    /// The value as type `ty`: a number fills every component; a list must have the
+    /// type's width.
+    pub fn to_value(&self, ty: ValueType) -> Result<Value, String> {
+        let components: Vec<f64> = match self {
+            Given::Number(x) => vec![*x; ty.width()],
+            Given::List(list) if list.len() == ty.width() => list.clone(),
+            Given::List(list) => {
+                return Err(format!(
+                    "{} numbers given, a {ty} has {}",
+                    list.len(),
+                    ty.width()
+                ));
+            }
+        };
+        if let Some(bad) = components.iter().find(|x| !x.is_finite()) {
+            return Err(format!("{bad} is not a finite number"));
+        }
+        let c = |k: usize| components[k];
+        Ok(match ty {
+            ValueType::Float => Value::Float(c(0)),
+            ValueType::Vec2 => Value::Vec2(c(0), c(1)),
+            ValueType::Vec3 => Value::Vec3(c(0), c(1), c(2)),
+            ValueType::Color => Value::Color(c(0), c(1), c(2)),
+        })
+    }
+
+    /// The value's components, for a value of the graph.
+    pub fn of(value: &Value) -> Given {
+        match value.ty().width() {
+            1 => Given::Number(value.components()[0]),
+            width => Given::List(value.components()[..width].to_vec()),
+        }
+    }
+}
+
+/// Sets exposed parameter `name` of `graph` to `given`, checking its type and range.
+pub fn set(graph: &mut Graph, name: &str, given: &Given) -> Result<(), ParameterError> {
+    let exposed = exposed(graph);
+    let Some(entry) = exposed.iter().find(|entry| entry.name == name) else {
+        return Err(ParameterError::Unknown {
+            name: name.to_string(),
+            known: exposed.iter().map(|entry| entry.name.clone()).collect(),
+        });
+    };
+    let value = given
+        .to_value(entry.ty)
+        .map_err(|problem| ParameterError::BadValue {
+            name: name.to_string(),
+            ty: entry.ty,
+            problem,
+        })?;
+    if let Some((min, max)) = entry.range
+        && let Some(outside) = value.components()[..entry.ty.width()]
+            .iter()
+            .find(|x| !(min..=max).contains(*x))
+    {
+        return Err(ParameterError::OutOfRange {
+            name: name.to_string(),
+            min,
+            max,
+            value: *outside,
+        });
+    }
+    graph.set_input(entry.target.node, &entry.target.pin, value);
+    Ok(())
+}
+
+/// Applies parameter preset `preset` of the graph.
+pub fn apply_preset(graph: &mut Graph, preset: &str) -> Result<(), ParameterError> {
+    let Some(values) = graph.presets.get(preset).cloned() else {
+        return Err(ParameterError::UnknownPreset {
+            name: preset.to_string(),
+            known: graph.presets.keys().cloned().collect(),
+        });
+    };
+    for (name, value) in &values {
+        set(graph, name, &Given::of(value))?;
+    }
+    Ok(())
+}
+
+/// Reads a parameter file: a map from parameter names to values, in RON
+/// (`{"ring_frequency": 0.7, "tint": (1.0, 0.5, 0.2)}`) or JSON
+/// (`{"ring_frequency": 0.7, "tint": [1.0, 0.5, 0.2]}`), told apart by the extension
+/// `.json`.
+pub fn parse_file(text: &str, json: bool) -> Result<BTreeMap<String, Given>, String> {
+    if json {
+        serde_json::from_str(text).map_err(|error| {
+            format!("{}:{}: {error}", error.line(), error.column())
+        })
+    } else {
+        ron::from_str(text).map_err(|error| {
+            format!(
+                "{}:{}: {}",
+                error.span.start.line, error.span.start.col, error.code
+            )
+        })
+    }
+}
+
+/// The JSON description of `exposed` written beside exports: per parameter its name,
+/// the member of the `VeneerParameters` uniform struct, type, default, range, UI hint,
+/// group path, and the member's byte offset and size in the struct.
+pub fn describe(exposed: &[Exposed], members: &[Member]) -> String {
+    let entries: Vec<serde_json::Value> = exposed
+        .iter()
+        .zip(members)
+        .map(|(entry, member)| {
+            let components = entry.value.components()[..entry.ty.width()].to_vec();
+            let mut object = serde_json::json!({
+                "name": entry.name,
+                "member": member.name,
+                "type": entry.ty.to_string(),
+                "default": if components.len() == 1 { serde_json::json!(components[0]) } else { serde_json::json!(components) },
+                "hint": entry.hint.name(),
+                "group_path": entry.group_path,
+                "offset": member.offset,
+                "size": member.size,
+            });
+            if let Some((min, max)) = entry.range {
+                object["range"] = serde_json::json!([min, max]);
+            }
+            if let Hint::Choice(options) = &entry.hint {
+                object["options"] = serde_json::json!(options);
+            }
+            object
+        })
+        .collect();
+    let size = members.last().map_or(0, |m| (m.offset + m.size).div_ceil(16) * 16);
+    let description = serde_json::json!({
+        "struct": "VeneerParameters",
+        "binding": { "group": 1, "binding": 0 },
+        "size": size,
+        "parameters": entries,
+    });
+    let mut text = serde_json::to_string_pretty(&description).unwrap_or_default();
+    text.push('\n');
+    text
+}
+
+/// One member of the `VeneerParameters` uniform struct.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Member {
+    /// The WGSL identifier.
+    pub name: String,
+    pub ty: ValueType,
+    /// Byte offset in the struct (WGSL uniform layout, the same as std140 for these
+    /// types: f32 aligned to 4, vec2f to 8, vec3f to 16).
+    pub offset: u32,
+    /// Bytes the value takes (4, 8 or 12).
+    pub size: u32,
+}
+
+/// The uniform struct's members for `exposed`, with WGSL identifiers made from the
+/// parameter names by `identifier`, laid out in order.
+pub fn members(exposed: &[Exposed], mut identifier: impl FnMut(&str, u32) -> String) -> Vec<Member> {
+    let mut offset = 0u32;
+    exposed
+        .iter()
+        .enumerate()
+        .map(|(k, entry)| {
+            let (align, size) = match entry.ty.width() {
+                1 => (4, 4),
+                2 => (8, 8),
+                _ => (16, 12),
+            };
+            offset = offset.div_ceil(align) * align;
+            let member = Member {
+                name: identifier(&entry.name, k as u32),
+                ty: entry.ty,
+                offset,
+                size,
+            };
+            offset += size;
+            member
+        })
+        .collect()
+}
+
+/// Changes to a graph's exposed parameters asked for on a command line or in a batch
+/// job: a parameter preset, then values by name, applied in that order.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Overrides {
+    pub preset: Option<String>,
+    pub values: Vec<(String, Given)>,
+}
+
+impl Overrides {
+    /// Whether nothing is changed.
+    pub fn is_empty(&self) -> bool {
+        self.preset.is_none() && self.values.is_empty()
+    }
+
+    /// Applies the preset, then each value.
+    pub fn apply(&self, graph: &mut Graph) -> Result<(), ParameterError> {
+        if let Some(preset) = &self.preset {
+            apply_preset(graph, preset)?;
+        }
+        for (name, given) in &self.values {
+            set(graph, name, given)?;
+        }
+        Ok(())
+    }
+}
