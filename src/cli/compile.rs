@@ -30,8 +30,8 @@ pub struct CompileArgs {
     /// constant in a block of slots.
     #[arg(long, value_enum, default_value = "baked")]
     params: ParamsArg,
-    /// Output file (stdout when absent or `-`). When the graph exposes parameters, their
-    /// JSON description is written beside it as `<output stem>.parameters.json`.
+    /// Output file (stdout when absent or `-`). With `--params uniform`, the JSON
+    /// description of the parameters is written beside it as `<stem>.parameters.json`.
     #[arg(short, long)]
     output: Option<PathBuf>,
     /// Print the JSON description of the exposed parameters instead of the shader.
@@ -58,7 +58,7 @@ pub fn run(args: CompileArgs) -> Result<(), Failure> {
     let bytes = export_compiled(&compiled, args.target).map_err(|error| in_file(&args.graph, error))?;
     write_output(args.output.as_ref(), &bytes)?;
     match &args.output {
-        Some(path) if path.as_os_str() != "-" && !compiled.checked.parameters.is_empty() => {
+        Some(path) if path.as_os_str() != "-" && params == ParamMode::Named => {
             write_output(Some(&description_path(path)), description.as_bytes())
         }
         _ => Ok(()),

@@ -1,6 +1,7 @@
 //! Command-line interface: argument parsing and one module per subcommand.
 
 mod bake;
+mod batch;
 mod check;
 mod compile;
 mod fmt;
@@ -51,6 +52,8 @@ enum Command {
     Fmt(fmt::FmtArgs),
     /// Render graphs and compare them with approved golden images (exit 1 on a difference).
     Snapshot(snapshot::SnapshotArgs),
+    /// Run the render, bake, snapshot and compile jobs of a batch file, or one shard of them.
+    Batch(batch::BatchArgs),
     /// Measure error against run time (precision, hashes, octaves, geodesics, detail) and
     /// write a report with tables and plots.
     Report(report::ReportArgs),
@@ -145,6 +148,7 @@ pub fn execute(cli: Cli) -> Result<(), Failure> {
         Some(Command::Geodesic(args)) => geodesic::run(args),
         Some(Command::Snapshot(args)) => snapshot::run(args),
         Some(Command::Report(args)) => report::run(args),
+        Some(Command::Batch(args)) => batch::run(args),
     }
 }
 

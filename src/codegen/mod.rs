@@ -59,8 +59,12 @@ pub struct ParamSlot {
 }
 
 /// The values of a uniform-mode module's parameters for `graph`, one `vec4f` per slot:
-/// the node's constant for the pin, or the pin's default.
+/// the node's constant for the pin, or the pin's default. The slots of a graph with
+/// groups name the nodes of its flattened form, which inlining numbers the same way
+/// for the same structure, so an edited value lands in the slots it reaches.
 pub fn param_values(graph: &Graph, slots: &[ParamSlot]) -> Vec<[f32; 4]> {
+    let flat = graph::group::flatten(graph).unwrap_or(std::borrow::Cow::Borrowed(graph));
+    let graph = flat.as_ref();
     // Looked up by id: graphs of thousands of nodes have thousands of slots.
     let nodes: FxHashMap<NodeId, &graph::Node> =
         graph.nodes.iter().map(|node| (node.id, node)).collect();
@@ -591,7 +595,7 @@ pub fn compile_checked(
                 "    // {} '{}' ({})\n",
                 node.kind.title(),
                 naming::comment(node.display_name()),
-                node.id
+                naming::comment(&node.reference())
             );
             for statement in &code.statements {
                 text.push_str("    ");

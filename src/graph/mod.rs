@@ -109,6 +109,17 @@ impl Node {
     }
 }
 
+impl Node {
+    /// Where the node is, for generated comments: `#3`, or inside groups
+    /// `group 'bark' › #3`.
+    pub fn reference(&self) -> String {
+        match &self.origin {
+            Some(origin) => format!("{} › {}", origin.groups.join(" › "), origin.id),
+            None => self.id.to_string(),
+        }
+    }
+}
+
 impl fmt::Display for Node {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let name = self.display_name();

@@ -104,9 +104,7 @@ fn instance_parameters(
             pin.clone()
         };
         let mut group_path = vec![group.to_string()];
-        if let group::Route::Inherited { .. } = entry.route {
-            group_path.push(inherited_from(pin));
-        }
+        group_path.extend(entry.path.iter().cloned());
         found.push(Exposed {
             name,
             ty: entry.input.ty,
@@ -122,14 +120,6 @@ fn instance_parameters(
         });
     }
     found
-}
-
-/// The inner instance an inherited input's name points to (`inner.scale` → `inner`),
-/// or the name itself.
-fn inherited_from(pin: &str) -> String {
-    pin.rsplit_once('.')
-        .map(|(inner, _)| inner.to_string())
-        .unwrap_or_else(|| pin.to_string())
 }
 
 /// The flat inputs each exposed parameter starts from: `(node, pin)` → name, the seed

@@ -301,7 +301,14 @@ fn may_write(args: &[String], path: &Path) -> bool {
         ["-o", "--golden", "--write"].contains(&pair[0].as_str())
             && (path.starts_with(output) || output.starts_with(path))
     });
-    under_output || (args[0] == "fmt" && named)
+    // `compile -o out/a.wgsl --params uniform` describes the parameters beside it.
+    let description = args[0] == "compile"
+        && args.windows(2).any(|pair| {
+            let output = Path::new(&pair[1]);
+            let stem = output.file_stem().unwrap_or_default().to_string_lossy();
+            pair[0] == "-o" && output.with_file_name(format!("{stem}.parameters.json")) == path
+        });
+    under_output || description || (args[0] == "fmt" && named)
 }
 
 /// Runs one command line in a fresh fixture and checks the contract.

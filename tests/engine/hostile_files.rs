@@ -311,7 +311,7 @@ fn graph_files_get_messages_with_positions() {
     refused(
         &run_in(&dir, &["check", "twice.ron"]),
         &[
-            "twice.ron:11:",
+            "twice.ron:40:",
             "node 'warp space' (#2): input 'scale' is given twice",
         ],
     );

@@ -22,7 +22,7 @@ fn kind(seed: u32, sine: bool) -> NodeKind {
 
 /// A random graph: each node's inputs wired (or not) to compatible outputs of earlier
 /// nodes by `choices`, a material at the end fed from the last node.
-fn random_graph(kinds: &[u32], choices: &[u32], sine: bool) -> Graph {
+pub fn random_graph(kinds: &[u32], choices: &[u32], sine: bool) -> Graph {
     let mut graph = Graph::default();
     let mut outputs: Vec<(veneer::graph::NodeId, &'static str, ValueType)> = Vec::new();
     let mut choice = choices.iter().cycle();

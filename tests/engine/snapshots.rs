@@ -23,13 +23,12 @@ fn scratch_with_marble(name: &str) -> PathBuf {
 
 fn change_marble(path: &Path) {
     let mut graph = veneer::graph::load(path).expect("marble loads");
-    let bands = graph
-        .nodes
-        .iter()
-        .find(|n| n.label == "bands")
-        .expect("bands node")
-        .id;
-    graph.set_input(bands, "frequency", Value::Float(4.0));
+    veneer::graph::parameters::set(
+        &mut graph,
+        "vein_frequency",
+        &veneer::graph::parameters::Given::Number(4.0),
+    )
+    .expect("marble exposes its vein frequency");
     veneer::graph::save(&graph, path).expect("saved");
 }
 

@@ -1,0 +1,210 @@
+//! `veneer batch`: runs the render, bake, snapshot and compile jobs a batch file lists,
+//! or one deterministic shard of them (`--shard K/N`), so that any scheduler (Slurm job
+//! arrays, Kubernetes Indexed Jobs, a CI matrix) can spread a batch over machines with
+//! no coordinator: shard K runs jobs K, K+N, K+2N, … in file order.
+//!
+//! Each job runs as the command line it stands for (`veneer batch --dry-run` prints
+//! them), in this process; every job runs even when one fails, and the batch exits
+//! with the highest exit code of its jobs.
+
+use super::output::{note, out};
+use super::{Cli, Failure};
+use clap::{Args, Parser};
+use indicatif::{ProgressBar, ProgressStyle};
+use serde::Deserialize;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use veneer::graph::parameters::Given;
+
+#[derive(Args)]
+pub struct BatchArgs {
+    /// The batch file (RON, or JSON when it ends in `.json`). Paths in it are relative
+    /// to its folder.
+    file: PathBuf,
+    /// Run only shard K of N (1 ≤ K ≤ N): jobs K, K+N, K+2N, … in file order.
+    #[arg(long, value_name = "K/N", value_parser = parse_shard)]
+    shard: Option<Shard>,
+    /// Print the command line of each job of the shard and run nothing.
+    #[arg(long)]
+    dry_run: bool,
+}
+
+/// One shard of a batch: the `index`-th (1-based) of `count`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Shard {
+    pub index: usize,
+    pub count: usize,
+}
+
+impl Shard {
+    /// Whether job `job` (0-based, in file order) belongs to this shard.
+    pub fn has(&self, job: usize) -> bool {
+        job % self.count == self.index - 1
+    }
+}
+
+/// Reads `K/N`.
+fn parse_shard(text: &str) -> Result<Shard, String> {
+    let (index, count) = text
+        .split_once('/')
+        .ok_or_else(|| format!("'{text}' is not K/N (such as 2/4)"))?;
+    let number = |part: &str| {
+        part.trim()
+            .parse::<usize>()
+            .map_err(|_| format!("'{part}' is not a whole number"))
+    };
+    let (index, count) = (number(index)?, number(count)?);
+    if count == 0 || index == 0 || index > count {
+        return Err(format!(
+            "shard {index}/{count}: K must be from 1 to N, and N at least 1"
+        ));
+    }
+    Ok(Shard { index, count })
+}
+
+/// A batch file: its jobs, in order.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct BatchFile {
+    jobs: Vec<Job>,
+}
+
+/// What a job runs.
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq)]
+#[serde(rename_all = "lowercase")]
+enum Command {
+    Render,
+    Bake,
+    Snapshot,
+    Compile,
+}
+
+/// One job: a command on a graph, with parameter values and an output.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Job {
+    command: Command,
+    graph: PathBuf,
+    /// The graph's parameter preset to start from.
+    #[serde(default)]
+    preset: Option<String>,
+    /// Exposed parameter values, applied after the preset.
+    #[serde(default)]
+    set: BTreeMap<String, Given>,
+    /// The output: the PNG of `render`, the folder (or `.glb`/`.gltf` file) of `bake`,
+    /// the golden folder of `snapshot`, the shader file of `compile`.
+    output: PathBuf,
+    /// More options of the command, as on its command line.
+    #[serde(default)]
+    args: Vec<String>,
+}
+
+impl Job {
+    /// The command line the job stands for, paths resolved against `base`.
+    fn command_line(&self, base: &Path) -> Vec<String> {
+        let path = |p: &Path| base.join(p).to_string_lossy().into_owned();
+        let (graph, output) = (path(&self.graph), path(&self.output));
+        let mut line: Vec<String> = vec!["veneer".into()];
+        match self.command {
+            Command::Render => line.extend(["render".into(), graph, "-o".into(), output]),
+            Command::Compile => line.extend(["compile".into(), graph, "-o".into(), output]),
+            Command::Snapshot => line.extend(["snapshot".into(), graph, "--golden".into(), output]),
+            Command::Bake => {
+                let model = self
+                    .output
+                    .extension()
+                    .is_some_and(|e| e == "glb" || e == "gltf");
+                let flag = if model { "--gltf" } else { "--out-dir" };
+                line.extend(["bake".into(), graph, flag.into(), output]);
+            }
+        }
+        if let Some(preset) = &self.preset {
+            line.extend(["--preset".into(), preset.clone()]);
+        }
+        for (name, value) in &self.set {
+            let text = match value {
+                Given::Number(x) => x.to_string(),
+                Given::List(list) => list
+                    .iter()
+                    .map(f64::to_string)
+                    .collect::<Vec<_>>()
+                    .join(","),
+            };
+            line.push(format!("--set={name}={text}"));
+        }
+        line.extend(self.args.iter().cloned());
+        line
+    }
+}
+
+/// Reads a batch file.
+fn read(path: &Path) -> Result<BatchFile, Failure> {
+    let bytes = veneer::fsutil::read_limited(path, veneer::fsutil::ReadLimit::GRAPH)
+        .map_err(|error| Failure::new(format!("{}: cannot read: {error}", path.display())))?;
+    let text = String::from_utf8_lossy(&bytes);
+    let parsed = if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("json")) {
+        serde_json::from_str(&text)
+            .map_err(|error| format!("{}:{}: {error}", error.line(), error.column()))
+    } else {
+        ron::from_str(&text).map_err(|error| {
+            format!(
+                "{}:{}: {}",
+                error.span.start.line, error.span.start.col, error.code
+            )
+        })
+    };
+    parsed.map_err(|error| Failure::new(format!("{}:{error}", path.display())))
+}
+
+pub fn run(args: BatchArgs) -> Result<(), Failure> {
+    let batch = read(&args.file)?;
+    let base = args.file.parent().unwrap_or(Path::new(""));
+    let shard = args.shard.unwrap_or(Shard { index: 1, count: 1 });
+    let jobs: Vec<(usize, Vec<String>)> = batch
+        .jobs
+        .iter()
+        .enumerate()
+        .filter(|(k, _)| shard.has(*k))
+        .map(|(k, job)| (k + 1, job.command_line(base)))
+        .collect();
+    if args.dry_run {
+        for (_, line) in &jobs {
+            out(line.join(" "))?;
+        }
+        return Ok(());
+    }
+    let bar = ProgressBar::new(jobs.len() as u64).with_style(
+        ProgressStyle::with_template("shard {prefix} [{bar:40}] {pos}/{len} jobs {elapsed} {msg}")
+            .expect("valid template"),
+    );
+    bar.set_prefix(format!("{}/{}", shard.index, shard.count));
+    let mut worst = 0u8;
+    let mut failed = 0;
+    for (number, line) in &jobs {
+        bar.set_message(line[1..3].join(" "));
+        let outcome = Cli::try_parse_from(line)
+            .map_err(|error| Failure::new(error.to_string().trim_end().to_string()))
+            .and_then(super::execute);
+        if let Err(Failure(message, code)) = outcome
+            && code > 0
+        {
+            failed += 1;
+            worst = worst.max(code);
+            bar.suspend(|| note(format!("job {number} ({}): {message}", line[1..3].join(" "))))?;
+        }
+        bar.inc(1);
+    }
+    bar.finish_and_clear();
+    let summary = format!(
+        "shard {}/{}: {} job{} run, {failed} failed",
+        shard.index,
+        shard.count,
+        jobs.len(),
+        if jobs.len() == 1 { "" } else { "s" }
+    );
+    if failed == 0 {
+        note(summary)
+    } else {
+        Err(Failure(summary, worst))
+    }
+}

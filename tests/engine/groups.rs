@@ -1,0 +1,379 @@
+//! Node groups and exposed parameters: grouping and ungrouping random graphs changes
+//! nothing, nested exposure, recursion, the library, file determinism, `--set` on every
+//! command, the named uniform export read by a wgpu program, and sharded batches.
+
+use crate::properties::random_graph;
+use crate::support::{cpu_flat_rgb8, flat_rgb8, root, run_veneer, temp_dir, veneer};
+use proptest::prelude::*;
+use std::collections::BTreeSet;
+use veneer::codegen::{CompileOptions, ParamMode, compile};
+use veneer::graph::group::{BOUNDARY, GroupDef, GroupInput, GroupOutput, Hint, group_nodes, ungroup};
+use veneer::graph::parameters::{Given, exposed, set};
+use veneer::graph::{Graph, NodeId, NodeKind, PinRef, Value, ValueType, Wire};
+use veneer::nodes::{Group, Math};
+use veneer::render::FlatRect;
+
+/// The rectangle the group tests render over.
+const RECT: FlatRect = FlatRect {
+    x0: -2.0,
+    z0: -1.5,
+    x1: 3.0,
+    z1: 2.5,
+    y: 0.3,
+};
+
+/// A connected selection of `graph`'s nodes (the material left out): up to `size`
+/// nodes reached over wires from the `start`-th node.
+fn connected_selection(graph: &Graph, start: usize, size: usize) -> BTreeSet<NodeId> {
+    let candidates: Vec<NodeId> = graph
+        .nodes
+        .iter()
+        .filter(|node| node.kind != NodeKind::Material)
+        .map(|node| node.id)
+        .collect();
+    let mut selection = BTreeSet::new();
+    let Some(first) = candidates.get(start % candidates.len().max(1)) else {
+        return selection;
+    };
+    let mut frontier = vec![*first];
+    while let Some(id) = frontier.pop() {
+        if selection.len() >= size || !candidates.contains(&id) || !selection.insert(id) {
+            continue;
+        }
+        for wire in &graph.wires {
+            if wire.from.node == id {
+                frontier.push(wire.to.node);
+            }
+            if wire.to.node == id {
+                frontier.push(wire.from.node);
+            }
+        }
+    }
+    selection
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 240, ..ProptestConfig::default() })]
+
+    /// Grouping any connected selection gives the same image (CPU, f32); ungrouping it
+    /// again gives the same file and the same WGSL as before.
+    #[test]
+    fn grouping_then_ungrouping_changes_nothing(
+        kinds in prop::collection::vec(0u32..8192, 2..16),
+        choices in prop::collection::vec(any::<u32>(), 1..48),
+        start in any::<usize>(),
+        size in 1usize..8,
+    ) {
+        let graph = random_graph(&kinds, &choices, true);
+        let Ok(original) = compile(&graph, &Default::default()) else { return Ok(()) };
+        let selection = connected_selection(&graph, start, size);
+        prop_assume!(!selection.is_empty());
+        let mut grouped = graph.clone();
+        let instance = group_nodes(&mut grouped, &selection, "part").expect("groups");
+        prop_assert!(grouped.nodes.len() <= graph.nodes.len());
+        let compiled = compile(&grouped, &Default::default());
+        prop_assert!(compiled.is_ok(), "{:?}\n{}", compiled.err(), veneer::graph::to_ron(&grouped));
+        prop_assert_eq!(cpu_flat_rgb8(&grouped, RECT, 8), cpu_flat_rgb8(&graph, RECT, 8));
+        // The grouped file reads back as itself.
+        let text = veneer::graph::to_ron(&grouped);
+        prop_assert_eq!(veneer::graph::to_ron(&veneer::graph::from_ron(&text).expect("loads")), text);
+
+        ungroup(&mut grouped, instance).expect("ungroups");
+        prop_assert_eq!(veneer::graph::to_ron(&grouped), veneer::graph::to_ron(&graph));
+        let again = compile(&grouped, &Default::default()).expect("compiles");
+        prop_assert_eq!(again.source(), original.source());
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 12, ..ProptestConfig::default() })]
+
+    /// The GPU draws a grouped graph exactly as the graph it came from.
+    #[test]
+    fn grouped_graphs_render_the_same_on_the_gpu(
+        kinds in prop::collection::vec(0u32..8192, 2..10),
+        choices in prop::collection::vec(any::<u32>(), 1..32),
+        start in any::<usize>(),
+    ) {
+        let graph = random_graph(&kinds, &choices, false);
+        let Ok(original) = compile(&graph, &Default::default()) else { return Ok(()) };
+        let selection = connected_selection(&graph, start, 4);
+        prop_assume!(!selection.is_empty());
+        let mut grouped = graph.clone();
+        group_nodes(&mut grouped, &selection, "part").expect("groups");
+        let compiled = compile(&grouped, &Default::default()).expect("compiles");
+        prop_assert_eq!(flat_rgb8(compiled.source(), RECT, 16), flat_rgb8(original.source(), RECT, 16));
+    }
+}
+
+/// A group `name` computing `x * gain` of the surface's x (gain a declared input, 2 by
+/// default), or, with `inner`, the same through an instance of group `inner` whose
+/// inputs it leaves unwired.
+fn scaling_group(inner: Option<&str>) -> GroupDef {
+    let mut definition = GroupDef {
+        linked: false,
+        inputs: Vec::new(),
+        outputs: vec![GroupOutput {
+            name: "result".into(),
+            ty: ValueType::Float,
+        }],
+        nodes: Vec::new(),
+        wires: Vec::new(),
+    };
+    let mut holder = Graph::default();
+    let position = holder.add("position", NodeKind::Position);
+    let split = holder.add("split", NodeKind::Split(veneer::nodes::Split { ty: ValueType::Vec3 }));
+    holder.connect(position, "position", split, "v");
+    let last = match inner {
+        Some(inner) => {
+            let id = holder.add("scaled", NodeKind::Group(Group::named(inner.into())));
+            holder.connect(split, "x", id, "x");
+            (id, "result")
+        }
+        None => {
+            let multiply = holder.add(
+                "gain",
+                NodeKind::Math(Math {
+                    op: veneer::graph::MathOp::Multiply,
+                    ty: ValueType::Float,
+                }),
+            );
+            holder.connect(split, "x", multiply, "a");
+            definition.inputs = vec![
+                GroupInput {
+                    name: "gain".into(),
+                    ty: ValueType::Float,
+                    default: Value::Float(2.0),
+                    range: Some((0.0, 10.0)),
+                    hint: Hint::Slider,
+                },
+                GroupInput {
+                    name: "x".into(),
+                    ty: ValueType::Float,
+                    default: Value::Float(0.0),
+                    range: None,
+                    hint: Hint::Slider,
+                },
+            ];
+            holder.wires.retain(|wire| wire.to.node != multiply);
+            definition.wires.push(Wire {
+                from: PinRef::new(BOUNDARY, "x"),
+                to: PinRef::new(multiply, "a"),
+            });
+            definition.wires.push(Wire {
+                from: PinRef::new(BOUNDARY, "gain"),
+                to: PinRef::new(multiply, "b"),
+            });
+            (multiply, "result")
+        }
+    };
+    definition.wires.extend(holder.wires.clone());
+    definition.wires.push(Wire {
+        from: PinRef::new(last.0, last.1),
+        to: PinRef::new(BOUNDARY, "result"),
+    });
+    definition.nodes = holder.nodes;
+    definition
+}
+
+/// A graph whose albedo is `outer`'s result, `outer` using `inner` (x * gain).
+fn nested_graph() -> Graph {
+    let mut graph = Graph::default();
+    graph.groups.insert("inner".into(), scaling_group(None));
+    graph.groups.insert("outer".into(), scaling_group(Some("inner")));
+    let outer = graph.add("outer", NodeKind::Group(Group::named("outer".into())));
+    let material = graph.add("material", NodeKind::Material);
+    graph.connect(outer, "result", material, "albedo");
+    veneer::graph::group::resolve(&mut graph);
+    graph
+}
+
+/// The CPU albedo's red channel at x = 0.25 (which the nested groups scale).
+fn red_at_quarter(graph: &Graph) -> f64 {
+    let evaluator = veneer::eval::Evaluator::new(graph).expect("checks");
+    let surface = veneer::eval::Surface::<f64>::at([0.25, 0.0, 0.0]);
+    evaluator.eval(&surface).albedo[0]
+}
+
+#[test]
+fn nested_parameters_stay_exposed_through_their_parents_until_wired() {
+    let mut graph = nested_graph();
+    let names: Vec<(String, Vec<String>)> = exposed(&graph)
+        .into_iter()
+        .map(|entry| (entry.name, entry.group_path))
+        .collect();
+    assert!(
+        names.contains(&("gain".into(), vec!["outer".into(), "inner".into()])),
+        "{names:?}"
+    );
+    assert!((red_at_quarter(&graph) - 0.5).abs() < 1e-9, "the default gain is 2");
+    set(&mut graph, "gain", &Given::Number(3.0)).expect("sets");
+    assert!((red_at_quarter(&graph) - 0.75).abs() < 1e-9);
+    // The change is also what the compiled shader and its parameter list say.
+    let compiled = compile(&graph, &CompileOptions::with_params(ParamMode::Named)).expect("compiles");
+    assert!(compiled.source().contains("gain: f32"), "{}", compiled.source());
+    assert!(set(&mut graph, "gain", &Given::Number(11.0)).is_err(), "outside its range");
+
+    // Wiring the inner instance's gain inside `outer` binds it: no longer exposed.
+    let outer = graph.groups.get_mut("outer").expect("outer");
+    let inner_id = outer
+        .nodes
+        .iter()
+        .find(|node| node.label == "scaled")
+        .expect("inner instance")
+        .id;
+    let constant = NodeId(99);
+    let mut node = veneer::graph::Node::new(constant, NodeKind::Constant(veneer::nodes::Constant { ty: ValueType::Float }));
+    node.inputs.insert("value".into(), Value::Float(4.0));
+    outer.nodes.push(node);
+    outer.wires.push(Wire {
+        from: PinRef::new(constant, "value"),
+        to: PinRef::new(inner_id, "gain"),
+    });
+    veneer::graph::group::resolve(&mut graph);
+    assert!(exposed(&graph).iter().all(|entry| entry.name != "gain"));
+    assert!((red_at_quarter(&graph) - 1.0).abs() < 1e-9);
+}
+
+#[test]
+fn a_group_that_contains_itself_is_refused_naming_the_groups() {
+    let mut graph = Graph::default();
+    graph.groups.insert("bark".into(), scaling_group(Some("grain")));
+    graph.groups.insert("grain".into(), scaling_group(Some("bark")));
+    let bark = graph.add("bark", NodeKind::Group(Group::named("bark".into())));
+    let material = graph.add("material", NodeKind::Material);
+    graph.connect(bark, "result", material, "albedo");
+    let errors = veneer::graph::check(&graph).expect_err("recursion is an error");
+    let message = errors.iter().map(ToString::to_string).collect::<Vec<_>>().join("\n");
+    assert!(message.contains("'bark' › 'grain' › 'bark'"), "{message}");
+    // The file still loads and saves: the error is the check's.
+    let text = veneer::graph::to_ron(&graph);
+    assert_eq!(veneer::graph::to_ron(&veneer::graph::from_ron(&text).unwrap()), text);
+}
+
+#[test]
+fn errors_inside_groups_name_the_group_path() {
+    let mut graph = nested_graph();
+    let inner = graph.groups.get_mut("inner").expect("inner");
+    let multiply = inner.nodes.iter_mut().find(|n| n.label == "gain").expect("gain");
+    multiply.inputs.insert("nonsense".into(), Value::Float(1.0));
+    let errors = veneer::graph::check(&graph).expect_err("unknown pin");
+    let message = errors.iter().map(ToString::to_string).collect::<Vec<_>>().join("\n");
+    assert!(
+        message.contains("group 'outer' › group 'scaled' › node 'gain' (#"),
+        "{message}"
+    );
+}
+
+#[test]
+fn group_files_are_deterministic_and_plain_graphs_stay_version_one() {
+    let graph = nested_graph();
+    let text = veneer::graph::to_ron(&graph);
+    assert!(text.contains("version: 2"), "{text}");
+    let reloaded = veneer::graph::from_ron(&text).expect("loads");
+    assert_eq!(veneer::graph::to_ron(&reloaded), text);
+    let plain = veneer::graph::load(&root("graphs/thesis_brick.ron")).expect("loads");
+    assert!(veneer::graph::to_ron(&plain).contains("version: 1"));
+    // The shipped presets are in canonical form.
+    for name in ["wood", "marble", "wood_polished", "marble_polished"] {
+        let path = root(&format!("graphs/{name}.ron"));
+        let on_disk = std::fs::read_to_string(&path).expect("reads");
+        assert_eq!(veneer::graph::to_ron(&veneer::graph::load(&path).unwrap()), on_disk, "{name}");
+    }
+}
+
+/// `veneer render graphs/wood.ron` at 96 px with `extra` arguments, as PNG bytes.
+fn wood_render(extra: &[&str], library: Option<&std::path::Path>) -> Vec<u8> {
+    let dir = temp_dir("groups-wood");
+    let out = dir.join(format!("wood-{}.png", extra.join("_").replace(['/', '='], "-")));
+    let mut command = veneer();
+    command
+        .current_dir(root(""))
+        .args(["render", "graphs/wood.ron", "--size", "96", "-o"])
+        .arg(&out)
+        .args(extra)
+        .env("VENEER_LIBRARY", library.unwrap_or(&dir.join("no-library")));
+    let output = command.output().expect("runs");
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    std::fs::read(&out).expect("written")
+}
+
+#[test]
+fn editing_a_library_group_updates_the_graphs_that_link_it() {
+    let default = wood_render(&[], None);
+    let changed = wood_render(&["--set", "ring_frequency=0.9"], None);
+    assert_ne!(default, changed);
+    // The user's library has a ring_wood whose ring frequency defaults to 0.9.
+    let library = temp_dir("groups-library");
+    let shipped = std::fs::read_to_string(root("graphs/lib/ring_wood.ron")).expect("reads");
+    let edited = shipped.replace(
+        "(name: \"ring_frequency\", ty: Float, default: Float(0.5)",
+        "(name: \"ring_frequency\", ty: Float, default: Float(0.9)",
+    );
+    assert_ne!(edited, shipped);
+    std::fs::write(library.join("ring_wood.ron"), edited).expect("writes");
+    assert_eq!(wood_render(&[], Some(&library)), changed);
+
+    // A local copy (Make local) keeps its own definition.
+    let local = temp_dir("groups-local").join("wood_local.ron");
+    let mut graph = veneer::graph::load(&root("graphs/wood.ron")).expect("loads");
+    graph.groups.get_mut("ring_wood").expect("ring_wood").linked = false;
+    veneer::graph::save(&graph, &local).expect("saves");
+    let out = local.with_extension("png");
+    let output = veneer()
+        .args(["render", "--size", "96", "-o"])
+        .arg(&out)
+        .arg(&local)
+        .env("VENEER_LIBRARY", &library)
+        .output()
+        .expect("runs");
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    assert_eq!(std::fs::read(&out).unwrap(), default);
+}
+
+#[test]
+fn set_works_on_every_command() {
+    let dir = temp_dir("groups-set");
+    let path = |name: &str| dir.join(name).to_string_lossy().into_owned();
+    // render: covered with the library test; compile: the literal changes.
+    let default = run_veneer(&["compile", "graphs/wood.ron"]);
+    let set = run_veneer(&["compile", "graphs/wood.ron", "--set", "ring_frequency=0.7"]);
+    assert!(set.status.success());
+    assert!(String::from_utf8_lossy(&set.stdout).contains("* 0.7f;"));
+    assert_ne!(default.stdout, set.stdout);
+    // bake: the albedo map changes.
+    for (folder, extra) in [("plain", vec![]), ("set", vec!["--set", "ring_frequency=0.7"])] {
+        let mut args = vec!["bake", "graphs/wood.ron", "--size", "32", "--maps", "albedo", "--out-dir"];
+        let out = path(folder);
+        std::fs::create_dir_all(&out).unwrap();
+        args.push(&out);
+        args.extend(extra);
+        let output = run_veneer(&args);
+        assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    }
+    assert_ne!(
+        std::fs::read(dir.join("plain/wood_albedo.png")).unwrap(),
+        std::fs::read(dir.join("set/wood_albedo.png")).unwrap()
+    );
+    // snapshot: goldens approved with a preset are named after it; a different value
+    // then differs from them (exit 1).
+    let golden = path("golden");
+    let approve = run_veneer(&["snapshot", "graphs/wood.ron", "--size", "48", "--golden", &golden, "--preset", "oak", "--update"]);
+    assert!(approve.status.success(), "{}", String::from_utf8_lossy(&approve.stderr));
+    assert!(dir.join("golden/wood.oak.png").is_file());
+    let same = run_veneer(&["snapshot", "graphs/wood.ron", "--size", "48", "--golden", &golden, "--preset", "oak"]);
+    assert_eq!(same.status.code(), Some(0), "{}", String::from_utf8_lossy(&same.stdout));
+    let other = run_veneer(&["snapshot", "graphs/wood.ron", "--size", "48", "--golden", &golden, "--preset", "oak", "--set", "ring_frequency=2"]);
+    assert_eq!(other.status.code(), Some(1), "{}", String::from_utf8_lossy(&other.stdout));
+    // A bad name or value is refused naming the file, with nothing written.
+    let out = path("bad.png");
+    let bad = run_veneer(&["render", "graphs/wood.ron", "-o", &out, "--set", "ring_frequncy=1"]);
+    assert_eq!(bad.status.code(), Some(1));
+    let message = String::from_utf8_lossy(&bad.stderr);
+    assert!(message.contains("graphs/wood.ron: no parameter named 'ring_frequncy'"), "{message}");
+    assert!(!dir.join("bad.png").exists());
+    let file = dir.join("params.json");
+    std::fs::write(&file, r#"{"ring_frequency": 0.7}"#).unwrap();
+    let from_file = run_veneer(&["compile", "graphs/wood.ron", "--params-file", &file.to_string_lossy()]);
+    assert_eq!(from_file.stdout, set.stdout);
+}
