@@ -439,12 +439,19 @@ fn parameter_problems(graph: &Graph) -> Vec<CheckError> {
             });
             continue;
         };
-        if node.kind.signature().input(&parameter.pin).is_none() {
+        let problem = if node.kind.signature().input(&parameter.pin).is_none() {
+            Some("which the node does not have")
+        } else if graph.wire_into(node.id, &parameter.pin).is_some() {
+            Some("which a wire feeds (a wired input takes no value)")
+        } else {
+            None
+        };
+        if let Some(problem) = problem {
             errors.push(CheckError {
                 node: Some(node.id),
                 node_name: Some(node.to_string()),
                 message: format!(
-                    "parameter '{}' exposes input '{}', which the node does not have",
+                    "parameter '{}' exposes input '{}', {problem}",
                     parameter.name, parameter.pin
                 ),
             });

@@ -2,6 +2,7 @@
 //! One binary so that wgpu and the rest link once.
 
 mod bake;
+mod batch;
 mod big_graphs;
 mod cli;
 mod cli_contract;
