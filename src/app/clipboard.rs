@@ -88,7 +88,7 @@ mod tests {
 
     #[test]
     fn copied_nodes_paste_with_new_ids_and_their_wires() {
-        let graph = crate::app::preset("marble").unwrap();
+        let graph = crate::app::preset("wood_classic").unwrap();
         let mut snarl = snarl_from_graph(&graph);
         let selection: Vec<_> = snarl.node_ids().map(|(id, _)| id).take(3).collect();
         let text = copy(&snarl, &selection);
@@ -134,7 +134,7 @@ mod tests {
 
     #[test]
     fn a_duplicate_at_its_originals_is_moved_aside() {
-        let graph = crate::app::preset("marble").unwrap();
+        let graph = crate::app::preset("wood_classic").unwrap();
         let mut snarl = snarl_from_graph(&graph);
         let (node, _) = snarl.node_ids().next().unwrap();
         let original = snarl.get_node_info(node).unwrap().pos;

@@ -38,6 +38,15 @@ pub struct GroupDef {
     pub wires: Vec<Wire>,
 }
 
+impl GroupDef {
+    /// Puts the nodes and wires in their canonical order (as [`Graph::canonicalize`]).
+    pub fn canonicalize(&mut self) {
+        self.nodes.sort_by_key(|node| node.id);
+        self.wires.sort();
+        self.wires.dedup();
+    }
+}
+
 /// One declared input of a group: an exposed parameter of every instance that leaves
 /// it unwired.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]

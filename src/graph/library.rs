@@ -68,10 +68,8 @@ pub fn from_ron(text: &str) -> Result<LibraryGroup, LoadError> {
 
 /// The canonical text of a library file.
 pub fn to_ron(name: &str, group: &GroupDef) -> String {
-    let mut holder = Graph::default();
-    holder.groups.insert(name.to_string(), group.clone());
-    holder.canonicalize();
-    let mut group = holder.groups.remove(name).unwrap_or_else(|| group.clone());
+    let mut group = group.clone();
+    group.canonicalize();
     group.linked = false;
     let file = LibraryGroup {
         version: LIBRARY_VERSION,
@@ -115,8 +113,16 @@ pub fn load(path: &Path) -> Result<LibraryGroup, LoadError> {
     })
 }
 
-/// The library group called `name`: the user's if there is one, else the shipped one.
+/// The library group called `name` (in canonical order): the user's if there is one,
+/// else the shipped one.
 pub fn find(name: &str) -> Option<(GroupDef, Source)> {
+    let (mut group, source) = find_as_written(name)?;
+    group.canonicalize();
+    Some((group, source))
+}
+
+/// [`find`], the group as its file has it.
+fn find_as_written(name: &str) -> Option<(GroupDef, Source)> {
     if let Some(folder) = user_folder() {
         let path = folder.join(format!("{name}.ron"));
         if let Ok(group) = load(&path)

@@ -421,9 +421,7 @@ impl Graph {
         self.wires.sort();
         self.wires.dedup();
         for definition in self.groups.values_mut() {
-            definition.nodes.sort_by_key(|node| node.id);
-            definition.wires.sort();
-            definition.wires.dedup();
+            definition.canonicalize();
         }
     }
 

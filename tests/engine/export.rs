@@ -26,10 +26,11 @@ fn run_validator(tool: &str, file: &Path) {
     );
 }
 
-/// Exports `graph` to every target in both parameter modes and checks each output.
+/// Exports `graph` to every target in every parameter mode (baked, every constant a
+/// slot, the exposed parameters by name) and checks each output.
 fn export_everywhere(graph: &Graph, name: &str, dir: &Path) {
     for (target, target_name, _) in Target::ALL {
-        for params in [ParamMode::Baked, ParamMode::Uniform] {
+        for params in [ParamMode::Baked, ParamMode::Uniform, ParamMode::Named] {
             let bytes = export(graph, target, params)
                 .unwrap_or_else(|e| panic!("{name} → {target_name}: {e}"));
             assert!(!bytes.is_empty());
