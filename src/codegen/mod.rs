@@ -5,7 +5,9 @@
 //! [`Compiled`] value that renders, bakes, snapshots, reports and the editor hand on;
 //! [`compile_checked`] emits a graph some caller has checked already.
 
+mod body;
 pub mod export;
+mod functions;
 pub mod library;
 mod naming;
 mod parts;
@@ -16,10 +18,10 @@ pub use validate::{ValidationError, validate};
 
 use crate::graph::check::{CheckedGraph, InputSource};
 use crate::graph::{self, AlphaMode, CheckError, Graph, NodeId, NodeKind, Preview};
-use crate::nodes::emit::{self, Emit};
+use crate::nodes::emit;
 use naming::Namer;
 use parts::Block;
-use rustc_hash::{FxHashMap, FxHashSet};
+use rustc_hash::FxHashMap;
 use std::ops::Range;
 
 /// How unconnected inputs appear in generated WGSL.
@@ -137,6 +139,12 @@ pub struct SurfaceUse {
 }
 
 impl SurfaceUse {
+    /// The detail a module compiles with: every octave when the mesh is displaced
+    /// (vertex stage), else `asked`.
+    fn detail(&self, asked: Detail) -> Detail {
+        if self.displacement { Detail::Full } else { asked }
+    }
+
     /// Whether the shading normal can differ from the mesh's: a bump, a height or a
     /// tilted tangent-space normal.
     pub fn perturbs_normal(&self) -> bool {
@@ -271,7 +279,10 @@ impl Compiled {
 pub fn compile(graph: &Graph, options: &CompileOptions) -> Result<Compiled, CompileError> {
     counts::checked();
     let checked = graph::check(graph).map_err(CompileError::Check)?;
-    let module = compile_checked(&checked, options)?;
+    let module = match functions::compile(graph, &checked, options) {
+        Some(module) => module?,
+        None => compile_checked(&checked, options)?,
+    };
     Ok(Compiled {
         checked,
         module,
@@ -483,146 +494,43 @@ fn named_block(graph: &CheckedGraph, members: &[crate::graph::parameters::Member
 }
 
 /// Compiles a graph checked by [`graph::check`] to a validated WGSL module, for callers
-/// that have the checked graph already (`veneer check` lints it meanwhile).
+/// that have the checked graph already (`veneer check` lints it meanwhile). Groups are
+/// inlined: every node's code sits in `veneer_material`.
 pub fn compile_checked(
     graph: &CheckedGraph,
     options: &CompileOptions,
 ) -> Result<WgslModule, CompileError> {
     counts::emitted();
-    let CompileOptions {
-        params: mode,
-        detail,
-    } = *options;
     let uses = SurfaceUse::of(graph);
-    let detail = if uses.displacement {
-        Detail::Full
-    } else {
-        detail
-    };
-    let mut params = Vec::new();
-    let members = if mode == ParamMode::Named {
+    let members = if options.params == ParamMode::Named {
         parameter_members(&graph.parameters)
     } else {
         Vec::new()
     };
-    let member_of = |name: &str| {
-        graph
-            .parameters
-            .iter()
-            .position(|parameter| parameter.name == name)
-            .map(|k| (&members[k], graph.parameters[k].ty))
-    };
-    let mut namer = Namer::default();
-    let mut emitted: Vec<Emitted> = Vec::with_capacity(graph.order.len());
-    let mut body: Vec<Block> = Vec::new();
-    // Library items the nodes call, each once, in the order first called.
-    let mut roots: Vec<String> = Vec::new();
-    let mut called: FxHashSet<String> = FxHashSet::default();
-    for checked in &graph.order {
-        let node = &checked.node;
-        let from: Vec<Option<&Emitted>> = checked
-            .inputs
-            .iter()
-            .map(|source| match source {
-                InputSource::Wire { node, .. } => graph.index_of(*node).map(|i| &emitted[i]),
-                _ => None,
-            })
-            .collect();
-        // The member each input reads, for inputs that hold an exposed parameter.
-        let bound: Vec<Option<String>> = checked
-            .signature
-            .inputs
-            .iter()
-            .zip(&checked.inputs)
-            .map(|(pin, source)| {
-                let key = (node.id, pin.name.to_string());
-                match (mode, source) {
-                    (ParamMode::Named, InputSource::Const(_)) => {
-                        let (member, ty) = member_of(graph.bindings.get(&key)?)?;
-                        Some(member_expression(&member.name, ty, pin.ty))
-                    }
-                    _ => None,
-                }
-            })
-            .collect();
-        if matches!(mode, ParamMode::Baked | ParamMode::Named)
-            && let Some(values) = fold(checked, &from, &bound)
-        {
-            let outputs = checked
-                .signature
-                .outputs
-                .iter()
-                .zip(&values)
-                .map(|(pin, lanes)| emit::lanes_literal(pin.ty, *lanes))
-                .collect();
-            emitted.push(Emitted {
-                outputs,
-                folded: Some(values),
-                block: None,
-            });
-            continue;
-        }
-        let inputs: Vec<String> = checked
-            .inputs
-            .iter()
-            .zip(&checked.signature.inputs)
-            .zip(&from)
-            .zip(&bound)
-            .map(|(((source, pin), from), bound)| match bound {
-                Some(expression) => expression.clone(),
-                None => {
-                    let slots = mode.has_slots().then_some(&mut params);
-                    input_expression(source, pin, node.id, *from, slots)
-                }
-            })
-            .collect();
-        let reads: Vec<usize> = from.iter().filter_map(|from| (*from)?.block).collect();
-        let name = match node.kind {
-            NodeKind::Material => String::new(),
-            _ => namer.name(node.display_name(), node.id.0),
-        };
-        let mut io = Emit::new(
-            &checked.signature.inputs,
-            &inputs,
-            &checked.signature.outputs,
-            &name,
-            detail,
-        );
-        checked.node.kind.definition().emit(&mut io);
-        let code = io.finish();
-        if !code.statements.is_empty() {
-            let mut text = format!(
-                "    // {} '{}' ({})\n",
-                node.kind.title(),
-                naming::comment(node.display_name()),
-                naming::comment(&node.reference())
-            );
-            for statement in &code.statements {
-                text.push_str("    ");
-                text.push_str(statement);
-                text.push('\n');
-            }
-            body.push(Block {
-                node: node.id,
-                text,
-                binding: code.binding.map(|ty| (name, ty)),
-                reads,
-            });
-        }
-        for item in code.library {
-            if !called.contains(&item) {
-                called.insert(item.clone());
-                roots.push(item);
-            }
-        }
-        emitted.push(Emitted {
-            outputs: code.outputs,
-            folded: None,
-            block: (!code.statements.is_empty()).then(|| body.len() - 1),
-        });
-    }
-    let items = library::closure(roots.iter().map(String::as_str));
+    let mut emitter = body::Emitter::new(
+        options.params,
+        uses.detail(options.detail),
+        &graph.parameters,
+        &members,
+    );
+    let (blocks, _) = emitter.body(graph, &graph.bindings, &Default::default());
+    assemble(graph, emitter, "", &blocks, uses)
+}
 
+/// The module around the material's `blocks`: the header, the contract structs, the
+/// parameter block, the library items the bodies called, the group `functions` and
+/// `veneer_material`, validated. `graph` (flattened) names the nodes in errors.
+fn assemble(
+    graph: &CheckedGraph,
+    emitter: body::Emitter,
+    functions: &str,
+    blocks: &[Block],
+    uses: SurfaceUse,
+) -> Result<WgslModule, CompileError> {
+    let mode = emitter.mode;
+    let members = emitter.members.to_vec();
+    let params = emitter.params;
+    let items = library::closure(emitter.roots.iter().map(String::as_str));
     let mut source = String::new();
     let title = if graph.name.is_empty() {
         "a Veneer graph".to_string()
@@ -657,7 +565,8 @@ pub fn compile_checked(
         source.push('\n');
         source.push_str(&item.text);
     }
-    let node_spans = parts::write_material(&mut source, &body);
+    source.push_str(functions);
+    let node_spans = parts::write_material(&mut source, blocks);
 
     let library = items.into_iter().map(|item| item.name).collect();
     let mut module = WgslModule {

@@ -269,6 +269,11 @@ fn sanitize(label: &str) -> String {
 }
 
 impl Namer {
+    /// Marks `name` as taken (a function's arguments, before its nodes are named).
+    pub fn reserve(&mut self, name: &str) {
+        self.taken.insert(name.to_string());
+    }
+
     /// A fresh identifier based on `label`; suffixed with `fallback_id` (then a counter)
     /// when the plain name is reserved or already used.
     pub fn name(&mut self, label: &str, fallback_id: u32) -> String {

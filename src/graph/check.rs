@@ -462,6 +462,18 @@ fn parameter_problems(graph: &Graph) -> Vec<CheckError> {
 
 /// [`check`] of a graph without group nodes.
 fn check_flat(graph: &Graph) -> Result<CheckedGraph, Vec<CheckError>> {
+    check_towards(graph, None)
+}
+
+/// Checks one level of a graph as it stands, group nodes included (their pins resolved),
+/// keeping the nodes that `sinks` need, each after its inputs: the body of a group's
+/// function in generated code. The last node is not a material node.
+pub fn check_body(graph: &Graph, sinks: &[NodeId]) -> Result<CheckedGraph, Vec<CheckError>> {
+    check_towards(graph, Some(sinks))
+}
+
+/// Checks `graph` and orders what its material node (`sinks` `None`) or `sinks` need.
+fn check_towards(graph: &Graph, sinks: Option<&[NodeId]>) -> Result<CheckedGraph, Vec<CheckError>> {
     let signatures: Vec<Signature> = graph.nodes.iter().map(|n| n.kind.signature()).collect();
     let mut first_pin = Vec::with_capacity(graph.nodes.len() + 1);
     first_pin.push(0);
@@ -496,10 +508,25 @@ fn check_flat(graph: &Graph) -> Result<CheckedGraph, Vec<CheckError>> {
         checker.check_constants(node, signature);
     }
     checker.check_wires();
-    let Some(material) = checker.material_node() else {
-        return Err(checker.errors);
+    let needed = match sinks {
+        None => {
+            let Some(material) = checker.material_node() else {
+                return Err(checker.errors);
+            };
+            checker.order_from(material)
+        }
+        Some(sinks) => {
+            let mut seen = std::collections::BTreeSet::new();
+            let mut needed = Vec::new();
+            for sink in sinks {
+                if let Some(entry) = checker.lookup(*sink) {
+                    let order = checker.order_from(entry);
+                    needed.extend(order.into_iter().filter(|entry| seen.insert(entry.2)));
+                }
+            }
+            needed
+        }
     };
-    let needed = checker.order_from(material);
     if !checker.errors.is_empty() {
         return Err(checker.errors);
     }

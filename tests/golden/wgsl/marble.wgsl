@@ -146,28 +146,41 @@ fn veneer_smoothstep(edge0: f32, edge1: f32, x: f32) -> f32 {
     return t * t * (3.0 - 2.0 * t);
 }
 
+// ---- node groups
+
+struct veneer_group_veined_marble_out {
+    albedo: vec3f,
+}
+
+// Group 'veined_marble': arguments none.
+fn veneer_group_veined_marble(s: VeneerSurface) -> veneer_group_veined_marble_out {
+    // Project 'vein axis' (#1)
+    let vein_axis: f32 = veneer_project(s.position, vec3f(0.0f, 0.0f, 0.0f), vec3f(0.2f, 0.6f, 0.77f));
+    // Transform 'marble space' (#2)
+    let marble_space: vec3f = s.position * vec3f(0.15f, 0.15f, 0.15f) + vec3f(0.0f, 0.0f, 0.0f);
+    // Transform 'turbulence space' (#3)
+    let turbulence_space: vec3f = marble_space * vec3f(2.0f, 2.0f, 2.0f) + vec3f(0.0f, 0.0f, 0.0f);
+    // fBm 'turbulence' (#4)
+    let turbulence: f32 = veneer_fbm_value_sine(turbulence_space * 1.0f, 5, 2.0f, 0.5f, 0.5f, false, 1000000000.0f);
+    // Remap 'warp' (#5)
+    let warp: f32 = veneer_remap(turbulence, 0.0f, 1.0f, -1.0f, 1.0f);
+    // Sine band 'bands' (#6)
+    let bands: f32 = veneer_sine_band(vein_axis, 3.0f, 10.0f, warp);
+    // Smoothstep 'veins' (#7)
+    let veins: f32 = veneer_smoothstep(0.25f, 0.75f, bands);
+    // Mix 'stone colour' (#8)
+    let stone_colour: vec3f = mix(vec3f(0.2f, 0.2f, 0.25f), vec3f(0.92f, 0.92f, 0.94f), veins);
+    return veneer_group_veined_marble_out(stone_colour);
+}
+
 // ---- the material graph
 
 fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
-    // Project 'vein axis' (group 'marble' › #1)
-    let vein_axis: f32 = veneer_project(s.position, vec3f(0.0f, 0.0f, 0.0f), vec3f(0.2f, 0.6f, 0.77f));
-    // Transform 'marble space' (group 'marble' › #2)
-    let marble_space: vec3f = s.position * vec3f(0.15f, 0.15f, 0.15f) + vec3f(0.0f, 0.0f, 0.0f);
-    // Transform 'turbulence space' (group 'marble' › #3)
-    let turbulence_space: vec3f = marble_space * vec3f(2.0f, 2.0f, 2.0f) + vec3f(0.0f, 0.0f, 0.0f);
-    // fBm 'turbulence' (group 'marble' › #4)
-    let turbulence: f32 = veneer_fbm_value_sine(turbulence_space * 1.0f, 5, 2.0f, 0.5f, 0.5f, false, 1000000000.0f);
-    // Remap 'warp' (group 'marble' › #5)
-    let warp: f32 = veneer_remap(turbulence, 0.0f, 1.0f, -1.0f, 1.0f);
-    // Sine band 'bands' (group 'marble' › #6)
-    let bands: f32 = veneer_sine_band(vein_axis, 3.0f, 10.0f, warp);
-    // Smoothstep 'veins' (group 'marble' › #7)
-    let veins: f32 = veneer_smoothstep(0.25f, 0.75f, bands);
-    // Mix 'stone colour' (group 'marble' › #8)
-    let stone_colour: vec3f = mix(vec3f(0.2f, 0.2f, 0.25f), vec3f(0.92f, 0.92f, 0.94f), veins);
+    // Group 'marble' (#1)
+    let marble = veneer_group_veined_marble(s);
     // Material 'material' (#2)
     return VeneerMaterial(
-        stone_colour, // albedo
+        marble.albedo, // albedo
         1.0f, // alpha
         vec3f(0.3f, 0.3f, 0.3f), // specular
         64.0f, // shininess

@@ -159,76 +159,89 @@ fn veneer_smoothstep(edge0: f32, edge1: f32, x: f32) -> f32 {
     return t * t * (3.0 - 2.0 * t);
 }
 
+// ---- node groups
+
+struct veneer_group_ring_wood_out {
+    albedo: vec3f,
+}
+
+// Group 'ring_wood': arguments none.
+fn veneer_group_ring_wood(s: VeneerSurface) -> veneer_group_ring_wood_out {
+    // Cylindrical 'trunk' (#1)
+    let trunk = veneer_cylindrical(s.position, vec3f(25.0f, 0.0f, 25.0f), vec3f(0.2f, 1.0f, -0.1f));
+    // Transform 'warp space' (#2)
+    let warp_space: vec3f = s.position * vec3f(0.2f, 0.2f, 0.2f) + vec3f(0.0f, 0.0f, 0.0f);
+    // Transform 'coarse warp space' (#3)
+    let coarse_warp_space: vec3f = warp_space * vec3f(2.0f, 2.0f, 2.0f) + vec3f(0.0f, 0.0f, 0.0f);
+    // fBm 'coarse warp' (#4)
+    let coarse_warp: f32 = veneer_fbm_value_sine(coarse_warp_space * 1.0f, 5, 2.0f, 0.5f, 0.5f, false, 1000000000.0f);
+    // Remap 'coarse warp signed' (#5)
+    let coarse_warp_signed: f32 = veneer_remap(coarse_warp, 0.0f, 1.0f, -1.0f, 1.0f);
+    // Math 'coarse warp amount' (#9)
+    let coarse_warp_amount: f32 = coarse_warp_signed * 0.35f;
+    // Math 'radius coarse' (#11)
+    let radius_coarse: f32 = trunk.y + coarse_warp_amount;
+    // Transform 'fine warp space' (#6)
+    let fine_warp_space: vec3f = warp_space * vec3f(6.0f, 6.0f, 6.0f) + vec3f(13.7f, 13.7f, 13.7f);
+    // fBm 'fine warp' (#7)
+    let fine_warp: f32 = veneer_fbm_value_sine(fine_warp_space * 1.0f, 5, 2.0f, 0.5f, 0.5f, false, 1000000000.0f);
+    // Remap 'fine warp signed' (#8)
+    let fine_warp_signed: f32 = veneer_remap(fine_warp, 0.0f, 1.0f, -1.0f, 1.0f);
+    // Math 'fine warp amount' (#10)
+    let fine_warp_amount: f32 = fine_warp_signed * 0.1f;
+    // Math 'warped radius' (#12)
+    let warped_radius: f32 = radius_coarse + fine_warp_amount;
+    // Math 'taper' (#13)
+    let taper: f32 = warped_radius * 0.25f;
+    // Math 'taper squared' (#14)
+    let taper_squared: f32 = taper * warped_radius;
+    // Math 'tapered radius' (#15)
+    let tapered_radius: f32 = warped_radius + taper_squared;
+    // Math 'ring phase' (#16)
+    let ring_phase: f32 = tapered_radius * 0.5f;
+    // Sine band 'rings' (#17)
+    let rings: f32 = veneer_sine_band(ring_phase, 1.0f, 0.0f, 0.0f);
+    // Smoothstep 'ring sharp' (#18)
+    let ring_sharp: f32 = veneer_smoothstep(0.25f, 0.85f, rings);
+    // Mix 'ring colour' (#26)
+    let ring_colour: vec3f = mix(vec3f(0.33f, 0.17f, 0.08f), vec3f(0.62f, 0.42f, 0.22f), ring_sharp);
+    // Math 'grain along' (#19)
+    let grain_along: f32 = trunk.x * 0.6f;
+    // Combine 'grain coords' (#20)
+    let grain_coords: vec3f = vec3f(grain_along, trunk.z, 0.0f);
+    // Transform 'grain drift' (#21)
+    let grain_drift: vec3f = s.position * vec3f(0.05f, 0.05f, 0.05f) + vec3f(0.0f, 0.0f, 0.0f);
+    // Math 'grain space' (#22)
+    let grain_space: vec3f = grain_coords + grain_drift;
+    // fBm 'grain' (#23)
+    let grain: f32 = veneer_fbm_value_sine(grain_space * 1.0f, 5, 2.0f, 0.5f, 0.5f, false, 1000000000.0f);
+    // Smoothstep 'grain contrast' (#24)
+    let grain_contrast: f32 = veneer_smoothstep(0.35f, 0.75f, grain);
+    // Mix 'grain shade' (#25)
+    let grain_shade: f32 = mix(0.85f, 1.05f, grain_contrast);
+    // Math 'grained colour' (#27)
+    let grained_colour: vec3f = ring_colour * vec3f(grain_shade);
+    // Transform 'tint space' (#28)
+    let tint_space: vec3f = s.position * vec3f(0.08f, 0.08f, 0.08f) + vec3f(4.2f, 4.2f, 4.2f);
+    // fBm 'tint' (#29)
+    let tint: f32 = veneer_fbm_value_sine(tint_space * 1.0f, 5, 2.0f, 0.5f, 0.5f, false, 1000000000.0f);
+    // Math 'tint amount' (#30)
+    let tint_amount: f32 = tint * 0.1f;
+    // Math 'tint shade' (#31)
+    let tint_shade: f32 = tint_amount + 0.95f;
+    // Math 'wood colour' (#32)
+    let wood_colour: vec3f = grained_colour * vec3f(tint_shade);
+    return veneer_group_ring_wood_out(wood_colour);
+}
+
 // ---- the material graph
 
 fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
-    // Cylindrical 'trunk' (group 'wood' › #1)
-    let trunk = veneer_cylindrical(s.position, vec3f(25.0f, 0.0f, 25.0f), vec3f(0.2f, 1.0f, -0.1f));
-    // Transform 'warp space' (group 'wood' › #2)
-    let warp_space: vec3f = s.position * vec3f(0.2f, 0.2f, 0.2f) + vec3f(0.0f, 0.0f, 0.0f);
-    // Transform 'coarse warp space' (group 'wood' › #3)
-    let coarse_warp_space: vec3f = warp_space * vec3f(2.0f, 2.0f, 2.0f) + vec3f(0.0f, 0.0f, 0.0f);
-    // fBm 'coarse warp' (group 'wood' › #4)
-    let coarse_warp: f32 = veneer_fbm_value_sine(coarse_warp_space * 1.0f, 5, 2.0f, 0.5f, 0.5f, false, 1000000000.0f);
-    // Remap 'coarse warp signed' (group 'wood' › #5)
-    let coarse_warp_signed: f32 = veneer_remap(coarse_warp, 0.0f, 1.0f, -1.0f, 1.0f);
-    // Math 'coarse warp amount' (group 'wood' › #9)
-    let coarse_warp_amount: f32 = coarse_warp_signed * 0.35f;
-    // Math 'radius coarse' (group 'wood' › #11)
-    let radius_coarse: f32 = trunk.y + coarse_warp_amount;
-    // Transform 'fine warp space' (group 'wood' › #6)
-    let fine_warp_space: vec3f = warp_space * vec3f(6.0f, 6.0f, 6.0f) + vec3f(13.7f, 13.7f, 13.7f);
-    // fBm 'fine warp' (group 'wood' › #7)
-    let fine_warp: f32 = veneer_fbm_value_sine(fine_warp_space * 1.0f, 5, 2.0f, 0.5f, 0.5f, false, 1000000000.0f);
-    // Remap 'fine warp signed' (group 'wood' › #8)
-    let fine_warp_signed: f32 = veneer_remap(fine_warp, 0.0f, 1.0f, -1.0f, 1.0f);
-    // Math 'fine warp amount' (group 'wood' › #10)
-    let fine_warp_amount: f32 = fine_warp_signed * 0.1f;
-    // Math 'warped radius' (group 'wood' › #12)
-    let warped_radius: f32 = radius_coarse + fine_warp_amount;
-    // Math 'taper' (group 'wood' › #13)
-    let taper: f32 = warped_radius * 0.25f;
-    // Math 'taper squared' (group 'wood' › #14)
-    let taper_squared: f32 = taper * warped_radius;
-    // Math 'tapered radius' (group 'wood' › #15)
-    let tapered_radius: f32 = warped_radius + taper_squared;
-    // Math 'ring phase' (group 'wood' › #16)
-    let ring_phase: f32 = tapered_radius * 0.5f;
-    // Sine band 'rings' (group 'wood' › #17)
-    let rings: f32 = veneer_sine_band(ring_phase, 1.0f, 0.0f, 0.0f);
-    // Smoothstep 'ring sharp' (group 'wood' › #18)
-    let ring_sharp: f32 = veneer_smoothstep(0.25f, 0.85f, rings);
-    // Mix 'ring colour' (group 'wood' › #26)
-    let ring_colour: vec3f = mix(vec3f(0.33f, 0.17f, 0.08f), vec3f(0.62f, 0.42f, 0.22f), ring_sharp);
-    // Math 'grain along' (group 'wood' › #19)
-    let grain_along: f32 = trunk.x * 0.6f;
-    // Combine 'grain coords' (group 'wood' › #20)
-    let grain_coords: vec3f = vec3f(grain_along, trunk.z, 0.0f);
-    // Transform 'grain drift' (group 'wood' › #21)
-    let grain_drift: vec3f = s.position * vec3f(0.05f, 0.05f, 0.05f) + vec3f(0.0f, 0.0f, 0.0f);
-    // Math 'grain space' (group 'wood' › #22)
-    let grain_space: vec3f = grain_coords + grain_drift;
-    // fBm 'grain' (group 'wood' › #23)
-    let grain: f32 = veneer_fbm_value_sine(grain_space * 1.0f, 5, 2.0f, 0.5f, 0.5f, false, 1000000000.0f);
-    // Smoothstep 'grain contrast' (group 'wood' › #24)
-    let grain_contrast: f32 = veneer_smoothstep(0.35f, 0.75f, grain);
-    // Mix 'grain shade' (group 'wood' › #25)
-    let grain_shade: f32 = mix(0.85f, 1.05f, grain_contrast);
-    // Math 'grained colour' (group 'wood' › #27)
-    let grained_colour: vec3f = ring_colour * vec3f(grain_shade);
-    // Transform 'tint space' (group 'wood' › #28)
-    let tint_space: vec3f = s.position * vec3f(0.08f, 0.08f, 0.08f) + vec3f(4.2f, 4.2f, 4.2f);
-    // fBm 'tint' (group 'wood' › #29)
-    let tint: f32 = veneer_fbm_value_sine(tint_space * 1.0f, 5, 2.0f, 0.5f, 0.5f, false, 1000000000.0f);
-    // Math 'tint amount' (group 'wood' › #30)
-    let tint_amount: f32 = tint * 0.1f;
-    // Math 'tint shade' (group 'wood' › #31)
-    let tint_shade: f32 = tint_amount + 0.95f;
-    // Math 'wood colour' (group 'wood' › #32)
-    let wood_colour: vec3f = grained_colour * vec3f(tint_shade);
+    // Group 'wood' (#1)
+    let wood = veneer_group_ring_wood(s);
     // Material 'material' (#2)
     return VeneerMaterial(
-        wood_colour, // albedo
+        wood.albedo, // albedo
         1.0f, // alpha
         vec3f(0.08f, 0.07f, 0.06f), // specular
         24.0f, // shininess

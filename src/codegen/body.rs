@@ -1,0 +1,236 @@
+//! The code of one function body: each checked node's statements in order, constant
+//! subgraphs folded to literals, inputs as literals, parameter slots or members of the
+//! exposed parameters, and group nodes as calls of their group's function.
+
+use super::parts::Block;
+use super::{Emitted, ParamMode, ParamSlot, fold, input_expression, member_expression, naming};
+use crate::graph::check::{CheckedGraph, InputSource};
+use crate::graph::group::Bindings;
+use crate::graph::parameters::{Exposed, Member};
+use crate::graph::{NodeId, NodeKind};
+use crate::nodes::emit::{self, Detail, Emit};
+use naming::Namer;
+use rustc_hash::FxHashSet;
+use std::collections::BTreeMap;
+
+/// How a group's function is called: its name, the struct it returns, which inputs of
+/// a group node are its arguments (by pin index) and which outputs the struct has.
+pub struct GroupCall {
+    pub function: String,
+    pub returns: String,
+    pub arguments: Vec<usize>,
+    /// Per output pin of a group node, the struct member holding it (if any instance
+    /// reads it).
+    pub members: Vec<Option<String>>,
+}
+
+/// What every body of one module shares: the modes, the slots and library items
+/// gathered so far, and how to call each group.
+pub struct Emitter<'a> {
+    pub mode: ParamMode,
+    pub detail: Detail,
+    /// Parameter slots (slot modes), in order.
+    pub params: Vec<ParamSlot>,
+    /// Library items the bodies call, each once, in the order first called.
+    pub roots: Vec<String>,
+    called: FxHashSet<String>,
+    /// The exposed parameters and their members (named mode).
+    pub parameters: &'a [Exposed],
+    pub members: &'a [Member],
+    /// Group functions by group name.
+    pub calls: BTreeMap<String, GroupCall>,
+}
+
+impl<'a> Emitter<'a> {
+    /// An emitter for a module of these modes and parameters.
+    pub fn new(
+        mode: ParamMode,
+        detail: Detail,
+        parameters: &'a [Exposed],
+        members: &'a [Member],
+    ) -> Emitter<'a> {
+        Emitter {
+            mode,
+            detail,
+            params: Vec::new(),
+            roots: Vec::new(),
+            called: FxHashSet::default(),
+            parameters,
+            members,
+            calls: BTreeMap::new(),
+        }
+    }
+
+    /// The member expression of the parameter held by input `pin` of `node`, if the
+    /// module binds parameters by name and `bindings` say the input holds one.
+    fn bound(
+        &self,
+        bindings: &Bindings,
+        node: NodeId,
+        pin: &crate::graph::InputPin,
+        source: &InputSource,
+    ) -> Option<String> {
+        if self.mode != ParamMode::Named || !matches!(source, InputSource::Const(_)) {
+            return None;
+        }
+        let name = bindings.get(&(node, pin.name.to_string()))?;
+        let k = self.parameters.iter().position(|p| &p.name == name)?;
+        Some(member_expression(
+            &self.members[k].name,
+            self.parameters[k].ty,
+            pin.ty,
+        ))
+    }
+
+    /// The blocks of `graph`'s nodes in order and what each left for its readers. Nodes
+    /// in `arguments` stand for a function's arguments: their output is the argument.
+    pub fn body(
+        &mut self,
+        graph: &CheckedGraph,
+        bindings: &Bindings,
+        arguments: &BTreeMap<NodeId, String>,
+    ) -> (Vec<Block>, Vec<Emitted>) {
+        let mut namer = Namer::default();
+        for name in arguments.values() {
+            namer.reserve(name);
+        }
+        let mut emitted: Vec<Emitted> = Vec::with_capacity(graph.order.len());
+        let mut blocks: Vec<Block> = Vec::new();
+        for checked in &graph.order {
+            let node = &checked.node;
+            if let Some(argument) = arguments.get(&node.id) {
+                emitted.push(Emitted {
+                    outputs: vec![argument.clone()],
+                    folded: None,
+                    block: None,
+                });
+                continue;
+            }
+            let from: Vec<Option<&Emitted>> = checked
+                .inputs
+                .iter()
+                .map(|source| match source {
+                    InputSource::Wire { node, .. } => graph.index_of(*node).map(|i| &emitted[i]),
+                    _ => None,
+                })
+                .collect();
+            let bound: Vec<Option<String>> = checked
+                .signature
+                .inputs
+                .iter()
+                .zip(&checked.inputs)
+                .map(|(pin, source)| self.bound(bindings, node.id, pin, source))
+                .collect();
+            if matches!(self.mode, ParamMode::Baked | ParamMode::Named)
+                && let Some(values) = fold(checked, &from, &bound)
+            {
+                let outputs = checked
+                    .signature
+                    .outputs
+                    .iter()
+                    .zip(&values)
+                    .map(|(pin, lanes)| emit::lanes_literal(pin.ty, *lanes))
+                    .collect();
+                emitted.push(Emitted {
+                    outputs,
+                    folded: Some(values),
+                    block: None,
+                });
+                continue;
+            }
+            let inputs: Vec<String> = checked
+                .inputs
+                .iter()
+                .zip(&checked.signature.inputs)
+                .zip(&from)
+                .zip(&bound)
+                .map(|(((source, pin), from), bound)| match bound {
+                    Some(expression) => expression.clone(),
+                    None => {
+                        let slots = self.mode.has_slots().then_some(&mut self.params);
+                        input_expression(source, pin, node.id, *from, slots)
+                    }
+                })
+                .collect();
+            let reads: Vec<usize> = from.iter().filter_map(|from| (*from)?.block).collect();
+            let name = match node.kind {
+                NodeKind::Material => String::new(),
+                _ => namer.name(node.display_name(), node.id.0),
+            };
+            let code = match &node.kind {
+                NodeKind::Group(group) => self.call(&group.name, &inputs, &name),
+                kind => {
+                    let mut io = Emit::new(
+                        &checked.signature.inputs,
+                        &inputs,
+                        &checked.signature.outputs,
+                        &name,
+                        self.detail,
+                    );
+                    kind.definition().emit(&mut io);
+                    io.finish()
+                }
+            };
+            if !code.statements.is_empty() {
+                let mut text = format!(
+                    "    // {} '{}' ({})\n",
+                    node.kind.title(),
+                    naming::comment(node.display_name()),
+                    naming::comment(&node.reference())
+                );
+                for statement in &code.statements {
+                    text.push_str("    ");
+                    text.push_str(statement);
+                    text.push('\n');
+                }
+                blocks.push(Block {
+                    node: node.id,
+                    text,
+                    binding: code.binding.map(|ty| (name, ty)),
+                    reads,
+                });
+            }
+            for item in code.library {
+                if self.called.insert(item.clone()) {
+                    self.roots.push(item);
+                }
+            }
+            emitted.push(Emitted {
+                outputs: code.outputs,
+                folded: None,
+                block: (!code.statements.is_empty()).then(|| blocks.len() - 1),
+            });
+        }
+        (blocks, emitted)
+    }
+
+    /// The call of group `group`'s function with the node's input expressions, bound to
+    /// `name`; its outputs are members of the returned struct.
+    fn call(&self, group: &str, inputs: &[String], name: &str) -> emit::NodeCode {
+        let Some(call) = self.calls.get(group) else {
+            unreachable!("every group a body calls has its function");
+        };
+        let mut arguments = vec!["s".to_string()];
+        arguments.extend(call.arguments.iter().map(|&k| inputs[k].clone()));
+        let returns: &'static str = crate::nodes::pins::intern(&call.returns);
+        emit::NodeCode {
+            statements: vec![format!(
+                "let {name} = {}({});",
+                call.function,
+                arguments.join(", ")
+            )],
+            outputs: call
+                .members
+                .iter()
+                .map(|member| {
+                    member
+                        .as_ref()
+                        .map(|member| format!("{name}.{member}"))
+                        .unwrap_or_default()
+                })
+                .collect(),
+            library: Vec::new(),
+            binding: Some(returns),
+        }
+    }
+}
