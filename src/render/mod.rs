@@ -18,6 +18,7 @@ mod timing;
 mod tone_map;
 mod uv_bake;
 
+pub use readback::read_texture;
 pub use context::{GpuContext, RenderError};
 pub use draft_scale::DraftScale;
 pub use environment::{
