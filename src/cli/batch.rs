@@ -129,6 +129,7 @@ impl Job {
                     .map(f64::to_string)
                     .collect::<Vec<_>>()
                     .join(","),
+                Given::Word(word) => word.clone(),
             };
             line.push(format!("--set={name}={text}"));
         }

@@ -17,8 +17,8 @@ pub struct ParameterArgs {
     /// after the preset.
     #[arg(long, value_name = "FILE")]
     pub params_file: Option<PathBuf>,
-    /// Set one exposed parameter, last of all: NAME=0.7, NAME=0.1,0.2,0.3 or
-    /// NAME=#ff8800. Repeatable.
+    /// Set one exposed parameter, last of all: NAME=0.7, NAME=0.1,0.2,0.3,
+    /// NAME=#ff8800, or a word (a choice's option, on/off). Repeatable.
     #[arg(long = "set", value_name = "NAME=VALUE", value_parser = parse_assignment)]
     pub set: Vec<(String, Given)>,
 }

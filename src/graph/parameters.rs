@@ -167,20 +167,24 @@ fn list(names: &[String]) -> String {
     }
 }
 
-/// A parameter value as the CLI and parameter files give it: one number, or a list of
-/// two or three.
+/// A parameter value as the CLI and parameter files give it: one number, a list of
+/// two or three, or a word (an option of a choice, `on`/`off` for a toggle).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(untagged)]
 pub enum Given {
     Number(f64),
     List(Vec<f64>),
+    Word(String),
 }
 
 impl Given {
-    /// Reads `0.7`, `0.1,0.2,0.3` or `#ff8800` (a colour in sRGB hex, stored as its
-    /// 0–1 components).
+    /// Reads `0.7`, `0.1,0.2,0.3`, `#ff8800` (a colour in sRGB hex, stored as its
+    /// 0–1 components) or a word.
     pub fn parse(text: &str) -> Result<Given, String> {
         let text = text.trim();
+        if text.starts_with(|c: char| c.is_ascii_alphabetic()) {
+            return Ok(Given::Word(text.to_string()));
+        }
         if let Some(hex) = text.strip_prefix('#') {
             if hex.len() != 6 || !hex.chars().all(|c| c.is_ascii_hexdigit()) {
                 return Err(format!("'{text}' is not a colour like #ff8800"));
@@ -202,10 +206,12 @@ impl Given {
         })
     }
 
-    /// The value as type `ty`: a number fills every component; a list must have the
-    /// type's width.
-    pub fn to_value(&self, ty: ValueType) -> Result<Value, String> {
+    /// The value as type `ty` offered as `hint`: a number fills every component; a
+    /// list must have the type's width; a word names an option of a choice (its index)
+    /// or a toggle's state (`on`, `off`, `true`, `false`, `yes`, `no`).
+    pub fn to_value(&self, ty: ValueType, hint: &Hint) -> Result<Value, String> {
         let components: Vec<f64> = match self {
+            Given::Word(word) => vec![word_value(word, hint)?; ty.width()],
             Given::Number(x) => vec![*x; ty.width()],
             Given::List(list) if list.len() == ty.width() => list.clone(),
             Given::List(list) => {
@@ -237,6 +243,23 @@ impl Given {
     }
 }
 
+/// The number a word stands for under `hint`.
+fn word_value(word: &str, hint: &Hint) -> Result<f64, String> {
+    match hint {
+        Hint::Choice(options) => options
+            .iter()
+            .position(|option| option == word)
+            .map(|k| k as f64)
+            .ok_or_else(|| format!("'{word}' is not one of its options ({})", options.join(", "))),
+        Hint::Toggle => match word.to_ascii_lowercase().as_str() {
+            "on" | "true" | "yes" => Ok(1.0),
+            "off" | "false" | "no" => Ok(0.0),
+            _ => Err(format!("'{word}' is not on or off")),
+        },
+        Hint::Slider | Hint::Colour => Err(format!("'{word}' is not a number")),
+    }
+}
+
 /// Sets exposed parameter `name` of `graph` to `given`, checking its type and range.
 pub fn set(graph: &mut Graph, name: &str, given: &Given) -> Result<(), ParameterError> {
     let exposed = exposed(graph);
@@ -247,7 +270,7 @@ pub fn set(graph: &mut Graph, name: &str, given: &Given) -> Result<(), Parameter
         });
     };
     let value = given
-        .to_value(entry.ty)
+        .to_value(entry.ty, &entry.hint)
         .map_err(|problem| ParameterError::BadValue {
             name: name.to_string(),
             ty: entry.ty,

@@ -422,3 +422,20 @@ fn set_works_on_every_command() {
     let from_file = run_veneer(&["compile", "graphs/wood.ron", "--params-file", &file.to_string_lossy()]);
     assert_eq!(from_file.stdout, set.stdout);
 }
+
+#[test]
+fn choices_and_toggles_take_their_words() {
+    let mut graph = nested_graph();
+    let inner = graph.groups.get_mut("inner").expect("inner");
+    inner.inputs[0].hint = Hint::Choice(vec!["off".into(), "single".into(), "double".into()]);
+    veneer::graph::group::resolve(&mut graph);
+    set(&mut graph, "gain", &Given::parse("double").unwrap()).expect("an option");
+    assert!((red_at_quarter(&graph) - 0.5).abs() < 1e-9, "option 2 is a gain of 2");
+    let error = set(&mut graph, "gain", &Given::Word("triple".into())).unwrap_err();
+    assert!(error.to_string().contains("'triple' is not one of its options (off, single, double)"), "{error}");
+    let inner = graph.groups.get_mut("inner").expect("inner");
+    inner.inputs[0].hint = Hint::Toggle;
+    veneer::graph::group::resolve(&mut graph);
+    set(&mut graph, "gain", &Given::parse("on").unwrap()).expect("a toggle");
+    assert!((red_at_quarter(&graph) - 0.25).abs() < 1e-9);
+}
