@@ -66,7 +66,11 @@ impl VeneerApp {
                 }
                 self.highlight_wire(&ctx, &spots, wire);
             }
-        } else if !down && !spots.nodes.values().any(|rect| rect.contains(at)) {
+        } else if !down
+            && self.scope.current().is_none()
+            && !spots.nodes.values().any(|rect| rect.contains(at))
+        {
+            // (Inside a group the wires' values are not the top level's to show.)
             self.hovered_wire = spots
                 .wire_at(&self.snarl, at, None)
                 .and_then(|(from, _)| carried(&self.snarl, from));
