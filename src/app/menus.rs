@@ -116,7 +116,10 @@ impl VeneerApp {
         } else if pressed(Modifiers::NONE, Key::Tab) {
             // Tab enters the selected group node or leaves the group shown; else it
             // opens the search.
-            if !self.tab() {
+            if self.tab() {
+                // The key is ours: egui does not move the keyboard focus with it.
+                ctx.memory_mut(|memory| memory.move_focus(egui::FocusDirection::None));
+            } else {
                 self.open_add_node(ctx, None, Some("\t"));
             }
         } else if pressed(Modifiers::SHIFT, Key::A) {

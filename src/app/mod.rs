@@ -492,6 +492,20 @@ impl VeneerApp {
         self.add_node_popup(ui.ctx());
     }
 
+    /// The inspector of the selected node, or a hint and the comment frames.
+    fn inspector(&mut self, ui: &mut Ui) {
+        match self.selection.first().copied() {
+            Some(node) if self.snarl.get_node(node).is_some() => {
+                ui.separator();
+                self.inspect(ui, node);
+            }
+            _ => {
+                ui.weak("Select a node to edit it. Right-click the graph (or press Space) to add one.");
+                frames_editor(ui, &mut self.document.graph.frames);
+            }
+        }
+    }
+
     /// The inspector of node `node` of the graph view.
     fn inspect(&mut self, ui: &mut Ui, node: egui_snarl::NodeId) {
         let shown = &self.snarl[node];
@@ -622,14 +636,10 @@ impl eframe::App for VeneerApp {
         egui::Panel::bottom("status").show(ui, |ui| self.status_bar(ui));
         egui::Panel::right("side").default_size(460.0).show(ui, |ui| {
             self.preview_panel(ui);
-            self.parameters_panel(ui);
             ui.separator();
-            egui::ScrollArea::vertical().show(ui, |ui| match self.selection.first().copied() {
-                Some(node) if self.snarl.get_node(node).is_some() => self.inspect(ui, node),
-                _ => {
-                    ui.weak("Select a node to edit it. Right-click the graph (or press Space) to add one.");
-                    frames_editor(ui, &mut self.document.graph.frames);
-                }
+            egui::ScrollArea::vertical().show(ui, |ui| {
+                self.parameters_panel(ui);
+                self.inspector(ui);
             });
         });
         let central = egui::CentralPanel::default()

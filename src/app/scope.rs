@@ -157,12 +157,13 @@ pub fn snarl_for_group(graph: &Graph, group: &str) -> Option<Snarl<Node>> {
     let (left, right) = xs.fold((0.0f32, 0.0f32), |(l, r), x| (l.min(x), r.max(x)));
     let count = definition.nodes.len().max(1) as f32;
     let middle = definition.nodes.iter().map(|node| node.position.1).sum::<f32>() / count;
+    // Clear of the nodes' widths (a group node with many inputs is wide).
     let input = snarl.insert_node(
         Pos2::new(left - 320.0, middle),
         boundary_node(Boundary::Input, definition),
     );
     let output = snarl.insert_node(
-        Pos2::new(right + 320.0, middle),
+        Pos2::new(right + 480.0, middle),
         boundary_node(Boundary::Output, definition),
     );
     for wire in definition.wires.iter().filter(|w| crosses(w)) {
