@@ -473,6 +473,15 @@ impl VeneerApp {
             self.clicked = before.filter(|node| self.snarl.get_node(*node).is_some());
         }
         self.selection = widget.get_selected_nodes(ui);
+        if self.navigation.clicked_empty_canvas() && self.dialog.is_none() {
+            // A click on empty canvas selects nothing (egui-snarl's own selection goes
+            // with a fresh view).
+            self.clicked = None;
+            if !self.selection.is_empty() {
+                self.view_generation += 1;
+                self.selection.clear();
+            }
+        }
         if self.selection.is_empty() {
             self.selection.extend(self.clicked);
         }
