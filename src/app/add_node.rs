@@ -344,7 +344,8 @@ impl VeneerApp {
     /// (at the top level: frames are the graph's, not a group's).
     pub(super) fn frame_selection(&mut self) {
         if self.scope.current().is_some() {
-            self.message = Some("comment frames belong to the top level: Tab out of the group first".into());
+            self.message =
+                Some("comment frames belong to the top level: Tab out of the group first".into());
             return;
         }
         match frame_around(&self.snarl, &self.selection, "Comment") {
@@ -356,7 +357,9 @@ impl VeneerApp {
     /// Pastes copied nodes at the mouse.
     pub(super) fn paste_at_mouse(&mut self, ctx: &egui::Context, text: &str) {
         let (_, at) = self.placement(ctx);
-        if let Err(error) = super::clipboard::paste(&mut self.snarl, text, at, &self.document.graph.groups) {
+        if let Err(error) =
+            super::clipboard::paste(&mut self.snarl, text, at, &self.document.graph.groups)
+        {
             self.message = Some(format!("nothing pasted: {error}"));
         }
     }

@@ -202,7 +202,11 @@ mod tests {
         let found = search("ring", &groups);
         assert_eq!(found[0].item, Item::Group("ring_wood".into()));
         assert_eq!(found[0].group(), "Groups");
-        assert!(search("marble", &groups).iter().any(|e| e.item == Item::Group("veined_marble".into())));
+        assert!(
+            search("marble", &groups)
+                .iter()
+                .any(|e| e.item == Item::Group("veined_marble".into()))
+        );
     }
 
     #[test]

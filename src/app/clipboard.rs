@@ -40,7 +40,11 @@ pub fn paste(
     groups: &BTreeMap<String, GroupDef>,
 ) -> Result<Vec<egui_snarl::NodeId>, String> {
     let mut fragment = crate::graph::from_ron(text).map_err(|error| error.to_string())?;
-    if fragment.nodes.iter().any(|node| crate::graph::group::group_name(node).is_some()) {
+    if fragment
+        .nodes
+        .iter()
+        .any(|node| crate::graph::group::group_name(node).is_some())
+    {
         fragment.groups = groups.clone();
         resolve(&mut fragment);
     }
@@ -147,13 +151,23 @@ mod tests {
         let mut snarl = snarl_from_graph(&graph);
         let (node, _) = snarl.node_ids().next().unwrap();
         let original = snarl.get_node_info(node).unwrap().pos;
-        let copies = duplicate(&mut snarl, &[node], original + egui::vec2(5.0, 5.0), &BTreeMap::new());
+        let copies = duplicate(
+            &mut snarl,
+            &[node],
+            original + egui::vec2(5.0, 5.0),
+            &BTreeMap::new(),
+        );
         let copy = snarl.get_node_info(copies[0]).unwrap().pos;
         assert!(
             (copy - original).length() >= NUDGE,
             "{copy:?} on {original:?}"
         );
-        let again = duplicate(&mut snarl, &[node], original + egui::vec2(5.0, 5.0), &BTreeMap::new());
+        let again = duplicate(
+            &mut snarl,
+            &[node],
+            original + egui::vec2(5.0, 5.0),
+            &BTreeMap::new(),
+        );
         let again = snarl.get_node_info(again[0]).unwrap().pos;
         assert!(
             (again - copy).length() >= NUDGE,

@@ -405,7 +405,8 @@ impl SnarlViewer<Node> for Viewer<'_> {
 
     fn has_footer(&mut self, node: &Node) -> bool {
         !self.in_group
-            && self.thumbnails.shows(node.id) && !node.kind.signature().outputs.is_empty()
+            && self.thumbnails.shows(node.id)
+            && !node.kind.signature().outputs.is_empty()
     }
 
     /// The node's thumbnail, below its pins (blank until first drawn).

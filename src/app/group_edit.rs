@@ -131,11 +131,16 @@ impl VeneerApp {
             .map(|node| node.id)
             .collect();
         if chosen.is_empty() {
-            self.message =
-                Some("nothing to group: select nodes first (the Material node stays outside groups)".into());
+            self.message = Some(
+                "nothing to group: select nodes first (the Material node stays outside groups)"
+                    .into(),
+            );
             return;
         }
-        let name = scope::free_name(self.document.graph.groups.keys().map(String::as_str), "group");
+        let name = scope::free_name(
+            self.document.graph.groups.keys().map(String::as_str),
+            "group",
+        );
         match self.edit_level(|graph| group::group_nodes(graph, &chosen, &name)) {
             Ok(instance) => {
                 self.select(instance);
@@ -178,11 +183,11 @@ impl VeneerApp {
     /// Tab: enters the selected group node, else leaves the group shown. Returns
     /// `false` when it did neither (at the top level, no group node selected).
     pub(super) fn tab(&mut self) -> bool {
-        let selected = self.selection.first().copied().filter(|id| {
-            self.snarl
-                .get_node(*id)
-                .is_some_and(scope::is_instance)
-        });
+        let selected = self
+            .selection
+            .first()
+            .copied()
+            .filter(|id| self.snarl.get_node(*id).is_some_and(scope::is_instance));
         if let Some(node) = selected {
             self.enter_group(node);
         } else if let Some(depth) = self.scope.levels.len().checked_sub(1) {
@@ -289,7 +294,12 @@ impl VeneerApp {
     /// wired to it, as if a wire were dragged from *Group input*'s "+" to it.
     pub(super) fn expose_input(&mut self, pin: egui_snarl::InPinId) -> Option<Declared> {
         let input = scope::boundary_in(&self.snarl, scope::Boundary::Input)?;
-        let add = self.snarl[input].kind.signature().outputs.len().checked_sub(1)?;
+        let add = self.snarl[input]
+            .kind
+            .signature()
+            .outputs
+            .len()
+            .checked_sub(1)?;
         let from = egui_snarl::OutPinId {
             node: input,
             output: add,
@@ -313,9 +323,15 @@ impl VeneerApp {
 
     /// Places an instance of group `name` (the graph's, else the library's, which the
     /// graph then keeps a linked copy of) at `at`; returns its id in the view.
-    pub(super) fn add_group_instance(&mut self, name: &str, at: Pos2) -> Option<egui_snarl::NodeId> {
+    pub(super) fn add_group_instance(
+        &mut self,
+        name: &str,
+        at: Pos2,
+    ) -> Option<egui_snarl::NodeId> {
         if !library::adopt(&mut self.document.graph, name) {
-            self.message = Some(format!("no group named '{name}' in the graph or the library"));
+            self.message = Some(format!(
+                "no group named '{name}' in the graph or the library"
+            ));
             return None;
         }
         let interfaces = group::interfaces(&self.document.graph.groups);

@@ -218,14 +218,24 @@ impl VeneerApp {
                     .selection
                     .iter()
                     .any(|id| self.snarl.get_node(*id).is_some_and(scope::is_instance));
-                if shortcut_entry(ui, "Group selected nodes", &GROUP, !self.selection.is_empty()) {
+                if shortcut_entry(
+                    ui,
+                    "Group selected nodes",
+                    &GROUP,
+                    !self.selection.is_empty(),
+                ) {
                     self.group_selection();
                 }
                 if shortcut_entry(ui, "Ungroup", &UNGROUP, group_selected) {
                     self.ungroup_selection();
                 }
                 let inside = !self.scope.levels.is_empty();
-                if entry(ui, "Edit group / leave group", "Tab", group_selected || inside) {
+                if entry(
+                    ui,
+                    "Edit group / leave group",
+                    "Tab",
+                    group_selected || inside,
+                ) {
                     self.tab();
                 }
                 ui.separator();

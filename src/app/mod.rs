@@ -348,7 +348,11 @@ impl VeneerApp {
 
     /// The groups entered, outermost first (empty at the top level).
     pub fn group_path(&self) -> Vec<String> {
-        self.scope.levels.iter().map(|level| level.group.clone()).collect()
+        self.scope
+            .levels
+            .iter()
+            .map(|level| level.group.clone())
+            .collect()
     }
 
     /// Whether the preview shows a mesh whose distance fields are solved and up to date.
@@ -439,14 +443,26 @@ impl VeneerApp {
         let (no_errors, no_warnings) = (Default::default(), Default::default());
         let (mut declared, mut expose, mut group_action) = (Vec::new(), None, None);
         let mut viewer = Viewer {
-            errors: if in_group { &no_errors } else { &self.live.errors },
-            warnings: if in_group { &no_warnings } else { &self.live.warnings },
+            errors: if in_group {
+                &no_errors
+            } else {
+                &self.live.errors
+            },
+            warnings: if in_group {
+                &no_warnings
+            } else {
+                &self.live.warnings
+            },
             hint: &mut hint,
             dropped: &mut dropped,
             clicked: &mut self.clicked,
             selected: before,
             navigation: &mut self.navigation,
-            frames: if in_group { &[] } else { &self.document.graph.frames },
+            frames: if in_group {
+                &[]
+            } else {
+                &self.document.graph.frames
+            },
             thumbnails: &mut self.thumbnails,
             spots: self.spots.clone(),
             in_group,
@@ -509,7 +525,9 @@ impl VeneerApp {
                 self.inspect(ui, node);
             }
             _ => {
-                ui.weak("Select a node to edit it. Right-click the graph (or press Space) to add one.");
+                ui.weak(
+                    "Select a node to edit it. Right-click the graph (or press Space) to add one.",
+                );
                 frames_editor(ui, &mut self.document.graph.frames);
             }
         }
@@ -643,14 +661,16 @@ impl eframe::App for VeneerApp {
         self.clipboard(&ctx);
         egui::Panel::top("menu").show(ui, |ui| self.menu_bar(ui));
         egui::Panel::bottom("status").show(ui, |ui| self.status_bar(ui));
-        egui::Panel::right("side").default_size(460.0).show(ui, |ui| {
-            self.preview_panel(ui);
-            ui.separator();
-            egui::ScrollArea::vertical().show(ui, |ui| {
-                self.parameters_panel(ui);
-                self.inspector(ui);
+        egui::Panel::right("side")
+            .default_size(460.0)
+            .show(ui, |ui| {
+                self.preview_panel(ui);
+                ui.separator();
+                egui::ScrollArea::vertical().show(ui, |ui| {
+                    self.parameters_panel(ui);
+                    self.inspector(ui);
+                });
             });
-        });
         let central = egui::CentralPanel::default()
             .frame(painting::central_panel_frame(ui.style()))
             .show(ui, |ui| {

@@ -8,7 +8,7 @@
 use super::graph_view::{graph_from_snarl, insert_graph};
 use super::widgets::input_value;
 use crate::graph::group::{BOUNDARY, GroupDef, GroupInput, GroupOutput, Hint, group_name};
-use crate::graph::{Graph, Node, NodeId, NodeKind, Value};
+use crate::graph::{Graph, Node, NodeId, NodeKind, Value, ValueType};
 use crate::nodes::Group;
 use crate::nodes::pins::{InputPin, OutputPin, PinDefault, PinRange, Signature, intern};
 use egui::Pos2;
@@ -17,7 +17,7 @@ use egui_snarl::{InPinId, OutPinId, Snarl};
 use std::collections::{BTreeMap, BTreeSet};
 
 /// The name of the empty pin a wire is dropped on to add a group input or output.
-pub const ADD_PIN: &str = "+";
+const ADD_PIN: &str = "+";
 
 /// One group entered.
 #[derive(Clone, Debug)]
@@ -108,7 +108,7 @@ fn boundary_node(side: Boundary, definition: &GroupDef) -> Node {
         .outputs
         .iter()
         .map(|output| (intern(&output.name), output.ty))
-        .chain(add().map(|name| (name, crate::graph::ValueType::Float)))
+        .chain(add().map(|name| (name, ValueType::Float)))
         .map(|(name, ty)| InputPin {
             name,
             ty,
@@ -120,7 +120,7 @@ fn boundary_node(side: Boundary, definition: &GroupDef) -> Node {
         .inputs
         .iter()
         .map(|input| (intern(&input.name), input.ty))
-        .chain(add().map(|name| (name, crate::graph::ValueType::Float)))
+        .chain(add().map(|name| (name, ValueType::Float)))
         .map(|(name, ty)| OutputPin { name, ty })
         .collect();
     let pins = match side {
@@ -143,10 +143,16 @@ fn boundary_node(side: Boundary, definition: &GroupDef) -> Node {
 /// on their left and *Group output* on their right.
 pub fn snarl_for_group(graph: &Graph, group: &str) -> Option<Snarl<Node>> {
     let definition = graph.groups.get(group)?;
-    let crosses = |wire: &crate::graph::Wire| wire.from.node == BOUNDARY || wire.to.node == BOUNDARY;
+    let crosses =
+        |wire: &crate::graph::Wire| wire.from.node == BOUNDARY || wire.to.node == BOUNDARY;
     let inner = Graph {
         nodes: definition.nodes.clone(),
-        wires: definition.wires.iter().filter(|w| !crosses(w)).cloned().collect(),
+        wires: definition
+            .wires
+            .iter()
+            .filter(|w| !crosses(w))
+            .cloned()
+            .collect(),
         ..Graph::default()
     };
     let mut snarl = Snarl::new();
@@ -156,7 +162,12 @@ pub fn snarl_for_group(graph: &Graph, group: &str) -> Option<Snarl<Node>> {
     let xs = definition.nodes.iter().map(|node| node.position.0);
     let (left, right) = xs.fold((0.0f32, 0.0f32), |(l, r), x| (l.min(x), r.max(x)));
     let count = definition.nodes.len().max(1) as f32;
-    let middle = definition.nodes.iter().map(|node| node.position.1).sum::<f32>() / count;
+    let middle = definition
+        .nodes
+        .iter()
+        .map(|node| node.position.1)
+        .sum::<f32>()
+        / count;
     // Clear of the nodes' widths (a group node with many inputs is wide).
     let input = snarl.insert_node(
         Pos2::new(left - 320.0, middle),
@@ -177,8 +188,16 @@ pub fn snarl_for_group(graph: &Graph, group: &str) -> Option<Snarl<Node>> {
         } else {
             ids[&wire.to.node]
         };
-        let output = snarl[from].kind.signature().output(&wire.from.pin).map(|(i, _)| i);
-        let input = snarl[to].kind.signature().input(&wire.to.pin).map(|(i, _)| i);
+        let output = snarl[from]
+            .kind
+            .signature()
+            .output(&wire.from.pin)
+            .map(|(i, _)| i);
+        let input = snarl[to]
+            .kind
+            .signature()
+            .input(&wire.to.pin)
+            .map(|(i, _)| i);
         if let (Some(output), Some(input)) = (output, input) {
             snarl.connect(OutPinId { node: from, output }, InPinId { node: to, input });
         }
@@ -263,7 +282,9 @@ pub fn uses(groups: &BTreeMap<String, GroupDef>, outer: &str, inner: &str) -> bo
 /// What a wire dropped on a "+" pin declares.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Declared {
+    /// A new group input (a wire from *Group input*'s "+").
     Input(GroupInput),
+    /// A new group output (a wire into *Group output*'s "+").
     Output(GroupOutput),
 }
 
@@ -274,66 +295,100 @@ pub fn is_add_pin(node: &Node, pin: &str) -> bool {
 
 /// A wire from `from` to `to` where one end is a boundary node's "+": declares a group
 /// input (from *Group input*'s "+") or output (into *Group output*'s "+") named after
-/// the pin at the other end (its type; for an input, its current value as default and
-/// its range), gives the boundary node the new pin and wires it. Returns the
-/// declaration, or `None` when neither end is a "+" (or both are).
+/// the pin at the other end, gives the boundary node the new pin and wires it. Returns
+/// the declaration, or `None` when neither end is a "+" (or both are).
 pub fn expose(snarl: &mut Snarl<Node>, from: OutPinId, to: InPinId) -> Option<Declared> {
     let source = snarl[from.node].kind.signature().outputs[from.output];
     let target = snarl[to.node].kind.signature().inputs[to.input];
-    let into_add = is_add_pin(&snarl[to.node], target.name);
-    let from_add = is_add_pin(&snarl[from.node], source.name);
-    if from_add == into_add {
-        return None;
+    match (
+        is_add_pin(&snarl[from.node], source.name),
+        is_add_pin(&snarl[to.node], target.name),
+    ) {
+        (true, false) => add_input(snarl, from.node, to),
+        (false, true) => add_output(snarl, from, to.node),
+        _ => None,
     }
-    let (side, name, declared) = if from_add {
-        let name = free_name(snarl[from.node].kind.signature().outputs.iter().map(|p| p.name), target.name);
-        let default = input_value(&snarl[to.node], target.name)
-            .map(|(value, _)| value)
-            .unwrap_or(Value::Float(0.0).convert(target.ty));
-        let range = (target.range.min.is_finite() && target.range.max.is_finite())
-            .then_some((target.range.min, target.range.max));
-        let hint = if target.ty == crate::graph::ValueType::Color {
-            Hint::Colour
-        } else {
-            Hint::Slider
-        };
-        let input = GroupInput {
-            name: name.clone(),
-            ty: target.ty,
-            default,
-            range,
-            hint,
-        };
-        (from.node, name, Declared::Input(input))
-    } else {
-        let name = free_name(snarl[to.node].kind.signature().inputs.iter().map(|p| p.name), source.name);
-        let output = GroupOutput {
-            name: name.clone(),
-            ty: source.ty,
-        };
-        (to.node, name, Declared::Output(output))
+}
+
+/// A new input of the group on *Group input* `boundary`, wired to inner input `to`:
+/// its name, type, current value (as default) and range.
+fn add_input(
+    snarl: &mut Snarl<Node>,
+    boundary: egui_snarl::NodeId,
+    to: InPinId,
+) -> Option<Declared> {
+    let target = snarl[to.node].kind.signature().inputs[to.input];
+    let default = input_value(&snarl[to.node], target.name)
+        .map(|(value, _)| value)
+        .unwrap_or(Value::Float(0.0).convert(target.ty));
+    let pins = boundary_pins(snarl, boundary)?;
+    let name = free_name(pins.outputs.iter().map(|pin| pin.name), target.name);
+    let at = pins.outputs.len() - 1;
+    let pin = OutputPin {
+        name: intern(&name),
+        ty: target.ty,
     };
-    let NodeKind::Group(group) = &mut snarl[side].kind else {
-        return None;
-    };
-    let name = intern(&name);
-    if from_add {
-        let at = group.pins.outputs.len() - 1;
-        group.pins.outputs.insert(at, OutputPin { name, ty: target.ty });
-        snarl.drop_inputs(to);
-        snarl.connect(OutPinId { node: side, output: at }, to);
+    pins.outputs.insert(at, pin);
+    snarl.drop_inputs(to);
+    snarl.connect(
+        OutPinId {
+            node: boundary,
+            output: at,
+        },
+        to,
+    );
+    let range = (target.range.min.is_finite() && target.range.max.is_finite())
+        .then_some((target.range.min, target.range.max));
+    let hint = if target.ty == ValueType::Color {
+        Hint::Colour
     } else {
-        let at = group.pins.inputs.len() - 1;
-        let pin = InputPin {
-            name,
-            ty: source.ty,
-            default: PinDefault::Required,
-            range: PinRange::ANY,
-        };
-        group.pins.inputs.insert(at, pin);
-        snarl.connect(from, InPinId { node: side, input: at });
+        Hint::Slider
+    };
+    Some(Declared::Input(GroupInput {
+        name,
+        ty: target.ty,
+        default,
+        range,
+        hint,
+    }))
+}
+
+/// A new output of the group on *Group output* `boundary`, fed by inner output `from`.
+fn add_output(
+    snarl: &mut Snarl<Node>,
+    from: OutPinId,
+    boundary: egui_snarl::NodeId,
+) -> Option<Declared> {
+    let source = snarl[from.node].kind.signature().outputs[from.output];
+    let pins = boundary_pins(snarl, boundary)?;
+    let name = free_name(pins.inputs.iter().map(|pin| pin.name), source.name);
+    let at = pins.inputs.len() - 1;
+    let pin = InputPin {
+        name: intern(&name),
+        ty: source.ty,
+        default: PinDefault::Required,
+        range: PinRange::ANY,
+    };
+    pins.inputs.insert(at, pin);
+    snarl.connect(
+        from,
+        InPinId {
+            node: boundary,
+            input: at,
+        },
+    );
+    Some(Declared::Output(GroupOutput {
+        name,
+        ty: source.ty,
+    }))
+}
+
+/// The pins of boundary node `node`, to give it another.
+fn boundary_pins(snarl: &mut Snarl<Node>, node: egui_snarl::NodeId) -> Option<&mut Signature> {
+    match &mut snarl[node].kind {
+        NodeKind::Group(group) => Some(&mut group.pins),
+        _ => None,
     }
-    Some(declared)
 }
 
 /// `base`, or `base_2`, `base_3`… — the first not among `taken`.

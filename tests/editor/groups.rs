@@ -4,7 +4,9 @@
 //! group node's inputs, and the add-node search offers the library's groups.
 
 use crate::navigation::{drag, on_screen};
-use crate::support::{editor, press, retype_drag_value, scratch, select_node, shows, type_into_field};
+use crate::support::{
+    editor, press, retype_drag_value, scratch, select_node, shows, type_into_field,
+};
 use egui::{Key, Modifiers, PointerButton, vec2};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
@@ -45,7 +47,13 @@ fn select_noise_and_shade(harness: &mut Harness<'static, VeneerApp>) {
     let (noise, shade) = (on_screen(harness, "noise"), on_screen(harness, "shade"));
     // Clear of the noise node's edge and the reach of its pins.
     let start = noise.min - vec2(40.0, 40.0);
-    drag(harness, PointerButton::Primary, Modifiers::NONE, start, shade.center());
+    drag(
+        harness,
+        PointerButton::Primary,
+        Modifiers::NONE,
+        start,
+        shade.center(),
+    );
     let mut selected = harness.state().selected_labels();
     selected.sort();
     assert_eq!(selected, ["noise", "shade"]);
@@ -74,9 +82,20 @@ fn ctrl_g_groups_the_selection_and_ctrl_z_restores_the_graph() {
     let graph = &harness.state().document.graph;
     let group = graph.groups.get("group").expect("a group named 'group'");
     assert_eq!(group.nodes.len(), 2, "the noise and the multiply went in");
-    assert_eq!(graph.nodes.len(), 2, "the group node and the material are left");
-    assert_eq!(harness.state().selected_labels(), ["group"], "the new group node is selected");
-    assert!(harness.state().live.errors.is_empty(), "the grouped graph compiles");
+    assert_eq!(
+        graph.nodes.len(),
+        2,
+        "the group node and the material are left"
+    );
+    assert_eq!(
+        harness.state().selected_labels(),
+        ["group"],
+        "the new group node is selected"
+    );
+    assert!(
+        harness.state().live.errors.is_empty(),
+        "the grouped graph compiles"
+    );
 
     press(&mut harness, Key::Z, true);
     assert_eq!(text(&harness), before, "one Ctrl+Z takes the grouping back");
@@ -91,7 +110,11 @@ fn ctrl_g_then_alt_g_gives_back_the_same_graph() {
     press(&mut harness, Key::G, true);
     assert_ne!(text(&harness), before);
     key(&mut harness, Modifiers::ALT, Key::G);
-    assert_eq!(text(&harness), before, "ungrouping puts the same nodes and wires back");
+    assert_eq!(
+        text(&harness),
+        before,
+        "ungrouping puts the same nodes and wires back"
+    );
 }
 
 #[test]
@@ -107,7 +130,10 @@ fn tab_enters_the_group_and_leaves_it() {
     for shown in ["Group input", "Group output", "noise", "shade"] {
         assert!(shows(&harness, shown), "inside the group: {shown}");
     }
-    assert!(harness.query_by_label("material").is_none(), "the top level is not shown");
+    assert!(
+        harness.query_by_label("material").is_none(),
+        "the top level is not shown"
+    );
     assert!(
         harness.query_by_label("Add node").is_none(),
         "Tab on a group node does not open the search"
@@ -117,25 +143,47 @@ fn tab_enters_the_group_and_leaves_it() {
     select_node(&mut harness, "shade");
     retype_drag_value(&mut harness, "0.30", "0.5");
     let definition = &harness.state().document.graph.groups["group"];
-    let scale = definition.nodes.iter().find(|n| n.label == "shade").unwrap();
+    let scale = definition
+        .nodes
+        .iter()
+        .find(|n| n.label == "shade")
+        .unwrap();
     assert_eq!(scale.inputs.get("b"), Some(&Value::Float(0.5)));
     press(&mut harness, Key::Z, true);
     let definition = &harness.state().document.graph.groups["group"];
-    let scale = definition.nodes.iter().find(|n| n.label == "shade").unwrap();
-    assert_eq!(scale.inputs.get("b"), Some(&Value::Float(0.3)), "undone inside the group");
-    assert_eq!(harness.state().group_path(), ["group"], "undo stays in the group");
+    let scale = definition
+        .nodes
+        .iter()
+        .find(|n| n.label == "shade")
+        .unwrap();
+    assert_eq!(
+        scale.inputs.get("b"),
+        Some(&Value::Float(0.3)),
+        "undone inside the group"
+    );
+    assert_eq!(
+        harness.state().group_path(),
+        ["group"],
+        "undo stays in the group"
+    );
 
     // The breadcrumb's "Graph" goes back up, selecting the group node.
     harness.get_by_label("Graph").click();
     harness.run_steps(4);
-    assert!(harness.state().group_path().is_empty(), "the breadcrumb goes back up");
+    assert!(
+        harness.state().group_path().is_empty(),
+        "the breadcrumb goes back up"
+    );
     assert_eq!(harness.state().selected_labels(), ["group"]);
 
     press(&mut harness, Key::Tab, false);
     assert_eq!(harness.state().group_path(), ["group"]);
     // Nothing is selected on entering: Tab goes back up.
     press(&mut harness, Key::Tab, false);
-    assert!(harness.state().group_path().is_empty(), "Tab leaves the group");
+    assert!(
+        harness.state().group_path().is_empty(),
+        "Tab leaves the group"
+    );
     assert!(harness.query_by_label("material").is_some());
 }
 
@@ -147,7 +195,12 @@ fn the_parameters_panel_and_its_presets_set_the_group_node_inputs() {
     assert!(shows(&harness, "Parameters"));
     let wood_node = |harness: &Harness<'static, VeneerApp>| {
         let graph = &harness.state().document.graph;
-        graph.nodes.iter().find(|n| n.label == "wood").unwrap().clone()
+        graph
+            .nodes
+            .iter()
+            .find(|n| n.label == "wood")
+            .unwrap()
+            .clone()
     };
     // The panel comes before the graph: its field is the first showing 0.50.
     retype_drag_value(&mut harness, "0.50", "0.7");
@@ -184,9 +237,18 @@ fn the_add_node_search_finds_library_groups_and_places_them() {
     harness.run();
     let graph = &harness.state().document.graph;
     assert_eq!(graph.nodes.len(), before + 1);
-    let placed = graph.nodes.iter().find(|n| matches!(&n.kind, NodeKind::Group(g) if g.name == "ring_wood"));
+    let placed = graph
+        .nodes
+        .iter()
+        .find(|n| matches!(&n.kind, NodeKind::Group(g) if g.name == "ring_wood"));
     assert!(placed.is_some(), "a ring_wood group node");
-    assert!(graph.groups.get("ring_wood").is_some_and(|g| g.linked), "a linked copy");
+    assert!(
+        graph.groups.get("ring_wood").is_some_and(|g| g.linked),
+        "a linked copy"
+    );
     let pins = placed.unwrap().kind.signature();
-    assert!(pins.input("ring_frequency").is_some(), "with the group's pins");
+    assert!(
+        pins.input("ring_frequency").is_some(),
+        "with the group's pins"
+    );
 }
