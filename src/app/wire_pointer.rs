@@ -53,7 +53,9 @@ impl VeneerApp {
                     .get_node_info(*id)
                     .is_some_and(|info| info.pos != *start)
             })
-            .map(|(id, _)| id);
+            .map(|(id, _)| id)
+            // A group's boundary nodes are never inserted into a wire.
+            .filter(|id| super::scope::boundary(&self.snarl[*id]).is_none());
         if let Some(node) = dragged {
             if let Some(wire) = spots.wire_at(&self.snarl, at, Some(node)) {
                 if released {

@@ -252,3 +252,59 @@ fn the_add_node_search_finds_library_groups_and_places_them() {
         "with the group's pins"
     );
 }
+
+#[test]
+fn groups_nest_and_ungroup_inside_a_group() {
+    let dir = scratch("group-nest");
+    let mut harness = small_editor(&dir);
+    let before = text(&harness);
+    select_noise_and_shade(&mut harness);
+    press(&mut harness, Key::G, true);
+    press(&mut harness, Key::Tab, false);
+    harness.run_steps(4);
+
+    // Inside "group", the noise alone becomes "group_2", used by "group".
+    select_node(&mut harness, "noise");
+    press(&mut harness, Key::G, true);
+    let graph = &harness.state().document.graph;
+    assert!(graph.groups.contains_key("group_2"));
+    let outer = &graph.groups["group"];
+    assert!(
+        outer
+            .nodes
+            .iter()
+            .any(|n| matches!(&n.kind, NodeKind::Group(g) if g.name == "group_2")),
+        "{outer:?}"
+    );
+    assert!(
+        harness.state().live.errors.is_empty(),
+        "the nested groups compile"
+    );
+    press(&mut harness, Key::Tab, false);
+    assert_eq!(harness.state().group_path(), ["group", "group_2"]);
+    assert!(
+        harness.query_by_label("Graph").is_some(),
+        "the breadcrumb shows"
+    );
+    press(&mut harness, Key::Tab, false);
+    assert_eq!(harness.state().group_path(), ["group"]);
+
+    // Back in "group" with group_2's node selected: Alt+G, then up and Alt+G again.
+    key(&mut harness, Modifiers::ALT, Key::G);
+    assert!(
+        !harness
+            .state()
+            .document
+            .graph
+            .groups
+            .contains_key("group_2")
+    );
+    press(&mut harness, Key::Tab, false);
+    assert!(harness.state().group_path().is_empty());
+    key(&mut harness, Modifiers::ALT, Key::G);
+    assert_eq!(
+        text(&harness),
+        before,
+        "both ungroupings give the graph back"
+    );
+}
