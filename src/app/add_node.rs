@@ -3,7 +3,9 @@
 //! when the mouse is elsewhere) with its text box focused. Typing filters, Up and Down
 //! move the highlight, Enter or a click picks, Escape or a click elsewhere closes. The
 //! node appears under the mouse; a dropped wire is connected to it. Pastes and duplicates
-//! land at the mouse too, and comment frames are added from the same search or Ctrl+G.
+//! land at the mouse too, and comment frames are added from the same search or Ctrl+J.
+//! The search lists the node groups too (the graph's and the library's): picking one
+//! places an instance, the graph keeping a linked copy of a library group.
 
 use super::VeneerApp;
 use super::catalogue::{self, Dangling, Entry, Item};
@@ -48,6 +50,8 @@ pub struct Search {
     swallow: Option<(u64, String)>,
     /// Enter came in the same frame as typed letters: pick once the list shows them.
     confirm: bool,
+    /// The node groups offered (read when the search opened).
+    groups: Vec<String>,
 }
 
 /// The add-node search's state and what placing needs: where the graph is on screen.
@@ -121,6 +125,7 @@ impl VeneerApp {
             dropped,
             swallow,
             confirm: false,
+            groups: self.placeable_groups(),
         });
         ctx.memory_mut(|memory| memory.request_focus(text_id()));
         ctx.request_repaint();
@@ -153,18 +158,21 @@ impl VeneerApp {
         }
         let dangling = search.dropped.as_ref().map(DroppedWire::dangling);
         let selected = !self.selection.is_empty();
+        // Comment frames are the top level's.
+        let top = self.scope.current().is_none();
         let usable = |entry: &Entry| match (&entry.item, dangling) {
-            (Item::Node(_), None) | (Item::Frame, None) => true,
-            (Item::FrameSelection, None) => selected,
+            (Item::Node(_), None) | (Item::Group(_), None) => true,
+            (Item::Frame, None) => top,
+            (Item::FrameSelection, None) => top && selected,
             (Item::Node(kind), Some(dangling)) => {
                 catalogue::compatible_pin(kind, dangling).is_some()
             }
             (_, Some(_)) => false,
         };
         let entries: Vec<Entry> = if search.text.trim().is_empty() {
-            catalogue::entries()
+            catalogue::entries(&search.groups)
         } else {
-            catalogue::search(&search.text)
+            catalogue::search(&search.text, &search.groups)
         }
         .into_iter()
         .filter(usable)
@@ -298,6 +306,10 @@ impl VeneerApp {
                 self.frame_selection();
                 return;
             }
+            Item::Group(name) => {
+                self.clicked = self.add_group_instance(&name, search.graph - GRAB);
+                return;
+            }
             Item::Node(kind) => kind,
         };
         let pin = search
@@ -328,8 +340,14 @@ impl VeneerApp {
         self.clicked = Some(id);
     }
 
-    /// Ctrl+G and *Edit → Frame selected nodes*: a comment frame around the selection.
+    /// Ctrl+J and *Edit → Frame selected nodes*: a comment frame around the selection
+    /// (at the top level: frames are the graph's, not a group's).
     pub(super) fn frame_selection(&mut self) {
+        if self.scope.current().is_some() {
+            self.message =
+                Some("comment frames belong to the top level: Tab out of the group first".into());
+            return;
+        }
         match frame_around(&self.snarl, &self.selection, "Comment") {
             Some(frame) => self.document.graph.frames.push(frame),
             None => self.message = Some("select the nodes to frame first".into()),
@@ -339,7 +357,9 @@ impl VeneerApp {
     /// Pastes copied nodes at the mouse.
     pub(super) fn paste_at_mouse(&mut self, ctx: &egui::Context, text: &str) {
         let (_, at) = self.placement(ctx);
-        if let Err(error) = super::clipboard::paste(&mut self.snarl, text, at) {
+        if let Err(error) =
+            super::clipboard::paste(&mut self.snarl, text, at, &self.document.graph.groups)
+        {
             self.message = Some(format!("nothing pasted: {error}"));
         }
     }
@@ -347,6 +367,8 @@ impl VeneerApp {
     /// Duplicates the selected nodes at the mouse.
     pub(super) fn duplicate_at_mouse(&mut self, ctx: &egui::Context) {
         let (_, at) = self.placement(ctx);
-        super::clipboard::duplicate(&mut self.snarl, &self.selection, at);
+        let selection = self.editable_selection();
+        let groups = &self.document.graph.groups;
+        super::clipboard::duplicate(&mut self.snarl, &selection, at, groups);
     }
 }

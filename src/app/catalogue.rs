@@ -1,6 +1,6 @@
 //! Every item the add-node search offers: the registry's node kinds, category by
-//! category, then a comment frame; the search ranks them, and wires dropped on empty space
-//! only get the kinds they can attach to.
+//! category, the node groups (under "Groups"), then a comment frame; the search ranks
+//! them, and wires dropped on empty space only get the kinds they can attach to.
 
 use crate::graph::{Category, NodeKind, ValueType};
 
@@ -9,6 +9,8 @@ use crate::graph::{Category, NodeKind, ValueType};
 pub enum Item {
     /// A node of this kind.
     Node(NodeKind),
+    /// An instance of the node group of this name (the graph's or the library's).
+    Group(String),
     /// An empty comment frame at the mouse.
     Frame,
     /// A comment frame around the selected nodes (offered when some are selected).
@@ -29,11 +31,15 @@ pub const LAYOUT: &str = "Layout";
 /// Words the search finds a frame by (peers call it a comment, a group, a box).
 const FRAME_WORDS: &[&str] = &["frame", "comment", "group", "box", "note", "backdrop"];
 
+/// Words the search finds a node group by.
+const GROUP_WORDS: &[&str] = &["group", "node group", "function", "subgraph", "library"];
+
 impl Entry {
     /// The heading the entry is listed under.
     pub fn group(&self) -> &'static str {
         match &self.item {
             Item::Node(kind) => kind.category().name(),
+            Item::Group(_) => Category::Group.name(),
             Item::Frame | Item::FrameSelection => LAYOUT,
         }
     }
@@ -50,6 +56,7 @@ impl Entry {
                     definition.keywords().join(" ")
                 )
             }
+            Item::Group(_) => format!("{} {}", self.name, GROUP_WORDS.join(" ")),
             Item::Frame | Item::FrameSelection => {
                 format!("{} {}", self.name, FRAME_WORDS.join(" "))
             }
@@ -58,18 +65,27 @@ impl Entry {
     }
 }
 
-/// All entries, in menu order: the registry's, category by category, then the frames.
-pub fn entries() -> Vec<Entry> {
+/// All entries, in menu order: the registry's, category by category, the node groups
+/// called `groups`, then the frames.
+pub fn entries(groups: &[String]) -> Vec<Entry> {
     let mut entries: Vec<Entry> = NodeKind::menu()
         .into_iter()
         .map(|(name, kind)| Entry {
             name,
             item: Item::Node(kind),
         })
+        .chain(groups.iter().map(|name| Entry {
+            name: name.clone(),
+            item: Item::Group(name.clone()),
+        }))
         .collect();
-    let rank = |entry: &Entry| match &entry.item {
-        Item::Node(kind) => Category::ALL.iter().position(|c| *c == kind.category()),
-        Item::Frame | Item::FrameSelection => None,
+    let rank = |entry: &Entry| {
+        let category = match &entry.item {
+            Item::Node(kind) => kind.category(),
+            Item::Group(_) => Category::Group,
+            Item::Frame | Item::FrameSelection => return None,
+        };
+        Category::ALL.iter().position(|c| *c == category)
     };
     entries.sort_by_key(|entry| rank(entry));
     entries.push(Entry {
@@ -77,19 +93,20 @@ pub fn entries() -> Vec<Entry> {
         item: Item::Frame,
     });
     entries.push(Entry {
-        name: "Frame around selected nodes (Ctrl+G)".into(),
+        name: "Frame around selected nodes (Ctrl+J)".into(),
         item: Item::FrameSelection,
     });
     entries
 }
 
-/// Entries matching every word of `query` (case-insensitive) in their name, title or
-/// search words, best first: names equal to the query, then names starting with it, then
-/// names containing every word, then the rest; menu order within each.
-pub fn search(query: &str) -> Vec<Entry> {
+/// Entries (with the node groups called `groups`) matching every word of `query`
+/// (case-insensitive) in their name, title or search words, best first: names equal to
+/// the query, then names starting with it, then names containing every word, then the
+/// rest; menu order within each.
+pub fn search(query: &str, groups: &[String]) -> Vec<Entry> {
     let query = query.trim().to_lowercase();
     let words: Vec<&str> = query.split_whitespace().collect();
-    let mut found: Vec<(u8, Entry)> = entries()
+    let mut found: Vec<(u8, Entry)> = entries(groups)
         .into_iter()
         .filter(|entry| {
             let haystack = entry.haystack();
@@ -144,7 +161,7 @@ mod tests {
 
     #[test]
     fn every_category_has_entries_and_every_entry_checks_alone() {
-        let all = entries();
+        let all = entries(&["ring_wood".to_string()]);
         for category in Category::ALL {
             assert!(
                 all.iter().any(|e| e.group() == category.name()),
@@ -157,15 +174,15 @@ mod tests {
 
     #[test]
     fn search_matches_all_words() {
-        let found = search("fbm grad");
+        let found = search("fbm grad", &[]);
         assert_eq!(found.len(), 1);
         assert_eq!(found[0].name, "fBm (gradient)");
-        assert!(search("zebra").is_empty());
+        assert!(search("zebra", &[]).is_empty());
     }
 
     #[test]
     fn search_ranks_names_before_search_words_and_finds_frames() {
-        let found = search("noise");
+        let found = search("noise", &[]);
         assert!(found.len() > 3);
         assert!(
             found[0].name.to_lowercase().starts_with("noise"),
@@ -173,10 +190,23 @@ mod tests {
             found.iter().map(|e| &e.name).collect::<Vec<_>>()
         );
         for word in ["frame", "Comment", "group"] {
-            assert_eq!(search(word)[0].item, Item::Frame, "{word}");
+            assert_eq!(search(word, &[])[0].item, Item::Frame, "{word}");
         }
-        assert_eq!(entries().last().map(Entry::group), Some(LAYOUT));
-        assert_eq!(search("frame sel")[0].item, Item::FrameSelection);
+        assert_eq!(entries(&[]).last().map(Entry::group), Some(LAYOUT));
+        assert_eq!(search("frame sel", &[])[0].item, Item::FrameSelection);
+    }
+
+    #[test]
+    fn groups_are_listed_under_groups_and_found_by_name() {
+        let groups = ["ring_wood".to_string(), "veined_marble".to_string()];
+        let found = search("ring", &groups);
+        assert_eq!(found[0].item, Item::Group("ring_wood".into()));
+        assert_eq!(found[0].group(), "Groups");
+        assert!(
+            search("marble", &groups)
+                .iter()
+                .any(|e| e.item == Item::Group("veined_marble".into()))
+        );
     }
 
     #[test]

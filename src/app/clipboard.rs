@@ -2,7 +2,9 @@
 //! be pasted into another window (or a text editor) and back.
 
 use super::graph_view::{graph_from_snarl, insert_graph, next_node_id};
+use crate::graph::group::{GroupDef, resolve};
 use crate::graph::{Graph, Node, NodeId};
+use std::collections::BTreeMap;
 
 use egui::Pos2;
 use egui_snarl::Snarl;
@@ -29,13 +31,23 @@ const NUDGE: f32 = 40.0;
 /// together (their layout kept) so that their top-left corner is at `at` (the mouse, in
 /// graph coordinates); nudged down and right while that would put one right on a node
 /// already there.
+/// Group nodes get the pins of `groups` (the graph's) by their group's name.
 /// Returns the snarl ids of the new nodes.
 pub fn paste(
     snarl: &mut Snarl<Node>,
     text: &str,
     at: Pos2,
+    groups: &BTreeMap<String, GroupDef>,
 ) -> Result<Vec<egui_snarl::NodeId>, String> {
-    let fragment = crate::graph::from_ron(text).map_err(|error| error.to_string())?;
+    let mut fragment = crate::graph::from_ron(text).map_err(|error| error.to_string())?;
+    if fragment
+        .nodes
+        .iter()
+        .any(|node| crate::graph::group::group_name(node).is_some())
+    {
+        fragment.groups = groups.clone();
+        resolve(&mut fragment);
+    }
     let corner = fragment
         .nodes
         .iter()
@@ -73,12 +85,13 @@ pub fn duplicate(
     snarl: &mut Snarl<Node>,
     selection: &[egui_snarl::NodeId],
     at: Pos2,
+    groups: &BTreeMap<String, GroupDef>,
 ) -> Vec<egui_snarl::NodeId> {
     if selection.is_empty() {
         return Vec::new();
     }
     let text = copy(snarl, selection);
-    paste(snarl, &text, at).unwrap_or_default()
+    paste(snarl, &text, at, groups).unwrap_or_default()
 }
 
 #[cfg(test)]
@@ -93,7 +106,7 @@ mod tests {
         let selection: Vec<_> = snarl.node_ids().map(|(id, _)| id).take(3).collect();
         let text = copy(&snarl, &selection);
         let at = Pos2::new(-500.0, 900.0);
-        let pasted = paste(&mut snarl, &text, at).expect("a fragment");
+        let pasted = paste(&mut snarl, &text, at, &BTreeMap::new()).expect("a fragment");
         assert_eq!(pasted.len(), 3);
         let positions: Vec<Pos2> = pasted
             .iter()
@@ -129,7 +142,7 @@ mod tests {
             graph.wires.len() + 1,
             "the one wire among the copied nodes comes along"
         );
-        assert!(paste(&mut snarl, "not ron", at).is_err());
+        assert!(paste(&mut snarl, "not ron", at, &BTreeMap::new()).is_err());
     }
 
     #[test]
@@ -138,13 +151,23 @@ mod tests {
         let mut snarl = snarl_from_graph(&graph);
         let (node, _) = snarl.node_ids().next().unwrap();
         let original = snarl.get_node_info(node).unwrap().pos;
-        let copies = duplicate(&mut snarl, &[node], original + egui::vec2(5.0, 5.0));
+        let copies = duplicate(
+            &mut snarl,
+            &[node],
+            original + egui::vec2(5.0, 5.0),
+            &BTreeMap::new(),
+        );
         let copy = snarl.get_node_info(copies[0]).unwrap().pos;
         assert!(
             (copy - original).length() >= NUDGE,
             "{copy:?} on {original:?}"
         );
-        let again = duplicate(&mut snarl, &[node], original + egui::vec2(5.0, 5.0));
+        let again = duplicate(
+            &mut snarl,
+            &[node],
+            original + egui::vec2(5.0, 5.0),
+            &BTreeMap::new(),
+        );
         let again = snarl.get_node_info(again[0]).unwrap().pos;
         assert!(
             (again - copy).length() >= NUDGE,

@@ -17,8 +17,11 @@ pub struct Document {
 }
 
 impl Document {
-    /// A document for `graph`, clean, as loaded from `path`.
-    pub fn new(graph: Graph, path: Option<PathBuf>) -> Document {
+    /// A document for `graph`, clean, as loaded from `path`. The graph is kept in
+    /// canonical order (as the graph view reads it back: a library group taken in on
+    /// loading may come in another order), so that opening it changes nothing.
+    pub fn new(mut graph: Graph, path: Option<PathBuf>) -> Document {
+        graph.canonicalize();
         Document {
             saved: Some(graph.clone()),
             history: History::new(graph.clone()),
@@ -28,7 +31,8 @@ impl Document {
     }
 
     /// A document that starts dirty (recovered work, never saved as such).
-    pub fn recovered(graph: Graph, path: Option<PathBuf>) -> Document {
+    pub fn recovered(mut graph: Graph, path: Option<PathBuf>) -> Document {
+        graph.canonicalize();
         Document {
             saved: None,
             history: History::new(graph.clone()),

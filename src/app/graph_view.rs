@@ -4,6 +4,8 @@
 
 use super::add_node::DroppedWire;
 use super::catalogue::Dangling;
+use super::group_inspector::GroupAction;
+use super::scope::{self, Declared};
 use super::widgets::{input_editor, type_color};
 use super::wires::{PinSide, SpottedPin};
 use crate::graph::{Graph, Node, NodeId, PinDefault, PinRef, Wire};
@@ -144,6 +146,16 @@ pub struct Viewer<'a> {
     pub thumbnails: &'a mut super::thumbnails::Thumbnails,
     /// Receives where pins and nodes are drawn.
     pub spots: super::wires::SharedSpots,
+    /// Whether a group's definition is shown (node thumbnails are the top level's).
+    pub in_group: bool,
+    /// The graph's node groups (duplicated group nodes take their pins).
+    pub groups: &'a BTreeMap<String, crate::graph::group::GroupDef>,
+    /// What wires dropped on a boundary node's "+" declared this frame.
+    pub declared: &'a mut Vec<Declared>,
+    /// An inner input chosen for *Expose as group input*.
+    pub expose: &'a mut Option<InPinId>,
+    /// What a group node's context menu asked.
+    pub group_action: &'a mut Option<GroupAction>,
 }
 
 impl SnarlViewer<Node> for Viewer<'_> {
@@ -293,8 +305,26 @@ impl SnarlViewer<Node> for Viewer<'_> {
     ) -> impl SnarlPin + 'static {
         let node = &mut snarl[pin.id.node];
         let spec = node.kind.signature().inputs[pin.id.input];
-        ui.label(spec.name)
+        if scope::is_add_pin(node, spec.name) {
+            ui.weak(spec.name)
+                .on_hover_text("drop a wire from an inner output here to add a group output");
+            return self.pin(spec.ty, PinSide::In(pin.id));
+        }
+        let name = ui
+            .add(egui::Label::new(spec.name).sense(egui::Sense::click()))
             .on_hover_text(super::node_text::input_tip(&spec));
+        let exposable = self.in_group
+            && pin.remotes.is_empty()
+            && scope::boundary(node).is_none()
+            && matches!(spec.default, PinDefault::Const(_));
+        if exposable {
+            name.context_menu(|ui| {
+                if ui.button("Expose as group input").clicked() {
+                    *self.expose = Some(pin.id);
+                    ui.close();
+                }
+            });
+        }
         if pin.remotes.is_empty() {
             match spec.default {
                 PinDefault::Const(_) => {
@@ -308,13 +338,7 @@ impl SnarlViewer<Node> for Viewer<'_> {
                 }
             }
         }
-        SpottedPin {
-            info: PinInfo::circle()
-                .with_fill(type_color(spec.ty))
-                .with_wire_color(type_color(spec.ty)),
-            pin: PinSide::In(pin.id),
-            spots: self.spots.clone(),
-        }
+        self.pin(spec.ty, PinSide::In(pin.id))
     }
 
     fn show_output(
@@ -323,21 +347,30 @@ impl SnarlViewer<Node> for Viewer<'_> {
         ui: &mut Ui,
         snarl: &mut Snarl<Node>,
     ) -> impl SnarlPin + 'static {
-        let spec = snarl[pin.id.node].kind.signature().outputs[pin.id.output];
-        ui.label(spec.name)
-            .on_hover_text(super::node_text::output_tip(&spec));
-        SpottedPin {
-            info: PinInfo::circle()
-                .with_fill(type_color(spec.ty))
-                .with_wire_color(type_color(spec.ty)),
-            pin: PinSide::Out(pin.id),
-            spots: self.spots.clone(),
+        let node = &snarl[pin.id.node];
+        let spec = node.kind.signature().outputs[pin.id.output];
+        if scope::is_add_pin(node, spec.name) {
+            ui.weak(spec.name)
+                .on_hover_text("drop a wire from an inner input here to add a group input");
+        } else {
+            ui.label(spec.name)
+                .on_hover_text(super::node_text::output_tip(&spec));
         }
+        self.pin(spec.ty, PinSide::Out(pin.id))
     }
 
     fn connect(&mut self, from: &OutPin, to: &InPin, snarl: &mut Snarl<Node>) {
         let output = snarl[from.id.node].kind.signature().outputs[from.id.output];
         let input = snarl[to.id.node].kind.signature().inputs[to.id.input];
+        if scope::is_add_pin(&snarl[from.id.node], output.name)
+            || scope::is_add_pin(&snarl[to.id.node], input.name)
+        {
+            match scope::expose(snarl, from.id, to.id) {
+                Some(declared) => self.declared.push(declared),
+                None => *self.hint = Some("cannot connect: wire a + pin to an inner pin".into()),
+            }
+            return;
+        }
         if !output.ty.converts_to(input.ty) {
             *self.hint = Some(format!(
                 "cannot connect: '{}' gives {} but '{}' expects {}",
@@ -371,7 +404,9 @@ impl SnarlViewer<Node> for Viewer<'_> {
     }
 
     fn has_footer(&mut self, node: &Node) -> bool {
-        self.thumbnails.shows(node.id) && !node.kind.signature().outputs.is_empty()
+        !self.in_group
+            && self.thumbnails.shows(node.id)
+            && !node.kind.signature().outputs.is_empty()
     }
 
     /// The node's thumbnail, below its pins (blank until first drawn).
@@ -386,8 +421,9 @@ impl SnarlViewer<Node> for Viewer<'_> {
         super::thumbnails::show_tile(ui, self.thumbnails, &snarl[node]);
     }
 
-    fn has_node_menu(&mut self, _: &Node) -> bool {
-        true
+    /// Boundary nodes have no menu: they cannot be duplicated or deleted.
+    fn has_node_menu(&mut self, node: &Node) -> bool {
+        scope::boundary(node).is_none()
     }
 
     fn show_node_menu(
@@ -398,10 +434,21 @@ impl SnarlViewer<Node> for Viewer<'_> {
         ui: &mut Ui,
         snarl: &mut Snarl<Node>,
     ) {
+        if scope::is_instance(&snarl[node]) {
+            if ui.button("Edit group (Tab)").clicked() {
+                *self.group_action = Some(GroupAction::Enter(node));
+                ui.close();
+            }
+            if ui.button("Ungroup (Alt+G)").clicked() {
+                *self.group_action = Some(GroupAction::Ungroup(node));
+                ui.close();
+            }
+            ui.separator();
+        }
         if ui.button("Duplicate").clicked() {
             // Where the menu opened (where the node was right-clicked), in graph space.
             let at = self.navigation.transform.inverse() * ui.min_rect().min;
-            super::clipboard::duplicate(snarl, &[node], at);
+            super::clipboard::duplicate(snarl, &[node], at, self.groups);
             ui.close();
         }
         let id = snarl[node].id;
@@ -422,6 +469,19 @@ impl SnarlViewer<Node> for Viewer<'_> {
                 self.thumbnails.hidden.insert(id);
             }
             ui.close();
+        }
+    }
+}
+
+impl Viewer<'_> {
+    /// A pin of type `ty`, drawn in its type's colour, its place recorded.
+    fn pin(&self, ty: crate::graph::ValueType, pin: PinSide) -> SpottedPin {
+        SpottedPin {
+            info: PinInfo::circle()
+                .with_fill(type_color(ty))
+                .with_wire_color(type_color(ty)),
+            pin,
+            spots: self.spots.clone(),
         }
     }
 }

@@ -127,7 +127,8 @@ fn candidates(
             continue;
         }
         for (index, pin) in node.kind.signature().outputs.iter().enumerate() {
-            if pin.ty.converts_to(ty) {
+            // (A boundary node's "+" takes wires only to declare a new group input.)
+            if pin.ty.converts_to(ty) && !super::scope::is_add_pin(node, pin.name) {
                 found.push((
                     OutPinId {
                         node: id,

@@ -63,6 +63,15 @@ pub(super) fn structure(graph: &Graph) -> Graph {
     skeleton
 }
 
+/// The values of parameter slots `slots` for `graph`, its groups inlined first as the
+/// compile inlined them (the slots name the inlined nodes).
+pub(super) fn slot_values(graph: &Graph, slots: &[crate::codegen::ParamSlot]) -> Vec<[f32; 4]> {
+    match crate::graph::group::flatten(graph) {
+        Ok(flat) => param_values(&flat, slots),
+        Err(_) => param_values(graph, slots),
+    }
+}
+
 impl LiveMaterial {
     /// A live material that moves its parameters to a storage buffer when they pass
     /// what a uniform block holds, so that graphs of any size compile for the preview
@@ -148,7 +157,7 @@ impl LiveMaterial {
     pub fn params(&self, graph: &Graph) -> Vec<[f32; 4]> {
         self.compiled
             .as_ref()
-            .map(|compiled| param_values(graph, &compiled.module.params))
+            .map(|compiled| slot_values(graph, &compiled.module.params))
             .unwrap_or_default()
     }
 

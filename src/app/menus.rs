@@ -18,7 +18,9 @@ const EXPORT_PNG: KeyboardShortcut = command_shift(Key::E);
 const UNDO: KeyboardShortcut = command(Key::Z);
 const REDO: KeyboardShortcut = command_shift(Key::Z);
 const DUPLICATE: KeyboardShortcut = command(Key::D);
-const FRAME_SELECTION: KeyboardShortcut = command(Key::G);
+const FRAME_SELECTION: KeyboardShortcut = command(Key::J);
+const GROUP: KeyboardShortcut = command(Key::G);
+const UNGROUP: KeyboardShortcut = KeyboardShortcut::new(Modifiers::ALT, Key::G);
 /// Node thumbnails on or off (plain T, outside text fields).
 const THUMBNAILS: Key = Key::T;
 
@@ -84,16 +86,21 @@ impl VeneerApp {
         if pressed(FRAME_SELECTION) {
             self.frame_selection();
         }
-        let pressed = |modifiers, key| pressed(KeyboardShortcut::new(modifiers, key));
+        if pressed(GROUP) {
+            self.group_selection();
+        }
         if typing {
             return;
         }
+        if pressed(UNGROUP) {
+            self.ungroup_selection();
+        }
+        let pressed = |modifiers, key| pressed(KeyboardShortcut::new(modifiers, key));
         if pressed(Modifiers::NONE, Key::Delete) || pressed(Modifiers::NONE, Key::Backspace) {
-            for node in self.selection.drain(..) {
-                if self.snarl.get_node(node).is_some() {
-                    self.snarl.remove_node(node);
-                }
+            for node in self.editable_selection() {
+                self.snarl.remove_node(node);
             }
+            self.selection.clear();
         }
         if pressed(Modifiers::NONE, Key::F) || pressed(Modifiers::NONE, Key::Home) {
             self.navigation.frame(Framing::All);
@@ -107,7 +114,14 @@ impl VeneerApp {
         if pressed(Modifiers::NONE, Key::Space) {
             self.open_add_node(ctx, None, Some(" "));
         } else if pressed(Modifiers::NONE, Key::Tab) {
-            self.open_add_node(ctx, None, Some("\t"));
+            // Tab enters the selected group node or leaves the group shown; else it
+            // opens the search.
+            if self.tab() {
+                // The key is ours: egui does not move the keyboard focus with it.
+                ctx.memory_mut(|memory| memory.move_focus(egui::FocusDirection::None));
+            } else {
+                self.open_add_node(ctx, None, Some("\t"));
+            }
         } else if pressed(Modifiers::SHIFT, Key::A) {
             self.open_add_node(ctx, None, Some("A"));
         }
@@ -121,8 +135,8 @@ impl VeneerApp {
         let events = ctx.input(|input| input.events.clone());
         for event in events {
             match event {
-                egui::Event::Copy if !self.selection.is_empty() => {
-                    ctx.copy_text(clipboard::copy(&self.snarl, &self.selection));
+                egui::Event::Copy if !self.editable_selection().is_empty() => {
+                    ctx.copy_text(clipboard::copy(&self.snarl, &self.editable_selection()));
                 }
                 egui::Event::Paste(text) if ctx.memory(|m| m.focused().is_none()) => {
                     self.paste_at_mouse(ctx, &text);
@@ -199,10 +213,40 @@ impl VeneerApp {
                 ) {
                     self.frame_selection();
                 }
+                ui.separator();
+                let group_selected = self
+                    .selection
+                    .iter()
+                    .any(|id| self.snarl.get_node(*id).is_some_and(scope::is_instance));
+                if shortcut_entry(
+                    ui,
+                    "Group selected nodes",
+                    &GROUP,
+                    !self.selection.is_empty(),
+                ) {
+                    self.group_selection();
+                }
+                if shortcut_entry(ui, "Ungroup", &UNGROUP, group_selected) {
+                    self.ungroup_selection();
+                }
+                let inside = !self.scope.levels.is_empty();
+                if entry(
+                    ui,
+                    "Edit group / leave group",
+                    "Tab",
+                    group_selected || inside,
+                ) {
+                    self.tab();
+                }
+                ui.separator();
                 if ui.button("Arrange nodes").clicked() {
-                    let mut graph = graph_from_snarl(&self.snarl, &self.document.graph);
-                    crate::graph::layout::arrange(&mut graph);
-                    self.snarl = snarl_from_graph(&graph);
+                    let arranged = self.edit_level(|graph| {
+                        crate::graph::layout::arrange(graph);
+                        Ok(())
+                    });
+                    if let Err(error) = arranged {
+                        self.message = Some(error);
+                    }
                     self.navigation.frame(Framing::All);
                 }
             });
@@ -306,7 +350,7 @@ impl VeneerApp {
 }
 
 /// "1 node", "2 nodes".
-fn counted(count: usize, noun: &str) -> String {
+pub(super) fn counted(count: usize, noun: &str) -> String {
     if count == 1 {
         format!("1 {noun}")
     } else {

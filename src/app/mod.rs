@@ -15,6 +15,8 @@ mod fields;
 mod file_browser;
 mod frame_clock;
 mod graph_view;
+mod group_edit;
+mod group_inspector;
 mod history;
 mod inspector;
 mod live;
@@ -22,12 +24,14 @@ mod menus;
 mod navigation;
 mod node_text;
 mod painting;
+mod parameters_panel;
 mod preview;
 mod preview_panel;
 mod preview_worker;
 mod probe;
 mod ramp_bar;
 mod recovery;
+mod scope;
 mod sync;
 mod thumbnail_keys;
 mod thumbnail_worker;
@@ -49,7 +53,7 @@ use dialogs::{Dialog, Pending};
 use egui::{Key, KeyboardShortcut, Modifiers, Ui};
 use egui_snarl::Snarl;
 use egui_snarl::ui::SnarlWidget;
-use graph_view::{Viewer, graph_from_snarl, snarl_from_graph};
+use graph_view::{Viewer, snarl_from_graph};
 use navigation::{Framing, Navigation};
 use preview::{MaterialFrame, PreviewState, Previews};
 use preview_worker::{Slot, TessellationInput};
@@ -100,6 +104,11 @@ pub struct VeneerApp {
     previews: Previews,
     /// Nodes selected in the graph (snarl ids).
     selection: Vec<egui_snarl::NodeId>,
+    /// The node groups entered: the graph view shows the innermost one's definition.
+    scope: scope::Scope,
+    /// Bumped whenever the graph view starts afresh (entering or leaving a group,
+    /// grouping): the view's id, so that its selection is not carried over.
+    view_generation: u64,
     /// The node picked by a plain click.
     clicked: Option<egui_snarl::NodeId>,
     /// The graph view's transform and the gestures moving it.
@@ -175,6 +184,8 @@ impl VeneerApp {
             hovered_wire: None,
             node_drag: None,
             selection: Vec::new(),
+            scope: Default::default(),
+            view_generation: 0,
             clicked: None,
             navigation: Default::default(),
             message: None,
@@ -238,6 +249,7 @@ impl VeneerApp {
             self.preview.mesh = mesh;
             self.preview.file = None;
         }
+        self.scope = Default::default();
         self.snarl = snarl_from_graph(&document.graph);
         self.document = document;
         self.selection.clear();
@@ -316,12 +328,12 @@ impl VeneerApp {
         }
     }
 
-    /// Undoes the last edit.
+    /// Undoes the last edit (inside a group too; a group undone away is left).
     pub fn undo(&mut self) {
         if let Some(graph) = self.document.history.undo() {
             self.clicked = None;
-            self.snarl = snarl_from_graph(&graph);
             self.document.graph = graph;
+            self.rebuild_snarl();
         }
     }
 
@@ -329,9 +341,18 @@ impl VeneerApp {
     pub fn redo(&mut self) {
         if let Some(graph) = self.document.history.redo() {
             self.clicked = None;
-            self.snarl = snarl_from_graph(&graph);
             self.document.graph = graph;
+            self.rebuild_snarl();
         }
+    }
+
+    /// The groups entered, outermost first (empty at the top level).
+    pub fn group_path(&self) -> Vec<String> {
+        self.scope
+            .levels
+            .iter()
+            .map(|level| level.group.clone())
+            .collect()
     }
 
     /// Whether the preview shows a mesh whose distance fields are solved and up to date.
@@ -416,23 +437,45 @@ impl VeneerApp {
             self.navigation
                 .before(ui.ctx(), ui.max_rect(), &self.snarl, &self.selection);
         let before = self.clicked.take();
+        // Inside a group, messages, frames and thumbnails of the top level do not apply:
+        // its nodes' ids are the definition's own.
+        let in_group = self.scope.current().is_some();
+        let (no_errors, no_warnings) = (Default::default(), Default::default());
+        let (mut declared, mut expose, mut group_action) = (Vec::new(), None, None);
         let mut viewer = Viewer {
-            errors: &self.live.errors,
-            warnings: &self.live.warnings,
+            errors: if in_group {
+                &no_errors
+            } else {
+                &self.live.errors
+            },
+            warnings: if in_group {
+                &no_warnings
+            } else {
+                &self.live.warnings
+            },
             hint: &mut hint,
             dropped: &mut dropped,
             clicked: &mut self.clicked,
             selected: before,
             navigation: &mut self.navigation,
-            frames: &self.document.graph.frames,
+            frames: if in_group {
+                &[]
+            } else {
+                &self.document.graph.frames
+            },
             thumbnails: &mut self.thumbnails,
             spots: self.spots.clone(),
+            in_group,
+            groups: &self.document.graph.groups,
+            declared: &mut declared,
+            expose: &mut expose,
+            group_action: &mut group_action,
         };
         *self.spots.borrow_mut() = Default::default();
         // In big graphs nodes off screen are not laid out at all (our egui-snarl patch).
         let big = self.snarl.node_ids().count() > navigation::BIG_GRAPH;
         let widget = SnarlWidget::new()
-            .id_salt("graph")
+            .id_salt(("graph", self.view_generation))
             .style(painting::graph_style(ui.style()))
             .cull_offscreen(big);
         let response = widget.show(&mut self.snarl, &mut viewer, ui);
@@ -446,17 +489,75 @@ impl VeneerApp {
             self.clicked = before.filter(|node| self.snarl.get_node(*node).is_some());
         }
         self.selection = widget.get_selected_nodes(ui);
+        if self.navigation.clicked_empty_canvas() && self.dialog.is_none() {
+            // A click on empty canvas selects nothing (egui-snarl's own selection goes
+            // with a fresh view).
+            self.clicked = None;
+            if !self.selection.is_empty() {
+                self.view_generation += 1;
+                self.selection.clear();
+            }
+        }
         if self.selection.is_empty() {
             self.selection.extend(self.clicked);
         }
         if hint.is_some() {
             self.message = hint;
         }
+        declared.extend(expose.and_then(|pin| self.expose_input(pin)));
+        self.declare(declared);
+        if let Some(action) = group_action {
+            self.group_action(action);
+        }
+        self.breadcrumb(ui.ctx(), ui.max_rect());
         // A right click on empty canvas, or a wire dropped there, opens the add-node search.
         if dropped.is_some() || response.secondary_clicked() {
             self.open_add_node(ui.ctx(), dropped, None);
         }
         self.add_node_popup(ui.ctx());
+    }
+
+    /// The inspector of the selected node, or a hint and the comment frames.
+    fn inspector(&mut self, ui: &mut Ui) {
+        match self.selection.first().copied() {
+            Some(node) if self.snarl.get_node(node).is_some() => {
+                ui.separator();
+                self.inspect(ui, node);
+            }
+            _ => {
+                ui.weak(
+                    "Select a node to edit it. Right-click the graph (or press Space) to add one.",
+                );
+                frames_editor(ui, &mut self.document.graph.frames);
+            }
+        }
+    }
+
+    /// The inspector of node `node` of the graph view.
+    fn inspect(&mut self, ui: &mut Ui, node: egui_snarl::NodeId) {
+        let shown = &self.snarl[node];
+        if let Some(side) = scope::boundary(shown) {
+            group_inspector::boundary(ui, side);
+            return;
+        }
+        if let Some(name) = crate::graph::group::group_name(shown) {
+            let definition = self.document.graph.groups.get(name);
+            if let Some(action) = group_inspector::show(ui, node, name, definition) {
+                self.group_action(action);
+                return;
+            }
+            ui.separator();
+        }
+        // Inside a group the nodes' ids are the definition's: the top level's
+        // thumbnails and messages are not theirs.
+        if self.scope.current().is_some() {
+            inspector::show(ui, &mut self.snarl, node, None, None);
+            return;
+        }
+        self.node_thumbnail(ui, node);
+        let id = self.snarl[node].id;
+        let (error, warning) = (self.live.errors.get(&Some(id)), self.live.warnings.get(&id));
+        inspector::show(ui, &mut self.snarl, node, error, warning);
     }
 
     fn handle_close(&mut self, ctx: &egui::Context) {
@@ -560,22 +661,16 @@ impl eframe::App for VeneerApp {
         self.clipboard(&ctx);
         egui::Panel::top("menu").show(ui, |ui| self.menu_bar(ui));
         egui::Panel::bottom("status").show(ui, |ui| self.status_bar(ui));
-        egui::Panel::right("side").default_size(460.0).show(ui, |ui| {
-            self.preview_panel(ui);
-            ui.separator();
-            egui::ScrollArea::vertical().show(ui, |ui| match self.selection.first().copied() {
-                Some(node) if self.snarl.get_node(node).is_some() => {
-                    self.node_thumbnail(ui, node);
-                    let id = self.snarl[node].id;
-                    let (error, warning) = (self.live.errors.get(&Some(id)), self.live.warnings.get(&id));
-                    inspector::show(ui, &mut self.snarl, node, error, warning);
-                }
-                _ => {
-                    ui.weak("Select a node to edit it. Right-click the graph (or press Space) to add one.");
-                    frames_editor(ui, &mut self.document.graph.frames);
-                }
+        egui::Panel::right("side")
+            .default_size(460.0)
+            .show(ui, |ui| {
+                self.preview_panel(ui);
+                ui.separator();
+                egui::ScrollArea::vertical().show(ui, |ui| {
+                    self.parameters_panel(ui);
+                    self.inspector(ui);
+                });
             });
-        });
         let central = egui::CentralPanel::default()
             .frame(painting::central_panel_frame(ui.style()))
             .show(ui, |ui| {

@@ -70,6 +70,8 @@ pub struct Navigation {
     panning: bool,
     /// A left-drag that began on empty canvas is drawing a selection rectangle.
     selecting: bool,
+    /// This frame's input holds a plain click on empty canvas (it clears the selection).
+    empty_click: bool,
     /// Every node's rectangle when last drawn, in graph coordinates.
     rects: std::collections::HashMap<egui_snarl::NodeId, Rect>,
     /// Where the graph is on screen (`None` before the first frame).
@@ -127,10 +129,19 @@ impl Navigation {
         if released {
             self.selecting = false;
         }
+        let clicked = ctx.input(|input| input.pointer.primary_clicked());
+        self.empty_click = clicked && empty && modifiers.is_none();
         if fake_shift {
             ctx.input_mut(|input| input.modifiers.shift = true);
         }
         modifiers
+    }
+
+    /// Whether this frame's input holds a plain click on empty canvas (seen by
+    /// [`Navigation::before`]: egui-snarl is told Shift is held then, so it keeps its
+    /// selection).
+    pub fn clicked_empty_canvas(&self) -> bool {
+        self.empty_click
     }
 
     /// After the graph is shown: puts back the modifiers [`Navigation::before`] changed.

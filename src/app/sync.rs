@@ -5,7 +5,6 @@
 //! and the compile, the lint, the thumbnails, the undo history and the title follow it.
 
 use super::VeneerApp;
-use super::graph_view::graph_from_snarl;
 use crate::graph::{Graph, NodeId};
 use std::time::{Duration, Instant};
 
@@ -81,7 +80,7 @@ impl VeneerApp {
         // The first frame takes in the graph the editor opened on.
         if self.revision.number == 0 || may_edit(ctx) {
             self.revision.reads += 1;
-            let graph = graph_from_snarl(&self.snarl, &self.document.graph);
+            let graph = self.shown_graph();
             if graph != self.document.graph {
                 self.document.graph = graph;
             }

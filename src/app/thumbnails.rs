@@ -10,7 +10,6 @@
 use super::live::LiveMaterial;
 use super::probe::atlas_graph;
 use super::thumbnail_worker::{Done, Job, Worker};
-use crate::codegen::param_values;
 use crate::graph::{Graph, NodeId, PinRef};
 use crate::render::{AtlasLayout, FlatRect};
 use std::collections::BTreeSet;
@@ -199,7 +198,7 @@ impl Thumbnails {
         let upstream = super::thumbnail_keys::upstream_hashes(graph, time);
         let rect = placement(graph);
         let slots = &compiled.module.params;
-        let values = param_values(&atlas.graph, slots);
+        let values = super::live::slot_values(&atlas.graph, slots);
         let mut tiles = Vec::new();
         for (index, pin) in self.pins.iter().enumerate() {
             let key = tile_key(&upstream, pin, self.atlas.generation, rect);
@@ -335,7 +334,7 @@ impl Thumbnails {
 }
 
 /// The parameter values that make the atlas module show tile `index`: `values` (the
-/// atlas graph's, see [`param_values`]) with every selector's factor 0 but tile
+/// atlas graph's, see [`crate::codegen::param_values`]) with every selector's factor 0 but tile
 /// `index`'s, which is 1.
 pub fn tile_params(
     values: &[[f32; 4]],

@@ -53,7 +53,9 @@ impl VeneerApp {
                     .get_node_info(*id)
                     .is_some_and(|info| info.pos != *start)
             })
-            .map(|(id, _)| id);
+            .map(|(id, _)| id)
+            // A group's boundary nodes are never inserted into a wire.
+            .filter(|id| super::scope::boundary(&self.snarl[*id]).is_none());
         if let Some(node) = dragged {
             if let Some(wire) = spots.wire_at(&self.snarl, at, Some(node)) {
                 if released {
@@ -66,7 +68,11 @@ impl VeneerApp {
                 }
                 self.highlight_wire(&ctx, &spots, wire);
             }
-        } else if !down && !spots.nodes.values().any(|rect| rect.contains(at)) {
+        } else if !down
+            && self.scope.current().is_none()
+            && !spots.nodes.values().any(|rect| rect.contains(at))
+        {
+            // (Inside a group the wires' values are not the top level's to show.)
             self.hovered_wire = spots
                 .wire_at(&self.snarl, at, None)
                 .and_then(|(from, _)| carried(&self.snarl, from));

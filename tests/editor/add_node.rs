@@ -326,7 +326,7 @@ fn pasted_and_duplicated_nodes_land_at_the_mouse_in_their_layout() {
 }
 
 #[test]
-fn frames_come_from_the_search_and_ctrl_g() {
+fn frames_come_from_the_search_and_ctrl_j() {
     let dir = scratch("add-frame");
     let mut harness = editor(&dir, None);
     new_graph(&mut harness);
@@ -349,13 +349,13 @@ fn frames_come_from_the_search_and_ctrl_g() {
         "no node added"
     );
 
-    // With a node selected, the search also offers a frame around it, and so does Ctrl+G.
+    // With a node selected, the search also offers a frame around it, and so does Ctrl+J.
     crate::support::select_node(&mut harness, "material");
     hover(&mut harness, Pos2::new(150.0, 200.0));
     key(&mut harness, Modifiers::NONE, Key::Space, Some(" "));
     typing(&mut harness, "frame around");
     key(&mut harness, Modifiers::NONE, Key::Enter, None);
-    key(&mut harness, Modifiers::COMMAND, Key::G, None);
+    key(&mut harness, Modifiers::COMMAND, Key::J, None);
     let graph = &harness.state().document.graph;
     assert_eq!(graph.frames.len(), 3);
     let (x, y) = graph.nodes[0].position;

@@ -6,6 +6,7 @@ mod dialogs;
 mod editing;
 mod files;
 mod geotextures;
+mod groups;
 mod navigation;
 mod painting;
 mod real_window;

@@ -16,7 +16,7 @@ const GRAPH_AREA: Rect = Rect::from_min_max(pos2(0.0, 20.0), pos2(930.0, 875.0))
 
 /// Where the node titled `title` is on screen (its largest label: the title, not a pin
 /// or field of the same name).
-fn on_screen(harness: &Harness<'static, VeneerApp>, title: &str) -> Rect {
+pub fn on_screen(harness: &Harness<'static, VeneerApp>, title: &str) -> Rect {
     let rect = harness
         .query_all_by_label(title)
         .map(|node| node.rect())
@@ -26,7 +26,7 @@ fn on_screen(harness: &Harness<'static, VeneerApp>, title: &str) -> Rect {
 }
 
 /// Drags `button` from `from` to `to` in steps, holding `modifiers`.
-fn drag(
+pub fn drag(
     harness: &mut Harness<'static, VeneerApp>,
     button: PointerButton,
     modifiers: Modifiers,

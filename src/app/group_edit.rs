@@ -1,0 +1,387 @@
+//! Node groups in the editor: grouping the selection (Ctrl+G), ungrouping (Alt+G),
+//! entering a group and leaving it (Tab, the breadcrumb), new group inputs and outputs,
+//! and what a group node's inspector asks. The document always holds the whole graph:
+//! while a group is shown, every frame's edits are written into its definition, so the
+//! preview, undo and saving see them at once.
+
+use super::VeneerApp;
+use super::graph_view::{graph_from_snarl, next_node_id, snarl_from_graph};
+use super::group_inspector::GroupAction;
+use super::navigation::{Framing, Navigation};
+use super::scope::{self, Declared, Level};
+use crate::graph::{Graph, Node, NodeId, NodeKind, group, library};
+use crate::nodes::Group;
+use egui::{Pos2, Rect};
+use std::collections::BTreeSet;
+
+impl VeneerApp {
+    /// The whole graph as the graph view shows it now (the level shown written into
+    /// its place).
+    pub(super) fn shown_graph(&mut self) -> Graph {
+        let Some(name) = self.scope.current().map(str::to_string) else {
+            return graph_from_snarl(&self.snarl, &self.document.graph);
+        };
+        let mut graph = self.document.graph.clone();
+        if scope::write_back(&mut graph, &name, &self.snarl) {
+            self.unlink_edited(&mut graph, &name);
+            group::resolve(&mut graph);
+        }
+        graph
+    }
+
+    /// Reads the graph view back into the document.
+    pub(super) fn sync_document(&mut self) {
+        let graph = self.shown_graph();
+        if graph != self.document.graph {
+            self.document.graph = graph;
+        }
+    }
+
+    /// A linked group takes the library's version when its graph is loaded: one edited
+    /// here stops following the library, so that the edits are kept.
+    fn unlink_edited(&mut self, graph: &mut Graph, name: &str) {
+        if let Some(definition) = graph.groups.get_mut(name)
+            && definition.linked
+        {
+            definition.linked = false;
+            self.message = Some(format!(
+                "group '{name}' is local to this graph now (edited): library updates no \
+                 longer apply; *Save to library* shares the edits"
+            ));
+        }
+    }
+
+    /// Shows the document at the level shown (the top level when that group is gone).
+    pub(super) fn rebuild_snarl(&mut self) {
+        if self.scope.keep_existing(&self.document.graph) {
+            self.new_view();
+            self.navigation.frame(Framing::All);
+        }
+        self.snarl = match self.scope.current() {
+            Some(name) => scope::snarl_for_group(&self.document.graph, name).unwrap_or_default(),
+            None => snarl_from_graph(&self.document.graph),
+        };
+    }
+
+    /// Starts the graph view afresh (its selection is for other nodes now).
+    fn new_view(&mut self) {
+        self.view_generation += 1;
+        self.selection.clear();
+        self.clicked = None;
+    }
+
+    /// Selects the node `node` of the level shown.
+    fn select(&mut self, node: NodeId) {
+        self.clicked = self
+            .snarl
+            .node_ids()
+            .find(|(_, shown)| shown.id == node && scope::boundary(shown).is_none())
+            .map(|(id, _)| id);
+        self.selection = self.clicked.into_iter().collect();
+    }
+
+    /// Runs `edit` on the level shown as a whole graph (a group's definition with its
+    /// boundary as one node), then shows the result: one undo step.
+    pub(super) fn edit_level<T>(
+        &mut self,
+        edit: impl FnOnce(&mut Graph) -> Result<T, String>,
+    ) -> Result<T, String> {
+        self.sync_document();
+        let mut graph = self.document.graph.clone();
+        let done = match self.scope.current().map(str::to_string) {
+            None => edit(&mut graph)?,
+            Some(name) => {
+                let (mut local, definition) =
+                    scope::as_graph(&graph, &name).ok_or("the group shown is gone")?;
+                let done = edit(&mut local)?;
+                scope::put_back(&mut graph, &name, definition, local);
+                self.unlink_edited(&mut graph, &name);
+                done
+            }
+        };
+        group::resolve(&mut graph);
+        graph.canonicalize();
+        self.document.graph = graph;
+        self.rebuild_snarl();
+        self.new_view();
+        Ok(done)
+    }
+
+    /// The selected nodes of the level shown, less its boundary nodes.
+    pub(super) fn editable_selection(&self) -> Vec<egui_snarl::NodeId> {
+        self.selection
+            .iter()
+            .copied()
+            .filter(|id| {
+                self.snarl
+                    .get_node(*id)
+                    .is_some_and(|node| scope::boundary(node).is_none())
+            })
+            .collect()
+    }
+
+    /// Ctrl+G: the selected nodes (the Material stays out) become a new group, named
+    /// `group`, `group_2`…, with one instance of it in their place, selected.
+    pub(super) fn group_selection(&mut self) {
+        let chosen: BTreeSet<NodeId> = self
+            .editable_selection()
+            .into_iter()
+            .map(|id| &self.snarl[id])
+            .filter(|node| node.kind != NodeKind::Material)
+            .map(|node| node.id)
+            .collect();
+        if chosen.is_empty() {
+            self.message = Some(
+                "nothing to group: select nodes first (the Material node stays outside groups)"
+                    .into(),
+            );
+            return;
+        }
+        let name = scope::free_name(
+            self.document.graph.groups.keys().map(String::as_str),
+            "group",
+        );
+        match self.edit_level(|graph| group::group_nodes(graph, &chosen, &name)) {
+            Ok(instance) => {
+                self.select(instance);
+                self.message = Some(format!(
+                    "grouped {} into '{name}': Tab edits it, Alt+G ungroups it",
+                    super::menus::counted(chosen.len(), "node")
+                ));
+            }
+            Err(error) => self.message = Some(format!("cannot group: {error}")),
+        }
+    }
+
+    /// Alt+G: dissolves the selected group nodes into their definitions' nodes.
+    pub(super) fn ungroup_selection(&mut self) {
+        let instances: Vec<NodeId> = self
+            .selection
+            .iter()
+            .filter_map(|id| self.snarl.get_node(*id))
+            .filter(|node| scope::is_instance(node))
+            .map(|node| node.id)
+            .collect();
+        self.ungroup(instances);
+    }
+
+    fn ungroup(&mut self, instances: Vec<NodeId>) {
+        if instances.is_empty() {
+            self.message = Some("nothing to ungroup: select a group node first".into());
+            return;
+        }
+        let done = self.edit_level(|graph| {
+            instances
+                .iter()
+                .try_for_each(|id| group::ungroup(graph, *id).map(drop))
+        });
+        if let Err(error) = done {
+            self.message = Some(format!("cannot ungroup: {error}"));
+        }
+    }
+
+    /// Tab: enters the selected group node, else leaves the group shown. Returns
+    /// `false` when it did neither (at the top level, no group node selected).
+    pub(super) fn tab(&mut self) -> bool {
+        let selected = self
+            .selection
+            .first()
+            .copied()
+            .filter(|id| self.snarl.get_node(*id).is_some_and(scope::is_instance));
+        if let Some(node) = selected {
+            self.enter_group(node);
+        } else if let Some(depth) = self.scope.levels.len().checked_sub(1) {
+            self.leave_to(depth);
+        } else {
+            return false;
+        }
+        true
+    }
+
+    /// Shows the definition of group node `node` of the level shown.
+    pub(super) fn enter_group(&mut self, node: egui_snarl::NodeId) {
+        let Some(instance) = self.snarl.get_node(node).filter(|n| scope::is_instance(n)) else {
+            return;
+        };
+        let name = group::group_name(instance).unwrap_or_default().to_string();
+        if !self.document.graph.groups.contains_key(&name) {
+            self.message = Some(format!("no group named '{name}' in the graph"));
+            return;
+        }
+        let level = Level {
+            group: name,
+            instance: instance.id,
+            view: self.navigation.transform,
+        };
+        self.sync_document();
+        self.scope.levels.push(level);
+        self.rebuild_snarl();
+        self.new_view();
+        self.navigation = Navigation::default();
+        self.navigation.frame(Framing::All);
+    }
+
+    /// Leaves the groups entered below `depth` levels (0: back to the top level),
+    /// putting back the view there and selecting the group node they were entered by.
+    pub(super) fn leave_to(&mut self, depth: usize) {
+        if depth >= self.scope.levels.len() {
+            return;
+        }
+        self.sync_document();
+        let left = self.scope.levels.split_off(depth);
+        self.rebuild_snarl();
+        self.new_view();
+        self.navigation = Navigation::default();
+        self.navigation.transform = left[0].view;
+        self.select(left[0].instance);
+    }
+
+    /// Carries out what a group node's inspector or menu asked.
+    pub(super) fn group_action(&mut self, action: GroupAction) {
+        match action {
+            GroupAction::Enter(node) => self.enter_group(node),
+            GroupAction::Ungroup(node) => {
+                let instance = self.snarl.get_node(node).map(|node| node.id);
+                self.ungroup(instance.into_iter().collect());
+            }
+            GroupAction::MakeLocal(name) => {
+                if let Some(definition) = self.document.graph.groups.get_mut(&name) {
+                    definition.linked = false;
+                    self.message = Some(format!(
+                        "group '{name}' is local to this graph: library updates no longer apply"
+                    ));
+                }
+            }
+            GroupAction::SaveToLibrary(name) => {
+                self.sync_document();
+                let Some(definition) = self.document.graph.groups.get(&name) else {
+                    return;
+                };
+                self.message = Some(match library::save_to_user(&name, definition) {
+                    Ok(path) => format!("saved group '{name}' to {}", path.display()),
+                    Err(error) => format!("cannot save group '{name}' to the library: {error}"),
+                });
+            }
+        }
+    }
+
+    /// Adds what wires dropped on "+" pins declared to the group shown.
+    pub(super) fn declare(&mut self, declared: Vec<Declared>) {
+        let Some(name) = self.scope.current().map(str::to_string) else {
+            return;
+        };
+        let Some(definition) = self.document.graph.groups.get_mut(&name) else {
+            return;
+        };
+        for declaration in declared {
+            let added = match declaration {
+                Declared::Input(input) => {
+                    let text = format!("added input '{}' to group '{name}'", input.name);
+                    definition.inputs.push(input);
+                    text
+                }
+                Declared::Output(output) => {
+                    let text = format!("added output '{}' to group '{name}'", output.name);
+                    definition.outputs.push(output);
+                    text
+                }
+            };
+            self.message = Some(added);
+        }
+    }
+
+    /// *Expose as group input* on input `pin` of an inner node: a new group input
+    /// wired to it, as if a wire were dragged from *Group input*'s "+" to it.
+    pub(super) fn expose_input(&mut self, pin: egui_snarl::InPinId) -> Option<Declared> {
+        let input = scope::boundary_in(&self.snarl, scope::Boundary::Input)?;
+        let add = self.snarl[input]
+            .kind
+            .signature()
+            .outputs
+            .len()
+            .checked_sub(1)?;
+        let from = egui_snarl::OutPinId {
+            node: input,
+            output: add,
+        };
+        scope::expose(&mut self.snarl, from, pin)
+    }
+
+    /// The groups an instance can be made of at the level shown: the graph's and the
+    /// library's, less those that would contain themselves.
+    pub(super) fn placeable_groups(&self) -> Vec<String> {
+        let groups = &self.document.graph.groups;
+        let mut names: Vec<String> = groups.keys().cloned().collect();
+        names.extend(library::list().into_iter().map(|(name, _)| name));
+        names.sort();
+        names.dedup();
+        if let Some(current) = self.scope.current() {
+            names.retain(|name| !scope::uses(groups, name, current));
+        }
+        names
+    }
+
+    /// Places an instance of group `name` (the graph's, else the library's, which the
+    /// graph then keeps a linked copy of) at `at`; returns its id in the view.
+    pub(super) fn add_group_instance(
+        &mut self,
+        name: &str,
+        at: Pos2,
+    ) -> Option<egui_snarl::NodeId> {
+        if !library::adopt(&mut self.document.graph, name) {
+            self.message = Some(format!(
+                "no group named '{name}' in the graph or the library"
+            ));
+            return None;
+        }
+        let interfaces = group::interfaces(&self.document.graph.groups);
+        let pins = match interfaces.as_ref().map(|all| all.get(name)) {
+            Ok(Some(interface)) => interface.signature(),
+            Ok(None) => return None,
+            Err(error) => {
+                self.message = Some(format!("cannot use group '{name}': {}", error.message));
+                return None;
+            }
+        };
+        let kind = NodeKind::Group(Group {
+            name: name.to_string(),
+            pins,
+        });
+        let mut node = Node::new(next_node_id(&self.snarl), kind);
+        node.label = name.to_string();
+        Some(self.snarl.insert_node(at, node))
+    }
+
+    /// The breadcrumb over the graph while a group is shown, "Graph › ring_wood": each
+    /// level above the one shown goes back to it when clicked.
+    pub(super) fn breadcrumb(&mut self, ctx: &egui::Context, canvas: Rect) {
+        if self.scope.levels.is_empty() {
+            return;
+        }
+        let mut go = None;
+        egui::Area::new(egui::Id::new("veneer-breadcrumb"))
+            .fixed_pos(canvas.min + egui::vec2(10.0, 10.0))
+            .show(ctx, |ui| {
+                egui::Frame::popup(ui.style()).show(ui, |ui| {
+                    ui.horizontal(|ui| {
+                        if ui.link("Graph").clicked() {
+                            go = Some(0);
+                        }
+                        let last = self.scope.levels.len() - 1;
+                        for (depth, level) in self.scope.levels.iter().enumerate() {
+                            ui.label("›");
+                            if depth == last {
+                                ui.strong(&level.group);
+                            } else if ui.link(&level.group).clicked() {
+                                go = Some(depth + 1);
+                            }
+                        }
+                        ui.weak("· Tab goes up");
+                    });
+                });
+            });
+        if let Some(depth) = go {
+            self.leave_to(depth);
+        }
+    }
+}

@@ -1,0 +1,310 @@
+//! Node groups in the editor: Ctrl+G groups the selection (one undo step, the Material
+//! left out), Alt+G dissolves the group back into the same graph, Tab enters a group
+//! and leaves it (so does the breadcrumb), the Parameters panel and its presets set a
+//! group node's inputs, and the add-node search offers the library's groups.
+
+use crate::navigation::{drag, on_screen};
+use crate::support::{
+    editor, press, retype_drag_value, scratch, select_node, shows, type_into_field,
+};
+use egui::{Key, Modifiers, PointerButton, vec2};
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
+use std::path::{Path, PathBuf};
+use veneer::app::VeneerApp;
+use veneer::graph::{NodeKind, Value, to_ron};
+
+/// A noise scaled by a multiply into the material: the nodes to group.
+const SMALL: &str = r#"(
+    version: 1,
+    name: "Small",
+    nodes: [
+        (id: 1, label: "noise", kind: Noise(basis: Gradient), inputs: {}, position: (0.0, 0.0)),
+        (id: 2, label: "shade", kind: Math(op: Multiply, ty: Float), inputs: {"b": Float(0.3)}, position: (300.0, 0.0)),
+        (id: 3, label: "material", kind: Material, inputs: {}, position: (600.0, 0.0)),
+    ],
+    wires: [
+        (from: (node: 1, pin: "value"), to: (node: 2, pin: "a")),
+        (from: (node: 2, pin: "result"), to: (node: 3, pin: "albedo")),
+    ],
+)
+"#;
+
+/// The editor on [`SMALL`], written into `dir`.
+fn small_editor(dir: &Path) -> Harness<'static, VeneerApp> {
+    let path = dir.join("small.ron");
+    std::fs::write(&path, SMALL).expect("the graph is written");
+    editor(dir, Some(path))
+}
+
+/// The graph's file text.
+fn text(harness: &Harness<'static, VeneerApp>) -> String {
+    to_ron(&harness.state().document.graph)
+}
+
+/// Selects "noise" and "shade" with a rectangle dragged over them from empty canvas.
+fn select_noise_and_shade(harness: &mut Harness<'static, VeneerApp>) {
+    let (noise, shade) = (on_screen(harness, "noise"), on_screen(harness, "shade"));
+    // Clear of the noise node's edge and the reach of its pins.
+    let start = noise.min - vec2(40.0, 40.0);
+    drag(
+        harness,
+        PointerButton::Primary,
+        Modifiers::NONE,
+        start,
+        shade.center(),
+    );
+    let mut selected = harness.state().selected_labels();
+    selected.sort();
+    assert_eq!(selected, ["noise", "shade"]);
+}
+
+/// Presses `key` with `modifiers` and lets the editor react.
+fn key(harness: &mut Harness<'static, VeneerApp>, modifiers: Modifiers, key: Key) {
+    harness.key_press_modifiers(modifiers, key);
+    harness.run();
+}
+
+#[test]
+fn ctrl_g_groups_the_selection_and_ctrl_z_restores_the_graph() {
+    let dir = scratch("group-undo");
+    let mut harness = small_editor(&dir);
+    let before = text(&harness);
+
+    // The Material alone: nothing to group, and the status bar says why.
+    select_node(&mut harness, "material");
+    press(&mut harness, Key::G, true);
+    assert!(harness.state().document.graph.groups.is_empty());
+    assert!(shows(&harness, "nothing to group"));
+
+    select_noise_and_shade(&mut harness);
+    press(&mut harness, Key::G, true);
+    let graph = &harness.state().document.graph;
+    let group = graph.groups.get("group").expect("a group named 'group'");
+    assert_eq!(group.nodes.len(), 2, "the noise and the multiply went in");
+    assert_eq!(
+        graph.nodes.len(),
+        2,
+        "the group node and the material are left"
+    );
+    assert_eq!(
+        harness.state().selected_labels(),
+        ["group"],
+        "the new group node is selected"
+    );
+    assert!(
+        harness.state().live.errors.is_empty(),
+        "the grouped graph compiles"
+    );
+
+    press(&mut harness, Key::Z, true);
+    assert_eq!(text(&harness), before, "one Ctrl+Z takes the grouping back");
+}
+
+#[test]
+fn ctrl_g_then_alt_g_gives_back_the_same_graph() {
+    let dir = scratch("group-ungroup");
+    let mut harness = small_editor(&dir);
+    let before = text(&harness);
+    select_noise_and_shade(&mut harness);
+    press(&mut harness, Key::G, true);
+    assert_ne!(text(&harness), before);
+    key(&mut harness, Modifiers::ALT, Key::G);
+    assert_eq!(
+        text(&harness),
+        before,
+        "ungrouping puts the same nodes and wires back"
+    );
+}
+
+#[test]
+fn tab_enters_the_group_and_leaves_it() {
+    let dir = scratch("group-tab");
+    let mut harness = small_editor(&dir);
+    select_noise_and_shade(&mut harness);
+    press(&mut harness, Key::G, true);
+
+    press(&mut harness, Key::Tab, false);
+    harness.run_steps(4);
+    assert_eq!(harness.state().group_path(), ["group"]);
+    for shown in ["Group input", "Group output", "noise", "shade"] {
+        assert!(shows(&harness, shown), "inside the group: {shown}");
+    }
+    assert!(
+        harness.query_by_label("material").is_none(),
+        "the top level is not shown"
+    );
+    assert!(
+        harness.query_by_label("Add node").is_none(),
+        "Tab on a group node does not open the search"
+    );
+
+    // An edit inside changes the definition (and is one undo step).
+    select_node(&mut harness, "shade");
+    retype_drag_value(&mut harness, "0.30", "0.5");
+    let definition = &harness.state().document.graph.groups["group"];
+    let scale = definition
+        .nodes
+        .iter()
+        .find(|n| n.label == "shade")
+        .unwrap();
+    assert_eq!(scale.inputs.get("b"), Some(&Value::Float(0.5)));
+    press(&mut harness, Key::Z, true);
+    let definition = &harness.state().document.graph.groups["group"];
+    let scale = definition
+        .nodes
+        .iter()
+        .find(|n| n.label == "shade")
+        .unwrap();
+    assert_eq!(
+        scale.inputs.get("b"),
+        Some(&Value::Float(0.3)),
+        "undone inside the group"
+    );
+    assert_eq!(
+        harness.state().group_path(),
+        ["group"],
+        "undo stays in the group"
+    );
+
+    // The breadcrumb's "Graph" goes back up, selecting the group node.
+    harness.get_by_label("Graph").click();
+    harness.run_steps(4);
+    assert!(
+        harness.state().group_path().is_empty(),
+        "the breadcrumb goes back up"
+    );
+    assert_eq!(harness.state().selected_labels(), ["group"]);
+
+    press(&mut harness, Key::Tab, false);
+    assert_eq!(harness.state().group_path(), ["group"]);
+    // Nothing is selected on entering: Tab goes back up.
+    press(&mut harness, Key::Tab, false);
+    assert!(
+        harness.state().group_path().is_empty(),
+        "Tab leaves the group"
+    );
+    assert!(harness.query_by_label("material").is_some());
+}
+
+#[test]
+fn the_parameters_panel_and_its_presets_set_the_group_node_inputs() {
+    let dir = scratch("group-parameters");
+    let wood = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("graphs/wood.ron");
+    let mut harness = editor(&dir, Some(wood));
+    assert!(shows(&harness, "Parameters"));
+    let wood_node = |harness: &Harness<'static, VeneerApp>| {
+        let graph = &harness.state().document.graph;
+        graph
+            .nodes
+            .iter()
+            .find(|n| n.label == "wood")
+            .unwrap()
+            .clone()
+    };
+    // The panel comes before the graph: its field is the first showing 0.50.
+    retype_drag_value(&mut harness, "0.50", "0.7");
+    assert_eq!(
+        wood_node(&harness).inputs.get("ring_frequency"),
+        Some(&Value::Float(0.7)),
+        "the panel sets the group node's input, as --set ring_frequency=0.7 does"
+    );
+    harness.get_by_label("preset").click();
+    harness.run();
+    harness.get_by_label("walnut").click();
+    harness.run();
+    assert_eq!(
+        wood_node(&harness).inputs.get("ring_frequency"),
+        Some(&Value::Float(0.4)),
+        "the walnut preset"
+    );
+    press(&mut harness, Key::Z, true);
+    assert_eq!(
+        wood_node(&harness).inputs.get("ring_frequency"),
+        Some(&Value::Float(0.7)),
+        "a preset is one undo step"
+    );
+}
+
+#[test]
+fn the_add_node_search_finds_library_groups_and_places_them() {
+    let dir = scratch("group-search");
+    let mut harness = small_editor(&dir);
+    let before = harness.state().document.graph.nodes.len();
+    press(&mut harness, Key::Space, false);
+    type_into_field(&mut harness, "ring_wood");
+    harness.get_by_label("ring_wood").click();
+    harness.run();
+    let graph = &harness.state().document.graph;
+    assert_eq!(graph.nodes.len(), before + 1);
+    let placed = graph
+        .nodes
+        .iter()
+        .find(|n| matches!(&n.kind, NodeKind::Group(g) if g.name == "ring_wood"));
+    assert!(placed.is_some(), "a ring_wood group node");
+    assert!(
+        graph.groups.get("ring_wood").is_some_and(|g| g.linked),
+        "a linked copy"
+    );
+    let pins = placed.unwrap().kind.signature();
+    assert!(
+        pins.input("ring_frequency").is_some(),
+        "with the group's pins"
+    );
+}
+
+#[test]
+fn groups_nest_and_ungroup_inside_a_group() {
+    let dir = scratch("group-nest");
+    let mut harness = small_editor(&dir);
+    let before = text(&harness);
+    select_noise_and_shade(&mut harness);
+    press(&mut harness, Key::G, true);
+    press(&mut harness, Key::Tab, false);
+    harness.run_steps(4);
+
+    // Inside "group", the noise alone becomes "group_2", used by "group".
+    select_node(&mut harness, "noise");
+    press(&mut harness, Key::G, true);
+    let graph = &harness.state().document.graph;
+    assert!(graph.groups.contains_key("group_2"));
+    let outer = &graph.groups["group"];
+    assert!(
+        outer
+            .nodes
+            .iter()
+            .any(|n| matches!(&n.kind, NodeKind::Group(g) if g.name == "group_2")),
+        "{outer:?}"
+    );
+    assert!(
+        harness.state().live.errors.is_empty(),
+        "the nested groups compile"
+    );
+    press(&mut harness, Key::Tab, false);
+    assert_eq!(harness.state().group_path(), ["group", "group_2"]);
+    assert!(
+        harness.query_by_label("Graph").is_some(),
+        "the breadcrumb shows"
+    );
+    press(&mut harness, Key::Tab, false);
+    assert_eq!(harness.state().group_path(), ["group"]);
+
+    // Back in "group" with group_2's node selected: Alt+G, then up and Alt+G again.
+    key(&mut harness, Modifiers::ALT, Key::G);
+    assert!(
+        !harness
+            .state()
+            .document
+            .graph
+            .groups
+            .contains_key("group_2")
+    );
+    press(&mut harness, Key::Tab, false);
+    assert!(harness.state().group_path().is_empty());
+    key(&mut harness, Modifiers::ALT, Key::G);
+    assert_eq!(
+        text(&harness),
+        before,
+        "both ungroupings give the graph back"
+    );
+}
