@@ -46,7 +46,7 @@ impl VeneerApp {
             definition.linked = false;
             self.message = Some(format!(
                 "group '{name}' is local to this graph now (edited): library updates no \
-                 longer apply; *Save to library* shares the edits"
+                 longer apply; Save to library shares the edits"
             ));
         }
     }

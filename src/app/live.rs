@@ -36,21 +36,21 @@ pub struct LiveMaterial {
 }
 
 /// What decides the generated code: nodes with their kinds and settings, and the wires.
-/// Labels, positions, constant values (inside groups too), frames and preview settings
-/// are left out: they never need a recompile.
+/// Labels, positions, constant values (inside groups too), frames, preview settings and
+/// library links are left out: they never need a recompile.
 pub(super) fn structure(graph: &Graph) -> Graph {
     let mut skeleton = graph.clone();
     skeleton.name.clear();
     skeleton.frames.clear();
     skeleton.preview = Default::default();
-    for node in skeleton
-        .groups
-        .values_mut()
-        .flat_map(|group| &mut group.nodes)
-    {
-        node.label.clear();
-        node.position = (0.0, 0.0);
-        node.inputs.clear();
+    for group in skeleton.groups.values_mut() {
+        // Following the library or not changes no code.
+        group.linked = false;
+        for node in &mut group.nodes {
+            node.label.clear();
+            node.position = (0.0, 0.0);
+            node.inputs.clear();
+        }
     }
     for node in &mut skeleton.nodes {
         node.label.clear();
