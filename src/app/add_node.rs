@@ -10,7 +10,7 @@
 use super::VeneerApp;
 use super::catalogue::{self, Dangling, Entry, Item};
 use super::graph_view::{frame_around, next_node_id};
-use crate::graph::Node;
+use crate::graph::{Node, NodeKind};
 use egui::{Id, Key, Modifiers, Pos2, Rect, Vec2};
 use egui_snarl::{InPinId, OutPinId};
 
@@ -158,9 +158,10 @@ impl VeneerApp {
         }
         let dangling = search.dropped.as_ref().map(DroppedWire::dangling);
         let selected = !self.selection.is_empty();
-        // Comment frames are the top level's.
+        // Comment frames and the Material are the top level's.
         let top = self.scope.current().is_none();
         let usable = |entry: &Entry| match (&entry.item, dangling) {
+            (Item::Node(NodeKind::Material), _) if !top => false,
             (Item::Node(_), None) | (Item::Group(_), None) => true,
             (Item::Frame, None) => top,
             (Item::FrameSelection, None) => top && selected,

@@ -199,7 +199,7 @@ mod tests {
     #[test]
     fn groups_are_listed_under_groups_and_found_by_name() {
         let groups = ["ring_wood".to_string(), "veined_marble".to_string()];
-        let found = search("ring", &groups);
+        let found = search("ring_wood", &groups);
         assert_eq!(found[0].item, Item::Group("ring_wood".into()));
         assert_eq!(found[0].group(), "Groups");
         assert!(

@@ -101,6 +101,7 @@ mod tests {
 
     #[test]
     fn copied_nodes_paste_with_new_ids_and_their_wires() {
+        // (A preset without groups: three plain nodes to copy.)
         let graph = crate::app::preset("wood_classic").unwrap();
         let mut snarl = snarl_from_graph(&graph);
         let selection: Vec<_> = snarl.node_ids().map(|(id, _)| id).take(3).collect();
@@ -147,7 +148,7 @@ mod tests {
 
     #[test]
     fn a_duplicate_at_its_originals_is_moved_aside() {
-        let graph = crate::app::preset("wood_classic").unwrap();
+        let graph = crate::app::preset("marble").unwrap();
         let mut snarl = snarl_from_graph(&graph);
         let (node, _) = snarl.node_ids().next().unwrap();
         let original = snarl.get_node_info(node).unwrap().pos;
@@ -155,7 +156,7 @@ mod tests {
             &mut snarl,
             &[node],
             original + egui::vec2(5.0, 5.0),
-            &BTreeMap::new(),
+            &graph.groups,
         );
         let copy = snarl.get_node_info(copies[0]).unwrap().pos;
         assert!(
@@ -166,7 +167,7 @@ mod tests {
             &mut snarl,
             &[node],
             original + egui::vec2(5.0, 5.0),
-            &BTreeMap::new(),
+            &graph.groups,
         );
         let again = snarl.get_node_info(again[0]).unwrap().pos;
         assert!(

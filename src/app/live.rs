@@ -36,13 +36,22 @@ pub struct LiveMaterial {
 }
 
 /// What decides the generated code: nodes with their kinds and settings, and the wires.
-/// Labels, positions, constant values, frames and preview settings are left out: they
-/// never need a recompile.
+/// Labels, positions, constant values (inside groups too), frames, preview settings and
+/// library links are left out: they never need a recompile.
 pub(super) fn structure(graph: &Graph) -> Graph {
     let mut skeleton = graph.clone();
     skeleton.name.clear();
     skeleton.frames.clear();
     skeleton.preview = Default::default();
+    for group in skeleton.groups.values_mut() {
+        // Following the library or not changes no code.
+        group.linked = false;
+        for node in &mut group.nodes {
+            node.label.clear();
+            node.position = (0.0, 0.0);
+            node.inputs.clear();
+        }
+    }
     for node in &mut skeleton.nodes {
         node.label.clear();
         node.position = (0.0, 0.0);
@@ -227,6 +236,28 @@ mod tests {
             live.generation, generation,
             "but an unconnected one leaves the code, and the pipeline, as they were"
         );
+    }
+
+    #[test]
+    fn constants_inside_a_group_are_parameters_too() {
+        let mut graph = crate::graph::preset("wood").expect("the wood preset");
+        let mut live = LiveMaterial::default();
+        assert!(live.update(&graph));
+        assert!(live.errors.is_empty(), "{:?}", live.errors);
+        let before = live.params(&graph);
+        let definition = graph.groups.get_mut("ring_wood").expect("ring_wood");
+        let shade = definition
+            .nodes
+            .iter_mut()
+            .find(|node| node.label == "tint shade")
+            .expect("the tint shade");
+        shade.inputs.insert("b".into(), Value::Float(0.25));
+        shade.position = (5.0, 5.0);
+        assert!(!live.update(&graph), "an inner constant does not recompile");
+        let after = live.params(&graph);
+        let changed: Vec<_> = before.iter().zip(&after).filter(|(a, b)| a != b).collect();
+        assert_eq!(changed.len(), 1, "one slot follows the constant");
+        assert_eq!(changed[0].1[0], 0.25);
     }
 
     #[test]

@@ -324,9 +324,17 @@ impl VeneerApp {
                 }
             }
             ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
+                // The nodes of the level shown.
+                let graph = &self.document.graph;
+                let nodes = match self.scope.current() {
+                    Some(name) => {
+                        let count = graph.groups.get(name).map_or(0, |group| group.nodes.len());
+                        format!("{} in {name}", counted(count, "node"))
+                    }
+                    None => counted(graph.nodes.len(), "node"),
+                };
                 ui.weak(format!(
-                    "{} · {}",
-                    counted(self.document.graph.nodes.len(), "node"),
+                    "{nodes} · {}",
                     counted(self.live.compiles as usize, "compile")
                 ));
                 if let Some(rate) = self.frame_clock.rate().filter(|_| self.show_frame_rate) {

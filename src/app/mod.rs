@@ -19,6 +19,7 @@ mod group_edit;
 mod group_inspector;
 mod history;
 mod inspector;
+mod levels;
 mod live;
 mod menus;
 mod navigation;

@@ -105,7 +105,7 @@ pub fn orphans(base: &Path) -> Vec<Recovery> {
 /// The content of the recovery file `path`, if there is a readable one.
 pub fn read(path: &Path) -> Option<Recovery> {
     let mut recovery: Recovery = ron::from_str(&read_ron(path)?).ok()?;
-    // Group nodes' pins are not stored: derive them as loading a graph file does.
+    // Group nodes' pins are not stored: they come from the groups.
     crate::graph::group::resolve(&mut recovery.graph);
     recovery.file = path.to_path_buf();
     recovery.saved = std::fs::metadata(path).and_then(|m| m.modified()).ok();

@@ -410,3 +410,72 @@ pub fn boundary_in(snarl: &Snarl<Node>, side: Boundary) -> Option<egui_snarl::No
         .find(|(_, node)| boundary(node) == Some(side))
         .map(|(id, _)| id)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The wood preset, as the editor keeps it: one `ring_wood` group node.
+    fn wood() -> Graph {
+        let mut graph = crate::graph::preset("wood").expect("the wood preset");
+        graph.canonicalize();
+        graph
+    }
+
+    #[test]
+    fn a_group_read_back_from_its_view_is_unchanged() {
+        let mut graph = wood();
+        let snarl = snarl_for_group(&graph, "ring_wood").expect("the group");
+        let sides: Vec<_> = snarl.nodes().filter_map(boundary).collect();
+        assert_eq!(sides, [Boundary::Input, Boundary::Output]);
+        let before = graph.clone();
+        assert!(!write_back(&mut graph, "ring_wood", &snarl));
+        assert_eq!(graph, before);
+    }
+
+    #[test]
+    fn a_wire_from_the_plus_pin_declares_an_input_with_the_pins_value() {
+        let mut graph = wood();
+        let mut snarl = snarl_for_group(&graph, "ring_wood").expect("the group");
+        let input = boundary_in(&snarl, Boundary::Input).expect("Group input");
+        let plus = snarl[input].kind.signature().outputs.len() - 1;
+        let (shade, node) = snarl
+            .node_ids()
+            .find(|(_, node)| node.label == "tint shade")
+            .expect("the tint shade");
+        let b = node.kind.signature().input("b").expect("pin b").0;
+        let from = OutPinId {
+            node: input,
+            output: plus,
+        };
+        let to = InPinId {
+            node: shade,
+            input: b,
+        };
+        let Some(Declared::Input(declared)) = expose(&mut snarl, from, to) else {
+            panic!("no input declared");
+        };
+        assert_eq!(declared.name, "b");
+        assert_eq!(declared.default, Value::Float(0.95), "the pin's value");
+        let pins = snarl[input].kind.signature();
+        assert_eq!(pins.outputs[plus].name, "b", "the new pin comes before +");
+        assert_eq!(pins.outputs.last().map(|pin| pin.name), Some(ADD_PIN));
+        graph
+            .groups
+            .get_mut("ring_wood")
+            .unwrap()
+            .inputs
+            .push(declared);
+        assert!(write_back(&mut graph, "ring_wood", &snarl));
+        let wires = &graph.groups["ring_wood"].wires;
+        assert!(
+            wires.iter().any(|wire| wire.from.node == BOUNDARY
+                && wire.from.pin == "b"
+                && wire.to.pin == "b")
+        );
+        assert!(
+            crate::graph::group::flatten(&graph).is_ok(),
+            "it still inlines"
+        );
+    }
+}
