@@ -667,9 +667,11 @@ impl eframe::App for VeneerApp {
             .show(ui, |ui| {
                 self.preview_panel(ui);
                 ui.separator();
+                // The selected node first, where a click on it is looked for; the
+                // graph's parameters after it.
                 egui::ScrollArea::vertical().show(ui, |ui| {
-                    self.parameters_panel(ui);
                     self.inspector(ui);
+                    self.parameters_panel(ui);
                 });
             });
         let central = egui::CentralPanel::default()

@@ -16,6 +16,7 @@ impl VeneerApp {
         if exposed.is_empty() && presets.is_empty() {
             return;
         }
+        ui.separator();
         egui::CollapsingHeader::new("Parameters")
             .default_open(true)
             .show(ui, |ui| {

@@ -373,7 +373,7 @@ fn frames_come_from_the_search_and_ctrl_j() {
 fn the_status_bar_counts_one_node_in_the_singular() {
     let dir = scratch("add-count");
     let mut harness = editor(&dir, None);
-    assert!(shows(&harness, "33 nodes"));
+    assert!(shows(&harness, "2 nodes"));
     new_graph(&mut harness);
     assert!(shows(&harness, "1 node ·"), "the status bar says '1 node'");
     assert!(!shows(&harness, "1 nodes"));

@@ -3,7 +3,7 @@
 //! restores it, and compile errors land on the node that caused them.
 
 use crate::support::{
-    add_node, editor, press, preview_pixels, retype_drag_value, scratch, screen, select_node,
+    add_node, editor, flat_wood_editor, press, preview_pixels, retype_drag_value, scratch, screen, select_node,
     shows, wire_into_alpha,
 };
 use egui_kittest::kittest::Queryable;
@@ -51,7 +51,7 @@ fn opens_on_the_wood_preset_with_the_material_on_a_sphere() {
 #[test]
 fn adds_a_node_through_the_search_menu_and_wires_it_from_the_inspector() {
     let dir = scratch("add");
-    let mut harness = editor(&dir, None);
+    let mut harness = flat_wood_editor(&dir);
     let before = harness.state().document.graph.nodes.len();
     add_node(&mut harness, "worley", "Worley");
     let graph = &harness.state().document.graph;
@@ -156,7 +156,7 @@ fn a_compile_error_is_shown_on_the_node_that_caused_it() {
 #[test]
 fn a_comment_frame_is_drawn_around_the_selected_nodes_and_undone() {
     let dir = scratch("frame");
-    let mut harness = editor(&dir, None);
+    let mut harness = flat_wood_editor(&dir);
     select_node(&mut harness, "wood colour");
     harness.get_by_label("Edit").click_accesskit();
     harness.run();
@@ -197,7 +197,7 @@ fn a_comment_frame_is_drawn_around_the_selected_nodes_and_undone() {
 #[test]
 fn a_numerical_hazard_is_marked_on_its_node_without_blocking_the_material() {
     let dir = scratch("lint");
-    let mut harness = editor(&dir, None);
+    let mut harness = flat_wood_editor(&dir);
     select_node(&mut harness, "ring sharp");
     // Make the smoothstep's edges equal by typing 0.85 into edge0 (0.25 in the inspector).
     retype_drag_value(&mut harness, "0.250", "0.85");

@@ -3,7 +3,7 @@
 //! removes), Home/F frame everything and '.' the selection; every preset opens whole
 //! and legible.
 
-use super::support::{editor, press, scratch};
+use super::support::{editor, flat_wood_editor, press, scratch};
 use egui::{Event, Modifiers, PointerButton, Pos2, Rect, pos2, vec2};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
@@ -116,7 +116,7 @@ fn middle_and_alt_drags_pan() {
 
 #[test]
 fn a_left_drag_on_empty_canvas_selects_shift_adds_ctrl_removes() {
-    let mut harness = editor(&scratch("nav-select"), None);
+    let mut harness = flat_wood_editor(&scratch("nav-select"));
     let transform_before = harness.state().graph_to_screen();
     // The wood preset opens with "trunk" at the top left, "grain drift" right of it and
     // "tint" below it.
@@ -161,7 +161,7 @@ fn a_left_drag_on_empty_canvas_selects_shift_adds_ctrl_removes() {
 
 #[test]
 fn home_and_f_frame_everything_and_period_the_selection() {
-    let mut harness = editor(&scratch("nav-frame"), None);
+    let mut harness = flat_wood_editor(&scratch("nav-frame"));
     let all = harness.state().graph_to_screen();
     for key in [egui::Key::Home, egui::Key::F] {
         drag(

@@ -29,6 +29,26 @@ pub fn editor(dir: &Path, graph: Option<PathBuf>) -> Harness<'static, VeneerApp>
     harness
 }
 
+/// The editor on the wood preset with its `ring_wood` group dissolved (saved in `dir`):
+/// the seed's nodes all at the top level, for tests that select them by name.
+pub fn flat_wood_editor(dir: &Path) -> Harness<'static, VeneerApp> {
+    let mut graph = veneer::graph::preset("wood").expect("the wood preset");
+    let group = graph
+        .nodes
+        .iter()
+        .find(|node| matches!(node.kind, veneer::graph::NodeKind::Group(_)))
+        .expect("the wood preset is built on a group")
+        .id;
+    veneer::graph::group::ungroup(&mut graph, group).expect("the group dissolves");
+    // The material to the right of everything the group held.
+    let right = graph.nodes.iter().map(|node| node.position.0).fold(0.0, f32::max);
+    let material = graph.nodes.iter_mut().find(|node| node.label == "material");
+    material.expect("the material node").position = (right + 400.0, 0.0);
+    let path = dir.join("flat wood.ron");
+    veneer::graph::save(&graph, &path).expect("the flat wood is written");
+    editor(dir, Some(path))
+}
+
 /// The rendered window, once the previews (drawn on their own thread) show what was
 /// last asked of them.
 pub fn screen(harness: &mut Harness<'static, VeneerApp>) -> image::RgbaImage {

@@ -2,7 +2,7 @@
 //! as the CPU evaluator computes it; they switch off per node and all at once; a
 //! parameter edit redraws only the tiles it reaches, without recompiling.
 
-use crate::support::{editor, press, retype_drag_value, scratch, screen, select_node};
+use crate::support::{editor, flat_wood_editor, press, retype_drag_value, scratch, screen, select_node};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use std::collections::{BTreeMap, BTreeSet};
@@ -230,7 +230,7 @@ fn downstream(graph: &Graph, changed: NodeId) -> BTreeSet<NodeId> {
 #[test]
 fn a_parameter_edit_redraws_only_the_tiles_it_reaches_without_recompiling() {
     let dir = scratch("thumbnail-edit");
-    let mut harness = editor(&dir, None);
+    let mut harness = flat_wood_editor(&dir);
     settle(&mut harness);
     let app = harness.state();
     let tiles = app.thumbnails.pins().len();

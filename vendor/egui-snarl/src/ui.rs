@@ -1693,13 +1693,11 @@ where
         let builder = UiBuilder::new().layout(pin_layout).max_rect(inner_rect);
 
         outputs_ui.scope_builder(builder, |pin_ui| {
-            // Allocate space for pin shape.
+            // Allocate space for pin shape. (Veneer's patch: a rect from the cursor of a
+            // right-to-left layout lies right of it, so the label ran under the pin;
+            // `add_space` reserves the room leftwards.)
             if let Some(output_spacing) = output_spacing {
-                let min = pin_ui.next_widget_position();
-                pin_ui.advance_cursor_after_rect(Rect::from_min_size(
-                    min,
-                    vec2(output_spacing, pin_size),
-                ));
+                pin_ui.add_space(output_spacing);
             }
 
             let y0 = pin_ui.max_rect().min.y;
