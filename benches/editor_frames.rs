@@ -232,7 +232,9 @@ fn preview_draws(c: &mut Criterion) {
         group.bench_function(name, |b| {
             b.iter(|| {
                 renderer
-                    .render(&gpu, &code, &params, "mesh", &mesh, &view, &sky, size, quality)
+                    .render(
+                        &gpu, &code, &params, "mesh", &mesh, &view, &sky, size, quality,
+                    )
                     .expect("draws")
             })
         });

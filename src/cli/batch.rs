@@ -143,7 +143,10 @@ fn read(path: &Path) -> Result<BatchFile, Failure> {
     let bytes = veneer::fsutil::read_limited(path, veneer::fsutil::ReadLimit::GRAPH)
         .map_err(|error| Failure::new(format!("{}: cannot read: {error}", path.display())))?;
     let text = String::from_utf8_lossy(&bytes);
-    let parsed = if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("json")) {
+    let parsed = if path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("json"))
+    {
         serde_json::from_str(&text)
             .map_err(|error| format!("{}:{}: {error}", error.line(), error.column()))
     } else {
@@ -191,7 +194,12 @@ pub fn run(args: BatchArgs) -> Result<(), Failure> {
         {
             failed += 1;
             worst = worst.max(code);
-            bar.suspend(|| note(format!("job {number} ({}): {message}", line[1..3].join(" "))))?;
+            bar.suspend(|| {
+                note(format!(
+                    "job {number} ({}): {message}",
+                    line[1..3].join(" ")
+                ))
+            })?;
         }
         bar.inc(1);
     }

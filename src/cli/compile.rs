@@ -55,7 +55,8 @@ pub fn run(args: CompileArgs) -> Result<(), Failure> {
     if args.describe {
         return write_output(args.output.as_ref(), description.as_bytes());
     }
-    let bytes = export_compiled(&compiled, args.target).map_err(|error| in_file(&args.graph, error))?;
+    let bytes =
+        export_compiled(&compiled, args.target).map_err(|error| in_file(&args.graph, error))?;
     write_output(args.output.as_ref(), &bytes)?;
     match &args.output {
         Some(path) if path.as_os_str() != "-" && params == ParamMode::Named => {

@@ -45,7 +45,9 @@ impl ParameterArgs {
                     Failure::new(format!("{}: cannot read: {error}", path.display()))
                 })?;
             let text = String::from_utf8_lossy(&bytes);
-            let json = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("json"));
+            let json = path
+                .extension()
+                .is_some_and(|e| e.eq_ignore_ascii_case("json"));
             let file = parse_file(&text, json)
                 .map_err(|error| Failure::new(format!("{}:{error}", path.display())))?;
             values.extend(file);

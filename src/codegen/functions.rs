@@ -63,7 +63,13 @@ pub(super) fn compile(
         let Some(group_sites) = sites.get(&name) else {
             continue;
         };
-        let plan = plan(&name, &graph.groups[&name], &interfaces[&name], group_sites, &mut names)?;
+        let plan = plan(
+            &name,
+            &graph.groups[&name],
+            &interfaces[&name],
+            group_sites,
+            &mut names,
+        )?;
         gather_sites(&plan.checked, None, &mut sites);
         plans.push(plan);
     }
@@ -75,7 +81,12 @@ pub(super) fn compile(
     } else {
         Vec::new()
     };
-    let mut emitter = Emitter::new(options.params, uses.detail(options.detail), &flat.parameters, &members);
+    let mut emitter = Emitter::new(
+        options.params,
+        uses.detail(options.detail),
+        &flat.parameters,
+        &members,
+    );
     for plan in &mut plans {
         let call = std::mem::replace(&mut plan.call, placeholder_call());
         emitter.calls.insert(plan.name.clone(), call);
@@ -101,7 +112,11 @@ fn placeholder_call() -> GroupCall {
 
 /// Adds the group nodes of `level` to `sites`; `bindings` say which constants hold
 /// exposed parameters (named mode, top level).
-fn gather_sites(level: &CheckedGraph, bindings: Option<&Bindings>, sites: &mut BTreeMap<String, Vec<Site>>) {
+fn gather_sites(
+    level: &CheckedGraph,
+    bindings: Option<&Bindings>,
+    sites: &mut BTreeMap<String, Vec<Site>>,
+) {
     for checked in &level.order {
         let NodeKind::Group(group) = &checked.node.kind else {
             continue;
@@ -110,7 +125,9 @@ fn gather_sites(level: &CheckedGraph, bindings: Option<&Bindings>, sites: &mut B
             .signature
             .inputs
             .iter()
-            .map(|pin| bindings.is_some_and(|b| b.contains_key(&(checked.node.id, pin.name.to_string()))))
+            .map(|pin| {
+                bindings.is_some_and(|b| b.contains_key(&(checked.node.id, pin.name.to_string())))
+            })
             .collect();
         sites.entry(group.name.clone()).or_default().push(Site {
             inputs: checked.inputs.clone(),
@@ -122,7 +139,12 @@ fn gather_sites(level: &CheckedGraph, bindings: Option<&Bindings>, sites: &mut B
 
 /// The groups, each before the groups it contains.
 fn outermost_first(groups: &BTreeMap<String, GroupDef>) -> Vec<String> {
-    fn visit(name: &str, groups: &BTreeMap<String, GroupDef>, seen: &mut BTreeSet<String>, out: &mut Vec<String>) {
+    fn visit(
+        name: &str,
+        groups: &BTreeMap<String, GroupDef>,
+        seen: &mut BTreeSet<String>,
+        out: &mut Vec<String>,
+    ) {
         if !seen.insert(name.to_string()) {
             return;
         }
@@ -159,7 +181,13 @@ fn shared_constant(sites: &[Site], k: usize) -> Option<Value> {
 }
 
 /// The function of group `name` for its `sites`.
-fn plan(name: &str, definition: &GroupDef, interface: &Interface, sites: &[Site], names: &mut Namer) -> Option<Plan> {
+fn plan(
+    name: &str,
+    definition: &GroupDef,
+    interface: &Interface,
+    sites: &[Site],
+    names: &mut Namer,
+) -> Option<Plan> {
     let base = definition.nodes.iter().map(|n| n.id.0).max().unwrap_or(0) + 1;
     let input_node = |k: usize| NodeId(base + k as u32);
     let mut body = Graph {
@@ -171,10 +199,14 @@ fn plan(name: &str, definition: &GroupDef, interface: &Interface, sites: &[Site]
     let mut argument_pins = Vec::new();
     let mut argument_types = Vec::new();
     for (k, entry) in interface.inputs.iter().enumerate() {
-        let mut node = Node::new(input_node(k), NodeKind::Constant(Constant { ty: entry.input.ty }));
+        let mut node = Node::new(
+            input_node(k),
+            NodeKind::Constant(Constant { ty: entry.input.ty }),
+        );
         node.label = entry.input.name.clone();
         let value = shared_constant(sites, k).unwrap_or(entry.input.default);
-        node.inputs.insert("value".into(), value.convert(entry.input.ty));
+        node.inputs
+            .insert("value".into(), value.convert(entry.input.ty));
         if shared_constant(sites, k).is_none() {
             arguments.insert(node.id, argument_names.name(&entry.input.name, k as u32));
             argument_pins.push(k);
@@ -199,10 +231,17 @@ fn plan(name: &str, definition: &GroupDef, interface: &Interface, sites: &[Site]
         if wire.to.node == BOUNDARY {
             sources.insert(&wire.to.pin, from);
         } else {
-            body.wires.push(Wire { from, to: wire.to.clone() });
+            body.wires.push(Wire {
+                from,
+                to: wire.to.clone(),
+            });
         }
     }
-    let read = |k: usize| sites.iter().any(|site| site.used.get(k).copied().unwrap_or(false));
+    let read = |k: usize| {
+        sites
+            .iter()
+            .any(|site| site.used.get(k).copied().unwrap_or(false))
+    };
     let sinks: Vec<NodeId> = interface
         .outputs
         .iter()
@@ -256,14 +295,23 @@ fn function_text(plan: &Plan, emitter: &mut Emitter, interface: &Interface) -> S
     let call = &emitter.calls[&plan.name];
     let mut fields = String::new();
     let mut values = Vec::new();
-    for ((source, member), output) in plan.outputs.iter().zip(&call.members).zip(&interface.outputs) {
+    for ((source, member), output) in plan
+        .outputs
+        .iter()
+        .zip(&call.members)
+        .zip(&interface.outputs)
+    {
         let (Some((node, pin)), Some(member)) = (source, member) else {
             continue;
         };
         fields.push_str(&format!("    {member}: {},\n", output.ty.wgsl()));
         let index = plan.checked.index_of(*node).unwrap_or_default();
         let from = plan.checked.order[index].signature.outputs[*pin].ty;
-        let expression = emitted[index].outputs.get(*pin).cloned().unwrap_or_default();
+        let expression = emitted[index]
+            .outputs
+            .get(*pin)
+            .cloned()
+            .unwrap_or_default();
         values.push(super::emit::convert(expression, from, output.ty));
     }
     let mut parameters = vec!["s: VeneerSurface".to_string()];
@@ -276,7 +324,11 @@ fn function_text(plan: &Plan, emitter: &mut Emitter, interface: &Interface) -> S
         "\nstruct {} {{\n{fields}}}\n\n// Group '{}': arguments {}.\nfn {}({}) -> {} {{\n",
         call.returns,
         comment(&plan.name),
-        if described.is_empty() { "none".to_string() } else { described.join(", ") },
+        if described.is_empty() {
+            "none".to_string()
+        } else {
+            described.join(", ")
+        },
         call.function,
         parameters.join(", "),
         call.returns
@@ -284,6 +336,10 @@ fn function_text(plan: &Plan, emitter: &mut Emitter, interface: &Interface) -> S
     for block in &blocks {
         text.push_str(&block.text);
     }
-    text.push_str(&format!("    return {}({});\n}}\n", call.returns, values.join(", ")));
+    text.push_str(&format!(
+        "    return {}({});\n}}\n",
+        call.returns,
+        values.join(", ")
+    ));
     text
 }

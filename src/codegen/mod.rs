@@ -142,7 +142,11 @@ impl SurfaceUse {
     /// The detail a module compiles with: every octave when the mesh is displaced
     /// (vertex stage), else `asked`.
     fn detail(&self, asked: Detail) -> Detail {
-        if self.displacement { Detail::Full } else { asked }
+        if self.displacement {
+            Detail::Full
+        } else {
+            asked
+        }
     }
 
     /// Whether the shading normal can differ from the mesh's: a bump, a height or a

@@ -41,9 +41,7 @@ pub struct GroupDef {
 impl GroupDef {
     /// Puts the nodes and wires in their canonical order (as [`Graph::canonicalize`]).
     pub fn canonicalize(&mut self) {
-        self.nodes.sort_by_key(|node| node.id);
-        self.wires.sort();
-        self.wires.dedup();
+        super::canonical_order(&mut self.nodes, &mut self.wires);
     }
 }
 
@@ -497,28 +495,29 @@ fn inline(
     // Writes what interface input `pin` carries into inner input `to` (renumbered):
     // what feeds the instance, else its constant, else the group's default (which an
     // inherited input's inner node holds already).
-    let deliver = |graph: &mut Graph, bindings: &mut Bindings, pin: &str, to: PinRef, inherited: bool| {
-        if let Some(from) = feeds.get(pin) {
-            graph.wires.push(Wire {
-                from: (*from).clone(),
-                to,
-            });
-            return;
-        }
-        let binding = bindings.get(&(instance.id, pin.to_string())).cloned();
-        let value = match instance.inputs.get(pin) {
-            Some(value) => *value,
-            None if inherited && binding.is_none() => return,
-            None => interface
-                .input(pin)
-                .map(|entry| entry.input.default)
-                .unwrap_or(Value::Float(0.0)),
+    let deliver =
+        |graph: &mut Graph, bindings: &mut Bindings, pin: &str, to: PinRef, inherited: bool| {
+            if let Some(from) = feeds.get(pin) {
+                graph.wires.push(Wire {
+                    from: (*from).clone(),
+                    to,
+                });
+                return;
+            }
+            let binding = bindings.get(&(instance.id, pin.to_string())).cloned();
+            let value = match instance.inputs.get(pin) {
+                Some(value) => *value,
+                None if inherited && binding.is_none() => return,
+                None => interface
+                    .input(pin)
+                    .map(|entry| entry.input.default)
+                    .unwrap_or(Value::Float(0.0)),
+            };
+            if let Some(binding) = binding {
+                bindings.insert((to.node, to.pin.clone()), binding);
+            }
+            set_constant(graph, &to, value);
         };
-        if let Some(binding) = binding {
-            bindings.insert((to.node, to.pin.clone()), binding);
-        }
-        set_constant(graph, &to, value);
-    };
 
     for wire in &definition.wires {
         match (wire.from.node == BOUNDARY, wire.to.node == BOUNDARY) {
@@ -588,11 +587,18 @@ fn set_constant(graph: &mut Graph, to: &PinRef, value: Value) {
 /// The message for a pin the group does not have, listing the ones it has.
 fn unknown_pin(side: &str, pin: &str, interface: &Interface) -> String {
     let names: Vec<&str> = if side == "input" {
-        interface.inputs.iter().map(|e| e.input.name.as_str()).collect()
+        interface
+            .inputs
+            .iter()
+            .map(|e| e.input.name.as_str())
+            .collect()
     } else {
         interface.outputs.iter().map(|o| o.name.as_str()).collect()
     };
-    format!("the group has no {side} named '{pin}' ({side}s: {})", names.join(", "))
+    format!(
+        "the group has no {side} named '{pin}' ({side}s: {})",
+        names.join(", ")
+    )
 }
 
 /// Turns `selection` (nodes of the top level, not the material) into group `name` and
@@ -748,11 +754,13 @@ pub fn ungroup(graph: &mut Graph, instance: NodeId) -> Result<Vec<NodeId>, Strin
         &mut Bindings::new(),
     )
     .map_err(|error| error.to_string())?;
-    let used = graph.nodes.iter().any(|node| group_name(node) == Some(&name))
-        || graph
-            .groups
-            .iter()
-            .any(|(other, def)| *other != name && def.nodes.iter().any(|n| group_name(n) == Some(&name)));
+    let used = graph
+        .nodes
+        .iter()
+        .any(|node| group_name(node) == Some(&name))
+        || graph.groups.iter().any(|(other, def)| {
+            *other != name && def.nodes.iter().any(|n| group_name(n) == Some(&name))
+        });
     if !used {
         graph.groups.remove(&name);
     }

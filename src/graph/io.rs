@@ -137,7 +137,10 @@ pub fn to_ron(graph: &Graph) -> String {
         for (name, definition) in &groups {
             let body = pretty(definition, 2);
             let body = body.trim_end().replace('\n', "\n        ");
-            block.push_str(&format!("        {}: {body},\n", pretty(name, 0).trim_end()));
+            block.push_str(&format!(
+                "        {}: {body},\n",
+                pretty(name, 0).trim_end()
+            ));
         }
         block.push_str("    },\n");
         text.insert_str(end, &block);

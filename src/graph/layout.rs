@@ -1,18 +1,26 @@
 //! Automatic layout: nodes in columns by how far they are from the graph's inputs, each
-//! column stacked top to bottom in its previous order, so wires run left to right; long
-//! chains wrap into bands of columns, one below the other.
+//! column stacked top to bottom in its previous order and as wide as its widest node, so
+//! wires run left to right; long chains wrap into bands of columns, one below the other.
 
-use super::{Graph, NodeId};
-use std::collections::BTreeMap;
+use super::{Graph, Node, NodeId, ValueType, Wire};
+use std::collections::{BTreeMap, BTreeSet};
 
-/// Horizontal distance between columns, in canvas units.
-const COLUMN: f32 = 270.0;
+/// Horizontal space between columns, in canvas units.
+const COLUMN_GAP: f32 = 40.0;
 /// Height of a node's title, and of each pin row.
 const TITLE: f32 = 32.0;
 const ROW: f32 = 20.0;
 const GAP: f32 = 24.0;
 /// Height of the output thumbnail the editor shows under a node's pins.
 const THUMBNAIL: f32 = 80.0;
+/// Widths the editor gives, roughly: a character of a title, of a pin label, a pin with
+/// its frame margins, one number field, a colour swatch; the narrowest node.
+const TITLE_CHAR: f32 = 11.0;
+const LABEL_CHAR: f32 = 7.5;
+const PIN: f32 = 28.0;
+const FIELD: f32 = 48.0;
+const SWATCH: f32 = 44.0;
+const MIN_WIDTH: f32 = 120.0;
 
 /// Space between bands of columns laid out by [`arrange_in_rows`].
 const BAND_GAP: f32 = 50.0;
@@ -27,24 +35,37 @@ pub fn arrange(graph: &mut Graph) {
 /// (rows) no wider than `width`, each band below the one before, so that a long chain
 /// or a wide graph fits a screen (at least one node a column, one column a band).
 pub fn arrange_in_rows(graph: &mut Graph, width: f32, height: f32) {
-    let depth = depths(graph);
+    arrange_nodes(&mut graph.nodes, &graph.wires, width, height);
+}
+
+/// Lays out the inside of every group `graph` defines as [`arrange_in_rows`] does; the
+/// editor puts the group's input and output nodes left and right of it.
+pub fn arrange_groups(graph: &mut Graph, width: f32, height: f32) {
+    for group in graph.groups.values_mut() {
+        arrange_nodes(&mut group.nodes, &group.wires, width, height);
+    }
+}
+
+/// [`arrange_in_rows`] for `nodes` joined by `wires` (wires to other nodes, such as a
+/// group's boundary, are left out).
+pub fn arrange_nodes(nodes: &mut [Node], wires: &[Wire], width: f32, height: f32) {
+    let depth = depths(nodes, wires);
+    let wired: BTreeSet<(NodeId, &str)> = wires
+        .iter()
+        .map(|wire| (wire.to.node, wire.to.pin.as_str()))
+        .collect();
     let mut by_depth: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
-    for (index, node) in graph.nodes.iter().enumerate() {
+    for (index, node) in nodes.iter().enumerate() {
         by_depth.entry(depth[&node.id]).or_default().push(index);
     }
     // Each depth's nodes top to bottom in their previous order, cut into columns.
     let mut columns: Vec<Vec<(usize, f32)>> = Vec::new();
     for mut members in by_depth.into_values() {
-        members.sort_by(|a, b| {
-            graph.nodes[*a]
-                .position
-                .1
-                .total_cmp(&graph.nodes[*b].position.1)
-        });
+        members.sort_by(|a, b| nodes[*a].position.1.total_cmp(&nodes[*b].position.1));
         let mut column: Vec<(usize, f32)> = Vec::new();
         let mut y = 0.0;
         for index in members {
-            let tall = node_height(&graph.nodes[index]);
+            let tall = node_height(&nodes[index]);
             if !column.is_empty() && y + tall > height {
                 columns.push(std::mem::take(&mut column));
                 y = 0.0;
@@ -54,25 +75,29 @@ pub fn arrange_in_rows(graph: &mut Graph, width: f32, height: f32) {
         }
         columns.push(column);
     }
-    let per_band = ((width / COLUMN).floor() as usize).max(1);
-    let (mut band_top, mut band_height) = (0.0_f32, 0.0_f32);
-    for (slot, column) in columns.into_iter().enumerate() {
-        if slot > 0 && slot % per_band == 0 {
+    let (mut band_top, mut band_height, mut x) = (0.0_f32, 0.0_f32, 0.0_f32);
+    for column in columns {
+        let column_width = column
+            .iter()
+            .map(|(index, _)| node_width(&nodes[*index], &wired))
+            .fold(MIN_WIDTH, f32::max);
+        if x > 0.0 && x + column_width > width {
             band_top += band_height + BAND_GAP;
             band_height = 0.0;
+            x = 0.0;
         }
-        let x = (slot % per_band) as f32 * COLUMN;
         for (index, y) in column {
-            let node = &mut graph.nodes[index];
-            node.position = (x, band_top + y);
+            let node = &mut nodes[index];
+            node.position = (x.round(), (band_top + y).round());
             band_height = band_height.max(y + node_height(node));
         }
+        x += (column_width + COLUMN_GAP).round();
     }
 }
 
 /// How tall the editor draws `node`, roughly: its title, a row per pin and, for nodes
 /// with an output, the thumbnail under the pins.
-fn node_height(node: &super::Node) -> f32 {
+fn node_height(node: &Node) -> f32 {
     let signature = node.kind.signature();
     let pins = signature.inputs.len().max(signature.outputs.len()) as f32;
     let footer = if signature.outputs.is_empty() {
@@ -83,18 +108,47 @@ fn node_height(node: &super::Node) -> f32 {
     TITLE + ROW * pins + footer
 }
 
+/// How wide the editor draws `node`, roughly: its title, or its widest input row (pin,
+/// label and, unless `wired`, value fields) beside its widest output label.
+fn node_width(node: &Node, wired: &BTreeSet<(NodeId, &str)>) -> f32 {
+    let signature = node.kind.signature();
+    let label = |name: &str| name.chars().count() as f32 * LABEL_CHAR;
+    let inputs = signature
+        .inputs
+        .iter()
+        .map(|pin| {
+            let fields = if wired.contains(&(node.id, pin.name)) {
+                0.0
+            } else {
+                match pin.ty {
+                    ValueType::Color => SWATCH,
+                    ty => ty.width() as f32 * FIELD,
+                }
+            };
+            PIN + label(pin.name) + fields
+        })
+        .fold(0.0, f32::max);
+    let outputs = signature
+        .outputs
+        .iter()
+        .map(|pin| PIN + label(pin.name))
+        .fold(0.0, f32::max);
+    let title = node.display_name().chars().count() as f32 * TITLE_CHAR + 2.0 * PIN;
+    title.max(inputs + outputs).max(MIN_WIDTH)
+}
+
 /// Each node's depth: the longest chain of wires before it.
-fn depths(graph: &Graph) -> BTreeMap<NodeId, usize> {
-    let mut depth: BTreeMap<NodeId, usize> = graph.nodes.iter().map(|node| (node.id, 0)).collect();
+fn depths(nodes: &[Node], wires: &[Wire]) -> BTreeMap<NodeId, usize> {
+    let mut depth: BTreeMap<NodeId, usize> = nodes.iter().map(|node| (node.id, 0)).collect();
     // Longest-path relaxation; a cycle cannot raise a depth past the node count.
-    for _ in 0..graph.nodes.len() {
+    for _ in 0..nodes.len() {
         let mut changed = false;
-        for wire in &graph.wires {
+        for wire in wires {
             let (Some(&from), Some(&to)) = (depth.get(&wire.from.node), depth.get(&wire.to.node))
             else {
                 continue;
             };
-            if to < from + 1 && from < graph.nodes.len() {
+            if to < from + 1 && from < nodes.len() {
                 depth.insert(wire.to.node, from + 1);
                 changed = true;
             }
@@ -111,6 +165,18 @@ mod tests {
     use super::*;
     use crate::graph::NodeKind;
     use crate::nodes::Noise;
+
+    /// Node `id`'s rectangle as the layout reckons it: (left, top, right, bottom).
+    fn extent(graph: &Graph, id: NodeId) -> (f32, f32, f32, f32) {
+        let node = graph.node(id).unwrap();
+        let wired = graph
+            .wires
+            .iter()
+            .map(|wire| (wire.to.node, wire.to.pin.as_str()))
+            .collect();
+        let (x, y) = node.position;
+        (x, y, x + node_width(node, &wired), y + node_height(node))
+    }
 
     #[test]
     fn wires_run_left_to_right_and_columns_do_not_overlap() {
@@ -129,9 +195,27 @@ mod tests {
         graph.connect(c, "value", d, "albedo");
         graph.connect(a, "position", d, "bump");
         arrange(&mut graph);
-        let x = |id| graph.node(id).unwrap().position.0;
-        assert!(x(a) < x(b) && x(b) < x(c) && x(c) < x(d));
-        assert_eq!(x(d), 3.0 * COLUMN, "the longest chain decides the column");
+        // The longest chain decides the column: d comes after c, not after a.
+        let chain = [a, b, c, d];
+        for pair in chain.windows(2) {
+            let (left, right) = (extent(&graph, pair[0]), extent(&graph, pair[1]));
+            assert!(left.2 + COLUMN_GAP <= right.0, "{left:?} then {right:?}");
+        }
+    }
+
+    #[test]
+    fn a_transform_with_three_vectors_is_wider_than_its_title() {
+        let mut graph = Graph::default();
+        let a = graph.add("t", NodeKind::Transform);
+        let (left, _, right, _) = extent(&graph, a);
+        assert!(right - left > 3.0 * FIELD + PIN, "{}", right - left);
+        // Wired inputs show no fields.
+        let p = graph.add("p", NodeKind::Position);
+        for pin in ["scale", "rotation", "offset"] {
+            graph.connect(p, "position", a, pin);
+        }
+        let (wired_left, _, wired_right, _) = extent(&graph, a);
+        assert!(wired_right - wired_left < right - left);
     }
 
     #[test]
@@ -150,27 +234,31 @@ mod tests {
             chain.push(next);
             previous = next;
         }
-        arrange_in_rows(&mut graph, 3.0 * COLUMN, f32::INFINITY);
-        let at = |id| graph.node(id).unwrap().position;
-        let xs: Vec<f32> = chain.iter().map(|id| at(*id).0).collect();
-        assert_eq!(
-            xs,
-            [0.0, COLUMN, 2.0 * COLUMN, 0.0, COLUMN, 2.0 * COLUMN, 0.0]
-        );
-        let (first, second, third) = (at(chain[0]).1, at(chain[3]).1, at(chain[6]).1);
+        let width = 700.0;
+        arrange_in_rows(&mut graph, width, f32::INFINITY);
+        let mut tops = Vec::new();
+        for pair in chain.windows(2) {
+            let (before, after) = (extent(&graph, pair[0]), extent(&graph, pair[1]));
+            assert!(after.0 == 0.0 || after.2 <= width, "{after:?} past {width}");
+            if after.1 == before.1 {
+                assert!(before.2 < after.0, "left to right within a band");
+            } else {
+                assert!(after.1 > before.3 && after.0 == 0.0, "the next band below");
+                tops.push(after.1);
+            }
+        }
         assert!(
-            first < second && second < third,
-            "bands go down: {first} {second} {third}"
+            tops.len() >= 2,
+            "a 7-node chain wraps more than once: {tops:?}"
         );
-        let unwrapped = {
-            let mut copy = graph.clone();
-            arrange(&mut copy);
-            copy.nodes
+        let mut unwrapped = graph.clone();
+        arrange(&mut unwrapped);
+        assert!(
+            chain
                 .iter()
-                .map(|node| node.position.0)
-                .fold(0.0, f32::max)
-        };
-        assert_eq!(unwrapped, 6.0 * COLUMN, "arrange keeps one band");
+                .all(|id| unwrapped.node(*id).unwrap().position.1 == 0.0),
+            "arrange keeps one band"
+        );
     }
 
     #[test]
@@ -187,8 +275,42 @@ mod tests {
         arrange_in_rows(&mut graph, f32::INFINITY, 2.5 * tall);
         let at = |id| graph.node(id).unwrap().position;
         let xs: Vec<f32> = sources.iter().map(|id| at(*id).0).collect();
-        assert_eq!(xs, [0.0, 0.0, COLUMN, COLUMN, 2.0 * COLUMN, 2.0 * COLUMN]);
+        assert!(xs[0] == xs[1] && xs[1] < xs[2], "{xs:?}");
+        assert!(xs[2] == xs[3] && xs[3] < xs[4] && xs[4] == xs[5], "{xs:?}");
         assert_eq!(at(sources[2]).1, 0.0, "the next column starts at the top");
-        assert_eq!(at(material).0, 3.0 * COLUMN, "the next depth after them");
+        assert!(at(material).0 > xs[5], "the next depth after them");
+    }
+
+    #[test]
+    fn the_inside_of_a_group_is_laid_out_without_overlaps() {
+        let mut graph = crate::graph::preset("wood").unwrap();
+        arrange_groups(&mut graph, 1620.0, 1000.0);
+        let group = &graph.groups["ring_wood"];
+        let inside = Graph {
+            nodes: group.nodes.clone(),
+            wires: group.wires.clone(),
+            ..Graph::default()
+        };
+        let boxes: Vec<_> = inside.nodes.iter().map(|n| extent(&inside, n.id)).collect();
+        for (i, a) in boxes.iter().enumerate() {
+            for b in &boxes[i + 1..] {
+                let apart = a.2 <= b.0 || b.2 <= a.0 || a.3 <= b.1 || b.3 <= a.1;
+                assert!(apart, "{a:?} overlaps {b:?}");
+            }
+        }
+        let boundary = crate::graph::group::BOUNDARY;
+        let inner = inside
+            .wires
+            .iter()
+            .filter(|wire| wire.from.node != boundary && wire.to.node != boundary);
+        for wire in inner {
+            let (from, to) = (
+                extent(&inside, wire.from.node),
+                extent(&inside, wire.to.node),
+            );
+            // Left to right, or on to a band below.
+            let onwards = from.2 < to.0 || to.1 > from.3;
+            assert!(onwards, "a wire runs backwards: {wire:?}");
+        }
     }
 }

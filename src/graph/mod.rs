@@ -3,12 +3,12 @@
 pub mod check;
 mod field;
 pub mod group;
-pub mod library;
-pub mod parameters;
 mod ids;
 mod io;
 pub mod layout;
+pub mod library;
 mod node_file;
+pub mod parameters;
 mod presets;
 mod preview;
 
@@ -415,11 +415,10 @@ impl Graph {
             .find(|wire| wire.to.node == node && wire.to.pin == pin)
     }
 
-    /// Puts nodes and wires in their canonical order, so that saving is deterministic.
+    /// Puts nodes and wires in their canonical order, and nodes on whole canvas units
+    /// (as the editor places them), so that saving is deterministic.
     pub fn canonicalize(&mut self) {
-        self.nodes.sort_by_key(|node| node.id);
-        self.wires.sort();
-        self.wires.dedup();
+        canonical_order(&mut self.nodes, &mut self.wires);
         for definition in self.groups.values_mut() {
             definition.canonicalize();
         }
@@ -430,4 +429,15 @@ impl Graph {
     pub fn uses_groups(&self) -> bool {
         !self.groups.is_empty() || !self.parameters.is_empty() || !self.presets.is_empty()
     }
+}
+
+/// Sorts `nodes` by id and `wires` (dropping repeats), and puts every node on whole
+/// canvas units: the canonical form of a graph's or a group's contents.
+pub(crate) fn canonical_order(nodes: &mut [Node], wires: &mut Vec<Wire>) {
+    nodes.sort_by_key(|node| node.id);
+    for node in nodes.iter_mut() {
+        node.position = (node.position.0.round(), node.position.1.round());
+    }
+    wires.sort();
+    wires.dedup();
 }

@@ -74,8 +74,7 @@ pub fn exposed(graph: &Graph) -> Vec<Exposed> {
     let mut instances: Vec<_> = graph.nodes.iter().collect();
     instances.sort_by_key(|node| node.id);
     for node in instances {
-        let Some(interface) = group::group_name(node).and_then(|name| interfaces.get(name))
-        else {
+        let Some(interface) = group::group_name(node).and_then(|name| interfaces.get(name)) else {
             continue;
         };
         list.extend(instance_parameters(graph, node, interface, &list));
@@ -189,7 +188,8 @@ impl Given {
             if hex.len() != 6 || !hex.chars().all(|c| c.is_ascii_hexdigit()) {
                 return Err(format!("'{text}' is not a colour like #ff8800"));
             }
-            let channel = |k: usize| f64::from(u8::from_str_radix(&hex[k..k + 2], 16).unwrap_or(0)) / 255.0;
+            let channel =
+                |k: usize| f64::from(u8::from_str_radix(&hex[k..k + 2], 16).unwrap_or(0)) / 255.0;
             return Ok(Given::List(vec![channel(0), channel(2), channel(4)]));
         }
         let numbers = text
@@ -250,7 +250,12 @@ fn word_value(word: &str, hint: &Hint) -> Result<f64, String> {
             .iter()
             .position(|option| option == word)
             .map(|k| k as f64)
-            .ok_or_else(|| format!("'{word}' is not one of its options ({})", options.join(", "))),
+            .ok_or_else(|| {
+                format!(
+                    "'{word}' is not one of its options ({})",
+                    options.join(", ")
+                )
+            }),
         Hint::Toggle => match word.to_ascii_lowercase().as_str() {
             "on" | "true" | "yes" => Ok(1.0),
             "off" | "false" | "no" => Ok(0.0),
@@ -269,13 +274,14 @@ pub fn set(graph: &mut Graph, name: &str, given: &Given) -> Result<(), Parameter
             known: exposed.iter().map(|entry| entry.name.clone()).collect(),
         });
     };
-    let value = given
-        .to_value(entry.ty, &entry.hint)
-        .map_err(|problem| ParameterError::BadValue {
-            name: name.to_string(),
-            ty: entry.ty,
-            problem,
-        })?;
+    let value =
+        given
+            .to_value(entry.ty, &entry.hint)
+            .map_err(|problem| ParameterError::BadValue {
+                name: name.to_string(),
+                ty: entry.ty,
+                problem,
+            })?;
     if let Some((min, max)) = entry.range
         && let Some(outside) = value.components()[..entry.ty.width()]
             .iter()
@@ -312,9 +318,8 @@ pub fn apply_preset(graph: &mut Graph, preset: &str) -> Result<(), ParameterErro
 /// `.json`.
 pub fn parse_file(text: &str, json: bool) -> Result<BTreeMap<String, Given>, String> {
     if json {
-        serde_json::from_str(text).map_err(|error| {
-            format!("{}:{}: {error}", error.line(), error.column())
-        })
+        serde_json::from_str(text)
+            .map_err(|error| format!("{}:{}: {error}", error.line(), error.column()))
     } else {
         ron::from_str(text).map_err(|error| {
             format!(
@@ -353,7 +358,9 @@ pub fn describe(exposed: &[Exposed], members: &[Member]) -> String {
             object
         })
         .collect();
-    let size = members.last().map_or(0, |m| (m.offset + m.size).div_ceil(16) * 16);
+    let size = members
+        .last()
+        .map_or(0, |m| (m.offset + m.size).div_ceil(16) * 16);
     let description = serde_json::json!({
         "struct": "VeneerParameters",
         "binding": { "group": 1, "binding": 0 },
@@ -380,7 +387,10 @@ pub struct Member {
 
 /// The uniform struct's members for `exposed`, with WGSL identifiers made from the
 /// parameter names by `identifier`, laid out in order.
-pub fn members(exposed: &[Exposed], mut identifier: impl FnMut(&str, u32) -> String) -> Vec<Member> {
+pub fn members(
+    exposed: &[Exposed],
+    mut identifier: impl FnMut(&str, u32) -> String,
+) -> Vec<Member> {
     let mut offset = 0u32;
     exposed
         .iter()

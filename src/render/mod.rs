@@ -18,7 +18,6 @@ mod timing;
 mod tone_map;
 mod uv_bake;
 
-pub use readback::read_texture;
 pub use context::{GpuContext, RenderError};
 pub use draft_scale::DraftScale;
 pub use environment::{
@@ -36,6 +35,7 @@ pub use mesh_view::{
     Backdrop, COLOR_FORMAT, DEFAULT_KEY_LIGHT, MeshPipeline, MeshTarget, MeshView, Projection,
     Relief,
 };
+pub use readback::read_texture;
 pub use tessellation::{Tessellated, tessellate};
 pub use thumbnails::{AtlasLayout, ThumbnailRenderer};
 pub use tiles::{ensure_memory, tile_size};

@@ -3,8 +3,8 @@
 //! restores it, and compile errors land on the node that caused them.
 
 use crate::support::{
-    add_node, editor, flat_wood_editor, press, preview_pixels, retype_drag_value, scratch, screen, select_node,
-    shows, wire_into_alpha,
+    add_node, editor, flat_wood_editor, press, preview_pixels, retype_drag_value, scratch, screen,
+    select_node, shows, wire_into_alpha,
 };
 use egui_kittest::kittest::Queryable;
 use veneer::graph::NodeKind;

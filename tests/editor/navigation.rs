@@ -118,14 +118,14 @@ fn middle_and_alt_drags_pan() {
 fn a_left_drag_on_empty_canvas_selects_shift_adds_ctrl_removes() {
     let mut harness = flat_wood_editor(&scratch("nav-select"));
     let transform_before = harness.state().graph_to_screen();
-    // The wood preset opens with "trunk" at the top left, "grain drift" right of it and
-    // "tint" below it.
+    // The flat wood opens with "trunk" at the top left, "coarse warp space" right of it
+    // and "tint space" below it.
     let (trunk, drift, tint) = (
         on_screen(&harness, "trunk"),
-        on_screen(&harness, "grain drift"),
-        on_screen(&harness, "tint"),
+        on_screen(&harness, "coarse warp space"),
+        on_screen(&harness, "tint space"),
     );
-    // From empty canvas above and left of the trunk to the middle of the grain drift.
+    // From empty canvas above and left of the trunk to the middle of the coarse warp space.
     let start = trunk.min - vec2(12.0, 12.0);
     drag(
         &mut harness,
@@ -134,7 +134,7 @@ fn a_left_drag_on_empty_canvas_selects_shift_adds_ctrl_removes() {
         start,
         drift.center(),
     );
-    assert_eq!(selected(&harness), ["grain drift", "trunk"]);
+    assert_eq!(selected(&harness), ["coarse warp space", "trunk"]);
     assert_eq!(
         harness.state().graph_to_screen(),
         transform_before,
@@ -148,7 +148,10 @@ fn a_left_drag_on_empty_canvas_selects_shift_adds_ctrl_removes() {
         left_of_tint,
         tint.center(),
     );
-    assert_eq!(selected(&harness), ["grain drift", "tint", "trunk"]);
+    assert_eq!(
+        selected(&harness),
+        ["coarse warp space", "tint space", "trunk"]
+    );
     drag(
         &mut harness,
         PointerButton::Primary,
@@ -156,7 +159,7 @@ fn a_left_drag_on_empty_canvas_selects_shift_adds_ctrl_removes() {
         start,
         trunk.center(),
     );
-    assert_eq!(selected(&harness), ["grain drift", "tint"]);
+    assert_eq!(selected(&harness), ["coarse warp space", "tint space"]);
 }
 
 #[test]

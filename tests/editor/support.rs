@@ -41,7 +41,11 @@ pub fn flat_wood_editor(dir: &Path) -> Harness<'static, VeneerApp> {
         .id;
     veneer::graph::group::ungroup(&mut graph, group).expect("the group dissolves");
     // The material to the right of everything the group held.
-    let right = graph.nodes.iter().map(|node| node.position.0).fold(0.0, f32::max);
+    let right = graph
+        .nodes
+        .iter()
+        .map(|node| node.position.0)
+        .fold(0.0, f32::max);
     let material = graph.nodes.iter_mut().find(|node| node.label == "material");
     material.expect("the material node").position = (right + 400.0, 0.0);
     let path = dir.join("flat wood.ron");

@@ -2,7 +2,9 @@
 //! as the CPU evaluator computes it; they switch off per node and all at once; a
 //! parameter edit redraws only the tiles it reaches, without recompiling.
 
-use crate::support::{editor, flat_wood_editor, press, retype_drag_value, scratch, screen, select_node};
+use crate::support::{
+    editor, flat_wood_editor, press, retype_drag_value, scratch, screen, select_node,
+};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use std::collections::{BTreeMap, BTreeSet};

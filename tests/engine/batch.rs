@@ -25,7 +25,12 @@ fn batch_file() -> serde_json::Value {
     for path in presets() {
         let graph = veneer::graph::load(&path).expect("preset loads");
         let names: Vec<&String> = graph.presets.keys().take(2).collect();
-        assert_eq!(names.len(), 2, "{} has two parameter presets", path.display());
+        assert_eq!(
+            names.len(),
+            2,
+            "{} has two parameter presets",
+            path.display()
+        );
         for preset in names {
             jobs.push(serde_json::json!({
                 "command": "render",
@@ -61,7 +66,11 @@ fn four_shards_write_exactly_the_files_of_the_whole_batch() {
         .current_dir(&whole)
         .output()
         .expect("runs");
-    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
     for shard in shards {
         let output = shard.wait_with_output().expect("finishes");
         assert!(output.status.success());
@@ -97,9 +106,16 @@ fn a_failing_job_is_reported_and_the_others_still_run() {
     assert_eq!(output.status.code(), Some(1));
     let message = String::from_utf8_lossy(&output.stderr);
     assert!(message.contains("job 1 (render"), "{message}");
-    assert!(message.contains("no parameter preset named 'no_such_preset'"), "{message}");
+    assert!(
+        message.contains("no parameter preset named 'no_such_preset'"),
+        "{message}"
+    );
     assert!(dir.join("good.png").is_file());
     assert!(!dir.join("bad.png").exists());
-    let bad_shard = veneer().args(["batch", "batch.json", "--shard", "5/4"]).current_dir(&dir).output().unwrap();
+    let bad_shard = veneer()
+        .args(["batch", "batch.json", "--shard", "5/4"])
+        .current_dir(&dir)
+        .output()
+        .unwrap();
     assert_eq!(bad_shard.status.code(), Some(1));
 }

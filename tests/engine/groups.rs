@@ -7,7 +7,9 @@ use crate::support::{cpu_flat_rgb8, flat_rgb8, root, run_veneer, temp_dir, venee
 use proptest::prelude::*;
 use std::collections::BTreeSet;
 use veneer::codegen::{CompileOptions, ParamMode, compile};
-use veneer::graph::group::{BOUNDARY, GroupDef, GroupInput, GroupOutput, Hint, group_nodes, ungroup};
+use veneer::graph::group::{
+    BOUNDARY, GroupDef, GroupInput, GroupOutput, Hint, group_nodes, ungroup,
+};
 use veneer::graph::parameters::{Given, exposed, set};
 use veneer::graph::{Graph, NodeId, NodeKind, PinRef, Value, ValueType, Wire};
 use veneer::nodes::{Group, Math};
@@ -123,7 +125,12 @@ fn scaling_group(inner: Option<&str>) -> GroupDef {
     };
     let mut holder = Graph::default();
     let position = holder.add("position", NodeKind::Position);
-    let split = holder.add("split", NodeKind::Split(veneer::nodes::Split { ty: ValueType::Vec3 }));
+    let split = holder.add(
+        "split",
+        NodeKind::Split(veneer::nodes::Split {
+            ty: ValueType::Vec3,
+        }),
+    );
     holder.connect(position, "position", split, "v");
     let last = match inner {
         Some(inner) => {
@@ -181,7 +188,9 @@ fn scaling_group(inner: Option<&str>) -> GroupDef {
 fn nested_graph() -> Graph {
     let mut graph = Graph::default();
     graph.groups.insert("inner".into(), scaling_group(None));
-    graph.groups.insert("outer".into(), scaling_group(Some("inner")));
+    graph
+        .groups
+        .insert("outer".into(), scaling_group(Some("inner")));
     let outer = graph.add("outer", NodeKind::Group(Group::named("outer".into())));
     let material = graph.add("material", NodeKind::Material);
     graph.connect(outer, "result", material, "albedo");
@@ -207,13 +216,24 @@ fn nested_parameters_stay_exposed_through_their_parents_until_wired() {
         names.contains(&("gain".into(), vec!["outer".into(), "inner".into()])),
         "{names:?}"
     );
-    assert!((red_at_quarter(&graph) - 0.5).abs() < 1e-9, "the default gain is 2");
+    assert!(
+        (red_at_quarter(&graph) - 0.5).abs() < 1e-9,
+        "the default gain is 2"
+    );
     set(&mut graph, "gain", &Given::Number(3.0)).expect("sets");
     assert!((red_at_quarter(&graph) - 0.75).abs() < 1e-9);
     // The change is also what the compiled shader and its parameter list say.
-    let compiled = compile(&graph, &CompileOptions::with_params(ParamMode::Named)).expect("compiles");
-    assert!(compiled.source().contains("gain: f32"), "{}", compiled.source());
-    assert!(set(&mut graph, "gain", &Given::Number(11.0)).is_err(), "outside its range");
+    let compiled =
+        compile(&graph, &CompileOptions::with_params(ParamMode::Named)).expect("compiles");
+    assert!(
+        compiled.source().contains("gain: f32"),
+        "{}",
+        compiled.source()
+    );
+    assert!(
+        set(&mut graph, "gain", &Given::Number(11.0)).is_err(),
+        "outside its range"
+    );
 
     // Wiring the inner instance's gain inside `outer` binds it: no longer exposed.
     let outer = graph.groups.get_mut("outer").expect("outer");
@@ -224,7 +244,12 @@ fn nested_parameters_stay_exposed_through_their_parents_until_wired() {
         .expect("inner instance")
         .id;
     let constant = NodeId(99);
-    let mut node = veneer::graph::Node::new(constant, NodeKind::Constant(veneer::nodes::Constant { ty: ValueType::Float }));
+    let mut node = veneer::graph::Node::new(
+        constant,
+        NodeKind::Constant(veneer::nodes::Constant {
+            ty: ValueType::Float,
+        }),
+    );
     node.inputs.insert("value".into(), Value::Float(4.0));
     outer.nodes.push(node);
     outer.wires.push(Wire {
@@ -242,7 +267,12 @@ fn twin_graph(a: f64, b: f64) -> Graph {
     let mut graph = Graph::default();
     graph.groups.insert("inner".into(), scaling_group(None));
     let position = graph.add("position", NodeKind::Position);
-    let split = graph.add("split", NodeKind::Split(veneer::nodes::Split { ty: ValueType::Vec3 }));
+    let split = graph.add(
+        "split",
+        NodeKind::Split(veneer::nodes::Split {
+            ty: ValueType::Vec3,
+        }),
+    );
     graph.connect(position, "position", split, "v");
     let material = graph.add("material", NodeKind::Material);
     for (gain, pin) in [(a, "albedo"), (b, "alpha")] {
@@ -257,14 +287,29 @@ fn twin_graph(a: f64, b: f64) -> Graph {
 
 #[test]
 fn a_group_is_one_function_with_only_the_arguments_its_instances_differ_in() {
-    let source = |graph: &Graph| compile(graph, &Default::default()).expect("compiles").source().to_string();
+    let source = |graph: &Graph| {
+        compile(graph, &Default::default())
+            .expect("compiles")
+            .source()
+            .to_string()
+    };
     let differing = source(&twin_graph(2.0, 3.0));
-    assert_eq!(differing.matches("fn veneer_group_inner(").count(), 1, "{differing}");
+    assert_eq!(
+        differing.matches("fn veneer_group_inner(").count(),
+        1,
+        "{differing}"
+    );
     assert_eq!(differing.matches("= veneer_group_inner(s, ").count(), 2);
-    assert!(differing.contains("fn veneer_group_inner(s: VeneerSurface, gain: f32, x: f32)"), "{differing}");
+    assert!(
+        differing.contains("fn veneer_group_inner(s: VeneerSurface, gain: f32, x: f32)"),
+        "{differing}"
+    );
     // The same gain everywhere is no argument: it folds inside the function.
     let same = source(&twin_graph(2.5, 2.5));
-    assert!(same.contains("fn veneer_group_inner(s: VeneerSurface, x: f32)"), "{same}");
+    assert!(
+        same.contains("fn veneer_group_inner(s: VeneerSurface, x: f32)"),
+        "{same}"
+    );
     assert!(same.contains("* 2.5f"), "{same}");
     // A group whose outputs nobody reads emits nothing.
     let mut unused = twin_graph(2.0, 3.0);
@@ -272,36 +317,60 @@ fn a_group_is_one_function_with_only_the_arguments_its_instances_differ_in() {
     assert!(!source(&unused).contains("veneer_group_inner"));
     // The functions draw what the inlined graph draws.
     let graph = twin_graph(2.0, 3.0);
-    let flat = veneer::graph::group::flatten(&graph).expect("flattens").into_owned();
+    let flat = veneer::graph::group::flatten(&graph)
+        .expect("flattens")
+        .into_owned();
     let flat_source = source(&flat);
     assert!(!flat_source.contains("veneer_group"));
-    assert_eq!(flat_rgb8(&differing, RECT, 16), flat_rgb8(&flat_source, RECT, 16));
+    assert_eq!(
+        flat_rgb8(&differing, RECT, 16),
+        flat_rgb8(&flat_source, RECT, 16)
+    );
 }
 
 #[test]
 fn a_group_that_contains_itself_is_refused_naming_the_groups() {
     let mut graph = Graph::default();
-    graph.groups.insert("bark".into(), scaling_group(Some("grain")));
-    graph.groups.insert("grain".into(), scaling_group(Some("bark")));
+    graph
+        .groups
+        .insert("bark".into(), scaling_group(Some("grain")));
+    graph
+        .groups
+        .insert("grain".into(), scaling_group(Some("bark")));
     let bark = graph.add("bark", NodeKind::Group(Group::named("bark".into())));
     let material = graph.add("material", NodeKind::Material);
     graph.connect(bark, "result", material, "albedo");
     let errors = veneer::graph::check(&graph).expect_err("recursion is an error");
-    let message = errors.iter().map(ToString::to_string).collect::<Vec<_>>().join("\n");
+    let message = errors
+        .iter()
+        .map(ToString::to_string)
+        .collect::<Vec<_>>()
+        .join("\n");
     assert!(message.contains("'bark' › 'grain' › 'bark'"), "{message}");
     // The file still loads and saves: the error is the check's.
     let text = veneer::graph::to_ron(&graph);
-    assert_eq!(veneer::graph::to_ron(&veneer::graph::from_ron(&text).unwrap()), text);
+    assert_eq!(
+        veneer::graph::to_ron(&veneer::graph::from_ron(&text).unwrap()),
+        text
+    );
 }
 
 #[test]
 fn errors_inside_groups_name_the_group_path() {
     let mut graph = nested_graph();
     let inner = graph.groups.get_mut("inner").expect("inner");
-    let multiply = inner.nodes.iter_mut().find(|n| n.label == "gain").expect("gain");
+    let multiply = inner
+        .nodes
+        .iter_mut()
+        .find(|n| n.label == "gain")
+        .expect("gain");
     multiply.inputs.insert("nonsense".into(), Value::Float(1.0));
     let errors = veneer::graph::check(&graph).expect_err("unknown pin");
-    let message = errors.iter().map(ToString::to_string).collect::<Vec<_>>().join("\n");
+    let message = errors
+        .iter()
+        .map(ToString::to_string)
+        .collect::<Vec<_>>()
+        .join("\n");
     assert!(
         message.contains("group 'outer' › group 'scaled' › node 'gain' (#"),
         "{message}"
@@ -323,14 +392,83 @@ fn group_files_are_deterministic_and_plain_graphs_stay_version_one() {
     for name in ["wood", "marble", "wood_polished", "marble_polished"] {
         let path = root(&format!("graphs/{name}.ron"));
         let on_disk = std::fs::read_to_string(&path).expect("reads");
-        assert_eq!(veneer::graph::to_ron(&veneer::graph::load(&path).unwrap()), on_disk, "{name}");
+        assert_eq!(
+            veneer::graph::to_ron(&veneer::graph::load(&path).unwrap()),
+            on_disk,
+            "{name}"
+        );
     }
+}
+
+#[test]
+fn fmt_arranges_library_groups_and_the_insides_of_graphs_groups() {
+    // The shipped files are laid out as `fmt --arrange` lays them out: running it on
+    // copies changes nothing, library group files included.
+    let dir = temp_dir("fmt-groups");
+    let files = [
+        "graphs/lib/ring_wood.ron",
+        "graphs/lib/veined_marble.ron",
+        "graphs/wood.ron",
+        "graphs/marble_polished.ron",
+    ];
+    let mut args = vec!["fmt", "--arrange", "--width", "1620", "--height", "1000"];
+    let copies: Vec<String> = files
+        .iter()
+        .enumerate()
+        .map(|(k, file)| {
+            let copy = dir.join(format!("{k}.ron"));
+            std::fs::copy(root(file), &copy).unwrap();
+            copy.display().to_string()
+        })
+        .collect();
+    args.extend(copies.iter().map(String::as_str));
+    let output = run_veneer(&args);
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    for (file, copy) in files.iter().zip(&copies) {
+        let shipped = std::fs::read_to_string(root(file)).unwrap();
+        assert_eq!(std::fs::read_to_string(copy).unwrap(), shipped, "{file}");
+    }
+    // A group laid out anew: its nodes move, the file stays a library group.
+    let scrambled = copies[0].replace(".ron", "-scrambled.ron");
+    std::fs::write(
+        &scrambled,
+        std::fs::read_to_string(root(files[0]))
+            .unwrap()
+            .replace("position: (0.0, 0.0)", "position: (5000.0, 5000.0)"),
+    )
+    .unwrap();
+    let output = run_veneer(&[
+        "fmt",
+        "--arrange",
+        "--width",
+        "1620",
+        "--height",
+        "1000",
+        &scrambled,
+    ]);
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let arranged = std::fs::read_to_string(&scrambled).unwrap();
+    assert!(!arranged.contains("5000.0"), "{arranged}");
+    let group = veneer::graph::library::from_ron(&arranged).expect("still a library group");
+    assert_eq!(group.group.nodes.len(), 32);
+    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 /// `veneer render graphs/wood.ron` at 96 px with `extra` arguments, as PNG bytes.
 fn wood_render(extra: &[&str], library: Option<&std::path::Path>) -> Vec<u8> {
     let dir = temp_dir("groups-wood");
-    let out = dir.join(format!("wood-{}.png", extra.join("_").replace(['/', '='], "-")));
+    let out = dir.join(format!(
+        "wood-{}.png",
+        extra.join("_").replace(['/', '='], "-")
+    ));
     let mut command = veneer();
     command
         .current_dir(root(""))
@@ -339,7 +477,11 @@ fn wood_render(extra: &[&str], library: Option<&std::path::Path>) -> Vec<u8> {
         .args(extra)
         .env("VENEER_LIBRARY", library.unwrap_or(&dir.join("no-library")));
     let output = command.output().expect("runs");
-    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
     std::fs::read(&out).expect("written")
 }
 
@@ -372,7 +514,11 @@ fn editing_a_library_group_updates_the_graphs_that_link_it() {
         .env("VENEER_LIBRARY", &library)
         .output()
         .expect("runs");
-    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
     assert_eq!(std::fs::read(&out).unwrap(), default);
 }
 
@@ -387,14 +533,29 @@ fn set_works_on_every_command() {
     assert!(String::from_utf8_lossy(&set.stdout).contains("* 0.7f;"));
     assert_ne!(default.stdout, set.stdout);
     // bake: the albedo map changes.
-    for (folder, extra) in [("plain", vec![]), ("set", vec!["--set", "ring_frequency=0.7"])] {
-        let mut args = vec!["bake", "graphs/wood.ron", "--size", "32", "--maps", "albedo", "--out-dir"];
+    for (folder, extra) in [
+        ("plain", vec![]),
+        ("set", vec!["--set", "ring_frequency=0.7"]),
+    ] {
+        let mut args = vec![
+            "bake",
+            "graphs/wood.ron",
+            "--size",
+            "32",
+            "--maps",
+            "albedo",
+            "--out-dir",
+        ];
         let out = path(folder);
         std::fs::create_dir_all(&out).unwrap();
         args.push(&out);
         args.extend(extra);
         let output = run_veneer(&args);
-        assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+        assert!(
+            output.status.success(),
+            "{}",
+            String::from_utf8_lossy(&output.stderr)
+        );
     }
     assert_ne!(
         std::fs::read(dir.join("plain/wood_albedo.png")).unwrap(),
@@ -403,23 +564,82 @@ fn set_works_on_every_command() {
     // snapshot: goldens approved with a preset are named after it; a different value
     // then differs from them (exit 1).
     let golden = path("golden");
-    let approve = run_veneer(&["snapshot", "graphs/wood.ron", "--size", "48", "--golden", &golden, "--preset", "oak", "--update"]);
-    assert!(approve.status.success(), "{}", String::from_utf8_lossy(&approve.stderr));
+    let approve = run_veneer(&[
+        "snapshot",
+        "graphs/wood.ron",
+        "--size",
+        "48",
+        "--golden",
+        &golden,
+        "--preset",
+        "oak",
+        "--update",
+    ]);
+    assert!(
+        approve.status.success(),
+        "{}",
+        String::from_utf8_lossy(&approve.stderr)
+    );
     assert!(dir.join("golden/wood.oak.png").is_file());
-    let same = run_veneer(&["snapshot", "graphs/wood.ron", "--size", "48", "--golden", &golden, "--preset", "oak"]);
-    assert_eq!(same.status.code(), Some(0), "{}", String::from_utf8_lossy(&same.stdout));
-    let other = run_veneer(&["snapshot", "graphs/wood.ron", "--size", "48", "--golden", &golden, "--preset", "oak", "--set", "ring_frequency=2"]);
-    assert_eq!(other.status.code(), Some(1), "{}", String::from_utf8_lossy(&other.stdout));
+    let same = run_veneer(&[
+        "snapshot",
+        "graphs/wood.ron",
+        "--size",
+        "48",
+        "--golden",
+        &golden,
+        "--preset",
+        "oak",
+    ]);
+    assert_eq!(
+        same.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&same.stdout)
+    );
+    let other = run_veneer(&[
+        "snapshot",
+        "graphs/wood.ron",
+        "--size",
+        "48",
+        "--golden",
+        &golden,
+        "--preset",
+        "oak",
+        "--set",
+        "ring_frequency=2",
+    ]);
+    assert_eq!(
+        other.status.code(),
+        Some(1),
+        "{}",
+        String::from_utf8_lossy(&other.stdout)
+    );
     // A bad name or value is refused naming the file, with nothing written.
     let out = path("bad.png");
-    let bad = run_veneer(&["render", "graphs/wood.ron", "-o", &out, "--set", "ring_frequncy=1"]);
+    let bad = run_veneer(&[
+        "render",
+        "graphs/wood.ron",
+        "-o",
+        &out,
+        "--set",
+        "ring_frequncy=1",
+    ]);
     assert_eq!(bad.status.code(), Some(1));
     let message = String::from_utf8_lossy(&bad.stderr);
-    assert!(message.contains("graphs/wood.ron: no parameter named 'ring_frequncy'"), "{message}");
+    assert!(
+        message.contains("graphs/wood.ron: no parameter named 'ring_frequncy'"),
+        "{message}"
+    );
     assert!(!dir.join("bad.png").exists());
     let file = dir.join("params.json");
     std::fs::write(&file, r#"{"ring_frequency": 0.7}"#).unwrap();
-    let from_file = run_veneer(&["compile", "graphs/wood.ron", "--params-file", &file.to_string_lossy()]);
+    let from_file = run_veneer(&[
+        "compile",
+        "graphs/wood.ron",
+        "--params-file",
+        &file.to_string_lossy(),
+    ]);
     assert_eq!(from_file.stdout, set.stdout);
 }
 
@@ -430,9 +650,17 @@ fn choices_and_toggles_take_their_words() {
     inner.inputs[0].hint = Hint::Choice(vec!["off".into(), "single".into(), "double".into()]);
     veneer::graph::group::resolve(&mut graph);
     set(&mut graph, "gain", &Given::parse("double").unwrap()).expect("an option");
-    assert!((red_at_quarter(&graph) - 0.5).abs() < 1e-9, "option 2 is a gain of 2");
+    assert!(
+        (red_at_quarter(&graph) - 0.5).abs() < 1e-9,
+        "option 2 is a gain of 2"
+    );
     let error = set(&mut graph, "gain", &Given::Word("triple".into())).unwrap_err();
-    assert!(error.to_string().contains("'triple' is not one of its options (off, single, double)"), "{error}");
+    assert!(
+        error
+            .to_string()
+            .contains("'triple' is not one of its options (off, single, double)"),
+        "{error}"
+    );
     let inner = graph.groups.get_mut("inner").expect("inner");
     inner.inputs[0].hint = Hint::Toggle;
     veneer::graph::group::resolve(&mut graph);

@@ -37,7 +37,11 @@ fn compiled(args: &[&str]) -> String {
     let mut all = vec!["compile", "graphs/wood.ron"];
     all.extend(args);
     let output = run_veneer(&all);
-    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
     String::from_utf8(output.stdout).expect("text")
 }
 
@@ -151,7 +155,9 @@ fn parameter_bytes(description: &serde_json::Value, values: &BTreeMap<&str, Vec<
         let components: Vec<f32> = match values.get(name) {
             Some(value) => value.clone(),
             None => match &parameter["default"] {
-                serde_json::Value::Array(list) => list.iter().map(|x| x.as_f64().unwrap() as f32).collect(),
+                serde_json::Value::Array(list) => {
+                    list.iter().map(|x| x.as_f64().unwrap() as f32).collect()
+                }
                 x => vec![x.as_f64().expect("a number") as f32],
             },
         };
@@ -190,7 +196,14 @@ fn the_uniform_layout_is_the_one_naga_computes() {
     // The JSON beside an export is the same description.
     let dir = temp_dir("parameter-export");
     let out = dir.join("wood.wgsl");
-    let output = run_veneer(&["compile", "graphs/wood.ron", "--params", "uniform", "-o", &out.to_string_lossy()]);
+    let output = run_veneer(&[
+        "compile",
+        "graphs/wood.ron",
+        "--params",
+        "uniform",
+        "-o",
+        &out.to_string_lossy(),
+    ]);
     assert!(output.status.success());
     let beside: serde_json::Value =
         serde_json::from_slice(&std::fs::read(dir.join("wood.parameters.json")).unwrap()).unwrap();
@@ -202,11 +215,23 @@ fn parameters_set_by_name_draw_what_set_draws() {
     let named = compiled(&["--params", "uniform"]);
     let description: serde_json::Value =
         serde_json::from_str(&compiled(&["--describe"])).expect("JSON");
-    let defaults = draw(&named, Some(&parameter_bytes(&description, &BTreeMap::new())));
+    let defaults = draw(
+        &named,
+        Some(&parameter_bytes(&description, &BTreeMap::new())),
+    );
     let baked = draw(&compiled(&[]), None);
-    let worst = |a: &[f32], b: &[f32]| a.iter().zip(b).map(|(x, y)| (x - y).abs()).fold(0.0f32, f32::max);
+    let worst = |a: &[f32], b: &[f32]| {
+        a.iter()
+            .zip(b)
+            .map(|(x, y)| (x - y).abs())
+            .fold(0.0f32, f32::max)
+    };
     // Constant folding computes some baked values on the CPU: a last-bit difference.
-    assert!(worst(&defaults, &baked) < 1e-4, "{}", worst(&defaults, &baked));
+    assert!(
+        worst(&defaults, &baked) < 1e-4,
+        "{}",
+        worst(&defaults, &baked)
+    );
 
     let values: BTreeMap<&str, Vec<f32>> = [
         ("ring_frequency", vec![0.7]),
@@ -216,9 +241,17 @@ fn parameters_set_by_name_draw_what_set_draws() {
     .collect();
     let set = draw(&named, Some(&parameter_bytes(&description, &values)));
     let by_set = draw(
-        &compiled(&["--set", "ring_frequency=0.7", "--set", "late_wood=0.9,0.2,0.1"]),
+        &compiled(&[
+            "--set",
+            "ring_frequency=0.7",
+            "--set",
+            "late_wood=0.9,0.2,0.1",
+        ]),
         None,
     );
     assert!(worst(&set, &by_set) < 1e-4, "{}", worst(&set, &by_set));
-    assert!(worst(&set, &defaults) > 0.05, "the parameters change the image");
+    assert!(
+        worst(&set, &defaults) > 0.05,
+        "the parameters change the image"
+    );
 }
