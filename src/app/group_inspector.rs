@@ -1,7 +1,6 @@
-//! The inspector's part for a group node (its group, whether it follows the library,
-//! and what can be done with it) and for the boundary nodes shown inside a group.
+//! The inspector's part for a group node: its group, whether it follows the library,
+//! and what can be done with it.
 
-use super::scope::Boundary;
 use crate::graph::group::GroupDef;
 use egui::{RichText, Ui};
 
@@ -74,19 +73,4 @@ pub fn show(
         }
     });
     action
-}
-
-/// What the inspector says about a boundary node.
-pub fn boundary(ui: &mut Ui, side: Boundary) {
-    let text = match side {
-        Boundary::Input => {
-            "Group input: its pins are the group's inputs. Drop a wire from an inner \
-             input on its + pin (or right-click the input's name) to add one."
-        }
-        Boundary::Output | Boundary::Whole => {
-            "Group output: its pins are the group's outputs. Drop a wire from an inner \
-             output on its + pin to add one."
-        }
-    };
-    ui.label(RichText::new(text).weak());
 }

@@ -17,6 +17,7 @@ mod frame_clock;
 mod graph_view;
 mod group_edit;
 mod group_inspector;
+mod group_interface_editor;
 mod history;
 mod inspector;
 mod levels;
@@ -538,7 +539,15 @@ impl VeneerApp {
     fn inspect(&mut self, ui: &mut Ui, node: egui_snarl::NodeId) {
         let shown = &self.snarl[node];
         if let Some(side) = scope::boundary(shown) {
-            group_inspector::boundary(ui, side);
+            let group = self
+                .scope
+                .current()
+                .and_then(|name| self.document.graph.groups.get(name));
+            let edit =
+                group.and_then(|definition| group_interface_editor::show(ui, side, definition));
+            if let Some(edit) = edit {
+                self.edit_interface(edit);
+            }
             return;
         }
         if let Some(name) = crate::graph::group::group_name(shown) {

@@ -254,5 +254,5 @@ fn run_gltf(args: &BakeArgs, out: &std::path::Path) -> Result<(), Failure> {
 
 /// The files an export wrote, as a JSON list on stdout.
 fn out_json(written: &[PathBuf]) -> Result<(), Failure> {
-    Ok(out(serde_json::to_string_pretty(written)?)?)
+    out(serde_json::to_string_pretty(written)?)
 }

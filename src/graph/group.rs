@@ -75,6 +75,21 @@ pub enum Hint {
     Choice(Vec<String>),
 }
 
+impl GroupInput {
+    /// The span an instance's pin offers: the input's range, else any value.
+    pub fn pin_range(&self) -> PinRange {
+        match self.range {
+            Some((min, max)) => PinRange {
+                min,
+                max,
+                soft_min: min,
+                soft_max: max,
+            },
+            None => PinRange::ANY,
+        }
+    }
+}
+
 impl Hint {
     fn is_default(&self) -> bool {
         *self == Hint::Slider
@@ -133,20 +148,11 @@ impl Interface {
             .iter()
             .map(|entry| {
                 let input = &entry.input;
-                let range = match input.range {
-                    Some((min, max)) => PinRange {
-                        min,
-                        max,
-                        soft_min: min,
-                        soft_max: max,
-                    },
-                    None => PinRange::ANY,
-                };
                 InputPin {
                     name: intern(&input.name),
                     ty: input.ty,
                     default: PinDefault::Const(input.default.convert(input.ty)),
-                    range,
+                    range: input.pin_range(),
                 }
             })
             .collect();

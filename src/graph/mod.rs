@@ -3,6 +3,7 @@
 pub mod check;
 mod field;
 pub mod group;
+pub mod group_interface;
 mod ids;
 mod io;
 pub mod layout;

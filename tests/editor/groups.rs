@@ -5,7 +5,7 @@
 
 use crate::navigation::{drag, on_screen};
 use crate::support::{
-    editor, press, retype_drag_value, scratch, select_node, shows, type_into_field,
+    click_node, editor, press, retype_drag_value, scratch, select_node, shows, type_into_field,
 };
 use egui::{Key, Modifiers, PointerButton, vec2};
 use egui_kittest::Harness;
@@ -307,4 +307,84 @@ fn groups_nest_and_ungroup_inside_a_group() {
         before,
         "both ungroupings give the graph back"
     );
+}
+
+#[test]
+fn the_group_input_node_renames_retunes_and_removes_the_group_inputs() {
+    let dir = scratch("group-interface");
+    let mut harness = editor(&dir, None);
+    select_node(&mut harness, "wood");
+    press(&mut harness, Key::Tab, false);
+    harness.run_steps(4);
+    click_node(&mut harness, "Group input");
+    assert!(shows(&harness, "Group inputs"));
+
+    // Rename: the field commits on Enter; the instance and the presets follow.
+    let field = harness
+        .get_all_by_role(egui::accesskit::Role::TextInput)
+        .find(|node| node.value().as_deref() == Some("ring_frequency"))
+        .expect("the name field of ring_frequency");
+    field.focus();
+    harness.run();
+    harness.key_press_modifiers(Modifiers::COMMAND, Key::A);
+    harness.event(egui::Event::Text("rings_per_unit".into()));
+    harness.key_press(Key::Enter);
+    harness.run();
+    let graph = &harness.state().document.graph;
+    let group = &graph.groups["ring_wood"];
+    assert!(
+        group
+            .inputs
+            .iter()
+            .any(|input| input.name == "rings_per_unit")
+    );
+    assert!(!group.linked, "an edited library group is local now");
+    assert!(graph.presets["oak"].contains_key("rings_per_unit"));
+    assert!(shows(
+        &harness,
+        "renamed 'ring_frequency' to 'rings_per_unit'"
+    ));
+    assert!(
+        shows(&harness, "Group inputs"),
+        "the Group input node stays inspected"
+    );
+
+    // Retune: the first input's range switched off.
+    harness
+        .get_all_by_label("range")
+        .next()
+        .expect("a range checkbox")
+        .click();
+    harness.run();
+    let group = &harness.state().document.graph.groups["ring_wood"];
+    assert_eq!(group.inputs[0].range, None);
+
+    // Remove the first input (its × button): its wires go, the pins keep its value.
+    let before = harness.state().document.graph.groups["ring_wood"]
+        .inputs
+        .len();
+    harness
+        .get_all_by_label("×")
+        .next()
+        .expect("a remove button")
+        .click();
+    harness.run();
+    let group = &harness.state().document.graph.groups["ring_wood"];
+    assert_eq!(group.inputs.len(), before - 1);
+    assert!(
+        group
+            .inputs
+            .iter()
+            .all(|input| input.name != "rings_per_unit")
+    );
+    let phase = group
+        .nodes
+        .iter()
+        .find(|node| node.label == "ring phase")
+        .unwrap();
+    assert_eq!(phase.inputs.get("b"), Some(&Value::Float(0.5)));
+    // One undo step each.
+    press(&mut harness, Key::Z, true);
+    let group = &harness.state().document.graph.groups["ring_wood"];
+    assert_eq!(group.inputs.len(), before);
 }

@@ -126,6 +126,18 @@ pub fn press(harness: &mut Harness<'static, VeneerApp>, key: egui::Key, command:
 /// Clicks the node whose title is `title` in the graph panel, and checks that the
 /// inspector now shows that node (its label field holds the title).
 pub fn select_node(harness: &mut Harness<'static, VeneerApp>, title: &str) {
+    click_node(harness, title);
+    let inspected = harness
+        .query_by(|node| {
+            node.role() == egui::accesskit::Role::TextInput
+                && node.value().as_deref() == Some(title)
+        })
+        .is_some();
+    assert!(inspected, "clicking '{title}' did not select it");
+}
+
+/// Clicks the node whose title is `title` in the graph panel.
+pub fn click_node(harness: &mut Harness<'static, VeneerApp>, title: &str) {
     // Node widgets report their bounds in graph coordinates: click where they are on screen.
     let position = harness.state().graph_to_screen() * harness.get_by_label(title).rect().center();
     harness.event(egui::Event::PointerMoved(position));
@@ -139,13 +151,6 @@ pub fn select_node(harness: &mut Harness<'static, VeneerApp>, title: &str) {
         });
     }
     harness.run();
-    let inspected = harness
-        .query_by(|node| {
-            node.role() == egui::accesskit::Role::TextInput
-                && node.value().as_deref() == Some(title)
-        })
-        .is_some();
-    assert!(inspected, "clicking '{title}' did not select it");
 }
 
 /// Whether some label on screen contains `text`.

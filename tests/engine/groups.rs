@@ -54,6 +54,18 @@ fn connected_selection(graph: &Graph, start: usize, size: usize) -> BTreeSet<Nod
     selection
 }
 
+/// `graph` with a connected selection of up to `size` nodes from `start` grouped as
+/// "part", and the group node; `None` when there is nothing to select.
+fn grouped_part(graph: &Graph, start: usize, size: usize) -> Option<(Graph, NodeId)> {
+    let selection = connected_selection(graph, start, size);
+    if selection.is_empty() {
+        return None;
+    }
+    let mut grouped = graph.clone();
+    let instance = group_nodes(&mut grouped, &selection, "part").expect("groups");
+    Some((grouped, instance))
+}
+
 proptest! {
     #![proptest_config(ProptestConfig { cases: 240, ..ProptestConfig::default() })]
 
@@ -68,10 +80,9 @@ proptest! {
     ) {
         let graph = random_graph(&kinds, &choices, true);
         let Ok(original) = compile(&graph, &Default::default()) else { return Ok(()) };
-        let selection = connected_selection(&graph, start, size);
-        prop_assume!(!selection.is_empty());
-        let mut grouped = graph.clone();
-        let instance = group_nodes(&mut grouped, &selection, "part").expect("groups");
+        let part = grouped_part(&graph, start, size);
+        prop_assume!(part.is_some());
+        let (mut grouped, instance) = part.expect("assumed");
         prop_assert!(grouped.nodes.len() <= graph.nodes.len());
         let compiled = compile(&grouped, &Default::default());
         prop_assert!(compiled.is_ok(), "{:?}\n{}", compiled.err(), veneer::graph::to_ron(&grouped));
@@ -100,10 +111,9 @@ proptest! {
     ) {
         let graph = random_graph(&kinds, &choices, false);
         let Ok(original) = compile(&graph, &Default::default()) else { return Ok(()) };
-        let selection = connected_selection(&graph, start, 4);
-        prop_assume!(!selection.is_empty());
-        let mut grouped = graph.clone();
-        group_nodes(&mut grouped, &selection, "part").expect("groups");
+        let part = grouped_part(&graph, start, 4);
+        prop_assume!(part.is_some());
+        let (grouped, _) = part.expect("assumed");
         let compiled = compile(&grouped, &Default::default()).expect("compiles");
         prop_assert_eq!(flat_rgb8(compiled.source(), RECT, 16), flat_rgb8(original.source(), RECT, 16));
     }
@@ -203,6 +213,55 @@ fn red_at_quarter(graph: &Graph) -> f64 {
     let evaluator = veneer::eval::Evaluator::new(graph).expect("checks");
     let surface = veneer::eval::Surface::<f64>::at([0.25, 0.0, 0.0]);
     evaluator.eval(&surface).albedo[0]
+}
+
+#[test]
+fn renaming_and_removing_a_group_input_follows_it_through_nesting_and_presets() {
+    use veneer::graph::group_interface::{Side, remove, rename};
+    let mut graph = nested_graph();
+    set(&mut graph, "gain", &Given::Number(3.0)).expect("sets");
+    graph.presets.insert(
+        "strong".into(),
+        [("gain".to_string(), Value::Float(4.0))].into(),
+    );
+    rename(&mut graph, "inner", Side::Input, "gain", "amount").expect("renames");
+    let names: Vec<String> = exposed(&graph)
+        .into_iter()
+        .map(|entry| entry.name)
+        .collect();
+    assert!(
+        names.contains(&"amount".to_string()) && !names.contains(&"gain".to_string()),
+        "{names:?}"
+    );
+    assert!(
+        (red_at_quarter(&graph) - 0.75).abs() < 1e-9,
+        "the value set stays"
+    );
+    assert!(
+        graph.presets["strong"].contains_key("amount"),
+        "the preset follows"
+    );
+    veneer::graph::parameters::apply_preset(&mut graph, "strong").expect("applies");
+    assert!((red_at_quarter(&graph) - 1.0).abs() < 1e-9);
+    // Bad and taken names are refused, the graph untouched.
+    let before = veneer::graph::to_ron(&graph);
+    assert!(rename(&mut graph, "inner", Side::Input, "amount", "x").is_err());
+    assert!(rename(&mut graph, "inner", Side::Input, "amount", "2 much").is_err());
+    assert_eq!(veneer::graph::to_ron(&graph), before);
+
+    // Removing the input: the pin it fed keeps its default (gain 2), fixed now.
+    remove(&mut graph, "inner", Side::Input, "amount").expect("removes");
+    assert!(exposed(&graph).iter().all(|entry| entry.name != "amount"));
+    assert!(!graph.presets["strong"].contains_key("amount"));
+    assert!((red_at_quarter(&graph) - 0.5).abs() < 1e-9);
+    compile(&graph, &Default::default()).expect("compiles");
+
+    // An output renamed keeps its wires; removed, the wires from it go.
+    rename(&mut graph, "outer", Side::Output, "result", "scaled_x").expect("renames");
+    assert!(graph.wires.iter().any(|wire| wire.from.pin == "scaled_x"));
+    assert!((red_at_quarter(&graph) - 0.5).abs() < 1e-9);
+    remove(&mut graph, "outer", Side::Output, "scaled_x").expect("removes");
+    assert!(graph.wires.is_empty());
 }
 
 #[test]

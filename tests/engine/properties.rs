@@ -36,7 +36,7 @@ pub fn random_graph(kinds: &[u32], choices: &[u32], sine: bool) -> Graph {
                 .iter()
                 .filter(|(_, _, ty)| ty.converts_to(pin.ty))
                 .collect();
-            let wire = pin.default == PinDefault::Required || pick % 3 != 0;
+            let wire = pin.default == PinDefault::Required || !pick.is_multiple_of(3);
             if wire && !candidates.is_empty() {
                 let (from, name, _) = candidates[pick as usize % candidates.len()];
                 graph.connect(*from, name, node, pin.name);
