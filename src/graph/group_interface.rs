@@ -106,17 +106,12 @@ fn edit(graph: &mut Graph, group: &str, side: Side, old: &str, new: Option<&str>
             if new.is_none() {
                 keep_removed_value(definition, old);
             }
-            definition
-                .inputs
-                .retain_mut(|input| match (input.name == old, new) {
-                    (true, Some(new)) => {
-                        input.name = new.to_string();
-                        true
-                    }
-                    (true, None) => false,
-                    (false, _) => true,
-                });
-            follow_wires(
+            rename_or_drop(
+                &mut definition.inputs,
+                |input| (input.name == old).then_some(&mut input.name),
+                new,
+            );
+            rename_or_drop(
                 &mut definition.wires,
                 |wire| {
                     (wire.from.node == BOUNDARY && wire.from.pin == old)
@@ -126,17 +121,12 @@ fn edit(graph: &mut Graph, group: &str, side: Side, old: &str, new: Option<&str>
             );
         }
         Side::Output => {
-            definition
-                .outputs
-                .retain_mut(|output| match (output.name == old, new) {
-                    (true, Some(new)) => {
-                        output.name = new.to_string();
-                        true
-                    }
-                    (true, None) => false,
-                    (false, _) => true,
-                });
-            follow_wires(
+            rename_or_drop(
+                &mut definition.outputs,
+                |output| (output.name == old).then_some(&mut output.name),
+                new,
+            );
+            rename_or_drop(
                 &mut definition.wires,
                 |wire| (wire.to.node == BOUNDARY && wire.to.pin == old).then_some(&mut wire.to.pin),
                 new,
@@ -195,15 +185,15 @@ fn keep_removed_value(definition: &mut GroupDef, name: &str) {
     }
 }
 
-/// Renames (or, `new` absent, drops) the pin each wire `pin_of` picks.
-fn follow_wires(
-    wires: &mut Vec<Wire>,
-    mut pin_of: impl FnMut(&mut Wire) -> Option<&mut String>,
+/// Renames to `new` (or, `new` absent, drops) the items whose name `name_of` picks.
+fn rename_or_drop<T>(
+    items: &mut Vec<T>,
+    mut name_of: impl FnMut(&mut T) -> Option<&mut String>,
     new: Option<&str>,
 ) {
-    wires.retain_mut(|wire| match (pin_of(wire), new) {
-        (Some(pin), Some(new)) => {
-            *pin = new.to_string();
+    items.retain_mut(|item| match (name_of(item), new) {
+        (Some(name), Some(new)) => {
+            *name = new.to_string();
             true
         }
         (Some(_), None) => false,
