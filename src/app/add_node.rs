@@ -160,6 +160,20 @@ impl VeneerApp {
         let selected = !self.selection.is_empty();
         // Comment frames and the Material are the top level's.
         let top = self.scope.current().is_none();
+        // On a dropped wire, groups are offered by their pins, as nodes are.
+        let group_kinds: std::collections::BTreeMap<&str, NodeKind> = match dangling {
+            Some(_) => search
+                .groups
+                .iter()
+                .filter_map(|name| {
+                    Some((
+                        name.as_str(),
+                        super::group_edit::group_kind(&self.document.graph, name)?,
+                    ))
+                })
+                .collect(),
+            None => Default::default(),
+        };
         let usable = |entry: &Entry| match (&entry.item, dangling) {
             (Item::Node(NodeKind::Material), _) if !top => false,
             (Item::Node(_), None) | (Item::Group(_), None) => true,
@@ -168,6 +182,9 @@ impl VeneerApp {
             (Item::Node(kind), Some(dangling)) => {
                 catalogue::compatible_pin(kind, dangling).is_some()
             }
+            (Item::Group(name), Some(dangling)) => group_kinds
+                .get(name.as_str())
+                .is_some_and(|kind| catalogue::compatible_pin(kind, dangling).is_some()),
             (_, Some(_)) => false,
         };
         let entries: Vec<Entry> = if search.text.trim().is_empty() {
@@ -309,25 +326,34 @@ impl VeneerApp {
             }
             Item::Group(name) => {
                 self.clicked = self.add_group_instance(&name, search.graph - GRAB);
+                if let (Some(id), Some(dropped)) = (self.clicked, search.dropped) {
+                    self.wire_dropped(id, dropped);
+                }
                 return;
             }
             Item::Node(kind) => kind,
         };
-        let pin = search
-            .dropped
-            .as_ref()
-            .and_then(|wire| catalogue::compatible_pin(&kind, wire.dangling()));
         let node = Node::new(next_node_id(&self.snarl), kind);
         let id = self.snarl.insert_node(search.graph - GRAB, node);
-        match (search.dropped, pin) {
-            (Some(DroppedWire::Out(_, pins)), Some(input)) => {
+        if let Some(dropped) = search.dropped {
+            self.wire_dropped(id, dropped);
+        }
+        // The new node is the selected one, its settings in the inspector.
+        self.clicked = Some(id);
+    }
+
+    /// Connects new node `id` to the wire `dropped` by its first compatible pin.
+    fn wire_dropped(&mut self, id: egui_snarl::NodeId, dropped: DroppedWire) {
+        let pin = catalogue::compatible_pin(&self.snarl[id].kind, dropped.dangling());
+        match (dropped, pin) {
+            (DroppedWire::Out(_, pins), Some(input)) => {
                 for from in pins {
                     if self.snarl.get_node(from.node).is_some() {
                         self.snarl.connect(from, InPinId { node: id, input });
                     }
                 }
             }
-            (Some(DroppedWire::In(_, pins)), Some(output)) => {
+            (DroppedWire::In(_, pins), Some(output)) => {
                 for to in pins {
                     if self.snarl.get_node(to.node).is_some() {
                         self.snarl.drop_inputs(to);
@@ -337,8 +363,6 @@ impl VeneerApp {
             }
             _ => {}
         }
-        // The new node is the selected one, its settings in the inspector.
-        self.clicked = Some(id);
     }
 
     /// Ctrl+J and *Edit → Frame selected nodes*: a comment frame around the selection

@@ -228,3 +228,17 @@ impl VeneerApp {
         Some(self.snarl.insert_node(at, node))
     }
 }
+
+/// The kind of a node of group `name` (`graph`'s, else the library's), its pins filled
+/// in; `None` when there is no such group or it cannot be used.
+pub(super) fn group_kind(graph: &Graph, name: &str) -> Option<NodeKind> {
+    let mut groups = graph.groups.clone();
+    if !groups.contains_key(name) {
+        groups.insert(name.to_string(), library::find(name)?.0);
+    }
+    let pins = group::interfaces(&groups).ok()?.get(name)?.signature();
+    Some(NodeKind::Group(Group {
+        name: name.to_string(),
+        pins,
+    }))
+}

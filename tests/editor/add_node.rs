@@ -7,6 +7,7 @@ use egui::{Event, Key, Modifiers, Pos2};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use veneer::app::VeneerApp;
+use veneer::graph::NodeKind;
 
 type Editor = Harness<'static, VeneerApp>;
 
@@ -379,22 +380,16 @@ fn the_status_bar_counts_one_node_in_the_singular() {
     assert!(!shows(&harness, "1 nodes"));
 }
 
-#[test]
-fn a_wire_dropped_on_empty_canvas_offers_the_nodes_it_fits_and_connects_the_pick() {
-    let dir = scratch("add-dropped-wire");
-    let mut harness = editor(&dir, None);
-    new_graph(&mut harness);
-    add_by_keyboard(&mut harness, Pos2::new(150.0, 200.0), SPACE, "noise");
-    let noise = newest(&harness);
-    // Drag from the noise's output pin (right of its "value" label) to empty canvas.
-    let label = in_graph(&harness, "value");
+/// Drags a wire from the "value" output pin (right of its label) to `drop` on empty
+/// canvas.
+fn drop_wire_from_value(harness: &mut Harness<'static, VeneerApp>, drop: Pos2) {
+    let label = in_graph(harness, "value");
     let pin = Pos2::new(label.max.x + 4.0, label.center().y);
-    let drop = Pos2::new(250.0, 600.0);
-    hover(&mut harness, pin);
+    hover(harness, pin);
     harness.drag_at(pin);
     harness.run();
     for step in 1..=5 {
-        hover(&mut harness, pin + (drop - pin) * step as f32 / 5.0);
+        hover(harness, pin + (drop - pin) * step as f32 / 5.0);
     }
     harness.event(Event::PointerButton {
         pos: drop,
@@ -403,6 +398,45 @@ fn a_wire_dropped_on_empty_canvas_offers_the_nodes_it_fits_and_connects_the_pick
         modifiers: Modifiers::NONE,
     });
     harness.run();
+}
+
+#[test]
+fn a_wire_dropped_on_empty_canvas_offers_groups_by_their_pins() {
+    let dir = scratch("add-dropped-wire-group");
+    let mut harness = editor(&dir, None);
+    new_graph(&mut harness);
+    add_by_keyboard(&mut harness, Pos2::new(150.0, 200.0), SPACE, "noise");
+    let noise = newest(&harness);
+    drop_wire_from_value(&mut harness, Pos2::new(250.0, 600.0));
+    // ring_wood (the library's) takes floats: offered, placed and wired to its first.
+    typing(&mut harness, "ring_wood");
+    key(&mut harness, Modifiers::NONE, Key::Enter, None);
+    let graph = &harness.state().document.graph;
+    let group = graph
+        .nodes
+        .iter()
+        .find(|node| matches!(&node.kind, NodeKind::Group(g) if g.name == "ring_wood"))
+        .expect("the group node is placed");
+    let wire = graph
+        .wires
+        .iter()
+        .find(|wire| wire.to.node == group.id)
+        .expect("the group node is wired");
+    assert_eq!(
+        (wire.from.node, wire.to.pin.as_str()),
+        (noise.id, "ring_frequency")
+    );
+}
+
+#[test]
+fn a_wire_dropped_on_empty_canvas_offers_the_nodes_it_fits_and_connects_the_pick() {
+    let dir = scratch("add-dropped-wire");
+    let mut harness = editor(&dir, None);
+    new_graph(&mut harness);
+    add_by_keyboard(&mut harness, Pos2::new(150.0, 200.0), SPACE, "noise");
+    let noise = newest(&harness);
+    let drop = Pos2::new(250.0, 600.0);
+    drop_wire_from_value(&mut harness, drop);
     let (field, _) = focused_field(&harness).expect("the dropped wire opened the search");
     assert!(
         (field.min - drop).length() < 60.0,
