@@ -298,7 +298,10 @@ pub fn set(graph: &mut Graph, name: &str, given: &Given) -> Result<(), Parameter
     Ok(())
 }
 
-/// Applies parameter preset `preset` of the graph.
+/// Applies parameter preset `preset` of the graph: the group parameters it does not
+/// list go back to their groups' defaults, so that a preset looks the same whatever was
+/// set before (top-level parameters it does not list keep their values: the graph
+/// holds no other default for them).
 pub fn apply_preset(graph: &mut Graph, preset: &str) -> Result<(), ParameterError> {
     let Some(values) = graph.presets.get(preset).cloned() else {
         return Err(ParameterError::UnknownPreset {
@@ -306,6 +309,14 @@ pub fn apply_preset(graph: &mut Graph, preset: &str) -> Result<(), ParameterErro
             known: graph.presets.keys().cloned().collect(),
         });
     };
+    for entry in exposed(graph) {
+        if entry.group_path.is_empty() || values.contains_key(&entry.name) {
+            continue;
+        }
+        if let Some(node) = graph.node_mut(entry.target.node) {
+            node.inputs.remove(&entry.target.pin);
+        }
+    }
     for (name, value) in &values {
         set(graph, name, &Given::of(value))?;
     }

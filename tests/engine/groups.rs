@@ -726,3 +726,24 @@ fn choices_and_toggles_take_their_words() {
     set(&mut graph, "gain", &Given::parse("on").unwrap()).expect("a toggle");
     assert!((red_at_quarter(&graph) - 0.25).abs() < 1e-9);
 }
+
+#[test]
+fn a_parameter_preset_looks_the_same_whatever_was_set_before() {
+    let fresh = veneer::graph::load(&root("graphs/wood.ron")).expect("loads");
+    let mut oak = fresh.clone();
+    veneer::graph::parameters::apply_preset(&mut oak, "oak").expect("applies");
+    let mut tweaked = fresh;
+    veneer::graph::parameters::apply_preset(&mut tweaked, "walnut").expect("applies");
+    set(&mut tweaked, "taper", &Given::Number(0.9)).expect("sets");
+    veneer::graph::parameters::apply_preset(&mut tweaked, "oak").expect("applies");
+    assert_eq!(veneer::graph::to_ron(&tweaked), veneer::graph::to_ron(&oak));
+    let coarse = exposed(&oak)
+        .into_iter()
+        .find(|e| e.name == "coarse_warp")
+        .unwrap();
+    assert_eq!(
+        coarse.value,
+        Value::Float(0.35),
+        "the group's default, not walnut's"
+    );
+}
