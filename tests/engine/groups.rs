@@ -623,57 +623,33 @@ fn set_works_on_every_command() {
     // snapshot: goldens approved with a preset are named after it; a different value
     // then differs from them (exit 1).
     let golden = path("golden");
-    let approve = run_veneer(&[
-        "snapshot",
-        "graphs/wood.ron",
-        "--size",
-        "48",
-        "--golden",
-        &golden,
-        "--preset",
-        "oak",
-        "--update",
-    ]);
-    assert!(
-        approve.status.success(),
-        "{}",
-        String::from_utf8_lossy(&approve.stderr)
-    );
+    let snapshot = |extra: &[&str]| {
+        let mut args = vec![
+            "snapshot",
+            "graphs/wood.ron",
+            "--size",
+            "48",
+            "--golden",
+            &golden,
+            "--preset",
+            "oak",
+        ];
+        args.extend(extra);
+        let output = run_veneer(&args);
+        let said = format!(
+            "{}{}",
+            String::from_utf8_lossy(&output.stdout),
+            String::from_utf8_lossy(&output.stderr)
+        );
+        (output.status.code(), said)
+    };
+    let (approved, said) = snapshot(&["--update"]);
+    assert_eq!(approved, Some(0), "{said}");
     assert!(dir.join("golden/wood.oak.png").is_file());
-    let same = run_veneer(&[
-        "snapshot",
-        "graphs/wood.ron",
-        "--size",
-        "48",
-        "--golden",
-        &golden,
-        "--preset",
-        "oak",
-    ]);
-    assert_eq!(
-        same.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&same.stdout)
-    );
-    let other = run_veneer(&[
-        "snapshot",
-        "graphs/wood.ron",
-        "--size",
-        "48",
-        "--golden",
-        &golden,
-        "--preset",
-        "oak",
-        "--set",
-        "ring_frequency=2",
-    ]);
-    assert_eq!(
-        other.status.code(),
-        Some(1),
-        "{}",
-        String::from_utf8_lossy(&other.stdout)
-    );
+    let (same, said) = snapshot(&[]);
+    assert_eq!(same, Some(0), "{said}");
+    let (other, said) = snapshot(&["--set", "ring_frequency=2"]);
+    assert_eq!(other, Some(1), "{said}");
     // A bad name or value is refused naming the file, with nothing written.
     let out = path("bad.png");
     let bad = run_veneer(&[
