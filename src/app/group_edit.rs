@@ -12,29 +12,40 @@ use egui::Pos2;
 use std::collections::BTreeSet;
 
 impl VeneerApp {
+    /// Runs `edit` on a copy of the whole graph, then takes the result in and shows
+    /// it: one undo step. When `edit` fails nothing changes.
+    pub(super) fn edit_document<T>(
+        &mut self,
+        edit: impl FnOnce(&mut Self, &mut Graph) -> Result<T, String>,
+    ) -> Result<T, String> {
+        self.sync_document();
+        let mut graph = self.document.graph.clone();
+        let done = edit(self, &mut graph)?;
+        group::resolve(&mut graph);
+        graph.canonicalize();
+        self.document.graph = graph;
+        self.rebuild_snarl();
+        Ok(done)
+    }
+
     /// Runs `edit` on the level shown as a whole graph (a group's definition with its
     /// boundary as one node), then shows the result: one undo step.
     pub(super) fn edit_level<T>(
         &mut self,
         edit: impl FnOnce(&mut Graph) -> Result<T, String>,
     ) -> Result<T, String> {
-        self.sync_document();
-        let mut graph = self.document.graph.clone();
-        let done = match self.scope.current().map(str::to_string) {
-            None => edit(&mut graph)?,
+        let shown = self.scope.current().map(str::to_string);
+        let done = self.edit_document(|app, graph| match shown {
+            None => edit(graph),
             Some(name) => {
                 let (mut local, definition) =
-                    scope::as_graph(&graph, &name).ok_or("the group shown is gone")?;
+                    scope::as_graph(graph, &name).ok_or("the group shown is gone")?;
                 let done = edit(&mut local)?;
-                scope::put_back(&mut graph, &name, definition, local);
-                self.unlink_edited(&mut graph, &name);
-                done
+                scope::put_back(graph, &name, definition, local);
+                app.unlink_edited(graph, &name);
+                Ok(done)
             }
-        };
-        group::resolve(&mut graph);
-        graph.canonicalize();
-        self.document.graph = graph;
-        self.rebuild_snarl();
+        })?;
         self.new_view();
         Ok(done)
     }

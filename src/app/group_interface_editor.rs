@@ -197,49 +197,39 @@ impl VeneerApp {
         let Some(name) = self.scope.current().map(str::to_string) else {
             return;
         };
-        self.sync_document();
-        let mut graph = self.document.graph.clone();
-        self.unlink_edited(&mut graph, &name);
-        let done = match &edit {
-            InterfaceEdit::Rename { side, old, new } => {
-                group_interface::rename(&mut graph, &name, *side, old, new)
-                    .map(|()| format!("renamed '{old}' to '{new}' in group '{name}'"))
-            }
-            InterfaceEdit::Remove { side, name: pin } => {
-                group_interface::remove(&mut graph, &name, *side, pin)
-                    .map(|()| format!("removed '{pin}' from group '{name}'"))
-            }
-            InterfaceEdit::Input { name: pin, input } => {
-                let definition = graph.groups.get_mut(&name);
-                let declared = definition
-                    .and_then(|definition| definition.inputs.iter_mut().find(|i| i.name == *pin));
-                match declared {
-                    Some(declared) => {
-                        *declared = input.clone();
-                        crate::graph::group::resolve(&mut graph);
-                        Ok(String::new())
-                    }
-                    None => Err(format!("group '{name}' has no input '{pin}'")),
+        let selected = self
+            .selection
+            .first()
+            .and_then(|id| self.snarl.get_node(*id));
+        let side = selected.and_then(scope::boundary);
+        let done = self.edit_document(|app, graph| {
+            app.unlink_edited(graph, &name);
+            match edit {
+                InterfaceEdit::Rename { side, old, new } => {
+                    group_interface::rename(graph, &name, side, &old, &new)?;
+                    Ok(Some(format!(
+                        "renamed '{old}' to '{new}' in group '{name}'"
+                    )))
+                }
+                InterfaceEdit::Remove { side, name: pin } => {
+                    group_interface::remove(graph, &name, side, &pin)?;
+                    Ok(Some(format!("removed '{pin}' from group '{name}'")))
+                }
+                InterfaceEdit::Input { name: pin, input } => {
+                    let definition = graph.groups.get_mut(&name);
+                    let declared = definition
+                        .and_then(|definition| definition.inputs.iter_mut().find(|i| i.name == pin))
+                        .ok_or(format!("group '{name}' has no input '{pin}'"))?;
+                    *declared = input;
+                    Ok(None)
                 }
             }
-        };
+        });
         match done {
-            Ok(message) => {
-                if !message.is_empty() {
-                    self.message = Some(message);
-                }
-                graph.canonicalize();
-                self.document.graph = graph;
-                let selected = self
-                    .selection
-                    .first()
-                    .and_then(|id| self.snarl.get_node(*id));
-                let side = selected.and_then(scope::boundary);
-                self.rebuild_snarl();
-                self.clicked = side.and_then(|side| scope::boundary_in(&self.snarl, side));
-                self.selection = self.clicked.into_iter().collect();
-            }
+            Ok(message) => self.message = message.or(self.message.take()),
             Err(error) => self.message = Some(error),
         }
+        self.clicked = side.and_then(|side| scope::boundary_in(&self.snarl, side));
+        self.selection = self.clicked.into_iter().collect();
     }
 }

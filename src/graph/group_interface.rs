@@ -23,26 +23,8 @@ pub fn rename(
     new: &str,
 ) -> Result<(), String> {
     check_name(new)?;
-    let definition = graph
-        .groups
-        .get(group)
-        .ok_or(format!("no group named '{group}'"))?;
-    let names: Vec<&str> = match side {
-        Side::Input => definition
-            .inputs
-            .iter()
-            .map(|input| input.name.as_str())
-            .collect(),
-        Side::Output => definition
-            .outputs
-            .iter()
-            .map(|output| output.name.as_str())
-            .collect(),
-    };
-    if !names.contains(&old) {
-        return Err(format!("group '{group}' has no {} '{old}'", side.word()));
-    }
-    if old != new && names.contains(&new) {
+    let names = pin_names(graph, group, side, old)?;
+    if old != new && names.iter().any(|name| name == new) {
         return Err(format!(
             "group '{group}' has an {} named '{new}' already",
             side.word()
@@ -55,19 +37,25 @@ pub fn rename(
 /// Removes input or output `name` of group `group`, and every wire to or from it; the
 /// inner pins a removed input fed keep its default.
 pub fn remove(graph: &mut Graph, group: &str, side: Side, name: &str) -> Result<(), String> {
+    pin_names(graph, group, side, name)?;
+    edit(graph, group, side, name, None);
+    Ok(())
+}
+
+/// The names of the inputs or outputs of group `group`, which must include `name`.
+fn pin_names(graph: &Graph, group: &str, side: Side, name: &str) -> Result<Vec<String>, String> {
     let definition = graph
         .groups
         .get(group)
         .ok_or(format!("no group named '{group}'"))?;
-    let known = match side {
-        Side::Input => definition.inputs.iter().any(|input| input.name == name),
-        Side::Output => definition.outputs.iter().any(|output| output.name == name),
+    let names: Vec<String> = match side {
+        Side::Input => definition.inputs.iter().map(|i| i.name.clone()).collect(),
+        Side::Output => definition.outputs.iter().map(|o| o.name.clone()).collect(),
     };
-    if !known {
+    if !names.iter().any(|known| known == name) {
         return Err(format!("group '{group}' has no {} '{name}'", side.word()));
     }
-    edit(graph, group, side, name, None);
-    Ok(())
+    Ok(names)
 }
 
 impl Side {
@@ -185,19 +173,44 @@ fn keep_removed_value(definition: &mut GroupDef, name: &str) {
     }
 }
 
+/// What happens to a pin name: renamed (`Some`) or gone (`None`).
+type Change = Option<String>;
+
+/// Follows `change` (none: the name stays) on `name`; `false` when the name is gone.
+fn follow(name: &mut String, change: Option<Change>) -> bool {
+    match change {
+        Some(Some(new)) => {
+            *name = new;
+            true
+        }
+        Some(None) => false,
+        None => true,
+    }
+}
+
+/// Follows `changes` on the keys of `map`, dropping the entries of names that go.
+fn follow_keys<V>(map: &mut BTreeMap<String, V>, changes: &BTreeMap<String, Change>) {
+    // All taken out first, so that names trading places do not clobber each other.
+    let moved: Vec<(Change, V)> = changes
+        .iter()
+        .filter_map(|(old, new)| Some((new.clone(), map.remove(old)?)))
+        .collect();
+    for (new, value) in moved {
+        if let Some(new) = new {
+            map.insert(new, value);
+        }
+    }
+}
+
 /// Renames to `new` (or, `new` absent, drops) the items whose name `name_of` picks.
 fn rename_or_drop<T>(
     items: &mut Vec<T>,
     mut name_of: impl FnMut(&mut T) -> Option<&mut String>,
     new: Option<&str>,
 ) {
-    items.retain_mut(|item| match (name_of(item), new) {
-        (Some(name), Some(new)) => {
-            *name = new.to_string();
-            true
-        }
-        (Some(_), None) => false,
-        (None, _) => true,
+    items.retain_mut(|item| match name_of(item) {
+        Some(name) => follow(name, Some(new.map(str::to_string))),
+        None => true,
     });
 }
 
@@ -210,8 +223,8 @@ fn input_renames(
     changed: &str,
     old: &str,
     new: Option<&str>,
-) -> BTreeMap<String, BTreeMap<String, Option<String>>> {
-    let mut renames: BTreeMap<String, BTreeMap<String, Option<String>>> = BTreeMap::new();
+) -> BTreeMap<String, BTreeMap<String, Change>> {
+    let mut renames: BTreeMap<String, BTreeMap<String, Change>> = BTreeMap::new();
     renames.insert(
         changed.to_string(),
         BTreeMap::from([(old.to_string(), new.map(str::to_string))]),
@@ -262,23 +275,17 @@ fn input_renames(
 fn rename_in_instances(
     nodes: &mut [Node],
     wires: &mut Vec<Wire>,
-    renames: &BTreeMap<String, BTreeMap<String, Option<String>>>,
+    renames: &BTreeMap<String, BTreeMap<String, Change>>,
     side: Side,
 ) {
-    let mut changes: BTreeMap<NodeId, &BTreeMap<String, Option<String>>> = BTreeMap::new();
+    let mut changes: BTreeMap<NodeId, &BTreeMap<String, Change>> = BTreeMap::new();
     for node in nodes.iter_mut() {
         let Some(map) = group::group_name(node).and_then(|name| renames.get(name)) else {
             continue;
         };
         changes.insert(node.id, map);
         if side == Side::Input {
-            for (old, new) in map {
-                if let Some(value) = node.inputs.remove(old)
-                    && let Some(new) = new
-                {
-                    node.inputs.insert(new.clone(), value);
-                }
-            }
+            follow_keys(&mut node.inputs, map);
         }
     }
     wires.retain_mut(|wire| {
@@ -286,14 +293,8 @@ fn rename_in_instances(
             Side::Input => &mut wire.to,
             Side::Output => &mut wire.from,
         };
-        match changes.get(&end.node).and_then(|map| map.get(&end.pin)) {
-            Some(Some(new)) => {
-                end.pin = new.clone();
-                true
-            }
-            Some(None) => false,
-            None => true,
-        }
+        let change = changes.get(&end.node).and_then(|map| map.get(&end.pin));
+        follow(&mut end.pin, change.cloned())
     });
 }
 
@@ -301,7 +302,7 @@ fn rename_in_instances(
 /// nodes) and in its parameter presets (by the names parameters had before).
 fn follow_parameters(
     graph: &mut Graph,
-    renames: &BTreeMap<String, BTreeMap<String, Option<String>>>,
+    renames: &BTreeMap<String, BTreeMap<String, Change>>,
     exposed_before: &[super::parameters::Exposed],
 ) {
     let change_of = |graph: &Graph, node: NodeId, pin: &str| {
@@ -309,19 +310,13 @@ fn follow_parameters(
         renames.get(name)?.get(pin).cloned()
     };
     let mut parameters = std::mem::take(&mut graph.parameters);
-    parameters.retain_mut(
-        |parameter| match change_of(graph, parameter.node, &parameter.pin) {
-            Some(Some(new)) => {
-                parameter.pin = new;
-                true
-            }
-            Some(None) => false,
-            None => true,
-        },
-    );
+    parameters.retain_mut(|parameter| {
+        let change = change_of(graph, parameter.node, &parameter.pin);
+        follow(&mut parameter.pin, change)
+    });
     graph.parameters = parameters;
     let exposed_after = super::parameters::exposed(graph);
-    let mut names: BTreeMap<String, Option<String>> = BTreeMap::new();
+    let mut names: BTreeMap<String, Change> = BTreeMap::new();
     for entry in exposed_before {
         let target = &entry.target;
         let pin = match change_of(graph, target.node, &target.pin) {
@@ -339,12 +334,6 @@ fn follow_parameters(
         }
     }
     for values in graph.presets.values_mut() {
-        for (old, new) in &names {
-            if let Some(value) = values.remove(old)
-                && let Some(new) = new
-            {
-                values.insert(new.clone(), value);
-            }
-        }
+        follow_keys(values, &names);
     }
 }
