@@ -138,30 +138,8 @@ impl Job {
     }
 }
 
-/// Reads a batch file.
-fn read(path: &Path) -> Result<BatchFile, Failure> {
-    let bytes = veneer::fsutil::read_limited(path, veneer::fsutil::ReadLimit::GRAPH)
-        .map_err(|error| Failure::new(format!("{}: cannot read: {error}", path.display())))?;
-    let text = String::from_utf8_lossy(&bytes);
-    let parsed = if path
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("json"))
-    {
-        serde_json::from_str(&text)
-            .map_err(|error| format!("{}:{}: {error}", error.line(), error.column()))
-    } else {
-        ron::from_str(&text).map_err(|error| {
-            format!(
-                "{}:{}: {}",
-                error.span.start.line, error.span.start.col, error.code
-            )
-        })
-    };
-    parsed.map_err(|error| Failure::new(format!("{}:{error}", path.display())))
-}
-
 pub fn run(args: BatchArgs) -> Result<(), Failure> {
-    let batch = read(&args.file)?;
+    let batch: BatchFile = super::read_ron_or_json(&args.file)?;
     let base = args.file.parent().unwrap_or(Path::new(""));
     let shard = args.shard.unwrap_or(Shard { index: 1, count: 1 });
     let jobs: Vec<(usize, Vec<String>)> = batch

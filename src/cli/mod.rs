@@ -178,6 +178,19 @@ fn parse_time(text: &str) -> Result<f32, String> {
 }
 
 /// Loads a graph, with errors as `path:line:col: message`.
+/// Reads file `path` as RON, or as JSON when its extension is `.json` (parameter and
+/// batch files); errors name the file, line and column.
+fn read_ron_or_json<T: serde::de::DeserializeOwned>(path: &Path) -> Result<T, Failure> {
+    let bytes = veneer::fsutil::read_limited(path, veneer::fsutil::ReadLimit::GRAPH)
+        .map_err(|error| Failure::new(format!("{}: cannot read: {error}", path.display())))?;
+    let text = String::from_utf8_lossy(&bytes);
+    let json = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("json"));
+    veneer::graph::parameters::parse_ron_or_json(&text, json)
+        .map_err(|error| Failure::new(format!("{}:{error}", path.display())))
+}
+
 fn load_graph(path: &Path) -> Result<veneer::graph::Graph, Failure> {
     veneer::graph::load(path).map_err(Failure::from)
 }

@@ -5,7 +5,7 @@ use super::Failure;
 use clap::Args;
 use std::path::{Path, PathBuf};
 use veneer::graph::Graph;
-use veneer::graph::parameters::{Given, Overrides, parse_file};
+use veneer::graph::parameters::{Given, Overrides};
 
 /// Values for the graph's exposed parameters (see `veneer compile --describe`).
 #[derive(Args, Clone, Debug, Default)]
@@ -40,16 +40,7 @@ impl ParameterArgs {
     pub fn overrides(&self) -> Result<Overrides, Failure> {
         let mut values = Vec::new();
         if let Some(path) = &self.params_file {
-            let bytes = veneer::fsutil::read_limited(path, veneer::fsutil::ReadLimit::GRAPH)
-                .map_err(|error| {
-                    Failure::new(format!("{}: cannot read: {error}", path.display()))
-                })?;
-            let text = String::from_utf8_lossy(&bytes);
-            let json = path
-                .extension()
-                .is_some_and(|e| e.eq_ignore_ascii_case("json"));
-            let file = parse_file(&text, json)
-                .map_err(|error| Failure::new(format!("{}:{error}", path.display())))?;
+            let file: std::collections::BTreeMap<String, Given> = super::read_ron_or_json(path)?;
             values.extend(file);
         }
         values.extend(self.set.iter().cloned());

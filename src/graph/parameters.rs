@@ -8,7 +8,6 @@
 use super::group::{self, Bindings, Hint, Interface};
 use super::{Graph, NodeId, PinRef, Value, ValueType};
 use serde::{Deserialize, Serialize};
-use std::collections::BTreeMap;
 
 /// A top-level input pin exposed under a name.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -323,11 +322,14 @@ pub fn apply_preset(graph: &mut Graph, preset: &str) -> Result<(), ParameterErro
     Ok(())
 }
 
-/// Reads a parameter file: a map from parameter names to values, in RON
-/// (`{"ring_frequency": 0.7, "tint": (1.0, 0.5, 0.2)}`) or JSON
-/// (`{"ring_frequency": 0.7, "tint": [1.0, 0.5, 0.2]}`), told apart by the extension
-/// `.json`.
-pub fn parse_file(text: &str, json: bool) -> Result<BTreeMap<String, Given>, String> {
+/// Parses `text` as RON, or as JSON when `json`; errors start with `line:column: `.
+/// Parameter files (a map from parameter names to [`Given`] values:
+/// `{"ring_frequency": 0.7, "tint": (1.0, 0.5, 0.2)}` in RON, `[1.0, 0.5, 0.2]` for the
+/// tuple in JSON) and batch files are read this way.
+pub fn parse_ron_or_json<T: serde::de::DeserializeOwned>(
+    text: &str,
+    json: bool,
+) -> Result<T, String> {
     if json {
         serde_json::from_str(text)
             .map_err(|error| format!("{}:{}: {error}", error.line(), error.column()))
