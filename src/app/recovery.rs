@@ -252,6 +252,16 @@ impl Autosave {
 }
 
 static TERMINATE: AtomicBool = AtomicBool::new(false);
+/// The signal that asked, to end by it when the editor is too busy to close itself.
+static TERMINATING_SIGNAL: std::sync::atomic::AtomicI32 = std::sync::atomic::AtomicI32::new(0);
+/// Whether the window has begun to close after the request.
+static TERMINATION_HEARD: AtomicBool = AtomicBool::new(false);
+
+/// How long the editor may take to begin closing after SIGTERM, SIGINT or SIGHUP
+/// before the signal ends the process as it would any program: a frame stuck in a long
+/// computation (a huge graph's first layout) must not keep the process alive. The
+/// recovery file then holds the work as of the last autosave.
+pub const TERMINATION_GRACE: std::time::Duration = std::time::Duration::from_secs(3);
 
 /// Whether the process was asked to end (SIGTERM, SIGINT, SIGHUP) since
 /// [`watch_termination`].
@@ -259,15 +269,30 @@ pub fn termination_requested() -> bool {
     TERMINATE.load(Ordering::Relaxed)
 }
 
+/// Notes that the window is closing because of the request, so that the process is
+/// left to finish closing by itself.
+pub fn termination_heard() {
+    TERMINATION_HEARD.store(true, Ordering::SeqCst);
+}
+
+/// Ends the process by the signal that asked, with its default action.
+#[cfg(unix)]
+fn end_by_signal() {
+    let signal = TERMINATING_SIGNAL.load(Ordering::SeqCst);
+    // SAFETY: restoring the default action and raising a signal have no preconditions.
+    unsafe {
+        libc::signal(signal, libc::SIG_DFL);
+        libc::raise(signal);
+    }
+}
+
 #[cfg(unix)]
 extern "C" fn on_termination(signal: libc::c_int) {
+    TERMINATING_SIGNAL.store(signal, Ordering::SeqCst);
     if TERMINATE.swap(true, Ordering::SeqCst) {
-        // Asked twice: the editor did not get to end by itself. End now.
-        // SAFETY: signal and raise are async-signal-safe.
-        unsafe {
-            libc::signal(signal, libc::SIG_DFL);
-            libc::raise(signal);
-        }
+        // Asked twice: the editor did not get to end by itself. End now (signal and
+        // raise are async-signal-safe).
+        end_by_signal();
     }
 }
 
@@ -293,10 +318,17 @@ pub fn watch_termination(ctx: &egui::Context) {
         let _ = std::thread::Builder::new()
             .name("veneer signals".into())
             .spawn(move || {
+                let mut asked = None;
                 loop {
                     std::thread::sleep(std::time::Duration::from_millis(50));
                     if termination_requested() {
                         ctx.request_repaint();
+                        let since = *asked.get_or_insert_with(std::time::Instant::now);
+                        if !TERMINATION_HEARD.load(Ordering::SeqCst)
+                            && since.elapsed() > TERMINATION_GRACE
+                        {
+                            end_by_signal();
+                        }
                     }
                 }
             });

@@ -163,7 +163,7 @@ pub fn run(args: BatchArgs) -> Result<(), Failure> {
     let mut worst = 0u8;
     let mut failed = 0;
     for (number, line) in &jobs {
-        bar.set_message(line[1..3].join(" "));
+        bar.set_message(veneer::messages::printable(&line[1..3].join(" ")).into_owned());
         let outcome = Cli::try_parse_from(line)
             .map_err(|error| Failure::new(error.to_string().trim_end().to_string()))
             .and_then(super::execute);
