@@ -2,9 +2,10 @@
 
 use super::{Failure, in_file, load_graph, write_output};
 use clap::{Args, ValueEnum};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use veneer::codegen::export::{Target, export_compiled};
 use veneer::codegen::{CompileOptions, ParamMode, compile, describe_parameters};
+use veneer::fsutil::{Naming, OutputPlan, write_together};
 
 /// How parameters appear in the output.
 #[derive(Clone, Copy, ValueEnum)]
@@ -41,14 +42,39 @@ pub struct CompileArgs {
     parameters: super::parameters::ParameterArgs,
 }
 
+impl CompileArgs {
+    /// Adds the graph, the parameter file, the output and the description written beside
+    /// it to `plan`.
+    pub fn plan(&self, plan: &mut OutputPlan, job: Option<&str>) {
+        let by = super::by(job, &self.graph);
+        plan.reads(&self.graph, &by);
+        self.parameters.plan(plan, &by);
+        if let Some(output) = self.output.as_deref().and_then(super::output_file) {
+            plan.writes(output, Naming::Given, &by);
+            if self.describes_beside() {
+                plan.writes(description_path(output), Naming::Implied, &by);
+            }
+        }
+    }
+
+    fn param_mode(&self) -> ParamMode {
+        match self.params {
+            ParamsArg::Baked => ParamMode::Baked,
+            ParamsArg::Uniform => ParamMode::Named,
+            ParamsArg::Slots => ParamMode::Uniform,
+        }
+    }
+
+    /// Whether the parameters' description goes beside the shader file.
+    fn describes_beside(&self) -> bool {
+        !self.describe && self.param_mode() == ParamMode::Named
+    }
+}
+
 pub fn run(args: CompileArgs) -> Result<(), Failure> {
     let mut graph = load_graph(&args.graph)?;
     args.parameters.apply(&mut graph, &args.graph)?;
-    let params = match args.params {
-        ParamsArg::Baked => ParamMode::Baked,
-        ParamsArg::Uniform => ParamMode::Named,
-        ParamsArg::Slots => ParamMode::Uniform,
-    };
+    let params = args.param_mode();
     let compiled = compile(&graph, &CompileOptions::with_params(params))
         .map_err(|error| in_file(&args.graph, error))?;
     let description = describe_parameters(&compiled);
@@ -57,13 +83,26 @@ pub fn run(args: CompileArgs) -> Result<(), Failure> {
     }
     let bytes =
         export_compiled(&compiled, args.target).map_err(|error| in_file(&args.graph, error))?;
-    write_output(args.output.as_ref(), &bytes)?;
-    match &args.output {
-        Some(path) if path.as_os_str() != "-" && params == ParamMode::Named => {
-            write_output(Some(&description_path(path)), description.as_bytes())
-        }
-        _ => Ok(()),
+    match args.output.as_deref().and_then(super::output_file) {
+        Some(path) if args.describes_beside() && !super::names_folder(path) => write_both(
+            path,
+            &bytes,
+            &description_path(path),
+            description.as_bytes(),
+        ),
+        _ => write_output(args.output.as_ref(), &bytes),
     }
+}
+
+/// Writes the shader and its parameters' description together: neither is left
+/// without the other.
+fn write_both(shader: &Path, bytes: &[u8], description: &Path, text: &[u8]) -> Result<(), Failure> {
+    let files = [
+        (shader, Naming::Given, bytes),
+        (description, Naming::Implied, text),
+    ];
+    write_together(files)
+        .map_err(|(path, error)| Failure::new(format!("{}: cannot write: {error}", path.display())))
 }
 
 /// Where the parameter description of export `output` goes: `<stem>.parameters.json`

@@ -50,6 +50,13 @@ impl ParameterArgs {
         })
     }
 
+    /// Adds the parameter file, if any, to the files `by` reads.
+    pub fn plan(&self, plan: &mut veneer::fsutil::OutputPlan, by: &str) {
+        if let Some(path) = &self.params_file {
+            plan.reads(path, by);
+        }
+    }
+
     /// Applies the options to `graph`, read from `path` (named in errors).
     pub fn apply(&self, graph: &mut Graph, path: &Path) -> Result<(), Failure> {
         self.overrides()?

@@ -124,7 +124,10 @@ fn regular_files_under_dev_and_proc_are_replaced_whole() {
             Path::new("/dev/../tmp").join(&tmp_name),
             Path::new("/tmp").join(&tmp_name),
         ),
-        (Path::new("/proc/self/cwd/y.wgsl").to_path_buf(), cwd.join("y.wgsl")),
+        (
+            Path::new("/proc/self/cwd/y.wgsl").to_path_buf(),
+            cwd.join("y.wgsl"),
+        ),
     ];
     for (given, real) in &cases {
         std::fs::write(real, &stale).unwrap();
@@ -179,13 +182,17 @@ fn an_output_that_is_an_input_is_refused_and_the_input_kept() {
     // The mesh a glTF export reads.
     succeeded(&run_in(
         &dir,
-        &["bake", "g.ron", "--size", "8", "--mesh", "torus:6", "--gltf", "m.glb"],
+        &[
+            "bake", "g.ron", "--size", "8", "--mesh", "torus:6", "--gltf", "m.glb",
+        ],
     ));
     let mesh = std::fs::read(dir.join("m.glb")).unwrap();
     refused(
         &run_in(
             &dir,
-            &["bake", "g.ron", "--size", "8", "--mesh", "m.glb", "--gltf", "m.glb"],
+            &[
+                "bake", "g.ron", "--size", "8", "--mesh", "m.glb", "--gltf", "m.glb",
+            ],
         ),
         &["m.glb: ", same],
     );
@@ -218,7 +225,11 @@ fn an_output_that_is_an_input_is_refused_and_the_input_kept() {
     std::fs::write(dir.join("batch.json"), &batch).unwrap();
     refused(
         &run_in(&dir, &["batch", "batch.json"]),
-        &["batch.json: ", "job 1 (compile", "would replace the input of the batch"],
+        &[
+            "batch.json: ",
+            "job 1 (compile",
+            "would replace the input of the batch",
+        ],
     );
     unchanged(&dir.join("batch.json"), batch.as_bytes());
     std::fs::remove_dir_all(&dir).unwrap();
@@ -236,7 +247,12 @@ fn outputs_that_collide_are_refused_with_both_names() {
     std::fs::write(dir.join("batch.json"), batch.to_string()).unwrap();
     refused(
         &run_in(&dir, &["batch", "batch.json"]),
-        &["out.wgsl: ", "job 1 (compile", "job 2 (compile", "would write this file"],
+        &[
+            "out.wgsl: ",
+            "job 1 (compile",
+            "job 2 (compile",
+            "would write this file",
+        ],
     );
     assert!(!dir.join("out.wgsl").exists(), "no job ran");
     // Two snapshot graphs with one stem share a golden, updated or compared.
@@ -268,7 +284,9 @@ fn a_failed_gltf_export_removes_what_it_wrote() {
     std::fs::create_dir(dir.join("out_orm.png")).unwrap();
     let output = run_in(
         &dir,
-        &["bake", "g.ron", "--size", "8", "--mesh", "torus:6", "--gltf", "out.gltf"],
+        &[
+            "bake", "g.ron", "--size", "8", "--mesh", "torus:6", "--gltf", "out.gltf",
+        ],
     );
     refused(&output, &["out_orm.png: ", "it is a folder"]);
     assert!(!message(&output).contains("the old file is unchanged"));
@@ -282,7 +300,10 @@ fn a_failed_gltf_export_removes_what_it_wrote() {
 fn a_report_that_cannot_be_written_writes_nothing() {
     let dir = temp_dir("failed-report");
     std::fs::create_dir_all(dir.join("report/precision.png")).unwrap();
-    let output = run_in(&dir, &["report", "--quick", "--repetitions", "1", "-o", "report"]);
+    let output = run_in(
+        &dir,
+        &["report", "--quick", "--repetitions", "1", "-o", "report"],
+    );
     refused(&output, &["report/precision.png: ", "it is a folder"]);
     let left: Vec<_> = std::fs::read_dir(dir.join("report"))
         .unwrap()
@@ -304,7 +325,10 @@ fn files_veneer_names_itself_are_never_written_through_links() {
     std::fs::create_dir(dir.join("gold")).unwrap();
     plant("gold/base.actual.png");
     refused_with(
-        &run_in(&dir, &["snapshot", "base.ron", "--golden", "gold", "--size", "16"]),
+        &run_in(
+            &dir,
+            &["snapshot", "base.ron", "--golden", "gold", "--size", "16"],
+        ),
         2,
         &["gold/base.actual.png: ", link_refused],
     );
@@ -313,7 +337,9 @@ fn files_veneer_names_itself_are_never_written_through_links() {
     refused_with(
         &run_in(
             &dir,
-            &["snapshot", "base.ron", "--golden", "gold", "--size", "16", "--update"],
+            &[
+                "snapshot", "base.ron", "--golden", "gold", "--size", "16", "--update",
+            ],
         ),
         2,
         &["gold/base.png: ", link_refused],
@@ -323,7 +349,9 @@ fn files_veneer_names_itself_are_never_written_through_links() {
     refused(
         &run_in(
             &dir,
-            &["bake", "base.ron", "--size", "8", "--mesh", "torus:6", "--gltf", "out.gltf"],
+            &[
+                "bake", "base.ron", "--size", "8", "--mesh", "torus:6", "--gltf", "out.gltf",
+            ],
         ),
         &["out_basecolor.png: ", link_refused],
     );
