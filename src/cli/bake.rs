@@ -95,9 +95,7 @@ impl BakeArgs {
     /// (each graph's maps, or the glTF files) to `plan`.
     pub fn plan(&self, plan: &mut OutputPlan, job: Option<&str>) {
         for graph in &self.graphs {
-            let by = super::by(job, graph);
-            plan.reads(graph, &by);
-            self.parameters.plan(plan, &by);
+            let by = self.parameters.plan_graph(plan, job, graph);
             if let Some(mesh) = &self.mesh {
                 super::plan_mesh(plan, mesh, &by);
             }

@@ -46,9 +46,7 @@ impl CompileArgs {
     /// Adds the graph, the parameter file, the output and the description written beside
     /// it to `plan`.
     pub fn plan(&self, plan: &mut OutputPlan, job: Option<&str>) {
-        let by = super::by(job, &self.graph);
-        plan.reads(&self.graph, &by);
-        self.parameters.plan(plan, &by);
+        let by = self.parameters.plan_graph(plan, job, &self.graph);
         if let Some(output) = self.output.as_deref().and_then(super::output_file) {
             plan.writes(output, Naming::Given, &by);
             if self.describes_beside() {

@@ -50,11 +50,20 @@ impl ParameterArgs {
         })
     }
 
-    /// Adds the parameter file, if any, to the files `by` reads.
-    pub fn plan(&self, plan: &mut veneer::fsutil::OutputPlan, by: &str) {
+    /// Adds `graph` and the parameter file, if any, to the files `plan` reads, as read by
+    /// `job` (a batch's) or else the graph; gives that reader's name.
+    pub fn plan_graph(
+        &self,
+        plan: &mut veneer::fsutil::OutputPlan,
+        job: Option<&str>,
+        graph: &Path,
+    ) -> String {
+        let by = super::by(job, graph);
+        plan.reads(graph, &by);
         if let Some(path) = &self.params_file {
-            plan.reads(path, by);
+            plan.reads(path, &by);
         }
+        by
     }
 
     /// Applies the options to `graph`, read from `path` (named in errors).

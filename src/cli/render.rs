@@ -154,9 +154,7 @@ impl RenderArgs {
     /// Adds the graph, the parameter file, the mesh and environment files and the image
     /// to `plan`.
     pub fn plan(&self, plan: &mut OutputPlan, job: Option<&str>) {
-        let by = super::by(job, &self.graph);
-        plan.reads(&self.graph, &by);
-        self.parameters.plan(plan, &by);
+        let by = self.parameters.plan_graph(plan, job, &self.graph);
         if let Some(mesh) = &self.mesh {
             super::plan_mesh(plan, mesh, &by);
         }

@@ -58,9 +58,7 @@ impl SnapshotArgs {
     /// render and difference images a mismatch leaves beside them written.
     pub fn plan(&self, plan: &mut OutputPlan, job: Option<&str>) {
         for graph in &self.graphs {
-            let by = super::by(job, graph);
-            plan.reads(graph, &by);
-            self.parameters.plan(plan, &by);
+            let by = self.parameters.plan_graph(plan, job, graph);
             let golden = self.golden(graph);
             let (read, written) = if self.updating() {
                 (vec![], vec![golden.clone(), beside(&golden, "snap.ron")])

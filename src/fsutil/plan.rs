@@ -10,6 +10,7 @@
 //! replaced, so two writers may share one (`/dev/null`).
 
 use super::Naming;
+use std::collections::HashMap;
 use std::os::unix::fs::{FileTypeExt, MetadataExt};
 use std::path::{Component, Path, PathBuf};
 
@@ -63,21 +64,24 @@ impl OutputPlan {
                 return Err(format!("{}: cannot write: {error}", entry.path.display()));
             }
         }
-        let reads: Vec<(Identity, &Entry)> = (self.reads.iter())
-            .filter_map(|entry| Some((identity(&entry.path)?, entry)))
-            .collect();
-        let mut written: Vec<(Identity, &Entry)> = Vec::new();
+        let mut reads: HashMap<Identity, &Entry> = HashMap::new();
+        for entry in &self.reads {
+            if let Some(id) = identity(&entry.path) {
+                reads.entry(id).or_insert(entry);
+            }
+        }
+        let mut written: HashMap<Identity, &Entry> = HashMap::new();
         for (output, _) in &self.writes {
             let Some(id) = identity(&output.path) else {
                 continue;
             };
-            if let Some((_, input)) = reads.iter().find(|(other, _)| *other == id) {
+            if let Some(input) = reads.get(&id) {
                 return Err(replaces_input(output, input));
             }
-            if let Some((_, first)) = written.iter().find(|(other, _)| *other == id) {
+            if let Some(first) = written.get(&id) {
                 return Err(written_twice(first, output));
             }
-            written.push((id, output));
+            written.insert(id, output);
         }
         Ok(())
     }
@@ -119,7 +123,7 @@ fn written_twice(first: &Entry, second: &Entry) -> String {
 }
 
 /// Which file a path is, for telling two paths to one file apart from two files.
-#[derive(Debug, PartialEq, Eq)]
+#[derive(Debug, PartialEq, Eq, Hash)]
 enum Identity {
     /// An existing file: its device and inode.
     File(u64, u64),
