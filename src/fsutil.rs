@@ -9,7 +9,7 @@ mod write;
 
 pub use plan::OutputPlan;
 pub use write::{
-    Naming, STALE_TEMPORARY_AGE, Staged, commit, open_stream, stage, write_atomic,
+    Naming, STALE_TEMPORARY_AGE, Staged, commit, is_stream, open_stream, stage, write_atomic,
     write_atomic_with, write_implied, write_together,
 };
 

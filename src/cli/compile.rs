@@ -32,7 +32,8 @@ pub struct CompileArgs {
     #[arg(long, value_enum, default_value = "baked")]
     params: ParamsArg,
     /// Output file (stdout when absent or `-`). With `--params uniform`, the JSON
-    /// description of the parameters is written beside it as `<stem>.parameters.json`.
+    /// description of the parameters is written beside it as `<stem>.parameters.json`
+    /// (unless it is a device or a pipe).
     #[arg(short, long)]
     output: Option<PathBuf>,
     /// Print the JSON description of the exposed parameters instead of the shader.
@@ -63,9 +64,12 @@ impl CompileArgs {
         }
     }
 
-    /// Whether the parameters' description goes beside the shader file.
+    /// Whether the parameters' description goes beside the shader file: with `--params
+    /// uniform`, when the shader goes to a file (not to stdout, a device or a pipe).
     fn describes_beside(&self) -> bool {
-        !self.describe && self.param_mode() == ParamMode::Named
+        let file = (self.output.as_deref().and_then(super::output_file))
+            .is_some_and(|output| !veneer::fsutil::is_stream(output));
+        file && !self.describe && self.param_mode() == ParamMode::Named
     }
 }
 

@@ -11,7 +11,7 @@
 
 use super::Naming;
 use std::collections::HashMap;
-use std::os::unix::fs::{FileTypeExt, MetadataExt};
+use std::os::unix::fs::MetadataExt;
 use std::path::{Component, Path, PathBuf};
 
 /// What a command (or batch) reads and writes.
@@ -133,8 +133,10 @@ enum Identity {
 
 /// The identity of `path`; `None` for a stream (a character device or FIFO).
 fn identity(path: &Path) -> Option<Identity> {
+    if super::is_stream(path) {
+        return None;
+    }
     match std::fs::metadata(path) {
-        Ok(found) if found.file_type().is_char_device() || found.file_type().is_fifo() => None,
         Ok(found) => Some(Identity::File(found.dev(), found.ino())),
         Err(_) => Some(Identity::Location(location(path))),
     }

@@ -213,6 +213,15 @@ fn route(path: &Path, naming: Naming) -> io::Result<Route> {
     }
 }
 
+/// Whether `path` (links followed) is a stream — a character device or a FIFO — which is
+/// written in order rather than replaced, and beside which nothing is put.
+pub fn is_stream(path: &Path) -> bool {
+    std::fs::metadata(path).is_ok_and(|found| {
+        let kind = found.file_type();
+        kind.is_char_device() || kind.is_fifo()
+    })
+}
+
 /// The refusal of a file Veneer names itself that is not a regular file at its path
 /// (`entry`: its metadata, links not followed); the output plan refuses with it too.
 pub(super) fn not_own_file(entry: &Metadata) -> io::Error {

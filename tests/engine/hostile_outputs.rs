@@ -156,6 +156,26 @@ fn regular_files_under_dev_and_proc_are_replaced_whole() {
 }
 
 #[test]
+fn nothing_is_written_beside_a_device() {
+    let dir = temp_dir("beside-device");
+    let beside = Path::new("/dev/null.parameters.json");
+    let _ = std::fs::remove_file(beside);
+    succeeded(&run_in(
+        &dir,
+        &[
+            "compile",
+            &preset("wood"),
+            "--params",
+            "uniform",
+            "-o",
+            "/dev/null",
+        ],
+    ));
+    assert!(!beside.exists(), "a description was written into /dev");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
 fn an_output_that_is_an_input_is_refused_and_the_input_kept() {
     let dir = temp_dir("output-is-input");
     copy_preset("wood", &dir, "g.ron");
