@@ -154,14 +154,22 @@ fn start_time(pid: u32) -> Option<u64> {
     rest.split_whitespace().nth(19)?.parse().ok()
 }
 
-/// Writes `recovery` to the recovery file `path` (atomically).
+/// Writes `recovery` to the recovery file `path` (atomically, and only as a regular file
+/// of its own: a link or special file there is refused).
 pub fn autosave(path: &Path, recovery: &Recovery) -> std::io::Result<()> {
+    let text = ron::ser::to_string_pretty(recovery, ron::ser::PrettyConfig::new().depth_limit(2))
+        .map_err(std::io::Error::other)?;
+    write_own_file(path, &text)
+}
+
+/// Writes one of the editor's own files (a recovery file, the recent list), making its
+/// folder when missing; it is never written through a link nor into a FIFO or device
+/// that stands at its path ([`crate::fsutil::Naming::Implied`]).
+fn write_own_file(path: &Path, text: &str) -> std::io::Result<()> {
     if let Some(folder) = path.parent() {
         std::fs::create_dir_all(folder)?;
     }
-    let text = ron::ser::to_string_pretty(recovery, ron::ser::PrettyConfig::new().depth_limit(2))
-        .map_err(std::io::Error::other)?;
-    crate::fsutil::write_atomic(path, text.as_bytes())
+    crate::fsutil::write_implied(path, text.as_bytes())
 }
 
 /// Removes a recovery file (once its work is saved, discarded or recovered elsewhere).
@@ -349,15 +357,11 @@ pub fn load_recent(recovery_file: &Path) -> Vec<PathBuf> {
         .unwrap_or_default()
 }
 
-/// Saves the recent-files list (atomically).
+/// Saves the recent-files list (as [`autosave`] writes).
 pub fn save_recent(recovery_file: &Path, recent: &[PathBuf]) -> std::io::Result<()> {
-    let path = recent_path(recovery_file);
-    if let Some(folder) = path.parent() {
-        std::fs::create_dir_all(folder)?;
-    }
     let text = ron::ser::to_string_pretty(&recent, ron::ser::PrettyConfig::new())
         .map_err(std::io::Error::other)?;
-    crate::fsutil::write_atomic(&path, text.as_bytes())
+    write_own_file(&recent_path(recovery_file), &text)
 }
 
 /// The text of a RON file of ours, if it is a readable regular file within the limit
@@ -408,6 +412,18 @@ mod tests {
         }
         child.wait().unwrap();
         assert!(!running(pid, None));
+    }
+
+    #[test]
+    fn a_fifo_where_the_recent_list_goes_is_refused_at_once() {
+        let dir = tempfile::tempdir().unwrap();
+        let base = dir.path().join("recovery.ron");
+        crate::fsutil::tests::mkfifo(&recent_path(&base));
+        let saved = crate::fsutil::tests::returns(move || {
+            save_recent(&base, &[PathBuf::from("a.ron")]).map_err(|e| e.to_string())
+        });
+        let error = saved.unwrap_err();
+        assert!(error.contains("FIFO"), "{error}");
     }
 
     #[test]

@@ -50,6 +50,22 @@ impl ParameterArgs {
         })
     }
 
+    /// Adds `graph` and the parameter file, if any, to the files `plan` reads, as read by
+    /// `job` (a batch's) or else the graph; gives that reader's name.
+    pub fn plan_graph(
+        &self,
+        plan: &mut veneer::fsutil::OutputPlan,
+        job: Option<&str>,
+        graph: &Path,
+    ) -> String {
+        let by = super::by(job, graph);
+        plan.reads(graph, &by);
+        if let Some(path) = &self.params_file {
+            plan.reads(path, &by);
+        }
+        by
+    }
+
     /// Applies the options to `graph`, read from `path` (named in errors).
     pub fn apply(&self, graph: &mut Graph, path: &Path) -> Result<(), Failure> {
         self.overrides()?

@@ -21,6 +21,7 @@ mod groups;
 mod hostile_cli;
 mod hostile_files;
 mod hostile_messages;
+mod hostile_outputs;
 mod hostile_scale;
 mod image_based_lighting;
 mod limits;
