@@ -113,7 +113,7 @@ fn regular(metadata: &Metadata, limit: ReadLimit) -> io::Result<()> {
 
 /// What a file is, for messages: `a folder`, `a FIFO (named pipe)`, … (`metadata` from
 /// `symlink_metadata` can also say `a symbolic link`).
-fn what_it_is(metadata: &Metadata) -> &'static str {
+pub fn what_it_is(metadata: &Metadata) -> &'static str {
     let kind = metadata.file_type();
     if kind.is_dir() {
         "a folder"

@@ -37,13 +37,15 @@ pub fn preview_mesh(name: &str) -> Result<Mesh, MeshError> {
 /// Why an existing `path` without an extension is not read as a mesh: it is not a
 /// regular file (a device, FIFO or folder, said as such), or its format is unknown.
 fn not_a_mesh_file(path: &std::path::Path) -> String {
-    let format = format!(
-        "a mesh file's format is taken from its extension ({}), and this name has none",
-        load::EXTENSIONS.join(", ")
-    );
-    match crate::fsutil::read_limited(path, crate::fsutil::ReadLimit { what: "", bytes: 0 }) {
-        Err(error) if error.kind() == std::io::ErrorKind::InvalidInput => error.to_string(),
-        _ => format,
+    match std::fs::metadata(path) {
+        Ok(metadata) if !metadata.is_file() => format!(
+            "it is {}, not a mesh file",
+            crate::fsutil::what_it_is(&metadata)
+        ),
+        _ => format!(
+            "a mesh file's format is taken from its extension ({}), and this name has none",
+            load::EXTENSIONS.join(", ")
+        ),
     }
 }
 
