@@ -5,7 +5,7 @@ use super::Failure;
 use clap::Args;
 use std::path::{Path, PathBuf};
 use veneer::graph::Graph;
-use veneer::graph::parameters::{Given, Overrides};
+use veneer::graph::parameters::{Given, Overrides, ParameterFile};
 
 /// Values for the graph's exposed parameters (see `veneer compile --describe`).
 #[derive(Args, Clone, Debug, Default)]
@@ -40,8 +40,8 @@ impl ParameterArgs {
     pub fn overrides(&self) -> Result<Overrides, Failure> {
         let mut values = Vec::new();
         if let Some(path) = &self.params_file {
-            let file: std::collections::BTreeMap<String, Given> = super::read_ron_or_json(path)?;
-            values.extend(file);
+            let file: ParameterFile = super::read_ron_or_json(path)?;
+            values.extend(file.0);
         }
         values.extend(self.set.iter().cloned());
         Ok(Overrides {

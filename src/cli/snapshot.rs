@@ -129,7 +129,10 @@ pub fn run(args: SnapshotArgs) -> Result<(), Failure> {
             .map(|s| s.to_string_lossy().into_owned())
             .unwrap_or_default();
         let golden = match &args.parameters.preset {
-            Some(preset) => args.golden.join(format!("{stem}.{preset}.png")),
+            Some(preset) => {
+                veneer::graph::names::file_name_part("preset", preset).map_err(bad_input)?;
+                args.golden.join(format!("{stem}.{preset}.png"))
+            }
             None => args.golden.join(format!("{stem}.png")),
         };
         let report = check(&gpu, graph, &golden, &settings, update)
