@@ -145,7 +145,10 @@ fn build(fuzz: &FuzzGraph) -> Graph {
     let mut top = nodes(&fuzz.top, &names);
     if chain > 0 {
         let id = NodeId(top.len() as u32 + 1);
-        top.push(Node::new(id, NodeKind::Group(Group::named("chain0".into()))));
+        top.push(Node::new(
+            id,
+            NodeKind::Group(Group::named("chain0".into())),
+        ));
     }
     top.push(Node::new(NodeId(top.len() as u32 + 1), NodeKind::Material));
     graph.wires = wires(&fuzz.wires, top.len());
@@ -176,7 +179,11 @@ fuzz_target!(|fuzz: FuzzGraph| {
     let saved = veneer::graph::to_ron(&graph);
     let reloaded =
         veneer::graph::from_ron(&saved).unwrap_or_else(|error| panic!("{error}\n{saved}"));
-    assert_eq!(veneer::graph::to_ron(&reloaded), saved, "save → load → save changed the text");
+    assert_eq!(
+        veneer::graph::to_ron(&reloaded),
+        saved,
+        "save → load → save changed the text"
+    );
     if checked.is_ok() {
         for params in [ParamMode::Baked, ParamMode::Named] {
             let options = CompileOptions {

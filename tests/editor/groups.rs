@@ -429,3 +429,37 @@ fn a_group_that_contains_itself_never_edits_the_document_and_says_why() {
     assert_eq!(text(&harness), opened);
     assert!(!harness.state().document.is_dirty());
 }
+
+/// A graph whose albedo is group `wide`'s result, `wide` declaring `inputs` inputs of
+/// which the first scales the result.
+fn wide_group(inputs: usize) -> String {
+    let declared: Vec<String> = (0..inputs)
+        .map(|k| format!("(name: \"i{k}\", ty: Float, default: Float(0.5))"))
+        .collect();
+    format!(
+        "(\n    version: 2,\n    nodes: [\n        (id: 1, label: \"wide\", kind: Group(name: \"wide\"), inputs: {{}}, position: (0.0, 0.0)),\n        (id: 2, label: \"material\", kind: Material, inputs: {{}}, position: (400.0, 0.0)),\n    ],\n    wires: [\n        (from: (node: 1, pin: \"result\"), to: (node: 2, pin: \"albedo\")),\n    ],\n    groups: {{\n        \"wide\": (inputs: [{}], outputs: [(name: \"result\", ty: Float)], nodes: [(id: 1, kind: Math(op: Multiply, ty: Float), inputs: {{}}, position: (0.0, 0.0))], wires: [(from: (node: 0, pin: \"i0\"), to: (node: 1, pin: \"a\")), (from: (node: 1, pin: \"result\"), to: (node: 0, pin: \"result\"))]),\n    }},\n)\n",
+        declared.join(", ")
+    )
+}
+
+#[test]
+fn a_group_with_more_inputs_than_a_group_may_show_opens_unchanged_and_says_why() {
+    // A group of 10⁵ inputs kept the editor busy on every frame.
+    let dir = scratch("group-wide");
+    for (inputs, problem) in [
+        (100_000, Some("more than the 1,024 a group may show")),
+        (1_024, None),
+    ] {
+        let path = dir.join(format!("wide-{inputs}.ron"));
+        std::fs::write(&path, wide_group(inputs)).expect("the graph is written");
+        let opened = to_ron(&veneer::graph::load(&path).expect("loads"));
+        let mut harness = editor(&dir, Some(path));
+        harness.run_steps(4);
+        assert_eq!(text(&harness), opened, "{inputs} inputs");
+        assert!(!harness.state().document.is_dirty());
+        match problem {
+            Some(problem) => assert!(shows(&harness, problem), "{inputs} inputs"),
+            None => assert!(harness.state().live.errors.is_empty(), "{inputs} inputs"),
+        }
+    }
+}
