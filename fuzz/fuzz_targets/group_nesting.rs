@@ -25,15 +25,9 @@ enum FuzzNode {
     Instance(u16),
 }
 
-/// A wire between nodes by index (0: the group's boundary inside a definition) and
-/// pins by index into [`PINS`].
-#[derive(Arbitrary, Debug)]
-struct FuzzWire {
-    from: u8,
-    output: u8,
-    to: u8,
-    input: u8,
-}
+/// A wire: from node, output pin, to node, input pin; nodes by index (0: the group's
+/// boundary inside a definition), pins by index into [`PINS`].
+type FuzzWire = [u8; 4];
 
 #[derive(Arbitrary, Debug)]
 struct FuzzGroup {
@@ -79,11 +73,11 @@ fn nodes(fuzz: &[FuzzNode], names: &[String]) -> Vec<Node> {
 /// The wires of `fuzz` between `count` nodes (ids from 1; 0 the boundary).
 fn wires(fuzz: &[FuzzWire], count: usize) -> Vec<Wire> {
     fuzz.iter()
-        .map(|wire| {
+        .map(|&[from, output, to, input]| {
             let node = |k: u8| NodeId(k as u32 % (count as u32 + 1));
             Wire {
-                from: PinRef::new(node(wire.from), &pin(wire.output)),
-                to: PinRef::new(node(wire.to), &pin(wire.input)),
+                from: PinRef::new(node(from), &pin(output)),
+                to: PinRef::new(node(to), &pin(input)),
             }
         })
         .collect()

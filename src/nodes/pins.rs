@@ -133,31 +133,31 @@ impl Signature {
 
     /// The input pin called `name` and its index.
     pub fn input(&self, name: &str) -> Option<(usize, &InputPin)> {
-        let indexed = self.index.as_ref().and_then(|index| index.inputs.get(name));
-        match indexed.and_then(|&k| Some((k, self.inputs.get(k)?))) {
-            Some((k, pin)) if pin.name == name => Some((k, pin)),
-            _ => self
-                .inputs
-                .iter()
-                .enumerate()
-                .find(|(_, pin)| pin.name == name),
-        }
+        let index = self.index.as_ref().map(|index| &index.inputs);
+        find(&self.inputs, index, name, |pin| pin.name)
     }
 
     /// The output pin called `name` and its index.
     pub fn output(&self, name: &str) -> Option<(usize, &OutputPin)> {
-        let indexed = self
-            .index
-            .as_ref()
-            .and_then(|index| index.outputs.get(name));
-        match indexed.and_then(|&k| Some((k, self.outputs.get(k)?))) {
-            Some((k, pin)) if pin.name == name => Some((k, pin)),
-            _ => self
-                .outputs
-                .iter()
-                .enumerate()
-                .find(|(_, pin)| pin.name == name),
-        }
+        let index = self.index.as_ref().map(|index| &index.outputs);
+        find(&self.outputs, index, name, |pin| pin.name)
+    }
+}
+
+/// The first pin called `name` among `pins` and its index: where `index` says, when
+/// that pin has the name, else found by a scan.
+fn find<'p, P>(
+    pins: &'p [P],
+    index: Option<&std::collections::HashMap<&'static str, usize>>,
+    name: &str,
+    name_of: impl Fn(&P) -> &str,
+) -> Option<(usize, &'p P)> {
+    let indexed = index
+        .and_then(|index| index.get(name))
+        .and_then(|&k| Some((k, pins.get(k)?)));
+    match indexed {
+        Some((k, pin)) if name_of(pin) == name => Some((k, pin)),
+        _ => pins.iter().enumerate().find(|(_, pin)| name_of(pin) == name),
     }
 }
 

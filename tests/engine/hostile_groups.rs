@@ -11,11 +11,11 @@ use std::time::Duration;
 /// How long any one command may take before the test calls it a hang.
 const HANG: Duration = Duration::from_secs(120);
 
-/// The deepest nesting accepted (see `graph::nesting`).
-const DEPTH: usize = 32;
+/// The deepest nesting accepted.
+const DEPTH: usize = veneer::graph::group::MAX_GROUP_DEPTH;
 
 /// The most inputs a group shows.
-const PINS: usize = 1_024;
+const PINS: usize = veneer::graph::group::MAX_GROUP_PINS;
 
 /// A graph whose albedo comes through groups `g0` › `g1` › … nested `depth` deep, each
 /// holding `copies` nodes of the next (their results added); the innermost multiplies
@@ -178,10 +178,12 @@ fn groups_nested_to_the_limit_check_set_and_render() {
 #[test]
 fn groups_that_multiply_past_a_million_nodes_are_refused() {
     // Two nodes of the next group at each of 24 levels stand for 2²⁴ nodes: 16 million
-    // from a file of 6 kB, which inlining took without end.
+    // from a file of 6 kB, which inlining took without end (nor could a driver take it).
     let dir = temp_dir("groups-multiplying");
     let graph = write(&dir, "doubling.ron", &nested(24, 2));
-    let message = refused(&run(&dir, &["check", &graph]), "more than 1,000,000 nodes");
+    let limit = veneer::graph::group::MAX_INLINED_NODES as usize;
+    let expected = format!("group nodes stand for more than {} nodes", thousands(limit));
+    let message = refused(&run(&dir, &["check", &graph]), &expected);
     assert!(
         message.contains("group node stands for every node"),
         "{message}"
@@ -282,6 +284,16 @@ fn a_preset_name_never_reaches_a_path_outside_the_golden_folder() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// `veneer args` in the repository root, with the user library in `library`.
+fn with_library(library: &Path, args: &[&str]) -> std::process::Output {
+    veneer()
+        .current_dir(root(""))
+        .args(args)
+        .env("VENEER_LIBRARY", library)
+        .output()
+        .expect("the veneer binary runs")
+}
+
 #[test]
 fn a_linked_group_named_out_of_the_library_keeps_the_graphs_copy_and_is_refused() {
     let dir = temp_dir("groups-library-name");
@@ -301,11 +313,7 @@ fn a_linked_group_named_out_of_the_library_keeps_the_graphs_copy_and_is_refused(
             "\"../victim/libevil\": (linked: true, inputs",
         );
     let graph = write(&dir, "g.ron", &text);
-    let output = veneer()
-        .args(["check", &graph])
-        .env("VENEER_LIBRARY", &library)
-        .output()
-        .expect("runs");
+    let output = with_library(&library, &["check", &graph]);
     let message = refused(&output, "group name '../victim/libevil'");
     assert!(!message.contains("planted"), "{message}");
     // Loading keeps the graph's own copy: the name is not looked up at all.
@@ -327,12 +335,7 @@ fn unreadable_library_files_are_named_in_a_warning() {
     )
     .unwrap();
     let check = |graph: &str| {
-        let output = veneer()
-            .current_dir(root(""))
-            .args(["check", graph])
-            .env("VENEER_LIBRARY", &library)
-            .output()
-            .expect("runs");
+        let output = with_library(&library, &["check", graph]);
         assert!(
             output.status.success(),
             "{}",
