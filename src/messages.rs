@@ -2,6 +2,7 @@
 //! and at most [`MAX_LINES`] different lines, so that a hostile file (a million duplicate
 //! wires) gets a summary instead of a million lines.
 
+use std::borrow::Cow;
 use std::collections::HashMap;
 
 /// The most different lines a summary keeps; the rest are counted in its last line.
@@ -50,6 +51,27 @@ pub fn thousands(n: usize) -> String {
     text
 }
 
+/// `text` safe to print on a terminal: control characters other than line breaks and
+/// tabs (ANSI and OSC escape sequences begin with one) and the C1 controls are written
+/// as Rust escapes (`\u{1b}`), so a label or file name taken from a file cannot move
+/// the cursor, recolour, retitle or clear the user's terminal. Text without them is
+/// borrowed unchanged.
+pub fn printable(text: &str) -> Cow<'_, str> {
+    let unsafe_char = |c: char| c.is_control() && c != '\n' && c != '\t';
+    if !text.contains(unsafe_char) {
+        return Cow::Borrowed(text);
+    }
+    let mut escaped = String::with_capacity(text.len() + 8);
+    for c in text.chars() {
+        if unsafe_char(c) {
+            escaped.extend(c.escape_unicode());
+        } else {
+            escaped.push(c);
+        }
+    }
+    Cow::Owned(escaped)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -61,6 +83,15 @@ mod tests {
         assert_eq!(thousands(1000), "1,000");
         assert_eq!(thousands(999_999), "999,999");
         assert_eq!(thousands(1_234_567), "1,234,567");
+    }
+
+    #[test]
+    fn terminal_controls_are_escaped_and_text_kept() {
+        assert!(matches!(printable("wood\tring 1\n"), Cow::Borrowed(_)));
+        assert_eq!(
+            printable("\u{1b}[2J\u{1b}]0;pwned\u{7}node\r\u{9b}31m é"),
+            "\\u{1b}[2J\\u{1b}]0;pwned\\u{7}node\\u{d}\\u{9b}31m é"
+        );
     }
 
     #[test]

@@ -92,6 +92,7 @@ impl VeneerApp {
             self.message = Some(format!("autosave failed: {error}"));
         }
         if recovery::termination_requested() && !self.allowed_to_close {
+            recovery::termination_heard();
             // Unsaved work stays for the next start; a clean document leaves nothing.
             let _ = self.autosave.write_now(&self.document);
             self.allowed_to_close = true;

@@ -30,7 +30,8 @@ impl Document {
         }
     }
 
-    /// A document that starts dirty (recovered work, never saved as such).
+    /// A document that starts dirty: recovered work, never saved as such, or a file
+    /// whose nodes were laid out on opening.
     pub fn recovered(mut graph: Graph, path: Option<PathBuf>) -> Document {
         graph.canonicalize();
         Document {

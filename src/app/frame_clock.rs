@@ -91,12 +91,14 @@ pub struct FrameLog {
 pub const FRAME_LOG_HEADER: &str = "unix_seconds,main_thread_ms,revision,compiles";
 
 impl FrameLog {
-    /// Creates (or empties) `path` and writes the header.
+    /// Creates (or empties) `path` and writes the header. `path` is opened by what it is
+    /// ([`crate::fsutil::open_stream`]): a FIFO without a reader is refused at once.
     pub fn create(path: &Path) -> Result<FrameLog, String> {
         let failed = |error: std::io::Error| {
             format!("{}: cannot write the frame log: {error}", path.display())
         };
-        let mut file = std::io::BufWriter::new(std::fs::File::create(path).map_err(failed)?);
+        let file = crate::fsutil::open_stream(path).map_err(failed)?;
+        let mut file = std::io::BufWriter::new(file);
         writeln!(file, "{FRAME_LOG_HEADER}").map_err(failed)?;
         file.flush().map_err(failed)?;
         Ok(FrameLog { file })

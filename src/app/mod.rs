@@ -264,10 +264,22 @@ impl VeneerApp {
     /// Opens a graph file; a bad file is refused with a message and loses nothing.
     pub fn open(&mut self, path: PathBuf) {
         match crate::graph::load(&path) {
-            Ok(graph) => {
+            Ok(mut graph) => {
                 self.remember(&path);
-                self.load(Document::new(graph, Some(path)));
-                self.message = None;
+                // Nodes drawn on top of each other hide each other, and ten thousand of
+                // them at one point are more geometry than egui draws in a frame.
+                let stacked = crate::graph::layout::unstack_levels(&mut graph);
+                self.load(if stacked == 0 {
+                    Document::new(graph, Some(path))
+                } else {
+                    Document::recovered(graph, Some(path))
+                });
+                self.message = (stacked > 0).then(|| {
+                    format!(
+                        "{} nodes lay on top of others and were laid out; save to keep it",
+                        crate::messages::thousands(stacked)
+                    )
+                });
             }
             Err(error) => self.dialog = Some(Dialog::Message(error.to_string())),
         }

@@ -154,14 +154,22 @@ fn start_time(pid: u32) -> Option<u64> {
     rest.split_whitespace().nth(19)?.parse().ok()
 }
 
-/// Writes `recovery` to the recovery file `path` (atomically).
+/// Writes `recovery` to the recovery file `path` (atomically, and only as a regular file
+/// of its own: a link or special file there is refused).
 pub fn autosave(path: &Path, recovery: &Recovery) -> std::io::Result<()> {
+    let text = ron::ser::to_string_pretty(recovery, ron::ser::PrettyConfig::new().depth_limit(2))
+        .map_err(std::io::Error::other)?;
+    write_own_file(path, &text)
+}
+
+/// Writes one of the editor's own files (a recovery file, the recent list), making its
+/// folder when missing; it is never written through a link nor into a FIFO or device
+/// that stands at its path ([`crate::fsutil::Naming::Implied`]).
+fn write_own_file(path: &Path, text: &str) -> std::io::Result<()> {
     if let Some(folder) = path.parent() {
         std::fs::create_dir_all(folder)?;
     }
-    let text = ron::ser::to_string_pretty(recovery, ron::ser::PrettyConfig::new().depth_limit(2))
-        .map_err(std::io::Error::other)?;
-    crate::fsutil::write_atomic(path, text.as_bytes())
+    crate::fsutil::write_implied(path, text.as_bytes())
 }
 
 /// Removes a recovery file (once its work is saved, discarded or recovered elsewhere).
@@ -252,6 +260,16 @@ impl Autosave {
 }
 
 static TERMINATE: AtomicBool = AtomicBool::new(false);
+/// The signal that asked, to end by it when the editor is too busy to close itself.
+static TERMINATING_SIGNAL: std::sync::atomic::AtomicI32 = std::sync::atomic::AtomicI32::new(0);
+/// Whether the window has begun to close after the request.
+static TERMINATION_HEARD: AtomicBool = AtomicBool::new(false);
+
+/// How long the editor may take to begin closing after SIGTERM, SIGINT or SIGHUP
+/// before the signal ends the process as it would any program: a frame stuck in a long
+/// computation (a huge graph's first layout) must not keep the process alive. The
+/// recovery file then holds the work as of the last autosave.
+pub const TERMINATION_GRACE: std::time::Duration = std::time::Duration::from_secs(3);
 
 /// Whether the process was asked to end (SIGTERM, SIGINT, SIGHUP) since
 /// [`watch_termination`].
@@ -259,15 +277,30 @@ pub fn termination_requested() -> bool {
     TERMINATE.load(Ordering::Relaxed)
 }
 
+/// Notes that the window is closing because of the request, so that the process is
+/// left to finish closing by itself.
+pub fn termination_heard() {
+    TERMINATION_HEARD.store(true, Ordering::SeqCst);
+}
+
+/// Ends the process by the signal that asked, with its default action.
+#[cfg(unix)]
+fn end_by_signal() {
+    let signal = TERMINATING_SIGNAL.load(Ordering::SeqCst);
+    // SAFETY: restoring the default action and raising a signal have no preconditions.
+    unsafe {
+        libc::signal(signal, libc::SIG_DFL);
+        libc::raise(signal);
+    }
+}
+
 #[cfg(unix)]
 extern "C" fn on_termination(signal: libc::c_int) {
+    TERMINATING_SIGNAL.store(signal, Ordering::SeqCst);
     if TERMINATE.swap(true, Ordering::SeqCst) {
-        // Asked twice: the editor did not get to end by itself. End now.
-        // SAFETY: signal and raise are async-signal-safe.
-        unsafe {
-            libc::signal(signal, libc::SIG_DFL);
-            libc::raise(signal);
-        }
+        // Asked twice: the editor did not get to end by itself. End now (signal and
+        // raise are async-signal-safe).
+        end_by_signal();
     }
 }
 
@@ -293,10 +326,17 @@ pub fn watch_termination(ctx: &egui::Context) {
         let _ = std::thread::Builder::new()
             .name("veneer signals".into())
             .spawn(move || {
+                let mut asked = None;
                 loop {
                     std::thread::sleep(std::time::Duration::from_millis(50));
                     if termination_requested() {
                         ctx.request_repaint();
+                        let since = *asked.get_or_insert_with(std::time::Instant::now);
+                        if !TERMINATION_HEARD.load(Ordering::SeqCst)
+                            && since.elapsed() > TERMINATION_GRACE
+                        {
+                            end_by_signal();
+                        }
                     }
                 }
             });
@@ -317,15 +357,11 @@ pub fn load_recent(recovery_file: &Path) -> Vec<PathBuf> {
         .unwrap_or_default()
 }
 
-/// Saves the recent-files list (atomically).
+/// Saves the recent-files list (as [`autosave`] writes).
 pub fn save_recent(recovery_file: &Path, recent: &[PathBuf]) -> std::io::Result<()> {
-    let path = recent_path(recovery_file);
-    if let Some(folder) = path.parent() {
-        std::fs::create_dir_all(folder)?;
-    }
     let text = ron::ser::to_string_pretty(&recent, ron::ser::PrettyConfig::new())
         .map_err(std::io::Error::other)?;
-    crate::fsutil::write_atomic(&path, text.as_bytes())
+    write_own_file(&recent_path(recovery_file), &text)
 }
 
 /// The text of a RON file of ours, if it is a readable regular file within the limit
@@ -376,6 +412,18 @@ mod tests {
         }
         child.wait().unwrap();
         assert!(!running(pid, None));
+    }
+
+    #[test]
+    fn a_fifo_where_the_recent_list_goes_is_refused_at_once() {
+        let dir = tempfile::tempdir().unwrap();
+        let base = dir.path().join("recovery.ron");
+        crate::fsutil::tests::mkfifo(&recent_path(&base));
+        let saved = crate::fsutil::tests::returns(move || {
+            save_recent(&base, &[PathBuf::from("a.ron")]).map_err(|e| e.to_string())
+        });
+        let error = saved.unwrap_err();
+        assert!(error.contains("FIFO"), "{error}");
     }
 
     #[test]

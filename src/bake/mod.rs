@@ -11,7 +11,7 @@ mod gltf;
 mod maps;
 mod pipeline;
 
-pub use gltf::{GltfSettings, Packaging, export_gltf};
+pub use gltf::{GltfSettings, Packaging, export_gltf, gltf_files};
 pub use maps::{Converter, Map, NormalConvention, fill_uncovered};
 use pipeline::MapTarget;
 
@@ -91,15 +91,6 @@ pub enum BakeError {
     /// The folder a map would go to is missing or not a folder.
     #[error("{folder}: {why}; nothing was baked")]
     Folder { folder: PathBuf, why: &'static str },
-    /// Two bakes would write the same file.
-    #[error(
-        "{path}: both {first} and {second} would write this file; bake them into different folders (-o); nothing was baked"
-    )]
-    SameFile {
-        path: PathBuf,
-        first: PathBuf,
-        second: PathBuf,
-    },
     /// A folder's disk lacks room for the maps at their largest.
     #[error(
         "{folder}: the maps take up to {} and its disk has {} free; nothing was baked",
@@ -142,26 +133,15 @@ pub fn map_path(stem: &Path, map: Map, format: Format) -> PathBuf {
 }
 
 /// Checks, before anything renders, that every file the bakes of `stems` would write
-/// has a folder to go to, that no two bakes write the same file (two graphs of the
-/// same name baked into one folder would silently replace each other's maps), and that
-/// each folder's disk has room for the maps at their largest.
+/// has a folder to go to, and that each folder's disk has room for the maps at their
+/// largest. (That no two bakes write one file is the output plan's to check:
+/// [`crate::fsutil::OutputPlan`].)
 pub fn check_outputs(stems: &[&Path], settings: &BakeSettings) -> Result<(), BakeError> {
-    let mut writers: std::collections::BTreeMap<PathBuf, &Path> = Default::default();
     let mut needed: std::collections::BTreeMap<&Path, u64> = Default::default();
     let map_bytes = u64::from(settings.size).pow(2) * settings.format.max_bytes_per_pixel();
     for &stem in stems {
         let folder = output_folder(stem)?;
         *needed.entry(folder).or_default() += map_bytes * settings.maps.len() as u64;
-        for &map in &settings.maps {
-            let path = map_path(stem, map, settings.format);
-            if let Some(other) = writers.insert(path.clone(), stem) {
-                return Err(BakeError::SameFile {
-                    path,
-                    first: other.to_path_buf(),
-                    second: stem.to_path_buf(),
-                });
-            }
-        }
     }
     for (folder, bytes) in needed {
         if let Some(free) = crate::fsutil::free_space(folder)
@@ -199,8 +179,10 @@ fn output_folder(path: &Path) -> Result<&Path, BakeError> {
 }
 
 /// Bakes a compiled material (parameters baked, the default) into `<stem>_<map>.<ext>`
-/// files, calling `progress(done, total)` as tiles finish. Every file is written
-/// atomically: an interrupted bake leaves no partial map.
+/// files, calling `progress(done, total)` as tiles finish. The maps are put in place
+/// together once all are written: a bake that fails or is interrupted leaves none of its
+/// maps, and the old ones as they were. Maps are files Veneer names itself: a link or
+/// special file at one's path is refused ([`crate::fsutil::Naming::Implied`]).
 pub fn bake(
     gpu: &GpuContext,
     compiled: &Compiled,

@@ -7,6 +7,7 @@
 use super::encode::encode;
 use super::maps::{Converter, Map, NormalConvention};
 use super::{BakeError, Format};
+use crate::fsutil::{Naming, Staged};
 use crate::render::RenderError;
 use std::path::Path;
 use std::sync::mpsc;
@@ -31,21 +32,23 @@ pub struct MapTarget<'p> {
 
 /// Bakes `targets` in order: `render(index, sink)` renders the material outputs of map
 /// `index` and hands every band, in order, to `sink`, while a writer thread converts
-/// and encodes them into the map's path (atomically: on any failure the old file, if
-/// any, is unchanged). With `overlap`, a map renders while the writer of the one before
-/// is still at work (two maps' writers at once: for EXR, whose writers hold a band
-/// each; PNG writers hold their whole image, so they go one at a time).
+/// and encodes them into the map's temporary file. The maps are put in place together
+/// once all are written; on any failure none is, and the old files are unchanged. With
+/// `overlap`, a map renders while the writer of the one before is still at work (two
+/// maps' writers at once: for EXR, whose writers hold a band each; PNG writers hold
+/// their whole image, so they go one at a time).
 pub fn bake_maps(
     targets: &[MapTarget<'_>],
     overlap: bool,
     mut render: impl FnMut(usize, &mut BandSink<'_>) -> Result<(), RenderError>,
 ) -> Result<(), BakeError> {
     let (free, recycled) = mpsc::channel::<Vec<[f32; 4]>>();
+    let mut written = Vec::with_capacity(targets.len());
     std::thread::scope(|scope| {
         let mut writing: Option<Writing<'_, '_>> = None;
         for (index, target) in targets.iter().enumerate() {
             if !overlap && let Some(before) = writing.take() {
-                before.finish()?;
+                written.push(before.finish()?);
             }
             // One band may wait while the writer is on the band before.
             let (full, bands) = mpsc::sync_channel::<Vec<[f32; 4]>>(1);
@@ -66,25 +69,29 @@ pub fn bake_maps(
                 rendered,
                 writer_stopped,
             }) {
-                before.finish()?;
+                written.push(before.finish()?);
             }
         }
-        writing.map_or(Ok(()), Writing::finish)
-    })
+        if let Some(last) = writing {
+            written.push(last.finish()?);
+        }
+        Ok::<(), BakeError>(())
+    })?;
+    crate::fsutil::commit(written).map_err(|(path, error)| BakeError::Write { path, error })
 }
 
 /// One map whose rendering is done and whose writer may still be at work.
 struct Writing<'scope, 'p> {
     target: &'scope MapTarget<'p>,
-    writer: ScopedJoinHandle<'scope, std::io::Result<()>>,
+    writer: ScopedJoinHandle<'scope, std::io::Result<Staged>>,
     rendered: Result<(), RenderError>,
     writer_stopped: bool,
 }
 
 impl Writing<'_, '_> {
-    /// Waits for the writer; a render that failed first explains why the writer got too
-    /// few rows.
-    fn finish(self) -> Result<(), BakeError> {
+    /// Waits for the writer and gives the map written to its temporary file; a render
+    /// that failed first explains why the writer got too few rows.
+    fn finish(self) -> Result<Staged, BakeError> {
         let path = || self.target.path.to_path_buf();
         let written = self
             .writer
@@ -107,7 +114,7 @@ fn write_map(
     target: &MapTarget<'_>,
     bands: mpsc::Receiver<Vec<[f32; 4]>>,
     free: mpsc::Sender<Vec<[f32; 4]>>,
-) -> std::io::Result<()> {
+) -> std::io::Result<Staged> {
     let mut converter = Converter::new(
         target.map,
         target.shading,
@@ -115,7 +122,7 @@ fn write_map(
         target.spacing,
         target.convention,
     );
-    crate::fsutil::write_atomic_with(target.path, |file| {
+    crate::fsutil::stage(target.path, Naming::Implied, |file| {
         encode(file, target.size, target.format, |emit| {
             for mut band in bands {
                 converter.band(&mut band, emit)?;

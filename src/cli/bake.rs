@@ -8,9 +8,10 @@ use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
 use std::path::PathBuf;
 use veneer::bake::{
     BakeSettings, BakeSurface, BakedMap, Format, GltfSettings, Map, NormalConvention, bake,
-    export_gltf,
+    export_gltf, map_path,
 };
 use veneer::codegen::{CompileOptions, compile};
+use veneer::fsutil::{Naming, OutputPlan};
 use veneer::render::{FlatRect, GpuContext};
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -89,39 +90,82 @@ fn parse_map(text: &str) -> Result<Map, String> {
         })
 }
 
+impl BakeArgs {
+    /// Adds the graphs, the parameter file, the mesh file and every file the bake writes
+    /// (each graph's maps, or the glTF files) to `plan`.
+    pub fn plan(&self, plan: &mut OutputPlan, job: Option<&str>) {
+        for graph in &self.graphs {
+            let by = self.parameters.plan_graph(plan, job, graph);
+            if let Some(mesh) = &self.mesh {
+                super::plan_mesh(plan, mesh, &by);
+            }
+        }
+        let Some(first) = self.graphs.first() else {
+            return;
+        };
+        if let Some(out) = &self.gltf {
+            let by = super::by(job, first);
+            for (index, path) in veneer::bake::gltf_files(out).iter().enumerate() {
+                let naming = if index == 0 {
+                    Naming::Given
+                } else {
+                    Naming::Implied
+                };
+                plan.writes(path, naming, &by);
+            }
+            return;
+        }
+        let format = self.settings().format;
+        for (graph, stem) in self.graphs.iter().zip(self.stems()) {
+            let by = super::by(job, graph);
+            for &map in &self.maps {
+                plan.writes(map_path(&stem, map, format), Naming::Implied, &by);
+            }
+        }
+    }
+
+    /// What the maps are baked as.
+    fn settings(&self) -> BakeSettings {
+        BakeSettings {
+            surface: match &self.mesh {
+                Some(mesh) => BakeSurface::MeshUv(mesh.clone()),
+                None => BakeSurface::Plane(self.flat),
+            },
+            size: self.size,
+            maps: self.maps.clone(),
+            format: match self.format {
+                FormatArg::Png => Format::Png8,
+                FormatArg::Png16 => Format::Png16,
+                FormatArg::Exr => Format::Exr,
+            },
+            normal: match self.normal {
+                NormalArg::Gl => NormalConvention::OpenGl,
+                NormalArg::Dx => NormalConvention::DirectX,
+            },
+            time: self.time,
+        }
+    }
+
+    /// Each graph's maps' path without `_<map>.<ext>`: in `--out-dir`, or beside the graph.
+    fn stems(&self) -> Vec<PathBuf> {
+        (self.graphs.iter())
+            .map(|path| match &self.out_dir {
+                Some(dir) => dir.join(path.file_stem().unwrap_or_default()),
+                None => path.with_extension(""),
+            })
+            .collect()
+    }
+}
+
 pub fn run(args: BakeArgs) -> Result<(), Failure> {
     if let Some(out) = &args.gltf {
         return run_gltf(&args, out);
     }
-    let settings = BakeSettings {
-        surface: match &args.mesh {
-            Some(mesh) => BakeSurface::MeshUv(mesh.clone()),
-            None => BakeSurface::Plane(args.flat),
-        },
-        size: args.size,
-        maps: args.maps.clone(),
-        format: match args.format {
-            FormatArg::Png => Format::Png8,
-            FormatArg::Png16 => Format::Png16,
-            FormatArg::Exr => Format::Exr,
-        },
-        normal: match args.normal {
-            NormalArg::Gl => NormalConvention::OpenGl,
-            NormalArg::Dx => NormalConvention::DirectX,
-        },
-        time: args.time,
-    };
+    let settings = args.settings();
     if settings.size == 0 {
         return Err(Failure::new("--size must be at least 1"));
     }
-    let stems: Vec<PathBuf> = args
-        .graphs
-        .iter()
-        .map(|path| match &args.out_dir {
-            Some(dir) => dir.join(path.file_stem().unwrap_or_default()),
-            None => path.with_extension(""),
-        })
-        .collect();
+    let stems = args.stems();
     let stem_refs: Vec<&std::path::Path> = stems.iter().map(PathBuf::as_path).collect();
     veneer::bake::check_outputs(&stem_refs, &settings)?;
     let graphs = args

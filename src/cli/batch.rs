@@ -5,7 +5,10 @@
 //!
 //! Each job runs as the command line it stands for (`veneer batch --dry-run` prints
 //! them), in this process; every job runs even when one fails, and the batch exits
-//! with the highest exit code of its jobs.
+//! with the highest exit code of its jobs. Before any job runs, the outputs of all the
+//! file's jobs (every shard's) are planned together: a batch whose jobs would write one
+//! file, or one job's output another's (or the batch file itself), is refused. The
+//! folder each job writes into is made when missing.
 
 use super::output::{note, out};
 use super::{Cli, Failure};
@@ -14,6 +17,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
+use veneer::fsutil::OutputPlan;
 use veneer::graph::parameters::Given;
 
 #[derive(Args)]
@@ -100,6 +104,23 @@ struct Job {
 }
 
 impl Job {
+    /// Whether a bake job writes a glTF model (its output ends in `.glb` or `.gltf`)
+    /// rather than maps into a folder.
+    fn writes_model(&self) -> bool {
+        (self.output.extension()).is_some_and(|e| e == "glb" || e == "gltf")
+    }
+
+    /// The folder the job writes into, made before it runs when missing; none for a
+    /// snapshot, whose golden folder must exist unless `--update` makes it.
+    fn output_folder(&self, base: &Path) -> Option<PathBuf> {
+        let output = base.join(&self.output);
+        match self.command {
+            Command::Snapshot => None,
+            Command::Bake if !self.writes_model() => Some(output),
+            _ => output.parent().map(Path::to_path_buf),
+        }
+    }
+
     /// The command line the job stands for, paths resolved against `base`.
     fn command_line(&self, base: &Path) -> Vec<String> {
         let path = |p: &Path| base.join(p).to_string_lossy().into_owned();
@@ -110,11 +131,11 @@ impl Job {
             Command::Compile => line.extend(["compile".into(), graph, "-o".into(), output]),
             Command::Snapshot => line.extend(["snapshot".into(), graph, "--golden".into(), output]),
             Command::Bake => {
-                let model = self
-                    .output
-                    .extension()
-                    .is_some_and(|e| e == "glb" || e == "gltf");
-                let flag = if model { "--gltf" } else { "--out-dir" };
+                let flag = if self.writes_model() {
+                    "--gltf"
+                } else {
+                    "--out-dir"
+                };
                 line.extend(["bake".into(), graph, flag.into(), output]);
             }
         }
@@ -138,19 +159,43 @@ impl Job {
     }
 }
 
+/// How messages and the output plan name job `number` (1-based) of command line `line`.
+fn job_label(number: usize, line: &[String]) -> String {
+    format!("job {number} ({})", line[1..3].join(" "))
+}
+
+/// Refuses the batch when the outputs of its jobs (all of them, whichever shard runs)
+/// collide with each other, with an input of another job, or with the batch file.
+fn check_plan(file: &Path, lines: &[Vec<String>]) -> Result<(), Failure> {
+    let mut plan = OutputPlan::new();
+    plan.reads(file, "the batch");
+    for (index, line) in lines.iter().enumerate() {
+        // A job that does not parse fails on its own when it runs.
+        if let Ok(Cli {
+            command: Some(command),
+        }) = Cli::try_parse_from(line)
+        {
+            command.plan(&mut plan, Some(&job_label(index + 1, line)));
+        }
+    }
+    plan.check().map_err(Failure::new)
+}
+
 pub fn run(args: BatchArgs) -> Result<(), Failure> {
     let batch: BatchFile = super::read_ron_or_json(&args.file)?;
     let base = args.file.parent().unwrap_or(Path::new(""));
     let shard = args.shard.unwrap_or(Shard { index: 1, count: 1 });
-    let jobs: Vec<(usize, Vec<String>)> = batch
-        .jobs
-        .iter()
+    let lines: Vec<Vec<String>> = (batch.jobs.iter())
+        .map(|job| job.command_line(base))
+        .collect();
+    check_plan(&args.file, &lines)?;
+    let jobs: Vec<(usize, &Job, &Vec<String>)> = (batch.jobs.iter().zip(&lines))
         .enumerate()
         .filter(|(k, _)| shard.has(*k))
-        .map(|(k, job)| (k + 1, job.command_line(base)))
+        .map(|(k, (job, line))| (k + 1, job, line))
         .collect();
     if args.dry_run {
-        for (_, line) in &jobs {
+        for (_, _, line) in &jobs {
             out(line.join(" "))?;
         }
         return Ok(());
@@ -162,22 +207,27 @@ pub fn run(args: BatchArgs) -> Result<(), Failure> {
     bar.set_prefix(format!("{}/{}", shard.index, shard.count));
     let mut worst = 0u8;
     let mut failed = 0;
-    for (number, line) in &jobs {
-        bar.set_message(line[1..3].join(" "));
-        let outcome = Cli::try_parse_from(line)
+    for (number, job, line) in &jobs {
+        bar.set_message(veneer::messages::printable(&line[1..3].join(" ")).into_owned());
+        let outcome = Cli::try_parse_from(*line)
             .map_err(|error| Failure::new(error.to_string().trim_end().to_string()))
-            .and_then(super::execute);
+            .and_then(|cli| {
+                if let Some(folder) = job.output_folder(base) {
+                    std::fs::create_dir_all(&folder).map_err(|error| {
+                        Failure::new(format!(
+                            "{}: cannot make the folder: {error}",
+                            folder.display()
+                        ))
+                    })?;
+                }
+                super::execute(cli)
+            });
         if let Err(Failure(message, code)) = outcome
             && code > 0
         {
             failed += 1;
             worst = worst.max(code);
-            bar.suspend(|| {
-                note(format!(
-                    "job {number} ({}): {message}",
-                    line[1..3].join(" ")
-                ))
-            })?;
+            bar.suspend(|| note(format!("{}: {message}", job_label(*number, line))))?;
         }
         bar.inc(1);
     }

@@ -2,9 +2,10 @@
 
 use super::{Failure, in_file, load_graph, write_output};
 use clap::{Args, ValueEnum};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use veneer::codegen::export::{Target, export_compiled};
 use veneer::codegen::{CompileOptions, ParamMode, compile, describe_parameters};
+use veneer::fsutil::{Naming, OutputPlan, write_together};
 
 /// How parameters appear in the output.
 #[derive(Clone, Copy, ValueEnum)]
@@ -31,7 +32,8 @@ pub struct CompileArgs {
     #[arg(long, value_enum, default_value = "baked")]
     params: ParamsArg,
     /// Output file (stdout when absent or `-`). With `--params uniform`, the JSON
-    /// description of the parameters is written beside it as `<stem>.parameters.json`.
+    /// description of the parameters is written beside it as `<stem>.parameters.json`
+    /// (unless it is a device or a pipe).
     #[arg(short, long)]
     output: Option<PathBuf>,
     /// Print the JSON description of the exposed parameters instead of the shader.
@@ -41,14 +43,40 @@ pub struct CompileArgs {
     parameters: super::parameters::ParameterArgs,
 }
 
+impl CompileArgs {
+    /// Adds the graph, the parameter file, the output and the description written beside
+    /// it to `plan`.
+    pub fn plan(&self, plan: &mut OutputPlan, job: Option<&str>) {
+        let by = self.parameters.plan_graph(plan, job, &self.graph);
+        if let Some(output) = self.output.as_deref().and_then(super::output_file) {
+            plan.writes(output, Naming::Given, &by);
+            if self.describes_beside() {
+                plan.writes(description_path(output), Naming::Implied, &by);
+            }
+        }
+    }
+
+    fn param_mode(&self) -> ParamMode {
+        match self.params {
+            ParamsArg::Baked => ParamMode::Baked,
+            ParamsArg::Uniform => ParamMode::Named,
+            ParamsArg::Slots => ParamMode::Uniform,
+        }
+    }
+
+    /// Whether the parameters' description goes beside the shader file: with `--params
+    /// uniform`, when the shader goes to a file (not to stdout, a device or a pipe).
+    fn describes_beside(&self) -> bool {
+        let file = (self.output.as_deref().and_then(super::output_file))
+            .is_some_and(|output| !veneer::fsutil::is_stream(output));
+        file && !self.describe && self.param_mode() == ParamMode::Named
+    }
+}
+
 pub fn run(args: CompileArgs) -> Result<(), Failure> {
     let mut graph = load_graph(&args.graph)?;
     args.parameters.apply(&mut graph, &args.graph)?;
-    let params = match args.params {
-        ParamsArg::Baked => ParamMode::Baked,
-        ParamsArg::Uniform => ParamMode::Named,
-        ParamsArg::Slots => ParamMode::Uniform,
-    };
+    let params = args.param_mode();
     let compiled = compile(&graph, &CompileOptions::with_params(params))
         .map_err(|error| in_file(&args.graph, error))?;
     let description = describe_parameters(&compiled);
@@ -57,13 +85,26 @@ pub fn run(args: CompileArgs) -> Result<(), Failure> {
     }
     let bytes =
         export_compiled(&compiled, args.target).map_err(|error| in_file(&args.graph, error))?;
-    write_output(args.output.as_ref(), &bytes)?;
-    match &args.output {
-        Some(path) if path.as_os_str() != "-" && params == ParamMode::Named => {
-            write_output(Some(&description_path(path)), description.as_bytes())
-        }
-        _ => Ok(()),
+    match args.output.as_deref().and_then(super::output_file) {
+        Some(path) if args.describes_beside() && !super::names_folder(path) => write_both(
+            path,
+            &bytes,
+            &description_path(path),
+            description.as_bytes(),
+        ),
+        _ => write_output(args.output.as_ref(), &bytes),
     }
+}
+
+/// Writes the shader and its parameters' description together: neither is left
+/// without the other.
+fn write_both(shader: &Path, bytes: &[u8], description: &Path, text: &[u8]) -> Result<(), Failure> {
+    let files = [
+        (shader, Naming::Given, bytes),
+        (description, Naming::Implied, text),
+    ];
+    write_together(files)
+        .map_err(|(path, error)| Failure::new(format!("{}: cannot write: {error}", path.display())))
 }
 
 /// Where the parameter description of export `output` goes: `<stem>.parameters.json`

@@ -46,6 +46,13 @@ pub struct GeodesicArgs {
     output: PathBuf,
 }
 
+impl GeodesicArgs {
+    /// Adds the mesh file and the CSV written to `plan`.
+    pub fn plan(&self, plan: &mut veneer::fsutil::OutputPlan, job: Option<&str>) {
+        super::plan_mesh_command(plan, job, &self.mesh, Some(&self.output));
+    }
+}
+
 pub fn run(args: GeodesicArgs) -> Result<(), Failure> {
     args.method()
         .validate()

@@ -20,6 +20,13 @@ pub struct MeshArgs {
     write: Option<std::path::PathBuf>,
 }
 
+impl MeshArgs {
+    /// Adds the mesh file and the OBJ written to `plan`.
+    pub fn plan(&self, plan: &mut veneer::fsutil::OutputPlan, job: Option<&str>) {
+        super::plan_mesh_command(plan, job, &self.mesh, self.write.as_deref());
+    }
+}
+
 pub fn run(args: MeshArgs) -> Result<(), Failure> {
     let mut mesh = veneer::mesh::Mesh::named(&args.mesh)?;
     let mut reports = vec![("as loaded", veneer::mesh::analyse(&mesh))];

@@ -16,6 +16,7 @@ mod snapshot;
 use clap::{Parser, Subcommand};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use veneer::fsutil::{Naming, OutputPlan};
 
 /// Veneer: procedural material node graphs compiled to WGSL.
 #[derive(Parser)]
@@ -57,6 +58,66 @@ enum Command {
     /// Measure error against run time (precision, hashes, octaves, geodesics, detail) and
     /// write a report with tables and plots.
     Report(report::ReportArgs),
+}
+
+impl Command {
+    /// Adds the files this command reads and writes to `plan`, as done by `job` (a batch's
+    /// job) or, run on its own, by each of its graphs (or meshes). `fmt` rewrites its
+    /// inputs by design; `check` writes nothing; a batch plans its jobs itself.
+    fn plan(&self, plan: &mut OutputPlan, job: Option<&str>) {
+        match self {
+            Command::Edit { graph, frame_log } => {
+                let by = by(job, graph);
+                plan.reads(graph, &by);
+                if let Some(log) = frame_log {
+                    plan.writes(log, Naming::Given, &by);
+                }
+            }
+            Command::Render(args) => args.plan(plan, job),
+            Command::Bake(args) => args.plan(plan, job),
+            Command::Compile(args) => args.plan(plan, job),
+            Command::Geodesic(args) => args.plan(plan, job),
+            Command::Mesh(args) => args.plan(plan, job),
+            Command::Snapshot(args) => args.plan(plan, job),
+            Command::Report(args) => args.plan(plan, job.unwrap_or("report")),
+            Command::Check(_) | Command::Fmt(_) | Command::Batch(_) => {}
+        }
+    }
+
+    /// The exit code of bad input: 2 for `snapshot`, whose 1 means "differs".
+    fn bad_input_code(&self) -> u8 {
+        match self {
+            Command::Snapshot(_) => 2,
+            _ => 1,
+        }
+    }
+}
+
+/// Who reads or writes in an output plan: the batch job, or else `file`.
+fn by(job: Option<&str>, file: impl AsRef<Path>) -> String {
+    job.map_or_else(|| file.as_ref().display().to_string(), str::to_string)
+}
+
+/// An output path that names a file, not stdout (`-`).
+fn output_file(path: &Path) -> Option<&Path> {
+    (path.as_os_str() != "-").then_some(path)
+}
+
+/// Adds a mesh argument to `plan` when it names a file, not a primitive (as
+/// [`veneer::mesh::Mesh::named`] tells them apart: a file has an extension).
+fn plan_mesh(plan: &mut OutputPlan, mesh: &str, by: &str) {
+    if Path::new(mesh).extension().is_some() {
+        plan.reads(mesh, by);
+    }
+}
+
+/// Adds a mesh command's mesh file and output (unless none, or stdout) to `plan`.
+fn plan_mesh_command(plan: &mut OutputPlan, job: Option<&str>, mesh: &str, output: Option<&Path>) {
+    let by = by(job, mesh);
+    plan_mesh(plan, mesh, &by);
+    if let Some(output) = output.and_then(output_file) {
+        plan.writes(output, Naming::Given, &by);
+    }
 }
 
 /// The help of a mesh argument, with what the most detailed primitives cost.
@@ -134,8 +195,16 @@ pub fn run() -> ExitCode {
     }
 }
 
-/// Runs a parsed command line's subcommand (the tests run commands in-process through it).
+/// Runs a parsed command line's subcommand (the tests run commands in-process through it),
+/// once its output plan holds: no output that is an input, none written twice, no file
+/// Veneer names itself standing as a link or special file.
 pub fn execute(cli: Cli) -> Result<(), Failure> {
+    if let Some(command) = &cli.command {
+        let mut plan = OutputPlan::new();
+        command.plan(&mut plan, None);
+        plan.check()
+            .map_err(|message| Failure(message, command.bad_input_code()))?;
+    }
     match cli.command {
         None => editor(None, None),
         Some(Command::Edit { graph, frame_log }) => editor(Some(graph), frame_log),

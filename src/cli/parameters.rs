@@ -11,7 +11,7 @@ use veneer::graph::parameters::{Given, Overrides, ParameterFile};
 #[derive(Args, Clone, Debug, Default)]
 pub struct ParameterArgs {
     /// Start from the graph's parameter preset NAME.
-    #[arg(long, value_name = "NAME")]
+    #[arg(long, value_name = "NAME", value_parser = parse_preset_name)]
     pub preset: Option<String>,
     /// Parameter values from a RON or JSON file (`{"ring_frequency": 0.7}`), applied
     /// after the preset.
@@ -21,6 +21,12 @@ pub struct ParameterArgs {
     /// NAME=#ff8800, or a word (a choice's option, on/off). Repeatable.
     #[arg(long = "set", value_name = "NAME=VALUE", value_parser = parse_assignment)]
     pub set: Vec<(String, Given)>,
+}
+
+/// Reads a preset name: one that could name a file (`snapshot` names goldens after it).
+fn parse_preset_name(name: &str) -> Result<String, String> {
+    veneer::graph::names::file_name_part("preset", name)?;
+    Ok(name.to_string())
 }
 
 /// Reads `name=value`.
@@ -48,6 +54,22 @@ impl ParameterArgs {
             preset: self.preset.clone(),
             values,
         })
+    }
+
+    /// Adds `graph` and the parameter file, if any, to the files `plan` reads, as read by
+    /// `job` (a batch's) or else the graph; gives that reader's name.
+    pub fn plan_graph(
+        &self,
+        plan: &mut veneer::fsutil::OutputPlan,
+        job: Option<&str>,
+        graph: &Path,
+    ) -> String {
+        let by = super::by(job, graph);
+        plan.reads(graph, &by);
+        if let Some(path) = &self.params_file {
+            plan.reads(path, &by);
+        }
+        by
     }
 
     /// Applies the options to `graph`, read from `path` (named in errors).

@@ -5,6 +5,7 @@ use super::{Failure, in_file, load_graph, write_output};
 use clap::Args;
 use std::path::PathBuf;
 use veneer::codegen::{CompileOptions, Detail};
+use veneer::fsutil::{Naming, OutputPlan};
 use veneer::graph::Tessellation;
 use veneer::render::{
     Backdrop, DEFAULT_KEY_LIGHT, Environment, FlatRect, GpuContext, MeshLook, Relief, SKY, ToneMap,
@@ -146,6 +147,23 @@ pub fn parse_flat(text: &str) -> Result<FlatRect, String> {
             "expected five numbers X0,Z0,X1,Z1,Y, got {}",
             numbers.len()
         )),
+    }
+}
+
+impl RenderArgs {
+    /// Adds the graph, the parameter file, the mesh and environment files and the image
+    /// to `plan`.
+    pub fn plan(&self, plan: &mut OutputPlan, job: Option<&str>) {
+        let by = self.parameters.plan_graph(plan, job, &self.graph);
+        if let Some(mesh) = &self.mesh {
+            super::plan_mesh(plan, mesh, &by);
+        }
+        if self.environment != SKY {
+            plan.reads(&self.environment, &by);
+        }
+        if let Some(output) = super::output_file(&self.output) {
+            plan.writes(output, Naming::Given, &by);
+        }
     }
 }
 

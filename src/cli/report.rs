@@ -19,6 +19,15 @@ pub struct ReportArgs {
     quick: bool,
 }
 
+impl ReportArgs {
+    /// Adds the report's files to `plan`.
+    pub fn plan(&self, plan: &mut veneer::fsutil::OutputPlan, by: &str) {
+        for path in veneer::report::files(&self.output) {
+            plan.writes(path, veneer::fsutil::Naming::Implied, by);
+        }
+    }
+}
+
 pub fn run(args: ReportArgs) -> Result<(), Failure> {
     let limit = veneer::report::MAX_REPETITIONS;
     if !(1..=limit).contains(&args.repetitions) {

@@ -5,10 +5,11 @@ use super::Failure;
 use super::output::out;
 use super::render::parse_flat;
 use clap::Args;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
+use veneer::fsutil::{Naming, OutputPlan};
 use veneer::render::{GpuContext, View};
 use veneer::snapshot::{
-    Outcome, Report, Settings, Tolerance, UPDATE_VARIABLE, check, update_requested,
+    Outcome, Report, Settings, Tolerance, UPDATE_VARIABLE, beside, check, update_requested,
 };
 
 #[derive(Args)]
@@ -49,6 +50,47 @@ pub struct SnapshotArgs {
     /// `--preset`) so that presets of one graph share a folder.
     #[command(flatten)]
     parameters: super::parameters::ParameterArgs,
+}
+
+impl SnapshotArgs {
+    /// Adds the graphs, the parameter file and each graph's golden files to `plan`: under
+    /// `--update` the golden and its sidecar are written; else they are read, and the
+    /// render and difference images a mismatch leaves beside them written.
+    pub fn plan(&self, plan: &mut OutputPlan, job: Option<&str>) {
+        for graph in &self.graphs {
+            let by = self.parameters.plan_graph(plan, job, graph);
+            let golden = self.golden(graph);
+            let (read, written) = if self.updating() {
+                (vec![], vec![golden.clone(), beside(&golden, "snap.ron")])
+            } else {
+                let explained = vec![beside(&golden, "actual.png"), beside(&golden, "diff.png")];
+                (vec![beside(&golden, "snap.ron"), golden], explained)
+            };
+            for path in read {
+                plan.reads(path, &by);
+            }
+            for path in written {
+                plan.writes(path, Naming::Implied, &by);
+            }
+        }
+    }
+
+    /// The golden image of `graph`: `<golden>/<graph>.png`, or `<graph>.<preset>.png`.
+    fn golden(&self, graph: &Path) -> PathBuf {
+        let stem = graph
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        match &self.parameters.preset {
+            Some(preset) => self.golden.join(format!("{stem}.{preset}.png")),
+            None => self.golden.join(format!("{stem}.png")),
+        }
+    }
+
+    /// Whether the goldens are rewritten (`--update`, or the environment asks).
+    fn updating(&self) -> bool {
+        self.update || update_requested()
+    }
 }
 
 fn bad_input(message: String) -> Failure {
@@ -114,7 +156,7 @@ pub fn run(args: SnapshotArgs) -> Result<(), Failure> {
             args.golden.display()
         )));
     }
-    let update = args.update || update_requested();
+    let update = args.updating();
     if !update && !args.golden.is_dir() {
         return Err(bad_input(format!(
             "--golden {}: no such folder; approve the first goldens with --update",
@@ -124,17 +166,7 @@ pub fn run(args: SnapshotArgs) -> Result<(), Failure> {
     let gpu = GpuContext::new().map_err(|error| bad_input(error.to_string()))?;
     let mut reports = Vec::new();
     for graph in &args.graphs {
-        let stem = graph
-            .file_stem()
-            .map(|s| s.to_string_lossy().into_owned())
-            .unwrap_or_default();
-        let golden = match &args.parameters.preset {
-            Some(preset) => {
-                veneer::graph::names::file_name_part("preset", preset).map_err(bad_input)?;
-                args.golden.join(format!("{stem}.{preset}.png"))
-            }
-            None => args.golden.join(format!("{stem}.png")),
-        };
+        let golden = args.golden(graph);
         let report = check(&gpu, graph, &golden, &settings, update)
             .map_err(|error| bad_input(error.to_string()))?;
         if !args.json {

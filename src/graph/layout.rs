@@ -95,6 +95,59 @@ pub fn arrange_nodes(nodes: &mut [Node], wires: &[Wire], width: f32, height: f32
     }
 }
 
+/// How wide and tall a band of nodes laid out by [`unstack`] may grow before it wraps,
+/// in canvas units: about a screen at the editor's default zoom.
+const UNSTACKED_BAND: (f32, f32) = (1620.0, 1000.0);
+
+/// Lays out the nodes that sit exactly where an earlier node sits, which the editor
+/// would draw one on top of the other (a generated graph with no positions, or ten
+/// thousand nodes at one point, whose stacked geometry egui cannot draw in one frame).
+/// When most nodes are stacked the whole level is arranged; otherwise only the stacked
+/// ones are, in a band below the rest, which keeps its layout. Returns how many nodes
+/// were stacked (0: nothing moved).
+pub fn unstack(nodes: &mut [Node], wires: &[Wire]) -> usize {
+    let mut taken = std::collections::HashSet::new();
+    let stacked: Vec<usize> = (0..nodes.len())
+        .filter(|&k| {
+            let (x, y) = nodes[k].position;
+            !taken.insert((x.to_bits(), y.to_bits()))
+        })
+        .collect();
+    let (width, height) = UNSTACKED_BAND;
+    if stacked.len() * 2 >= nodes.len() {
+        arrange_nodes(nodes, wires, width, height);
+        return stacked.len();
+    }
+    let rest_bottom = (0..nodes.len())
+        .filter(|k| stacked.binary_search(k).is_err())
+        .map(|k| nodes[k].position.1 + node_height(&nodes[k]))
+        .fold(f32::MIN, f32::max);
+    let left = nodes
+        .iter()
+        .map(|node| node.position.0)
+        .fold(f32::MAX, f32::min);
+    let mut moved: Vec<Node> = stacked.iter().map(|&k| nodes[k].clone()).collect();
+    arrange_nodes(&mut moved, wires, width, height);
+    for (&k, node) in stacked.iter().zip(moved) {
+        let (x, y) = node.position;
+        nodes[k].position = ((left + x).round(), (rest_bottom + BAND_GAP + y).round());
+    }
+    stacked.len()
+}
+
+/// [`unstack`] on the graph's own nodes and inside each group it defines that is not
+/// linked to the library (a linked group's copy stays as the library has it). Returns
+/// how many nodes were stacked in all.
+pub fn unstack_levels(graph: &mut Graph) -> usize {
+    let inside: usize = graph
+        .groups
+        .values_mut()
+        .filter(|group| !group.linked)
+        .map(|group| unstack(&mut group.nodes, &group.wires))
+        .sum();
+    inside + unstack(&mut graph.nodes, &graph.wires)
+}
+
 /// How tall the editor draws `node`, roughly: its title, a row per pin and, for nodes
 /// with an output, the thumbnail under the pins.
 fn node_height(node: &Node) -> f32 {
@@ -137,27 +190,39 @@ fn node_width(node: &Node, wired: &BTreeSet<(NodeId, &str)>) -> f32 {
     title.max(inputs + outputs).max(MIN_WIDTH)
 }
 
-/// Each node's depth: the longest chain of wires before it.
+/// Each node's depth: the longest chain of wires before it, in one pass over the nodes
+/// in wire order (Kahn's algorithm), so a long chain listed backwards costs no more than
+/// one listed forwards. Nodes on a cycle keep the depth their other inputs give them.
 fn depths(nodes: &[Node], wires: &[Wire]) -> BTreeMap<NodeId, usize> {
-    let mut depth: BTreeMap<NodeId, usize> = nodes.iter().map(|node| (node.id, 0)).collect();
-    // Longest-path relaxation; a cycle cannot raise a depth past the node count.
-    for _ in 0..nodes.len() {
-        let mut changed = false;
-        for wire in wires {
-            let (Some(&from), Some(&to)) = (depth.get(&wire.from.node), depth.get(&wire.to.node))
-            else {
-                continue;
-            };
-            if to < from + 1 && from < nodes.len() {
-                depth.insert(wire.to.node, from + 1);
-                changed = true;
-            }
-        }
-        if !changed {
-            break;
+    let index: std::collections::HashMap<NodeId, usize> = nodes
+        .iter()
+        .enumerate()
+        .map(|(k, node)| (node.id, k))
+        .collect();
+    let mut outgoing: Vec<Vec<usize>> = vec![Vec::new(); nodes.len()];
+    let mut waiting = vec![0usize; nodes.len()];
+    for wire in wires {
+        if let (Some(&from), Some(&to)) = (index.get(&wire.from.node), index.get(&wire.to.node)) {
+            outgoing[from].push(to);
+            waiting[to] += 1;
         }
     }
-    depth
+    let mut depth = vec![0usize; nodes.len()];
+    let mut ready: Vec<usize> = (0..nodes.len()).filter(|&k| waiting[k] == 0).collect();
+    while let Some(from) = ready.pop() {
+        for &to in &outgoing[from] {
+            depth[to] = depth[to].max(depth[from] + 1);
+            waiting[to] -= 1;
+            if waiting[to] == 0 {
+                ready.push(to);
+            }
+        }
+    }
+    nodes
+        .iter()
+        .zip(depth)
+        .map(|(node, d)| (node.id, d))
+        .collect()
 }
 
 #[cfg(test)]
@@ -201,6 +266,96 @@ mod tests {
             let (left, right) = (extent(&graph, pair[0]), extent(&graph, pair[1]));
             assert!(left.2 + COLUMN_GAP <= right.0, "{left:?} then {right:?}");
         }
+    }
+
+    /// A chain of `count` nodes (a position, then transforms), all at the origin.
+    fn stacked_chain(count: usize) -> Graph {
+        let mut graph = Graph::default();
+        let mut previous = graph.add("p", NodeKind::Position);
+        let mut output = "position";
+        for k in 1..count {
+            let next = graph.add(&format!("t{k}"), NodeKind::Transform);
+            graph.wires.push(Wire {
+                from: crate::graph::PinRef::new(previous, output),
+                to: crate::graph::PinRef::new(next, "p"),
+            });
+            (previous, output) = (next, "p");
+        }
+        graph
+    }
+
+    /// Whether any two nodes' rectangles intersect.
+    fn overlapping(graph: &Graph) -> Option<(NodeId, NodeId)> {
+        let boxes: Vec<_> = graph
+            .nodes
+            .iter()
+            .map(|n| (n.id, extent(graph, n.id)))
+            .collect();
+        boxes.iter().enumerate().find_map(|(k, (a, r))| {
+            boxes[k + 1..].iter().find_map(|(b, q)| {
+                (r.0 < q.2 && q.0 < r.2 && r.1 < q.3 && q.1 < r.3).then_some((*a, *b))
+            })
+        })
+    }
+
+    #[test]
+    fn a_level_stacked_at_one_point_is_laid_out_without_overlaps() {
+        let mut graph = stacked_chain(300);
+        assert_eq!(unstack(&mut graph.nodes, &graph.wires), 299);
+        assert_eq!(overlapping(&graph), None);
+        // Wrapped into bands about a screen wide, not one row 300 columns long.
+        let right = graph.nodes.iter().map(|n| n.position.0).fold(0.0, f32::max);
+        assert!(right < 2.0 * UNSTACKED_BAND.0, "{right}");
+        // Laid out once, nothing is stacked any more.
+        assert_eq!(unstack(&mut graph.nodes, &graph.wires), 0);
+    }
+
+    #[test]
+    fn a_few_stacked_nodes_move_below_the_rest_which_keeps_its_layout() {
+        let mut graph = stacked_chain(12);
+        arrange(&mut graph);
+        let laid_out = graph.clone();
+        let bottom = graph
+            .nodes
+            .iter()
+            .map(|n| extent(&graph, n.id).3)
+            .fold(0.0, f32::max);
+        for k in [9, 10, 11] {
+            graph.nodes[k].position = graph.nodes[2].position;
+        }
+        assert_eq!(unstack(&mut graph.nodes, &graph.wires), 3);
+        for (node, before) in graph.nodes.iter().zip(&laid_out.nodes).take(9) {
+            assert_eq!(node.position, before.position, "node {} moved", node.id);
+        }
+        for node in &graph.nodes[9..] {
+            assert!(
+                node.position.1 > bottom,
+                "{:?} not below {bottom}",
+                node.position
+            );
+        }
+        assert_eq!(overlapping(&graph), None);
+    }
+
+    #[test]
+    fn no_shipped_preset_opens_with_stacked_nodes() {
+        let folder = concat!(env!("CARGO_MANIFEST_DIR"), "/graphs");
+        for entry in std::fs::read_dir(folder).unwrap() {
+            let path = entry.unwrap().path();
+            if path.extension().is_some_and(|e| e == "ron") {
+                let mut graph = crate::graph::load(&path).unwrap();
+                assert_eq!(unstack_levels(&mut graph), 0, "{}", path.display());
+            }
+        }
+    }
+
+    #[test]
+    fn depths_do_not_depend_on_the_order_wires_are_listed_in() {
+        let mut graph = stacked_chain(50);
+        let forward = depths(&graph.nodes, &graph.wires);
+        graph.wires.reverse();
+        assert_eq!(depths(&graph.nodes, &graph.wires), forward);
+        assert_eq!(forward[&graph.nodes[49].id], 49);
     }
 
     #[test]

@@ -74,6 +74,24 @@ pub(super) fn read(bytes: &[u8], folder: Option<&Path>) -> Result<Soup, String> 
                 &[DataType::U8, DataType::U16, DataType::F32],
                 Dimensions::Vec2,
             );
+            let accessors = [
+                Semantic::Positions,
+                Semantic::Normals,
+                Semantic::TexCoords(0),
+            ]
+            .into_iter()
+            .filter_map(|semantic| primitive.get(&semantic).map(|a| (semantic.to_string(), a)))
+            .chain(primitive.indices().map(|a| ("indices".to_string(), a)));
+            for (what, accessor) in accessors {
+                accessor_in_bounds(&accessor, &buffers).map_err(|problem| {
+                    format!(
+                        "mesh {}, primitive {}: the {what} accessor ({}) {problem}",
+                        mesh.index(),
+                        primitive.index(),
+                        accessor.index()
+                    )
+                })?;
+            }
             let reader = primitive.reader(|buffer| buffers.get(buffer.index()).map(Vec::as_slice));
             let Some(positions) = reader.read_positions() else {
                 continue;
@@ -134,6 +152,46 @@ fn position_accessors_exist(json: &gltf::json::Root) -> Result<(), String> {
         }
     }
     Ok(())
+}
+
+/// Checks that `accessor`'s elements lie inside its buffer view and the view inside its
+/// buffer: the glTF crate reads an accessor that does not as absent, which would make a
+/// file with a bad offset a mesh without triangles, or its indices a plain list.
+fn accessor_in_bounds(accessor: &gltf::Accessor, buffers: &[Vec<u8>]) -> Result<(), String> {
+    let Some(view) = accessor.view() else {
+        return Ok(());
+    };
+    let buffer = buffers.get(view.buffer().index()).map_or(0, Vec::len) as u64;
+    let view_end = (view.offset() as u64).checked_add(view.length() as u64);
+    if view_end.is_none_or(|end| end > buffer) {
+        return Err(format!(
+            "uses buffer view {} at bytes {}..+{}, past the end of buffer {} ({buffer} bytes)",
+            view.index(),
+            view.offset(),
+            view.length(),
+            view.buffer().index()
+        ));
+    }
+    let count = accessor.count() as u64;
+    if count == 0 {
+        return Ok(());
+    }
+    let size = accessor.size() as u64;
+    let stride = view.stride().map_or(size, |stride| stride as u64);
+    let end = (count - 1)
+        .checked_mul(stride)
+        .and_then(|last| last.checked_add(accessor.offset() as u64))
+        .and_then(|last| last.checked_add(size));
+    match end {
+        Some(end) if end <= view.length() as u64 => Ok(()),
+        _ => Err(format!(
+            "reads {count} elements from byte offset {}, past the end of buffer view {} \
+             ({} bytes)",
+            accessor.offset(),
+            view.index(),
+            view.length()
+        )),
+    }
 }
 
 /// Refuses a GLB whose header gives a total length shorter than the header itself,

@@ -34,6 +34,19 @@ pub fn preview_mesh(name: &str) -> Result<Mesh, MeshError> {
     }
 }
 
+/// Why an existing `path` without an extension is not read as a mesh: it is not a
+/// regular file (a device, FIFO or folder, said as such), or its format is unknown.
+fn not_a_mesh_file(path: &std::path::Path) -> String {
+    let format = format!(
+        "a mesh file's format is taken from its extension ({}), and this name has none",
+        load::EXTENSIONS.join(", ")
+    );
+    match crate::fsutil::read_limited(path, crate::fsutil::ReadLimit { what: "", bytes: 0 }) {
+        Err(error) if error.kind() == std::io::ErrorKind::InvalidInput => error.to_string(),
+        _ => format,
+    }
+}
+
 /// An indexed triangle mesh with per-vertex normals and texture coordinates.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Mesh {
@@ -70,6 +83,10 @@ impl Mesh {
             None if std::path::Path::new(name).extension().is_some() => {
                 load(std::path::Path::new(name))
             }
+            None if std::path::Path::new(name).exists() => Err(MeshError {
+                path: name.to_string(),
+                message: not_a_mesh_file(std::path::Path::new(name)),
+            }),
             None => Err(MeshError {
                 path: name.to_string(),
                 message: format!(

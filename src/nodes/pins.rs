@@ -157,7 +157,10 @@ fn find<'p, P>(
         .and_then(|&k| Some((k, pins.get(k)?)));
     match indexed {
         Some((k, pin)) if name_of(pin) == name => Some((k, pin)),
-        _ => pins.iter().enumerate().find(|(_, pin)| name_of(pin) == name),
+        _ => pins
+            .iter()
+            .enumerate()
+            .find(|(_, pin)| name_of(pin) == name),
     }
 }
 

@@ -152,7 +152,6 @@ pub fn geodesics(ctx: &Context) -> Result<Section, String> {
         (ctx.progress)();
     }
     Ok(Section {
-        slug: "geodesics",
         title: "Geodesic methods: error against time".into(),
         text: format!(
             "One source (vertex 0) on each mesh; errors are relative to the exact polyhedral distance, over vertices farther than 10% of the largest distance. Set-up is building the triangulation and factoring (heat) — done once per mesh; solve is one new set of sources. Heat and Dijkstra times are medians of {} runs; the exact method runs once. `genus2` comes from marching tetrahedra and has slivers, where the robust variant (mollified intrinsic Delaunay) helps; on the regular tori it costs a little.",

@@ -121,7 +121,6 @@ pub fn precision(ctx: &Context) -> Result<Section, String> {
         (ctx.progress)();
     }
     Ok(Section {
-        slug: "precision",
         title: "Precision: f32 on the GPU and the CPU against an f64 reference".into(),
         text: format!(
             "Albedo of every preset over its preview square and of each noise family over [-4, 4]², {size}² points, each evaluated by the GPU flat render (f32), the CPU evaluator in f32 and in f64; errors are absolute, over the three channels, against f64. GPU time per megapixel is the median of {} flat renders at {}²; CPU times are one pass over the {size}² points. The sine-hash families (`ValueSine`, the wood and marble presets) are chaotic in their constants: f32 and f64 disagree almost everywhere (see *Hash choice*), which is why their errors are large; the PCG families agree to rounding.",
@@ -230,7 +229,6 @@ pub fn hashes(ctx: &Context) -> Result<Section, String> {
         });
     }
     Ok(Section {
-        slug: "hashes",
         title: "Hash choice: sine hash against PCG3D".into(),
         text: "Value noise sampled at whole-number points (one lattice value per pixel) of a square at the origin and shifted by 10⁴ and 10⁶: the statistics of a good hash are mean 0.5, variance 1/12 ≈ 0.083 and neighbour correlation 0; the agreement column is the share of points where the CPU evaluator (f32) and the GPU give the same value within 10⁻³. Speed is an 8-octave fBm of each hash, rendered flat. The sine hash loses its randomness far from the origin (f32 `sin` of large arguments) and never agrees bit-for-bit between CPU and GPU; PCG3D works on integer cells and agrees everywhere.".into(),
         table,
@@ -306,7 +304,6 @@ pub fn octaves(ctx: &Context) -> Result<Section, String> {
         });
     }
     Ok(Section {
-        slug: "octaves",
         title: "Octave budget: what each octave buys".into(),
         text: "Gradient-noise fBm and turbulence (lacunarity 2, gain 0.5, scale 4) with 1 to N octaves against the same sum with 16 octaves, evaluated in f64 over [-2, 2]²; the error halves with each octave (the gain) while the time grows linearly. Each point of the plot is one octave count.".into(),
         table,
@@ -386,7 +383,6 @@ pub fn detail(ctx: &Context) -> Result<Section, String> {
         (ctx.progress)();
     }
     Ok(Section {
-        slug: "detail",
         title: "Level of detail: footprint-aware octaves against full evaluation".into(),
         text: format!(
             "Flat renders at {size}² of each material over its preview square widened 1×, 10× and 100×; the error is the mean absolute difference from the same view rendered with every octave at {}² and box-filtered down (the truly filtered pattern). Footprint-aware detail leaves out octaves finer than half a pixel, fading the last one to its mean: far away it is both closer to the filtered pattern (less aliasing) and cheaper; near by it changes nothing in the image but costs each fractal node its screen-space derivatives and octave count, which a material of several short fBm nodes (wood) feels most. Wood's sine bands and ring shapes are not octaves, so they still alias at a distance.",

@@ -11,8 +11,9 @@ mod thesis;
 pub use plot::{Plot, Series};
 pub use table::Table;
 
+use crate::fsutil::Naming;
 use crate::render::GpuContext;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// The most repetitions a timing may take: a median over more says nothing new, and
 /// every repetition is kept in memory.
@@ -41,9 +42,8 @@ struct Context<'a> {
     progress: &'a dyn Fn(),
 }
 
-/// One part of the report.
+/// One part of the report; its files are named by its slug in [`SLUGS`].
 struct Section {
-    slug: &'static str,
     title: String,
     text: String,
     table: Table,
@@ -59,8 +59,34 @@ pub fn steps(settings: &Settings) -> u64 {
     precision as u64 + 6 + 2 + 3 + meshes + 2 * thesis::MODELS.len() as u64
 }
 
+/// The sections' slugs, in the order they are measured and appear: each gives its
+/// section's table, `<slug>.csv`, and plot, `<slug>.png`.
+const SLUGS: [&str; 7] = [
+    "precision",
+    "hashes",
+    "octaves",
+    "geodesics",
+    "detail",
+    "distance_times",
+    "frame_rates",
+];
+
+/// The report's own page, beside the tables and plots.
+const PAGE: &str = "report.md";
+
+/// Every file a report writes into `folder`.
+pub fn files(folder: &Path) -> Vec<PathBuf> {
+    (SLUGS.iter())
+        .flat_map(|slug| [format!("{slug}.csv"), format!("{slug}.png")])
+        .chain([PAGE.to_string()])
+        .map(|name| folder.join(name))
+        .collect()
+}
+
 /// Measures everything and writes `report.md`, `<section>.csv` and `<section>.png` into
-/// `folder` (each file atomically). `progress` is called after each step.
+/// `folder`, made when missing. The files are put in place together once all are
+/// written: a report that fails (a full disk, a failed measurement) leaves none of them,
+/// nor the folder if it made it. `progress` is called after each step.
 pub fn write(
     gpu: &GpuContext,
     settings: &Settings,
@@ -73,7 +99,23 @@ pub fn write(
             settings.repetitions
         ));
     }
+    let made = !folder.is_dir();
     std::fs::create_dir_all(folder).map_err(|e| format!("{}: {e}", folder.display()))?;
+    let written = measure_and_write(gpu, settings, folder, progress);
+    if written.is_err() && made {
+        // Only an empty folder goes: everything staged in it was removed.
+        let _ = std::fs::remove_dir(folder);
+    }
+    written
+}
+
+/// Measures the sections and writes the report's files into `folder` together.
+fn measure_and_write(
+    gpu: &GpuContext,
+    settings: &Settings,
+    folder: &Path,
+    progress: &dyn Fn(),
+) -> Result<(), String> {
     let meshes: &[&str] = if settings.quick {
         &["torus:24", "genus2:20"]
     } else {
@@ -102,11 +144,7 @@ pub fn write(
         thesis::distance_times(&ctx)?,
         thesis::frame_rates(&ctx)?,
     ];
-    let write = |name: &str, bytes: &[u8]| {
-        let path = folder.join(name);
-        crate::fsutil::write_atomic(&path, bytes)
-            .map_err(|e| format!("{}: cannot write: {e}", path.display()))
-    };
+    let mut contents: Vec<Vec<u8>> = Vec::new();
     let mut markdown = format!(
         "# Veneer: error against run time\n\nMeasured by `veneer report` (Veneer {}) on {} with the adapter {}. Each timing is the median of {} runs unless a section says otherwise; GPU times are {}. Every table is also a CSV beside this file.\n",
         env!("CARGO_PKG_VERSION"),
@@ -119,22 +157,21 @@ pub fn write(
             "wall time from submitting the render pass to its completion (the adapter has no timestamp queries), without reading back"
         }
     );
-    for section in &sections {
-        write(
-            &format!("{}.csv", section.slug),
-            section.table.csv().as_bytes(),
-        )?;
-        write(&format!("{}.png", section.slug), &section.plot.png()?)?;
+    for (slug, section) in SLUGS.iter().zip(&sections) {
+        contents.push(section.table.csv().into_bytes());
+        contents.push(section.plot.png()?);
         markdown.push_str(&format!(
-            "\n## {}\n\n{}\n\n{}\n![{}]({}.png)\n\n[{}.csv]({}.csv)\n",
+            "\n## {}\n\n{}\n\n{}\n![{}]({slug}.png)\n\n[{slug}.csv]({slug}.csv)\n",
             section.title,
             section.text,
             section.table.markdown(),
             section.plot.title,
-            section.slug,
-            section.slug,
-            section.slug
         ));
     }
-    write("report.md", markdown.as_bytes())
+    contents.push(markdown.into_bytes());
+    let paths = files(folder);
+    let files = (paths.iter().zip(&contents))
+        .map(|(path, bytes)| (path.as_path(), Naming::Implied, bytes.as_slice()));
+    crate::fsutil::write_together(files)
+        .map_err(|(path, e)| format!("{}: cannot write: {e}", path.display()))
 }

@@ -167,12 +167,31 @@ fn uses_sine_hash(graph: &CheckedGraph) -> bool {
         .any(|checked| checked.node.kind.basis() == Some(Basis::ValueSine))
 }
 
-fn write(path: &Path, bytes: &[u8]) -> Result<(), SnapshotError> {
-    crate::fsutil::write_atomic(path, bytes).map_err(|error| SnapshotError::File {
+/// The failure to write `path`.
+fn cannot_write(path: &Path, error: std::io::Error) -> SnapshotError {
+    SnapshotError::File {
         path: path.to_path_buf(),
         what: "cannot write: ",
         error,
-    })
+    }
+}
+
+/// Writes `bytes` to `path`, a file of the golden folder Veneer names itself (never
+/// through a link: [`crate::fsutil::Naming::Implied`]).
+fn write(path: &Path, bytes: &[u8]) -> Result<(), SnapshotError> {
+    crate::fsutil::write_implied(path, bytes).map_err(|error| cannot_write(path, error))
+}
+
+/// Writes the golden and its sidecar together: neither is left without the other.
+fn write_golden(
+    golden: &Path,
+    png: &[u8],
+    sidecar: &Path,
+    record: &[u8],
+) -> Result<(), SnapshotError> {
+    use crate::fsutil::Naming::Implied;
+    crate::fsutil::write_together([(golden, Implied, png), (sidecar, Implied, record)])
+        .map_err(|(path, error)| cannot_write(&path, error))
 }
 
 /// Why a render and its golden may differ, read from the golden's sidecar.
@@ -267,8 +286,7 @@ pub fn check(
                 error,
             })?;
         }
-        write(golden, &png)?;
-        write(&sidecar, record.as_bytes())?;
+        write_golden(golden, &png, &sidecar, record.as_bytes())?;
         remove_leftovers(golden);
         return Ok(report(Outcome::Updated));
     }

@@ -231,6 +231,59 @@ fn add_wire_save_and_reopen_in_a_real_window() {
     session.finish();
 }
 
+/// A chain of `count` nodes — a position, transforms, a material — every one of them
+/// at the origin, as a generator that writes no positions leaves them.
+fn stacked_chain(count: usize) -> veneer::graph::Graph {
+    use veneer::graph::{Graph, NodeKind, PinRef, Wire};
+    let mut graph = Graph::default();
+    let mut previous = (graph.add("p", NodeKind::Position), "position");
+    for k in 1..count - 1 {
+        let next = graph.add(&format!("t{k}"), NodeKind::Transform);
+        graph.wires.push(Wire {
+            from: PinRef::new(previous.0, previous.1),
+            to: PinRef::new(next, "p"),
+        });
+        previous = (next, "p");
+    }
+    let material = graph.add("material", NodeKind::Material);
+    graph.wires.push(Wire {
+        from: PinRef::new(previous.0, previous.1),
+        to: PinRef::new(material, "normal"),
+    });
+    graph
+}
+
+#[test]
+fn ten_thousand_nodes_at_one_point_open_laid_out_in_a_real_window() {
+    require_tools();
+    let mut session = Session::start("stacked_nodes");
+    let path = session.dir.join("stacked.ron");
+    let graph = stacked_chain(10_000);
+    veneer::graph::save(&graph, &path).expect("the graph saves");
+
+    session.step("open 10,000 nodes at one point: they are laid out, the document edited");
+    session.start_editor(&path, "* stacked.ron — Veneer");
+    let whole = full(&session.shot());
+    session.settled(whole);
+
+    session.step("save with Ctrl+S: the layout is kept, nothing else changed");
+    session.key("ctrl+s");
+    let saved = session.wait_for("the file saved with its nodes apart", STEP, |_| {
+        veneer::graph::load(&path).ok().filter(|saved| {
+            let mut positions: Vec<_> = saved.nodes.iter().map(|n| n.position).collect();
+            positions.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+            positions.dedup();
+            positions.len() == saved.nodes.len()
+        })
+    });
+    session.expect_title("stacked.ron — Veneer");
+    if saved.wires != graph.wires || saved.nodes.len() != graph.nodes.len() {
+        session.fail("saving the laid-out graph changed more than its positions");
+    }
+    session.close_editor();
+    session.finish();
+}
+
 /// Fails, naming the README's test command, when a tool the test needs is missing.
 fn require_tools() {
     let missing: Vec<String> = TOOLS

@@ -1,10 +1,14 @@
 //! The command-line contract under generated hostile input. Argument vectors are built
 //! from every subcommand and from hostile values — sizes and counts from 0 to past
 //! memory, non-numbers, special files (`/dev/zero`, a FIFO, a folder, a link to
-//! `/dev/zero`), missing and full outputs — and the real binary must, for each:
-//! exit 0, 1 or 2 with a message when not 0, never panic nor die by a signal, finish
-//! within a time limit under a 6 GiB address-space limit, and touch no file but its
-//! outputs. The generator is seeded, so a failure names a case that replays.
+//! `/dev/zero`), missing and full outputs, outputs that are FIFOs without a reader,
+//! regular files under `/dev/shm` longer than what replaces them, outputs that are the
+//! command's own inputs, and batches whose jobs collide or write their own batch file —
+//! and the real binary must, for each: exit 0, 1 or 2 with a message when not 0, never
+//! panic nor die by a signal, finish within a time limit under a 6 GiB address-space
+//! limit, touch no file but its outputs, never change one of its inputs, and leave no
+//! output that ends in the old file's tail. The generator is seeded, so a failure names
+//! a case that replays.
 
 use crate::support::root;
 use proptest::prelude::*;
@@ -47,11 +51,67 @@ const SIZES: &[&str] = &["1", "7", "32"];
 const HOSTILE_SIZES: &[&str] = &["0", "200000", "4294967296", "-3", "abc", "NaN"];
 const HOSTILE_NUMBERS: &[&str] = &["0", "-1", "1e30", "-1e-30", "NaN", "inf", "x"];
 const OUTPUTS: &[&str] = &["out/a.png", "out/a b.png"];
-const HOSTILE_OUTPUTS: &[&str] = &["out", "out/", "missing/a.png", "full", "-", "wood.ron"];
+/// `{shm}` stands for a folder of the case's own under `/dev/shm`.
+const HOSTILE_OUTPUTS: &[&str] = &[
+    "out",
+    "out/",
+    "missing/a.png",
+    "full",
+    "-",
+    "wood.ron",
+    "mesh.obj",
+    "pipe.out",
+    "out/stale.out",
+    "{shm}/stale.out",
+];
+/// What the outputs the fixture makes beforehand hold: far longer than anything a command
+/// writes over them, so that a write in place without truncating leaves its tail.
+const STALE: &[u8] = b"STALE OLD CONTENT ";
+const STALE_REPEATS: usize = 1 << 16;
+/// The outputs the fixture fills with [`STALE`] content.
+const STALE_OUTPUTS: &[&str] = &["out/stale.out", "{shm}/stale.out"];
+/// Batch files in every case's folder: (name, content, what the batch may write).
+const BATCHES: &[(&str, &str, &[&str])] = &[
+    (
+        "ok.json",
+        r#"{"jobs": [{"command": "compile", "graph": "wood.ron", "output": "made/a.wgsl"},
+                     {"command": "compile", "graph": "fields.ron", "output": "out/b.wgsl"}]}"#,
+        &["made", "made/a.wgsl", "out/b.wgsl"],
+    ),
+    (
+        "collide.json",
+        r#"{"jobs": [{"command": "compile", "graph": "wood.ron", "output": "out/same.wgsl"},
+                     {"command": "compile", "graph": "fields.ron", "output": "./out/same.wgsl"}]}"#,
+        &[],
+    ),
+    (
+        "self.json",
+        r#"{"jobs": [{"command": "compile", "graph": "wood.ron", "output": "self.json"}]}"#,
+        &[],
+    ),
+    (
+        "fifo.json",
+        r#"{"jobs": [{"command": "compile", "graph": "wood.ron", "output": "pipe.out"},
+                     {"command": "compile", "graph": "fields.ron", "output": "out/c.wgsl"}]}"#,
+        &["out/c.wgsl"],
+    ),
+];
+/// Flags that take no value (every other option takes one).
+const FLAGS: &[&str] = &[
+    "--arrange",
+    "--robust",
+    "--normalize",
+    "--update",
+    "--json",
+    "--dry-run",
+];
+/// Options whose value is a file the command reads.
+const INPUT_OPTIONS: &[&str] = &["--mesh", "--params-file", "--environment"];
 
 /// A folder with every input the generator names: real graphs and a mesh, and hostile
-/// stand-ins (links to `/dev/zero` and `/dev/full`, a FIFO, folders, empty files).
-fn fixture(dir: &Path) {
+/// stand-ins (links to `/dev/zero` and `/dev/full`, FIFOs, folders, empty files), old
+/// outputs here and in `shm`, and the batch files.
+fn fixture(dir: &Path, shm: &Path) {
     std::fs::create_dir_all(dir.join("out")).expect("folder");
     std::fs::copy(root("graphs/wood.ron"), dir.join("wood.ron")).expect("copied");
     std::fs::copy(root("graphs/isolines.ron"), dir.join("fields.ron")).expect("copied");
@@ -60,7 +120,7 @@ fn fixture(dir: &Path) {
         std::os::unix::fs::symlink("/dev/zero", dir.join(name)).expect("link");
     }
     std::os::unix::fs::symlink("/dev/full", dir.join("full")).expect("link");
-    for name in ["fifo.ron", "fifo.obj"] {
+    for name in ["fifo.ron", "fifo.obj", "pipe.out"] {
         let status = Command::new("mkfifo")
             .arg(dir.join(name))
             .status()
@@ -72,6 +132,22 @@ fn fixture(dir: &Path) {
     }
     for name in ["empty.ron", "empty.stl"] {
         std::fs::write(dir.join(name), b"").expect("written");
+    }
+    std::fs::create_dir_all(shm).expect("a folder under /dev/shm");
+    for output in STALE_OUTPUTS {
+        std::fs::write(in_case(dir, shm, output), STALE.repeat(STALE_REPEATS)).expect("written");
+    }
+    for (name, content, _) in BATCHES {
+        std::fs::write(dir.join(name), content).expect("written");
+    }
+}
+
+/// Where `name` (an argument, `{shm}` standing for the case's folder under `/dev/shm`)
+/// is, for a command run in `dir`.
+fn in_case(dir: &Path, shm: &Path, name: &str) -> PathBuf {
+    match name.strip_prefix("{shm}") {
+        Some(rest) => PathBuf::from(format!("{}{rest}", shm.display())),
+        None => dir.join(name),
     }
 }
 
@@ -244,6 +320,12 @@ fn command_line() -> impl Strategy<Value = Vec<String>> {
             ]
             .concat()
         });
+    let batch = (
+        pick(&["ok.json", "collide.json", "self.json", "fifo.json"]),
+        option("--shard", usual_or(&["1/2", "2/2"], &["0/2"])),
+        flag("--dry-run"),
+    )
+        .prop_map(|(file, shard, dry_run)| [vec!["batch".into(), file], shard, dry_run].concat());
     // Only refused counts: a whole report takes a minute.
     let report = pick(&["0", "1001", "18446744073709551616", "-1"]).prop_map(|count| {
         [
@@ -266,6 +348,7 @@ fn command_line() -> impl Strategy<Value = Vec<String>> {
         mesh_command,
         geodesic,
         snapshot,
+        batch,
         report
     ]
 }
@@ -290,11 +373,39 @@ fn listing(dir: &Path) -> BTreeMap<PathBuf, Option<(u64, SystemTime)>> {
     files
 }
 
-/// Whether a command line may write `path` (relative to its folder): its outputs, and
-/// the graphs `fmt` rewrites in place.
+/// The files a command line reads: its arguments that are no option's value, and the
+/// values of [`INPUT_OPTIONS`] (a batch reads its batch file).
+fn inputs(args: &[String]) -> Vec<&str> {
+    let mut inputs = Vec::new();
+    let mut rest = args[1..].iter();
+    while let Some(arg) = rest.next() {
+        if !arg.starts_with('-') || arg == "-" {
+            inputs.push(arg.as_str());
+        } else if !FLAGS.contains(&arg.as_str())
+            && let Some(value) = rest.next()
+            && INPUT_OPTIONS.contains(&arg.as_str())
+        {
+            inputs.push(value.as_str());
+        }
+    }
+    inputs
+}
+
+/// Whether a command line may write `path` (relative to its folder): its outputs that are
+/// not also its inputs, and the graphs `fmt` rewrites in place.
 fn may_write(args: &[String], path: &Path) -> bool {
     let name = path.to_string_lossy();
     let named = args.iter().any(|arg| *arg == name);
+    if args[0] == "batch" {
+        let (_, _, writes) = BATCHES
+            .iter()
+            .find(|(file, _, _)| *file == args[1])
+            .expect("a batch file of the fixture");
+        return writes.contains(&name.as_ref());
+    }
+    if args[0] != "fmt" && inputs(args).contains(&name.as_ref()) {
+        return false;
+    }
     // Inside an output, or a folder made on the way to one.
     let under_output = args.windows(2).any(|pair| {
         let output = Path::new(pair[1].trim_end_matches('/'));
@@ -313,10 +424,20 @@ fn may_write(args: &[String], path: &Path) -> bool {
 
 /// Runs one command line in a fresh fixture and checks the contract.
 fn run_case(args: &[String], case: usize) -> Result<(), TestCaseError> {
-    let dir = std::env::temp_dir().join(format!("veneer-contract-{}-{case}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    fixture(&dir);
+    let name = format!("veneer-contract-{}-{case}", std::process::id());
+    let dir = std::env::temp_dir().join(&name);
+    let shm = Path::new("/dev/shm").join(&name);
+    for folder in [&dir, &shm] {
+        let _ = std::fs::remove_dir_all(folder);
+    }
+    fixture(&dir, &shm);
     let before = listing(&dir);
+    let shm_text = shm.to_string_lossy();
+    let args: Vec<String> = args
+        .iter()
+        .map(|arg| arg.replace("{shm}", &shm_text))
+        .collect();
+    let args = args.as_slice();
     let mut child = Command::new("prlimit")
         .arg(format!("--as={ADDRESS_SPACE}"))
         .arg(env!("CARGO_BIN_EXE_veneer"))
@@ -373,7 +494,16 @@ fn run_case(args: &[String], case: usize) -> Result<(), TestCaseError> {
     for path in before.keys().filter(|path| !after.contains_key(*path)) {
         prop_assert!(may_write(args, path), "{args:?} removed {}", path.display());
     }
+    for output in STALE_OUTPUTS {
+        let bytes = std::fs::read(in_case(&dir, &shm, output)).unwrap_or_default();
+        let whole = bytes == STALE.repeat(STALE_REPEATS);
+        prop_assert!(
+            whole || !bytes.windows(STALE.len()).any(|w| w == STALE),
+            "{args:?} left the old tail of {output}"
+        );
+    }
     let _ = std::fs::remove_dir_all(&dir);
+    let _ = std::fs::remove_dir_all(&shm);
     Ok(())
 }
 

@@ -12,7 +12,7 @@ use std::time::{Duration, Instant};
 /// Runs `veneer args` in `dir` with at most 4 GiB of address space, so that a read that
 /// grows without end aborts instead of filling the machine's memory, and kills it after
 /// 30 s, so that one that blocks fails the test instead of hanging it.
-fn run_in(dir: &Path, args: &[&str]) -> Output {
+pub(crate) fn run_in(dir: &Path, args: &[&str]) -> Output {
     let mut child = std::process::Command::new("sh")
         .args(["-c", "ulimit -v 4194304; exec \"$@\"", "sh"])
         .arg(env!("CARGO_BIN_EXE_veneer"))
@@ -35,7 +35,7 @@ fn run_in(dir: &Path, args: &[&str]) -> Output {
 }
 
 /// Asserts exit code `code` and a message holding every one of `words`, without a panic.
-fn refused_with(output: &Output, code: i32, words: &[&str]) {
+pub(crate) fn refused_with(output: &Output, code: i32, words: &[&str]) {
     let message = String::from_utf8_lossy(&output.stderr);
     assert_eq!(output.status.code(), Some(code), "{message}");
     assert!(!message.contains("panicked"), "{message}");
@@ -44,16 +44,16 @@ fn refused_with(output: &Output, code: i32, words: &[&str]) {
     }
 }
 
-fn refused(output: &Output, words: &[&str]) {
+pub(crate) fn refused(output: &Output, words: &[&str]) {
     refused_with(output, 1, words);
 }
 
-fn succeeded(output: &Output) {
+pub(crate) fn succeeded(output: &Output) {
     let message = String::from_utf8_lossy(&output.stderr);
     assert!(output.status.success(), "{message}");
 }
 
-fn mkfifo(path: &Path) {
+pub(crate) fn mkfifo(path: &Path) {
     let status = std::process::Command::new("mkfifo")
         .arg(path)
         .status()

@@ -21,6 +21,8 @@ mod groups;
 mod hostile_cli;
 mod hostile_files;
 mod hostile_groups;
+mod hostile_messages;
+mod hostile_outputs;
 mod hostile_scale;
 mod image_based_lighting;
 mod limits;

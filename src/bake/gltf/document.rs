@@ -152,7 +152,7 @@ pub fn document(
     let textures: Vec<Value> = (0..images.len())
         .map(|image| json!({ "sampler": 0, "source": image }))
         .collect();
-    let bin_name = format!("{stem}.bin");
+    let bin_name = buffer_name(stem);
     let mut root = json!({
         "asset": { "version": "2.0", "generator": concat!("Veneer ", env!("CARGO_PKG_VERSION")) },
         "scene": 0,
@@ -186,6 +186,11 @@ pub fn document(
             files
         }
     }
+}
+
+/// The file name of the buffer beside a `.gltf`.
+pub fn buffer_name(stem: &str) -> String {
+    format!("{stem}.bin")
 }
 
 /// A file name as a relative URI (spaces and other reserved characters escaped).

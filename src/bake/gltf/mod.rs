@@ -13,6 +13,7 @@ use document::{MaterialData, MeshData, Texture};
 use super::maps::{Converter, Map, NormalConvention, fill_uncovered};
 use super::{BakeError, UV_PADDING};
 use crate::codegen::{AlphaUse, Compiled};
+use crate::fsutil::Naming;
 use crate::graph::Shading;
 use crate::render::{FlatChannels, GpuContext, GpuMesh, UvRenderer};
 use serde_json::json;
@@ -44,9 +45,52 @@ fn encode_colour(shading: Shading, linear: f32) -> f32 {
 /// Occlusion below this counts (an 8-bit step under 1).
 const OCCLUDED: f32 = 1.0 - 1.0 / 512.0;
 
+/// How an export to `path` is packaged: `.gltf` with its buffer and PNGs beside it, or
+/// else (`.glb`, any other name) one binary file.
+fn packaging(path: &Path) -> Packaging {
+    match path.extension().and_then(|e| e.to_str()) {
+        Some(e) if e.eq_ignore_ascii_case("gltf") => Packaging::Separate,
+        _ => Packaging::Binary,
+    }
+}
+
+/// The stem the files beside a `.gltf` are named after, and its nodes and meshes.
+fn stem(path: &Path) -> String {
+    (path.file_stem())
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default()
+}
+
+/// What the textures beside a `.gltf` hold, named `<stem>_<what>.png`.
+const BASE_COLOR: &str = "basecolor";
+const ORM: &str = "orm";
+const EMISSION: &str = "emission";
+const NORMAL: &str = "normal";
+const TEXTURES: [&str; 4] = [BASE_COLOR, ORM, EMISSION, NORMAL];
+
+fn texture_name(stem: &str, what: &str) -> String {
+    format!("{stem}_{what}.png")
+}
+
+/// Every file an export to `path` may write, `path` itself first: a `.gltf` has its
+/// buffer and up to four textures beside it (emission and normal only when the material
+/// has them).
+pub fn gltf_files(path: &Path) -> Vec<PathBuf> {
+    let mut files = vec![path.to_path_buf()];
+    if packaging(path) == Packaging::Separate {
+        let stem = stem(path);
+        let beside = |name: String| path.with_file_name(name);
+        files.push(beside(document::buffer_name(&stem)));
+        files.extend(TEXTURES.map(|what| beside(texture_name(&stem, what))));
+    }
+    files
+}
+
 /// Exports `compiled` (parameters baked) to `path` (`.glb`, or `.gltf` with its buffer and
-/// PNGs beside it), calling `progress(done, total)` as tiles render. Every file is written
-/// atomically; the paths written come back, the document first.
+/// PNGs beside it), calling `progress(done, total)` as tiles render. The files are put in
+/// place together once all are written, so a failed export leaves none of them; the
+/// files beside a `.gltf` are named by Veneer and never written through links
+/// ([`crate::fsutil::Naming::Implied`]). The paths written come back, the document first.
 pub fn export_gltf(
     gpu: &GpuContext,
     compiled: &Compiled,
@@ -55,11 +99,8 @@ pub fn export_gltf(
     mut progress: impl FnMut(u64, u64),
 ) -> Result<Vec<PathBuf>, BakeError> {
     crate::render::baked_parameters(compiled)?;
-    let packaging = match path.extension().and_then(|e| e.to_str()) {
-        Some(e) if e.eq_ignore_ascii_case("gltf") => Packaging::Separate,
-        _ => Packaging::Binary,
-    };
-    let folder = super::output_folder(path)?;
+    let packaging = packaging(path);
+    super::output_folder(path)?;
     let (module, preview) = (&compiled.module, &compiled.preview);
     let uses = module.uses;
     let name = settings.mesh.as_deref().unwrap_or(&preview.mesh);
@@ -103,11 +144,8 @@ pub fn export_gltf(
         fill_uncovered(&mut pixels, size, UV_PADDING);
         rendered.push(pixels);
     }
-    let stem = path
-        .file_stem()
-        .map(|s| s.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let texture_name = |what: &str| format!("{stem}_{what}.png");
+    let stem = stem(path);
+    let texture_name = |what: &str| texture_name(&stem, what);
     let write_error = |error: std::io::Error| BakeError::Write {
         path: path.to_path_buf(),
         error,
@@ -123,7 +161,7 @@ pub fn export_gltf(
         .map(|p| [colour(p[0]), colour(p[1]), colour(p[2]), p[3]])
         .collect();
     textures.push(Texture {
-        file_name: texture_name("basecolor"),
+        file_name: texture_name(BASE_COLOR),
         png: png(&base, size, alpha != AlphaUse::Opaque).map_err(write_error)?,
     });
     material["pbrMetallicRoughness"] = json!({ "baseColorTexture": { "index": 0 } });
@@ -143,7 +181,7 @@ pub fn export_gltf(
     let orm = convert(Map::Orm, shading, size, (1.0, 1.0), &rendered[1]);
     let occluded = orm.iter().any(|p| p[0] < OCCLUDED);
     textures.push(Texture {
-        file_name: texture_name("orm"),
+        file_name: texture_name(ORM),
         png: png(&orm, size, false).map_err(write_error)?,
     });
     material["pbrMetallicRoughness"]["metallicRoughnessTexture"] = json!({ "index": 1 });
@@ -171,7 +209,7 @@ pub fn export_gltf(
         material["emissiveTexture"] = json!({ "index": textures.len() });
         material["emissiveFactor"] = json!([1.0, 1.0, 1.0]);
         textures.push(Texture {
-            file_name: texture_name("emission"),
+            file_name: texture_name(EMISSION),
             png: png(&emission, size, false).map_err(write_error)?,
         });
         if scale > 1.0 {
@@ -187,7 +225,7 @@ pub fn export_gltf(
         let normal = convert(Map::Normal, shading, size, (texel, texel), &rendered[3]);
         material["normalTexture"] = json!({ "index": textures.len() });
         textures.push(Texture {
-            file_name: texture_name("normal"),
+            file_name: texture_name(NORMAL),
             png: png(&normal, size, false).map_err(write_error)?,
         });
     }
@@ -204,16 +242,18 @@ pub fn export_gltf(
         textures,
     };
     let files = document::document(&stem, &data, &material, packaging);
-    let mut written = Vec::new();
-    for (file_name, bytes) in files {
-        let target = folder.join(&file_name);
-        crate::fsutil::write_atomic(&target, &bytes).map_err(|error| BakeError::Write {
-            path: target.clone(),
-            error,
-        })?;
-        written.push(target);
-    }
-    Ok(written)
+    // The document is the file the user named; the rest go beside it.
+    let targets: Vec<(PathBuf, Naming)> = (files.iter().enumerate())
+        .map(|(index, (file_name, _))| match index {
+            0 => (path.to_path_buf(), Naming::Given),
+            _ => (path.with_file_name(file_name), Naming::Implied),
+        })
+        .collect();
+    let writes = (targets.iter().zip(&files))
+        .map(|((target, naming), (_, bytes))| (target.as_path(), *naming, bytes.as_slice()));
+    crate::fsutil::write_together(writes)
+        .map_err(|(path, error)| BakeError::Write { path, error })?;
+    Ok(targets.into_iter().map(|(target, _)| target).collect())
 }
 
 /// A whole `map` (OpenGL-convention normals, as glTF requires) from its rendered
