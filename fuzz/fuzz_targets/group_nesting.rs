@@ -117,9 +117,10 @@ fn build(fuzz: &FuzzGraph) -> Graph {
         graph.groups.insert(names[k].clone(), definition);
     }
     for level in 0..chain {
-        let kind = match level + 1 < chain {
-            true => NodeKind::Group(Group::named(format!("chain{}", level + 1))),
-            false => NodeKind::Time,
+        let kind = if level + 1 < chain {
+            NodeKind::Group(Group::named(format!("chain{}", level + 1)))
+        } else {
+            NodeKind::Time
         };
         let definition = GroupDef {
             linked: false,

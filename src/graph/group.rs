@@ -545,7 +545,8 @@ fn unique(base: &str, taken: impl Fn(&str) -> bool) -> String {
 
 /// Dissolves group node `instance` into its definition's nodes, keeping their ids
 /// where the graph does not use them; the definition is dropped when no other node
-/// uses it. Returns the ids of the nodes it put in the graph.
+/// uses it, and the parameter presets forget the parameters the node exposed (as they
+/// do a removed group input's). Returns the ids of the nodes it put in the graph.
 pub fn ungroup(graph: &mut Graph, instance: NodeId) -> Result<Vec<NodeId>, String> {
     let position = graph
         .nodes
@@ -556,8 +557,17 @@ pub fn ungroup(graph: &mut Graph, instance: NodeId) -> Result<Vec<NodeId>, Strin
     let name = group_name(&graph.nodes[position])
         .unwrap_or_default()
         .to_string();
+    let exposed = |graph: &Graph| -> HashSet<String> {
+        let list = super::parameters::exposed(graph);
+        list.into_iter().map(|entry| entry.name).collect()
+    };
+    let before = exposed(graph);
     let inlined =
         super::inline::dissolve(graph, position, &interfaces).map_err(|error| error.to_string())?;
+    let after = exposed(graph);
+    for values in graph.presets.values_mut() {
+        values.retain(|name, _| !before.contains(name) || after.contains(name));
+    }
     let used = graph
         .nodes
         .iter()

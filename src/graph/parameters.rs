@@ -49,9 +49,10 @@ pub const MAX_PARAMETERS: usize = 4_096;
 /// check to refuse a graph that exposes more.
 pub fn exposed(graph: &Graph) -> Vec<Exposed> {
     let mut list: Vec<Exposed> = Vec::new();
-    let nodes = match graph.parameters.is_empty() {
-        true => HashMap::new(),
-        false => first_of_each_id(graph),
+    let nodes = if graph.parameters.is_empty() {
+        HashMap::new()
+    } else {
+        first_of_each_id(graph)
     };
     for parameter in graph.parameters.iter().take(MAX_PARAMETERS + 1) {
         let Some(node) = nodes.get(&parameter.node) else {
