@@ -57,7 +57,10 @@ pub fn insert_graph(
     ids
 }
 
-/// The graph a snarl shows, with `meta`'s name, version and preview settings.
+/// The graph a snarl shows, with `meta`'s name, version and preview settings. The
+/// wires of `meta` that the view cannot show, at a pin a group node does not show (a
+/// group that does not resolve, or whose interface changed under it), are kept while
+/// both their nodes are: only the check may call them wrong, never the view drop them.
 pub fn graph_from_snarl(snarl: &Snarl<Node>, meta: &Graph) -> Graph {
     let mut graph = Graph {
         nodes: Vec::new(),
@@ -90,8 +93,36 @@ pub fn graph_from_snarl(snarl: &Snarl<Node>, meta: &Graph) -> Graph {
             });
         }
     }
+    let unshown = unshown_wires(&graph.nodes, &meta.wires);
+    graph.wires.extend(unshown);
     graph.canonicalize();
     graph
+}
+
+/// The wires among `wires` between nodes of `nodes` that reach a pin one of them, a
+/// group node, does not show.
+fn unshown_wires(nodes: &[Node], wires: &[Wire]) -> Vec<Wire> {
+    let by_id: BTreeMap<NodeId, &Node> = nodes.iter().map(|node| (node.id, node)).collect();
+    let hidden = |node: &Node, pin: &str, output: bool| {
+        let signature = node.kind.signature();
+        super::scope::is_instance(node)
+            && if output {
+                signature.output(pin).is_none()
+            } else {
+                signature.input(pin).is_none()
+            }
+    };
+    wires
+        .iter()
+        .filter(|wire| {
+            let (Some(from), Some(to)) = (by_id.get(&wire.from.node), by_id.get(&wire.to.node))
+            else {
+                return false;
+            };
+            hidden(from, &wire.from.pin, true) || hidden(to, &wire.to.pin, false)
+        })
+        .cloned()
+        .collect()
 }
 
 /// The id a new node gets: one past the largest in use.

@@ -195,11 +195,20 @@ impl VeneerApp {
     }
 
     /// The groups an instance can be made of at the level shown: the graph's and the
-    /// library's, less those that would contain themselves.
-    pub(super) fn placeable_groups(&self) -> Vec<String> {
+    /// library's, less those that would contain themselves. Library files that cannot
+    /// be read as groups are named in the status bar.
+    pub(super) fn placeable_groups(&mut self) -> Vec<String> {
+        let (library, unusable) = library::list();
+        if let Some(first) = unusable.first() {
+            let more = match unusable.len() {
+                1 => String::new(),
+                n => format!(" (and {} more files)", n - 1),
+            };
+            self.message = Some(format!("group library: {first}{more}"));
+        }
         let groups = &self.document.graph.groups;
         let mut names: Vec<String> = groups.keys().cloned().collect();
-        names.extend(library::list().into_iter().map(|(name, _)| name));
+        names.extend(library.into_iter().map(|(name, _)| name));
         names.sort();
         names.dedup();
         if let Some(current) = self.scope.current() {
@@ -215,10 +224,8 @@ impl VeneerApp {
         name: &str,
         at: Pos2,
     ) -> Option<egui_snarl::NodeId> {
-        if !library::adopt(&mut self.document.graph, name) {
-            self.message = Some(format!(
-                "no group named '{name}' in the graph or the library"
-            ));
+        if let Err(message) = library::adopt(&mut self.document.graph, name) {
+            self.message = Some(message);
             return None;
         }
         let interfaces = group::interfaces(&self.document.graph.groups);
@@ -245,7 +252,7 @@ impl VeneerApp {
 pub(super) fn group_kind(graph: &Graph, name: &str) -> Option<NodeKind> {
     let mut groups = graph.groups.clone();
     if !groups.contains_key(name) {
-        groups.insert(name.to_string(), library::find(name)?.0);
+        groups.insert(name.to_string(), library::find(name).ok()??.0);
     }
     let pins = group::interfaces(&groups).ok()?.get(name)?.signature();
     Some(NodeKind::Group(Group {

@@ -208,10 +208,14 @@ pub fn snarl_for_group(graph: &Graph, group: &str) -> Option<Snarl<Node>> {
 /// Writes what `snarl` (a view made by [`snarl_for_group`]) shows into group `group`
 /// of `graph`; returns whether the definition changed.
 pub fn write_back(graph: &mut Graph, group: &str, snarl: &Snarl<Node>) -> bool {
-    let view = graph_from_snarl(snarl, &Graph::default());
     let Some(definition) = graph.groups.get_mut(group) else {
         return false;
     };
+    let stored = Graph {
+        wires: definition.wires.clone(),
+        ..Graph::default()
+    };
+    let view = graph_from_snarl(snarl, &stored);
     let nodes: Vec<Node> = view
         .nodes
         .into_iter()

@@ -92,8 +92,8 @@ struct Job {
     /// The graph's parameter preset to start from.
     #[serde(default)]
     preset: Option<String>,
-    /// Exposed parameter values, applied after the preset.
-    #[serde(default)]
+    /// Exposed parameter values, applied after the preset (each named once).
+    #[serde(default, deserialize_with = "veneer::graph::keys::unique")]
     set: BTreeMap<String, Given>,
     /// The output: the PNG of `render`, the folder (or `.glb`/`.gltf` file) of `bake`,
     /// the golden folder of `snapshot`, the shader file of `compile`.

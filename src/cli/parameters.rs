@@ -5,13 +5,13 @@ use super::Failure;
 use clap::Args;
 use std::path::{Path, PathBuf};
 use veneer::graph::Graph;
-use veneer::graph::parameters::{Given, Overrides};
+use veneer::graph::parameters::{Given, Overrides, ParameterFile};
 
 /// Values for the graph's exposed parameters (see `veneer compile --describe`).
 #[derive(Args, Clone, Debug, Default)]
 pub struct ParameterArgs {
     /// Start from the graph's parameter preset NAME.
-    #[arg(long, value_name = "NAME")]
+    #[arg(long, value_name = "NAME", value_parser = parse_preset_name)]
     pub preset: Option<String>,
     /// Parameter values from a RON or JSON file (`{"ring_frequency": 0.7}`), applied
     /// after the preset.
@@ -21,6 +21,12 @@ pub struct ParameterArgs {
     /// NAME=#ff8800, or a word (a choice's option, on/off). Repeatable.
     #[arg(long = "set", value_name = "NAME=VALUE", value_parser = parse_assignment)]
     pub set: Vec<(String, Given)>,
+}
+
+/// Reads a preset name: one that could name a file (`snapshot` names goldens after it).
+fn parse_preset_name(name: &str) -> Result<String, String> {
+    veneer::graph::names::file_name_part("preset", name)?;
+    Ok(name.to_string())
 }
 
 /// Reads `name=value`.
@@ -40,8 +46,8 @@ impl ParameterArgs {
     pub fn overrides(&self) -> Result<Overrides, Failure> {
         let mut values = Vec::new();
         if let Some(path) = &self.params_file {
-            let file: std::collections::BTreeMap<String, Given> = super::read_ron_or_json(path)?;
-            values.extend(file);
+            let file: ParameterFile = super::read_ron_or_json(path)?;
+            values.extend(file.0);
         }
         values.extend(self.set.iter().cloned());
         Ok(Overrides {

@@ -10,7 +10,7 @@ use crate::graph::parameters::{Exposed, Member};
 use crate::graph::{NodeId, NodeKind};
 use crate::nodes::emit::{self, Detail, Emit};
 use naming::Namer;
-use rustc_hash::FxHashSet;
+use rustc_hash::{FxHashMap, FxHashSet};
 use std::collections::BTreeMap;
 
 /// How a group's function is called: its name, the struct it returns, which inputs of
@@ -37,6 +37,8 @@ pub struct Emitter<'a> {
     /// The exposed parameters and their members (named mode).
     pub parameters: &'a [Exposed],
     pub members: &'a [Member],
+    /// The position of each parameter in `parameters`, by name.
+    parameter_index: FxHashMap<&'a str, usize>,
     /// Group functions by group name.
     pub calls: BTreeMap<String, GroupCall>,
 }
@@ -57,6 +59,12 @@ impl<'a> Emitter<'a> {
             called: FxHashSet::default(),
             parameters,
             members,
+            parameter_index: parameters
+                .iter()
+                .enumerate()
+                .rev()
+                .map(|(k, p)| (p.name.as_str(), k))
+                .collect(),
             calls: BTreeMap::new(),
         }
     }
@@ -74,7 +82,7 @@ impl<'a> Emitter<'a> {
             return None;
         }
         let name = bindings.get(&(node, pin.name.to_string()))?;
-        let k = self.parameters.iter().position(|p| &p.name == name)?;
+        let k = *self.parameter_index.get(name.as_str())?;
         Some(member_expression(
             &self.members[k].name,
             self.parameters[k].ty,

@@ -16,7 +16,7 @@ use crate::graph::check::{CheckedGraph, InputSource, check_body};
 use crate::graph::group::{self, BOUNDARY, Bindings, GroupDef, Interface, Route};
 use crate::graph::{Graph, Node, NodeId, NodeKind, PinRef, Value, Wire};
 use crate::nodes::Constant;
-use std::collections::{BTreeMap, BTreeSet};
+use std::collections::BTreeMap;
 
 /// One group node of a checked level: where each input gets its value, whether the
 /// input holds an exposed parameter, and which outputs are read.
@@ -139,30 +139,13 @@ fn gather_sites(
 
 /// The groups, each before the groups it contains.
 fn outermost_first(groups: &BTreeMap<String, GroupDef>) -> Vec<String> {
-    fn visit(
-        name: &str,
-        groups: &BTreeMap<String, GroupDef>,
-        seen: &mut BTreeSet<String>,
-        out: &mut Vec<String>,
-    ) {
-        if !seen.insert(name.to_string()) {
-            return;
-        }
-        if let Some(definition) = groups.get(name) {
-            for node in &definition.nodes {
-                if let Some(inner) = group::group_name(node) {
-                    visit(inner, groups, seen, out);
-                }
-            }
-        }
-        out.push(name.to_string());
-    }
-    let (mut seen, mut out) = (BTreeSet::new(), Vec::new());
-    for name in groups.keys() {
-        visit(name, groups, &mut seen, &mut out);
-    }
-    out.reverse();
-    out
+    let nesting = crate::graph::nesting::nesting(groups);
+    nesting
+        .order
+        .iter()
+        .rev()
+        .map(|name| name.to_string())
+        .collect()
 }
 
 /// The constant every site gives input `k`, if they all give the same one and none
@@ -220,7 +203,7 @@ fn plan(
             });
         }
     }
-    let input_index = |pin: &str| interface.inputs.iter().position(|e| e.input.name == pin);
+    let input_index = |pin: &str| interface.input_index(pin);
     let mut sources: BTreeMap<&str, PinRef> = BTreeMap::new();
     for wire in &definition.wires {
         let from = if wire.from.node == BOUNDARY {

@@ -387,14 +387,17 @@ impl<'g> Checker<'g> {
 
 /// Checks a graph and orders the nodes its material output needs.
 ///
-/// Inlines its groups first (a group that contains itself, an unknown group or pin is
-/// an error naming the groups), then reports unknown pins, bad constants and settings,
+/// Checks what the graph declares first (group names and pins, exposed parameters and
+/// presets), then inlines its groups (a group that contains itself, an unknown group or
+/// pin, nesting past [`super::nesting::MAX_GROUP_DEPTH`] are errors naming the groups),
+/// then reports unknown pins, bad constants and settings,
 /// type mismatches, missing required inputs and cycles, each naming its node (inside
 /// groups: `group 'bark' › node 'grain' (#3)`). Nodes the output does not reach are
 /// pruned.
 pub fn check(graph: &Graph) -> Result<CheckedGraph, Vec<CheckError>> {
-    let mut errors = parameter_problems(graph);
-    let parameters = super::parameters::exposed(graph);
+    let parameters = super::parameters::ByName::of(graph);
+    let mut errors = super::declarations::problems(graph, &parameters);
+    let parameters = parameters.into_list();
     let seeds = super::parameters::bindings(&parameters);
     let (flat, bindings) = match super::group::flatten_traced(graph, seeds) {
         Ok(flat) => flat,
@@ -414,50 +417,6 @@ pub fn check(graph: &Graph) -> Result<CheckedGraph, Vec<CheckError>> {
     checked.parameters = parameters;
     checked.bindings = bindings;
     Ok(checked)
-}
-
-/// Exposed parameters that name no input of the graph, or a name twice.
-fn parameter_problems(graph: &Graph) -> Vec<CheckError> {
-    let mut errors = Vec::new();
-    let mut names = std::collections::BTreeSet::new();
-    for parameter in &graph.parameters {
-        if !names.insert(parameter.name.as_str()) {
-            errors.push(CheckError {
-                node: None,
-                node_name: None,
-                message: format!("two parameters are named '{}'", parameter.name),
-            });
-        }
-        let Some(node) = graph.node(parameter.node) else {
-            errors.push(CheckError {
-                node: None,
-                node_name: None,
-                message: format!(
-                    "parameter '{}' exposes node #{}, which the graph does not have",
-                    parameter.name, parameter.node.0
-                ),
-            });
-            continue;
-        };
-        let problem = if node.kind.signature().input(&parameter.pin).is_none() {
-            Some("which the node does not have")
-        } else if graph.wire_into(node.id, &parameter.pin).is_some() {
-            Some("which a wire feeds (a wired input takes no value)")
-        } else {
-            None
-        };
-        if let Some(problem) = problem {
-            errors.push(CheckError {
-                node: Some(node.id),
-                node_name: Some(node.to_string()),
-                message: format!(
-                    "parameter '{}' exposes input '{}', {problem}",
-                    parameter.name, parameter.pin
-                ),
-            });
-        }
-    }
-    errors
 }
 
 /// [`check`] of a graph without group nodes.
@@ -572,23 +531,10 @@ fn check_towards(graph: &Graph, sinks: Option<&[NodeId]>) -> Result<CheckedGraph
 /// The nodes of a cycle (the search stack from where it closes) as `'a' -> 'b' -> …`,
 /// the middle of a long one left out.
 fn cycle_path(stack: &[(Entry, usize)]) -> String {
-    const ENDS: usize = 4;
-    let name = |((node, _, _), _): &(Entry, usize)| format!("'{}'", node.display_name());
-    if stack.len() <= 2 * ENDS + 1 {
-        return stack.iter().map(name).collect::<Vec<_>>().join(" -> ");
-    }
-    let skipped = format!(
-        "… {} more …",
-        crate::messages::thousands(stack.len() - 2 * ENDS)
-    );
-    let (head, tail) = (&stack[..ENDS], &stack[stack.len() - ENDS..]);
-    let names: Vec<String> = head
+    let names = stack
         .iter()
-        .map(name)
-        .chain(std::iter::once(skipped))
-        .chain(tail.iter().map(name))
-        .collect();
-    names.join(" -> ")
+        .map(|((node, _, _), _)| format!("'{}'", node.display_name()));
+    super::names::elided(names.collect(), " -> ")
 }
 
 /// The message for a text longer than `max` characters.

@@ -9,12 +9,16 @@
 //! parameters. Wiring an input binds it.
 
 use super::check::CheckError;
-use super::{Graph, Node, NodeId, NodeKind, Origin, PinRef, Value, ValueType, Wire};
+use super::names::shown;
+use super::nesting::{self, Nesting};
+use super::{Graph, Node, NodeId, NodeKind, PinRef, Value, ValueType, Wire};
 use crate::nodes::Group;
 use crate::nodes::pins::{InputPin, OutputPin, PinDefault, PinRange, Signature, intern};
 use serde::{Deserialize, Serialize};
-use std::borrow::Cow;
-use std::collections::{BTreeMap, BTreeSet};
+use std::collections::{BTreeMap, BTreeSet, HashMap, HashSet};
+
+pub use super::inline::{Bindings, flatten, flatten_traced};
+pub use super::nesting::{MAX_GROUP_DEPTH, MAX_INLINED_NODES};
 
 /// The node id that stands for a group's boundary in its definition's wires: a wire
 /// from `(BOUNDARY, "x")` reads group input `x`, a wire to `(BOUNDARY, "y")` feeds
@@ -138,9 +142,35 @@ pub struct InterfaceInput {
 pub struct Interface {
     pub inputs: Vec<InterfaceInput>,
     pub outputs: Vec<GroupOutput>,
+    /// The position in `inputs` of the first input of each name.
+    by_name: HashMap<String, usize>,
 }
 
 impl Interface {
+    /// The interface of a definition's declared pins alone.
+    fn declared(definition: &GroupDef) -> Interface {
+        let mut interface = Interface {
+            outputs: definition.outputs.clone(),
+            ..Interface::default()
+        };
+        for input in &definition.inputs {
+            interface.push(InterfaceInput {
+                input: input.clone(),
+                route: Route::Declared,
+                path: Vec::new(),
+            });
+        }
+        interface
+    }
+
+    fn push(&mut self, entry: InterfaceInput) {
+        let position = self.inputs.len();
+        self.by_name
+            .entry(entry.input.name.clone())
+            .or_insert(position);
+        self.inputs.push(entry);
+    }
+
     /// The signature of an instance.
     pub fn signature(&self) -> Signature {
         let inputs = self
@@ -169,7 +199,12 @@ impl Interface {
 
     /// The input called `name`.
     pub fn input(&self, name: &str) -> Option<&InterfaceInput> {
-        self.inputs.iter().find(|entry| entry.input.name == name)
+        self.input_index(name).map(|k| &self.inputs[k])
+    }
+
+    /// The position in `inputs` of the input called `name`.
+    pub fn input_index(&self, name: &str) -> Option<usize> {
+        self.by_name.get(name).copied()
     }
 }
 
@@ -181,15 +216,8 @@ pub fn group_name(node: &Node) -> Option<&str> {
     }
 }
 
-/// Whether a wire feeds input `pin` of `node` among `wires`.
-fn wired(wires: &[Wire], node: NodeId, pin: &str) -> bool {
-    wires
-        .iter()
-        .any(|wire| wire.to.node == node && wire.to.pin == pin)
-}
-
-/// What is wrong with the graph's groups: unknown groups and groups that contain
-/// themselves.
+/// What is wrong with the graph's groups: unknown groups, groups that contain
+/// themselves, nest too deep or have too many pins.
 #[derive(Clone, Debug, PartialEq)]
 pub struct GroupError {
     /// The node the problem is at, named as messages name it.
@@ -207,75 +235,108 @@ impl From<GroupError> for CheckError {
     }
 }
 
+/// The most inputs, and the most outputs, an instance of a group shows (its declared
+/// and inherited inputs together): an editor draws a pin for each, and every level
+/// that inherits them repeats them.
+pub const MAX_GROUP_PINS: usize = 1_024;
+
 /// The interface of every group of `groups`, each computed after the groups it uses.
-/// A cycle of group references is an error naming the groups, as is an inner node
-/// naming a group that does not exist.
+/// A cycle of group references is an error naming the groups, as are an inner node
+/// naming a group that does not exist, groups nested more than
+/// [`nesting::MAX_GROUP_DEPTH`] deep and a group with more than [`MAX_GROUP_PINS`]
+/// inputs or outputs.
 pub fn interfaces(
     groups: &BTreeMap<String, GroupDef>,
 ) -> Result<BTreeMap<String, Interface>, GroupError> {
-    let mut done: BTreeMap<String, Interface> = BTreeMap::new();
-    for name in groups.keys() {
-        let mut stack = Vec::new();
-        interface_of(name, groups, &mut done, &mut stack)?;
+    let analysis = analyse(groups);
+    match analysis.error {
+        Some(error) => Err(error),
+        None => Ok(analysis.interfaces),
     }
-    Ok(done)
 }
 
-/// Computes the interface of group `name` (and, first, of the groups it uses).
+/// The groups of a graph as far as they resolve.
+pub(super) struct Analysis<'g> {
+    pub nesting: Nesting<'g>,
+    /// The interfaces of the groups that nest properly and have at most
+    /// [`MAX_GROUP_PINS`] inputs and outputs.
+    pub interfaces: BTreeMap<String, Interface>,
+    /// The first problem found.
+    pub error: Option<GroupError>,
+}
+
+/// Walks the nesting of `groups` and computes the interface of every group that nests
+/// properly, inner groups first.
+pub(super) fn analyse(groups: &BTreeMap<String, GroupDef>) -> Analysis<'_> {
+    let nesting = nesting::nesting(groups);
+    let mut error = nesting.error.clone();
+    let mut done: BTreeMap<String, Interface> = BTreeMap::new();
+    for name in &nesting.order {
+        match interface_of(name, &groups[*name], &done) {
+            Ok(Some(interface)) => {
+                done.insert(name.to_string(), interface);
+            }
+            Ok(None) => {}
+            Err(problem) => {
+                error.get_or_insert(problem);
+            }
+        }
+    }
+    Analysis {
+        nesting,
+        interfaces: done,
+        error,
+    }
+}
+
+/// The interface of group `name`, whose inner groups' interfaces are in `done` (`None`
+/// when one of them is not: its problem is reported already).
 fn interface_of(
     name: &str,
-    groups: &BTreeMap<String, GroupDef>,
-    done: &mut BTreeMap<String, Interface>,
-    stack: &mut Vec<String>,
-) -> Result<(), GroupError> {
-    if done.contains_key(name) {
-        return Ok(());
-    }
-    if let Some(start) = stack.iter().position(|entry| entry == name) {
-        let cycle: Vec<String> = stack[start..]
-            .iter()
-            .chain(std::iter::once(&name.to_string()))
-            .map(|group| format!("'{group}'"))
-            .collect();
-        return Err(GroupError {
-            node_name: None,
-            message: format!(
-                "groups contain themselves: {} (a group cannot be used inside itself)",
-                cycle.join(" › ")
-            ),
-        });
-    }
-    let definition = &groups[name];
-    stack.push(name.to_string());
-    let mut interface = Interface {
-        inputs: definition
-            .inputs
-            .iter()
-            .map(|input| InterfaceInput {
-                input: input.clone(),
-                route: Route::Declared,
-                path: Vec::new(),
-            })
-            .collect(),
-        outputs: definition.outputs.clone(),
+    definition: &GroupDef,
+    done: &BTreeMap<String, Interface>,
+) -> Result<Option<Interface>, GroupError> {
+    let limit = crate::messages::thousands(MAX_GROUP_PINS);
+    let too_many = |what: String| GroupError {
+        node_name: None,
+        message: format!("group '{}' has {what}", shown(name)),
     };
+    for (side, count) in [
+        ("outputs", definition.outputs.len()),
+        ("inputs", definition.inputs.len()),
+    ] {
+        if count > MAX_GROUP_PINS {
+            let count = crate::messages::thousands(count);
+            return Err(too_many(format!(
+                "{count} {side}, more than the {limit} a group may show"
+            )));
+        }
+    }
+    let wired: HashSet<(NodeId, &str)> = definition
+        .wires
+        .iter()
+        .map(|wire| (wire.to.node, wire.to.pin.as_str()))
+        .collect();
+    let mut interface = Interface::declared(definition);
     let mut inner: Vec<&Node> = definition.nodes.iter().collect();
     inner.sort_by_key(|node| node.id);
     for node in inner {
         let Some(used) = group_name(node) else {
             continue;
         };
-        if !groups.contains_key(used) {
-            return Err(GroupError {
-                node_name: Some(format!("group '{name}' › {node}")),
-                message: format!("no group named '{used}' in the graph"),
-            });
-        }
-        interface_of(used, groups, done, stack)?;
-        for entry in &done[used].inputs {
+        let Some(used_interface) = done.get(used) else {
+            return Ok(None);
+        };
+        for entry in &used_interface.inputs {
             let pin = &entry.input.name;
-            if wired(&definition.wires, node.id, pin) {
+            if wired.contains(&(node.id, pin.as_str())) {
                 continue;
+            }
+            if interface.inputs.len() == MAX_GROUP_PINS {
+                return Err(too_many(format!(
+                    "more inputs than the {limit} a group may show, with those it \
+                     inherits from the groups inside it"
+                )));
             }
             let mut input = entry.input.clone();
             if let Some(value) = node.inputs.get(pin) {
@@ -284,7 +345,7 @@ fn interface_of(
             input.name = free_name(&interface, pin, node);
             let mut path = vec![used.to_string()];
             path.extend(entry.path.iter().cloned());
-            interface.inputs.push(InterfaceInput {
+            interface.push(InterfaceInput {
                 input,
                 route: Route::Inherited {
                     node: node.id,
@@ -294,9 +355,7 @@ fn interface_of(
             });
         }
     }
-    stack.pop();
-    done.insert(name.to_string(), interface);
-    Ok(())
+    Ok(Some(interface))
 }
 
 /// `pin` if no input of `interface` has that name yet, else the name qualified by the
@@ -315,16 +374,28 @@ fn free_name(interface: &Interface, pin: &str, node: &Node) -> String {
 }
 
 /// Fills in the pins of every group node of the graph (top level and inside groups)
-/// from the current definitions. Best effort: a graph whose groups do not resolve keeps
-/// the pins it had, and [`flatten`] reports why.
+/// from the current definitions. Best effort: a group that does not resolve (see
+/// [`interfaces`]) shows its declared pins, or none past [`MAX_GROUP_PINS`], and the
+/// check says why.
 pub fn resolve(graph: &mut Graph) {
-    let Ok(interfaces) = interfaces(&graph.groups) else {
-        return;
-    };
-    let signatures: BTreeMap<&String, Signature> = interfaces
+    let analysis = analyse(&graph.groups);
+    let signatures: BTreeMap<String, Signature> = graph
+        .groups
         .iter()
-        .map(|(name, interface)| (name, interface.signature()))
+        .map(|(name, definition)| {
+            let signature = match analysis.interfaces.get(name) {
+                Some(interface) => interface.signature(),
+                None if definition.inputs.len() <= MAX_GROUP_PINS
+                    && definition.outputs.len() <= MAX_GROUP_PINS =>
+                {
+                    Interface::declared(definition).signature()
+                }
+                None => Signature::default(),
+            };
+            (name.clone(), signature)
+        })
         .collect();
+    drop(analysis);
     let nodes = graph.nodes.iter_mut().chain(
         graph
             .groups
@@ -333,278 +404,11 @@ pub fn resolve(graph: &mut Graph) {
     );
     for node in nodes {
         if let NodeKind::Group(group) = &mut node.kind
-            && let Some(signature) = signatures.get(&group.name)
+            && let Some(signature) = signatures.get(group.name.as_str())
         {
             group.pins = signature.clone();
         }
     }
-}
-
-/// How inlining numbers the nodes it brings in.
-#[derive(Clone, Copy, PartialEq)]
-enum Ids {
-    /// Fresh ids after every id in the graph; the nodes remember the groups they came
-    /// from ([`flatten`]).
-    Fresh,
-    /// The definition's own ids where the graph does not use them ([`ungroup`]).
-    Kept,
-}
-
-/// The graph with every group instance inlined, recursively: the graph every stage
-/// checks, evaluates and emits. Top-level nodes keep their ids; inlined nodes get fresh
-/// ones and their [`Origin`]. A graph without group nodes is returned as it is.
-pub fn flatten(graph: &Graph) -> Result<Cow<'_, Graph>, Vec<CheckError>> {
-    Ok(flatten_traced(graph, BTreeMap::new())?.0)
-}
-
-/// Which flat inputs hold the value of which exposed parameter: `(node, pin)` →
-/// parameter name.
-pub type Bindings = BTreeMap<(NodeId, String), String>;
-
-/// [`flatten`], following the constants of `bindings` (top-level inputs named by
-/// exposed parameters) to every flat input they end up in.
-pub fn flatten_traced(
-    graph: &Graph,
-    mut bindings: Bindings,
-) -> Result<(Cow<'_, Graph>, Bindings), Vec<CheckError>> {
-    if !graph.nodes.iter().any(|node| group_name(node).is_some()) {
-        return Ok((Cow::Borrowed(graph), bindings));
-    }
-    let interfaces = interfaces(&graph.groups).map_err(|error| vec![error.into()])?;
-    let mut flat = graph.clone();
-    flat.groups.clear();
-    let mut errors = Vec::new();
-    while let Some(position) = flat
-        .nodes
-        .iter()
-        .position(|node| group_name(node).is_some())
-    {
-        let instance = flat.nodes.remove(position);
-        if let Err(error) = inline(
-            &mut flat,
-            instance,
-            &graph.groups,
-            &interfaces,
-            Ids::Fresh,
-            &mut bindings,
-        ) {
-            errors.push(error);
-        }
-    }
-    if errors.is_empty() {
-        Ok((Cow::Owned(flat), bindings))
-    } else {
-        Err(errors)
-    }
-}
-
-/// Replaces group node `instance` (already taken out of `graph.nodes`) by its
-/// definition's nodes, wiring what fed its inputs to the inner pins and what read its
-/// outputs from the inner outputs. Returns the ids the inner nodes got.
-fn inline(
-    graph: &mut Graph,
-    instance: Node,
-    groups: &BTreeMap<String, GroupDef>,
-    interfaces: &BTreeMap<String, Interface>,
-    ids: Ids,
-    bindings: &mut Bindings,
-) -> Result<BTreeMap<NodeId, NodeId>, CheckError> {
-    let failed = |message: String| CheckError {
-        node: instance.origin.is_none().then_some(instance.id),
-        node_name: Some(instance.to_string()),
-        message,
-    };
-    let name = group_name(&instance).unwrap_or_default().to_string();
-    let (Some(definition), Some(interface)) = (groups.get(&name), interfaces.get(&name)) else {
-        return Err(failed(format!("no group named '{name}' in the graph")));
-    };
-    // A constant for an input the group no longer has (the library's group changed,
-    // or an inner parameter was bound) is left alone, as a wire into it is not.
-    // What fed the instance's inputs and read its outputs, taken out of the graph.
-    let (touching, wires): (Vec<Wire>, Vec<Wire>) = std::mem::take(&mut graph.wires)
-        .into_iter()
-        .partition(|wire| wire.from.node == instance.id || wire.to.node == instance.id);
-    graph.wires = wires;
-    let feeds: BTreeMap<&str, &PinRef> = touching
-        .iter()
-        .filter(|wire| wire.to.node == instance.id)
-        .map(|wire| (wire.to.pin.as_str(), &wire.from))
-        .collect();
-    for pin in feeds.keys() {
-        if interface.input(pin).is_none() {
-            return Err(failed(unknown_pin("input", pin, interface)));
-        }
-    }
-
-    // The inner nodes, renumbered.
-    let mut next = graph.next_id().0.max(
-        definition
-            .nodes
-            .iter()
-            .map(|node| node.id.0 + 1)
-            .max()
-            .unwrap_or(1),
-    );
-    let taken: BTreeSet<NodeId> = graph.nodes.iter().map(|node| node.id).collect();
-    let mut new_ids = BTreeMap::new();
-    for node in &definition.nodes {
-        if node.id == BOUNDARY {
-            return Err(failed(format!(
-                "group '{name}' has a node with id {}, which stands for the group's boundary",
-                BOUNDARY.0
-            )));
-        }
-        let id = if ids == Ids::Kept && !taken.contains(&node.id) {
-            node.id
-        } else {
-            next += 1;
-            NodeId(next - 1)
-        };
-        if new_ids.insert(node.id, id).is_some() {
-            return Err(failed(format!(
-                "group '{name}' has two nodes with id {}",
-                node.id.0
-            )));
-        }
-    }
-    let path = {
-        let mut groups = instance
-            .origin
-            .as_ref()
-            .map(|origin| origin.groups.clone())
-            .unwrap_or_default();
-        groups.push(format!("group '{}'", instance.display_name()));
-        groups
-    };
-    for node in &definition.nodes {
-        let mut inner = node.clone();
-        inner.id = new_ids[&node.id];
-        if ids == Ids::Fresh {
-            inner.origin = Some(Box::new(Origin {
-                groups: path.clone(),
-                id: node.id,
-            }));
-            inner.position = instance.position;
-        }
-        graph.nodes.push(inner);
-    }
-    let inner_pin = |pin: &PinRef| -> Result<PinRef, CheckError> {
-        let id = new_ids.get(&pin.node).ok_or_else(|| {
-            failed(format!(
-                "group '{name}' has a wire at node id {}, which it does not have",
-                pin.node.0
-            ))
-        })?;
-        Ok(PinRef::new(*id, &pin.pin))
-    };
-
-    // Writes what interface input `pin` carries into inner input `to` (renumbered):
-    // what feeds the instance, else its constant, else the group's default (which an
-    // inherited input's inner node holds already).
-    let deliver =
-        |graph: &mut Graph, bindings: &mut Bindings, pin: &str, to: PinRef, inherited: bool| {
-            if let Some(from) = feeds.get(pin) {
-                graph.wires.push(Wire {
-                    from: (*from).clone(),
-                    to,
-                });
-                return;
-            }
-            let binding = bindings.get(&(instance.id, pin.to_string())).cloned();
-            let value = match instance.inputs.get(pin) {
-                Some(value) => *value,
-                None if inherited && binding.is_none() => return,
-                None => interface
-                    .input(pin)
-                    .map(|entry| entry.input.default)
-                    .unwrap_or(Value::Float(0.0)),
-            };
-            if let Some(binding) = binding {
-                bindings.insert((to.node, to.pin.clone()), binding);
-            }
-            set_constant(graph, &to, value);
-        };
-
-    for wire in &definition.wires {
-        match (wire.from.node == BOUNDARY, wire.to.node == BOUNDARY) {
-            (false, false) => {
-                let (from, to) = (inner_pin(&wire.from)?, inner_pin(&wire.to)?);
-                graph.wires.push(Wire { from, to });
-            }
-            (true, false) => {
-                if interface.input(&wire.from.pin).is_none() {
-                    return Err(failed(format!(
-                        "group '{name}' reads input '{}', which it does not declare",
-                        wire.from.pin
-                    )));
-                }
-                let to = inner_pin(&wire.to)?;
-                deliver(graph, bindings, &wire.from.pin, to, false);
-            }
-            // Outputs are followed from the readers below.
-            (_, true) => {}
-        }
-    }
-    for entry in &interface.inputs {
-        if let Route::Inherited { node, pin } = &entry.route {
-            let to = PinRef::new(new_ids[node], pin);
-            deliver(graph, bindings, &entry.input.name, to, true);
-        }
-    }
-    for reader in touching.iter().filter(|wire| wire.from.node == instance.id) {
-        let output = &reader.from.pin;
-        if !interface.outputs.iter().any(|o| &o.name == output) {
-            return Err(failed(unknown_pin("output", output, interface)));
-        }
-        let source = definition
-            .wires
-            .iter()
-            .find(|wire| wire.to.node == BOUNDARY && &wire.to.pin == output)
-            .ok_or_else(|| {
-                failed(format!(
-                    "group '{name}' output '{output}' is not connected inside the group"
-                ))
-            })?;
-        if source.from.node == BOUNDARY {
-            deliver(graph, bindings, &source.from.pin, reader.to.clone(), false);
-        } else {
-            graph.wires.push(Wire {
-                from: inner_pin(&source.from)?,
-                to: reader.to.clone(),
-            });
-        }
-    }
-    Ok(new_ids)
-}
-
-/// Sets the constant of input `to`, in the type of the pin when the node has it.
-fn set_constant(graph: &mut Graph, to: &PinRef, value: Value) {
-    if let Some(node) = graph.node_mut(to.node) {
-        let ty = node
-            .kind
-            .signature()
-            .input(&to.pin)
-            .map(|(_, pin)| pin.ty)
-            .unwrap_or(value.ty());
-        node.inputs.insert(to.pin.clone(), value.convert(ty));
-    }
-}
-
-/// The message for a pin the group does not have, listing the ones it has.
-fn unknown_pin(side: &str, pin: &str, interface: &Interface) -> String {
-    let names: Vec<&str> = if side == "input" {
-        interface
-            .inputs
-            .iter()
-            .map(|e| e.input.name.as_str())
-            .collect()
-    } else {
-        interface.outputs.iter().map(|o| o.name.as_str()).collect()
-    };
-    format!(
-        "the group has no {side} named '{pin}' ({side}s: {})",
-        names.join(", ")
-    )
 }
 
 /// Turns `selection` (nodes of the top level, not the material) into group `name` and
@@ -630,6 +434,7 @@ pub fn group_nodes(
     if graph.groups.contains_key(name) {
         return Err(format!("a group named '{name}' exists already"));
     }
+    super::names::file_name_part("group", name)?;
     let inside = |id: NodeId| selection.contains(&id);
     let output_type = |pin: &PinRef| {
         graph
@@ -740,7 +545,8 @@ fn unique(base: &str, taken: impl Fn(&str) -> bool) -> String {
 
 /// Dissolves group node `instance` into its definition's nodes, keeping their ids
 /// where the graph does not use them; the definition is dropped when no other node
-/// uses it. Returns the ids of the nodes it put in the graph.
+/// uses it, and the parameter presets forget the parameters the node exposed (as they
+/// do a removed group input's). Returns the ids of the nodes it put in the graph.
 pub fn ungroup(graph: &mut Graph, instance: NodeId) -> Result<Vec<NodeId>, String> {
     let position = graph
         .nodes
@@ -748,18 +554,20 @@ pub fn ungroup(graph: &mut Graph, instance: NodeId) -> Result<Vec<NodeId>, Strin
         .position(|node| node.id == instance && group_name(node).is_some())
         .ok_or_else(|| format!("node {instance} is not a group"))?;
     let interfaces = interfaces(&graph.groups).map_err(|error| error.message)?;
-    let node = graph.nodes.remove(position);
-    let name = group_name(&node).unwrap_or_default().to_string();
-    let groups = graph.groups.clone();
-    let inlined = inline(
-        graph,
-        node,
-        &groups,
-        &interfaces,
-        Ids::Kept,
-        &mut Bindings::new(),
-    )
-    .map_err(|error| error.to_string())?;
+    let name = group_name(&graph.nodes[position])
+        .unwrap_or_default()
+        .to_string();
+    let exposed = |graph: &Graph| -> HashSet<String> {
+        let list = super::parameters::exposed(graph);
+        list.into_iter().map(|entry| entry.name).collect()
+    };
+    let before = exposed(graph);
+    let inlined =
+        super::inline::dissolve(graph, position, &interfaces).map_err(|error| error.to_string())?;
+    let after = exposed(graph);
+    for values in graph.presets.values_mut() {
+        values.retain(|name, _| !before.contains(name) || after.contains(name));
+    }
     let used = graph
         .nodes
         .iter()
@@ -772,4 +580,54 @@ pub fn ungroup(graph: &mut Graph, instance: NodeId) -> Result<Vec<NodeId>, Strin
     }
     graph.canonicalize();
     Ok(inlined.into_values().collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Groups `g0` › `g1` › … nested `depth` deep, the innermost holding a Time node.
+    fn chain(depth: usize) -> BTreeMap<String, GroupDef> {
+        (0..depth)
+            .map(|level| {
+                let kind = if level + 1 == depth {
+                    NodeKind::Time
+                } else {
+                    NodeKind::Group(Group::named(format!("g{}", level + 1)))
+                };
+                let definition = GroupDef {
+                    linked: false,
+                    inputs: Vec::new(),
+                    outputs: Vec::new(),
+                    nodes: vec![Node::new(NodeId(1), kind)],
+                    wires: Vec::new(),
+                };
+                (format!("g{level}"), definition)
+            })
+            .collect()
+    }
+
+    #[test]
+    fn groups_nested_a_hundred_thousand_deep_are_refused_without_recursion() {
+        // The interfaces were computed recursively: 16,000 levels overflowed the stack.
+        let error = interfaces(&chain(100_000)).expect_err("too deep");
+        assert!(
+            error
+                .message
+                .starts_with("groups nest 100,000 levels deep, more than 32: 'g0' › 'g1'"),
+            "{}",
+            error.message
+        );
+        assert_eq!(
+            interfaces(&chain(MAX_GROUP_DEPTH)).map(|all| all.len()),
+            Ok(MAX_GROUP_DEPTH)
+        );
+        // Nor does resolving such a graph, as loading it does.
+        let mut graph = Graph {
+            groups: chain(100_000),
+            ..Graph::default()
+        };
+        graph.add("top", NodeKind::Group(Group::named("g0".into())));
+        resolve(&mut graph);
+    }
 }

@@ -82,7 +82,8 @@ pub fn from_ron(text: &str) -> Result<Graph, LoadError> {
 /// well inside the stack.
 const RECURSION_LIMIT: usize = 128;
 
-/// Reads a graph file: a regular file of at most [`fsutil::ReadLimit::GRAPH`], in UTF-8.
+/// Reads a graph file: a regular file of at most [`fsutil::ReadLimit::GRAPH`], in UTF-8;
+/// its linked groups take the library's versions (see [`super::library::refresh`]).
 pub fn load(path: &Path) -> Result<Graph, LoadError> {
     let failed = |position, message| LoadError {
         path: Some(path.to_path_buf()),
@@ -102,7 +103,12 @@ pub fn load(path: &Path) -> Result<Graph, LoadError> {
         path: Some(path.to_path_buf()),
         ..err
     })?;
-    super::library::refresh(&mut graph);
+    // A linked group whose library file cannot be used keeps the graph's copy: said on
+    // stderr, naming the file, whatever command loads the graph.
+    for warning in super::library::refresh(&mut graph) {
+        use std::io::Write;
+        let _ = writeln!(std::io::stderr(), "warning: {}: {warning}", path.display());
+    }
     Ok(graph)
 }
 
@@ -182,5 +188,31 @@ mod tests {
         let text = to_ron(&graph);
         assert_eq!(from_ron(&text).unwrap(), graph);
         assert_eq!(to_ron(&from_ron(&text).unwrap()), text);
+    }
+
+    #[test]
+    fn the_alpha_mask_reads_as_files_write_it_and_as_design_first_gave_it() {
+        let graph = |alpha: &str| {
+            let text = format!("(version: 1, nodes: [(id: 1, kind: Material)], alpha: {alpha})");
+            from_ron(&text).map(|graph| graph.alpha)
+        };
+        let mask = crate::graph::AlphaMode::Mask { cutoff: 0.3 };
+        assert_eq!(graph("Mask(cutoff: 0.3)").unwrap(), mask);
+        assert_eq!(graph("Mask((cutoff: 0.3))").unwrap(), mask);
+        assert_eq!(graph("Blend").unwrap(), crate::graph::AlphaMode::Blend);
+        assert_eq!(graph("Opaque").unwrap(), crate::graph::AlphaMode::Opaque);
+        for bad in ["Mask", "Mask(0.3)", "Mask((cut: 0.3))", "Clip"] {
+            assert!(graph(bad).is_err(), "{bad}");
+        }
+        // Written in the one form, which reads back.
+        let mut written = Graph::default();
+        written.add("material", NodeKind::Material);
+        written.alpha = mask;
+        let text = to_ron(&written);
+        assert!(
+            text.contains("alpha: Mask(") && !text.contains("Mask(("),
+            "{text}"
+        );
+        assert_eq!(from_ron(&text).unwrap().alpha, mask);
     }
 }

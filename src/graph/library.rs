@@ -114,42 +114,65 @@ pub fn load(path: &Path) -> Result<LibraryGroup, LoadError> {
 }
 
 /// The library group called `name` (in canonical order): the user's if there is one,
-/// else the shipped one.
-pub fn find(name: &str) -> Option<(GroupDef, Source)> {
-    let (mut group, source) = find_as_written(name)?;
-    group.canonicalize();
-    Some((group, source))
+/// else the shipped one. A user file of that name that cannot be used is an error
+/// naming it (and why), never passed over in silence; so is a name that cannot name a
+/// file (see [`super::names`]).
+pub fn find(name: &str) -> Result<Option<(GroupDef, Source)>, LoadError> {
+    let found = find_as_written(name)?;
+    Ok(found.map(|(mut group, source)| {
+        group.canonicalize();
+        (group, source)
+    }))
 }
 
 /// [`find`], the group as its file has it.
-fn find_as_written(name: &str) -> Option<(GroupDef, Source)> {
+fn find_as_written(name: &str) -> Result<Option<(GroupDef, Source)>, LoadError> {
+    super::names::file_name_part("group", name).map_err(|message| LoadError {
+        path: None,
+        position: None,
+        message: format!("{message}; the library is not searched for it"),
+    })?;
     if let Some(folder) = user_folder() {
         let path = folder.join(format!("{name}.ron"));
-        if let Ok(group) = load(&path)
-            && group.name == name
-        {
-            return Some((group.group, Source::User(path)));
+        if std::fs::symlink_metadata(&path).is_ok() {
+            let group = load(&path)?;
+            if group.name != name {
+                return Err(LoadError {
+                    path: Some(path),
+                    position: None,
+                    message: format!(
+                        "holds group '{}', not '{}': a library file is named after its group",
+                        super::names::shown(&group.name),
+                        super::names::shown(name)
+                    ),
+                });
+            }
+            return Ok(Some((group.group, Source::User(path))));
         }
     }
-    SHIPPED
+    Ok(SHIPPED
         .iter()
         .find(|(stem, _)| *stem == name)
         .and_then(|(_, text)| from_ron(text).ok())
-        .map(|group| (group.group, Source::Shipped))
+        .map(|group| (group.group, Source::Shipped)))
 }
 
-/// Every library group's name and source, the user's first, each name once, sorted.
-pub fn list() -> Vec<(String, Source)> {
+/// Every library group's name and source (the user's first, each name once, sorted),
+/// and the files of the user library that could not be read as groups.
+pub fn list() -> (Vec<(String, Source)>, Vec<LoadError>) {
     let mut entries: Vec<(String, Source)> = Vec::new();
+    let mut unusable = Vec::new();
     if let Some(folder) = user_folder()
         && let Ok(files) = std::fs::read_dir(&folder)
     {
         for file in files.flatten() {
             let path = file.path();
-            if path.extension().is_some_and(|e| e == "ron")
-                && let Ok(group) = load(&path)
-            {
-                entries.push((group.name, Source::User(path)));
+            if !path.extension().is_some_and(|e| e == "ron") {
+                continue;
+            }
+            match load(&path) {
+                Ok(group) => entries.push((group.name, Source::User(path))),
+                Err(error) => unusable.push(error),
             }
         }
     }
@@ -159,12 +182,15 @@ pub fn list() -> Vec<(String, Source)> {
         }
     }
     entries.sort_by(|a, b| a.0.cmp(&b.0));
-    entries
+    unusable.sort_by(|a, b| a.path.cmp(&b.path));
+    (entries, unusable)
 }
 
 /// Saves `group` to the user library as `name`, replacing an older version; returns
-/// the file written.
+/// the file written. A name that cannot name a file (see [`super::names`]) is refused.
 pub fn save_to_user(name: &str, group: &GroupDef) -> std::io::Result<PathBuf> {
+    super::names::file_name_part("group", name)
+        .map_err(|message| std::io::Error::new(std::io::ErrorKind::InvalidInput, message))?;
     let folder = user_folder().ok_or_else(|| {
         std::io::Error::new(
             std::io::ErrorKind::NotFound,
@@ -178,37 +204,53 @@ pub fn save_to_user(name: &str, group: &GroupDef) -> std::io::Result<PathBuf> {
 }
 
 /// Brings every linked group of `graph` up to the library's version (keeping its copy
-/// when the library has none), then resolves the group nodes' pins. Returns the names
-/// of the groups that changed.
+/// when the library has none, or a user file for it cannot be used), then resolves the
+/// group nodes' pins. Returns a warning for each copy kept because of a file that
+/// cannot be used, naming the file.
 pub fn refresh(graph: &mut Graph) -> Vec<String> {
-    let mut changed = Vec::new();
+    let mut warnings = Vec::new();
     for (name, definition) in graph.groups.iter_mut() {
         if !definition.linked {
             continue;
         }
-        if let Some((mut current, _)) = find(name) {
-            current.linked = true;
-            if current != *definition {
-                *definition = current;
-                changed.push(name.clone());
+        match find(name) {
+            Ok(Some((mut current, _))) => {
+                current.linked = true;
+                if current != *definition {
+                    *definition = current;
+                }
+            }
+            Ok(None) => {}
+            Err(error) => {
+                let problem = match &error.path {
+                    Some(_) => error.to_string(),
+                    None => error.message,
+                };
+                warnings.push(format!(
+                    "{problem}; linked group '{}' keeps the graph's copy",
+                    super::names::shown(name)
+                ));
             }
         }
     }
     resolve(graph);
-    changed
+    warnings
 }
 
 /// Adds library group `name` to `graph` (linked), unless the graph has a group of that
-/// name already; returns whether the graph has it now.
-pub fn adopt(graph: &mut Graph, name: &str) -> bool {
+/// name already; the error says why the graph does not have it now.
+pub fn adopt(graph: &mut Graph, name: &str) -> Result<(), String> {
     if graph.groups.contains_key(name) {
-        return true;
+        return Ok(());
     }
-    let Some((mut group, _)) = find(name) else {
-        return false;
+    let Some((mut group, _)) = find(name).map_err(|error| error.to_string())? else {
+        return Err(format!(
+            "no group named '{}' in the graph or the library",
+            super::names::shown(name)
+        ));
     };
     group.linked = true;
     graph.groups.insert(name.to_string(), group);
     resolve(graph);
-    true
+    Ok(())
 }

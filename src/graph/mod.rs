@@ -1,13 +1,18 @@
 //! The graph model: nodes, pins, wires, their checks and their file format.
 
 pub mod check;
+mod declarations;
 mod field;
 pub mod group;
 pub mod group_interface;
 mod ids;
+mod inline;
 mod io;
+pub mod keys;
 pub mod layout;
 pub mod library;
+pub mod names;
+pub mod nesting;
 mod node_file;
 pub mod parameters;
 mod presets;
@@ -80,10 +85,51 @@ pub struct Node {
 /// `group 'bark' › node 'grain' (#3)`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Origin {
-    /// The group instances it sits in, outermost first, each as `group 'label'`.
-    pub groups: Vec<String>,
+    /// The group instances it sits in.
+    pub groups: GroupPath,
     /// Its id inside its group's definition.
     pub id: NodeId,
+}
+
+/// Group instances, one inside the other, each as `group 'label'`: shown outermost
+/// first, `group 'bark' › group 'grain'`. The nodes inlined from one instance share its
+/// path, and a path inside it adds one link, so a deep graph stores each instance once.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct GroupPath(Option<std::sync::Arc<PathLink>>);
+
+/// One instance of a [`GroupPath`] and the path it sits in.
+#[derive(Debug, PartialEq)]
+pub struct PathLink {
+    outer: GroupPath,
+    instance: String,
+}
+
+impl GroupPath {
+    /// This path with `instance` inside its innermost instance.
+    pub fn within(&self, instance: String) -> GroupPath {
+        GroupPath(Some(std::sync::Arc::new(PathLink {
+            outer: self.clone(),
+            instance,
+        })))
+    }
+
+    /// The instances, outermost first.
+    pub fn instances(&self) -> Vec<&str> {
+        let mut instances = Vec::new();
+        let mut link = self.0.as_deref();
+        while let Some(step) = link {
+            instances.push(step.instance.as_str());
+            link = step.outer.0.as_deref();
+        }
+        instances.reverse();
+        instances
+    }
+}
+
+impl fmt::Display for GroupPath {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.instances().join(" › "))
+    }
 }
 
 impl Node {
@@ -115,7 +161,7 @@ impl Node {
     /// `group 'bark' › #3`.
     pub fn reference(&self) -> String {
         match &self.origin {
-            Some(origin) => format!("{} › {}", origin.groups.join(" › "), origin.id),
+            Some(origin) => format!("{} › {}", origin.groups, origin.id),
             None => self.id.to_string(),
         }
     }
@@ -130,12 +176,7 @@ impl fmt::Display for Node {
             ""
         };
         match &self.origin {
-            Some(origin) => {
-                for group in &origin.groups {
-                    write!(f, "{group} › ")?;
-                }
-                write!(f, "node '{name}{cut}' ({})", origin.id)
-            }
+            Some(origin) => write!(f, "{} › node '{name}{cut}' ({})", origin.groups, origin.id),
             None => write!(f, "node '{name}{cut}' ({})", self.id),
         }
     }
@@ -256,21 +297,33 @@ pub struct Graph {
     pub frames: Vec<Frame>,
     /// How the material's alpha shows: cut out below a cutoff (the default), blended,
     /// or ignored.
-    #[serde(default, skip_serializing_if = "AlphaMode::is_default")]
+    #[serde(
+        default,
+        skip_serializing_if = "AlphaMode::is_default",
+        deserialize_with = "AlphaMode::read"
+    )]
     pub alpha: AlphaMode,
     /// How the preview lights the material: Blinn-Phong (the seeds', the default) or
     /// metallic-roughness (glTF 2.0's PBR model).
     #[serde(default, skip_serializing_if = "Shading::is_default")]
     pub shading: Shading,
     /// Node groups (material functions) the graph's group nodes use, by name.
-    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    #[serde(
+        default,
+        skip_serializing_if = "BTreeMap::is_empty",
+        deserialize_with = "keys::unique"
+    )]
     pub groups: BTreeMap<String, group::GroupDef>,
     /// Top-level input pins exposed as named parameters (group nodes' unwired inputs
     /// are exposed too; see [`parameters::exposed`]).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub parameters: Vec<parameters::Parameter>,
     /// Named sets of parameter values ("oak", "walnut"), by name.
-    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    #[serde(
+        default,
+        skip_serializing_if = "BTreeMap::is_empty",
+        deserialize_with = "presets_file"
+    )]
     pub presets: BTreeMap<String, BTreeMap<String, Value>>,
 }
 
@@ -312,6 +365,34 @@ impl AlphaMode {
 
     fn is_default(&self) -> bool {
         *self == AlphaMode::default()
+    }
+
+    /// Reads the mode as files write it, `Mask(cutoff: 0.5)`, or as DESIGN.md first
+    /// gave it, `Mask((cutoff: 0.5))`.
+    fn read<'de, D: serde::Deserializer<'de>>(deserializer: D) -> Result<AlphaMode, D::Error> {
+        /// The mode with the cutoff in a struct of its own.
+        #[derive(Deserialize)]
+        #[serde(rename = "AlphaMode")]
+        enum Nested {
+            Opaque,
+            Mask(Cutoff),
+            Blend,
+        }
+        #[derive(Deserialize)]
+        struct Cutoff {
+            cutoff: f64,
+        }
+        let raw = Box::<ron::value::RawValue>::deserialize(deserializer)?;
+        raw.into_rust::<AlphaMode>()
+            .or_else(|error| {
+                let nested = raw.into_rust::<Nested>().map_err(|_| error)?;
+                Ok(match nested {
+                    Nested::Opaque => AlphaMode::Opaque,
+                    Nested::Mask(Cutoff { cutoff }) => AlphaMode::Mask { cutoff },
+                    Nested::Blend => AlphaMode::Blend,
+                })
+            })
+            .map_err(|error: ron::error::SpannedError| serde::de::Error::custom(error.code))
     }
 }
 
@@ -430,6 +511,21 @@ impl Graph {
     pub fn uses_groups(&self) -> bool {
         !self.groups.is_empty() || !self.parameters.is_empty() || !self.presets.is_empty()
     }
+}
+
+/// Reads a graph's presets: each preset, and each parameter in one, named once.
+fn presets_file<'de, D: serde::Deserializer<'de>>(
+    deserializer: D,
+) -> Result<BTreeMap<String, BTreeMap<String, Value>>, D::Error> {
+    /// One preset's values, each parameter named once.
+    #[derive(Deserialize)]
+    #[serde(transparent)]
+    struct Values(#[serde(deserialize_with = "keys::unique")] BTreeMap<String, Value>);
+    let presets: BTreeMap<String, Values> = keys::unique(deserializer)?;
+    Ok(presets
+        .into_iter()
+        .map(|(name, Values(values))| (name, values))
+        .collect())
 }
 
 /// Sorts `nodes` by id and `wires` (dropping repeats), and puts every node on whole

@@ -5,9 +5,10 @@
 //! every unwired input of its group nodes, including the inputs those inherit from
 //! groups nested inside (see `graph::group`).
 
-use super::group::{self, Bindings, Hint, Interface};
+use super::group::{self, Bindings, Hint};
 use super::{Graph, NodeId, PinRef, Value, ValueType};
 use serde::{Deserialize, Serialize};
+use std::collections::{BTreeMap, HashMap, HashSet};
 
 /// A top-level input pin exposed under a name.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -37,13 +38,24 @@ pub struct Exposed {
     pub target: PinRef,
 }
 
+/// The most parameters a graph exposes: `--params uniform` makes each a member of one
+/// uniform struct, which must fit the 64 KiB uniform block every device offers (a vec3
+/// member takes 16 bytes).
+pub const MAX_PARAMETERS: usize = 4_096;
+
 /// The parameters `graph` exposes, in a stable order: its [`Parameter`] list, then the
 /// unwired inputs of its group nodes by node id. A name taken already is qualified by
-/// its node's label (`bark.scale`).
+/// its node's label (`bark.scale`). At most [`MAX_PARAMETERS`] + 1: enough for the
+/// check to refuse a graph that exposes more.
 pub fn exposed(graph: &Graph) -> Vec<Exposed> {
     let mut list: Vec<Exposed> = Vec::new();
-    for parameter in &graph.parameters {
-        let Some(node) = graph.node(parameter.node) else {
+    let nodes = if graph.parameters.is_empty() {
+        HashMap::new()
+    } else {
+        first_of_each_id(graph)
+    };
+    for parameter in graph.parameters.iter().take(MAX_PARAMETERS + 1) {
+        let Some(node) = nodes.get(&parameter.node) else {
             continue;
         };
         let signature = node.kind.signature();
@@ -70,54 +82,70 @@ pub fn exposed(graph: &Graph) -> Vec<Exposed> {
         });
     }
     let interfaces = group::interfaces(&graph.groups).unwrap_or_default();
+    let wired: HashSet<(NodeId, &str)> = graph
+        .wires
+        .iter()
+        .map(|wire| (wire.to.node, wire.to.pin.as_str()))
+        .collect();
+    let mut taken: HashSet<String> = list.iter().map(|entry| entry.name.clone()).collect();
     let mut instances: Vec<_> = graph.nodes.iter().collect();
     instances.sort_by_key(|node| node.id);
     for node in instances {
         let Some(interface) = group::group_name(node).and_then(|name| interfaces.get(name)) else {
             continue;
         };
-        list.extend(instance_parameters(graph, node, interface, &list));
+        for entry in &interface.inputs {
+            if list.len() > MAX_PARAMETERS {
+                return list;
+            }
+            if wired.contains(&(node.id, entry.input.name.as_str())) {
+                continue;
+            }
+            let exposed = instance_parameter(node, entry, &taken);
+            taken.insert(exposed.name.clone());
+            list.push(exposed);
+        }
     }
     list
 }
 
-/// The unwired inputs of group node `node`, named apart from `taken`.
-fn instance_parameters(
-    graph: &Graph,
-    node: &super::Node,
-    interface: &Interface,
-    taken: &[Exposed],
-) -> Vec<Exposed> {
-    let group = group::group_name(node).unwrap_or_default();
-    let mut found: Vec<Exposed> = Vec::new();
-    for entry in &interface.inputs {
-        let pin = &entry.input.name;
-        if graph.wire_into(node.id, pin).is_some() {
-            continue;
-        }
-        let used = |name: &str| taken.iter().chain(&found).any(|e| e.name == name);
-        let name = if used(pin) {
-            format!("{}.{pin}", node.display_name())
-        } else {
-            pin.clone()
-        };
-        let mut group_path = vec![group.to_string()];
-        group_path.extend(entry.path.iter().cloned());
-        found.push(Exposed {
-            name,
-            ty: entry.input.ty,
-            value: node
-                .inputs
-                .get(pin)
-                .map(|value| value.convert(entry.input.ty))
-                .unwrap_or(entry.input.default),
-            range: entry.input.range,
-            hint: entry.input.hint.clone(),
-            group_path,
-            target: PinRef::new(node.id, pin),
-        });
+/// The first node of each id of `graph`, as [`Graph::node`] finds it.
+pub(super) fn first_of_each_id(graph: &Graph) -> HashMap<NodeId, &super::Node> {
+    let mut nodes = HashMap::with_capacity(graph.nodes.len());
+    for node in &graph.nodes {
+        nodes.entry(node.id).or_insert(node);
     }
-    found
+    nodes
+}
+
+/// Input `entry` of group node `node`, named apart from the names `taken`.
+fn instance_parameter(
+    node: &super::Node,
+    entry: &group::InterfaceInput,
+    taken: &HashSet<String>,
+) -> Exposed {
+    let group = group::group_name(node).unwrap_or_default();
+    let pin = &entry.input.name;
+    let name = if taken.contains(pin) {
+        format!("{}.{pin}", node.display_name())
+    } else {
+        pin.clone()
+    };
+    let mut group_path = vec![group.to_string()];
+    group_path.extend(entry.path.iter().cloned());
+    Exposed {
+        name,
+        ty: entry.input.ty,
+        value: node
+            .inputs
+            .get(pin)
+            .map(|value| value.convert(entry.input.ty))
+            .unwrap_or(entry.input.default),
+        range: entry.input.range,
+        hint: entry.input.hint.clone(),
+        group_path,
+        target: PinRef::new(node.id, pin),
+    }
 }
 
 /// The flat inputs each exposed parameter starts from: `(node, pin)` → name, the seed
@@ -156,12 +184,12 @@ pub enum ParameterError {
     UnknownPreset { name: String, known: Vec<String> },
 }
 
-/// `names` for a message: `parameters: a, b` or `the graph has none`.
+/// `names` for a message: `known: a, b` or `the graph has none`.
 fn list(names: &[String]) -> String {
     if names.is_empty() {
         "the graph has none".to_string()
     } else {
-        format!("known: {}", names.join(", "))
+        format!("known: {}", super::names::elided(names.to_vec(), ", "))
     }
 }
 
@@ -264,37 +292,110 @@ fn word_value(word: &str, hint: &Hint) -> Result<f64, String> {
     }
 }
 
+impl Exposed {
+    /// `given` as this parameter's value, checked against its type and range.
+    pub fn value_of(&self, given: &Given) -> Result<Value, ParameterError> {
+        let value =
+            given
+                .to_value(self.ty, &self.hint)
+                .map_err(|problem| ParameterError::BadValue {
+                    name: self.name.clone(),
+                    ty: self.ty,
+                    problem,
+                })?;
+        if let Some((min, max)) = self.range
+            && let Some(outside) = value.components()[..self.ty.width()]
+                .iter()
+                .find(|x| !(min..=max).contains(*x))
+        {
+            return Err(ParameterError::OutOfRange {
+                name: self.name.clone(),
+                min,
+                max,
+                value: *outside,
+            });
+        }
+        Ok(value)
+    }
+}
+
+/// A graph's exposed parameters by name, to set several of them in that graph (its
+/// values may change in between, not its nodes).
+pub struct ByName {
+    exposed: Vec<Exposed>,
+    index: HashMap<String, usize>,
+    /// The position in the graph of each node a parameter is an input of.
+    nodes: HashMap<NodeId, usize>,
+}
+
+impl ByName {
+    /// The parameters `graph` exposes.
+    pub fn of(graph: &Graph) -> ByName {
+        let exposed = exposed(graph);
+        let mut index = HashMap::with_capacity(exposed.len());
+        let mut nodes: HashMap<NodeId, usize> = HashMap::new();
+        for (k, entry) in exposed.iter().enumerate() {
+            index.entry(entry.name.clone()).or_insert(k);
+            nodes.insert(entry.target.node, usize::MAX);
+        }
+        for (position, node) in graph.nodes.iter().enumerate() {
+            if let Some(slot) = nodes.get_mut(&node.id) {
+                *slot = (*slot).min(position);
+            }
+        }
+        ByName {
+            exposed,
+            index,
+            nodes,
+        }
+    }
+
+    /// The node of `graph` that parameter `entry` is an input of.
+    fn node<'g>(&self, graph: &'g mut Graph, entry: &Exposed) -> Option<&'g mut super::Node> {
+        let position = *self.nodes.get(&entry.target.node)?;
+        graph.nodes.get_mut(position)
+    }
+
+    /// The parameters, as [`exposed`] lists them.
+    pub fn list(&self) -> &[Exposed] {
+        &self.exposed
+    }
+
+    /// The parameters, as [`exposed`] lists them.
+    pub fn into_list(self) -> Vec<Exposed> {
+        self.exposed
+    }
+
+    /// The parameter called `name`.
+    pub fn find(&self, name: &str) -> Result<&Exposed, ParameterError> {
+        match self.index.get(name) {
+            Some(&k) => Ok(&self.exposed[k]),
+            None => Err(ParameterError::Unknown {
+                name: name.to_string(),
+                known: self
+                    .exposed
+                    .iter()
+                    .map(|entry| entry.name.clone())
+                    .collect(),
+            }),
+        }
+    }
+
+    /// Sets parameter `name` of `graph` (the graph these were read from) to `given`,
+    /// checking its type and range.
+    pub fn set(&self, graph: &mut Graph, name: &str, given: &Given) -> Result<(), ParameterError> {
+        let entry = self.find(name)?;
+        let value = entry.value_of(given)?;
+        if let Some(node) = self.node(graph, entry) {
+            node.inputs.insert(entry.target.pin.clone(), value);
+        }
+        Ok(())
+    }
+}
+
 /// Sets exposed parameter `name` of `graph` to `given`, checking its type and range.
 pub fn set(graph: &mut Graph, name: &str, given: &Given) -> Result<(), ParameterError> {
-    let exposed = exposed(graph);
-    let Some(entry) = exposed.iter().find(|entry| entry.name == name) else {
-        return Err(ParameterError::Unknown {
-            name: name.to_string(),
-            known: exposed.iter().map(|entry| entry.name.clone()).collect(),
-        });
-    };
-    let value =
-        given
-            .to_value(entry.ty, &entry.hint)
-            .map_err(|problem| ParameterError::BadValue {
-                name: name.to_string(),
-                ty: entry.ty,
-                problem,
-            })?;
-    if let Some((min, max)) = entry.range
-        && let Some(outside) = value.components()[..entry.ty.width()]
-            .iter()
-            .find(|x| !(min..=max).contains(*x))
-    {
-        return Err(ParameterError::OutOfRange {
-            name: name.to_string(),
-            min,
-            max,
-            value: *outside,
-        });
-    }
-    graph.set_input(entry.target.node, &entry.target.pin, value);
-    Ok(())
+    ByName::of(graph).set(graph, name, given)
 }
 
 /// Applies parameter preset `preset` of the graph: the group parameters it does not
@@ -302,25 +403,41 @@ pub fn set(graph: &mut Graph, name: &str, given: &Given) -> Result<(), Parameter
 /// set before (top-level parameters it does not list keep their values: the graph
 /// holds no other default for them).
 pub fn apply_preset(graph: &mut Graph, preset: &str) -> Result<(), ParameterError> {
+    apply_preset_with(graph, &ByName::of(graph), preset)
+}
+
+/// [`apply_preset`] with the graph's parameters looked up already.
+fn apply_preset_with(
+    graph: &mut Graph,
+    parameters: &ByName,
+    preset: &str,
+) -> Result<(), ParameterError> {
     let Some(values) = graph.presets.get(preset).cloned() else {
         return Err(ParameterError::UnknownPreset {
             name: preset.to_string(),
             known: graph.presets.keys().cloned().collect(),
         });
     };
-    for entry in exposed(graph) {
+    for entry in &parameters.exposed {
         if entry.group_path.is_empty() || values.contains_key(&entry.name) {
             continue;
         }
-        if let Some(node) = graph.node_mut(entry.target.node) {
+        if let Some(node) = parameters.node(graph, entry) {
             node.inputs.remove(&entry.target.pin);
         }
     }
     for (name, value) in &values {
-        set(graph, name, &Given::of(value))?;
+        parameters.set(graph, name, &Given::of(value))?;
     }
     Ok(())
 }
+
+/// A parameter file: a map from parameter names to values, each name given once.
+#[derive(Debug, Default, Deserialize)]
+#[serde(transparent)]
+pub struct ParameterFile(
+    #[serde(deserialize_with = "super::keys::unique")] pub BTreeMap<String, Given>,
+);
 
 /// Parses `text` as RON, or as JSON when `json`; errors start with `line:column: `.
 /// Parameter files (a map from parameter names to [`Given`] values:
@@ -443,11 +560,12 @@ impl Overrides {
 
     /// Applies the preset, then each value.
     pub fn apply(&self, graph: &mut Graph) -> Result<(), ParameterError> {
+        let parameters = ByName::of(graph);
         if let Some(preset) = &self.preset {
-            apply_preset(graph, preset)?;
+            apply_preset_with(graph, &parameters, preset)?;
         }
         for (name, given) in &self.values {
-            set(graph, name, given)?;
+            parameters.set(graph, name, given)?;
         }
         Ok(())
     }

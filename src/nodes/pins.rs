@@ -85,32 +85,82 @@ pub struct OutputPin {
 }
 
 /// The pins of a node kind.
-#[derive(Clone, Debug, Default, PartialEq)]
+#[derive(Clone, Debug, Default)]
 pub struct Signature {
     pub inputs: Vec<InputPin>,
     pub outputs: Vec<OutputPin>,
+    /// The first pin of each name, on signatures with many pins (a group's): looking
+    /// a pin up by name stays cheap however many there are. A lookup the index does
+    /// not confirm (pins edited in place) scans the pins.
+    index: Option<std::sync::Arc<PinIndex>>,
+}
+
+impl PartialEq for Signature {
+    fn eq(&self, other: &Signature) -> bool {
+        self.inputs == other.inputs && self.outputs == other.outputs
+    }
+}
+
+/// Pin positions by name.
+#[derive(Debug, Default)]
+struct PinIndex {
+    inputs: std::collections::HashMap<&'static str, usize>,
+    outputs: std::collections::HashMap<&'static str, usize>,
 }
 
 impl Signature {
+    /// Pins a signature has before it indexes them by name.
+    const SCANNED: usize = 16;
+
     /// A signature of these inputs and outputs.
     pub fn new(inputs: Vec<InputPin>, outputs: Vec<OutputPin>) -> Signature {
-        Signature { inputs, outputs }
+        let index = (inputs.len() + outputs.len() > Self::SCANNED).then(|| {
+            let mut index = PinIndex::default();
+            for (k, pin) in inputs.iter().enumerate() {
+                index.inputs.entry(pin.name).or_insert(k);
+            }
+            for (k, pin) in outputs.iter().enumerate() {
+                index.outputs.entry(pin.name).or_insert(k);
+            }
+            std::sync::Arc::new(index)
+        });
+        Signature {
+            inputs,
+            outputs,
+            index,
+        }
     }
 
     /// The input pin called `name` and its index.
     pub fn input(&self, name: &str) -> Option<(usize, &InputPin)> {
-        self.inputs
-            .iter()
-            .enumerate()
-            .find(|(_, pin)| pin.name == name)
+        let index = self.index.as_ref().map(|index| &index.inputs);
+        find(&self.inputs, index, name, |pin| pin.name)
     }
 
     /// The output pin called `name` and its index.
     pub fn output(&self, name: &str) -> Option<(usize, &OutputPin)> {
-        self.outputs
+        let index = self.index.as_ref().map(|index| &index.outputs);
+        find(&self.outputs, index, name, |pin| pin.name)
+    }
+}
+
+/// The first pin called `name` among `pins` and its index: where `index` says, when
+/// that pin has the name, else found by a scan.
+fn find<'p, P>(
+    pins: &'p [P],
+    index: Option<&std::collections::HashMap<&'static str, usize>>,
+    name: &str,
+    name_of: impl Fn(&P) -> &str,
+) -> Option<(usize, &'p P)> {
+    let indexed = index
+        .and_then(|index| index.get(name))
+        .and_then(|&k| Some((k, pins.get(k)?)));
+    match indexed {
+        Some((k, pin)) if name_of(pin) == name => Some((k, pin)),
+        _ => pins
             .iter()
             .enumerate()
-            .find(|(_, pin)| pin.name == name)
+            .find(|(_, pin)| name_of(pin) == name),
     }
 }
 

@@ -388,3 +388,78 @@ fn the_group_input_node_renames_retunes_and_removes_the_group_inputs() {
     let group = &harness.state().document.graph.groups["ring_wood"];
     assert_eq!(group.inputs.len(), before);
 }
+
+/// Group 'bark' holds a node of group 'grain', which holds one of 'bark': a graph that
+/// loads but does not check, its top-level wire reading the output 'bark' declares.
+const SELF_CONTAINING: &str = r#"(
+    version: 2,
+    name: "Loop",
+    nodes: [
+        (id: 1, label: "bark", kind: Group(name: "bark"), inputs: {}, position: (0.0, 0.0)),
+        (id: 2, label: "material", kind: Material, inputs: {}, position: (400.0, 0.0)),
+    ],
+    wires: [
+        (from: (node: 1, pin: "result"), to: (node: 2, pin: "albedo")),
+    ],
+    groups: {
+        "bark": (outputs: [(name: "result", ty: Float)], nodes: [(id: 1, label: "grain", kind: Group(name: "grain"), inputs: {}, position: (0.0, 0.0))], wires: [(from: (node: 1, pin: "result"), to: (node: 0, pin: "result")), (from: (node: 0, pin: "scale"), to: (node: 1, pin: "scale"))]),
+        "grain": (outputs: [(name: "result", ty: Float)], nodes: [(id: 1, label: "bark", kind: Group(name: "bark"), inputs: {}, position: (0.0, 0.0))], wires: [(from: (node: 1, pin: "result"), to: (node: 0, pin: "result"))]),
+    },
+)
+"#;
+
+#[test]
+fn a_group_that_contains_itself_never_edits_the_document_and_says_why() {
+    // The editor dropped the top-level wire (the group's pins never resolved) and
+    // marked the graph edited: saving would have lost the wire.
+    let dir = scratch("group-loop");
+    let path = dir.join("loop.ron");
+    std::fs::write(&path, SELF_CONTAINING).expect("the graph is written");
+    let mut harness = editor(&dir, Some(path.clone()));
+    let opened = to_ron(&veneer::graph::load(&path).expect("loads"));
+    harness.run_steps(4);
+    assert_eq!(text(&harness), opened);
+    assert!(!harness.state().document.is_dirty());
+    assert!(shows(&harness, "groups contain themselves"));
+    // Inside the group and back: the wires the view cannot show stay too.
+    select_node(&mut harness, "bark");
+    press(&mut harness, Key::Tab, false);
+    assert!(shows(&harness, "Group output"));
+    press(&mut harness, Key::Tab, false);
+    assert_eq!(text(&harness), opened);
+    assert!(!harness.state().document.is_dirty());
+}
+
+/// A graph whose albedo is group `wide`'s result, `wide` declaring `inputs` inputs of
+/// which the first scales the result.
+fn wide_group(inputs: usize) -> String {
+    let declared: Vec<String> = (0..inputs)
+        .map(|k| format!("(name: \"i{k}\", ty: Float, default: Float(0.5))"))
+        .collect();
+    format!(
+        "(\n    version: 2,\n    nodes: [\n        (id: 1, label: \"wide\", kind: Group(name: \"wide\"), inputs: {{}}, position: (0.0, 0.0)),\n        (id: 2, label: \"material\", kind: Material, inputs: {{}}, position: (400.0, 0.0)),\n    ],\n    wires: [\n        (from: (node: 1, pin: \"result\"), to: (node: 2, pin: \"albedo\")),\n    ],\n    groups: {{\n        \"wide\": (inputs: [{}], outputs: [(name: \"result\", ty: Float)], nodes: [(id: 1, kind: Math(op: Multiply, ty: Float), inputs: {{}}, position: (0.0, 0.0))], wires: [(from: (node: 0, pin: \"i0\"), to: (node: 1, pin: \"a\")), (from: (node: 1, pin: \"result\"), to: (node: 0, pin: \"result\"))]),\n    }},\n)\n",
+        declared.join(", ")
+    )
+}
+
+#[test]
+fn a_group_with_more_inputs_than_a_group_may_show_opens_unchanged_and_says_why() {
+    // A group of 10⁵ inputs kept the editor busy on every frame.
+    let dir = scratch("group-wide");
+    for (inputs, problem) in [
+        (100_000, Some("more than the 1,024 a group may show")),
+        (1_024, None),
+    ] {
+        let path = dir.join(format!("wide-{inputs}.ron"));
+        std::fs::write(&path, wide_group(inputs)).expect("the graph is written");
+        let opened = to_ron(&veneer::graph::load(&path).expect("loads"));
+        let mut harness = editor(&dir, Some(path));
+        harness.run_steps(4);
+        assert_eq!(text(&harness), opened, "{inputs} inputs");
+        assert!(!harness.state().document.is_dirty());
+        match problem {
+            Some(problem) => assert!(shows(&harness, problem), "{inputs} inputs"),
+            None => assert!(harness.state().live.errors.is_empty(), "{inputs} inputs"),
+        }
+    }
+}

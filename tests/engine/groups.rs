@@ -723,3 +723,22 @@ fn a_parameter_preset_looks_the_same_whatever_was_set_before() {
         "the group's default, not walnut's"
     );
 }
+
+#[test]
+fn ungrouping_drops_the_preset_values_of_the_parameters_it_dissolves() {
+    // A preset naming a parameter the graph does not expose does not check: ungrouping
+    // the wood's group node leaves presets that still check (and still apply).
+    let mut graph = veneer::graph::load(&root("graphs/wood.ron")).expect("loads");
+    assert!(graph.presets.values().any(|values| !values.is_empty()));
+    let group = graph
+        .nodes
+        .iter()
+        .find(|node| matches!(node.kind, NodeKind::Group(_)))
+        .expect("the wood is built on a group")
+        .id;
+    ungroup(&mut graph, group).expect("dissolves");
+    assert!(graph.presets.values().all(|values| values.is_empty()));
+    veneer::graph::check(&graph).expect("checks");
+    let preset = graph.presets.keys().next().cloned().expect("a preset");
+    veneer::graph::parameters::apply_preset(&mut graph, &preset).expect("applies");
+}

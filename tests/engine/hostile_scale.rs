@@ -15,7 +15,7 @@ use veneer::nodes::{Math, Noise};
 
 /// Runs `veneer args` (output to files, so a flood of lines cannot block it), killing it
 /// past `limit`; returns what it did and how long it took.
-fn run_within(dir: &Path, args: &[&str], limit: Duration) -> (Output, Duration) {
+pub(crate) fn run_within(dir: &Path, args: &[&str], limit: Duration) -> (Output, Duration) {
     let file = |name: &str| std::fs::File::create(dir.join(name)).expect("output file");
     let start = Instant::now();
     let mut child = veneer()
@@ -52,7 +52,7 @@ fn check(dir: &Path, name: &str, graph: &Graph, limit: Duration) -> (Output, Dur
 }
 
 /// Asserts exit code 1, no panic and a short message containing `expected`.
-fn refused(output: &Output, expected: &str) -> String {
+pub(crate) fn refused(output: &Output, expected: &str) -> String {
     let message = String::from_utf8_lossy(&output.stderr).into_owned();
     assert_eq!(output.status.code(), Some(1), "{message}");
     assert!(!message.contains("panicked"), "{message}");

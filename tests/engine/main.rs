@@ -20,6 +20,7 @@ mod graph_files;
 mod groups;
 mod hostile_cli;
 mod hostile_files;
+mod hostile_groups;
 mod hostile_messages;
 mod hostile_outputs;
 mod hostile_scale;
