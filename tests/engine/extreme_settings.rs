@@ -1,0 +1,560 @@
+//! Every node kind the registry lists, every input and every numeric setting at extreme
+//! values (±3.4e38, ±1e30, ±1e20, ±0, ±1e-40, negative sizes): either `check` refuses the
+//! graph with an error naming the node, or every output is finite — on the CPU in f32 and
+//! f64, in the compiled WGSL (constants fold, and naga validates what it is given), and on
+//! the GPU.
+
+use crate::node_kinds::{graph_driving, show_outputs};
+use veneer::eval::{Real, Surface};
+use veneer::graph::{Graph, InputPin, NodeId, NodeKind, PinDefault, Value, ValueType};
+use veneer::nodes::Combine;
+use veneer::nodes::cpu::Eval;
+use veneer::nodes::settings::Setting;
+use veneer::render::{FlatChannels, FlatRect, FlatRenderer};
+
+/// The values every input and numeric setting takes in turn.
+const EXTREMES: [f64; 12] = [
+    3.4e38, -3.4e38, 1.0e30, -1.0e30, 1.0e20, -1.0e20, 0.0, -0.0, 1.0e-40, -1.0e-40, -1.0, -0.5,
+];
+
+/// Ordinary points, which the inputs not under test take (or keep their defaults).
+const ORDINARY: [[f64; 3]; 3] = [[0.3, 0.7, -0.2], [-1.7, 2.5, 0.9], [12.5, -3.25, 40.0]];
+
+/// The material inputs a node's output lanes are shown in, three lanes each.
+const TARGETS: [&str; 3] = ["albedo", "specular", "emission"];
+
+/// The label of the node under test (the one `check` must name when it refuses).
+const UNDER_TEST: &str = "under test";
+
+/// Every kind with outputs, with the settings its tests cover, and each of those again
+/// (with `every` false: the first of each kind only) with each numeric setting at its
+/// extremes: counts at and past their ends, every ramp stop's position and colour at
+/// each extreme value and past the f32 range.
+fn variants(every: bool) -> Vec<NodeKind> {
+    let mut kinds: Vec<NodeKind> = Vec::new();
+    for kind in NodeKind::examples() {
+        if kind.signature().outputs.is_empty() {
+            continue;
+        }
+        let first = !kinds.iter().any(|k| k.name() == kind.name());
+        let count = if every || first {
+            kind.clone().settings().len()
+        } else {
+            0
+        };
+        for index in 0..count {
+            for value in setting_extremes(&kind, index) {
+                let mut variant = kind.clone();
+                value(&mut variant.settings()[index]);
+                kinds.push(variant);
+            }
+        }
+        kinds.push(kind);
+    }
+    kinds
+}
+
+/// A way to set setting `index` of a kind.
+type SetTo = Box<dyn Fn(&mut Setting<'_>)>;
+
+/// The extreme values of setting `index` of `kind` (none for choices and toggles, whose
+/// every value the examples cover).
+fn setting_extremes(kind: &NodeKind, index: usize) -> Vec<SetTo> {
+    let mut kind = kind.clone();
+    let settings = kind.settings();
+    match &settings[index] {
+        Setting::Count { range, .. } => {
+            let (low, high) = (*range.start(), *range.end());
+            [0, low, high, veneer::graph::MAX_OCTAVES, u32::MAX]
+                .into_iter()
+                .map(|n| -> SetTo {
+                    Box::new(move |setting| {
+                        if let Setting::Count { value, .. } = setting {
+                            **value = n;
+                        }
+                    })
+                })
+                .collect()
+        }
+        Setting::Ramp { .. } => EXTREMES
+            .into_iter()
+            .chain([1.0e308, -1.0e308, 3.5e38])
+            .flat_map(|x| {
+                let position: SetTo = Box::new(move |setting| {
+                    if let Setting::Ramp { stops, .. } = setting {
+                        stops.iter_mut().for_each(|stop| stop.position = x);
+                    }
+                });
+                let color: SetTo = Box::new(move |setting| {
+                    if let Setting::Ramp { stops, .. } = setting {
+                        stops.iter_mut().for_each(|stop| stop.color = (x, -x, x));
+                    }
+                });
+                [position, color]
+            })
+            .collect(),
+        Setting::Choice { .. } | Setting::Toggle { .. } => Vec::new(),
+    }
+}
+
+/// A constant of `pin`'s type with `lanes` (a float takes the first).
+fn constant(pin: &InputPin, lanes: [f64; 3]) -> Value {
+    Value::Vec3(lanes[0], lanes[1], lanes[2]).convert(pin.ty)
+}
+
+/// The inputs of `kind` at ordinary point `point`: each pin's default where it has one,
+/// else the point.
+fn ordinary_inputs(kind: &NodeKind, point: [f64; 3]) -> Vec<[f64; 3]> {
+    kind.signature()
+        .inputs
+        .iter()
+        .map(|pin| match pin.default {
+            PinDefault::Const(value) => value.components(),
+            PinDefault::Position | PinDefault::Required => constant(pin, point).components(),
+        })
+        .collect()
+}
+
+/// The cases of one kind: the inputs with one pin (all its lanes, or its first lane only)
+/// or every pin at an extreme value, the others ordinary.
+fn input_cases(kind: &NodeKind) -> Vec<(String, Vec<[f64; 3]>)> {
+    let pins = kind.signature().inputs;
+    let mut cases = Vec::new();
+    for x in EXTREMES {
+        for point in ORDINARY {
+            let ordinary = ordinary_inputs(kind, point);
+            for (k, pin) in pins.iter().enumerate() {
+                let mut all = ordinary.clone();
+                all[k] = constant(pin, [x; 3]).components();
+                cases.push((format!("input '{}' = {x:e}", pin.name), all));
+                if pin.ty != ValueType::Float {
+                    let mut first = ordinary.clone();
+                    first[k][0] = x;
+                    cases.push((format!("input '{}'.x = {x:e}", pin.name), first));
+                }
+            }
+        }
+        let every = pins
+            .iter()
+            .map(|pin| constant(pin, [x; 3]).components())
+            .collect();
+        cases.push((format!("every input = {x:e}"), every));
+    }
+    cases
+}
+
+/// The outputs of `kind` for these inputs in precision `R`, at a surface point `at`.
+fn outputs<R: Real>(kind: &NodeKind, inputs: &[[f64; 3]], at: [f64; 3]) -> Vec<[R; 3]> {
+    let signature = kind.signature();
+    let values: Vec<[R; 3]> = inputs.iter().map(|v| v.map(R::c)).collect();
+    let surface = Surface::<R>::at(at);
+    kind.eval(&Eval::new(&signature.inputs, &values, &surface))
+}
+
+/// A graph of `kind` alone with every input a constant (required ones through a
+/// Constant node), shown as the albedo: the whole graph folds to literals.
+fn constant_graph(kind: &NodeKind, inputs: &[[f64; 3]]) -> Graph {
+    let mut graph = Graph::default();
+    let signature = kind.signature();
+    let node = graph.add(UNDER_TEST, kind.clone());
+    for (pin, lanes) in signature.inputs.iter().zip(inputs) {
+        let value = constant(pin, *lanes);
+        if pin.default == PinDefault::Required {
+            let source = graph.add(
+                "source",
+                NodeKind::Constant(veneer::nodes::Constant { ty: pin.ty }),
+            );
+            graph.set_input(source, "value", value);
+            graph.connect(source, "value", node, pin.name);
+        } else {
+            graph.set_input(node, pin.name, value);
+        }
+    }
+    let material = graph.add("material", NodeKind::Material);
+    show_outputs(&mut graph, node, &signature.outputs, material, &TARGETS);
+    graph
+}
+
+/// What is wrong with `kind` at these inputs, if anything: `check` refuses it without
+/// naming the node, or it checks and an output is not finite on the CPU (f32 or f64),
+/// or its compiled WGSL does not validate.
+fn cpu_failure(kind: &NodeKind, inputs: &[[f64; 3]]) -> Option<String> {
+    let graph = constant_graph(kind, inputs);
+    if let Err(errors) = veneer::graph::check(&graph) {
+        let named = errors.iter().any(|e| {
+            e.node_name
+                .as_deref()
+                .is_some_and(|n| n.contains(UNDER_TEST))
+        });
+        return (!named).then(|| format!("refused without naming the node: {errors:?}"));
+    }
+    for at in ORDINARY {
+        let wide = outputs::<f64>(kind, inputs, at);
+        let narrow = outputs::<f32>(kind, inputs, at);
+        // Within the f32 range in f64 too: the clamps are the same in both.
+        let finite = wide
+            .iter()
+            .flatten()
+            .all(|x| x.abs() <= f64::from(f32::MAX))
+            && narrow.iter().flatten().all(|x| x.is_finite());
+        if !finite {
+            return Some(format!("at {at:?}: {wide:?} (f64) / {narrow:?} (f32)"));
+        }
+    }
+    veneer::codegen::compile(&graph, &Default::default())
+        .err()
+        .map(|e| format!("does not compile: {e}"))
+}
+
+/// Every kind, every setting and every input at extreme values, on the CPU and through
+/// the compiler: finite outputs, or a refusal naming the node.
+#[test]
+fn every_node_kind_stays_finite_at_extreme_settings_on_the_cpu() {
+    let mut failures = Vec::new();
+    for kind in variants(true) {
+        for (case, inputs) in input_cases(&kind) {
+            if let Some(failure) = cpu_failure(&kind, &inputs) {
+                failures.push(format!("{kind:?} with {case}: {failure}"));
+                break;
+            }
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "{} kinds fail at extreme settings:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+}
+
+/// Feeds `pin` of `node` from the surface's time (a vector from three times the time).
+fn drive_by_time(graph: &mut Graph, node: NodeId, pin: &InputPin) {
+    let time = graph.add("time", NodeKind::Time);
+    if pin.ty == ValueType::Float {
+        graph.connect(time, "time", node, pin.name);
+        return;
+    }
+    let combine = graph.add("times", NodeKind::Combine(Combine { ty: pin.ty }));
+    for lane in ["x", "y", "z"].iter().take(pin.ty.width()) {
+        graph.connect(time, "time", combine, lane);
+    }
+    graph.connect(combine, "v", node, pin.name);
+}
+
+/// Every kind and setting (the extremes of settings for one example of each kind) on the
+/// GPU, each input in turn fed the
+/// extreme values at run time (through the time uniform), the others driven by position
+/// as in the CPU–GPU comparison: every output lane finite at every pixel.
+#[test]
+fn every_node_kind_stays_finite_at_extreme_inputs_on_the_gpu() {
+    let gpu = crate::support::gpu();
+    let rect = FlatRect {
+        x0: -3.0,
+        z0: -2.0,
+        x1: 5.0,
+        z1: 6.0,
+        y: 0.25,
+    };
+    // The flat render's outputs that show the material inputs of TARGETS.
+    let channels = [
+        FlatChannels::AlbedoAlpha,
+        FlatChannels::SpecularShininess,
+        FlatChannels::Emission,
+    ];
+    let mut failures = Vec::new();
+    for kind in variants(false) {
+        let signature = kind.signature();
+        for pin in &signature.inputs {
+            let (graph, shown) = graph_driving(&kind, &TARGETS, |graph, node, candidate| {
+                let hit = candidate.name == pin.name;
+                if hit {
+                    drive_by_time(graph, node, candidate);
+                }
+                hit
+            });
+            // Settings `check` refuses are the CPU test's (it checks the refusal names the node).
+            let Ok(compiled) = veneer::codegen::compile(&graph, &Default::default()) else {
+                continue;
+            };
+            let source = compiled.module.source;
+            let renderer = FlatRenderer::new(gpu, &source).expect("pipeline");
+            for x in EXTREMES {
+                for channel in channels.iter().take(shown) {
+                    let pixels = renderer
+                        .render_channels(gpu, rect, 4, x as f32, *channel, |_, _| {})
+                        .expect("renders");
+                    if !pixels.iter().flatten().all(|v| v.is_finite()) {
+                        failures.push(format!("{kind:?} with input '{}' = {x:e}", pin.name));
+                    }
+                }
+            }
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "{} cases are not finite on the GPU:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+}
+
+/// The extreme graphs issue 32 found non-finite (and more like them): one node, its other
+/// inputs driven by position as in the CPU–GPU comparison, the named inputs set.
+fn named_cases() -> Vec<(&'static str, NodeKind, Vec<(&'static str, Value)>)> {
+    use veneer::graph::{Basis, MathOp};
+    use veneer::nodes::{
+        DomainWarp, Dot, Fbm, FractalSum, Layers, Math, Mix, Noise, NoiseBump, Turbulence, Worley,
+    };
+    let splat3 = |x: f64| Value::Vec3(x, x, x);
+    let fractal = (Basis::Gradient, 5);
+    vec![
+        (
+            "mix-factor",
+            NodeKind::Mix(Mix {
+                ty: ValueType::Color,
+            }),
+            vec![
+                ("factor", Value::Float(1.0e20)),
+                ("b", Value::Color(1.0e19, 0.5, 1.0e19)),
+            ],
+        ),
+        (
+            "triangle-wave-frequency",
+            NodeKind::TriangleWave,
+            vec![("frequency", Value::Float(3.0e38))],
+        ),
+        (
+            "value-sine-scale",
+            NodeKind::Noise(Noise {
+                basis: Basis::ValueSine,
+            }),
+            vec![("scale", Value::Float(-3.4e38))],
+        ),
+        (
+            "rings-axis",
+            NodeKind::Rings,
+            vec![("axis", splat3(0.0)), ("frequency", Value::Float(3.0e38))],
+        ),
+        (
+            "math-multiply",
+            NodeKind::Math(Math {
+                op: MathOp::Multiply,
+                ty: ValueType::Float,
+            }),
+            vec![("b", Value::Float(-3.4e38))],
+        ),
+        (
+            "transform-scale",
+            NodeKind::Transform,
+            vec![("scale", splat3(3.0e38))],
+        ),
+        (
+            "fbm-gain",
+            NodeKind::Fbm(Fbm {
+                basis: fractal.0,
+                octaves: fractal.1,
+                normalize: false,
+                rotate: false,
+            }),
+            vec![("gain", Value::Float(1.0e30))],
+        ),
+        (
+            "turbulence-lacunarity",
+            NodeKind::Turbulence(Turbulence {
+                basis: fractal.0,
+                octaves: fractal.1,
+                normalize: true,
+                rotate: true,
+            }),
+            vec![("lacunarity", Value::Float(1.0e30))],
+        ),
+        (
+            "fractal-sum-amplitude",
+            NodeKind::FractalSum(FractalSum {
+                basis: Basis::Simplex,
+                octaves: fractal.1,
+                normalize: false,
+                rotate: false,
+            }),
+            vec![
+                ("amplitude", Value::Float(3.4e38)),
+                ("gain", Value::Float(2.0)),
+            ],
+        ),
+        (
+            "domain-warp-scale",
+            NodeKind::DomainWarp(DomainWarp {
+                basis: Basis::ValuePcg,
+            }),
+            vec![("scale", Value::Float(3.4e38))],
+        ),
+        (
+            "layers-placement",
+            NodeKind::Layers(Layers {
+                ty: ValueType::Color,
+                separate_widths: false,
+            }),
+            vec![
+                ("centre", Value::Float(-3.4e38)),
+                ("softness", Value::Float(3.4e38)),
+                ("width", Value::Float(1.0)),
+            ],
+        ),
+        (
+            "sine-band-frequency",
+            NodeKind::SineBand,
+            vec![("frequency", Value::Float(3.4e38))],
+        ),
+        (
+            "tiles-size",
+            NodeKind::Tiles,
+            vec![
+                ("size", Value::Vec2(-1.0e-19, -1.0e-19)),
+                ("blur", Value::Float(1.0e20)),
+            ],
+        ),
+        (
+            "remap-target",
+            NodeKind::Remap,
+            vec![
+                ("to_min", Value::Float(-3.4e38)),
+                ("to_max", Value::Float(3.4e38)),
+            ],
+        ),
+        (
+            "worley-gain",
+            NodeKind::Worley(Worley {
+                feature: veneer::graph::WorleyFeature::F1,
+                metric: veneer::graph::Metric::Euclidean,
+                octaves: 8,
+            }),
+            vec![("gain", Value::Float(3.4e38))],
+        ),
+        (
+            "isolines-spacing",
+            NodeKind::Isolines,
+            vec![("spacing", Value::Float(1.0e-38))],
+        ),
+        (
+            "dot-constant",
+            NodeKind::Dot(Dot {
+                ty: ValueType::Vec3,
+            }),
+            vec![("a", splat3(3.4e38))],
+        ),
+        (
+            "cylindrical-origin",
+            NodeKind::Cylindrical,
+            vec![("origin", splat3(3.4e38))],
+        ),
+        (
+            "project-origin",
+            NodeKind::Project,
+            vec![("origin", splat3(-3.4e38)), ("direction", splat3(1.0))],
+        ),
+        (
+            "noise-bump-strength",
+            NodeKind::NoiseBump(NoiseBump {
+                basis: Basis::Simplex,
+            }),
+            vec![("strength", Value::Float(3.4e38))],
+        ),
+        (
+            "value-gradient-scale",
+            NodeKind::ValueGradientNoise,
+            vec![("scale", Value::Float(3.4e38))],
+        ),
+        (
+            "front-placement",
+            NodeKind::Front,
+            vec![
+                ("centre", Value::Float(-3.4e38)),
+                ("softness", Value::Float(3.4e38)),
+                ("width", Value::Float(0.0)),
+            ],
+        ),
+    ]
+}
+
+/// The plane the named graphs are baked over: the driven inputs reach about ±10 there.
+const WIDE: FlatRect = FlatRect {
+    x0: -50.0,
+    z0: -50.0,
+    x1: 50.0,
+    z1: 50.0,
+    y: 7.0,
+};
+
+/// The named extreme graphs through the whole CLI, `veneer bake --format exr` (check,
+/// compile, GPU, EXR writer), and through the CPU evaluator (f32 and f64) at the bake's
+/// sample points: every sample of the albedo, specular and emission maps is finite
+/// (before, +Inf or NaN; black in PNG and glTF).
+#[test]
+fn named_extreme_graphs_bake_finite_exr_maps_and_evaluate_finite() {
+    let dir = crate::support::temp_dir("extreme-bakes");
+    let rect = format!("{},{},{},{},{}", WIDE.x0, WIDE.z0, WIDE.x1, WIDE.z1, WIDE.y);
+    let mut args: Vec<String> = ["bake", "--size", "16", "--flat", &rect, "--maps"]
+        .map(String::from)
+        .to_vec();
+    args.extend([
+        TARGETS.join(","),
+        "--format".into(),
+        "exr".into(),
+        "-o".into(),
+    ]);
+    args.push(dir.display().to_string());
+    let mut failures = Vec::new();
+    for (name, kind, inputs) in named_cases() {
+        let (graph, _) = graph_driving(&kind, &TARGETS, |graph, node, pin| {
+            let set = inputs.iter().find(|(named, _)| *named == pin.name);
+            if let Some((_, value)) = set {
+                graph.set_input(node, pin.name, *value);
+            }
+            set.is_some()
+        });
+        let evaluator = veneer::eval::Evaluator::new(&graph).expect("checks");
+        for point in veneer::render::flat_points(WIDE, 16) {
+            let wide = evaluator.eval(&Surface::<f64>::at(point));
+            let narrow = evaluator.eval(&Surface::<f32>::at(point));
+            let lanes = [wide.albedo, wide.specular, wide.emission];
+            let finite = lanes
+                .iter()
+                .flatten()
+                .all(|x| x.abs() <= f64::from(f32::MAX))
+                && [narrow.albedo, narrow.specular, narrow.emission]
+                    .iter()
+                    .flatten()
+                    .all(|x| x.is_finite());
+            if !finite {
+                failures.push(format!(
+                    "{name} at {point:?} on the CPU: {wide:?} / {narrow:?}"
+                ));
+                break;
+            }
+        }
+        let path = dir.join(format!("{name}.ron"));
+        veneer::graph::save(&graph, &path).expect("graph saved");
+        args.push(path.display().to_string());
+    }
+    let output = crate::support::veneer()
+        .args(&args)
+        .output()
+        .expect("veneer runs");
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    for (name, _, _) in named_cases() {
+        for map in TARGETS {
+            let path = dir.join(format!("{name}_{map}.exr"));
+            let pixels = image::open(&path).expect("an EXR").to_rgba32f();
+            let bad = pixels.iter().filter(|v| !v.is_finite()).count();
+            if bad > 0 {
+                failures.push(format!("{name}: {bad} non-finite samples in its {map} map"));
+            }
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
