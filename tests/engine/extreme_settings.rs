@@ -558,3 +558,206 @@ fn named_extreme_graphs_bake_finite_exr_maps_and_evaluate_finite() {
     let _ = std::fs::remove_dir_all(&dir);
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+/// Constants at the ends of the f32 range fold through Length, Dot and Normalize into
+/// finite literals that naga accepts (before: "length operation overflowed", a raw
+/// validator error); colour-ramp stops past the f32 range are refused by `check`, naming
+/// the node and the value (before: "numeric literal not representable").
+#[test]
+fn f32_extreme_constants_compile_and_ramp_stops_past_f32_are_refused_by_name() {
+    use veneer::nodes::{ColorRamp, Dot, Length, Normalize};
+    let mut graph = Graph::default();
+    let big = graph.add(
+        "big",
+        NodeKind::Combine(Combine {
+            ty: ValueType::Vec3,
+        }),
+    );
+    for (lane, x) in [("x", 3.4e38), ("y", -3.4e38), ("z", 3.4e38)] {
+        graph.set_input(big, lane, Value::Float(x));
+    }
+    let ty = ValueType::Vec3;
+    let length = graph.add("length", NodeKind::Length(Length { ty }));
+    let dot = graph.add("dot", NodeKind::Dot(Dot { ty }));
+    let unit = graph.add("unit", NodeKind::Normalize(Normalize { ty }));
+    let material = graph.add("material", NodeKind::Material);
+    graph.connect(big, "v", length, "v");
+    graph.connect(big, "v", dot, "a");
+    graph.connect(big, "v", dot, "b");
+    graph.connect(big, "v", unit, "v");
+    graph.connect(length, "length", material, "alpha");
+    graph.connect(dot, "dot", material, "height");
+    graph.connect(unit, "unit", material, "albedo");
+    let module = veneer::codegen::compile(&graph, &Default::default())
+        .unwrap_or_else(|e| panic!("extreme constants compile: {e}"))
+        .module
+        .source;
+    let folded = veneer::eval::Evaluator::new(&graph)
+        .expect("checks")
+        .eval(&Surface::<f32>::at([0.0; 3]));
+    assert_eq!(
+        folded.alpha, 3.0e38,
+        "the length clamps to the finite range"
+    );
+    assert_eq!(folded.height, 3.0e38, "so does the dot product");
+    let third = 1.0 / 3.0f32.sqrt();
+    assert!(
+        (folded.albedo[0] - third).abs() < 1.0e-6,
+        "{:?}",
+        folded.albedo
+    );
+    assert!(module.contains("3e38f"), "folded into literals:\n{module}");
+
+    for (position, shown) in [(1.0e308, "1e308"), (-1.0e308, "-1e308"), (3.5e38, "3.5e38")] {
+        let mut graph = Graph::default();
+        let mut ramp = ColorRamp {
+            stops: vec![
+                veneer::graph::RampStop {
+                    position: 0.0,
+                    color: (0.0, 0.0, 0.0),
+                },
+                veneer::graph::RampStop {
+                    position,
+                    color: (1.0, 1.0, 1.0),
+                },
+            ],
+            interpolation: Default::default(),
+        };
+        if position < 0.0 {
+            ramp.stops.reverse();
+        }
+        let time = graph.add("time", NodeKind::Time);
+        let node = graph.add("ramp", NodeKind::ColorRamp(ramp));
+        let material = graph.add("material", NodeKind::Material);
+        graph.connect(time, "time", node, "factor");
+        graph.connect(node, "color", material, "albedo");
+        let errors = veneer::graph::check(&graph).expect_err("refused");
+        let message = errors
+            .iter()
+            .map(ToString::to_string)
+            .collect::<Vec<_>>()
+            .join("\n");
+        assert!(
+            message.contains("node 'ramp'") && message.contains(shown),
+            "{message}"
+        );
+        assert!(
+            !message.contains("WGSL"),
+            "not a validator message: {message}"
+        );
+    }
+}
+
+/// A material whose outputs are at the ends of the f32 range (the nodes' outputs may be:
+/// they clamp there): emission × strength overflows, the bump cannot be squared, and the
+/// height (3.4e38 times a position-driven scalar, so about ±3e38 in stripes) has slopes
+/// past f32. `scale` stands for 3.4e38 (or a moderate value, for a reference image).
+fn extreme_material(shading: veneer::graph::Shading, scale: f64) -> Graph {
+    use veneer::nodes::Math;
+    let mut graph = Graph {
+        shading,
+        ..Graph::default()
+    };
+    let material = graph.add("material", NodeKind::Material);
+    let position = graph.add("position", NodeKind::Project);
+    let ty = ValueType::Float;
+    let height = graph.add(
+        "height",
+        NodeKind::Math(Math {
+            op: veneer::graph::MathOp::Multiply,
+            ty,
+        }),
+    );
+    graph.connect(position, "x", height, "a");
+    graph.set_input(height, "b", Value::Float(scale));
+    graph.connect(height, "result", material, "height");
+    graph.set_input(
+        material,
+        "emission",
+        Value::Color(scale, 0.5 * scale, scale),
+    );
+    graph.set_input(material, "emission_strength", Value::Float(scale));
+    graph.set_input(material, "bump", Value::Vec3(scale, -scale, scale));
+    graph.set_input(material, "normal", Value::Vec3(scale, scale, -scale));
+    graph.set_input(material, "specular", Value::Color(scale, scale, scale));
+    graph.set_input(material, "shininess", Value::Float(scale));
+    graph
+}
+
+/// Every map of the extreme material bakes (EXR, over a plane and into a mesh's UV
+/// layout) with every sample finite, normals unit length: before, the emission map held
+/// +Inf and the normal map NaN.
+#[test]
+fn extreme_material_outputs_bake_into_finite_maps() {
+    use veneer::bake::{BakeSettings, BakeSurface, Format, Map, NormalConvention, bake};
+    let dir = crate::support::temp_dir("extreme-material-bakes");
+    for shading in [
+        veneer::graph::Shading::BlinnPhong,
+        veneer::graph::Shading::MetallicRoughness,
+    ] {
+        let compiled =
+            veneer::codegen::compile(&extreme_material(shading, 3.4e38), &Default::default())
+                .expect("compiles");
+        for surface in [
+            BakeSurface::Plane(Some(WIDE)),
+            BakeSurface::MeshUv("sphere".into()),
+        ] {
+            let settings = BakeSettings {
+                surface: surface.clone(),
+                size: 32,
+                maps: Map::ALL.to_vec(),
+                format: Format::Exr,
+                normal: NormalConvention::OpenGl,
+                time: 0.0,
+            };
+            let maps = bake(
+                crate::support::gpu(),
+                &compiled,
+                &settings,
+                &dir.join("extreme"),
+                |_, _| {},
+            )
+            .unwrap_or_else(|e| panic!("{shading:?} {surface:?}: {e}"));
+            for baked in maps {
+                let pixels = image::open(&baked.path).expect("an EXR").to_rgba32f();
+                assert!(
+                    pixels.iter().all(|v| v.is_finite()),
+                    "{shading:?} {surface:?}: the {:?} map is not finite",
+                    baked.map
+                );
+                if baked.map == Map::Normal {
+                    for p in pixels.pixels() {
+                        let n = glam::Vec3::new(p[0], p[1], p[2]) * 2.0 - glam::Vec3::ONE;
+                        assert!((n.length() - 1.0).abs() < 1.0e-3, "normal {n}");
+                    }
+                }
+            }
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The extreme material lit on its preview mesh, in both shadings, looks as the same
+/// material at moderate magnitudes does (the bump turns the normal the same way, the
+/// emission saturates to white): before, the bump and the emission gave NaN, drawn black.
+#[test]
+fn extreme_material_outputs_light_like_saturated_ones() {
+    use veneer::render::{View, render_material};
+    for shading in [
+        veneer::graph::Shading::BlinnPhong,
+        veneer::graph::Shading::MetallicRoughness,
+    ] {
+        let image = |scale: f64| {
+            let mut graph = extreme_material(shading, scale);
+            // The height's relief differs with its scale; the bump and emission do not.
+            graph.wires.retain(|wire| wire.to.pin != "height");
+            let compiled = veneer::codegen::compile(&graph, &Default::default()).expect("compiles");
+            render_material(crate::support::gpu(), &compiled, &View::Mesh(None), 48, 0.0)
+                .expect("renders")
+        };
+        let (extreme, moderate) = (image(3.4e38), image(1.0e6));
+        let diff =
+            crate::support::difference(&extreme.pixels, &moderate.pixels, extreme.channels, 1);
+        assert_eq!(diff.share_outside, 0.0, "{shading:?}: {diff}");
+    }
+}
