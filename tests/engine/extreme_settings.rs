@@ -476,6 +476,25 @@ fn named_cases() -> Vec<(&'static str, NodeKind, Vec<(&'static str, Value)>)> {
     ]
 }
 
+/// The graphs of [`named_cases`] by name: the node's outputs shown in the albedo,
+/// specular and emission, its other inputs driven by position (the CLI contract's
+/// generator draws them too).
+pub fn named_graphs() -> Vec<(&'static str, Graph)> {
+    named_cases()
+        .into_iter()
+        .map(|(name, kind, inputs)| {
+            let (graph, _) = graph_driving(&kind, &TARGETS, |graph, node, pin| {
+                let set = inputs.iter().find(|(named, _)| *named == pin.name);
+                if let Some((_, value)) = set {
+                    graph.set_input(node, pin.name, *value);
+                }
+                set.is_some()
+            });
+            (name, graph)
+        })
+        .collect()
+}
+
 /// The plane the named graphs are baked over: the driven inputs reach about ±10 there.
 const WIDE: FlatRect = FlatRect {
     x0: -50.0,
@@ -504,14 +523,7 @@ fn named_extreme_graphs_bake_finite_exr_maps_and_evaluate_finite() {
     ]);
     args.push(dir.display().to_string());
     let mut failures = Vec::new();
-    for (name, kind, inputs) in named_cases() {
-        let (graph, _) = graph_driving(&kind, &TARGETS, |graph, node, pin| {
-            let set = inputs.iter().find(|(named, _)| *named == pin.name);
-            if let Some((_, value)) = set {
-                graph.set_input(node, pin.name, *value);
-            }
-            set.is_some()
-        });
+    for (name, graph) in named_graphs() {
         let evaluator = veneer::eval::Evaluator::new(&graph).expect("checks");
         for point in veneer::render::flat_points(WIDE, 16) {
             let wide = evaluator.eval(&Surface::<f64>::at(point));
@@ -545,7 +557,7 @@ fn named_extreme_graphs_bake_finite_exr_maps_and_evaluate_finite() {
         "{}",
         String::from_utf8_lossy(&output.stderr)
     );
-    for (name, _, _) in named_cases() {
+    for (name, _) in named_graphs() {
         for map in TARGETS {
             let path = dir.join(format!("{name}_{map}.exr"));
             let pixels = image::open(&path).expect("an EXR").to_rgba32f();
@@ -559,13 +571,43 @@ fn named_extreme_graphs_bake_finite_exr_maps_and_evaluate_finite() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
+/// A graph with a two-stop colour ramp over time, from 0 to a stop at `position` (in
+/// order, whatever its sign): past the f32 range, `check` refuses it.
+pub fn ramp_graph(position: f64) -> Graph {
+    use veneer::graph::RampStop;
+    let mut stops = vec![
+        RampStop {
+            position: 0.0,
+            color: (0.0, 0.0, 0.0),
+        },
+        RampStop {
+            position,
+            color: (1.0, 1.0, 1.0),
+        },
+    ];
+    if position < 0.0 {
+        stops.reverse();
+    }
+    let ramp = veneer::nodes::ColorRamp {
+        stops,
+        interpolation: Default::default(),
+    };
+    let mut graph = Graph::default();
+    let time = graph.add("time", NodeKind::Time);
+    let node = graph.add("ramp", NodeKind::ColorRamp(ramp));
+    let material = graph.add("material", NodeKind::Material);
+    graph.connect(time, "time", node, "factor");
+    graph.connect(node, "color", material, "albedo");
+    graph
+}
+
 /// Constants at the ends of the f32 range fold through Length, Dot and Normalize into
 /// finite literals that naga accepts (before: "length operation overflowed", a raw
 /// validator error); colour-ramp stops past the f32 range are refused by `check`, naming
 /// the node and the value (before: "numeric literal not representable").
 #[test]
 fn f32_extreme_constants_compile_and_ramp_stops_past_f32_are_refused_by_name() {
-    use veneer::nodes::{ColorRamp, Dot, Length, Normalize};
+    use veneer::nodes::{Dot, Length, Normalize};
     let mut graph = Graph::default();
     let big = graph.add(
         "big",
@@ -609,28 +651,7 @@ fn f32_extreme_constants_compile_and_ramp_stops_past_f32_are_refused_by_name() {
     assert!(module.contains("3e38f"), "folded into literals:\n{module}");
 
     for (position, shown) in [(1.0e308, "1e308"), (-1.0e308, "-1e308"), (3.5e38, "3.5e38")] {
-        let mut graph = Graph::default();
-        let mut ramp = ColorRamp {
-            stops: vec![
-                veneer::graph::RampStop {
-                    position: 0.0,
-                    color: (0.0, 0.0, 0.0),
-                },
-                veneer::graph::RampStop {
-                    position,
-                    color: (1.0, 1.0, 1.0),
-                },
-            ],
-            interpolation: Default::default(),
-        };
-        if position < 0.0 {
-            ramp.stops.reverse();
-        }
-        let time = graph.add("time", NodeKind::Time);
-        let node = graph.add("ramp", NodeKind::ColorRamp(ramp));
-        let material = graph.add("material", NodeKind::Material);
-        graph.connect(time, "time", node, "factor");
-        graph.connect(node, "color", material, "albedo");
+        let graph = ramp_graph(position);
         let errors = veneer::graph::check(&graph).expect_err("refused");
         let message = errors
             .iter()
