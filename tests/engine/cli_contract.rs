@@ -83,7 +83,7 @@ fn fixture(dir: &Path) {
 /// name: the extreme-settings test's named cases, which must give finite outputs, and
 /// a colour ramp with a stop past f32, which `check` refuses.
 fn extreme_graphs() -> Vec<(String, veneer::graph::Graph)> {
-    crate::extreme_settings::named_graphs()
+    crate::extreme_cases::named_graphs()
         .into_iter()
         .map(|(name, graph)| (format!("extreme-{name}.ron"), graph))
         .chain([(
