@@ -1,5 +1,6 @@
 //! The fragment entry point every non-WGSL export carries: evaluates veneer_material from
-//! interpolated inputs and writes (albedo + emission × strength, alpha): the unlit colour. Time comes from a uniform block.
+//! interpolated inputs and writes (albedo + emission × strength, alpha): the unlit colour,
+//! clamped to the finite range. Time comes from a uniform block.
 
 struct VeneerFragmentInput {
     @location(0) position: vec3f,  // object-space position
@@ -18,5 +19,6 @@ struct VeneerFrame {
 fn veneer_fragment(input: VeneerFragmentInput) -> @location(0) vec4f {
     let surface = VeneerSurface(input.position, input.normal, input.uv, input.fields, veneer_frame.time);
     let material = veneer_material(surface);
-    return vec4f(material.albedo + material.emission * material.emission_strength, material.alpha);
+    let emitted = clamp(material.emission * material.emission_strength, vec3f(-1.0e38), vec3f(1.0e38));
+    return vec4f(clamp(material.albedo + emitted, vec3f(-3.0e38), vec3f(3.0e38)), material.alpha);
 }

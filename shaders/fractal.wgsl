@@ -32,11 +32,13 @@ fn veneer_octave_mean_fractal_sum() -> f32 {
 }
 
 // Sum of `octaves` octaves; each multiplies the frequency by `lacunarity` and the
-// amplitude by `gain`. With `normalize` the sum is divided by the sum of amplitudes.
-// Octave i counts fully below `cutoff - 1`, fades to its average over the next octave
-// and is replaced by its average from `cutoff` on: those octaves are summed in a second
-// loop without any noise, so a coarse footprint shortens the expensive one (software
-// rasterisers run both sides of a branch; a shorter loop is what saves them work).
+// amplitude by `gain` (the frequency, the amplitude and the sums clamped to the finite
+// range, so no octave overflows into a NaN). With `normalize` the sum is divided by the
+// sum of amplitudes. Octave i counts fully below `cutoff - 1`, fades to its average over
+// the next octave and is replaced by its average from `cutoff` on: those octaves are
+// summed in a second loop without any noise, so a coarse footprint shortens the
+// expensive one (software rasterisers run both sides of a branch; a shorter loop is what
+// saves them work).
 fn veneer_MODE_BASIS(p: vec3f, octaves: i32, lacunarity: f32, gain: f32, amplitude: f32, normalize: bool, cutoff: f32) -> f32 {
     var sum = 0.0;
     var amp = amplitude;
@@ -46,24 +48,26 @@ fn veneer_MODE_BASIS(p: vec3f, octaves: i32, lacunarity: f32, gain: f32, amplitu
     let evaluated = min(octaves, i32(clamp(ceil(cutoff), 0.0, 64.0)));
     for (var i = 0; i < evaluated; i++) {
         let shown = clamp(cutoff - f32(i), 0.0, 1.0);
-        sum += amp * (shown * veneer_octave_MODE_BASIS(p * freq) + (1.0 - shown) * mean);
-        total += abs(amp);
-        freq *= lacunarity;
-        amp *= gain;
+        sum = clamp(sum + amp * (shown * veneer_octave_MODE_BASIS(p * freq) + (1.0 - shown) * mean), -3.0e38, 3.0e38);
+        total = min(total + abs(amp), 3.0e38);
+        freq = clamp(freq * lacunarity, -3.0e38, 3.0e38);
+        amp = clamp(amp * gain, -3.0e38, 3.0e38);
     }
     for (var i = evaluated; i < octaves; i++) {
-        sum += amp * mean;
-        total += abs(amp);
-        amp *= gain;
+        sum = clamp(sum + amp * mean, -3.0e38, 3.0e38);
+        total = min(total + abs(amp), 3.0e38);
+        amp = clamp(amp * gain, -3.0e38, 3.0e38);
     }
     return select(sum, sum / total, normalize && total > 0.0);
 }
 
 // How many octaves of noise at `q` (frequency times `lacunarity` per octave) the pixel
 // footprint can show: octaves finer than half a pixel are left out (a fractional count
-// fades the last one). From the screen-space derivatives of `q`: fragment stage only.
+// fades the last one). From the screen-space derivatives of `q` within the lattice's
+// range (so they stay finite): fragment stage only.
 fn veneer_octave_cutoff(q: vec3f, lacunarity: f32) -> f32 {
-    let footprint = max(length(dpdx(q)), length(dpdy(q)));
+    let lattice = veneer_lattice_domain(q);
+    let footprint = max(length(dpdx(lattice)), length(dpdy(lattice)));
     let visible = 1.0 + log2(0.5 / max(footprint, 1.0e-30)) / log2(max(lacunarity, 1.0001));
     return select(max(visible, 0.0), 1.0e9, footprint <= 0.0 || lacunarity <= 1.0);
 }

@@ -18,31 +18,33 @@ fn veneer_octave_rotate(p: vec3f) -> vec3f {
 }
 
 // The fractal sum of the same name without `_rotated`, except that octave i samples the
-// basis at R^i p times its frequency (R: the fixed octave rotation; octave 0 unturned).
+// basis at R^i p times its frequency (R: the fixed octave rotation; octave 0 unturned; p
+// clamped to the finite range, so that its turns are finite).
 // Sum of `octaves` octaves; each multiplies the frequency by `lacunarity` and the
-// amplitude by `gain`. With `normalize` the sum is divided by the sum of amplitudes.
-// Octave i counts fully below `cutoff - 1`, fades to its average over the next octave
-// and is replaced by its average from `cutoff` on (as in the unturned sums).
+// amplitude by `gain` (clamped to the finite range, as are the sums). With `normalize`
+// the sum is divided by the sum of amplitudes. Octave i counts fully below `cutoff - 1`,
+// fades to its average over the next octave and is replaced by its average from
+// `cutoff` on (as in the unturned sums).
 fn veneer_MODE_rotated_BASIS(p: vec3f, octaves: i32, lacunarity: f32, gain: f32, amplitude: f32, normalize: bool, cutoff: f32) -> f32 {
     var sum = 0.0;
     var amp = amplitude;
     var freq = 1.0;
     var total = 0.0;
-    var q = p;
+    var q = veneer_finite_vec3f(p);
     let mean = veneer_octave_mean_MODE();
     let evaluated = min(octaves, i32(clamp(ceil(cutoff), 0.0, 64.0)));
     for (var i = 0; i < evaluated; i++) {
         let shown = clamp(cutoff - f32(i), 0.0, 1.0);
-        sum += amp * (shown * veneer_octave_MODE_BASIS(q * freq) + (1.0 - shown) * mean);
-        total += abs(amp);
-        freq *= lacunarity;
-        amp *= gain;
+        sum = clamp(sum + amp * (shown * veneer_octave_MODE_BASIS(q * freq) + (1.0 - shown) * mean), -3.0e38, 3.0e38);
+        total = min(total + abs(amp), 3.0e38);
+        freq = clamp(freq * lacunarity, -3.0e38, 3.0e38);
+        amp = clamp(amp * gain, -3.0e38, 3.0e38);
         q = veneer_octave_rotate(q);
     }
     for (var i = evaluated; i < octaves; i++) {
-        sum += amp * mean;
-        total += abs(amp);
-        amp *= gain;
+        sum = clamp(sum + amp * mean, -3.0e38, 3.0e38);
+        total = min(total + abs(amp), 3.0e38);
+        amp = clamp(amp * gain, -3.0e38, 3.0e38);
     }
     return select(sum, sum / total, normalize && total > 0.0);
 }

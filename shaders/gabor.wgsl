@@ -55,7 +55,8 @@ fn veneer_gabor_cell(cell: vec3f, x: vec3f, frequency: f32, anisotropy: f32, dir
 // The sum of the kernels of the impulses of the 27 cells around p (only those reach p),
 // with `dir` the unit orientation or zero (see the Gabor noise below): zero mean, standard
 // deviation about 1.0146 (1 / 0.3285345) for frequencies of a cycle per unit and more.
-fn veneer_gabor_sum(p: vec3f, frequency: f32, anisotropy: f32, dir: vec3f) -> f32 {
+fn veneer_gabor_sum(point: vec3f, frequency: f32, anisotropy: f32, dir: vec3f) -> f32 {
+    let p = veneer_lattice_domain(point);
     let cell = floor(p);
     let f = p - cell;
     var sum = 0.0;

@@ -9,7 +9,8 @@ fn veneer_gradient_dot(cell: vec3f, d: vec3f) -> f32 {
 }
 
 // Gradient noise remapped to [0, 1].
-fn veneer_noise_gradient(p: vec3f) -> f32 {
+fn veneer_noise_gradient(point: vec3f) -> f32 {
+    let p = veneer_lattice_domain(point);
     let i = floor(p);
     let f = p - i;
     let u = f * f * f * (f * (f * 6.0 - 15.0) + 10.0);

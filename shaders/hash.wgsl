@@ -7,6 +7,14 @@ fn veneer_lattice_sine(cell: vec3f) -> f32 {
     return fract(sin(h) * 43758.5453);
 }
 
+// `p` within the lattice's range (+-2147483520 per axis, where the cells' integer
+// coordinates saturate anyway): every lattice noise samples its point through this, so
+// any coordinate (an overflowed product too) gives a finite value.
+fn veneer_lattice_domain(p: vec3f) -> vec3f {
+    let limit = vec3f(2147483520.0);
+    return clamp(p, -limit, limit);
+}
+
 // Integer coordinates of a lattice cell, clamped to the i32 range so that any finite
 // coordinate maps to a well-defined cell on every device.
 fn veneer_cell_bits(cell: vec3f) -> vec3u {

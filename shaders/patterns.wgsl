@@ -1,13 +1,16 @@
 //! Periodic patterns: sine bands, triangle waves, tiles and rings.
 
-// Marble bands of seed 000: 0.5 + 0.5 sin(frequency x + distortion turbulence).
+// Marble bands of seed 000: 0.5 + 0.5 sin(frequency x + distortion turbulence), the
+// products and the phase clamped to the finite range.
 fn veneer_sine_band(x: f32, frequency: f32, distortion: f32, turbulence: f32) -> f32 {
-    return 0.5 + 0.5 * sin(frequency * x + distortion * turbulence);
+    let phase = veneer_finite_f32(frequency * x) + veneer_finite_f32(distortion * turbulence);
+    return 0.5 + 0.5 * sin(veneer_finite_f32(phase));
 }
 
-// 0 -> 1 -> 0 once per period of `x * frequency` (the ring profile of seed 001).
+// 0 -> 1 -> 0 once per period of `x * frequency` (the ring profile of seed 001), the
+// product clamped to the finite range.
 fn veneer_triangle_wave(x: f32, frequency: f32) -> f32 {
-    let r = fract(x * frequency) * 2.0;
+    let r = fract(veneer_finite_f32(x * frequency)) * 2.0;
     return select(r, 2.0 - r, r > 1.0);
 }
 
@@ -34,12 +37,16 @@ struct veneer_tiles_result {
 }
 
 // Tiles of `size` over the xz plane; every other row (along x) shifted by `row_offset`
-// tiles in z; mortar takes the first `gap` of each tile; `blur` is the filter width.
+// tiles in z; mortar takes the first `gap` of each tile (clamped to [0, 1]); `blur` is
+// the filter width. The position in tiles and the filter width in tiles are clamped to
+// +-1e30, so no sum or difference of them overflows.
 fn veneer_tiles(p: vec3f, size: vec2f, gap: vec2f, row_offset: f32, blur: f32) -> veneer_tiles_result {
     let safe_size = select(size, vec2f(1.0), abs(size) < vec2f(1.0e-20));
-    var t = p.xz / safe_size;
+    let limit = vec2f(1.0e30);
+    var t = clamp(p.xz / safe_size, -limit, limit);
     t.y += select(0.0, row_offset, fract(t.x * 0.5) > 0.5);
-    let coverage = veneer_tile_coverage(t, gap, vec2f(blur) / abs(safe_size));
+    let width = clamp(vec2f(blur) / abs(safe_size), -limit, limit);
+    let coverage = veneer_tile_coverage(t, clamp(gap, vec2f(0.0), vec2f(1.0)), width);
     return veneer_tiles_result(coverage.x * coverage.y, ceil(t), fract(t));
 }
 
@@ -50,8 +57,9 @@ fn veneer_plane_footprint(p: vec3f) -> f32 {
     return max(extent.x, extent.z);
 }
 
-// Concentric rings about an axis: 0.5 + 0.5 sin(2 pi frequency r).
+// Concentric rings about an axis: 0.5 + 0.5 sin(2 pi frequency r), the products clamped
+// to the finite range.
 fn veneer_rings(p: vec3f, origin: vec3f, axis: vec3f, frequency: f32) -> f32 {
     let r = veneer_cylindrical(p, origin, axis).y;
-    return 0.5 + 0.5 * sin(6.283185307 * frequency * r);
+    return 0.5 + 0.5 * sin(veneer_finite_f32(veneer_finite_f32(6.283185307 * frequency) * r));
 }

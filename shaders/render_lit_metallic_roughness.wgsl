@@ -52,5 +52,6 @@ fn veneer_shade(material: VeneerMaterial, n: vec3f, v: vec3f, l: vec3f) -> vec3f
     let roughness = clamp(material.roughness, 0.0, 1.0);
     let direct = veneer_ggx_light(n, v, l, base, metallic, roughness) * veneer_mesh_view.key_light;
     let ambient = veneer_image_based_light(n, v, base, metallic, roughness) * clamp(material.occlusion, 0.0, 1.0);
-    return veneer_display(direct + ambient + material.emission * material.emission_strength);
+    let emitted = clamp(material.emission * material.emission_strength, vec3f(-1.0e18), vec3f(1.0e18));
+    return veneer_display(direct + ambient + emitted);
 }

@@ -79,7 +79,9 @@ fn veneer_mesh_fragment(input: VeneerVertexOut, @builtin(front_facing) front: bo
     // VENEER_HEIGHT (set by the pipeline): the material's height can be non-zero.
     var relief = vec3f(0.0);
     if VENEER_HEIGHT {
-        relief = veneer_height_bump(input.position, normal, material.height / max(view.placement.w, 1.0e-6));
+        // Heights past 1e18 mesh units slope no more steeply on screen (nor overflow).
+        let height = clamp(material.height / max(view.placement.w, 1.0e-6), -1.0e18, 1.0e18);
+        relief = veneer_height_bump(input.position, normal, height);
     }
     // VENEER_NORMAL (set by the pipeline): the tangent-space normal can be tilted.
     var tilt = vec3f(0.0);
@@ -91,10 +93,13 @@ fn veneer_mesh_fragment(input: VeneerVertexOut, @builtin(front_facing) front: bo
     if material.alpha < VENEER_MIN_ALPHA || material.alpha >= VENEER_MAX_ALPHA {
         discard;
     }
-    // VENEER_RELIEF (set by the pipeline): a bump, a height or a tilt perturbs the normal.
+    // VENEER_RELIEF (set by the pipeline): a bump, a height or a tilt perturbs the normal
+    // (by at most 1e18 per axis, which already turns it all the way, so that it
+    // normalises to a finite direction whatever the material gives).
     var n = normal;
     if VENEER_RELIEF {
-        n = normalize(normal + material.bump + relief + tilt);
+        let limit = vec3f(1.0e18);
+        n = normalize(normal + clamp(material.bump, -limit, limit) + clamp(relief, -limit, limit) + tilt);
     }
     // A back face (drawn where the material can be cut away or see-through) is lit
     // from its own side.

@@ -50,8 +50,10 @@ fn veneer_agx(colour: vec3f) -> vec3f {
     return pow(clamp(v, vec3f(0.0), vec3f(1.0)), vec3f(2.2));
 }
 
+// `colour` through tone mapper `kind` (0 clamp, 1 PBR neutral, 2 ACES fitted, 3 AgX); light
+// past 1e9 is white in every one of them and is clamped there, so that none overflows.
 fn veneer_tone_map(colour: vec3f, kind: u32) -> vec3f {
-    let c = max(colour, vec3f(0.0));
+    let c = clamp(colour, vec3f(0.0), vec3f(1.0e9));
     switch kind {
         case 1u: { return veneer_pbr_neutral(c); }
         case 2u: { return veneer_aces_fitted(c); }

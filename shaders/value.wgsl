@@ -1,7 +1,8 @@
 //! Value noise: hashed lattice values, trilinearly interpolated with a smoothstep kernel (seed 000).
 
 // Value noise in [0, 1] with the lattice hash HASH.
-fn veneer_noise_value_HASH(p: vec3f) -> f32 {
+fn veneer_noise_value_HASH(point: vec3f) -> f32 {
+    let p = veneer_lattice_domain(point);
     let i = floor(p);
     let f = fract(p);
     let u = f * f * (3.0 - 2.0 * f);

@@ -11,8 +11,11 @@ fn veneer_metric(d: vec3f, metric: i32) -> f32 {
 }
 
 // The three smallest feature distances (F1, F2, F3) around `p`; one feature point per
-// cell, displaced from the cell centre by up to `jitter` / 2 per axis.
-fn veneer_worley(p: vec3f, jitter: f32, metric: i32) -> vec3f {
+// cell, displaced from the cell centre by up to `jitter` / 2 per axis (`jitter` clamped
+// to [-1, 1], where every feature point stays in its cell, so distances stay small).
+fn veneer_worley(point: vec3f, jitter: f32, metric: i32) -> vec3f {
+    let p = veneer_lattice_domain(point);
+    let spread = clamp(jitter, -1.0, 1.0);
     let cell = floor(p);
     var f = vec3f(1.0e9);
     for (var z = -1; z <= 1; z++) {
@@ -20,7 +23,7 @@ fn veneer_worley(p: vec3f, jitter: f32, metric: i32) -> vec3f {
             for (var x = -1; x <= 1; x++) {
                 let c = cell + vec3f(f32(x), f32(y), f32(z));
                 let r = veneer_unit_floats(veneer_pcg3d(veneer_cell_bits(c)));
-                let feature = c + 0.5 + jitter * (r - 0.5);
+                let feature = c + 0.5 + spread * (r - 0.5);
                 let d = veneer_metric(p - feature, metric);
                 if d < f.x {
                     f = vec3f(d, f.x, f.y);
@@ -45,15 +48,16 @@ fn veneer_worley_feature(f: vec3f, feature: i32) -> f32 {
     }
 }
 
-// Fractal Worley: `octaves` octaves of a feature, frequency times `lacunarity`, amplitude times `gain`.
+// Fractal Worley: `octaves` octaves of a feature, frequency times `lacunarity`, amplitude
+// times `gain`; the frequency, the amplitude and the sum clamped to the finite range.
 fn veneer_worley_fractal(p: vec3f, jitter: f32, metric: i32, feature: i32, octaves: i32, lacunarity: f32, gain: f32) -> f32 {
     var sum = 0.0;
     var amp = 1.0;
     var freq = 1.0;
     for (var i = 0; i < octaves; i++) {
-        sum += amp * veneer_worley_feature(veneer_worley(p * freq, jitter, metric), feature);
-        freq *= lacunarity;
-        amp *= gain;
+        sum = clamp(sum + amp * veneer_worley_feature(veneer_worley(p * freq, jitter, metric), feature), -3.0e38, 3.0e38);
+        freq = clamp(freq * lacunarity, -3.0e38, 3.0e38);
+        amp = clamp(amp * gain, -3.0e38, 3.0e38);
     }
     return sum;
 }

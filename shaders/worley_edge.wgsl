@@ -19,7 +19,8 @@ fn veneer_worley_edge_feature(cell: vec3f, g: vec3f, f: vec3f, jitter: f32) -> v
 // around a's cell, the least distance from p to the bisector plane of a and another
 // feature point b, which is ((a + b) / 2) . (b - a) / |b - a| in offsets from p
 // (coincident points are skipped).
-fn veneer_worley_edge(p: vec3f, jitter: f32) -> f32 {
+fn veneer_worley_edge(point: vec3f, jitter: f32) -> f32 {
+    let p = veneer_lattice_domain(point);
     let cell = floor(p);
     let f = p - cell;
     var nearest = vec3f(0.0);

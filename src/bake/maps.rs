@@ -189,7 +189,9 @@ impl Converter {
 
     /// Tangent-space normals of image row `row` into `pixels` (its rendered outputs):
     /// central differences of the heights (one-sided at the image's edges), perturbed by
-    /// each pixel's bump (lanes 1..4), encoded as 0.5 + 0.5·n.
+    /// each pixel's bump (lanes 1..4), encoded as 0.5 + 0.5·n. Slopes are clamped to ±1e18
+    /// (steeper is vertical at any precision) and a perturbed normal too long to square is
+    /// scaled down first, so any finite heights and bumps give a unit normal.
     fn normal_row(&self, row: usize, pixels: &mut [[f32; 4]]) {
         let n = self.size;
         let (dx, dz) = self.spacing;
@@ -202,11 +204,18 @@ impl Converter {
         );
         for (i, pixel) in pixels.iter_mut().enumerate() {
             let (left, right) = (i.saturating_sub(1), (i + 1).min(n - 1));
-            let slope_x = (center[right] - center[left]) / (dx * (right - left).max(1) as f32);
-            let slope_z = (down[i] - up[i]) / (dz * rows_apart);
+            let steepest = 1.0e18;
+            let slope_x = ((center[right] - center[left]) / (dx * (right - left).max(1) as f32))
+                .clamp(-steepest, steepest);
+            let slope_z = ((down[i] - up[i]) / (dz * rows_apart)).clamp(-steepest, steepest);
             // Object space (y up) with the bump added, as the preview lights it.
             let normal = glam::Vec3::new(-slope_x, 1.0, -slope_z).normalize()
                 + glam::Vec3::new(pixel[1], pixel[2], pixel[3]);
+            let normal = if normal.length_squared() > 1.0e38 {
+                normal * 2f32.powi(-100)
+            } else {
+                normal
+            };
             let normal = normal.normalize_or(glam::Vec3::Y);
             // Tangent space: x along +x (right), y towards the top of the image (-z), z up.
             let green = match self.convention {

@@ -8,7 +8,7 @@ use super::encode::encode;
 use super::maps::{Converter, Map, NormalConvention};
 use super::{BakeError, Format};
 use crate::fsutil::{Naming, Staged};
-use crate::render::RenderError;
+use crate::render::{RenderError, non_finite};
 use std::path::Path;
 use std::sync::mpsc;
 use std::thread::ScopedJoinHandle;
@@ -109,7 +109,7 @@ impl Writing<'_, '_> {
 }
 
 /// The writer of one map: converts and encodes every band from `bands` into the map's
-/// temporary file, handing each buffer back through `free`.
+/// temporary file, handing each buffer back through `free`; a non-finite sample fails it.
 fn write_map(
     target: &MapTarget<'_>,
     bands: mpsc::Receiver<Vec<[f32; 4]>>,
@@ -122,13 +122,58 @@ fn write_map(
         target.spacing,
         target.convention,
     );
+    let (width, mut rows) = (target.size as usize, 0);
     crate::fsutil::stage(target.path, Naming::Implied, |file| {
         encode(file, target.size, target.format, |emit| {
+            let mut finite = |pixels: &[[f32; 4]]| {
+                if let Some(why) = non_finite(target.map.name(), pixels, width, rows) {
+                    return Err(std::io::Error::other(why));
+                }
+                rows += pixels.len() / width;
+                emit(pixels)
+            };
             for mut band in bands {
-                converter.band(&mut band, emit)?;
+                converter.band(&mut band, &mut finite)?;
                 let _ = free.send(band);
             }
-            converter.finish(emit)
+            converter.finish(&mut finite)
         })
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A map with a NaN or an infinity is refused, naming the map and the pixel, and
+    /// nothing is written: not an infinity in an EXR, nor a black PNG pixel.
+    #[test]
+    fn a_map_with_a_non_finite_sample_is_refused_by_name_and_not_written() {
+        let dir = std::env::temp_dir().join(format!("veneer-finite-maps-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("scratch folder");
+        for (format, bad) in [(Format::Exr, f32::INFINITY), (Format::Png8, f32::NAN)] {
+            let path = dir.join(format!("stones_albedo.{}", format.extension()));
+            let target = MapTarget {
+                path: &path,
+                map: Map::Albedo,
+                shading: crate::graph::Shading::BlinnPhong,
+                size: 2,
+                format,
+                spacing: (1.0, 1.0),
+                convention: NormalConvention::OpenGl,
+            };
+            let result = bake_maps(&[target], false, |_, sink| {
+                let mut band = vec![[0.5f32, 0.5, 0.5, 1.0]; 4];
+                band[3][0] = bad;
+                sink(0, band).map(drop)
+            });
+            let message = result.expect_err("refused").to_string();
+            assert!(
+                message.contains("albedo map") && message.contains("pixel (1, 1)"),
+                "{message}"
+            );
+            assert!(!path.exists(), "{format:?}: nothing is written");
+        }
+        let _ = std::fs::remove_dir_all(&dir);
+    }
 }

@@ -213,6 +213,7 @@ mod tests {
         assert_eq!(
             names,
             [
+                "veneer_lattice_domain",
                 "veneer_lattice_sine",
                 "veneer_noise_value_sine",
                 "veneer_octave_fbm_value_sine",
@@ -220,7 +221,7 @@ mod tests {
                 "veneer_fbm_value_sine"
             ]
         );
-        assert!(!items[4].text.contains("BASIS") && !items[4].text.contains("MODE"));
+        assert!(!items[5].text.contains("BASIS") && !items[5].text.contains("MODE"));
     }
 
     #[test]

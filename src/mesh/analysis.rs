@@ -68,22 +68,30 @@ impl MeshReport {
     }
 }
 
+/// A position in f64, where no difference or cross product of f32 positions overflows
+/// or underflows.
+fn wide(p: [f32; 3]) -> glam::DVec3 {
+    glam::DVec3::from(p.map(f64::from))
+}
+
+/// Twice the area of `triangle` (three indices into `positions`), in f64.
+pub(super) fn double_area(positions: &[[f32; 3]], triangle: &[u32]) -> f64 {
+    let [a, b, c] = [0, 1, 2].map(|k| wide(positions[triangle[k] as usize]));
+    (b - a).cross(c - a).length()
+}
+
 /// Whether a triangle is degenerate: a repeated index, or an area below `1e-12` of the
 /// squared size of the mesh (`scale²`).
-fn degenerate(mesh: &Mesh, triangle: &[u32], scale: f32) -> bool {
+fn degenerate(mesh: &Mesh, triangle: &[u32], scale: f64) -> bool {
     let [a, b, c] = [triangle[0], triangle[1], triangle[2]];
-    if a == b || b == c || a == c {
-        return true;
-    }
-    let [pa, pb, pc] = [a, b, c].map(|i| glam::Vec3::from(mesh.positions[i as usize]));
-    (pb - pa).cross(pc - pa).length() <= 1.0e-12 * scale * scale
+    a == b || b == c || a == c || double_area(&mesh.positions, triangle) <= 1.0e-12 * scale * scale
 }
 
 /// The largest side of the bounding box.
-fn extent(mesh: &Mesh) -> f32 {
+fn extent(mesh: &Mesh) -> f64 {
     let (min, max) = mesh.positions.iter().fold(
-        (glam::Vec3::splat(f32::MAX), glam::Vec3::splat(f32::MIN)),
-        |(lo, hi), p| (lo.min(glam::Vec3::from(*p)), hi.max(glam::Vec3::from(*p))),
+        (glam::DVec3::splat(f64::MAX), glam::DVec3::splat(f64::MIN)),
+        |(lo, hi), p| (lo.min(wide(*p)), hi.max(wide(*p))),
     );
     (max - min).max_element().max(0.0)
 }

@@ -114,17 +114,25 @@ fn finish(soup: Soup) -> Result<Mesh, String> {
 }
 
 /// Area-weighted vertex normals; +y where a vertex touches only degenerate triangles.
+/// Summed in f64, so that positions anywhere in the f32 range (±3.4e38, or subnormal)
+/// give their true directions.
 pub fn vertex_normals(positions: &[[f32; 3]], indices: &[u32]) -> Vec<[f32; 3]> {
-    let mut sums = vec![glam::Vec3::ZERO; positions.len()];
+    let mut sums = vec![glam::DVec3::ZERO; positions.len()];
     for triangle in indices.chunks_exact(3) {
-        let [a, b, c] = [0, 1, 2].map(|k| glam::Vec3::from(positions[triangle[k] as usize]));
+        let [a, b, c] =
+            [0, 1, 2].map(|k| glam::DVec3::from(positions[triangle[k] as usize].map(f64::from)));
         let weighted = (b - a).cross(c - a);
         for &index in triangle {
             sums[index as usize] += weighted;
         }
     }
     sums.into_iter()
-        .map(|n| n.try_normalize().unwrap_or(glam::Vec3::Y).to_array())
+        .map(|n| {
+            n.try_normalize()
+                .unwrap_or(glam::DVec3::Y)
+                .as_vec3()
+                .to_array()
+        })
         .collect()
 }
 

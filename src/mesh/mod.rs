@@ -26,11 +26,25 @@ pub use refine::{Refined, Refinement, SurfacePoint, refine_for_displacement};
 pub use tangents::{unit_normals, vertex_tangents};
 
 /// The mesh a preview or render shows for `name`: a primitive, or else a mesh file
-/// fitted to the unit sphere.
+/// fitted to the unit sphere. A file whose triangles have no area once fitted (all its
+/// vertices at one point or on one line) is refused: it would render as nothing.
 pub fn preview_mesh(name: &str) -> Result<Mesh, MeshError> {
-    match primitive(name) {
-        Some(mesh) => Ok(mesh),
-        None => Ok(Mesh::named(name)?.fitted_to_unit_sphere()),
+    if let Some(mesh) = primitive(name) {
+        return Ok(mesh);
+    }
+    let mesh = Mesh::named(name)?.fitted_to_unit_sphere();
+    let has_area = mesh
+        .indices
+        .chunks_exact(3)
+        .any(|triangle| analysis::double_area(&mesh.positions, triangle) > 1.0e-12);
+    match has_area {
+        true => Ok(mesh),
+        false => Err(MeshError {
+            path: name.to_string(),
+            message: "its triangles have no area (all its vertices lie at one point or on \
+                      one line): there is nothing to render"
+                .into(),
+        }),
     }
 }
 
@@ -108,25 +122,24 @@ impl Mesh {
     }
 
     /// The mesh moved and scaled uniformly to fit the unit sphere at the origin, as the
-    /// preview expects (the graph's preview placement then applies).
+    /// preview expects (the graph's preview placement then applies). Computed in f64, so
+    /// that coordinates anywhere in the f32 range (±3.4e38, or subnormal ones like 1e-40)
+    /// fit without overflow or underflow.
     pub fn fitted_to_unit_sphere(mut self) -> Mesh {
+        let point = |p: &[f32; 3]| glam::DVec3::from(p.map(f64::from));
         let (min, max) = self.positions.iter().fold(
-            (glam::Vec3::splat(f32::MAX), glam::Vec3::splat(f32::MIN)),
-            |(lo, hi), p| (lo.min(glam::Vec3::from(*p)), hi.max(glam::Vec3::from(*p))),
+            (glam::DVec3::splat(f64::MAX), glam::DVec3::splat(f64::MIN)),
+            |(lo, hi), p| (lo.min(point(p)), hi.max(point(p))),
         );
         let center = (min + max) * 0.5;
         let radius = self
             .positions
             .iter()
-            .map(|p| (glam::Vec3::from(*p) - center).length())
-            .fold(0.0f32, f32::max);
-        let scale = if radius > 0.0 && radius.is_finite() {
-            1.0 / radius
-        } else {
-            1.0
-        };
+            .map(|p| (point(p) - center).length())
+            .fold(0.0f64, f64::max);
+        let scale = if radius > 0.0 { 1.0 / radius } else { 1.0 };
         for p in &mut self.positions {
-            *p = ((glam::Vec3::from(*p) - center) * scale).to_array();
+            *p = ((point(p) - center) * scale).as_vec3().to_array();
         }
         self
     }

@@ -2,7 +2,7 @@
 
 use super::cpu::Eval;
 use super::emit::Emit;
-use super::formulas::real::{Real, V3, scale, splat};
+use super::formulas::real::{Real, V3, finite, scale, splat};
 use super::formulas::{noise, shapes, worley_edge};
 use super::interval::{self, Interval, Lanes};
 use super::pins::{FLOAT, InputPin, POINT, SCALE, Signature, f, input, output};
@@ -132,9 +132,9 @@ impl Evaluate for Worley {
         let (lacunarity, gain) = (io.float("lacunarity"), io.float("gain"));
         let (mut sum, mut amplitude, mut frequency) = (R::c(0.0), R::c(1.0), R::c(1.0));
         for _ in 0..self.octaves {
-            sum = sum + amplitude * octave(scale(p, frequency));
-            frequency = frequency * lacunarity;
-            amplitude = amplitude * gain;
+            sum = finite(sum + amplitude * octave(scale(p, frequency)));
+            frequency = finite(frequency * lacunarity);
+            amplitude = finite(amplitude * gain);
         }
         vec![splat(sum)]
     }

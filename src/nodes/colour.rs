@@ -70,6 +70,16 @@ impl Definition for ColorRamp {
                     .all(|c| c.is_finite())
         }) {
             Some("colour ramp stops must be finite".into())
+        } else if let Some((k, value)) = stops.iter().enumerate().find_map(|(k, s)| {
+            [s.position, s.color.0, s.color.1, s.color.2]
+                .into_iter()
+                .find(|x| x.abs() > f64::from(f32::MAX))
+                .map(|x| (k, x))
+        }) {
+            Some(format!(
+                "colour ramp stop {k} holds {value:e}, beyond the f32 range (±3.4e38) that \
+                 shaders compute in"
+            ))
         } else if stops
             .windows(2)
             .any(|pair| pair[1].position < pair[0].position)

@@ -63,7 +63,8 @@ impl Definition for Transform {
             io.input("offset"),
         );
         if rotation == value_literal(&Value::Vec3(0.0, 0.0, 0.0)) {
-            io.single(format!("{p} * {scale} + {offset}"));
+            io.uses("veneer_scale_offset");
+            io.single(format!("veneer_scale_offset({p}, {scale}, {offset})"));
         } else {
             io.uses("veneer_transform");
             io.single(format!(

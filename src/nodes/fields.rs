@@ -215,15 +215,17 @@ impl Definition for Layers {
                 io.input("softness")
             )
         };
+        let mix = format!("veneer_mix_{}", self.ty.wgsl());
         let mixed = LAYERS.iter().fold(
             io.input("outer").to_string(),
             |outside, (value, edge, width)| {
                 let covered = front(edge, self.width_pin(width));
-                format!("mix({outside}, {}, {covered})", io.input(value))
+                format!("{mix}({outside}, {}, {covered})", io.input(value))
             },
         );
         io.single(mixed);
         io.uses("veneer_front");
+        io.uses(&mix);
     }
     fn ranges(&self, io: &mut Ranges) -> Vec<Lanes> {
         if LAYERS

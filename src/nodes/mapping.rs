@@ -24,7 +24,7 @@ macro_rules! kinds {
 }
 pub(super) use kinds;
 
-/// Linear interpolation `a + (b - a) * factor`.
+/// Linear interpolation `a (1 - factor) + b factor`, clamped to the finite range.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[cfg_attr(feature = "arbitrary", derive(arbitrary::Arbitrary))]
 pub struct Mix {
@@ -53,12 +53,14 @@ impl Definition for Mix {
         None
     }
     fn emit(&self, io: &mut Emit) {
+        let function = format!("veneer_mix_{}", self.ty.wgsl());
         io.single(format!(
-            "mix({}, {}, {})",
+            "{function}({}, {}, {})",
             io.input("a"),
             io.input("b"),
             io.input("factor")
         ));
+        io.uses(&function);
     }
     fn ranges(&self, io: &mut Ranges) -> Vec<Lanes> {
         let factor = io.float("factor");

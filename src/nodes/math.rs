@@ -2,7 +2,7 @@
 
 use super::cpu::Eval;
 use super::emit::Emit;
-use super::formulas::real::{Real, V3, map, zip};
+use super::formulas::real::{Real, V3, finite, map, zip};
 use super::formulas::shapes;
 use super::interval::{Interval, Lanes};
 use super::pins::{REQUIRED, Signature, input, output, splat as splat_default};
@@ -44,7 +44,8 @@ macro_rules! typed_settings {
 }
 pub(super) use typed_settings;
 
-/// A binary arithmetic operator; division and power are safe (never NaN or Inf).
+/// A binary arithmetic operator; every result is finite for finite operands (sums,
+/// differences and products clamp to the finite range; division and power are safe).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[cfg_attr(feature = "arbitrary", derive(arbitrary::Arbitrary))]
 pub struct Math {
@@ -87,22 +88,21 @@ impl Definition for Math {
     }
     fn emit(&self, io: &mut Emit) {
         let (a, b) = (io.input("a"), io.input("b"));
+        let ty = self.ty.wgsl();
+        let mut library = |stem: &str| {
+            let function = format!("veneer_{stem}_{ty}");
+            io.uses(&function);
+            function
+        };
+        // Sums, differences and products can overflow: clamped to the finite range.
         let expression = match self.op {
-            MathOp::Add => format!("{a} + {b}"),
-            MathOp::Subtract => format!("{a} - {b}"),
-            MathOp::Multiply => format!("{a} * {b}"),
+            MathOp::Add => format!("{}({a} + {b})", library("finite")),
+            MathOp::Subtract => format!("{}({a} - {b})", library("finite")),
+            MathOp::Multiply => format!("{}({a} * {b})", library("finite")),
             MathOp::Minimum => format!("min({a}, {b})"),
             MathOp::Maximum => format!("max({a}, {b})"),
-            MathOp::Divide | MathOp::Power => {
-                let stem = if self.op == MathOp::Divide {
-                    "safe_div"
-                } else {
-                    "safe_pow"
-                };
-                let function = format!("veneer_{stem}_{}", self.ty.wgsl());
-                io.uses(&function);
-                format!("{function}({a}, {b})")
-            }
+            MathOp::Divide => format!("{}({a}, {b})", library("safe_div")),
+            MathOp::Power => format!("{}({a}, {b})", library("safe_pow")),
         };
         io.single(expression);
     }
@@ -154,9 +154,9 @@ pub(super) fn power_range(base: Interval, exponent: Interval) -> Interval {
 impl Evaluate for Math {
     fn eval<R: Real>(&self, io: &Eval<R>) -> Vec<V3<R>> {
         vec![zip(io.input("a"), io.input("b"), |a, b| match self.op {
-            MathOp::Add => a + b,
-            MathOp::Subtract => a - b,
-            MathOp::Multiply => a * b,
+            MathOp::Add => finite(a + b),
+            MathOp::Subtract => finite(a - b),
+            MathOp::Multiply => finite(a * b),
             MathOp::Divide => shapes::safe_div(a, b),
             MathOp::Power => shapes::safe_pow(a, b),
             MathOp::Minimum => a.min(b),

@@ -30,7 +30,7 @@ fn vector_only(ty: ValueType) -> Option<String> {
         .then(|| format!("type {ty} is not a vector (expected vec2, vec3 or color)"))
 }
 
-/// Length of a vector.
+/// Length of a vector (of any finite one, clamped to the finite range).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[cfg_attr(feature = "arbitrary", derive(arbitrary::Arbitrary))]
 pub struct Length {
@@ -55,7 +55,9 @@ impl Definition for Length {
         vector_only(self.ty)
     }
     fn emit(&self, io: &mut Emit) {
-        io.single(format!("length({})", io.input("v")));
+        let function = format!("veneer_length_{}", self.ty.wgsl());
+        io.single(format!("{function}({})", io.input("v")));
+        io.uses(&function);
     }
     fn ranges(&self, io: &mut Ranges) -> Vec<Lanes> {
         let longest = max_length(&io.input("v"), self.ty.width());
@@ -65,13 +67,13 @@ impl Definition for Length {
 
 impl Evaluate for Length {
     fn eval<R: Real>(&self, io: &Eval<R>) -> Vec<V3<R>> {
-        vec![splat(real::length(io.input("v"), self.ty.width()))]
+        vec![splat(real::finite_length(io.input("v"), self.ty.width()))]
     }
 }
 
 typed_settings!(Length, VECTORS, menu[("Length", ValueType::Vec3)]);
 
-/// Dot product of two vectors.
+/// Dot product of two vectors (each product clamped to ±1e38, so it cannot overflow).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[cfg_attr(feature = "arbitrary", derive(arbitrary::Arbitrary))]
 pub struct Dot {
@@ -96,7 +98,9 @@ impl Definition for Dot {
         vector_only(self.ty)
     }
     fn emit(&self, io: &mut Emit) {
-        io.single(format!("dot({}, {})", io.input("a"), io.input("b")));
+        let function = format!("veneer_dot_{}", self.ty.wgsl());
+        io.single(format!("{function}({}, {})", io.input("a"), io.input("b")));
+        io.uses(&function);
     }
     fn ranges(&self, io: &mut Ranges) -> Vec<Lanes> {
         let width = self.ty.width();
@@ -107,7 +111,7 @@ impl Definition for Dot {
 
 impl Evaluate for Dot {
     fn eval<R: Real>(&self, io: &Eval<R>) -> Vec<V3<R>> {
-        vec![splat(real::dot(
+        vec![splat(real::finite_dot(
             io.input("a"),
             io.input("b"),
             self.ty.width(),

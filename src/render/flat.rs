@@ -235,6 +235,26 @@ impl FlatRenderer {
     }
 }
 
+/// Why `pixels` (whole rows of a `width`-wide image of `what`, a map's name, the first of
+/// them image row `first_row`) must not be written, if a sample is NaN or infinite: every
+/// node's output is finite, so this is a bug, and the writers refuse it loudly rather
+/// than store an infinity or a black pixel.
+pub fn non_finite(
+    what: &str,
+    pixels: &[[f32; 4]],
+    width: usize,
+    first_row: usize,
+) -> Option<String> {
+    let index = pixels
+        .iter()
+        .position(|p| !p.iter().all(|v| v.is_finite()))?;
+    let (x, y) = (index % width.max(1), first_row + index / width.max(1));
+    Some(format!(
+        "the {what} map holds a non-finite value {:?} at pixel ({x}, {y}); nothing was written",
+        pixels[index]
+    ))
+}
+
 /// The contract's 8-bit encoding of the albedo: round(255 · clamp(v, 0, 1)) per channel, RGB.
 pub fn albedo_to_rgb8(pixels: &[[f32; 4]]) -> Vec<u8> {
     pixels

@@ -177,6 +177,9 @@ pub fn render_material_with(
     let module = &compiled.module;
     let flat = |rect: FlatRect| -> Result<Rendered, RenderError> {
         let pixels = FlatRenderer::new(gpu, &module.source)?.render(gpu, rect, size, time)?;
+        if let Some(why) = super::non_finite("albedo", &pixels, size as usize, 0) {
+            return Err(RenderError::Invalid(why));
+        }
         Ok(Rendered {
             image: Image {
                 width: size,

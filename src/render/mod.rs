@@ -23,7 +23,7 @@ pub use draft_scale::DraftScale;
 pub use environment::{
     Environment, EnvironmentError, EnvironmentMaps, SKY, direction_of, equirect_uv,
 };
-pub use flat::{FlatChannels, FlatRect, FlatRenderer, albedo_to_rgb8, flat_points};
+pub use flat::{FlatChannels, FlatRect, FlatRenderer, albedo_to_rgb8, flat_points, non_finite};
 pub use gpu_mesh::GpuMesh;
 pub use image::{
     Image, MeshLook, Rendered, View, baked_parameters, mesh_with_fields, preview_rect,

@@ -20,9 +20,10 @@ pub enum ToneMap {
 }
 
 impl ToneMap {
-    /// The display-linear value of scene-linear `colour`.
+    /// The display-linear value of scene-linear `colour` (clamped to [0, 1e9] first: light
+    /// past 1e9 is white in every mapper, and no mapper overflows below it).
     pub fn apply(self, colour: Vec3) -> Vec3 {
-        let c = colour.max(Vec3::ZERO);
+        let c = colour.clamp(Vec3::ZERO, Vec3::splat(1.0e9));
         match self {
             ToneMap::None => c.min(Vec3::ONE),
             ToneMap::PbrNeutral => pbr_neutral(c),
@@ -165,6 +166,25 @@ mod tests {
                     "{tone_map:?} at {x}: {y} after {last}"
                 );
                 last = y;
+            }
+        }
+    }
+
+    /// Light of any magnitude, up to an infinity, maps to a finite display value: the
+    /// brightest the mapper shows (the shaders' lighting clamps its terms, so a huge
+    /// emission shows white, not NaN's black).
+    #[test]
+    fn every_mapper_shows_any_light_as_a_finite_value() {
+        for tone_map in [
+            ToneMap::None,
+            ToneMap::PbrNeutral,
+            ToneMap::Aces,
+            ToneMap::Agx,
+        ] {
+            let brightest = grey(tone_map, 1.0e9);
+            for x in [1.0e20, 3.0e38, f32::INFINITY] {
+                let y = grey(tone_map, x);
+                assert!(y.is_finite() && y == brightest, "{tone_map:?} at {x}: {y}");
             }
         }
     }

@@ -3,12 +3,13 @@
 //! memory, non-numbers, special files (`/dev/zero`, a FIFO, a folder, a link to
 //! `/dev/zero`), missing and full outputs, outputs that are FIFOs without a reader,
 //! regular files under `/dev/shm` longer than what replaces them, outputs that are the
-//! command's own inputs, and batches whose jobs collide or write their own batch file —
-//! and the real binary must, for each: exit 0, 1 or 2 with a message when not 0, never
-//! panic nor die by a signal, finish within a time limit under a 6 GiB address-space
-//! limit, touch no file but its outputs, never change one of its inputs, and leave no
-//! output that ends in the old file's tail. The generator is seeded, so a failure names
-//! a case that replays.
+//! command's own inputs, batches whose jobs collide or write their own batch file, and
+//! graphs whose node settings and constants sit at the ends of the f32 range — and the
+//! real binary must, for each: exit 0, 1 or 2 with a message when not 0, never panic nor
+//! die by a signal, finish within a time limit under a 6 GiB address-space limit, touch
+//! no file but its outputs, never change one of its inputs, leave no output that ends in
+//! the old file's tail, and write only finite samples into EXR maps. The generator is
+//! seeded, so a failure names a case that replays.
 
 use crate::support::root;
 use proptest::prelude::*;
@@ -140,6 +141,9 @@ fn fixture(dir: &Path, shm: &Path) {
     for (name, content, _) in BATCHES {
         std::fs::write(dir.join(name), content).expect("written");
     }
+    for (name, graph) in extreme_graphs() {
+        veneer::graph::save(&graph, &dir.join(name)).expect("written");
+    }
 }
 
 /// Where `name` (an argument, `{shm}` standing for the case's folder under `/dev/shm`)
@@ -149,6 +153,20 @@ fn in_case(dir: &Path, shm: &Path, name: &str) -> PathBuf {
         Some(rest) => PathBuf::from(format!("{}{rest}", shm.display())),
         None => dir.join(name),
     }
+}
+
+/// Graphs whose node settings and constants sit at the ends of the f32 range, by file
+/// name: the extreme-settings test's named cases, which must give finite outputs, and
+/// a colour ramp with a stop past f32, which `check` refuses.
+fn extreme_graphs() -> Vec<(String, veneer::graph::Graph)> {
+    crate::extreme_cases::named_graphs()
+        .into_iter()
+        .map(|(name, graph)| (format!("extreme-{name}.ron"), graph))
+        .chain([(
+            "extreme-ramp-stop.ron".to_string(),
+            crate::extreme_settings::ramp_graph(1.0e308),
+        )])
+        .collect()
 }
 
 /// One of `values`.
@@ -189,7 +207,13 @@ fn usual_or(
 
 /// A whole command line.
 fn command_line() -> impl Strategy<Value = Vec<String>> {
-    let graph = || usual_or(GRAPHS, HOSTILE_GRAPHS);
+    let extreme: Vec<String> = extreme_graphs().into_iter().map(|(name, _)| name).collect();
+    let graph = move || {
+        prop_oneof![
+            4 => usual_or(GRAPHS, HOSTILE_GRAPHS),
+            1 => proptest::sample::select(extreme.clone()),
+        ]
+    };
     let graphs = || proptest::collection::vec(graph(), 1..3);
     let mesh = || usual_or(MESHES, HOSTILE_MESHES);
     let size = || usual_or(SIZES, HOSTILE_SIZES);
@@ -502,6 +526,17 @@ fn run_case(args: &[String], case: usize) -> Result<(), TestCaseError> {
             "{args:?} left the old tail of {output}"
         );
     }
+    for path in after
+        .keys()
+        .filter(|path| path.extension().is_some_and(|e| e == "exr"))
+    {
+        let pixels = image::open(dir.join(path)).expect("an EXR").to_rgba32f();
+        prop_assert!(
+            pixels.iter().all(|v| v.is_finite()),
+            "{args:?} wrote a non-finite sample into {}",
+            path.display()
+        );
+    }
     let _ = std::fs::remove_dir_all(&dir);
     let _ = std::fs::remove_dir_all(&shm);
     Ok(())
@@ -525,5 +560,37 @@ fn generated_command_lines_keep_the_contract() {
     });
     if let Err(error) = result {
         panic!("{error}");
+    }
+}
+
+/// The extreme graphs on fixed command lines through the same contract: baked together
+/// into EXR maps (every sample finite), checked together (the ramp past f32 refused with
+/// a message), and each compiled.
+#[test]
+fn extreme_graphs_keep_the_contract_with_finite_maps() {
+    let names: Vec<String> = extreme_graphs().into_iter().map(|(name, _)| name).collect();
+    let finite: Vec<String> = names
+        .iter()
+        .filter(|name| *name != "extreme-ramp-stop.ron")
+        .cloned()
+        .collect();
+    let bake = [
+        "bake", "--format", "exr", "--size", "8", "-o", "out", "--maps",
+    ]
+    .map(String::from)
+    .into_iter()
+    .chain(["albedo,specular,emission,normal".to_string()])
+    .chain(finite.iter().cloned())
+    .collect();
+    let check = [vec!["check".to_string()], names.clone()].concat();
+    let compiles = names.iter().map(|name| {
+        ["compile", name, "-o", "out/a.wgsl"]
+            .map(String::from)
+            .to_vec()
+    });
+    for (case, args) in [bake, check].into_iter().chain(compiles).enumerate() {
+        if let Err(error) = run_case(&args, 10_000 + case) {
+            panic!("{error}");
+        }
     }
 }

@@ -589,7 +589,7 @@ fn set_works_on_every_command() {
     let default = run_veneer(&["compile", "graphs/wood.ron"]);
     let set = run_veneer(&["compile", "graphs/wood.ron", "--set", "ring_frequency=0.7"]);
     assert!(set.status.success());
-    assert!(String::from_utf8_lossy(&set.stdout).contains("* 0.7f;"));
+    assert!(String::from_utf8_lossy(&set.stdout).contains("* 0.7f)"));
     assert_ne!(default.stdout, set.stdout);
     // bake: the albedo map changes.
     for (folder, extra) in [

@@ -12,6 +12,8 @@ mod detail;
 mod emission;
 mod errors;
 mod export;
+mod extreme_cases;
+mod extreme_settings;
 mod fuzz_regressions;
 mod geodesic;
 mod geodesic_files;

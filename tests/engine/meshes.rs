@@ -64,32 +64,104 @@ fn broken_files_are_errors_that_name_the_file() {
     }
 }
 
+/// `veneer render graphs/marble.ron --mesh mesh` into `out`.
+fn render_mesh(mesh: &std::path::Path, out: &std::path::Path) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_veneer"))
+        .current_dir(root(""))
+        .args(["render", "graphs/marble.ron", "--size", "64", "--mesh"])
+        .arg(mesh)
+        .arg("-o")
+        .arg(out)
+        .output()
+        .expect("veneer runs")
+}
+
 #[test]
 fn render_draws_a_mesh_file() {
     let dir = std::env::temp_dir().join(format!("veneer-mesh-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("temp dir");
     let out = dir.join("tetra.png");
-    let status = std::process::Command::new(env!("CARGO_BIN_EXE_veneer"))
-        .current_dir(root(""))
-        .args([
-            "render",
-            "graphs/marble.ron",
-            "--mesh",
-            "tests/meshes/tetrahedron.obj",
-            "--size",
-            "64",
-            "-o",
-        ])
-        .arg(&out)
-        .status()
-        .expect("veneer runs");
-    assert!(status.success());
+    assert!(
+        render_mesh(&root("tests/meshes/tetrahedron.obj"), &out)
+            .status
+            .success()
+    );
     let image = image::open(&out).expect("a PNG").to_rgba8();
     let background = *image.get_pixel(0, 0);
     assert!(
         image.pixels().filter(|p| **p != background).count() > 500,
         "the tetrahedron covers the middle"
     );
+}
+
+/// The tetrahedron scaled to the ends of the f32 range (coordinates ±3e38, or ±1e-40,
+/// below the smallest normal f32) renders as the tetrahedron does: fitting to the unit
+/// sphere works in f64 (before: an empty image, exit 0). A mesh whose vertices all
+/// coincide is refused, naming the file, rather than drawn as nothing.
+#[test]
+fn render_fits_meshes_at_the_ends_of_the_f32_range_and_refuses_one_with_no_extent() {
+    let dir = std::env::temp_dir().join(format!("veneer-mesh-range-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let original = std::fs::read_to_string(root("tests/meshes/tetrahedron.obj")).expect("reads");
+    let scaled = |factor: f64| {
+        original
+            .lines()
+            .map(|line| match line.strip_prefix("v ") {
+                Some(coordinates) => {
+                    let scaled: Vec<String> = coordinates
+                        .split_whitespace()
+                        .map(|c| format!("{:e}", c.parse::<f64>().expect("a number") * factor))
+                        .collect();
+                    format!("v {}", scaled.join(" "))
+                }
+                None => line.to_string(),
+            })
+            .collect::<Vec<_>>()
+            .join("\n")
+    };
+    let reference = dir.join("reference.png");
+    assert!(
+        render_mesh(&root("tests/meshes/tetrahedron.obj"), &reference)
+            .status
+            .success()
+    );
+    let reference = image::open(&reference).expect("a PNG").to_rgb8().into_raw();
+    for (name, factor) in [("huge", 3.0e38), ("tiny", 1.0e-40)] {
+        let mesh = dir.join(format!("{name}.obj"));
+        std::fs::write(&mesh, scaled(factor)).expect("written");
+        let out = dir.join(format!("{name}.png"));
+        let output = render_mesh(&mesh, &out);
+        assert!(
+            output.status.success(),
+            "{}",
+            String::from_utf8_lossy(&output.stderr)
+        );
+        let image = image::open(&out).expect("a PNG").to_rgb8().into_raw();
+        let diff = crate::support::difference(&image, &reference, 3, 2);
+        assert!(diff.share_outside < 0.01, "{name}: {diff}");
+        let report = std::process::Command::new(env!("CARGO_BIN_EXE_veneer"))
+            .args(["mesh"])
+            .arg(&mesh)
+            .output()
+            .expect("veneer runs");
+        let report = String::from_utf8_lossy(&report.stdout);
+        assert!(
+            report.contains("4 triangles, 0 degenerate"),
+            "{name}: {report}"
+        );
+    }
+    let point = dir.join("point.obj");
+    std::fs::write(&point, "v 1e-40 0 0\nv 1e-40 0 0\nv 1e-40 0 0\nf 1 2 3\n").expect("written");
+    let out = dir.join("point.png");
+    let output = render_mesh(&point, &out);
+    let message = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(1), "{message}");
+    assert!(
+        message.contains("point.obj") && message.contains("no area"),
+        "{message}"
+    );
+    assert!(!out.exists(), "nothing is written");
+    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]

@@ -63,6 +63,17 @@ fn sources(graph: &mut Graph) -> Sources {
 /// A graph showing `kind`'s outputs as the albedo (a lone output as it is, several as
 /// their first three channels).
 fn graph_for(kind: &NodeKind) -> Graph {
+    graph_driving(kind, &["albedo"], |_, _, _| false).0
+}
+
+/// The graph of [`graph_for`], except that `drive(graph, node, pin)` may feed an input
+/// itself first (returning true when it did) and the outputs are shown in the material
+/// inputs `targets` (see [`show_outputs`]); with how many targets it fed.
+pub fn graph_driving(
+    kind: &NodeKind,
+    targets: &[&str],
+    mut drive: impl FnMut(&mut Graph, NodeId, &veneer::graph::InputPin) -> bool,
+) -> (Graph, usize) {
     let mut graph = Graph::default();
     let sources = sources(&mut graph);
     let signature = kind.signature();
@@ -71,6 +82,9 @@ fn graph_for(kind: &NodeKind) -> Graph {
         graph.set_input(node, "rotation", Value::Vec3(30.0, 45.0, 60.0));
     }
     for (index, pin) in signature.inputs.iter().enumerate() {
+        if drive(&mut graph, node, pin) {
+            continue;
+        }
         let driven = matches!(pin.default, PinDefault::Required | PinDefault::Position)
             || ["a", "b", "c", "choice", "factor", "value", "color"].contains(&pin.name)
             || matches!(kind, NodeKind::Combine(Combine { .. }));
@@ -86,39 +100,55 @@ fn graph_for(kind: &NodeKind) -> Graph {
         graph.connect(source, output, node, pin.name);
     }
     let material = graph.add("material", NodeKind::Material);
-    let outputs = &signature.outputs;
+    let shown = show_outputs(&mut graph, node, &signature.outputs, material, targets);
+    (graph, shown)
+}
+
+/// Wires `node`'s outputs into the material's colour inputs `targets`: a lone output
+/// (not a vec2) as it is, several lane by lane, three lanes to each target in turn
+/// (lanes past the last target are not shown). Returns how many targets it fed.
+pub fn show_outputs(
+    graph: &mut Graph,
+    node: NodeId,
+    outputs: &[veneer::graph::OutputPin],
+    material: NodeId,
+    targets: &[&str],
+) -> usize {
     if outputs.len() == 1 && outputs[0].ty != ValueType::Vec2 {
-        graph.connect(node, outputs[0].name, material, "albedo");
-    } else {
+        graph.connect(node, outputs[0].name, material, targets[0]);
+        return 1;
+    }
+    let mut lanes = Vec::new();
+    for output in outputs {
+        if output.ty == ValueType::Float {
+            lanes.push((node, output.name));
+        } else {
+            let split = graph.add(
+                &format!("{} parts", output.name),
+                NodeKind::Split(Split { ty: output.ty }),
+            );
+            graph.connect(node, output.name, split, "v");
+            lanes.extend(
+                [(split, "x"), (split, "y"), (split, "z")]
+                    .iter()
+                    .take(output.ty.width()),
+            );
+        }
+    }
+    let chunks: Vec<_> = lanes.chunks(3).zip(targets).collect();
+    for (k, (chunk, target)) in chunks.iter().enumerate() {
         let color = graph.add(
-            "shown",
+            &format!("shown {k}"),
             NodeKind::Combine(Combine {
                 ty: ValueType::Color,
             }),
         );
-        let mut channels = Vec::new();
-        for output in outputs {
-            if output.ty == ValueType::Float {
-                channels.push((node, output.name));
-            } else {
-                let split = graph.add(
-                    &format!("{} parts", output.name),
-                    NodeKind::Split(Split { ty: output.ty }),
-                );
-                graph.connect(node, output.name, split, "v");
-                channels.extend(
-                    [(split, "x"), (split, "y"), (split, "z")]
-                        .iter()
-                        .take(output.ty.width()),
-                );
-            }
-        }
-        for ((from, pin), channel) in channels.into_iter().zip(["x", "y", "z"]) {
+        for (&(from, pin), channel) in chunk.iter().zip(["x", "y", "z"]) {
             graph.connect(from, pin, color, channel);
         }
-        graph.connect(color, "v", material, "albedo");
+        graph.connect(color, "v", material, target);
     }
-    graph
+    chunks.len()
 }
 
 /// The registry lists every kind in the menu and in the tests, and every part of every

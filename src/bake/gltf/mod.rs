@@ -162,7 +162,7 @@ pub fn export_gltf(
         .collect();
     textures.push(Texture {
         file_name: texture_name(BASE_COLOR),
-        png: png(&base, size, alpha != AlphaUse::Opaque).map_err(write_error)?,
+        png: png(BASE_COLOR, &base, size, alpha != AlphaUse::Opaque).map_err(write_error)?,
     });
     material["pbrMetallicRoughness"] = json!({ "baseColorTexture": { "index": 0 } });
     match alpha {
@@ -182,7 +182,7 @@ pub fn export_gltf(
     let occluded = orm.iter().any(|p| p[0] < OCCLUDED);
     textures.push(Texture {
         file_name: texture_name(ORM),
-        png: png(&orm, size, false).map_err(write_error)?,
+        png: png(ORM, &orm, size, false).map_err(write_error)?,
     });
     material["pbrMetallicRoughness"]["metallicRoughnessTexture"] = json!({ "index": 1 });
     if occluded {
@@ -210,7 +210,7 @@ pub fn export_gltf(
         material["emissiveFactor"] = json!([1.0, 1.0, 1.0]);
         textures.push(Texture {
             file_name: texture_name(EMISSION),
-            png: png(&emission, size, false).map_err(write_error)?,
+            png: png(EMISSION, &emission, size, false).map_err(write_error)?,
         });
         if scale > 1.0 {
             material["extensions"] =
@@ -226,7 +226,7 @@ pub fn export_gltf(
         material["normalTexture"] = json!({ "index": textures.len() });
         textures.push(Texture {
             file_name: texture_name(NORMAL),
-            png: png(&normal, size, false).map_err(write_error)?,
+            png: png(NORMAL, &normal, size, false).map_err(write_error)?,
         });
     }
     let data = MeshData {
@@ -277,9 +277,13 @@ fn convert(
     converted
 }
 
-/// An 8-bit PNG (RGB, or RGBA with `alpha`) of values in [0, 1], rows from the top.
-fn png(pixels: &[[f32; 4]], size: u32, alpha: bool) -> std::io::Result<Vec<u8>> {
+/// An 8-bit PNG (RGB, or RGBA with `alpha`) of values in [0, 1], rows from the top, of the
+/// texture `what`; a non-finite sample fails it.
+fn png(what: &str, pixels: &[[f32; 4]], size: u32, alpha: bool) -> std::io::Result<Vec<u8>> {
     use image::ImageEncoder;
+    if let Some(why) = crate::render::non_finite(what, pixels, size as usize, 0) {
+        return Err(std::io::Error::other(why));
+    }
     let channels = if alpha { 4 } else { 3 };
     let samples: Vec<u8> = (pixels.iter())
         .flat_map(|p| {
@@ -299,4 +303,16 @@ fn png(pixels: &[[f32; 4]], size: u32, alpha: bool) -> std::io::Result<Vec<u8>> 
         .write_image(&samples, size, size, colour)
         .map_err(std::io::Error::other)?;
     Ok(bytes)
+}
+
+#[cfg(test)]
+mod tests {
+    /// A texture with a non-finite sample is refused by name (a PNG would show it black).
+    #[test]
+    fn a_texture_with_a_non_finite_sample_is_refused_by_name() {
+        let pixels = [[0.5, 0.5, 0.5, 1.0], [0.5, f32::NAN, 0.5, 1.0]].repeat(2);
+        let error = super::png("orm", &pixels, 2, false).expect_err("refused");
+        assert!(error.to_string().contains("orm map"), "{error}");
+        assert!(super::png("orm", &[[0.5; 4]; 4], 2, false).is_ok());
+    }
 }

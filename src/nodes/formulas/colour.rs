@@ -2,13 +2,8 @@
 
 // The node kinds that use these arrive through the node registry.
 
-use super::real::{Real, V3, map, zip};
+use super::real::{Real, V3, finite, map, zip};
 use super::shapes::safe_pow;
-
-/// Clamped to the finite range (±3e38), as the WGSL clamps.
-fn finite<R: Real>(x: R) -> R {
-    x.clamp(R::c(-3.0e38), R::c(3.0e38))
-}
 
 /// `veneer_colour_mix`: `a (1 - t) + b t`, t clamped to [0, 1], the result to the finite range.
 pub fn colour_mix<R: Real>(a: V3<R>, b: V3<R>, t: R) -> V3<R> {

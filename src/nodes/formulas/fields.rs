@@ -1,7 +1,7 @@
 //! CPU mirrors of `shaders/fields.wgsl`: fronts, layers, isolines and noise bumps.
 
 use super::noise;
-use super::real::{Real, V3, add, scale};
+use super::real::{Real, V3, add, finite, map, scale};
 use super::shapes::smoothstep;
 use crate::nodes::settings::Basis;
 
@@ -14,24 +14,24 @@ use crate::nodes::settings::Basis;
 /// §5.2.4, C.2 and C.3 `smoothstep(d − w/2, d + w/2, T + w)` is c = 1, s = ½, and its
 /// C.4 and C.5 `smoothstep(d − w, d + w, T + n)` is c = 0, s = 1 with the noise
 /// negated (the thesis adds it to the threshold, the node to the distance).
+///
+/// The edges and the sum are clamped to the finite range.
 pub fn front<R: Real>(distance: R, threshold: R, width: R, noise: R, centre: R, softness: R) -> R {
     let width = width.max(R::c(0.0));
     let softness = softness.max(R::c(0.0));
-    R::c(1.0)
-        - smoothstep(
-            threshold + (centre - softness) * width,
-            threshold + (centre + softness) * width,
-            distance + noise,
-        )
+    let low = finite(threshold + finite(centre - softness) * width);
+    let high = finite(threshold + finite(centre + softness) * width);
+    R::c(1.0) - smoothstep(low, high, finite(distance + noise))
 }
 
-/// `veneer_isolines`.
+/// `veneer_isolines`: the value in periods (of at least 1e-30) clamped to the finite range.
 pub fn isolines<R: Real>(value: R, spacing: R, width: R) -> R {
     if spacing <= R::c(0.0) || width <= R::c(0.0) {
         return R::c(0.0);
     }
-    let offset = ((value / spacing + R::c(0.5)).fract() - R::c(0.5)).abs() * spacing;
-    R::c(1.0) - smoothstep(R::c(0.0), width, offset)
+    let period = spacing.max(R::c(1.0e-30));
+    let offset = (finite(value / period) + R::c(0.5)).fract() - R::c(0.5);
+    R::c(1.0) - smoothstep(R::c(0.0), width, offset.abs() * period)
 }
 
 /// `veneer_noise_bump_<basis>`.
@@ -44,7 +44,7 @@ pub fn noise_bump<R: Real>(basis: Basis, p: V3<R>, scale_by: R, strength: R) -> 
         let back = scale(step, R::c(-1.0));
         (noise::basis(basis, add(q, step)) - noise::basis(basis, add(q, back))) / (R::c(2.0) * h)
     };
-    scale([axis(0), axis(1), axis(2)], -strength)
+    map(scale([axis(0), axis(1), axis(2)], -strength), finite)
 }
 
 #[cfg(test)]

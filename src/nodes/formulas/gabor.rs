@@ -3,18 +3,18 @@
 
 // The node kinds that use these arrive through the node registry.
 
-use super::noise::{cell_bits, gradient, lattice_pcg, pcg3d, unit_floats, value};
+use super::noise::{cell_bits, gradient, lattice_domain, lattice_pcg, pcg3d, unit_floats, value};
 use super::real::{Real, V3, add, dot, map, safe_normalize, scale, splat, sub};
 use std::f64::consts::{PI, TAU};
 
 /// `veneer_white_noise`: the PCG hash of the cell floor(p), in [0, 1).
 pub fn white_noise<R: Real>(p: V3<R>) -> R {
-    lattice_pcg(map(p, R::floor))
+    lattice_pcg(map(lattice_domain(p), R::floor))
 }
 
 /// `veneer_white_noise_color`: the three PCG lanes of the cell floor(p), each in [0, 1).
 pub fn white_noise_color<R: Real>(p: V3<R>) -> V3<R> {
-    unit_floats(pcg3d(cell_bits(map(p, R::floor))))
+    unit_floats(pcg3d(cell_bits(map(lattice_domain(p), R::floor))))
 }
 
 /// `veneer_noise_value_gradient`: the mean of PCG value noise and gradient noise, in [0, 1].
@@ -76,7 +76,8 @@ pub fn gabor_cell<R: Real>(cell: V3<R>, x: V3<R>, frequency: R, anisotropy: R, d
 
 /// `veneer_gabor_sum`: the kernel sum over the 27 cells around `p` (zero mean, standard
 /// deviation about 1.0146 from a cycle per unit up).
-pub fn gabor_sum<R: Real>(p: V3<R>, frequency: R, anisotropy: R, dir: V3<R>) -> R {
+pub fn gabor_sum<R: Real>(point: V3<R>, frequency: R, anisotropy: R, dir: V3<R>) -> R {
+    let p = lattice_domain(point);
     let cell = map(p, R::floor);
     let f = sub(p, cell);
     let mut sum = R::c(0.0);

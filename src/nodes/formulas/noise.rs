@@ -10,6 +10,13 @@ pub fn lattice_sine<R: Real>(cell: V3<R>) -> R {
     (h.sin() * R::c(43758.5453)).fract()
 }
 
+/// `p` within the lattice's range, ±2147483520 per axis (`veneer_lattice_domain`): every
+/// lattice noise samples its point through this, so any coordinate gives a finite value.
+pub fn lattice_domain<R: Real>(p: V3<R>) -> V3<R> {
+    let limit = R::c(2147483520.0);
+    map(p, |x| x.clamp(-limit, limit))
+}
+
 /// Integer coordinates of a lattice cell, clamped to the i32 range (`veneer_cell_bits`).
 pub fn cell_bits<R: Real>(cell: V3<R>) -> [u32; 3] {
     let limit = 2147483520.0;
@@ -65,7 +72,8 @@ fn corner<R: Real>(k: usize) -> V3<R> {
 }
 
 /// Value noise in [0, 1] (`veneer_noise_value_sine` / `_pcg`).
-pub fn value<R: Real>(p: V3<R>, lattice: fn(V3<R>) -> R) -> R {
+pub fn value<R: Real>(point: V3<R>, lattice: fn(V3<R>) -> R) -> R {
+    let p = lattice_domain(point);
     let i = map(p, R::floor);
     let f = map(p, R::fract);
     let u = map(f, |f| f * f * (R::c(3.0) - R::c(2.0) * f));
@@ -87,7 +95,8 @@ pub fn gradient_dot<R: Real>(cell: V3<R>, d: V3<R>) -> R {
 }
 
 /// Gradient noise in [0, 1] (`veneer_noise_gradient`).
-pub fn gradient<R: Real>(p: V3<R>) -> R {
+pub fn gradient<R: Real>(point: V3<R>) -> R {
+    let p = lattice_domain(point);
     let i = map(p, R::floor);
     let f = sub(p, i);
     let u = map(f, |f| {
@@ -107,7 +116,8 @@ fn simplex_corner<R: Real>(cell: V3<R>, d: V3<R>) -> R {
 }
 
 /// Simplex noise in [0, 1] (`veneer_noise_simplex`).
-pub fn simplex<R: Real>(p: V3<R>) -> R {
+pub fn simplex<R: Real>(point: V3<R>) -> R {
+    let p = lattice_domain(point);
     let skew = (p[0] + p[1] + p[2]) * R::c(1.0 / 3.0);
     let i = map(add(p, splat(skew)), R::floor);
     let unskew = (i[0] + i[1] + i[2]) * R::c(1.0 / 6.0);
@@ -151,8 +161,11 @@ fn metric<R: Real>(d: V3<R>, metric: Metric) -> R {
     }
 }
 
-/// The three smallest feature distances F1, F2, F3 (`veneer_worley`).
-pub fn worley<R: Real>(p: V3<R>, jitter: R, m: Metric) -> V3<R> {
+/// The three smallest feature distances F1, F2, F3 (`veneer_worley`), `jitter` clamped to
+/// [-1, 1].
+pub fn worley<R: Real>(point: V3<R>, jitter: R, m: Metric) -> V3<R> {
+    let p = lattice_domain(point);
+    let jitter = jitter.clamp(R::c(-1.0), R::c(1.0));
     let cell = map(p, R::floor);
     let mut f = splat(R::c(1.0e9));
     for z in -1..=1 {

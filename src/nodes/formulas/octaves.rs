@@ -3,7 +3,7 @@
 
 // The node kinds that use these arrive through the node registry.
 
-use super::real::{Real, V3, dot, scale};
+use super::real::{Real, V3, dot, finite, scale};
 use super::shapes::fractal;
 use crate::nodes::settings::{Basis, FractalMode};
 
@@ -16,7 +16,7 @@ const ROTATION: [[f64; 3]; 3] = [
 
 /// `veneer_octave_rotate`: `p` turned by the fixed octave rotation, clamped to the finite range.
 pub fn octave_rotate<R: Real>(p: V3<R>) -> V3<R> {
-    ROTATION.map(|row| dot(row.map(R::c), p, 3).clamp(R::c(-3.0e38), R::c(3.0e38)))
+    ROTATION.map(|row| finite(dot(row.map(R::c), p, 3)))
 }
 
 /// `veneer_<mode>_rotated_<basis>`: the fractal sum of [`fractal`] with octave i sampled
@@ -32,14 +32,14 @@ pub fn fractal_rotated<R: Real>(
     cutoff: R,
 ) -> R {
     let (mut sum, mut amp, mut freq, mut total) = (R::c(0.0), amplitude, R::c(1.0), R::c(0.0));
-    let mut q = p;
+    let mut q = p.map(finite);
     for i in 0..octaves {
         let shown_from = cutoff - R::c(f64::from(i));
         let one = [lacunarity, gain, amp];
-        sum = sum + fractal(mode, basis, scale(q, freq), 1, one, false, shown_from);
-        total = total + amp.abs();
-        freq = freq * lacunarity;
-        amp = amp * gain;
+        sum = finite(sum + fractal(mode, basis, scale(q, freq), 1, one, false, shown_from));
+        total = (total + amp.abs()).min(R::c(3.0e38));
+        freq = finite(freq * lacunarity);
+        amp = finite(amp * gain);
         q = octave_rotate(q);
     }
     if normalize && total > R::c(0.0) {

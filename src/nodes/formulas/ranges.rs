@@ -2,11 +2,7 @@
 
 // The node kind that uses these arrives through the node registry.
 
-use super::real::Real;
-
-fn finite<R: Real>(x: R) -> R {
-    x.clamp(R::c(-3.0e38), R::c(3.0e38))
-}
+use super::real::{Real, finite};
 
 /// `veneer_map_range_factor`: (x - from_min) / (from_max - from_min) without overflow; 0
 /// for an empty range.

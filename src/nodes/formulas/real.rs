@@ -136,13 +136,57 @@ pub fn length<R: Real>(a: V3<R>, width: usize) -> R {
     dot(a, a, width).sqrt()
 }
 
+/// The largest magnitude the finite clamps allow (`veneer_finite_<type>`).
+const FINITE: f64 = 3.0e38;
+
+/// Past this, a vector's square is taken after scaling it by [`DOWN`].
+const SQUARE_LIMIT: f64 = 1.0e38;
+
+/// 2⁻¹⁰⁰, which scales a vector down exactly (its inverse back up).
+pub const DOWN: f64 = 7.888609052210118e-31;
+
+/// `x` clamped to the finite range (`veneer_finite_<type>`): a sum or product of finite
+/// values is finite or an infinity, never NaN, and the clamp makes it finite.
+pub fn finite<R: Real>(x: R) -> R {
+    x.clamp(R::c(-FINITE), R::c(FINITE))
+}
+
+/// The length over the first `width` lanes for any finite vector (`veneer_length_<type>`):
+/// where the square overflows, of the vector scaled down by 2⁻¹⁰⁰ and back; clamped to
+/// the finite range.
+pub fn finite_length<R: Real>(a: V3<R>, width: usize) -> R {
+    let length = if dot(a, a, width) > R::c(SQUARE_LIMIT) {
+        R::c(1.0 / DOWN) * length(scale(a, R::c(DOWN)), width)
+    } else {
+        length(a, width)
+    };
+    length.min(R::c(FINITE))
+}
+
+/// The dot product over the first `width` lanes for any finite vectors
+/// (`veneer_dot_<type>`): each product clamped to ±1e38, so the sum cannot overflow.
+pub fn finite_dot<R: Real>(a: V3<R>, b: V3<R>, width: usize) -> R {
+    let limit = R::c(1.0e38);
+    dot(
+        map(mul(a, b), |x| x.clamp(-limit, limit)),
+        splat(R::c(1.0)),
+        width,
+    )
+}
+
 /// Unit vector along the first `width` lanes; zero when too short (as `veneer_safe_normalize`).
+/// A vector whose square overflows is scaled down by 2⁻¹⁰⁰ first (exact).
 pub fn safe_normalize<R: Real>(a: V3<R>, width: usize) -> V3<R> {
     let squared = dot(a, a, width);
     if squared < R::c(1.0e-30) {
         return splat(R::c(0.0));
     }
-    let inverse = R::c(1.0) / squared.sqrt();
+    let a = if squared > R::c(SQUARE_LIMIT) {
+        scale(a, R::c(DOWN))
+    } else {
+        a
+    };
+    let inverse = R::c(1.0) / dot(a, a, width).sqrt();
     let mut unit = scale(a, inverse);
     for lane in unit.iter_mut().skip(width) {
         *lane = R::c(0.0);

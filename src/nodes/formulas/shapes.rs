@@ -2,26 +2,49 @@
 //! and math.wgsl.
 
 use super::noise;
-use super::real::{Real, V3, add, cross, dot, length, map, mul, safe_normalize, scale, sub};
+use super::real::{
+    DOWN, Real, V3, add, cross, dot, finite, length, map, mul, safe_normalize, scale, sub, zip,
+};
 use crate::nodes::settings::{Basis, FractalMode};
 
-/// `rotate(p * scale) + offset`, rotation in degrees about x, then y, then z.
+/// `veneer_scaled`: `p * scale` clamped to ±1e38, so that a rotation of it stays finite.
+fn scaled<R: Real>(p: V3<R>, scale_by: V3<R>) -> V3<R> {
+    let limit = R::c(1.0e38);
+    map(mul(p, scale_by), |x| x.clamp(-limit, limit))
+}
+
+/// `rotate(p * scale) + offset`, rotation in degrees about x, then y, then z; the scaled
+/// point clamped to ±1e38 and the result to the finite range (`veneer_transform`, and
+/// without rotation `veneer_scale_offset`, which gives the same).
 pub fn transform<R: Real>(p: V3<R>, scale_by: V3<R>, rotation: V3<R>, offset: V3<R>) -> V3<R> {
     let a = map(rotation, |d| d * R::c(std::f64::consts::PI / 180.0));
     let (c, s) = (map(a, R::cos), map(a, R::sin));
-    let q = mul(p, scale_by);
+    let q = scaled(p, scale_by);
     let q = [q[0], c[0] * q[1] - s[0] * q[2], s[0] * q[1] + c[0] * q[2]];
     let q = [c[1] * q[0] + s[1] * q[2], q[1], -s[1] * q[0] + c[1] * q[2]];
     let q = [c[2] * q[0] - s[2] * q[1], s[2] * q[0] + c[2] * q[1], q[2]];
-    add(q, offset)
+    map(add(q, offset), finite)
 }
 
-/// Coordinate along a direction.
+/// `veneer_half_offset`: half of `p - origin` (exact, so it cannot overflow), scaled down
+/// by a further 2⁻¹⁰⁰ where it is too long to square, and the factor undoing the scaling.
+fn half_offset<R: Real>(p: V3<R>, origin: V3<R>) -> (V3<R>, R) {
+    let half = zip(p, origin, |p, o| R::c(0.5) * p - R::c(0.5) * o);
+    if dot(half, half, 3) > R::c(1.0e36) {
+        (scale(half, R::c(DOWN)), R::c(2.0 / DOWN))
+    } else {
+        (half, R::c(2.0))
+    }
+}
+
+/// Coordinate along a direction, clamped to the finite range.
 pub fn project<R: Real>(p: V3<R>, origin: V3<R>, direction: V3<R>) -> R {
-    dot(sub(p, origin), safe_normalize(direction, 3), 3)
+    let (half, back) = half_offset(p, origin);
+    finite(back * dot(half, safe_normalize(direction, 3), 3))
 }
 
-/// (t, r, theta) about an axis, with seed 000's choice of reference up vector.
+/// (t, r, theta) about an axis, with seed 000's choice of reference up vector; t and r
+/// clamped to the finite range.
 pub fn cylindrical<R: Real>(p: V3<R>, origin: V3<R>, axis: V3<R>) -> V3<R> {
     let (zero, one) = (R::c(0.0), R::c(1.0));
     let d = safe_normalize(axis, 3);
@@ -32,16 +55,16 @@ pub fn cylindrical<R: Real>(p: V3<R>, origin: V3<R>, axis: V3<R>) -> V3<R> {
     };
     let u = safe_normalize(cross(up, d), 3);
     let v = cross(d, u);
-    let t = dot(sub(p, origin), d, 3);
-    let radial = sub(p, add(origin, scale(d, t)));
+    let (relative, back) = half_offset(p, origin);
+    let t = dot(relative, d, 3);
+    let radial = sub(relative, scale(d, t));
     // On (or within rounding noise of) the axis the angle is undefined: 0, as in the WGSL.
     let across = [dot(radial, u, 3), dot(radial, v, 3)];
-    let relative = sub(p, origin);
     let on_axis =
         across[0] * across[0] + across[1] * across[1] <= R::c(1.0e-10) * dot(relative, relative, 3);
     [
-        t,
-        length(radial, 3),
+        finite(back * t),
+        finite(back * length(radial, 3)),
         if on_axis {
             R::c(0.0)
         } else {
@@ -50,7 +73,7 @@ pub fn cylindrical<R: Real>(p: V3<R>, origin: V3<R>, axis: V3<R>) -> V3<R> {
     ]
 }
 
-/// Domain warp by signed noise per axis.
+/// Domain warp by signed noise per axis, clamped to the finite range.
 pub fn warp<R: Real>(basis: Basis, p: V3<R>, strength: R, scale_by: R) -> V3<R> {
     let q = scale(p, scale_by);
     let offset = |o: [f64; 3]| add(q, o.map(R::c));
@@ -59,10 +82,11 @@ pub fn warp<R: Real>(basis: Basis, p: V3<R>, strength: R, scale_by: R) -> V3<R> 
         noise::signed(basis, offset([31.4, 47.2, 12.9])),
         noise::signed(basis, offset([-23.7, 8.3, 51.1])),
     ];
-    add(p, scale(w, strength))
+    map(add(p, scale(w, strength)), finite)
 }
 
-/// Fractal sum of octaves (`veneer_<mode>_<basis>`).
+/// Fractal sum of octaves (`veneer_<mode>_<basis>`); the frequency, the amplitude and the
+/// sums clamped to the finite range.
 pub fn fractal<R: Real>(
     mode: FractalMode,
     basis: Basis,
@@ -90,10 +114,10 @@ pub fn fractal<R: Real>(
         } else {
             mean
         };
-        sum = sum + amp * value;
-        total = total + amp.abs();
-        freq = freq * lacunarity;
-        amp = amp * gain;
+        sum = finite(sum + amp * value);
+        total = (total + amp.abs()).min(R::c(3.0e38));
+        freq = finite(freq * lacunarity);
+        amp = finite(amp * gain);
     }
     if normalize && total > R::c(0.0) {
         sum / total
@@ -112,14 +136,16 @@ pub fn worley_feature<R: Real>(f: V3<R>, feature: i32) -> R {
     }
 }
 
-/// 0.5 + 0.5 sin(frequency x + distortion turbulence).
+/// 0.5 + 0.5 sin(frequency x + distortion turbulence), the products and the phase clamped
+/// to the finite range.
 pub fn sine_band<R: Real>(x: R, frequency: R, distortion: R, turbulence: R) -> R {
-    R::c(0.5) + R::c(0.5) * (frequency * x + distortion * turbulence).sin()
+    let phase = finite(frequency * x) + finite(distortion * turbulence);
+    R::c(0.5) + R::c(0.5) * finite(phase).sin()
 }
 
-/// 0 → 1 → 0 once per period.
+/// 0 → 1 → 0 once per period, the product clamped to the finite range.
 pub fn triangle_wave<R: Real>(x: R, frequency: R) -> R {
-    let r = (x * frequency).fract() * R::c(2.0);
+    let r = finite(x * frequency).fract() * R::c(2.0);
     if r > R::c(1.0) { R::c(2.0) - r } else { r }
 }
 
@@ -137,7 +163,8 @@ fn tile_coverage<R: Real>(x: R, gap: R, width: R) -> R {
     }
 }
 
-/// Tiles over the xz plane: (mask, cell, local) as in `veneer_tiles`.
+/// Tiles over the xz plane: (mask, cell, local) as in `veneer_tiles` (the position and the
+/// filter width in tiles clamped to ±1e30, the gap to [0, 1]).
 pub fn tiles<R: Real>(
     p: V3<R>,
     size: V3<R>,
@@ -153,20 +180,23 @@ pub fn tiles<R: Real>(
         }
     };
     let size = [safe(size[0]), safe(size[1])];
-    let mut t = [p[0] / size[0], p[2] / size[1]];
+    let limit = R::c(1.0e30);
+    let mut t = [p[0] / size[0], p[2] / size[1]].map(|x| x.clamp(-limit, limit));
     if (t[0] * R::c(0.5)).fract() > R::c(0.5) {
         t[1] = t[1] + row_offset;
     }
-    let coverage: [R; 2] =
-        std::array::from_fn(|k| tile_coverage(t[k], gap[k], blur / size[k].abs()));
+    let coverage: [R; 2] = std::array::from_fn(|k| {
+        let width = (blur / size[k].abs()).clamp(-limit, limit);
+        tile_coverage(t[k], gap[k].clamp(R::c(0.0), R::c(1.0)), width)
+    });
     let ceil = |x: R| -((-x).floor());
     (coverage[0] * coverage[1], t.map(ceil), t.map(R::fract))
 }
 
-/// Concentric rings about an axis.
+/// Concentric rings about an axis, the products clamped to the finite range.
 pub fn rings<R: Real>(p: V3<R>, origin: V3<R>, axis: V3<R>, frequency: R) -> R {
     let r = cylindrical(p, origin, axis)[1];
-    R::c(0.5) + R::c(0.5) * (R::c(std::f64::consts::TAU) * frequency * r).sin()
+    R::c(0.5) + R::c(0.5) * finite(finite(R::c(std::f64::consts::TAU) * frequency) * r).sin()
 }
 
 /// a / b; 0 where b is 0; clamped to the finite range.
@@ -184,13 +214,15 @@ pub fn safe_pow<R: Real>(a: R, b: R) -> R {
     }
 }
 
-/// Clamped linear ramp, a step when the edges are equal.
+/// Clamped linear ramp, a step when the edges are equal; the operands halved first (an
+/// exact scaling), so that no difference overflows.
 pub fn linearstep<R: Real>(edge0: R, edge1: R, x: R) -> R {
-    let span = edge1 - edge0;
+    let half = R::c(0.5);
+    let span = half * edge1 - half * edge0;
     if span == R::c(0.0) {
         R::step(edge0, x)
     } else {
-        ((x - edge0) / span).clamp(R::c(0.0), R::c(1.0))
+        ((half * x - half * edge0) / span).clamp(R::c(0.0), R::c(1.0))
     }
 }
 
@@ -200,9 +232,9 @@ pub fn smoothstep<R: Real>(edge0: R, edge1: R, x: R) -> R {
     t * t * (R::c(3.0) - R::c(2.0) * t)
 }
 
-/// Linear remap with a safe division.
+/// Linear remap (`veneer_remap`): the linear Map Range without clamping.
 pub fn remap<R: Real>(x: R, from_min: R, from_max: R, to_min: R, to_max: R) -> R {
-    to_min + safe_div(x - from_min, from_max - from_min) * (to_max - to_min)
+    super::ranges::map_range_linear(x, from_min, from_max, to_min, to_max, false)
 }
 
 /// A colour as three lanes.
@@ -210,11 +242,10 @@ pub fn color<R: Real>(c: (f64, f64, f64)) -> V3<R> {
     [R::c(c.0), R::c(c.1), R::c(c.2)]
 }
 
-/// Lane-wise mix of two values by a scalar.
+/// Lane-wise mix of two values by a scalar (`veneer_mix_<type>`): `a (1 - t) + b t`, each
+/// product and the sum clamped to the finite range.
 pub fn mix3<R: Real>(a: V3<R>, b: V3<R>, t: R) -> V3<R> {
-    [
-        R::mix(a[0], b[0], t),
-        R::mix(a[1], b[1], t),
-        R::mix(a[2], b[2], t),
-    ]
+    zip(a, b, |a, b| {
+        finite(finite(a * (R::c(1.0) - t)) + finite(b * t))
+    })
 }

@@ -3,7 +3,7 @@
 
 // The node kind that uses this arrives through the node registry.
 
-use super::noise::{cell_bits, pcg3d, unit_floats};
+use super::noise::{cell_bits, lattice_domain, pcg3d, unit_floats};
 use super::real::{Real, V3, add, dot, map, scale, splat, sub};
 
 /// `veneer_worley_edge_feature`: offset from the point (at `f` in `cell`) to the feature
@@ -17,7 +17,8 @@ pub fn worley_edge_feature<R: Real>(cell: V3<R>, g: V3<R>, f: V3<R>, jitter: R) 
 
 /// `veneer_worley_edge`: the Euclidean distance from `p` to the nearest border of its
 /// Voronoi cell (Quilez's two passes, 3×3×3 then 5×5×5 cells).
-pub fn worley_edge<R: Real>(p: V3<R>, jitter: R) -> R {
+pub fn worley_edge<R: Real>(point: V3<R>, jitter: R) -> R {
+    let p = lattice_domain(point);
     let cell = map(p, R::floor);
     let f = sub(p, cell);
     let offset = |x: i32, y: i32, z: i32| [x, y, z].map(|k| R::c(f64::from(k)));

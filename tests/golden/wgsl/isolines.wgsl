@@ -26,16 +26,35 @@ struct VeneerMaterial {
 
 // ---- shaders/math.wgsl
 
-// Clamped linear ramp from edge0 to edge1 (a step at the edge when they are equal).
+// Clamped linear ramp from edge0 to edge1 (a step at the edge when they are equal). The
+// operands are halved first (an exact scaling), so that no difference overflows.
 fn veneer_linearstep(edge0: f32, edge1: f32, x: f32) -> f32 {
-    let span = edge1 - edge0;
-    let t = clamp((x - edge0) / select(span, 1.0, span == 0.0), 0.0, 1.0);
+    let span = 0.5 * edge1 - 0.5 * edge0;
+    let t = clamp((0.5 * x - 0.5 * edge0) / select(span, 1.0, span == 0.0), 0.0, 1.0);
     return select(t, step(edge0, x), span == 0.0);
+}
+
+// `x` clamped to the finite range: a sum or product of finite values is finite or an
+// infinity (never NaN), and the clamp turns an infinity into the nearest finite value.
+fn veneer_finite_vec3f(x: vec3f) -> vec3f {
+    return clamp(x, vec3f(-3.0e38), vec3f(3.0e38));
+}
+
+// `a (1 - t) + b t` written out (a GPU's mix may compute a + t (b - a), which overflows
+// for far-apart finite values), each product and the sum clamped to the finite range.
+fn veneer_mix_vec3f(a: vec3f, b: vec3f, t: f32) -> vec3f {
+    return veneer_finite_vec3f(veneer_finite_vec3f(a * (1.0 - t)) + veneer_finite_vec3f(b * t));
 }
 
 // One segment of a linear colour ramp: blend towards `next` as t goes from p0 to p1.
 fn veneer_ramp_linear(current: vec3f, next: vec3f, t: f32, p0: f32, p1: f32) -> vec3f {
-    return mix(current, next, veneer_linearstep(p0, p1, t));
+    return veneer_mix_vec3f(current, next, veneer_linearstep(p0, p1, t));
+}
+
+// `x` clamped to the finite range: a sum or product of finite values is finite or an
+// infinity (never NaN), and the clamp turns an infinity into the nearest finite value.
+fn veneer_finite_f32(x: f32) -> f32 {
+    return clamp(x, f32(-3.0e38), f32(3.0e38));
 }
 
 // Hermite smoothstep from edge0 to edge1; falls instead of rises when the edges are
@@ -48,10 +67,11 @@ fn veneer_smoothstep(edge0: f32, edge1: f32, x: f32) -> f32 {
 // ---- shaders/fields.wgsl
 
 // 1 on the lines where `value` is a multiple of `spacing`, falling to 0 at `width` from
-// them (in the value's units); no lines when the spacing or the width is 0.
+// them (in the value's units); no lines when the spacing or the width is 0. The value in
+// periods is clamped to the finite range.
 fn veneer_isolines(value: f32, spacing: f32, width: f32) -> f32 {
     let period = max(spacing, 1.0e-30);
-    let offset = abs(fract(value / period + 0.5) - 0.5) * period;
+    let offset = abs(fract(veneer_finite_f32(value / period) + 0.5) - 0.5) * period;
     let line = 1.0 - veneer_smoothstep(0.0, max(width, 0.0), offset);
     return select(line, 0.0, spacing <= 0.0 || width <= 0.0);
 }
@@ -68,7 +88,7 @@ fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     // Isolines 'lines' (#3)
     let lines: f32 = veneer_isolines(s.fields.x, 0.05f, 0.006f);
     // Mix 'inked' (#4)
-    let inked: vec3f = mix(colour_scale, vec3f(0.02f, 0.02f, 0.02f), lines);
+    let inked: vec3f = veneer_mix_vec3f(colour_scale, vec3f(0.02f, 0.02f, 0.02f), lines);
     // Material 'material' (#5)
     return VeneerMaterial(
         inked, // albedo

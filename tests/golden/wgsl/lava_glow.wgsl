@@ -24,6 +24,20 @@ struct VeneerMaterial {
     occlusion: f32,   // ambient occlusion, 1 unoccluded
 }
 
+// ---- shaders/math.wgsl
+
+// `x` clamped to the finite range: a sum or product of finite values is finite or an
+// infinity (never NaN), and the clamp turns an infinity into the nearest finite value.
+fn veneer_finite_vec3f(x: vec3f) -> vec3f {
+    return clamp(x, vec3f(-3.0e38), vec3f(3.0e38));
+}
+
+// `x` clamped to the finite range: a sum or product of finite values is finite or an
+// infinity (never NaN), and the clamp turns an infinity into the nearest finite value.
+fn veneer_finite_f32(x: f32) -> f32 {
+    return clamp(x, f32(-3.0e38), f32(3.0e38));
+}
+
 // ---- shaders/hash.wgsl
 
 // Integer coordinates of a lattice cell, clamped to the i32 range so that any finite
@@ -31,6 +45,14 @@ struct VeneerMaterial {
 fn veneer_cell_bits(cell: vec3f) -> vec3u {
     let limit = vec3f(2147483520.0);
     return bitcast<vec3u>(vec3i(clamp(cell, -limit, limit)));
+}
+
+// `p` within the lattice's range (+-2147483520 per axis, where the cells' integer
+// coordinates saturate anyway): every lattice noise samples its point through this, so
+// any coordinate (an overflowed product too) gives a finite value.
+fn veneer_lattice_domain(p: vec3f) -> vec3f {
+    let limit = vec3f(2147483520.0);
+    return clamp(p, -limit, limit);
 }
 
 // ---- shaders/worley.wgsl
@@ -68,8 +90,11 @@ fn veneer_unit_floats(bits: vec3u) -> vec3f {
 // ---- shaders/worley.wgsl
 
 // The three smallest feature distances (F1, F2, F3) around `p`; one feature point per
-// cell, displaced from the cell centre by up to `jitter` / 2 per axis.
-fn veneer_worley(p: vec3f, jitter: f32, metric: i32) -> vec3f {
+// cell, displaced from the cell centre by up to `jitter` / 2 per axis (`jitter` clamped
+// to [-1, 1], where every feature point stays in its cell, so distances stay small).
+fn veneer_worley(point: vec3f, jitter: f32, metric: i32) -> vec3f {
+    let p = veneer_lattice_domain(point);
+    let spread = clamp(jitter, -1.0, 1.0);
     let cell = floor(p);
     var f = vec3f(1.0e9);
     for (var z = -1; z <= 1; z++) {
@@ -77,7 +102,7 @@ fn veneer_worley(p: vec3f, jitter: f32, metric: i32) -> vec3f {
             for (var x = -1; x <= 1; x++) {
                 let c = cell + vec3f(f32(x), f32(y), f32(z));
                 let r = veneer_unit_floats(veneer_pcg3d(veneer_cell_bits(c)));
-                let feature = c + 0.5 + jitter * (r - 0.5);
+                let feature = c + 0.5 + spread * (r - 0.5);
                 let d = veneer_metric(p - feature, metric);
                 if d < f.x {
                     f = vec3f(d, f.x, f.y);
@@ -102,15 +127,16 @@ fn veneer_worley_feature(f: vec3f, feature: i32) -> f32 {
     }
 }
 
-// Fractal Worley: `octaves` octaves of a feature, frequency times `lacunarity`, amplitude times `gain`.
+// Fractal Worley: `octaves` octaves of a feature, frequency times `lacunarity`, amplitude
+// times `gain`; the frequency, the amplitude and the sum clamped to the finite range.
 fn veneer_worley_fractal(p: vec3f, jitter: f32, metric: i32, feature: i32, octaves: i32, lacunarity: f32, gain: f32) -> f32 {
     var sum = 0.0;
     var amp = 1.0;
     var freq = 1.0;
     for (var i = 0; i < octaves; i++) {
-        sum += amp * veneer_worley_feature(veneer_worley(p * freq, jitter, metric), feature);
-        freq *= lacunarity;
-        amp *= gain;
+        sum = clamp(sum + amp * veneer_worley_feature(veneer_worley(p * freq, jitter, metric), feature), -3.0e38, 3.0e38);
+        freq = clamp(freq * lacunarity, -3.0e38, 3.0e38);
+        amp = clamp(amp * gain, -3.0e38, 3.0e38);
     }
     return sum;
 }
@@ -135,7 +161,8 @@ fn veneer_simplex_corner(cell: vec3f, d: vec3f) -> f32 {
 }
 
 // Simplex noise remapped to [0, 1].
-fn veneer_noise_simplex(p: vec3f) -> f32 {
+fn veneer_noise_simplex(point: vec3f) -> f32 {
+    let p = veneer_lattice_domain(point);
     let skew = (p.x + p.y + p.z) * (1.0 / 3.0);
     let i = floor(p + skew);
     let unskew = (i.x + i.y + i.z) * (1.0 / 6.0);
@@ -172,11 +199,13 @@ fn veneer_octave_mean_fractal_sum() -> f32 {
 }
 
 // Sum of `octaves` octaves; each multiplies the frequency by `lacunarity` and the
-// amplitude by `gain`. With `normalize` the sum is divided by the sum of amplitudes.
-// Octave i counts fully below `cutoff - 1`, fades to its average over the next octave
-// and is replaced by its average from `cutoff` on: those octaves are summed in a second
-// loop without any noise, so a coarse footprint shortens the expensive one (software
-// rasterisers run both sides of a branch; a shorter loop is what saves them work).
+// amplitude by `gain` (the frequency, the amplitude and the sums clamped to the finite
+// range, so no octave overflows into a NaN). With `normalize` the sum is divided by the
+// sum of amplitudes. Octave i counts fully below `cutoff - 1`, fades to its average over
+// the next octave and is replaced by its average from `cutoff` on: those octaves are
+// summed in a second loop without any noise, so a coarse footprint shortens the
+// expensive one (software rasterisers run both sides of a branch; a shorter loop is what
+// saves them work).
 fn veneer_fractal_sum_simplex(p: vec3f, octaves: i32, lacunarity: f32, gain: f32, amplitude: f32, normalize: bool, cutoff: f32) -> f32 {
     var sum = 0.0;
     var amp = amplitude;
@@ -186,25 +215,26 @@ fn veneer_fractal_sum_simplex(p: vec3f, octaves: i32, lacunarity: f32, gain: f32
     let evaluated = min(octaves, i32(clamp(ceil(cutoff), 0.0, 64.0)));
     for (var i = 0; i < evaluated; i++) {
         let shown = clamp(cutoff - f32(i), 0.0, 1.0);
-        sum += amp * (shown * veneer_octave_fractal_sum_simplex(p * freq) + (1.0 - shown) * mean);
-        total += abs(amp);
-        freq *= lacunarity;
-        amp *= gain;
+        sum = clamp(sum + amp * (shown * veneer_octave_fractal_sum_simplex(p * freq) + (1.0 - shown) * mean), -3.0e38, 3.0e38);
+        total = min(total + abs(amp), 3.0e38);
+        freq = clamp(freq * lacunarity, -3.0e38, 3.0e38);
+        amp = clamp(amp * gain, -3.0e38, 3.0e38);
     }
     for (var i = evaluated; i < octaves; i++) {
-        sum += amp * mean;
-        total += abs(amp);
-        amp *= gain;
+        sum = clamp(sum + amp * mean, -3.0e38, 3.0e38);
+        total = min(total + abs(amp), 3.0e38);
+        amp = clamp(amp * gain, -3.0e38, 3.0e38);
     }
     return select(sum, sum / total, normalize && total > 0.0);
 }
 
 // ---- shaders/math.wgsl
 
-// Clamped linear ramp from edge0 to edge1 (a step at the edge when they are equal).
+// Clamped linear ramp from edge0 to edge1 (a step at the edge when they are equal). The
+// operands are halved first (an exact scaling), so that no difference overflows.
 fn veneer_linearstep(edge0: f32, edge1: f32, x: f32) -> f32 {
-    let span = edge1 - edge0;
-    let t = clamp((x - edge0) / select(span, 1.0, span == 0.0), 0.0, 1.0);
+    let span = 0.5 * edge1 - 0.5 * edge0;
+    let t = clamp((0.5 * x - 0.5 * edge0) / select(span, 1.0, span == 0.0), 0.0, 1.0);
     return select(t, step(edge0, x), span == 0.0);
 }
 
@@ -221,11 +251,22 @@ fn veneer_smoothstep(edge0: f32, edge1: f32, x: f32) -> f32 {
 // falling smoothly to 0 where `distance + noise` passes the threshold; the fall is
 // centred `centre` widths past the threshold and spans `softness` widths either side
 // (seed 003's smoothstep fronts: §5.2.4 is centre 1, softness 1/2; C.4 and C.5 are
-// centre 0, softness 1); a hard edge at width 0.
+// centre 0, softness 1); a hard edge at width 0. The edges and the sum are clamped to the
+// finite range.
 fn veneer_front(distance: f32, threshold: f32, width: f32, noise: f32, centre: f32, softness: f32) -> f32 {
     let w = max(width, 0.0);
     let s = max(softness, 0.0);
-    return 1.0 - veneer_smoothstep(threshold + (centre - s) * w, threshold + (centre + s) * w, distance + noise);
+    let low = veneer_finite_f32(threshold + veneer_finite_f32(centre - s) * w);
+    let high = veneer_finite_f32(threshold + veneer_finite_f32(centre + s) * w);
+    return 1.0 - veneer_smoothstep(low, high, veneer_finite_f32(distance + noise));
+}
+
+// ---- shaders/math.wgsl
+
+// `a (1 - t) + b t` written out (a GPU's mix may compute a + t (b - a), which overflows
+// for far-apart finite values), each product and the sum clamped to the finite range.
+fn veneer_mix_vec3f(a: vec3f, b: vec3f, t: f32) -> vec3f {
+    return veneer_finite_vec3f(veneer_finite_vec3f(a * (1.0 - t)) + veneer_finite_vec3f(b * t));
 }
 
 // ---- shaders/fractal.wgsl
@@ -241,11 +282,13 @@ fn veneer_octave_turbulence_simplex(q: vec3f) -> f32 {
 }
 
 // Sum of `octaves` octaves; each multiplies the frequency by `lacunarity` and the
-// amplitude by `gain`. With `normalize` the sum is divided by the sum of amplitudes.
-// Octave i counts fully below `cutoff - 1`, fades to its average over the next octave
-// and is replaced by its average from `cutoff` on: those octaves are summed in a second
-// loop without any noise, so a coarse footprint shortens the expensive one (software
-// rasterisers run both sides of a branch; a shorter loop is what saves them work).
+// amplitude by `gain` (the frequency, the amplitude and the sums clamped to the finite
+// range, so no octave overflows into a NaN). With `normalize` the sum is divided by the
+// sum of amplitudes. Octave i counts fully below `cutoff - 1`, fades to its average over
+// the next octave and is replaced by its average from `cutoff` on: those octaves are
+// summed in a second loop without any noise, so a coarse footprint shortens the
+// expensive one (software rasterisers run both sides of a branch; a shorter loop is what
+// saves them work).
 fn veneer_turbulence_simplex(p: vec3f, octaves: i32, lacunarity: f32, gain: f32, amplitude: f32, normalize: bool, cutoff: f32) -> f32 {
     var sum = 0.0;
     var amp = amplitude;
@@ -255,80 +298,88 @@ fn veneer_turbulence_simplex(p: vec3f, octaves: i32, lacunarity: f32, gain: f32,
     let evaluated = min(octaves, i32(clamp(ceil(cutoff), 0.0, 64.0)));
     for (var i = 0; i < evaluated; i++) {
         let shown = clamp(cutoff - f32(i), 0.0, 1.0);
-        sum += amp * (shown * veneer_octave_turbulence_simplex(p * freq) + (1.0 - shown) * mean);
-        total += abs(amp);
-        freq *= lacunarity;
-        amp *= gain;
+        sum = clamp(sum + amp * (shown * veneer_octave_turbulence_simplex(p * freq) + (1.0 - shown) * mean), -3.0e38, 3.0e38);
+        total = min(total + abs(amp), 3.0e38);
+        freq = clamp(freq * lacunarity, -3.0e38, 3.0e38);
+        amp = clamp(amp * gain, -3.0e38, 3.0e38);
     }
     for (var i = evaluated; i < octaves; i++) {
-        sum += amp * mean;
-        total += abs(amp);
-        amp *= gain;
+        sum = clamp(sum + amp * mean, -3.0e38, 3.0e38);
+        total = min(total + abs(amp), 3.0e38);
+        amp = clamp(amp * gain, -3.0e38, 3.0e38);
     }
     return select(sum, sum / total, normalize && total > 0.0);
+}
+
+// ---- shaders/math.wgsl
+
+// `a (1 - t) + b t` written out (a GPU's mix may compute a + t (b - a), which overflows
+// for far-apart finite values), each product and the sum clamped to the finite range.
+fn veneer_mix_f32(a: f32, b: f32, t: f32) -> f32 {
+    return veneer_finite_f32(veneer_finite_f32(a * (1.0 - t)) + veneer_finite_f32(b * t));
 }
 
 // ---- the material graph
 
 fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     // Math 'cell space' (#14)
-    let cell_space: vec3f = s.position * vec3f(14.0f, 14.0f, 14.0f);
+    let cell_space: vec3f = veneer_finite_vec3f(s.position * vec3f(14.0f, 14.0f, 14.0f));
     // Clamp 'flow time' (#15)
     let flow_time: f32 = min(max(s.time, f32(0.0f)), f32(10000.0f));
     // Math 'flow' (#16)
-    let flow: f32 = flow_time * 0.5f;
+    let flow: f32 = veneer_finite_f32(flow_time * 0.5f);
     // Math 'flowing cell space' (#17)
-    let flowing_cell_space: vec3f = cell_space + vec3f(flow);
+    let flowing_cell_space: vec3f = veneer_finite_vec3f(cell_space + vec3f(flow));
     // Worley 'worley' (#18)
     let worley: f32 = veneer_worley_fractal(flowing_cell_space * 1.0f, 1.0f, 0, 0, 3, 2.0f, 0.5f);
     // Math 'lava cells' (#21)
-    let lava_cells: vec3f = vec3f(worley) * vec3f(0.2f, 0.15f, 0.05f);
+    let lava_cells: vec3f = veneer_finite_vec3f(vec3f(worley) * vec3f(0.2f, 0.15f, 0.05f));
     // Math 'fvDiffuse1' (#22)
-    let fv_diffuse1: vec3f = vec3f(0.06f, 0.012f, 0.008f) + lava_cells;
+    let fv_diffuse1: vec3f = veneer_finite_vec3f(vec3f(0.06f, 0.012f, 0.008f) + lava_cells);
     // Math 'lava border space' (#8)
-    let lava_border_space: vec3f = s.position * vec3f(10.0f, 10.0f, 10.0f);
+    let lava_border_space: vec3f = veneer_finite_vec3f(s.position * vec3f(10.0f, 10.0f, 10.0f));
     // Fractal sum 'lava border snoise' (#9)
     let lava_border_snoise: f32 = veneer_fractal_sum_simplex(lava_border_space * 1.0f, 1, 2.0f, 0.5f, 1.0f, false, 1000000000.0f);
     // Math 'lavaBorderNoiseRange' (#10)
-    let lava_border_noise_range: f32 = lava_border_snoise * 0.03f;
+    let lava_border_noise_range: f32 = veneer_finite_f32(lava_border_snoise * 0.03f);
     // Math 'lava edge' (#11)
-    let lava_edge: f32 = 0.3f + lava_border_noise_range;
+    let lava_edge: f32 = veneer_finite_f32(0.3f + lava_border_noise_range);
     // Front 'threshold1' (#12)
     let threshold1: f32 = veneer_front(s.fields.x, lava_edge, 0.01f, 0.0f, 0.0f, 1.0f);
     // Mix 'fvDiffuse (rock, lava)' (#27)
-    let fv_diffuse_rock_lava: vec3f = mix(vec3f(0.035f, 0.032f, 0.03f), fv_diffuse1, threshold1);
+    let fv_diffuse_rock_lava: vec3f = veneer_mix_vec3f(vec3f(0.035f, 0.032f, 0.03f), fv_diffuse1, threshold1);
     // Front 'threshold2' (#13)
     let threshold2: f32 = veneer_front(s.fields.y, 0.3f, 0.05f, 0.0f, 0.0f, 1.0f);
     // Mix 'fvDiffuse' (#28)
-    let fv_diffuse: vec3f = mix(fv_diffuse_rock_lava, vec3f(0.012f, 0.05f, 0.07f), threshold2);
+    let fv_diffuse: vec3f = veneer_mix_vec3f(fv_diffuse_rock_lava, vec3f(0.012f, 0.05f, 0.07f), threshold2);
     // Math 'rock space' (#24)
-    let rock_space: vec3f = s.position * vec3f(47.0f, 47.0f, 47.0f);
+    let rock_space: vec3f = veneer_finite_vec3f(s.position * vec3f(47.0f, 47.0f, 47.0f));
     // Turbulence 'rock turbulence' (#25)
     let rock_turbulence: f32 = veneer_turbulence_simplex(rock_space * 1.0f, 3, 2.0f, 0.5f, 1.0f, false, 1000000000.0f);
     // Math 'bump3' (#26)
-    let bump3: f32 = rock_turbulence * 0.66f;
+    let bump3: f32 = veneer_finite_f32(rock_turbulence * 0.66f);
     // Math 'bump1 * worley' (#19)
-    let bump1_worley: f32 = worley * -0.04f;
+    let bump1_worley: f32 = veneer_finite_f32(worley * -0.04f);
     // Math 'bump1' (#20)
-    let bump1: f32 = bump1_worley + -1.0f;
+    let bump1: f32 = veneer_finite_f32(bump1_worley + -1.0f);
     // Mix 'bump (rock, lava)' (#33)
-    let bump_rock_lava: f32 = mix(bump3, bump1, threshold1);
+    let bump_rock_lava: f32 = veneer_mix_f32(bump3, bump1, threshold1);
     // Math 'bump2' (#23)
-    let bump2: f32 = worley * -0.16f;
+    let bump2: f32 = veneer_finite_f32(worley * -0.16f);
     // Mix 'bump' (#34)
-    let bump: f32 = mix(bump_rock_lava, bump2, threshold2);
+    let bump: f32 = veneer_mix_f32(bump_rock_lava, bump2, threshold2);
     // Math 'bump * bumpScale' (#35)
-    let bump_bump_scale: f32 = bump * 0.1f;
+    let bump_bump_scale: f32 = veneer_finite_f32(bump * 0.1f);
     // Math 'glowing cracks' (#37)
-    let glowing_cracks: vec3f = vec3f(worley) * vec3f(0.55f, 0.06f, 0.008f);
+    let glowing_cracks: vec3f = veneer_finite_vec3f(vec3f(worley) * vec3f(0.55f, 0.06f, 0.008f));
     // Mix 'glow (rock, lava)' (#31)
-    let glow_rock_lava: vec3f = mix(vec3f(0.0f, 0.0f, 0.0f), glowing_cracks, threshold1);
+    let glow_rock_lava: vec3f = veneer_mix_vec3f(vec3f(0.0f, 0.0f, 0.0f), glowing_cracks, threshold1);
     // Mix 'glow' (#32)
-    let glow: vec3f = mix(glow_rock_lava, vec3f(0.0f, 0.0f, 0.0f), threshold2);
+    let glow: vec3f = veneer_mix_vec3f(glow_rock_lava, vec3f(0.0f, 0.0f, 0.0f), threshold2);
     // Mix 'roughness (rock, lava)' (#38)
-    let roughness_rock_lava: f32 = mix(0.9f, 0.6f, threshold1);
+    let roughness_rock_lava: f32 = veneer_mix_f32(0.9f, 0.6f, threshold1);
     // Mix 'roughness' (#39)
-    let roughness: f32 = mix(roughness_rock_lava, 0.04f, threshold2);
+    let roughness: f32 = veneer_mix_f32(roughness_rock_lava, 0.04f, threshold2);
     // Material 'material' (#36)
     return VeneerMaterial(
         fv_diffuse, // albedo

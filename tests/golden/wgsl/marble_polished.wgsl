@@ -24,19 +24,81 @@ struct VeneerMaterial {
     occlusion: f32,   // ambient occlusion, 1 unoccluded
 }
 
-// ---- shaders/coords.wgsl
+// ---- shaders/math.wgsl
 
-// Unit vector along `v`; zero (not NaN) when `v` is too short to normalise.
-fn veneer_safe_normalize_vec3f(v: vec3f) -> vec3f {
-    return select(normalize(v), vec3f(0.0), dot(v, v) < 1.0e-30);
+// `x` clamped to the finite range: a sum or product of finite values is finite or an
+// infinity (never NaN), and the clamp turns an infinity into the nearest finite value.
+fn veneer_finite_f32(x: f32) -> f32 {
+    return clamp(x, f32(-3.0e38), f32(3.0e38));
 }
 
-// Coordinate of `p` along `direction` measured from `origin`.
+// ---- shaders/coords.wgsl
+
+// Half of `p - origin` (an exact scaling, so it cannot overflow), scaled down by a further
+// 2^-100 (exact) where it is too long to square, and the factor that undoes the scaling.
+fn veneer_half_offset(p: vec3f, origin: vec3f) -> vec4f {
+    let half = 0.5 * p - 0.5 * origin;
+    let far = dot(half, half) > 1.0e36;
+    return vec4f(select(half, half * 7.888609052e-31, far), select(2.0, 2.5353012004e30, far));
+}
+
+// Unit vector along `v`; zero (not NaN) when `v` is too short to normalise. A vector
+// whose square overflows (past 1e38) is scaled by 2^-100 first (exact).
+fn veneer_safe_normalize_vec3f(v: vec3f) -> vec3f {
+    let squared = dot(v, v);
+    let unit = normalize(select(v, v * 7.888609052e-31, squared > 1.0e38));
+    return select(unit, vec3f(0.0), squared < 1.0e-30);
+}
+
+// Coordinate of `p` along `direction` measured from `origin`, clamped to the finite range.
 fn veneer_project(p: vec3f, origin: vec3f, direction: vec3f) -> f32 {
-    return dot(p - origin, veneer_safe_normalize_vec3f(direction));
+    let half = veneer_half_offset(p, origin);
+    return veneer_finite_f32(half.w * dot(half.xyz, veneer_safe_normalize_vec3f(direction)));
+}
+
+// ---- shaders/math.wgsl
+
+// `x` clamped to the finite range: a sum or product of finite values is finite or an
+// infinity (never NaN), and the clamp turns an infinity into the nearest finite value.
+fn veneer_finite_vec3f(x: vec3f) -> vec3f {
+    return clamp(x, vec3f(-3.0e38), vec3f(3.0e38));
+}
+
+// ---- shaders/coords.wgsl
+
+// `p * scale` clamped to +-1e38: a rotation of it (which keeps its length, at most
+// sqrt(3) times that) and each step of the rotation stay finite.
+fn veneer_scaled(p: vec3f, scale: vec3f) -> vec3f {
+    return clamp(p * scale, vec3f(-1.0e38), vec3f(1.0e38));
+}
+
+// `rotate(p * scale) + offset`, with Euler angles in degrees applied about x, then y, then
+// z; the scaled point clamped to +-1e38 and the result to the finite range.
+fn veneer_transform(p: vec3f, scale: vec3f, rotation: vec3f, offset: vec3f) -> vec3f {
+    let a = radians(rotation);
+    let c = cos(a);
+    let s = sin(a);
+    var q = veneer_scaled(p, scale);
+    q = vec3f(q.x, c.x * q.y - s.x * q.z, s.x * q.y + c.x * q.z);
+    q = vec3f(c.y * q.x + s.y * q.z, q.y, -s.y * q.x + c.y * q.z);
+    q = vec3f(c.z * q.x - s.z * q.y, s.z * q.x + c.z * q.y, q.z);
+    return veneer_finite_vec3f(q + offset);
+}
+
+// `p * scale + offset` (a transform without rotation), clamped like `veneer_transform`.
+fn veneer_scale_offset(p: vec3f, scale: vec3f, offset: vec3f) -> vec3f {
+    return veneer_finite_vec3f(veneer_scaled(p, scale) + offset);
 }
 
 // ---- shaders/hash.wgsl
+
+// `p` within the lattice's range (+-2147483520 per axis, where the cells' integer
+// coordinates saturate anyway): every lattice noise samples its point through this, so
+// any coordinate (an overflowed product too) gives a finite value.
+fn veneer_lattice_domain(p: vec3f) -> vec3f {
+    let limit = vec3f(2147483520.0);
+    return clamp(p, -limit, limit);
+}
 
 // The sine hash of seed 000: cheap, but its value depends on the GPU's sin and it
 // loses all randomness once dot(p, k) is large (see `veneer report`).
@@ -48,7 +110,8 @@ fn veneer_lattice_sine(cell: vec3f) -> f32 {
 // ---- shaders/value.wgsl
 
 // Value noise in [0, 1] with the lattice hash sine.
-fn veneer_noise_value_sine(p: vec3f) -> f32 {
+fn veneer_noise_value_sine(point: vec3f) -> f32 {
+    let p = veneer_lattice_domain(point);
     let i = floor(p);
     let f = fract(p);
     let u = f * f * (3.0 - 2.0 * f);
@@ -83,11 +146,13 @@ fn veneer_octave_mean_fbm() -> f32 {
 }
 
 // Sum of `octaves` octaves; each multiplies the frequency by `lacunarity` and the
-// amplitude by `gain`. With `normalize` the sum is divided by the sum of amplitudes.
-// Octave i counts fully below `cutoff - 1`, fades to its average over the next octave
-// and is replaced by its average from `cutoff` on: those octaves are summed in a second
-// loop without any noise, so a coarse footprint shortens the expensive one (software
-// rasterisers run both sides of a branch; a shorter loop is what saves them work).
+// amplitude by `gain` (the frequency, the amplitude and the sums clamped to the finite
+// range, so no octave overflows into a NaN). With `normalize` the sum is divided by the
+// sum of amplitudes. Octave i counts fully below `cutoff - 1`, fades to its average over
+// the next octave and is replaced by its average from `cutoff` on: those octaves are
+// summed in a second loop without any noise, so a coarse footprint shortens the
+// expensive one (software rasterisers run both sides of a branch; a shorter loop is what
+// saves them work).
 fn veneer_fbm_value_sine(p: vec3f, octaves: i32, lacunarity: f32, gain: f32, amplitude: f32, normalize: bool, cutoff: f32) -> f32 {
     var sum = 0.0;
     var amp = amplitude;
@@ -97,45 +162,66 @@ fn veneer_fbm_value_sine(p: vec3f, octaves: i32, lacunarity: f32, gain: f32, amp
     let evaluated = min(octaves, i32(clamp(ceil(cutoff), 0.0, 64.0)));
     for (var i = 0; i < evaluated; i++) {
         let shown = clamp(cutoff - f32(i), 0.0, 1.0);
-        sum += amp * (shown * veneer_octave_fbm_value_sine(p * freq) + (1.0 - shown) * mean);
-        total += abs(amp);
-        freq *= lacunarity;
-        amp *= gain;
+        sum = clamp(sum + amp * (shown * veneer_octave_fbm_value_sine(p * freq) + (1.0 - shown) * mean), -3.0e38, 3.0e38);
+        total = min(total + abs(amp), 3.0e38);
+        freq = clamp(freq * lacunarity, -3.0e38, 3.0e38);
+        amp = clamp(amp * gain, -3.0e38, 3.0e38);
     }
     for (var i = evaluated; i < octaves; i++) {
-        sum += amp * mean;
-        total += abs(amp);
-        amp *= gain;
+        sum = clamp(sum + amp * mean, -3.0e38, 3.0e38);
+        total = min(total + abs(amp), 3.0e38);
+        amp = clamp(amp * gain, -3.0e38, 3.0e38);
     }
     return select(sum, sum / total, normalize && total > 0.0);
 }
 
-// ---- shaders/math.wgsl
+// ---- shaders/map_range.wgsl
 
-// a / b, 0 where b is 0, clamped to the finite f32 range.
-fn veneer_safe_div_f32(a: f32, b: f32) -> f32 {
-    let q = select(a / b, f32(0.0), b == f32(0.0));
-    return clamp(q, f32(-3.0e38), f32(3.0e38));
+// Where x lies from from_min (0) to from_max (1), unclamped; 0 when the range is empty.
+// The operands are halved first (an exact scaling) so that no difference overflows, and
+// the quotient is clamped to the finite range.
+fn veneer_map_range_factor(x: f32, from_min: f32, from_max: f32) -> f32 {
+    let span = 0.5 * from_max - 0.5 * from_min;
+    let t = (0.5 * x - 0.5 * from_min) / select(span, 1.0, span == 0.0);
+    return select(clamp(t, -3.0e38, 3.0e38), 0.0, span == 0.0);
 }
 
-// Linear map of x from [from_min, from_max] to [to_min, to_max].
+// to_min + t (to_max - to_min), halved like the factor, clamped to the finite range; then
+// clamped to the target range (either order) when `clamp_result`.
+fn veneer_map_range_to(t: f32, to_min: f32, to_max: f32, clamp_result: bool) -> f32 {
+    let y = clamp(to_min + t * (0.5 * to_max - 0.5 * to_min) * 2.0, -3.0e38, 3.0e38);
+    return select(y, clamp(y, min(to_min, to_max), max(to_min, to_max)), clamp_result);
+}
+
+// Linear: to_min + t (to_max - to_min), t = (x - from_min) / (from_max - from_min).
+fn veneer_map_range_linear(x: f32, from_min: f32, from_max: f32, to_min: f32, to_max: f32, clamp_result: bool) -> f32 {
+    return veneer_map_range_to(veneer_map_range_factor(x, from_min, from_max), to_min, to_max, clamp_result);
+}
+
+// ---- shaders/math.wgsl
+
+// Linear map of x from [from_min, from_max] to [to_min, to_max] (to_min where the source
+// range is empty): the linear Map Range without clamping.
 fn veneer_remap(x: f32, from_min: f32, from_max: f32, to_min: f32, to_max: f32) -> f32 {
-    return to_min + veneer_safe_div_f32(x - from_min, from_max - from_min) * (to_max - to_min);
+    return veneer_map_range_linear(x, from_min, from_max, to_min, to_max, false);
 }
 
 // ---- shaders/patterns.wgsl
 
-// Marble bands of seed 000: 0.5 + 0.5 sin(frequency x + distortion turbulence).
+// Marble bands of seed 000: 0.5 + 0.5 sin(frequency x + distortion turbulence), the
+// products and the phase clamped to the finite range.
 fn veneer_sine_band(x: f32, frequency: f32, distortion: f32, turbulence: f32) -> f32 {
-    return 0.5 + 0.5 * sin(frequency * x + distortion * turbulence);
+    let phase = veneer_finite_f32(frequency * x) + veneer_finite_f32(distortion * turbulence);
+    return 0.5 + 0.5 * sin(veneer_finite_f32(phase));
 }
 
 // ---- shaders/math.wgsl
 
-// Clamped linear ramp from edge0 to edge1 (a step at the edge when they are equal).
+// Clamped linear ramp from edge0 to edge1 (a step at the edge when they are equal). The
+// operands are halved first (an exact scaling), so that no difference overflows.
 fn veneer_linearstep(edge0: f32, edge1: f32, x: f32) -> f32 {
-    let span = edge1 - edge0;
-    let t = clamp((x - edge0) / select(span, 1.0, span == 0.0), 0.0, 1.0);
+    let span = 0.5 * edge1 - 0.5 * edge0;
+    let t = clamp((0.5 * x - 0.5 * edge0) / select(span, 1.0, span == 0.0), 0.0, 1.0);
     return select(t, step(edge0, x), span == 0.0);
 }
 
@@ -144,6 +230,12 @@ fn veneer_linearstep(edge0: f32, edge1: f32, x: f32) -> f32 {
 fn veneer_smoothstep(edge0: f32, edge1: f32, x: f32) -> f32 {
     let t = veneer_linearstep(edge0, edge1, x);
     return t * t * (3.0 - 2.0 * t);
+}
+
+// `a (1 - t) + b t` written out (a GPU's mix may compute a + t (b - a), which overflows
+// for far-apart finite values), each product and the sum clamped to the finite range.
+fn veneer_mix_vec3f(a: vec3f, b: vec3f, t: f32) -> vec3f {
+    return veneer_finite_vec3f(veneer_finite_vec3f(a * (1.0 - t)) + veneer_finite_vec3f(b * t));
 }
 
 // ---- node groups
@@ -157,9 +249,9 @@ fn veneer_group_veined_marble(s: VeneerSurface) -> veneer_group_veined_marble_ou
     // Project 'vein axis' (#1)
     let vein_axis: f32 = veneer_project(s.position, vec3f(0.0f, 0.0f, 0.0f), vec3f(0.2f, 0.6f, 0.77f));
     // Transform 'marble space' (#2)
-    let marble_space: vec3f = s.position * vec3f(0.15f, 0.15f, 0.15f) + vec3f(0.0f, 0.0f, 0.0f);
+    let marble_space: vec3f = veneer_scale_offset(s.position, vec3f(0.15f, 0.15f, 0.15f), vec3f(0.0f, 0.0f, 0.0f));
     // Transform 'turbulence space' (#3)
-    let turbulence_space: vec3f = marble_space * vec3f(2.0f, 2.0f, 2.0f) + vec3f(0.0f, 0.0f, 0.0f);
+    let turbulence_space: vec3f = veneer_scale_offset(marble_space, vec3f(2.0f, 2.0f, 2.0f), vec3f(0.0f, 0.0f, 0.0f));
     // fBm 'turbulence' (#4)
     let turbulence: f32 = veneer_fbm_value_sine(turbulence_space * 1.0f, 5, 2.0f, 0.5f, 0.5f, false, 1000000000.0f);
     // Remap 'warp' (#5)
@@ -169,7 +261,7 @@ fn veneer_group_veined_marble(s: VeneerSurface) -> veneer_group_veined_marble_ou
     // Smoothstep 'veins' (#7)
     let veins: f32 = veneer_smoothstep(0.25f, 0.75f, bands);
     // Mix 'stone colour' (#8)
-    let stone_colour: vec3f = mix(vec3f(0.033f, 0.033f, 0.051f), vec3f(0.828f, 0.828f, 0.869f), veins);
+    let stone_colour: vec3f = veneer_mix_vec3f(vec3f(0.033f, 0.033f, 0.051f), vec3f(0.828f, 0.828f, 0.869f), veins);
     return veneer_group_veined_marble_out(stone_colour);
 }
 

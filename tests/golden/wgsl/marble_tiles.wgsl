@@ -49,12 +49,16 @@ struct veneer_tiles_result {
 }
 
 // Tiles of `size` over the xz plane; every other row (along x) shifted by `row_offset`
-// tiles in z; mortar takes the first `gap` of each tile; `blur` is the filter width.
+// tiles in z; mortar takes the first `gap` of each tile (clamped to [0, 1]); `blur` is
+// the filter width. The position in tiles and the filter width in tiles are clamped to
+// +-1e30, so no sum or difference of them overflows.
 fn veneer_tiles(p: vec3f, size: vec2f, gap: vec2f, row_offset: f32, blur: f32) -> veneer_tiles_result {
     let safe_size = select(size, vec2f(1.0), abs(size) < vec2f(1.0e-20));
-    var t = p.xz / safe_size;
+    let limit = vec2f(1.0e30);
+    var t = clamp(p.xz / safe_size, -limit, limit);
     t.y += select(0.0, row_offset, fract(t.x * 0.5) > 0.5);
-    let coverage = veneer_tile_coverage(t, gap, vec2f(blur) / abs(safe_size));
+    let width = clamp(vec2f(blur) / abs(safe_size), -limit, limit);
+    let coverage = veneer_tile_coverage(t, clamp(gap, vec2f(0.0), vec2f(1.0)), width);
     return veneer_tiles_result(coverage.x * coverage.y, ceil(t), fract(t));
 }
 
@@ -90,8 +94,21 @@ fn veneer_gradient_dot(cell: vec3f, d: vec3f) -> f32 {
     return select(-u, u, (h & 1u) == 0u) + select(-v, v, (h & 2u) == 0u);
 }
 
+// ---- shaders/hash.wgsl
+
+// `p` within the lattice's range (+-2147483520 per axis, where the cells' integer
+// coordinates saturate anyway): every lattice noise samples its point through this, so
+// any coordinate (an overflowed product too) gives a finite value.
+fn veneer_lattice_domain(p: vec3f) -> vec3f {
+    let limit = vec3f(2147483520.0);
+    return clamp(p, -limit, limit);
+}
+
+// ---- shaders/gradient.wgsl
+
 // Gradient noise remapped to [0, 1].
-fn veneer_noise_gradient(p: vec3f) -> f32 {
+fn veneer_noise_gradient(point: vec3f) -> f32 {
+    let p = veneer_lattice_domain(point);
     let i = floor(p);
     let f = p - i;
     let u = f * f * f * (f * (f * 6.0 - 15.0) + 10.0);
@@ -111,17 +128,41 @@ fn veneer_noise_gradient(p: vec3f) -> f32 {
     return 0.5 + 0.5 * clamp(n, -1.0, 1.0);
 }
 
-// ---- shaders/math.wgsl
+// ---- shaders/map_range.wgsl
 
-// a / b, 0 where b is 0, clamped to the finite f32 range.
-fn veneer_safe_div_f32(a: f32, b: f32) -> f32 {
-    let q = select(a / b, f32(0.0), b == f32(0.0));
-    return clamp(q, f32(-3.0e38), f32(3.0e38));
+// Where x lies from from_min (0) to from_max (1), unclamped; 0 when the range is empty.
+// The operands are halved first (an exact scaling) so that no difference overflows, and
+// the quotient is clamped to the finite range.
+fn veneer_map_range_factor(x: f32, from_min: f32, from_max: f32) -> f32 {
+    let span = 0.5 * from_max - 0.5 * from_min;
+    let t = (0.5 * x - 0.5 * from_min) / select(span, 1.0, span == 0.0);
+    return select(clamp(t, -3.0e38, 3.0e38), 0.0, span == 0.0);
 }
 
-// Linear map of x from [from_min, from_max] to [to_min, to_max].
+// to_min + t (to_max - to_min), halved like the factor, clamped to the finite range; then
+// clamped to the target range (either order) when `clamp_result`.
+fn veneer_map_range_to(t: f32, to_min: f32, to_max: f32, clamp_result: bool) -> f32 {
+    let y = clamp(to_min + t * (0.5 * to_max - 0.5 * to_min) * 2.0, -3.0e38, 3.0e38);
+    return select(y, clamp(y, min(to_min, to_max), max(to_min, to_max)), clamp_result);
+}
+
+// Linear: to_min + t (to_max - to_min), t = (x - from_min) / (from_max - from_min).
+fn veneer_map_range_linear(x: f32, from_min: f32, from_max: f32, to_min: f32, to_max: f32, clamp_result: bool) -> f32 {
+    return veneer_map_range_to(veneer_map_range_factor(x, from_min, from_max), to_min, to_max, clamp_result);
+}
+
+// ---- shaders/math.wgsl
+
+// Linear map of x from [from_min, from_max] to [to_min, to_max] (to_min where the source
+// range is empty): the linear Map Range without clamping.
 fn veneer_remap(x: f32, from_min: f32, from_max: f32, to_min: f32, to_max: f32) -> f32 {
-    return to_min + veneer_safe_div_f32(x - from_min, from_max - from_min) * (to_max - to_min);
+    return veneer_map_range_linear(x, from_min, from_max, to_min, to_max, false);
+}
+
+// `x` clamped to the finite range: a sum or product of finite values is finite or an
+// infinity (never NaN), and the clamp turns an infinity into the nearest finite value.
+fn veneer_finite_f32(x: f32) -> f32 {
+    return clamp(x, f32(-3.0e38), f32(3.0e38));
 }
 
 // ---- shaders/fractal.wgsl
@@ -146,11 +187,13 @@ fn veneer_octave_turbulence_gradient(q: vec3f) -> f32 {
 }
 
 // Sum of `octaves` octaves; each multiplies the frequency by `lacunarity` and the
-// amplitude by `gain`. With `normalize` the sum is divided by the sum of amplitudes.
-// Octave i counts fully below `cutoff - 1`, fades to its average over the next octave
-// and is replaced by its average from `cutoff` on: those octaves are summed in a second
-// loop without any noise, so a coarse footprint shortens the expensive one (software
-// rasterisers run both sides of a branch; a shorter loop is what saves them work).
+// amplitude by `gain` (the frequency, the amplitude and the sums clamped to the finite
+// range, so no octave overflows into a NaN). With `normalize` the sum is divided by the
+// sum of amplitudes. Octave i counts fully below `cutoff - 1`, fades to its average over
+// the next octave and is replaced by its average from `cutoff` on: those octaves are
+// summed in a second loop without any noise, so a coarse footprint shortens the
+// expensive one (software rasterisers run both sides of a branch; a shorter loop is what
+// saves them work).
 fn veneer_turbulence_gradient(p: vec3f, octaves: i32, lacunarity: f32, gain: f32, amplitude: f32, normalize: bool, cutoff: f32) -> f32 {
     var sum = 0.0;
     var amp = amplitude;
@@ -160,24 +203,26 @@ fn veneer_turbulence_gradient(p: vec3f, octaves: i32, lacunarity: f32, gain: f32
     let evaluated = min(octaves, i32(clamp(ceil(cutoff), 0.0, 64.0)));
     for (var i = 0; i < evaluated; i++) {
         let shown = clamp(cutoff - f32(i), 0.0, 1.0);
-        sum += amp * (shown * veneer_octave_turbulence_gradient(p * freq) + (1.0 - shown) * mean);
-        total += abs(amp);
-        freq *= lacunarity;
-        amp *= gain;
+        sum = clamp(sum + amp * (shown * veneer_octave_turbulence_gradient(p * freq) + (1.0 - shown) * mean), -3.0e38, 3.0e38);
+        total = min(total + abs(amp), 3.0e38);
+        freq = clamp(freq * lacunarity, -3.0e38, 3.0e38);
+        amp = clamp(amp * gain, -3.0e38, 3.0e38);
     }
     for (var i = evaluated; i < octaves; i++) {
-        sum += amp * mean;
-        total += abs(amp);
-        amp *= gain;
+        sum = clamp(sum + amp * mean, -3.0e38, 3.0e38);
+        total = min(total + abs(amp), 3.0e38);
+        amp = clamp(amp * gain, -3.0e38, 3.0e38);
     }
     return select(sum, sum / total, normalize && total > 0.0);
 }
 
 // ---- shaders/patterns.wgsl
 
-// Marble bands of seed 000: 0.5 + 0.5 sin(frequency x + distortion turbulence).
+// Marble bands of seed 000: 0.5 + 0.5 sin(frequency x + distortion turbulence), the
+// products and the phase clamped to the finite range.
 fn veneer_sine_band(x: f32, frequency: f32, distortion: f32, turbulence: f32) -> f32 {
-    return 0.5 + 0.5 * sin(frequency * x + distortion * turbulence);
+    let phase = veneer_finite_f32(frequency * x) + veneer_finite_f32(distortion * turbulence);
+    return 0.5 + 0.5 * sin(veneer_finite_f32(phase));
 }
 
 // ---- shaders/math.wgsl
@@ -186,6 +231,18 @@ fn veneer_sine_band(x: f32, frequency: f32, distortion: f32, turbulence: f32) ->
 fn veneer_safe_pow_f32(a: f32, b: f32) -> f32 {
     let base = max(a, f32(1.0e-30));
     return select(min(pow(base, b), f32(3.0e38)), f32(0.0), a <= f32(0.0));
+}
+
+// `x` clamped to the finite range: a sum or product of finite values is finite or an
+// infinity (never NaN), and the clamp turns an infinity into the nearest finite value.
+fn veneer_finite_vec3f(x: vec3f) -> vec3f {
+    return clamp(x, vec3f(-3.0e38), vec3f(3.0e38));
+}
+
+// `a (1 - t) + b t` written out (a GPU's mix may compute a + t (b - a), which overflows
+// for far-apart finite values), each product and the sum clamped to the finite range.
+fn veneer_mix_vec3f(a: vec3f, b: vec3f, t: f32) -> vec3f {
+    return veneer_finite_vec3f(veneer_finite_vec3f(a * (1.0 - t)) + veneer_finite_vec3f(b * t));
 }
 
 // ---- the material graph
@@ -210,9 +267,9 @@ fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     // Remap 'vein slope' (#6)
     let vein_slope: f32 = veneer_remap(tile_noise, 0.0f, 1.0f, -3.0f, 3.0f);
     // Math 'slope offset' (#8)
-    let slope_offset: f32 = vein_slope * position_parts.z;
+    let slope_offset: f32 = veneer_finite_f32(vein_slope * position_parts.z);
     // Math 'vein coordinate' (#9)
-    let vein_coordinate: f32 = position_parts.x + slope_offset;
+    let vein_coordinate: f32 = veneer_finite_f32(position_parts.x + slope_offset);
     // Turbulence 'turbulence' (#10)
     let turbulence: f32 = veneer_turbulence_gradient(s.position * 1.0f, 4, 2.07f, 0.4830917874396135f, 1.0f, false, 1000000000.0f);
     // Sine band 'veins' (#11)
@@ -222,9 +279,9 @@ fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     // Remap 'vein shade' (#13)
     let vein_shade: f32 = veneer_remap(vein_falloff, 0.0f, 1.0f, 0.2f, 0.95f);
     // Math 'warm marble' (#14)
-    let warm_marble: vec3f = vec3f(vein_shade) * vec3f(1.0f, 1.0f, 0.95f);
+    let warm_marble: vec3f = veneer_finite_vec3f(vec3f(vein_shade) * vec3f(1.0f, 1.0f, 0.95f));
     // Mix 'floor colour' (#15)
-    let floor_colour: vec3f = mix(vec3f(0.2f, 0.2f, 0.2f), warm_marble, flagstones.mask);
+    let floor_colour: vec3f = veneer_mix_vec3f(vec3f(0.2f, 0.2f, 0.2f), warm_marble, flagstones.mask);
     // Material 'material' (#16)
     return VeneerMaterial(
         floor_colour, // albedo

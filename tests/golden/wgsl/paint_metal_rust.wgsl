@@ -24,7 +24,23 @@ struct VeneerMaterial {
     occlusion: f32,   // ambient occlusion, 1 unoccluded
 }
 
+// ---- shaders/math.wgsl
+
+// `x` clamped to the finite range: a sum or product of finite values is finite or an
+// infinity (never NaN), and the clamp turns an infinity into the nearest finite value.
+fn veneer_finite_f32(x: f32) -> f32 {
+    return clamp(x, f32(-3.0e38), f32(3.0e38));
+}
+
 // ---- shaders/hash.wgsl
+
+// `p` within the lattice's range (+-2147483520 per axis, where the cells' integer
+// coordinates saturate anyway): every lattice noise samples its point through this, so
+// any coordinate (an overflowed product too) gives a finite value.
+fn veneer_lattice_domain(p: vec3f) -> vec3f {
+    let limit = vec3f(2147483520.0);
+    return clamp(p, -limit, limit);
+}
 
 // Integer coordinates of a lattice cell, clamped to the i32 range so that any finite
 // coordinate maps to a well-defined cell on every device.
@@ -66,7 +82,8 @@ fn veneer_simplex_corner(cell: vec3f, d: vec3f) -> f32 {
 }
 
 // Simplex noise remapped to [0, 1].
-fn veneer_noise_simplex(p: vec3f) -> f32 {
+fn veneer_noise_simplex(point: vec3f) -> f32 {
+    let p = veneer_lattice_domain(point);
     let skew = (p.x + p.y + p.z) * (1.0 / 3.0);
     let i = floor(p + skew);
     let unskew = (i.x + i.y + i.z) * (1.0 / 6.0);
@@ -103,11 +120,13 @@ fn veneer_octave_mean_fractal_sum() -> f32 {
 }
 
 // Sum of `octaves` octaves; each multiplies the frequency by `lacunarity` and the
-// amplitude by `gain`. With `normalize` the sum is divided by the sum of amplitudes.
-// Octave i counts fully below `cutoff - 1`, fades to its average over the next octave
-// and is replaced by its average from `cutoff` on: those octaves are summed in a second
-// loop without any noise, so a coarse footprint shortens the expensive one (software
-// rasterisers run both sides of a branch; a shorter loop is what saves them work).
+// amplitude by `gain` (the frequency, the amplitude and the sums clamped to the finite
+// range, so no octave overflows into a NaN). With `normalize` the sum is divided by the
+// sum of amplitudes. Octave i counts fully below `cutoff - 1`, fades to its average over
+// the next octave and is replaced by its average from `cutoff` on: those octaves are
+// summed in a second loop without any noise, so a coarse footprint shortens the
+// expensive one (software rasterisers run both sides of a branch; a shorter loop is what
+// saves them work).
 fn veneer_fractal_sum_simplex(p: vec3f, octaves: i32, lacunarity: f32, gain: f32, amplitude: f32, normalize: bool, cutoff: f32) -> f32 {
     var sum = 0.0;
     var amp = amplitude;
@@ -117,25 +136,38 @@ fn veneer_fractal_sum_simplex(p: vec3f, octaves: i32, lacunarity: f32, gain: f32
     let evaluated = min(octaves, i32(clamp(ceil(cutoff), 0.0, 64.0)));
     for (var i = 0; i < evaluated; i++) {
         let shown = clamp(cutoff - f32(i), 0.0, 1.0);
-        sum += amp * (shown * veneer_octave_fractal_sum_simplex(p * freq) + (1.0 - shown) * mean);
-        total += abs(amp);
-        freq *= lacunarity;
-        amp *= gain;
+        sum = clamp(sum + amp * (shown * veneer_octave_fractal_sum_simplex(p * freq) + (1.0 - shown) * mean), -3.0e38, 3.0e38);
+        total = min(total + abs(amp), 3.0e38);
+        freq = clamp(freq * lacunarity, -3.0e38, 3.0e38);
+        amp = clamp(amp * gain, -3.0e38, 3.0e38);
     }
     for (var i = evaluated; i < octaves; i++) {
-        sum += amp * mean;
-        total += abs(amp);
-        amp *= gain;
+        sum = clamp(sum + amp * mean, -3.0e38, 3.0e38);
+        total = min(total + abs(amp), 3.0e38);
+        amp = clamp(amp * gain, -3.0e38, 3.0e38);
     }
     return select(sum, sum / total, normalize && total > 0.0);
 }
 
 // ---- shaders/math.wgsl
 
-// Clamped linear ramp from edge0 to edge1 (a step at the edge when they are equal).
+// `x` clamped to the finite range: a sum or product of finite values is finite or an
+// infinity (never NaN), and the clamp turns an infinity into the nearest finite value.
+fn veneer_finite_vec3f(x: vec3f) -> vec3f {
+    return clamp(x, vec3f(-3.0e38), vec3f(3.0e38));
+}
+
+// `a (1 - t) + b t` written out (a GPU's mix may compute a + t (b - a), which overflows
+// for far-apart finite values), each product and the sum clamped to the finite range.
+fn veneer_mix_vec3f(a: vec3f, b: vec3f, t: f32) -> vec3f {
+    return veneer_finite_vec3f(veneer_finite_vec3f(a * (1.0 - t)) + veneer_finite_vec3f(b * t));
+}
+
+// Clamped linear ramp from edge0 to edge1 (a step at the edge when they are equal). The
+// operands are halved first (an exact scaling), so that no difference overflows.
 fn veneer_linearstep(edge0: f32, edge1: f32, x: f32) -> f32 {
-    let span = edge1 - edge0;
-    let t = clamp((x - edge0) / select(span, 1.0, span == 0.0), 0.0, 1.0);
+    let span = 0.5 * edge1 - 0.5 * edge0;
+    let t = clamp((0.5 * x - 0.5 * edge0) / select(span, 1.0, span == 0.0), 0.0, 1.0);
     return select(t, step(edge0, x), span == 0.0);
 }
 
@@ -152,15 +184,19 @@ fn veneer_smoothstep(edge0: f32, edge1: f32, x: f32) -> f32 {
 // falling smoothly to 0 where `distance + noise` passes the threshold; the fall is
 // centred `centre` widths past the threshold and spans `softness` widths either side
 // (seed 003's smoothstep fronts: §5.2.4 is centre 1, softness 1/2; C.4 and C.5 are
-// centre 0, softness 1); a hard edge at width 0.
+// centre 0, softness 1); a hard edge at width 0. The edges and the sum are clamped to the
+// finite range.
 fn veneer_front(distance: f32, threshold: f32, width: f32, noise: f32, centre: f32, softness: f32) -> f32 {
     let w = max(width, 0.0);
     let s = max(softness, 0.0);
-    return 1.0 - veneer_smoothstep(threshold + (centre - s) * w, threshold + (centre + s) * w, distance + noise);
+    let low = veneer_finite_f32(threshold + veneer_finite_f32(centre - s) * w);
+    let high = veneer_finite_f32(threshold + veneer_finite_f32(centre + s) * w);
+    return 1.0 - veneer_smoothstep(low, high, veneer_finite_f32(distance + noise));
 }
 
 // A relief of basis noise at `p * scale` as a bump: minus `strength` times the noise
-// gradient per noise cell (central differences a hundredth of a cell apart).
+// gradient per noise cell (central differences a hundredth of a cell apart), clamped to
+// the finite range.
 fn veneer_noise_bump_simplex(p: vec3f, scale: f32, strength: f32) -> vec3f {
     let q = p * scale;
     let h = 0.01;
@@ -169,48 +205,48 @@ fn veneer_noise_bump_simplex(p: vec3f, scale: f32, strength: f32) -> vec3f {
         veneer_noise_simplex(q + vec3f(0.0, h, 0.0)) - veneer_noise_simplex(q - vec3f(0.0, h, 0.0)),
         veneer_noise_simplex(q + vec3f(0.0, 0.0, h)) - veneer_noise_simplex(q - vec3f(0.0, 0.0, h)),
     ) / (2.0 * h);
-    return -strength * gradient;
+    return veneer_finite_vec3f(-strength * gradient);
 }
 
 // ---- the material graph
 
 fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     // Math 'ageing' (#3)
-    let ageing: f32 = s.time * 0.04f;
+    let ageing: f32 = veneer_finite_f32(s.time * 0.04f);
     // Math 'deep rust edge' (#4)
-    let deep_rust_edge: f32 = ageing + 0.2f;
+    let deep_rust_edge: f32 = veneer_finite_f32(ageing + 0.2f);
     // Math 'rust edge' (#5)
-    let rust_edge: f32 = ageing + 0.4f;
+    let rust_edge: f32 = veneer_finite_f32(ageing + 0.4f);
     // Math 'metal edge' (#6)
-    let metal_edge: f32 = ageing + 0.5f;
+    let metal_edge: f32 = veneer_finite_f32(ageing + 0.5f);
     // Fractal sum 'rust flakes' (#9)
     let rust_flakes: f32 = veneer_fractal_sum_simplex(s.position * 4.62f, 5, 2.0f, 0.5f, 1.0f, true, 1000000000.0f);
     // Mix 'rust colour' (#10)
-    let rust_colour: vec3f = mix(vec3f(0.42f, 0.22f, 0.1f), vec3f(0.24f, 0.12f, 0.06f), rust_flakes);
+    let rust_colour: vec3f = veneer_mix_vec3f(vec3f(0.42f, 0.22f, 0.1f), vec3f(0.24f, 0.12f, 0.06f), rust_flakes);
     // Fractal sum 'metal stains' (#7)
     let metal_stains: f32 = veneer_fractal_sum_simplex(s.position * 5.0f, 4, 2.0f, 0.5f, 1.0f, true, 1000000000.0f);
     // Mix 'metal colour' (#8)
-    let metal_colour: vec3f = mix(vec3f(0.5f, 0.52f, 0.55f), vec3f(0.68f, 0.7f, 0.72f), metal_stains);
+    let metal_colour: vec3f = veneer_mix_vec3f(vec3f(0.5f, 0.52f, 0.55f), vec3f(0.68f, 0.7f, 0.72f), metal_stains);
     // Layers 'albedo layers' (#11)
-    let albedo_layers: vec3f = mix(mix(mix(vec3f(0.1f, 0.22f, 0.6f), metal_colour, veneer_front(s.fields.x, metal_edge, 0.02f, 0.0f, 0.5f, 0.5f)), rust_colour, veneer_front(s.fields.x, rust_edge, 0.02f, 0.0f, 0.5f, 0.5f)), vec3f(0.16f, 0.08f, 0.05f), veneer_front(s.fields.x, deep_rust_edge, 0.02f, 0.0f, 0.5f, 0.5f));
+    let albedo_layers: vec3f = veneer_mix_vec3f(veneer_mix_vec3f(veneer_mix_vec3f(vec3f(0.1f, 0.22f, 0.6f), metal_colour, veneer_front(s.fields.x, metal_edge, 0.02f, 0.0f, 0.5f, 0.5f)), rust_colour, veneer_front(s.fields.x, rust_edge, 0.02f, 0.0f, 0.5f, 0.5f)), vec3f(0.16f, 0.08f, 0.05f), veneer_front(s.fields.x, deep_rust_edge, 0.02f, 0.0f, 0.5f, 0.5f));
     // Math 'hole edge' (#13)
-    let hole_edge: f32 = ageing + 0.1f;
+    let hole_edge: f32 = veneer_finite_f32(ageing + 0.1f);
     // Noise 'hole noise' (#14)
     let hole_noise: f32 = veneer_noise_simplex(s.position * 10.0f);
     // Math 'hole wobble' (#15)
-    let hole_wobble: f32 = hole_noise * 0.06f;
+    let hole_wobble: f32 = veneer_finite_f32(hole_noise * 0.06f);
     // Front 'eaten' (#16)
     let eaten: f32 = veneer_front(s.fields.x, hole_edge, 0.005f, hole_wobble, 0.5f, 0.5f);
     // Unary 'solid' (#20)
     let solid: f32 = 1.0 - eaten;
     // Layers 'specular layers' (#12)
-    let specular_layers: vec3f = mix(mix(mix(vec3f(0.6f, 0.6f, 0.6f), vec3f(0.8f, 0.8f, 0.78f), veneer_front(s.fields.x, metal_edge, 0.02f, 0.0f, 0.5f, 0.5f)), vec3f(0.03f, 0.02f, 0.02f), veneer_front(s.fields.x, rust_edge, 0.02f, 0.0f, 0.5f, 0.5f)), vec3f(0.0f, 0.0f, 0.0f), veneer_front(s.fields.x, deep_rust_edge, 0.02f, 0.0f, 0.5f, 0.5f));
+    let specular_layers: vec3f = veneer_mix_vec3f(veneer_mix_vec3f(veneer_mix_vec3f(vec3f(0.6f, 0.6f, 0.6f), vec3f(0.8f, 0.8f, 0.78f), veneer_front(s.fields.x, metal_edge, 0.02f, 0.0f, 0.5f, 0.5f)), vec3f(0.03f, 0.02f, 0.02f), veneer_front(s.fields.x, rust_edge, 0.02f, 0.0f, 0.5f, 0.5f)), vec3f(0.0f, 0.0f, 0.0f), veneer_front(s.fields.x, deep_rust_edge, 0.02f, 0.0f, 0.5f, 0.5f));
     // Noise bump 'flake bump' (#17)
     let flake_bump: vec3f = veneer_noise_bump_simplex(s.position, 18.0f, 0.3f);
     // Front 'rusted' (#19)
     let rusted: f32 = veneer_front(s.fields.x, rust_edge, 0.02f, 0.0f, 0.5f, 0.5f);
     // Mix 'bump' (#18)
-    let bump: vec3f = mix(vec3f(0.0f, 0.0f, 0.0f), flake_bump, rusted);
+    let bump: vec3f = veneer_mix_vec3f(vec3f(0.0f, 0.0f, 0.0f), flake_bump, rusted);
     // Material 'material' (#21)
     return VeneerMaterial(
         albedo_layers, // albedo

@@ -24,7 +24,49 @@ struct VeneerMaterial {
     occlusion: f32,   // ambient occlusion, 1 unoccluded
 }
 
+// ---- shaders/math.wgsl
+
+// `x` clamped to the finite range: a sum or product of finite values is finite or an
+// infinity (never NaN), and the clamp turns an infinity into the nearest finite value.
+fn veneer_finite_vec3f(x: vec3f) -> vec3f {
+    return clamp(x, vec3f(-3.0e38), vec3f(3.0e38));
+}
+
+// ---- shaders/coords.wgsl
+
+// `p * scale` clamped to +-1e38: a rotation of it (which keeps its length, at most
+// sqrt(3) times that) and each step of the rotation stay finite.
+fn veneer_scaled(p: vec3f, scale: vec3f) -> vec3f {
+    return clamp(p * scale, vec3f(-1.0e38), vec3f(1.0e38));
+}
+
+// `rotate(p * scale) + offset`, with Euler angles in degrees applied about x, then y, then
+// z; the scaled point clamped to +-1e38 and the result to the finite range.
+fn veneer_transform(p: vec3f, scale: vec3f, rotation: vec3f, offset: vec3f) -> vec3f {
+    let a = radians(rotation);
+    let c = cos(a);
+    let s = sin(a);
+    var q = veneer_scaled(p, scale);
+    q = vec3f(q.x, c.x * q.y - s.x * q.z, s.x * q.y + c.x * q.z);
+    q = vec3f(c.y * q.x + s.y * q.z, q.y, -s.y * q.x + c.y * q.z);
+    q = vec3f(c.z * q.x - s.z * q.y, s.z * q.x + c.z * q.y, q.z);
+    return veneer_finite_vec3f(q + offset);
+}
+
+// `p * scale + offset` (a transform without rotation), clamped like `veneer_transform`.
+fn veneer_scale_offset(p: vec3f, scale: vec3f, offset: vec3f) -> vec3f {
+    return veneer_finite_vec3f(veneer_scaled(p, scale) + offset);
+}
+
 // ---- shaders/hash.wgsl
+
+// `p` within the lattice's range (+-2147483520 per axis, where the cells' integer
+// coordinates saturate anyway): every lattice noise samples its point through this, so
+// any coordinate (an overflowed product too) gives a finite value.
+fn veneer_lattice_domain(p: vec3f) -> vec3f {
+    let limit = vec3f(2147483520.0);
+    return clamp(p, -limit, limit);
+}
 
 // The sine hash of seed 000: cheap, but its value depends on the GPU's sin and it
 // loses all randomness once dot(p, k) is large (see `veneer report`).
@@ -36,7 +78,8 @@ fn veneer_lattice_sine(cell: vec3f) -> f32 {
 // ---- shaders/value.wgsl
 
 // Value noise in [0, 1] with the lattice hash sine.
-fn veneer_noise_value_sine(p: vec3f) -> f32 {
+fn veneer_noise_value_sine(point: vec3f) -> f32 {
+    let p = veneer_lattice_domain(point);
     let i = floor(p);
     let f = fract(p);
     let u = f * f * (3.0 - 2.0 * f);
@@ -71,11 +114,13 @@ fn veneer_octave_mean_fbm() -> f32 {
 }
 
 // Sum of `octaves` octaves; each multiplies the frequency by `lacunarity` and the
-// amplitude by `gain`. With `normalize` the sum is divided by the sum of amplitudes.
-// Octave i counts fully below `cutoff - 1`, fades to its average over the next octave
-// and is replaced by its average from `cutoff` on: those octaves are summed in a second
-// loop without any noise, so a coarse footprint shortens the expensive one (software
-// rasterisers run both sides of a branch; a shorter loop is what saves them work).
+// amplitude by `gain` (the frequency, the amplitude and the sums clamped to the finite
+// range, so no octave overflows into a NaN). With `normalize` the sum is divided by the
+// sum of amplitudes. Octave i counts fully below `cutoff - 1`, fades to its average over
+// the next octave and is replaced by its average from `cutoff` on: those octaves are
+// summed in a second loop without any noise, so a coarse footprint shortens the
+// expensive one (software rasterisers run both sides of a branch; a shorter loop is what
+// saves them work).
 fn veneer_fbm_value_sine(p: vec3f, octaves: i32, lacunarity: f32, gain: f32, amplitude: f32, normalize: bool, cutoff: f32) -> f32 {
     var sum = 0.0;
     var amp = amplitude;
@@ -85,25 +130,26 @@ fn veneer_fbm_value_sine(p: vec3f, octaves: i32, lacunarity: f32, gain: f32, amp
     let evaluated = min(octaves, i32(clamp(ceil(cutoff), 0.0, 64.0)));
     for (var i = 0; i < evaluated; i++) {
         let shown = clamp(cutoff - f32(i), 0.0, 1.0);
-        sum += amp * (shown * veneer_octave_fbm_value_sine(p * freq) + (1.0 - shown) * mean);
-        total += abs(amp);
-        freq *= lacunarity;
-        amp *= gain;
+        sum = clamp(sum + amp * (shown * veneer_octave_fbm_value_sine(p * freq) + (1.0 - shown) * mean), -3.0e38, 3.0e38);
+        total = min(total + abs(amp), 3.0e38);
+        freq = clamp(freq * lacunarity, -3.0e38, 3.0e38);
+        amp = clamp(amp * gain, -3.0e38, 3.0e38);
     }
     for (var i = evaluated; i < octaves; i++) {
-        sum += amp * mean;
-        total += abs(amp);
-        amp *= gain;
+        sum = clamp(sum + amp * mean, -3.0e38, 3.0e38);
+        total = min(total + abs(amp), 3.0e38);
+        amp = clamp(amp * gain, -3.0e38, 3.0e38);
     }
     return select(sum, sum / total, normalize && total > 0.0);
 }
 
 // ---- shaders/math.wgsl
 
-// Clamped linear ramp from edge0 to edge1 (a step at the edge when they are equal).
+// Clamped linear ramp from edge0 to edge1 (a step at the edge when they are equal). The
+// operands are halved first (an exact scaling), so that no difference overflows.
 fn veneer_linearstep(edge0: f32, edge1: f32, x: f32) -> f32 {
-    let span = edge1 - edge0;
-    let t = clamp((x - edge0) / select(span, 1.0, span == 0.0), 0.0, 1.0);
+    let span = 0.5 * edge1 - 0.5 * edge0;
+    let t = clamp((0.5 * x - 0.5 * edge0) / select(span, 1.0, span == 0.0), 0.0, 1.0);
     return select(t, step(edge0, x), span == 0.0);
 }
 
@@ -114,27 +160,45 @@ fn veneer_smoothstep(edge0: f32, edge1: f32, x: f32) -> f32 {
     return t * t * (3.0 - 2.0 * t);
 }
 
+// `a (1 - t) + b t` written out (a GPU's mix may compute a + t (b - a), which overflows
+// for far-apart finite values), each product and the sum clamped to the finite range.
+fn veneer_mix_vec3f(a: vec3f, b: vec3f, t: f32) -> vec3f {
+    return veneer_finite_vec3f(veneer_finite_vec3f(a * (1.0 - t)) + veneer_finite_vec3f(b * t));
+}
+
+// `x` clamped to the finite range: a sum or product of finite values is finite or an
+// infinity (never NaN), and the clamp turns an infinity into the nearest finite value.
+fn veneer_finite_f32(x: f32) -> f32 {
+    return clamp(x, f32(-3.0e38), f32(3.0e38));
+}
+
+// `a (1 - t) + b t` written out (a GPU's mix may compute a + t (b - a), which overflows
+// for far-apart finite values), each product and the sum clamped to the finite range.
+fn veneer_mix_f32(a: f32, b: f32, t: f32) -> f32 {
+    return veneer_finite_f32(veneer_finite_f32(a * (1.0 - t)) + veneer_finite_f32(b * t));
+}
+
 // ---- the material graph
 
 fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     // Transform 'wear space' (#1)
-    let wear_space: vec3f = s.position * vec3f(2.5f, 2.5f, 2.5f) + vec3f(0.0f, 0.0f, 0.0f);
+    let wear_space: vec3f = veneer_scale_offset(s.position, vec3f(2.5f, 2.5f, 2.5f), vec3f(0.0f, 0.0f, 0.0f));
     // fBm 'wear' (#2)
     let wear: f32 = veneer_fbm_value_sine(wear_space * 1.0f, 6, 2.0f, 0.5f, 0.5f, false, 1000000000.0f);
     // Smoothstep 'paint worn through' (#3)
     let paint_worn_through: f32 = veneer_smoothstep(0.5f, 0.54f, wear);
     // Mix 'paint or steel' (#5)
-    let paint_or_steel: vec3f = mix(vec3f(0.02f, 0.1f, 0.3f), vec3f(0.56f, 0.57f, 0.58f), paint_worn_through);
+    let paint_or_steel: vec3f = veneer_mix_vec3f(vec3f(0.02f, 0.1f, 0.3f), vec3f(0.56f, 0.57f, 0.58f), paint_worn_through);
     // Smoothstep 'rusted' (#4)
     let rusted: f32 = veneer_smoothstep(0.55f, 0.63f, wear);
     // Mix 'colour' (#6)
-    let colour: vec3f = mix(paint_or_steel, vec3f(0.2f, 0.06f, 0.02f), rusted);
+    let colour: vec3f = veneer_mix_vec3f(paint_or_steel, vec3f(0.2f, 0.06f, 0.02f), rusted);
     // Mix 'metal shows' (#7)
-    let metal_shows: f32 = mix(paint_worn_through, 0.0f, rusted);
+    let metal_shows: f32 = veneer_mix_f32(paint_worn_through, 0.0f, rusted);
     // Mix 'paint or steel roughness' (#8)
-    let paint_or_steel_roughness: f32 = mix(0.35f, 0.22f, paint_worn_through);
+    let paint_or_steel_roughness: f32 = veneer_mix_f32(0.35f, 0.22f, paint_worn_through);
     // Mix 'roughness' (#9)
-    let roughness: f32 = mix(paint_or_steel_roughness, 0.85f, rusted);
+    let roughness: f32 = veneer_mix_f32(paint_or_steel_roughness, 0.85f, rusted);
     // Material 'material' (#10)
     return VeneerMaterial(
         colour, // albedo

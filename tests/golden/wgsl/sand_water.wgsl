@@ -24,6 +24,20 @@ struct VeneerMaterial {
     occlusion: f32,   // ambient occlusion, 1 unoccluded
 }
 
+// ---- shaders/math.wgsl
+
+// `x` clamped to the finite range: a sum or product of finite values is finite or an
+// infinity (never NaN), and the clamp turns an infinity into the nearest finite value.
+fn veneer_finite_f32(x: f32) -> f32 {
+    return clamp(x, f32(-3.0e38), f32(3.0e38));
+}
+
+// `x` clamped to the finite range: a sum or product of finite values is finite or an
+// infinity (never NaN), and the clamp turns an infinity into the nearest finite value.
+fn veneer_finite_vec3f(x: vec3f) -> vec3f {
+    return clamp(x, vec3f(-3.0e38), vec3f(3.0e38));
+}
+
 // ---- shaders/hash.wgsl
 
 // Integer coordinates of a lattice cell, clamped to the i32 range so that any finite
@@ -31,6 +45,14 @@ struct VeneerMaterial {
 fn veneer_cell_bits(cell: vec3f) -> vec3u {
     let limit = vec3f(2147483520.0);
     return bitcast<vec3u>(vec3i(clamp(cell, -limit, limit)));
+}
+
+// `p` within the lattice's range (+-2147483520 per axis, where the cells' integer
+// coordinates saturate anyway): every lattice noise samples its point through this, so
+// any coordinate (an overflowed product too) gives a finite value.
+fn veneer_lattice_domain(p: vec3f) -> vec3f {
+    let limit = vec3f(2147483520.0);
+    return clamp(p, -limit, limit);
 }
 
 // ---- shaders/worley.wgsl
@@ -68,8 +90,11 @@ fn veneer_unit_floats(bits: vec3u) -> vec3f {
 // ---- shaders/worley.wgsl
 
 // The three smallest feature distances (F1, F2, F3) around `p`; one feature point per
-// cell, displaced from the cell centre by up to `jitter` / 2 per axis.
-fn veneer_worley(p: vec3f, jitter: f32, metric: i32) -> vec3f {
+// cell, displaced from the cell centre by up to `jitter` / 2 per axis (`jitter` clamped
+// to [-1, 1], where every feature point stays in its cell, so distances stay small).
+fn veneer_worley(point: vec3f, jitter: f32, metric: i32) -> vec3f {
+    let p = veneer_lattice_domain(point);
+    let spread = clamp(jitter, -1.0, 1.0);
     let cell = floor(p);
     var f = vec3f(1.0e9);
     for (var z = -1; z <= 1; z++) {
@@ -77,7 +102,7 @@ fn veneer_worley(p: vec3f, jitter: f32, metric: i32) -> vec3f {
             for (var x = -1; x <= 1; x++) {
                 let c = cell + vec3f(f32(x), f32(y), f32(z));
                 let r = veneer_unit_floats(veneer_pcg3d(veneer_cell_bits(c)));
-                let feature = c + 0.5 + jitter * (r - 0.5);
+                let feature = c + 0.5 + spread * (r - 0.5);
                 let d = veneer_metric(p - feature, metric);
                 if d < f.x {
                     f = vec3f(d, f.x, f.y);
@@ -102,25 +127,33 @@ fn veneer_worley_feature(f: vec3f, feature: i32) -> f32 {
     }
 }
 
-// Fractal Worley: `octaves` octaves of a feature, frequency times `lacunarity`, amplitude times `gain`.
+// Fractal Worley: `octaves` octaves of a feature, frequency times `lacunarity`, amplitude
+// times `gain`; the frequency, the amplitude and the sum clamped to the finite range.
 fn veneer_worley_fractal(p: vec3f, jitter: f32, metric: i32, feature: i32, octaves: i32, lacunarity: f32, gain: f32) -> f32 {
     var sum = 0.0;
     var amp = 1.0;
     var freq = 1.0;
     for (var i = 0; i < octaves; i++) {
-        sum += amp * veneer_worley_feature(veneer_worley(p * freq, jitter, metric), feature);
-        freq *= lacunarity;
-        amp *= gain;
+        sum = clamp(sum + amp * veneer_worley_feature(veneer_worley(p * freq, jitter, metric), feature), -3.0e38, 3.0e38);
+        freq = clamp(freq * lacunarity, -3.0e38, 3.0e38);
+        amp = clamp(amp * gain, -3.0e38, 3.0e38);
     }
     return sum;
 }
 
 // ---- shaders/math.wgsl
 
-// Clamped linear ramp from edge0 to edge1 (a step at the edge when they are equal).
+// `a (1 - t) + b t` written out (a GPU's mix may compute a + t (b - a), which overflows
+// for far-apart finite values), each product and the sum clamped to the finite range.
+fn veneer_mix_vec3f(a: vec3f, b: vec3f, t: f32) -> vec3f {
+    return veneer_finite_vec3f(veneer_finite_vec3f(a * (1.0 - t)) + veneer_finite_vec3f(b * t));
+}
+
+// Clamped linear ramp from edge0 to edge1 (a step at the edge when they are equal). The
+// operands are halved first (an exact scaling), so that no difference overflows.
 fn veneer_linearstep(edge0: f32, edge1: f32, x: f32) -> f32 {
-    let span = edge1 - edge0;
-    let t = clamp((x - edge0) / select(span, 1.0, span == 0.0), 0.0, 1.0);
+    let span = 0.5 * edge1 - 0.5 * edge0;
+    let t = clamp((0.5 * x - 0.5 * edge0) / select(span, 1.0, span == 0.0), 0.0, 1.0);
     return select(t, step(edge0, x), span == 0.0);
 }
 
@@ -137,11 +170,14 @@ fn veneer_smoothstep(edge0: f32, edge1: f32, x: f32) -> f32 {
 // falling smoothly to 0 where `distance + noise` passes the threshold; the fall is
 // centred `centre` widths past the threshold and spans `softness` widths either side
 // (seed 003's smoothstep fronts: §5.2.4 is centre 1, softness 1/2; C.4 and C.5 are
-// centre 0, softness 1); a hard edge at width 0.
+// centre 0, softness 1); a hard edge at width 0. The edges and the sum are clamped to the
+// finite range.
 fn veneer_front(distance: f32, threshold: f32, width: f32, noise: f32, centre: f32, softness: f32) -> f32 {
     let w = max(width, 0.0);
     let s = max(softness, 0.0);
-    return 1.0 - veneer_smoothstep(threshold + (centre - s) * w, threshold + (centre + s) * w, distance + noise);
+    let low = veneer_finite_f32(threshold + veneer_finite_f32(centre - s) * w);
+    let high = veneer_finite_f32(threshold + veneer_finite_f32(centre + s) * w);
+    return 1.0 - veneer_smoothstep(low, high, veneer_finite_f32(distance + noise));
 }
 
 // ---- shaders/gradient.wgsl
@@ -155,7 +191,8 @@ fn veneer_gradient_dot(cell: vec3f, d: vec3f) -> f32 {
 }
 
 // Gradient noise remapped to [0, 1].
-fn veneer_noise_gradient(p: vec3f) -> f32 {
+fn veneer_noise_gradient(point: vec3f) -> f32 {
+    let p = veneer_lattice_domain(point);
     let i = floor(p);
     let f = p - i;
     let u = f * f * f * (f * (f * 6.0 - 15.0) + 10.0);
@@ -178,7 +215,8 @@ fn veneer_noise_gradient(p: vec3f) -> f32 {
 // ---- shaders/fields.wgsl
 
 // A relief of basis noise at `p * scale` as a bump: minus `strength` times the noise
-// gradient per noise cell (central differences a hundredth of a cell apart).
+// gradient per noise cell (central differences a hundredth of a cell apart), clamped to
+// the finite range.
 fn veneer_noise_bump_gradient(p: vec3f, scale: f32, strength: f32) -> vec3f {
     let q = p * scale;
     let h = 0.01;
@@ -187,7 +225,7 @@ fn veneer_noise_bump_gradient(p: vec3f, scale: f32, strength: f32) -> vec3f {
         veneer_noise_gradient(q + vec3f(0.0, h, 0.0)) - veneer_noise_gradient(q - vec3f(0.0, h, 0.0)),
         veneer_noise_gradient(q + vec3f(0.0, 0.0, h)) - veneer_noise_gradient(q - vec3f(0.0, 0.0, h)),
     ) / (2.0 * h);
-    return -strength * gradient;
+    return veneer_finite_vec3f(-strength * gradient);
 }
 
 // ---- shaders/simplex.wgsl
@@ -200,7 +238,8 @@ fn veneer_simplex_corner(cell: vec3f, d: vec3f) -> f32 {
 }
 
 // Simplex noise remapped to [0, 1].
-fn veneer_noise_simplex(p: vec3f) -> f32 {
+fn veneer_noise_simplex(point: vec3f) -> f32 {
+    let p = veneer_lattice_domain(point);
     let skew = (p.x + p.y + p.z) * (1.0 / 3.0);
     let i = floor(p + skew);
     let unskew = (i.x + i.y + i.z) * (1.0 / 6.0);
@@ -220,7 +259,8 @@ fn veneer_noise_simplex(p: vec3f) -> f32 {
 // ---- shaders/fields.wgsl
 
 // A relief of basis noise at `p * scale` as a bump: minus `strength` times the noise
-// gradient per noise cell (central differences a hundredth of a cell apart).
+// gradient per noise cell (central differences a hundredth of a cell apart), clamped to
+// the finite range.
 fn veneer_noise_bump_simplex(p: vec3f, scale: f32, strength: f32) -> vec3f {
     let q = p * scale;
     let h = 0.01;
@@ -229,38 +269,38 @@ fn veneer_noise_bump_simplex(p: vec3f, scale: f32, strength: f32) -> vec3f {
         veneer_noise_simplex(q + vec3f(0.0, h, 0.0)) - veneer_noise_simplex(q - vec3f(0.0, h, 0.0)),
         veneer_noise_simplex(q + vec3f(0.0, 0.0, h)) - veneer_noise_simplex(q - vec3f(0.0, 0.0, h)),
     ) / (2.0 * h);
-    return -strength * gradient;
+    return veneer_finite_vec3f(-strength * gradient);
 }
 
 // ---- the material graph
 
 fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     // Math 'slow time' (#17)
-    let slow_time: f32 = s.time * 0.3f;
+    let slow_time: f32 = veneer_finite_f32(s.time * 0.3f);
     // Unary 'sway' (#18)
     let sway: f32 = sin(slow_time);
     // Combine 'drift' (#7)
     let drift: vec3f = vec3f(sway, 0.0f, sway);
     // Math 'ripple space' (#6)
-    let ripple_space: vec3f = s.position + drift;
+    let ripple_space: vec3f = veneer_finite_vec3f(s.position + drift);
     // Worley 'water cells' (#8)
     let water_cells: f32 = veneer_worley_fractal(ripple_space * 7.0f, 1.0f, 0, 0, 3, 2.0f, 0.5f);
     // Mix 'water shade' (#9)
-    let water_shade: vec3f = mix(vec3f(0.12f, 0.4f, 0.34f), vec3f(0.22f, 0.58f, 0.48f), water_cells);
+    let water_shade: vec3f = veneer_mix_vec3f(vec3f(0.12f, 0.4f, 0.34f), vec3f(0.22f, 0.58f, 0.48f), water_cells);
     // Math 'tide' (#3)
-    let tide: f32 = s.time * 0.08f;
+    let tide: f32 = veneer_finite_f32(s.time * 0.08f);
     // Math 'threshold' (#4)
-    let threshold: f32 = tide + 0.3f;
+    let threshold: f32 = veneer_finite_f32(tide + 0.3f);
     // Front 'shore' (#5)
     let shore: f32 = veneer_front(s.fields.x, threshold, 0.05f, 0.0f, 0.5f, 0.5f);
     // Mix 'colour' (#13)
-    let colour: vec3f = mix(water_shade, vec3f(0.894f, 0.969f, 0.755f), shore);
+    let colour: vec3f = veneer_mix_vec3f(water_shade, vec3f(0.894f, 0.969f, 0.755f), shore);
     // Noise bump 'water ripples' (#11)
     let water_ripples: vec3f = veneer_noise_bump_gradient(ripple_space, 9.0f, 0.25f);
     // Noise bump 'sand grains' (#10)
     let sand_grains: vec3f = veneer_noise_bump_simplex(s.position, 120.0f, 0.15f);
     // Mix 'bump' (#14)
-    let bump: vec3f = mix(water_ripples, sand_grains, shore);
+    let bump: vec3f = veneer_mix_vec3f(water_ripples, sand_grains, shore);
     // Material 'material' (#15)
     return VeneerMaterial(
         colour, // albedo

@@ -24,18 +24,38 @@ struct VeneerMaterial {
     occlusion: f32,   // ambient occlusion, 1 unoccluded
 }
 
+// ---- shaders/math.wgsl
+
+// `x` clamped to the finite range: a sum or product of finite values is finite or an
+// infinity (never NaN), and the clamp turns an infinity into the nearest finite value.
+fn veneer_finite_vec3f(x: vec3f) -> vec3f {
+    return clamp(x, vec3f(-3.0e38), vec3f(3.0e38));
+}
+
 // ---- shaders/coords.wgsl
 
-// `rotate(p * scale) + offset`, with Euler angles in degrees applied about x, then y, then z.
+// `p * scale` clamped to +-1e38: a rotation of it (which keeps its length, at most
+// sqrt(3) times that) and each step of the rotation stay finite.
+fn veneer_scaled(p: vec3f, scale: vec3f) -> vec3f {
+    return clamp(p * scale, vec3f(-1.0e38), vec3f(1.0e38));
+}
+
+// `rotate(p * scale) + offset`, with Euler angles in degrees applied about x, then y, then
+// z; the scaled point clamped to +-1e38 and the result to the finite range.
 fn veneer_transform(p: vec3f, scale: vec3f, rotation: vec3f, offset: vec3f) -> vec3f {
     let a = radians(rotation);
     let c = cos(a);
     let s = sin(a);
-    var q = p * scale;
+    var q = veneer_scaled(p, scale);
     q = vec3f(q.x, c.x * q.y - s.x * q.z, s.x * q.y + c.x * q.z);
     q = vec3f(c.y * q.x + s.y * q.z, q.y, -s.y * q.x + c.y * q.z);
     q = vec3f(c.z * q.x - s.z * q.y, s.z * q.x + c.z * q.y, q.z);
-    return q + offset;
+    return veneer_finite_vec3f(q + offset);
+}
+
+// `p * scale + offset` (a transform without rotation), clamped like `veneer_transform`.
+fn veneer_scale_offset(p: vec3f, scale: vec3f, offset: vec3f) -> vec3f {
+    return veneer_finite_vec3f(veneer_scaled(p, scale) + offset);
 }
 
 // ---- shaders/hash.wgsl
@@ -45,6 +65,14 @@ fn veneer_transform(p: vec3f, scale: vec3f, rotation: vec3f, offset: vec3f) -> v
 fn veneer_cell_bits(cell: vec3f) -> vec3u {
     let limit = vec3f(2147483520.0);
     return bitcast<vec3u>(vec3i(clamp(cell, -limit, limit)));
+}
+
+// `p` within the lattice's range (+-2147483520 per axis, where the cells' integer
+// coordinates saturate anyway): every lattice noise samples its point through this, so
+// any coordinate (an overflowed product too) gives a finite value.
+fn veneer_lattice_domain(p: vec3f) -> vec3f {
+    let limit = vec3f(2147483520.0);
+    return clamp(p, -limit, limit);
 }
 
 // PCG3D (Jarzynski and Olano 2020): three rounds of an LCG mixed across lanes.
@@ -70,7 +98,15 @@ fn veneer_unit_floats(bits: vec3u) -> vec3f {
 // White noise as a colour in [0, 1) per channel: the three PCG lanes of the cell floor(p)
 // (its red channel is the scalar white noise of the same cell).
 fn veneer_white_noise_color(p: vec3f) -> vec3f {
-    return veneer_unit_floats(veneer_pcg3d(veneer_cell_bits(floor(p))));
+    return veneer_unit_floats(veneer_pcg3d(veneer_cell_bits(floor(veneer_lattice_domain(p)))));
+}
+
+// ---- shaders/math.wgsl
+
+// `x` clamped to the finite range: a sum or product of finite values is finite or an
+// infinity (never NaN), and the clamp turns an infinity into the nearest finite value.
+fn veneer_finite_f32(x: f32) -> f32 {
+    return clamp(x, f32(-3.0e38), f32(3.0e38));
 }
 
 // ---- shaders/patterns.wgsl
@@ -98,13 +134,25 @@ struct veneer_tiles_result {
 }
 
 // Tiles of `size` over the xz plane; every other row (along x) shifted by `row_offset`
-// tiles in z; mortar takes the first `gap` of each tile; `blur` is the filter width.
+// tiles in z; mortar takes the first `gap` of each tile (clamped to [0, 1]); `blur` is
+// the filter width. The position in tiles and the filter width in tiles are clamped to
+// +-1e30, so no sum or difference of them overflows.
 fn veneer_tiles(p: vec3f, size: vec2f, gap: vec2f, row_offset: f32, blur: f32) -> veneer_tiles_result {
     let safe_size = select(size, vec2f(1.0), abs(size) < vec2f(1.0e-20));
-    var t = p.xz / safe_size;
+    let limit = vec2f(1.0e30);
+    var t = clamp(p.xz / safe_size, -limit, limit);
     t.y += select(0.0, row_offset, fract(t.x * 0.5) > 0.5);
-    let coverage = veneer_tile_coverage(t, gap, vec2f(blur) / abs(safe_size));
+    let width = clamp(vec2f(blur) / abs(safe_size), -limit, limit);
+    let coverage = veneer_tile_coverage(t, clamp(gap, vec2f(0.0), vec2f(1.0)), width);
     return veneer_tiles_result(coverage.x * coverage.y, ceil(t), fract(t));
+}
+
+// ---- shaders/math.wgsl
+
+// `a (1 - t) + b t` written out (a GPU's mix may compute a + t (b - a), which overflows
+// for far-apart finite values), each product and the sum clamped to the finite range.
+fn veneer_mix_vec3f(a: vec3f, b: vec3f, t: f32) -> vec3f {
+    return veneer_finite_vec3f(veneer_finite_vec3f(a * (1.0 - t)) + veneer_finite_vec3f(b * t));
 }
 
 // ---- the material graph
@@ -113,21 +161,21 @@ fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     // Transform 'mortar centred' (#2)
     let mortar_centred: vec3f = veneer_transform(s.position, vec3f(1.0f, 1.0f, 1.0f), vec3f(0.0f, 90.0f, 0.0f), vec3f(0.005f, 0.0f, 0.005f));
     // Transform 'rows' (#3)
-    let rows: vec3f = mortar_centred * vec3f(11.11111111111111f, 0.0f, 0.0f) + vec3f(0.0f, 0.0f, 0.0f);
+    let rows: vec3f = veneer_scale_offset(mortar_centred, vec3f(11.11111111111111f, 0.0f, 0.0f), vec3f(0.0f, 0.0f, 0.0f));
     // White noise 'row noise' (#4)
     let row_noise = veneer_white_noise_color(rows * 1.0f);
     // Math 'row noise centred' (#5)
-    let row_noise_centred: f32 = row_noise.x - 0.5f;
+    let row_noise_centred: f32 = veneer_finite_f32(row_noise.x - 0.5f);
     // Math 'row shift' (#7)
-    let row_shift: f32 = row_noise_centred * 0.04f;
+    let row_shift: f32 = veneer_finite_f32(row_noise_centred * 0.04f);
     // Combine 'shift' (#8)
     let shift: vec3f = vec3f(0.0f, 0.0f, row_shift);
     // Math 'jittered' (#9)
-    let jittered: vec3f = mortar_centred + shift;
+    let jittered: vec3f = veneer_finite_vec3f(mortar_centred + shift);
     // Tiles 'bricks' (#10)
     let bricks = veneer_tiles(jittered, vec2f(0.09f, 0.26f), vec2f(0.1111111111111111f, 0.038461538461538464f), 0.5f, 0.0f);
     // Mix 'colour' (#11)
-    let colour: vec3f = mix(vec3f(0.5f, 0.5f, 0.5f), vec3f(0.5f, 0.15f, 0.14f), bricks.mask);
+    let colour: vec3f = veneer_mix_vec3f(vec3f(0.5f, 0.5f, 0.5f), vec3f(0.5f, 0.15f, 0.14f), bricks.mask);
     // Material 'material' (#12)
     return VeneerMaterial(
         colour, // albedo

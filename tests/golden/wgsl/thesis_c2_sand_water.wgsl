@@ -26,10 +26,17 @@ struct VeneerMaterial {
 
 // ---- shaders/math.wgsl
 
-// Clamped linear ramp from edge0 to edge1 (a step at the edge when they are equal).
+// `x` clamped to the finite range: a sum or product of finite values is finite or an
+// infinity (never NaN), and the clamp turns an infinity into the nearest finite value.
+fn veneer_finite_f32(x: f32) -> f32 {
+    return clamp(x, f32(-3.0e38), f32(3.0e38));
+}
+
+// Clamped linear ramp from edge0 to edge1 (a step at the edge when they are equal). The
+// operands are halved first (an exact scaling), so that no difference overflows.
 fn veneer_linearstep(edge0: f32, edge1: f32, x: f32) -> f32 {
-    let span = edge1 - edge0;
-    let t = clamp((x - edge0) / select(span, 1.0, span == 0.0), 0.0, 1.0);
+    let span = 0.5 * edge1 - 0.5 * edge0;
+    let t = clamp((0.5 * x - 0.5 * edge0) / select(span, 1.0, span == 0.0), 0.0, 1.0);
     return select(t, step(edge0, x), span == 0.0);
 }
 
@@ -46,11 +53,28 @@ fn veneer_smoothstep(edge0: f32, edge1: f32, x: f32) -> f32 {
 // falling smoothly to 0 where `distance + noise` passes the threshold; the fall is
 // centred `centre` widths past the threshold and spans `softness` widths either side
 // (seed 003's smoothstep fronts: §5.2.4 is centre 1, softness 1/2; C.4 and C.5 are
-// centre 0, softness 1); a hard edge at width 0.
+// centre 0, softness 1); a hard edge at width 0. The edges and the sum are clamped to the
+// finite range.
 fn veneer_front(distance: f32, threshold: f32, width: f32, noise: f32, centre: f32, softness: f32) -> f32 {
     let w = max(width, 0.0);
     let s = max(softness, 0.0);
-    return 1.0 - veneer_smoothstep(threshold + (centre - s) * w, threshold + (centre + s) * w, distance + noise);
+    let low = veneer_finite_f32(threshold + veneer_finite_f32(centre - s) * w);
+    let high = veneer_finite_f32(threshold + veneer_finite_f32(centre + s) * w);
+    return 1.0 - veneer_smoothstep(low, high, veneer_finite_f32(distance + noise));
+}
+
+// ---- shaders/math.wgsl
+
+// `x` clamped to the finite range: a sum or product of finite values is finite or an
+// infinity (never NaN), and the clamp turns an infinity into the nearest finite value.
+fn veneer_finite_vec3f(x: vec3f) -> vec3f {
+    return clamp(x, vec3f(-3.0e38), vec3f(3.0e38));
+}
+
+// `a (1 - t) + b t` written out (a GPU's mix may compute a + t (b - a), which overflows
+// for far-apart finite values), each product and the sum clamped to the finite range.
+fn veneer_mix_vec3f(a: vec3f, b: vec3f, t: f32) -> vec3f {
+    return veneer_finite_vec3f(veneer_finite_vec3f(a * (1.0 - t)) + veneer_finite_vec3f(b * t));
 }
 
 // ---- shaders/hash.wgsl
@@ -60,6 +84,14 @@ fn veneer_front(distance: f32, threshold: f32, width: f32, noise: f32, centre: f
 fn veneer_cell_bits(cell: vec3f) -> vec3u {
     let limit = vec3f(2147483520.0);
     return bitcast<vec3u>(vec3i(clamp(cell, -limit, limit)));
+}
+
+// `p` within the lattice's range (+-2147483520 per axis, where the cells' integer
+// coordinates saturate anyway): every lattice noise samples its point through this, so
+// any coordinate (an overflowed product too) gives a finite value.
+fn veneer_lattice_domain(p: vec3f) -> vec3f {
+    let limit = vec3f(2147483520.0);
+    return clamp(p, -limit, limit);
 }
 
 // ---- shaders/worley.wgsl
@@ -97,8 +129,11 @@ fn veneer_unit_floats(bits: vec3u) -> vec3f {
 // ---- shaders/worley.wgsl
 
 // The three smallest feature distances (F1, F2, F3) around `p`; one feature point per
-// cell, displaced from the cell centre by up to `jitter` / 2 per axis.
-fn veneer_worley(p: vec3f, jitter: f32, metric: i32) -> vec3f {
+// cell, displaced from the cell centre by up to `jitter` / 2 per axis (`jitter` clamped
+// to [-1, 1], where every feature point stays in its cell, so distances stay small).
+fn veneer_worley(point: vec3f, jitter: f32, metric: i32) -> vec3f {
+    let p = veneer_lattice_domain(point);
+    let spread = clamp(jitter, -1.0, 1.0);
     let cell = floor(p);
     var f = vec3f(1.0e9);
     for (var z = -1; z <= 1; z++) {
@@ -106,7 +141,7 @@ fn veneer_worley(p: vec3f, jitter: f32, metric: i32) -> vec3f {
             for (var x = -1; x <= 1; x++) {
                 let c = cell + vec3f(f32(x), f32(y), f32(z));
                 let r = veneer_unit_floats(veneer_pcg3d(veneer_cell_bits(c)));
-                let feature = c + 0.5 + jitter * (r - 0.5);
+                let feature = c + 0.5 + spread * (r - 0.5);
                 let d = veneer_metric(p - feature, metric);
                 if d < f.x {
                     f = vec3f(d, f.x, f.y);
@@ -131,15 +166,16 @@ fn veneer_worley_feature(f: vec3f, feature: i32) -> f32 {
     }
 }
 
-// Fractal Worley: `octaves` octaves of a feature, frequency times `lacunarity`, amplitude times `gain`.
+// Fractal Worley: `octaves` octaves of a feature, frequency times `lacunarity`, amplitude
+// times `gain`; the frequency, the amplitude and the sum clamped to the finite range.
 fn veneer_worley_fractal(p: vec3f, jitter: f32, metric: i32, feature: i32, octaves: i32, lacunarity: f32, gain: f32) -> f32 {
     var sum = 0.0;
     var amp = 1.0;
     var freq = 1.0;
     for (var i = 0; i < octaves; i++) {
-        sum += amp * veneer_worley_feature(veneer_worley(p * freq, jitter, metric), feature);
-        freq *= lacunarity;
-        amp *= gain;
+        sum = clamp(sum + amp * veneer_worley_feature(veneer_worley(p * freq, jitter, metric), feature), -3.0e38, 3.0e38);
+        freq = clamp(freq * lacunarity, -3.0e38, 3.0e38);
+        amp = clamp(amp * gain, -3.0e38, 3.0e38);
     }
     return sum;
 }
@@ -164,7 +200,8 @@ fn veneer_simplex_corner(cell: vec3f, d: vec3f) -> f32 {
 }
 
 // Simplex noise remapped to [0, 1].
-fn veneer_noise_simplex(p: vec3f) -> f32 {
+fn veneer_noise_simplex(point: vec3f) -> f32 {
+    let p = veneer_lattice_domain(point);
     let skew = (p.x + p.y + p.z) * (1.0 / 3.0);
     let i = floor(p + skew);
     let unskew = (i.x + i.y + i.z) * (1.0 / 6.0);
@@ -201,11 +238,13 @@ fn veneer_octave_mean_fractal_sum() -> f32 {
 }
 
 // Sum of `octaves` octaves; each multiplies the frequency by `lacunarity` and the
-// amplitude by `gain`. With `normalize` the sum is divided by the sum of amplitudes.
-// Octave i counts fully below `cutoff - 1`, fades to its average over the next octave
-// and is replaced by its average from `cutoff` on: those octaves are summed in a second
-// loop without any noise, so a coarse footprint shortens the expensive one (software
-// rasterisers run both sides of a branch; a shorter loop is what saves them work).
+// amplitude by `gain` (the frequency, the amplitude and the sums clamped to the finite
+// range, so no octave overflows into a NaN). With `normalize` the sum is divided by the
+// sum of amplitudes. Octave i counts fully below `cutoff - 1`, fades to its average over
+// the next octave and is replaced by its average from `cutoff` on: those octaves are
+// summed in a second loop without any noise, so a coarse footprint shortens the
+// expensive one (software rasterisers run both sides of a branch; a shorter loop is what
+// saves them work).
 fn veneer_fractal_sum_simplex(p: vec3f, octaves: i32, lacunarity: f32, gain: f32, amplitude: f32, normalize: bool, cutoff: f32) -> f32 {
     var sum = 0.0;
     var amp = amplitude;
@@ -215,17 +254,25 @@ fn veneer_fractal_sum_simplex(p: vec3f, octaves: i32, lacunarity: f32, gain: f32
     let evaluated = min(octaves, i32(clamp(ceil(cutoff), 0.0, 64.0)));
     for (var i = 0; i < evaluated; i++) {
         let shown = clamp(cutoff - f32(i), 0.0, 1.0);
-        sum += amp * (shown * veneer_octave_fractal_sum_simplex(p * freq) + (1.0 - shown) * mean);
-        total += abs(amp);
-        freq *= lacunarity;
-        amp *= gain;
+        sum = clamp(sum + amp * (shown * veneer_octave_fractal_sum_simplex(p * freq) + (1.0 - shown) * mean), -3.0e38, 3.0e38);
+        total = min(total + abs(amp), 3.0e38);
+        freq = clamp(freq * lacunarity, -3.0e38, 3.0e38);
+        amp = clamp(amp * gain, -3.0e38, 3.0e38);
     }
     for (var i = evaluated; i < octaves; i++) {
-        sum += amp * mean;
-        total += abs(amp);
-        amp *= gain;
+        sum = clamp(sum + amp * mean, -3.0e38, 3.0e38);
+        total = min(total + abs(amp), 3.0e38);
+        amp = clamp(amp * gain, -3.0e38, 3.0e38);
     }
     return select(sum, sum / total, normalize && total > 0.0);
+}
+
+// ---- shaders/math.wgsl
+
+// `a (1 - t) + b t` written out (a GPU's mix may compute a + t (b - a), which overflows
+// for far-apart finite values), each product and the sum clamped to the finite range.
+fn veneer_mix_f32(a: f32, b: f32, t: f32) -> f32 {
+    return veneer_finite_f32(veneer_finite_f32(a * (1.0 - t)) + veneer_finite_f32(b * t));
 }
 
 // ---- the material graph
@@ -234,25 +281,25 @@ fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     // Front 'sand (1 - shore)' (#5)
     let sand_1_shore: f32 = veneer_front(s.fields.x, 0.3f, 0.0485f, 0.0f, 1.0f, 0.5f);
     // Mix 'diffuse' (#15)
-    let diffuse: vec3f = mix(vec3f(0.177f, 0.503f, 0.413f), vec3f(0.894f, 0.969f, 0.755f), sand_1_shore);
+    let diffuse: vec3f = veneer_mix_vec3f(vec3f(0.177f, 0.503f, 0.413f), vec3f(0.894f, 0.969f, 0.755f), sand_1_shore);
     // Math 'cell space' (#6)
-    let cell_space: vec3f = s.position * vec3f(7.0f, 7.0f, 7.0f);
+    let cell_space: vec3f = veneer_finite_vec3f(s.position * vec3f(7.0f, 7.0f, 7.0f));
     // Clamp 'flow time' (#7)
     let flow_time: f32 = min(max(s.time, f32(0.0f)), f32(10000.0f));
     // Math 'flow' (#8)
-    let flow: f32 = flow_time * 0.5f;
+    let flow: f32 = veneer_finite_f32(flow_time * 0.5f);
     // Math 'flowing cell space' (#9)
-    let flowing_cell_space: vec3f = cell_space + vec3f(flow);
+    let flowing_cell_space: vec3f = veneer_finite_vec3f(cell_space + vec3f(flow));
     // Worley 'worley' (#10)
     let worley: f32 = veneer_worley_fractal(flowing_cell_space * 1.0f, 1.0f, 0, 0, 3, 2.0f, 0.5f);
     // Math 'sand space' (#11)
-    let sand_space: vec3f = s.position * vec3f(1000.0f, 1000.0f, 1000.0f);
+    let sand_space: vec3f = veneer_finite_vec3f(s.position * vec3f(1000.0f, 1000.0f, 1000.0f));
     // Fractal sum 'sandBump' (#12)
     let sand_bump: f32 = veneer_fractal_sum_simplex(sand_space * 1.0f, 1, 2.0f, 0.5f, 1.0f, false, 1000000000.0f);
     // Mix 'bump' (#13)
-    let bump: f32 = mix(worley, sand_bump, sand_1_shore);
+    let bump: f32 = veneer_mix_f32(worley, sand_bump, sand_1_shore);
     // Math 'bumpScale' (#14)
-    let bump_scale: f32 = bump * 0.15f;
+    let bump_scale: f32 = veneer_finite_f32(bump * 0.15f);
     // Material 'material' (#16)
     return VeneerMaterial(
         diffuse, // albedo

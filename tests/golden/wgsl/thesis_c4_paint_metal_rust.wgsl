@@ -24,7 +24,23 @@ struct VeneerMaterial {
     occlusion: f32,   // ambient occlusion, 1 unoccluded
 }
 
+// ---- shaders/math.wgsl
+
+// `x` clamped to the finite range: a sum or product of finite values is finite or an
+// infinity (never NaN), and the clamp turns an infinity into the nearest finite value.
+fn veneer_finite_vec3f(x: vec3f) -> vec3f {
+    return clamp(x, vec3f(-3.0e38), vec3f(3.0e38));
+}
+
 // ---- shaders/hash.wgsl
+
+// `p` within the lattice's range (+-2147483520 per axis, where the cells' integer
+// coordinates saturate anyway): every lattice noise samples its point through this, so
+// any coordinate (an overflowed product too) gives a finite value.
+fn veneer_lattice_domain(p: vec3f) -> vec3f {
+    let limit = vec3f(2147483520.0);
+    return clamp(p, -limit, limit);
+}
 
 // Integer coordinates of a lattice cell, clamped to the i32 range so that any finite
 // coordinate maps to a well-defined cell on every device.
@@ -66,7 +82,8 @@ fn veneer_simplex_corner(cell: vec3f, d: vec3f) -> f32 {
 }
 
 // Simplex noise remapped to [0, 1].
-fn veneer_noise_simplex(p: vec3f) -> f32 {
+fn veneer_noise_simplex(point: vec3f) -> f32 {
+    let p = veneer_lattice_domain(point);
     let skew = (p.x + p.y + p.z) * (1.0 / 3.0);
     let i = floor(p + skew);
     let unskew = (i.x + i.y + i.z) * (1.0 / 6.0);
@@ -103,11 +120,13 @@ fn veneer_octave_mean_fractal_sum() -> f32 {
 }
 
 // Sum of `octaves` octaves; each multiplies the frequency by `lacunarity` and the
-// amplitude by `gain`. With `normalize` the sum is divided by the sum of amplitudes.
-// Octave i counts fully below `cutoff - 1`, fades to its average over the next octave
-// and is replaced by its average from `cutoff` on: those octaves are summed in a second
-// loop without any noise, so a coarse footprint shortens the expensive one (software
-// rasterisers run both sides of a branch; a shorter loop is what saves them work).
+// amplitude by `gain` (the frequency, the amplitude and the sums clamped to the finite
+// range, so no octave overflows into a NaN). With `normalize` the sum is divided by the
+// sum of amplitudes. Octave i counts fully below `cutoff - 1`, fades to its average over
+// the next octave and is replaced by its average from `cutoff` on: those octaves are
+// summed in a second loop without any noise, so a coarse footprint shortens the
+// expensive one (software rasterisers run both sides of a branch; a shorter loop is what
+// saves them work).
 fn veneer_fractal_sum_simplex(p: vec3f, octaves: i32, lacunarity: f32, gain: f32, amplitude: f32, normalize: bool, cutoff: f32) -> f32 {
     var sum = 0.0;
     var amp = amplitude;
@@ -117,25 +136,32 @@ fn veneer_fractal_sum_simplex(p: vec3f, octaves: i32, lacunarity: f32, gain: f32
     let evaluated = min(octaves, i32(clamp(ceil(cutoff), 0.0, 64.0)));
     for (var i = 0; i < evaluated; i++) {
         let shown = clamp(cutoff - f32(i), 0.0, 1.0);
-        sum += amp * (shown * veneer_octave_fractal_sum_simplex(p * freq) + (1.0 - shown) * mean);
-        total += abs(amp);
-        freq *= lacunarity;
-        amp *= gain;
+        sum = clamp(sum + amp * (shown * veneer_octave_fractal_sum_simplex(p * freq) + (1.0 - shown) * mean), -3.0e38, 3.0e38);
+        total = min(total + abs(amp), 3.0e38);
+        freq = clamp(freq * lacunarity, -3.0e38, 3.0e38);
+        amp = clamp(amp * gain, -3.0e38, 3.0e38);
     }
     for (var i = evaluated; i < octaves; i++) {
-        sum += amp * mean;
-        total += abs(amp);
-        amp *= gain;
+        sum = clamp(sum + amp * mean, -3.0e38, 3.0e38);
+        total = min(total + abs(amp), 3.0e38);
+        amp = clamp(amp * gain, -3.0e38, 3.0e38);
     }
     return select(sum, sum / total, normalize && total > 0.0);
 }
 
 // ---- shaders/math.wgsl
 
-// Clamped linear ramp from edge0 to edge1 (a step at the edge when they are equal).
+// `x` clamped to the finite range: a sum or product of finite values is finite or an
+// infinity (never NaN), and the clamp turns an infinity into the nearest finite value.
+fn veneer_finite_f32(x: f32) -> f32 {
+    return clamp(x, f32(-3.0e38), f32(3.0e38));
+}
+
+// Clamped linear ramp from edge0 to edge1 (a step at the edge when they are equal). The
+// operands are halved first (an exact scaling), so that no difference overflows.
 fn veneer_linearstep(edge0: f32, edge1: f32, x: f32) -> f32 {
-    let span = edge1 - edge0;
-    let t = clamp((x - edge0) / select(span, 1.0, span == 0.0), 0.0, 1.0);
+    let span = 0.5 * edge1 - 0.5 * edge0;
+    let t = clamp((0.5 * x - 0.5 * edge0) / select(span, 1.0, span == 0.0), 0.0, 1.0);
     return select(t, step(edge0, x), span == 0.0);
 }
 
@@ -152,116 +178,147 @@ fn veneer_smoothstep(edge0: f32, edge1: f32, x: f32) -> f32 {
 // falling smoothly to 0 where `distance + noise` passes the threshold; the fall is
 // centred `centre` widths past the threshold and spans `softness` widths either side
 // (seed 003's smoothstep fronts: §5.2.4 is centre 1, softness 1/2; C.4 and C.5 are
-// centre 0, softness 1); a hard edge at width 0.
+// centre 0, softness 1); a hard edge at width 0. The edges and the sum are clamped to the
+// finite range.
 fn veneer_front(distance: f32, threshold: f32, width: f32, noise: f32, centre: f32, softness: f32) -> f32 {
     let w = max(width, 0.0);
     let s = max(softness, 0.0);
-    return 1.0 - veneer_smoothstep(threshold + (centre - s) * w, threshold + (centre + s) * w, distance + noise);
+    let low = veneer_finite_f32(threshold + veneer_finite_f32(centre - s) * w);
+    let high = veneer_finite_f32(threshold + veneer_finite_f32(centre + s) * w);
+    return 1.0 - veneer_smoothstep(low, high, veneer_finite_f32(distance + noise));
+}
+
+// ---- shaders/math.wgsl
+
+// `a (1 - t) + b t` written out (a GPU's mix may compute a + t (b - a), which overflows
+// for far-apart finite values), each product and the sum clamped to the finite range.
+fn veneer_mix_vec3f(a: vec3f, b: vec3f, t: f32) -> vec3f {
+    return veneer_finite_vec3f(veneer_finite_vec3f(a * (1.0 - t)) + veneer_finite_vec3f(b * t));
+}
+
+// `a (1 - t) + b t` written out (a GPU's mix may compute a + t (b - a), which overflows
+// for far-apart finite values), each product and the sum clamped to the finite range.
+fn veneer_mix_f32(a: f32, b: f32, t: f32) -> f32 {
+    return veneer_finite_f32(veneer_finite_f32(a * (1.0 - t)) + veneer_finite_f32(b * t));
+}
+
+// The length of `v` for any finite `v`: where its square overflows (past 1e38), the
+// length of `v` scaled by 2^-100 and back (exact), clamped to the finite range.
+fn veneer_length_vec3f(v: vec3f) -> f32 {
+    let scaled = 1.2676506002e30 * length(v * 7.888609052e-31);
+    return min(select(length(v), scaled, dot(v, v) > 1.0e38), 3.0e38);
+}
+
+// The length of `v` for any finite `v`: where its square overflows (past 1e38), the
+// length of `v` scaled by 2^-100 and back (exact), clamped to the finite range.
+fn veneer_length_vec2f(v: vec2f) -> f32 {
+    let scaled = 1.2676506002e30 * length(v * 7.888609052e-31);
+    return min(select(length(v), scaled, dot(v, v) > 1.0e38), 3.0e38);
 }
 
 // ---- the material graph
 
 fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     // Math 'metal space' (#13)
-    let metal_space: vec3f = s.position * vec3f(5.0f, 5.0f, 5.0f);
+    let metal_space: vec3f = veneer_finite_vec3f(s.position * vec3f(5.0f, 5.0f, 5.0f));
     // Fractal sum 'metal fractalsum' (#14)
     let metal_fractalsum: f32 = veneer_fractal_sum_simplex(metal_space * 1.0f, 3, 2.0f, 0.5f, 1.0f, false, 1000000000.0f);
     // Math 'metal stain' (#15)
-    let metal_stain: f32 = metal_fractalsum * 0.1f;
+    let metal_stain: f32 = veneer_finite_f32(metal_fractalsum * 0.1f);
     // Math 'fvDiffuse2 rgb' (#16)
-    let fv_diffuse2_rgb: vec3f = vec3f(0.64f, 0.64f, 0.64f) - vec3f(metal_stain);
+    let fv_diffuse2_rgb: vec3f = veneer_finite_vec3f(vec3f(0.64f, 0.64f, 0.64f) - vec3f(metal_stain));
     // Front 'threshold1' (#12)
     let threshold1: f32 = veneer_front(s.fields.x, 0.6f, 0.005f, 0.0f, 0.0f, 1.0f);
     // Mix 'fvDiffuse (paint, metal)' (#46)
-    let fv_diffuse_paint_metal: vec3f = mix(vec3f(0.11f, 0.16f, 0.48f), fv_diffuse2_rgb, threshold1);
+    let fv_diffuse_paint_metal: vec3f = veneer_mix_vec3f(vec3f(0.11f, 0.16f, 0.48f), fv_diffuse2_rgb, threshold1);
     // Math 'rust space' (#18)
-    let rust_space: vec3f = s.position * vec3f(4.62f, 4.62f, 4.62f);
+    let rust_space: vec3f = veneer_finite_vec3f(s.position * vec3f(4.62f, 4.62f, 4.62f));
     // Fractal sum 'rust fractalsum' (#19)
     let rust_fractalsum: f32 = veneer_fractal_sum_simplex(rust_space * 1.0f, 3, 2.0f, 0.5f, 1.0f, false, 1000000000.0f);
     // Math 'past layer 2' (#21)
-    let past_layer_2: f32 = s.fields.x - 0.4f;
+    let past_layer_2: f32 = veneer_finite_f32(s.fields.x - 0.4f);
     // Math 'rust depth' (#22)
-    let rust_depth: f32 = past_layer_2 + -0.5f;
+    let rust_depth: f32 = veneer_finite_f32(past_layer_2 + -0.5f);
     // Math 'rust noise depth' (#23)
-    let rust_noise_depth: f32 = rust_fractalsum * rust_depth;
+    let rust_noise_depth: f32 = veneer_finite_f32(rust_fractalsum * rust_depth);
     // Math 'rust stain' (#24)
-    let rust_stain: f32 = rust_noise_depth * 0.3f;
+    let rust_stain: f32 = veneer_finite_f32(rust_noise_depth * 0.3f);
     // Math 'fvDiffuse3 rgb' (#25)
-    let fv_diffuse3_rgb: vec3f = vec3f(0.29f, 0.17f, 0.13f) - vec3f(rust_stain);
+    let fv_diffuse3_rgb: vec3f = veneer_finite_vec3f(vec3f(0.29f, 0.17f, 0.13f) - vec3f(rust_stain));
     // Front 'threshold2' (#44)
     let threshold2: f32 = veneer_front(s.fields.x, 0.4f, 0.08f, 0.0f, 0.0f, 1.0f);
     // Mix 'fvDiffuse (rust)' (#47)
-    let fv_diffuse_rust: vec3f = mix(fv_diffuse_paint_metal, fv_diffuse3_rgb, threshold2);
+    let fv_diffuse_rust: vec3f = veneer_mix_vec3f(fv_diffuse_paint_metal, fv_diffuse3_rgb, threshold2);
     // Math 'rust border space' (#8)
-    let rust_border_space: vec3f = s.position * vec3f(10.0f, 10.0f, 10.0f);
+    let rust_border_space: vec3f = veneer_finite_vec3f(s.position * vec3f(10.0f, 10.0f, 10.0f));
     // Fractal sum 'rust border snoise' (#9)
     let rust_border_snoise: f32 = veneer_fractal_sum_simplex(rust_border_space * 1.0f, 1, 2.0f, 0.5f, 1.0f, false, 1000000000.0f);
     // Math 'rust border noise' (#10)
-    let rust_border_noise: f32 = rust_border_snoise * 0.01f;
+    let rust_border_noise: f32 = veneer_finite_f32(rust_border_snoise * 0.01f);
     // Math 'threshold3 edge' (#11)
-    let threshold3_edge: f32 = 0.15f + rust_border_noise;
+    let threshold3_edge: f32 = veneer_finite_f32(0.15f + rust_border_noise);
     // Step 'threshold3' (#45)
     let threshold3: f32 = step(f32(s.fields.x), threshold3_edge);
     // Mix 'fvDiffuse' (#48)
-    let fv_diffuse: vec3f = mix(fv_diffuse_rust, vec3f(0.0f, 0.0f, 0.0f), threshold3);
+    let fv_diffuse: vec3f = veneer_mix_vec3f(fv_diffuse_rust, vec3f(0.0f, 0.0f, 0.0f), threshold3);
     // Math 'fvDiffuse2 alpha' (#17)
-    let fv_diffuse2_alpha: f32 = 1.0f - metal_stain;
+    let fv_diffuse2_alpha: f32 = veneer_finite_f32(1.0f - metal_stain);
     // Mix 'alpha (paint, metal)' (#52)
-    let alpha_paint_metal: f32 = mix(1.0f, fv_diffuse2_alpha, threshold1);
+    let alpha_paint_metal: f32 = veneer_mix_f32(1.0f, fv_diffuse2_alpha, threshold1);
     // Math 'rust alpha' (#31)
-    let rust_alpha: f32 = 1.0f - rust_stain;
+    let rust_alpha: f32 = veneer_finite_f32(1.0f - rust_stain);
     // Math 'past layer 2 (unclamped)' (#26)
-    let past_layer_2_unclamped: f32 = s.fields.x - 0.4f;
+    let past_layer_2_unclamped: f32 = veneer_finite_f32(s.fields.x - 0.4f);
     // Math 'rust depth (unclamped)' (#27)
-    let rust_depth_unclamped: f32 = past_layer_2_unclamped + -0.5f;
+    let rust_depth_unclamped: f32 = veneer_finite_f32(past_layer_2_unclamped + -0.5f);
     // Math 'hole noise' (#28)
-    let hole_noise: f32 = rust_fractalsum * rust_depth_unclamped;
+    let hole_noise: f32 = veneer_finite_f32(rust_fractalsum * rust_depth_unclamped);
     // Math 'hole noise x16' (#29)
-    let hole_noise_x16: f32 = hole_noise * 16.0f;
+    let hole_noise_x16: f32 = veneer_finite_f32(hole_noise * 16.0f);
     // Clamp 'fvDiffuse3AlphaMod' (#30)
     let fv_diffuse3alpha_mod: f32 = min(max(hole_noise_x16, f32(0.0f)), f32(1000.0f));
     // Math 'holes' (#32)
-    let holes: f32 = fv_diffuse3alpha_mod * 0.1f;
+    let holes: f32 = veneer_finite_f32(fv_diffuse3alpha_mod * 0.1f);
     // Math 'fvDiffuse3 alpha' (#33)
-    let fv_diffuse3_alpha: f32 = rust_alpha - holes;
+    let fv_diffuse3_alpha: f32 = veneer_finite_f32(rust_alpha - holes);
     // Mix 'alpha (rust)' (#53)
-    let alpha_rust: f32 = mix(alpha_paint_metal, fv_diffuse3_alpha, threshold2);
+    let alpha_rust: f32 = veneer_mix_f32(alpha_paint_metal, fv_diffuse3_alpha, threshold2);
     // Mix 'alpha' (#54)
-    let alpha: f32 = mix(alpha_rust, 0.0f, threshold3);
+    let alpha: f32 = veneer_mix_f32(alpha_rust, 0.0f, threshold3);
     // Mix 'fvSpecular (paint, metal)' (#49)
-    let fv_specular_paint_metal: vec3f = mix(vec3f(1.0f, 1.0f, 1.0f), vec3f(0.18f, 0.18f, 0.18f), threshold1);
+    let fv_specular_paint_metal: vec3f = veneer_mix_vec3f(vec3f(1.0f, 1.0f, 1.0f), vec3f(0.18f, 0.18f, 0.18f), threshold1);
     // Mix 'fvSpecular (rust)' (#50)
-    let fv_specular_rust: vec3f = mix(fv_specular_paint_metal, vec3f(0.0f, 0.0f, 0.0f), threshold2);
+    let fv_specular_rust: vec3f = veneer_mix_vec3f(fv_specular_paint_metal, vec3f(0.0f, 0.0f, 0.0f), threshold2);
     // Mix 'fvSpecular' (#51)
-    let fv_specular: vec3f = mix(fv_specular_rust, vec3f(0.0f, 0.0f, 0.0f), threshold3);
+    let fv_specular: vec3f = veneer_mix_vec3f(fv_specular_rust, vec3f(0.0f, 0.0f, 0.0f), threshold3);
     // Unary 'bump1' (#34)
     let bump1: f32 = -(threshold1);
     // Math 'metal grain space' (#35)
-    let metal_grain_space: vec3f = s.position * vec3f(400.0f, 400.0f, 400.0f);
+    let metal_grain_space: vec3f = veneer_finite_vec3f(s.position * vec3f(400.0f, 400.0f, 400.0f));
     // Fractal sum 'metal grain' (#36)
     let metal_grain: f32 = veneer_fractal_sum_simplex(metal_grain_space * 1.0f, 1, 2.0f, 0.5f, 1.0f, false, 1000000000.0f);
     // Math 'metal grain x0.025' (#37)
-    let metal_grain_x0_025: f32 = metal_grain * 0.025f;
+    let metal_grain_x0_025: f32 = veneer_finite_f32(metal_grain * 0.025f);
     // Math 'bump2' (#38)
-    let bump2: f32 = metal_grain_x0_025 * 0.8f;
+    let bump2: f32 = veneer_finite_f32(metal_grain_x0_025 * 0.8f);
     // Mix 'bump (paint, metal)' (#55)
-    let bump_paint_metal: f32 = mix(bump1, bump2, threshold1);
+    let bump_paint_metal: f32 = veneer_mix_f32(bump1, bump2, threshold1);
     // Length 'rust rgb length' (#39)
-    let rust_rgb_length: f32 = length(fv_diffuse3_rgb);
+    let rust_rgb_length: f32 = veneer_length_vec3f(fv_diffuse3_rgb);
     // Combine 'fvDiffuse3 rgb length and alpha' (#40)
     let fv_diffuse3_rgb_length_and_alpha: vec2f = vec2f(rust_rgb_length, fv_diffuse3_alpha);
     // Length 'length(fvDiffuse3)' (#41)
-    let length_fv_diffuse3: f32 = length(fv_diffuse3_rgb_length_and_alpha);
+    let length_fv_diffuse3: f32 = veneer_length_vec2f(fv_diffuse3_rgb_length_and_alpha);
     // Math 'rust relief' (#42)
-    let rust_relief: f32 = length_fv_diffuse3 * 0.5f;
+    let rust_relief: f32 = veneer_finite_f32(length_fv_diffuse3 * 0.5f);
     // Math 'bump3' (#43)
-    let bump3: f32 = bump2 + rust_relief;
+    let bump3: f32 = veneer_finite_f32(bump2 + rust_relief);
     // Mix 'bump (rust)' (#56)
-    let bump_rust: f32 = mix(bump_paint_metal, bump3, threshold2);
+    let bump_rust: f32 = veneer_mix_f32(bump_paint_metal, bump3, threshold2);
     // Mix 'bump' (#57)
-    let bump: f32 = mix(bump_rust, 0.0f, threshold3);
+    let bump: f32 = veneer_mix_f32(bump_rust, 0.0f, threshold3);
     // Math 'bump * bumpScale' (#58)
-    let bump_bump_scale: f32 = bump * 0.1f;
+    let bump_bump_scale: f32 = veneer_finite_f32(bump * 0.1f);
     // Material 'material' (#59)
     return VeneerMaterial(
         fv_diffuse, // albedo

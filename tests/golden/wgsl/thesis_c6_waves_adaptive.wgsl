@@ -26,10 +26,17 @@ struct VeneerMaterial {
 
 // ---- shaders/math.wgsl
 
-// Clamped linear ramp from edge0 to edge1 (a step at the edge when they are equal).
+// `x` clamped to the finite range: a sum or product of finite values is finite or an
+// infinity (never NaN), and the clamp turns an infinity into the nearest finite value.
+fn veneer_finite_f32(x: f32) -> f32 {
+    return clamp(x, f32(-3.0e38), f32(3.0e38));
+}
+
+// Clamped linear ramp from edge0 to edge1 (a step at the edge when they are equal). The
+// operands are halved first (an exact scaling), so that no difference overflows.
 fn veneer_linearstep(edge0: f32, edge1: f32, x: f32) -> f32 {
-    let span = edge1 - edge0;
-    let t = clamp((x - edge0) / select(span, 1.0, span == 0.0), 0.0, 1.0);
+    let span = 0.5 * edge1 - 0.5 * edge0;
+    let t = clamp((0.5 * x - 0.5 * edge0) / select(span, 1.0, span == 0.0), 0.0, 1.0);
     return select(t, step(edge0, x), span == 0.0);
 }
 
@@ -46,11 +53,14 @@ fn veneer_smoothstep(edge0: f32, edge1: f32, x: f32) -> f32 {
 // falling smoothly to 0 where `distance + noise` passes the threshold; the fall is
 // centred `centre` widths past the threshold and spans `softness` widths either side
 // (seed 003's smoothstep fronts: §5.2.4 is centre 1, softness 1/2; C.4 and C.5 are
-// centre 0, softness 1); a hard edge at width 0.
+// centre 0, softness 1); a hard edge at width 0. The edges and the sum are clamped to the
+// finite range.
 fn veneer_front(distance: f32, threshold: f32, width: f32, noise: f32, centre: f32, softness: f32) -> f32 {
     let w = max(width, 0.0);
     let s = max(softness, 0.0);
-    return 1.0 - veneer_smoothstep(threshold + (centre - s) * w, threshold + (centre + s) * w, distance + noise);
+    let low = veneer_finite_f32(threshold + veneer_finite_f32(centre - s) * w);
+    let high = veneer_finite_f32(threshold + veneer_finite_f32(centre + s) * w);
+    return 1.0 - veneer_smoothstep(low, high, veneer_finite_f32(distance + noise));
 }
 
 // ---- the material graph
@@ -61,51 +71,51 @@ fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     // Front 'north' (#9)
     let north: f32 = veneer_front(s.fields.x, 0.0f, 0.5f, 0.0f, 0.0f, 0.5f);
     // Math '1 - bump' (#11)
-    let n_1_bump: f32 = n_1_south - north;
+    let n_1_bump: f32 = veneer_finite_f32(n_1_south - north);
     // Unary '1 - d' (#12)
     let n_1_d: f32 = 1.0 - s.fields.x;
     // Math 'frequency * (1 - d)' (#13)
-    let frequency_1_d: f32 = 120.0f * n_1_d;
+    let frequency_1_d: f32 = veneer_finite_f32(120.0f * n_1_d);
     // Math 'd * frequency * (1 - d)' (#14)
-    let d_frequency_1_d: f32 = s.fields.x * frequency_1_d;
+    let d_frequency_1_d: f32 = veneer_finite_f32(s.fields.x * frequency_1_d);
     // Math 'animation2 + phase' (#15)
-    let animation2_phase: f32 = s.time + d_frequency_1_d;
+    let animation2_phase: f32 = veneer_finite_f32(s.time + d_frequency_1_d);
     // Unary 'sine' (#16)
     let sine: f32 = sin(animation2_phase);
     // Math 'isolines' (#17)
-    let isolines: f32 = sine * n_1_d;
+    let isolines: f32 = veneer_finite_f32(sine * n_1_d);
     // Math 'wave' (#18)
-    let wave: f32 = n_1_bump * isolines;
+    let wave: f32 = veneer_finite_f32(n_1_bump * isolines);
     // Front '1 - south2' (#20)
     let n_1_south2: f32 = veneer_front(s.fields.y, 0.0f, 0.5f, 0.0f, 1.0f, 0.5f);
     // Front 'north2' (#19)
     let north2: f32 = veneer_front(s.fields.y, 0.0f, 0.5f, 0.0f, 0.0f, 0.5f);
     // Math '1 - bump2' (#21)
-    let n_1_bump2: f32 = n_1_south2 - north2;
+    let n_1_bump2: f32 = veneer_finite_f32(n_1_south2 - north2);
     // Unary '1 - d2' (#22)
     let n_1_d2: f32 = 1.0 - s.fields.y;
     // Math 'frequency * (1 - d2)' (#23)
-    let frequency_1_d2: f32 = 120.0f * n_1_d2;
+    let frequency_1_d2: f32 = veneer_finite_f32(120.0f * n_1_d2);
     // Math 'd2 * frequency * (1 - d2)' (#24)
-    let d2_frequency_1_d2: f32 = s.fields.y * frequency_1_d2;
+    let d2_frequency_1_d2: f32 = veneer_finite_f32(s.fields.y * frequency_1_d2);
     // Math 'animation2 + phase2' (#25)
-    let animation2_phase2: f32 = s.time + d2_frequency_1_d2;
+    let animation2_phase2: f32 = veneer_finite_f32(s.time + d2_frequency_1_d2);
     // Unary 'sine2' (#26)
     let sine2: f32 = sin(animation2_phase2);
     // Math 'isolines2' (#27)
-    let isolines2: f32 = sine2 * n_1_d2;
+    let isolines2: f32 = veneer_finite_f32(sine2 * n_1_d2);
     // Math 'wave2' (#28)
-    let wave2: f32 = n_1_bump2 * isolines2;
+    let wave2: f32 = veneer_finite_f32(n_1_bump2 * isolines2);
     // Step 'distance2 <= 0' (#29)
     let distance2_0: f32 = step(f32(s.fields.y), 0.0f);
     // Unary 'distance2 > 0' (#30)
     let distance2_0_30: f32 = 1.0 - distance2_0;
     // Math 'second wave where reached' (#31)
-    let second_wave_where_reached: f32 = wave2 * distance2_0_30;
+    let second_wave_where_reached: f32 = veneer_finite_f32(wave2 * distance2_0_30);
     // Math 'both waves' (#32)
-    let both_waves: f32 = wave + second_wave_where_reached;
+    let both_waves: f32 = veneer_finite_f32(wave + second_wave_where_reached);
     // Math 'bump * bumpScale' (#33)
-    let bump_bump_scale: f32 = both_waves * 0.02f;
+    let bump_bump_scale: f32 = veneer_finite_f32(both_waves * 0.02f);
     // Material 'material' (#34)
     return VeneerMaterial(
         vec3f(0.5f, 0.5f, 0.5f), // albedo

@@ -26,10 +26,43 @@ struct VeneerMaterial {
 
 // ---- shaders/math.wgsl
 
-// Clamped linear ramp from edge0 to edge1 (a step at the edge when they are equal).
+// `x` clamped to the finite range: a sum or product of finite values is finite or an
+// infinity (never NaN), and the clamp turns an infinity into the nearest finite value.
+fn veneer_finite_vec2f(x: vec2f) -> vec2f {
+    return clamp(x, vec2f(-3.0e38), vec2f(3.0e38));
+}
+
+// The length of `v` for any finite `v`: where its square overflows (past 1e38), the
+// length of `v` scaled by 2^-100 and back (exact), clamped to the finite range.
+fn veneer_length_vec2f(v: vec2f) -> f32 {
+    let scaled = 1.2676506002e30 * length(v * 7.888609052e-31);
+    return min(select(length(v), scaled, dot(v, v) > 1.0e38), 3.0e38);
+}
+
+// `x` clamped to the finite range: a sum or product of finite values is finite or an
+// infinity (never NaN), and the clamp turns an infinity into the nearest finite value.
+fn veneer_finite_f32(x: f32) -> f32 {
+    return clamp(x, f32(-3.0e38), f32(3.0e38));
+}
+
+// `x` clamped to the finite range: a sum or product of finite values is finite or an
+// infinity (never NaN), and the clamp turns an infinity into the nearest finite value.
+fn veneer_finite_vec3f(x: vec3f) -> vec3f {
+    return clamp(x, vec3f(-3.0e38), vec3f(3.0e38));
+}
+
+// The length of `v` for any finite `v`: where its square overflows (past 1e38), the
+// length of `v` scaled by 2^-100 and back (exact), clamped to the finite range.
+fn veneer_length_vec3f(v: vec3f) -> f32 {
+    let scaled = 1.2676506002e30 * length(v * 7.888609052e-31);
+    return min(select(length(v), scaled, dot(v, v) > 1.0e38), 3.0e38);
+}
+
+// Clamped linear ramp from edge0 to edge1 (a step at the edge when they are equal). The
+// operands are halved first (an exact scaling), so that no difference overflows.
 fn veneer_linearstep(edge0: f32, edge1: f32, x: f32) -> f32 {
-    let span = edge1 - edge0;
-    let t = clamp((x - edge0) / select(span, 1.0, span == 0.0), 0.0, 1.0);
+    let span = 0.5 * edge1 - 0.5 * edge0;
+    let t = clamp((0.5 * x - 0.5 * edge0) / select(span, 1.0, span == 0.0), 0.0, 1.0);
     return select(t, step(edge0, x), span == 0.0);
 }
 
@@ -46,34 +79,45 @@ fn veneer_smoothstep(edge0: f32, edge1: f32, x: f32) -> f32 {
 // falling smoothly to 0 where `distance + noise` passes the threshold; the fall is
 // centred `centre` widths past the threshold and spans `softness` widths either side
 // (seed 003's smoothstep fronts: §5.2.4 is centre 1, softness 1/2; C.4 and C.5 are
-// centre 0, softness 1); a hard edge at width 0.
+// centre 0, softness 1); a hard edge at width 0. The edges and the sum are clamped to the
+// finite range.
 fn veneer_front(distance: f32, threshold: f32, width: f32, noise: f32, centre: f32, softness: f32) -> f32 {
     let w = max(width, 0.0);
     let s = max(softness, 0.0);
-    return 1.0 - veneer_smoothstep(threshold + (centre - s) * w, threshold + (centre + s) * w, distance + noise);
+    let low = veneer_finite_f32(threshold + veneer_finite_f32(centre - s) * w);
+    let high = veneer_finite_f32(threshold + veneer_finite_f32(centre + s) * w);
+    return 1.0 - veneer_smoothstep(low, high, veneer_finite_f32(distance + noise));
+}
+
+// ---- shaders/math.wgsl
+
+// `a (1 - t) + b t` written out (a GPU's mix may compute a + t (b - a), which overflows
+// for far-apart finite values), each product and the sum clamped to the finite range.
+fn veneer_mix_vec3f(a: vec3f, b: vec3f, t: f32) -> vec3f {
+    return veneer_finite_vec3f(veneer_finite_vec3f(a * (1.0 - t)) + veneer_finite_vec3f(b * t));
 }
 
 // ---- the material graph
 
 fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     // Math 'from source (uv)' (#7)
-    let from_source_uv: vec2f = s.uv - vec2f(0.0f, 0.5f);
+    let from_source_uv: vec2f = veneer_finite_vec2f(s.uv - vec2f(0.0f, 0.5f));
     // Length 'uv length' (#8)
-    let uv_length: f32 = length(from_source_uv);
+    let uv_length: f32 = veneer_length_vec2f(from_source_uv);
     // Math 'uv distance' (#9)
-    let uv_distance: f32 = uv_length * 0.894427f;
+    let uv_distance: f32 = veneer_finite_f32(uv_length * 0.894427f);
     // Math 'from source (3D)' (#4)
-    let from_source_3d: vec3f = s.position - vec3f(0.4f, 0.0f, 0.0f);
+    let from_source_3d: vec3f = veneer_finite_vec3f(s.position - vec3f(0.4f, 0.0f, 0.0f));
     // Length '3D length' (#5)
-    let n_3d_length: f32 = length(from_source_3d);
+    let n_3d_length: f32 = veneer_length_vec3f(from_source_3d);
     // Math 'euclidean distance' (#6)
-    let euclidean_distance: f32 = n_3d_length * 0.714286f;
+    let euclidean_distance: f32 = veneer_finite_f32(n_3d_length * 0.714286f);
     // Switch 'uv · 3D · geodesic' (#10)
     let uv_3d_geodesic: f32 = select(select(uv_distance, euclidean_distance, 2.0f >= 0.5), s.fields.x, 2.0f >= 1.5);
     // Front 'sand' (#12)
     let sand: f32 = veneer_front(uv_3d_geodesic, 0.5f, 0.0485f, 0.0f, 1.0f, 0.5f);
     // Mix 'diffuse' (#13)
-    let diffuse: vec3f = mix(vec3f(0.177f, 0.503f, 0.413f), vec3f(0.894f, 0.969f, 0.755f), sand);
+    let diffuse: vec3f = veneer_mix_vec3f(vec3f(0.177f, 0.503f, 0.413f), vec3f(0.894f, 0.969f, 0.755f), sand);
     // Material 'material' (#14)
     return VeneerMaterial(
         diffuse, // albedo

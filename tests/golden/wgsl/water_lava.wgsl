@@ -33,6 +33,14 @@ fn veneer_octave_mean_turbulence() -> f32 {
 
 // ---- shaders/hash.wgsl
 
+// `p` within the lattice's range (+-2147483520 per axis, where the cells' integer
+// coordinates saturate anyway): every lattice noise samples its point through this, so
+// any coordinate (an overflowed product too) gives a finite value.
+fn veneer_lattice_domain(p: vec3f) -> vec3f {
+    let limit = vec3f(2147483520.0);
+    return clamp(p, -limit, limit);
+}
+
 // Integer coordinates of a lattice cell, clamped to the i32 range so that any finite
 // coordinate maps to a well-defined cell on every device.
 fn veneer_cell_bits(cell: vec3f) -> vec3u {
@@ -73,7 +81,8 @@ fn veneer_simplex_corner(cell: vec3f, d: vec3f) -> f32 {
 }
 
 // Simplex noise remapped to [0, 1].
-fn veneer_noise_simplex(p: vec3f) -> f32 {
+fn veneer_noise_simplex(point: vec3f) -> f32 {
+    let p = veneer_lattice_domain(point);
     let skew = (p.x + p.y + p.z) * (1.0 / 3.0);
     let i = floor(p + skew);
     let unskew = (i.x + i.y + i.z) * (1.0 / 6.0);
@@ -105,11 +114,13 @@ fn veneer_octave_turbulence_simplex(q: vec3f) -> f32 {
 }
 
 // Sum of `octaves` octaves; each multiplies the frequency by `lacunarity` and the
-// amplitude by `gain`. With `normalize` the sum is divided by the sum of amplitudes.
-// Octave i counts fully below `cutoff - 1`, fades to its average over the next octave
-// and is replaced by its average from `cutoff` on: those octaves are summed in a second
-// loop without any noise, so a coarse footprint shortens the expensive one (software
-// rasterisers run both sides of a branch; a shorter loop is what saves them work).
+// amplitude by `gain` (the frequency, the amplitude and the sums clamped to the finite
+// range, so no octave overflows into a NaN). With `normalize` the sum is divided by the
+// sum of amplitudes. Octave i counts fully below `cutoff - 1`, fades to its average over
+// the next octave and is replaced by its average from `cutoff` on: those octaves are
+// summed in a second loop without any noise, so a coarse footprint shortens the
+// expensive one (software rasterisers run both sides of a branch; a shorter loop is what
+// saves them work).
 fn veneer_turbulence_simplex(p: vec3f, octaves: i32, lacunarity: f32, gain: f32, amplitude: f32, normalize: bool, cutoff: f32) -> f32 {
     var sum = 0.0;
     var amp = amplitude;
@@ -119,17 +130,31 @@ fn veneer_turbulence_simplex(p: vec3f, octaves: i32, lacunarity: f32, gain: f32,
     let evaluated = min(octaves, i32(clamp(ceil(cutoff), 0.0, 64.0)));
     for (var i = 0; i < evaluated; i++) {
         let shown = clamp(cutoff - f32(i), 0.0, 1.0);
-        sum += amp * (shown * veneer_octave_turbulence_simplex(p * freq) + (1.0 - shown) * mean);
-        total += abs(amp);
-        freq *= lacunarity;
-        amp *= gain;
+        sum = clamp(sum + amp * (shown * veneer_octave_turbulence_simplex(p * freq) + (1.0 - shown) * mean), -3.0e38, 3.0e38);
+        total = min(total + abs(amp), 3.0e38);
+        freq = clamp(freq * lacunarity, -3.0e38, 3.0e38);
+        amp = clamp(amp * gain, -3.0e38, 3.0e38);
     }
     for (var i = evaluated; i < octaves; i++) {
-        sum += amp * mean;
-        total += abs(amp);
-        amp *= gain;
+        sum = clamp(sum + amp * mean, -3.0e38, 3.0e38);
+        total = min(total + abs(amp), 3.0e38);
+        amp = clamp(amp * gain, -3.0e38, 3.0e38);
     }
     return select(sum, sum / total, normalize && total > 0.0);
+}
+
+// ---- shaders/math.wgsl
+
+// `x` clamped to the finite range: a sum or product of finite values is finite or an
+// infinity (never NaN), and the clamp turns an infinity into the nearest finite value.
+fn veneer_finite_vec3f(x: vec3f) -> vec3f {
+    return clamp(x, vec3f(-3.0e38), vec3f(3.0e38));
+}
+
+// `a (1 - t) + b t` written out (a GPU's mix may compute a + t (b - a), which overflows
+// for far-apart finite values), each product and the sum clamped to the finite range.
+fn veneer_mix_vec3f(a: vec3f, b: vec3f, t: f32) -> vec3f {
+    return veneer_finite_vec3f(veneer_finite_vec3f(a * (1.0 - t)) + veneer_finite_vec3f(b * t));
 }
 
 // ---- shaders/worley.wgsl
@@ -154,8 +179,11 @@ fn veneer_unit_floats(bits: vec3u) -> vec3f {
 // ---- shaders/worley.wgsl
 
 // The three smallest feature distances (F1, F2, F3) around `p`; one feature point per
-// cell, displaced from the cell centre by up to `jitter` / 2 per axis.
-fn veneer_worley(p: vec3f, jitter: f32, metric: i32) -> vec3f {
+// cell, displaced from the cell centre by up to `jitter` / 2 per axis (`jitter` clamped
+// to [-1, 1], where every feature point stays in its cell, so distances stay small).
+fn veneer_worley(point: vec3f, jitter: f32, metric: i32) -> vec3f {
+    let p = veneer_lattice_domain(point);
+    let spread = clamp(jitter, -1.0, 1.0);
     let cell = floor(p);
     var f = vec3f(1.0e9);
     for (var z = -1; z <= 1; z++) {
@@ -163,7 +191,7 @@ fn veneer_worley(p: vec3f, jitter: f32, metric: i32) -> vec3f {
             for (var x = -1; x <= 1; x++) {
                 let c = cell + vec3f(f32(x), f32(y), f32(z));
                 let r = veneer_unit_floats(veneer_pcg3d(veneer_cell_bits(c)));
-                let feature = c + 0.5 + jitter * (r - 0.5);
+                let feature = c + 0.5 + spread * (r - 0.5);
                 let d = veneer_metric(p - feature, metric);
                 if d < f.x {
                     f = vec3f(d, f.x, f.y);
@@ -188,37 +216,46 @@ fn veneer_worley_feature(f: vec3f, feature: i32) -> f32 {
     }
 }
 
-// Fractal Worley: `octaves` octaves of a feature, frequency times `lacunarity`, amplitude times `gain`.
+// Fractal Worley: `octaves` octaves of a feature, frequency times `lacunarity`, amplitude
+// times `gain`; the frequency, the amplitude and the sum clamped to the finite range.
 fn veneer_worley_fractal(p: vec3f, jitter: f32, metric: i32, feature: i32, octaves: i32, lacunarity: f32, gain: f32) -> f32 {
     var sum = 0.0;
     var amp = 1.0;
     var freq = 1.0;
     for (var i = 0; i < octaves; i++) {
-        sum += amp * veneer_worley_feature(veneer_worley(p * freq, jitter, metric), feature);
-        freq *= lacunarity;
-        amp *= gain;
+        sum = clamp(sum + amp * veneer_worley_feature(veneer_worley(p * freq, jitter, metric), feature), -3.0e38, 3.0e38);
+        freq = clamp(freq * lacunarity, -3.0e38, 3.0e38);
+        amp = clamp(amp * gain, -3.0e38, 3.0e38);
     }
     return sum;
 }
 
 // ---- shaders/math.wgsl
 
-// Clamped linear ramp from edge0 to edge1 (a step at the edge when they are equal).
+// Clamped linear ramp from edge0 to edge1 (a step at the edge when they are equal). The
+// operands are halved first (an exact scaling), so that no difference overflows.
 fn veneer_linearstep(edge0: f32, edge1: f32, x: f32) -> f32 {
-    let span = edge1 - edge0;
-    let t = clamp((x - edge0) / select(span, 1.0, span == 0.0), 0.0, 1.0);
+    let span = 0.5 * edge1 - 0.5 * edge0;
+    let t = clamp((0.5 * x - 0.5 * edge0) / select(span, 1.0, span == 0.0), 0.0, 1.0);
     return select(t, step(edge0, x), span == 0.0);
 }
 
 // One segment of a linear colour ramp: blend towards `next` as t goes from p0 to p1.
 fn veneer_ramp_linear(current: vec3f, next: vec3f, t: f32, p0: f32, p1: f32) -> vec3f {
-    return mix(current, next, veneer_linearstep(p0, p1, t));
+    return veneer_mix_vec3f(current, next, veneer_linearstep(p0, p1, t));
+}
+
+// `x` clamped to the finite range: a sum or product of finite values is finite or an
+// infinity (never NaN), and the clamp turns an infinity into the nearest finite value.
+fn veneer_finite_f32(x: f32) -> f32 {
+    return clamp(x, f32(-3.0e38), f32(3.0e38));
 }
 
 // ---- shaders/gradient.wgsl
 
 // Gradient noise remapped to [0, 1].
-fn veneer_noise_gradient(p: vec3f) -> f32 {
+fn veneer_noise_gradient(point: vec3f) -> f32 {
+    let p = veneer_lattice_domain(point);
     let i = floor(p);
     let f = p - i;
     let u = f * f * f * (f * (f * 6.0 - 15.0) + 10.0);
@@ -252,11 +289,13 @@ fn veneer_octave_mean_fbm() -> f32 {
 }
 
 // Sum of `octaves` octaves; each multiplies the frequency by `lacunarity` and the
-// amplitude by `gain`. With `normalize` the sum is divided by the sum of amplitudes.
-// Octave i counts fully below `cutoff - 1`, fades to its average over the next octave
-// and is replaced by its average from `cutoff` on: those octaves are summed in a second
-// loop without any noise, so a coarse footprint shortens the expensive one (software
-// rasterisers run both sides of a branch; a shorter loop is what saves them work).
+// amplitude by `gain` (the frequency, the amplitude and the sums clamped to the finite
+// range, so no octave overflows into a NaN). With `normalize` the sum is divided by the
+// sum of amplitudes. Octave i counts fully below `cutoff - 1`, fades to its average over
+// the next octave and is replaced by its average from `cutoff` on: those octaves are
+// summed in a second loop without any noise, so a coarse footprint shortens the
+// expensive one (software rasterisers run both sides of a branch; a shorter loop is what
+// saves them work).
 fn veneer_fbm_gradient(p: vec3f, octaves: i32, lacunarity: f32, gain: f32, amplitude: f32, normalize: bool, cutoff: f32) -> f32 {
     var sum = 0.0;
     var amp = amplitude;
@@ -266,15 +305,15 @@ fn veneer_fbm_gradient(p: vec3f, octaves: i32, lacunarity: f32, gain: f32, ampli
     let evaluated = min(octaves, i32(clamp(ceil(cutoff), 0.0, 64.0)));
     for (var i = 0; i < evaluated; i++) {
         let shown = clamp(cutoff - f32(i), 0.0, 1.0);
-        sum += amp * (shown * veneer_octave_fbm_gradient(p * freq) + (1.0 - shown) * mean);
-        total += abs(amp);
-        freq *= lacunarity;
-        amp *= gain;
+        sum = clamp(sum + amp * (shown * veneer_octave_fbm_gradient(p * freq) + (1.0 - shown) * mean), -3.0e38, 3.0e38);
+        total = min(total + abs(amp), 3.0e38);
+        freq = clamp(freq * lacunarity, -3.0e38, 3.0e38);
+        amp = clamp(amp * gain, -3.0e38, 3.0e38);
     }
     for (var i = evaluated; i < octaves; i++) {
-        sum += amp * mean;
-        total += abs(amp);
-        amp *= gain;
+        sum = clamp(sum + amp * mean, -3.0e38, 3.0e38);
+        total = min(total + abs(amp), 3.0e38);
+        amp = clamp(amp * gain, -3.0e38, 3.0e38);
     }
     return select(sum, sum / total, normalize && total > 0.0);
 }
@@ -294,15 +333,19 @@ fn veneer_smoothstep(edge0: f32, edge1: f32, x: f32) -> f32 {
 // falling smoothly to 0 where `distance + noise` passes the threshold; the fall is
 // centred `centre` widths past the threshold and spans `softness` widths either side
 // (seed 003's smoothstep fronts: §5.2.4 is centre 1, softness 1/2; C.4 and C.5 are
-// centre 0, softness 1); a hard edge at width 0.
+// centre 0, softness 1); a hard edge at width 0. The edges and the sum are clamped to the
+// finite range.
 fn veneer_front(distance: f32, threshold: f32, width: f32, noise: f32, centre: f32, softness: f32) -> f32 {
     let w = max(width, 0.0);
     let s = max(softness, 0.0);
-    return 1.0 - veneer_smoothstep(threshold + (centre - s) * w, threshold + (centre + s) * w, distance + noise);
+    let low = veneer_finite_f32(threshold + veneer_finite_f32(centre - s) * w);
+    let high = veneer_finite_f32(threshold + veneer_finite_f32(centre + s) * w);
+    return 1.0 - veneer_smoothstep(low, high, veneer_finite_f32(distance + noise));
 }
 
 // A relief of basis noise at `p * scale` as a bump: minus `strength` times the noise
-// gradient per noise cell (central differences a hundredth of a cell apart).
+// gradient per noise cell (central differences a hundredth of a cell apart), clamped to
+// the finite range.
 fn veneer_noise_bump_simplex(p: vec3f, scale: f32, strength: f32) -> vec3f {
     let q = p * scale;
     let h = 0.01;
@@ -311,11 +354,12 @@ fn veneer_noise_bump_simplex(p: vec3f, scale: f32, strength: f32) -> vec3f {
         veneer_noise_simplex(q + vec3f(0.0, h, 0.0)) - veneer_noise_simplex(q - vec3f(0.0, h, 0.0)),
         veneer_noise_simplex(q + vec3f(0.0, 0.0, h)) - veneer_noise_simplex(q - vec3f(0.0, 0.0, h)),
     ) / (2.0 * h);
-    return -strength * gradient;
+    return veneer_finite_vec3f(-strength * gradient);
 }
 
 // A relief of basis noise at `p * scale` as a bump: minus `strength` times the noise
-// gradient per noise cell (central differences a hundredth of a cell apart).
+// gradient per noise cell (central differences a hundredth of a cell apart), clamped to
+// the finite range.
 fn veneer_noise_bump_gradient(p: vec3f, scale: f32, strength: f32) -> vec3f {
     let q = p * scale;
     let h = 0.01;
@@ -324,7 +368,7 @@ fn veneer_noise_bump_gradient(p: vec3f, scale: f32, strength: f32) -> vec3f {
         veneer_noise_gradient(q + vec3f(0.0, h, 0.0)) - veneer_noise_gradient(q - vec3f(0.0, h, 0.0)),
         veneer_noise_gradient(q + vec3f(0.0, 0.0, h)) - veneer_noise_gradient(q - vec3f(0.0, 0.0, h)),
     ) / (2.0 * h);
-    return -strength * gradient;
+    return veneer_finite_vec3f(-strength * gradient);
 }
 
 // ---- the material graph
@@ -333,7 +377,7 @@ fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     // Turbulence 'burnt ground' (#11)
     let burnt_ground: f32 = veneer_turbulence_simplex(s.position * 8.0f, 5, 2.0f, 0.5f, 1.0f, true, 1000000000.0f);
     // Mix 'ground colour' (#12)
-    let ground_colour: vec3f = mix(vec3f(0.08f, 0.06f, 0.05f), vec3f(0.3f, 0.24f, 0.2f), burnt_ground);
+    let ground_colour: vec3f = veneer_mix_vec3f(vec3f(0.08f, 0.06f, 0.05f), vec3f(0.3f, 0.24f, 0.2f), burnt_ground);
     // Worley 'lava cells' (#13)
     let lava_cells: f32 = veneer_worley_fractal(s.position * 6.0f, 1.0f, 0, 0, 3, 2.0f, 0.5f);
     // Colour ramp 'lava colour' (#14)
@@ -341,35 +385,35 @@ fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     lava_colour = veneer_ramp_linear(lava_colour, vec3f(0.95f, 0.35f, 0.05f), lava_cells, 0.0f, 0.35f);
     lava_colour = veneer_ramp_linear(lava_colour, vec3f(0.35f, 0.05f, 0.02f), lava_cells, 0.35f, 0.8f);
     // Math 'flow' (#4)
-    let flow: f32 = s.time * 0.06f;
+    let flow: f32 = veneer_finite_f32(s.time * 0.06f);
     // Math 'lava reach' (#6)
-    let lava_reach: f32 = flow + 0.35f;
+    let lava_reach: f32 = veneer_finite_f32(flow + 0.35f);
     // fBm 'lava edge noise' (#7)
     let lava_edge_noise: f32 = veneer_fbm_gradient(s.position * 5.0f, 3, 2.0f, 0.5f, 0.5f, true, 1000000000.0f);
     // Math 'viscosity' (#8)
-    let viscosity: f32 = lava_edge_noise * 0.1f;
+    let viscosity: f32 = veneer_finite_f32(lava_edge_noise * 0.1f);
     // Front 'lava' (#10)
     let lava: f32 = veneer_front(s.fields.y, lava_reach, 0.03f, viscosity, 0.5f, 0.5f);
     // Mix 'with lava' (#17)
-    let with_lava: vec3f = mix(ground_colour, lava_colour, lava);
+    let with_lava: vec3f = veneer_mix_vec3f(ground_colour, lava_colour, lava);
     // Worley 'water cells' (#15)
     let water_cells: f32 = veneer_worley_fractal(s.position * 7.0f, 1.0f, 0, 0, 3, 2.0f, 0.5f);
     // Mix 'water colour' (#16)
-    let water_colour: vec3f = mix(vec3f(0.1f, 0.3f, 0.55f), vec3f(0.3f, 0.55f, 0.8f), water_cells);
+    let water_colour: vec3f = veneer_mix_vec3f(vec3f(0.1f, 0.3f, 0.55f), vec3f(0.3f, 0.55f, 0.8f), water_cells);
     // Math 'water reach' (#5)
-    let water_reach: f32 = flow + 0.3f;
+    let water_reach: f32 = veneer_finite_f32(flow + 0.3f);
     // Front 'water' (#9)
     let water: f32 = veneer_front(s.fields.x, water_reach, 0.03f, 0.0f, 0.5f, 0.5f);
     // Mix 'with water' (#18)
-    let with_water: vec3f = mix(with_lava, water_colour, water);
+    let with_water: vec3f = veneer_mix_vec3f(with_lava, water_colour, water);
     // Mix 'specular' (#22)
-    let specular: vec3f = mix(vec3f(0.05f, 0.05f, 0.05f), vec3f(0.6f, 0.6f, 0.6f), water);
+    let specular: vec3f = veneer_mix_vec3f(vec3f(0.05f, 0.05f, 0.05f), vec3f(0.6f, 0.6f, 0.6f), water);
     // Noise bump 'ground bump' (#20)
     let ground_bump: vec3f = veneer_noise_bump_simplex(s.position, 16.0f, 0.2f);
     // Noise bump 'ripples' (#19)
     let ripples: vec3f = veneer_noise_bump_gradient(s.position, 9.0f, 0.2f);
     // Mix 'bump' (#21)
-    let bump: vec3f = mix(ground_bump, ripples, water);
+    let bump: vec3f = veneer_mix_vec3f(ground_bump, ripples, water);
     // Material 'material' (#23)
     return VeneerMaterial(
         with_water, // albedo

@@ -24,17 +24,41 @@ struct VeneerMaterial {
     occlusion: f32,   // ambient occlusion, 1 unoccluded
 }
 
-// ---- shaders/math.wgsl
+// ---- shaders/map_range.wgsl
 
-// a / b, 0 where b is 0, clamped to the finite f32 range.
-fn veneer_safe_div_f32(a: f32, b: f32) -> f32 {
-    let q = select(a / b, f32(0.0), b == f32(0.0));
-    return clamp(q, f32(-3.0e38), f32(3.0e38));
+// Where x lies from from_min (0) to from_max (1), unclamped; 0 when the range is empty.
+// The operands are halved first (an exact scaling) so that no difference overflows, and
+// the quotient is clamped to the finite range.
+fn veneer_map_range_factor(x: f32, from_min: f32, from_max: f32) -> f32 {
+    let span = 0.5 * from_max - 0.5 * from_min;
+    let t = (0.5 * x - 0.5 * from_min) / select(span, 1.0, span == 0.0);
+    return select(clamp(t, -3.0e38, 3.0e38), 0.0, span == 0.0);
 }
 
-// Linear map of x from [from_min, from_max] to [to_min, to_max].
+// to_min + t (to_max - to_min), halved like the factor, clamped to the finite range; then
+// clamped to the target range (either order) when `clamp_result`.
+fn veneer_map_range_to(t: f32, to_min: f32, to_max: f32, clamp_result: bool) -> f32 {
+    let y = clamp(to_min + t * (0.5 * to_max - 0.5 * to_min) * 2.0, -3.0e38, 3.0e38);
+    return select(y, clamp(y, min(to_min, to_max), max(to_min, to_max)), clamp_result);
+}
+
+// Linear: to_min + t (to_max - to_min), t = (x - from_min) / (from_max - from_min).
+fn veneer_map_range_linear(x: f32, from_min: f32, from_max: f32, to_min: f32, to_max: f32, clamp_result: bool) -> f32 {
+    return veneer_map_range_to(veneer_map_range_factor(x, from_min, from_max), to_min, to_max, clamp_result);
+}
+
+// ---- shaders/math.wgsl
+
+// Linear map of x from [from_min, from_max] to [to_min, to_max] (to_min where the source
+// range is empty): the linear Map Range without clamping.
 fn veneer_remap(x: f32, from_min: f32, from_max: f32, to_min: f32, to_max: f32) -> f32 {
-    return to_min + veneer_safe_div_f32(x - from_min, from_max - from_min) * (to_max - to_min);
+    return veneer_map_range_linear(x, from_min, from_max, to_min, to_max, false);
+}
+
+// `x` clamped to the finite range: a sum or product of finite values is finite or an
+// infinity (never NaN), and the clamp turns an infinity into the nearest finite value.
+fn veneer_finite_f32(x: f32) -> f32 {
+    return clamp(x, f32(-3.0e38), f32(3.0e38));
 }
 
 // pow(a, b) for a > 0; 0 where a <= 0 (where pow is undefined), clamped to the finite range.
@@ -43,17 +67,29 @@ fn veneer_safe_pow_f32(a: f32, b: f32) -> f32 {
     return select(min(pow(base, b), f32(3.0e38)), f32(0.0), a <= f32(0.0));
 }
 
+// `x` clamped to the finite range: a sum or product of finite values is finite or an
+// infinity (never NaN), and the clamp turns an infinity into the nearest finite value.
+fn veneer_finite_vec3f(x: vec3f) -> vec3f {
+    return clamp(x, vec3f(-3.0e38), vec3f(3.0e38));
+}
+
+// `a (1 - t) + b t` written out (a GPU's mix may compute a + t (b - a), which overflows
+// for far-apart finite values), each product and the sum clamped to the finite range.
+fn veneer_mix_vec3f(a: vec3f, b: vec3f, t: f32) -> vec3f {
+    return veneer_finite_vec3f(veneer_finite_vec3f(a * (1.0 - t)) + veneer_finite_vec3f(b * t));
+}
+
 // ---- the material graph
 
 fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     // Remap 'wave number' (#5)
     let wave_number: f32 = veneer_remap(s.fields.x, 0.0f, 1.0f, 120.0f, 50.0f);
     // Math 'phase' (#6)
-    let phase: f32 = wave_number * s.fields.x;
+    let phase: f32 = veneer_finite_f32(wave_number * s.fields.x);
     // Math 'travel' (#7)
-    let travel: f32 = s.time * 4.0f;
+    let travel: f32 = veneer_finite_f32(s.time * 4.0f);
     // Math 'wave' (#8)
-    let wave: f32 = phase - travel;
+    let wave: f32 = veneer_finite_f32(phase - travel);
     // Unary 'crest' (#9)
     let crest: f32 = sin(wave);
     // Unary 'falloff' (#3)
@@ -61,13 +97,13 @@ fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     // Math 'amplitude' (#4)
     let amplitude: f32 = veneer_safe_pow_f32(falloff, 2.0f);
     // Math 'height' (#10)
-    let height: f32 = crest * amplitude;
+    let height: f32 = veneer_finite_f32(crest * amplitude);
     // Math 'height scale' (#11)
-    let height_scale: f32 = height * 0.025f;
+    let height_scale: f32 = veneer_finite_f32(height * 0.025f);
     // Remap 'tint' (#12)
     let tint: f32 = veneer_remap(height_scale, -0.025f, 0.025f, 0.0f, 1.0f);
     // Mix 'water' (#13)
-    let water: vec3f = mix(vec3f(0.05f, 0.2f, 0.4f), vec3f(0.35f, 0.65f, 0.85f), tint);
+    let water: vec3f = veneer_mix_vec3f(vec3f(0.05f, 0.2f, 0.4f), vec3f(0.35f, 0.65f, 0.85f), tint);
     // Material 'material' (#14)
     return VeneerMaterial(
         water, // albedo

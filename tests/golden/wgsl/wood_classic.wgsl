@@ -24,6 +24,40 @@ struct VeneerMaterial {
     occlusion: f32,   // ambient occlusion, 1 unoccluded
 }
 
+// ---- shaders/math.wgsl
+
+// `x` clamped to the finite range: a sum or product of finite values is finite or an
+// infinity (never NaN), and the clamp turns an infinity into the nearest finite value.
+fn veneer_finite_vec3f(x: vec3f) -> vec3f {
+    return clamp(x, vec3f(-3.0e38), vec3f(3.0e38));
+}
+
+// ---- shaders/coords.wgsl
+
+// `p * scale` clamped to +-1e38: a rotation of it (which keeps its length, at most
+// sqrt(3) times that) and each step of the rotation stay finite.
+fn veneer_scaled(p: vec3f, scale: vec3f) -> vec3f {
+    return clamp(p * scale, vec3f(-1.0e38), vec3f(1.0e38));
+}
+
+// `rotate(p * scale) + offset`, with Euler angles in degrees applied about x, then y, then
+// z; the scaled point clamped to +-1e38 and the result to the finite range.
+fn veneer_transform(p: vec3f, scale: vec3f, rotation: vec3f, offset: vec3f) -> vec3f {
+    let a = radians(rotation);
+    let c = cos(a);
+    let s = sin(a);
+    var q = veneer_scaled(p, scale);
+    q = vec3f(q.x, c.x * q.y - s.x * q.z, s.x * q.y + c.x * q.z);
+    q = vec3f(c.y * q.x + s.y * q.z, q.y, -s.y * q.x + c.y * q.z);
+    q = vec3f(c.z * q.x - s.z * q.y, s.z * q.x + c.z * q.y, q.z);
+    return veneer_finite_vec3f(q + offset);
+}
+
+// `p * scale + offset` (a transform without rotation), clamped like `veneer_transform`.
+fn veneer_scale_offset(p: vec3f, scale: vec3f, offset: vec3f) -> vec3f {
+    return veneer_finite_vec3f(veneer_scaled(p, scale) + offset);
+}
+
 // ---- shaders/hash.wgsl
 
 // Integer coordinates of a lattice cell, clamped to the i32 range so that any finite
@@ -56,8 +90,21 @@ fn veneer_gradient_dot(cell: vec3f, d: vec3f) -> f32 {
     return select(-u, u, (h & 1u) == 0u) + select(-v, v, (h & 2u) == 0u);
 }
 
+// ---- shaders/hash.wgsl
+
+// `p` within the lattice's range (+-2147483520 per axis, where the cells' integer
+// coordinates saturate anyway): every lattice noise samples its point through this, so
+// any coordinate (an overflowed product too) gives a finite value.
+fn veneer_lattice_domain(p: vec3f) -> vec3f {
+    let limit = vec3f(2147483520.0);
+    return clamp(p, -limit, limit);
+}
+
+// ---- shaders/gradient.wgsl
+
 // Gradient noise remapped to [0, 1].
-fn veneer_noise_gradient(p: vec3f) -> f32 {
+fn veneer_noise_gradient(point: vec3f) -> f32 {
+    let p = veneer_lattice_domain(point);
     let i = floor(p);
     let f = p - i;
     let u = f * f * f * (f * (f * 6.0 - 15.0) + 10.0);
@@ -77,19 +124,43 @@ fn veneer_noise_gradient(p: vec3f) -> f32 {
     return 0.5 + 0.5 * clamp(n, -1.0, 1.0);
 }
 
+// ---- shaders/math.wgsl
+
+// The length of `v` for any finite `v`: where its square overflows (past 1e38), the
+// length of `v` scaled by 2^-100 and back (exact), clamped to the finite range.
+fn veneer_length_vec2f(v: vec2f) -> f32 {
+    let scaled = 1.2676506002e30 * length(v * 7.888609052e-31);
+    return min(select(length(v), scaled, dot(v, v) > 1.0e38), 3.0e38);
+}
+
+// `x` clamped to the finite range: a sum or product of finite values is finite or an
+// infinity (never NaN), and the clamp turns an infinity into the nearest finite value.
+fn veneer_finite_f32(x: f32) -> f32 {
+    return clamp(x, f32(-3.0e38), f32(3.0e38));
+}
+
 // ---- shaders/patterns.wgsl
 
-// 0 -> 1 -> 0 once per period of `x * frequency` (the ring profile of seed 001).
+// 0 -> 1 -> 0 once per period of `x * frequency` (the ring profile of seed 001), the
+// product clamped to the finite range.
 fn veneer_triangle_wave(x: f32, frequency: f32) -> f32 {
-    let r = fract(x * frequency) * 2.0;
+    let r = fract(veneer_finite_f32(x * frequency)) * 2.0;
     return select(r, 2.0 - r, r > 1.0);
+}
+
+// ---- shaders/math.wgsl
+
+// `a (1 - t) + b t` written out (a GPU's mix may compute a + t (b - a), which overflows
+// for far-apart finite values), each product and the sum clamped to the finite range.
+fn veneer_mix_vec3f(a: vec3f, b: vec3f, t: f32) -> vec3f {
+    return veneer_finite_vec3f(veneer_finite_vec3f(a * (1.0 - t)) + veneer_finite_vec3f(b * t));
 }
 
 // ---- the material graph
 
 fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     // Transform 'noise space' (#2)
-    let noise_space: vec3f = s.position * vec3f(0.5f, 0.1f, 0.1f) + vec3f(0.0f, 0.0f, 0.0f);
+    let noise_space: vec3f = veneer_scale_offset(s.position, vec3f(0.5f, 0.1f, 0.1f), vec3f(0.0f, 0.0f, 0.0f));
     // Noise 'octave 1' (#3)
     let octave_1: f32 = veneer_noise_gradient(noise_space * 4.0f);
     // Noise 'octave 2' (#4)
@@ -99,59 +170,59 @@ fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     // Combine 'noise vector' (#6)
     let noise_vector: vec3f = vec3f(octave_1, octave_2, octave_3);
     // Math 'noisiness' (#7)
-    let noisiness: vec3f = noise_vector * vec3f(1.5f, 0.75f, 0.375f);
+    let noisiness: vec3f = veneer_finite_vec3f(noise_vector * vec3f(1.5f, 0.75f, 0.375f));
     // Math 'location' (#8)
-    let location: vec3f = s.position + noisiness;
+    let location: vec3f = veneer_finite_vec3f(s.position + noisiness);
     // Split 'location parts' (#9)
     let location_parts = location;
     // Combine 'trunk plane' (#10)
     let trunk_plane: vec2f = vec2f(location_parts.x, location_parts.z);
     // Length 'distance' (#11)
-    let distance_11: f32 = length(trunk_plane);
+    let distance_11: f32 = veneer_length_vec2f(trunk_plane);
     // Math 'ring distance' (#12)
-    let ring_distance: f32 = distance_11 * 4.0f;
+    let ring_distance: f32 = veneer_finite_f32(distance_11 * 4.0f);
     // Split 'noise parts' (#13)
     let noise_parts = noisiness;
     // Math 'noise sum xy' (#14)
-    let noise_sum_xy: f32 = noise_parts.x + noise_parts.y;
+    let noise_sum_xy: f32 = veneer_finite_f32(noise_parts.x + noise_parts.y);
     // Math 'noise sum' (#15)
-    let noise_sum: f32 = noise_sum_xy + noise_parts.z;
+    let noise_sum: f32 = veneer_finite_f32(noise_sum_xy + noise_parts.z);
     // Math 'ring input' (#16)
-    let ring_input: f32 = ring_distance + noise_sum;
+    let ring_input: f32 = veneer_finite_f32(ring_distance + noise_sum);
     // Triangle wave 'rings' (#17)
     let rings: f32 = veneer_triangle_wave(ring_input, 1.0f);
     // Mix 'ring colour' (#18)
-    let ring_colour: vec3f = mix(vec3f(0.6f, 0.3f, 0.1f), vec3f(0.4f, 0.2f, 0.07f), rings);
+    let ring_colour: vec3f = veneer_mix_vec3f(vec3f(0.6f, 0.3f, 0.1f), vec3f(0.4f, 0.2f, 0.07f), rings);
     // Split 'position parts' (#19)
     let position_parts = s.position;
     // Math 'diagonal' (#20)
-    let diagonal: f32 = position_parts.x + position_parts.z;
+    let diagonal: f32 = veneer_finite_f32(position_parts.x + position_parts.z);
     // Math 'grain phase' (#21)
-    let grain_phase: f32 = diagonal * 27.0f;
+    let grain_phase: f32 = veneer_finite_f32(diagonal * 27.0f);
     // Math 'grain offset' (#22)
-    let grain_offset: f32 = grain_phase + 0.5f;
+    let grain_offset: f32 = veneer_finite_f32(grain_phase + 0.5f);
     // Unary 'grain' (#23)
     let grain: f32 = fract(grain_offset);
     // Math 'grain noise' (#24)
-    let grain_noise: f32 = noise_parts.z * grain;
+    let grain_noise: f32 = veneer_finite_f32(noise_parts.z * grain);
     // Step 'dark side' (#25)
     let dark_side: f32 = step(f32(0.5f), grain);
     // Unary 'light side' (#26)
     let light_side: f32 = 1.0 - dark_side;
     // Math 'light grain' (#27)
-    let light_grain: f32 = grain_noise * light_side;
+    let light_grain: f32 = veneer_finite_f32(grain_noise * light_side);
     // Math 'light grain amount' (#28)
-    let light_grain_amount: f32 = light_grain * 1.0f;
+    let light_grain_amount: f32 = veneer_finite_f32(light_grain * 1.0f);
     // Math 'dark grain' (#29)
-    let dark_grain: f32 = grain_noise * dark_side;
+    let dark_grain: f32 = veneer_finite_f32(grain_noise * dark_side);
     // Math 'dark grain amount' (#30)
-    let dark_grain_amount: f32 = dark_grain * 0.0f;
+    let dark_grain_amount: f32 = veneer_finite_f32(dark_grain * 0.0f);
     // Math 'grain delta' (#31)
-    let grain_delta: f32 = light_grain_amount - dark_grain_amount;
+    let grain_delta: f32 = veneer_finite_f32(light_grain_amount - dark_grain_amount);
     // Math 'grain colour' (#32)
-    let grain_colour: vec3f = vec3f(0.6f, 0.3f, 0.1f) * vec3f(grain_delta);
+    let grain_colour: vec3f = veneer_finite_vec3f(vec3f(0.6f, 0.3f, 0.1f) * vec3f(grain_delta));
     // Math 'wood colour' (#33)
-    let wood_colour: vec3f = ring_colour + grain_colour;
+    let wood_colour: vec3f = veneer_finite_vec3f(ring_colour + grain_colour);
     // Material 'material' (#34)
     return VeneerMaterial(
         wood_colour, // albedo

@@ -24,32 +24,96 @@ struct VeneerMaterial {
     occlusion: f32,   // ambient occlusion, 1 unoccluded
 }
 
+// ---- shaders/math.wgsl
+
+// `x` clamped to the finite range: a sum or product of finite values is finite or an
+// infinity (never NaN), and the clamp turns an infinity into the nearest finite value.
+fn veneer_finite_vec2f(x: vec2f) -> vec2f {
+    return clamp(x, vec2f(-3.0e38), vec2f(3.0e38));
+}
+
 // ---- shaders/coords.wgsl
 
-// Unit vector along `v`; zero (not NaN) when `v` is too short to normalise.
+// Half of `p - origin` (an exact scaling, so it cannot overflow), scaled down by a further
+// 2^-100 (exact) where it is too long to square, and the factor that undoes the scaling.
+fn veneer_half_offset(p: vec3f, origin: vec3f) -> vec4f {
+    let half = 0.5 * p - 0.5 * origin;
+    let far = dot(half, half) > 1.0e36;
+    return vec4f(select(half, half * 7.888609052e-31, far), select(2.0, 2.5353012004e30, far));
+}
+
+// Unit vector along `v`; zero (not NaN) when `v` is too short to normalise. A vector
+// whose square overflows (past 1e38) is scaled by 2^-100 first (exact).
 fn veneer_safe_normalize_vec3f(v: vec3f) -> vec3f {
-    return select(normalize(v), vec3f(0.0), dot(v, v) < 1.0e-30);
+    let squared = dot(v, v);
+    let unit = normalize(select(v, v * 7.888609052e-31, squared > 1.0e38));
+    return select(unit, vec3f(0.0), squared < 1.0e-30);
 }
 
 // Cylindrical coordinates (t along the axis, radius r, angle theta) of `p` about the
-// axis through `origin`. The reference up vector switches to x when the axis is
-// within about 18 degrees of y, so the basis never degenerates (seed 000).
+// axis through `origin`, t and r clamped to the finite range. The reference up vector
+// switches to x when the axis is within about 18 degrees of y, so the basis never
+// degenerates (seed 000). Computed on half of `p - origin` (see `veneer_half_offset`).
 fn veneer_cylindrical(p: vec3f, origin: vec3f, axis: vec3f) -> vec3f {
     let d = veneer_safe_normalize_vec3f(axis);
     let up = select(vec3f(0.0, 1.0, 0.0), vec3f(1.0, 0.0, 0.0), abs(d.y) > 0.95);
     let u = veneer_safe_normalize_vec3f(cross(up, d));
     let v = cross(d, u);
-    let t = dot(p - origin, d);
-    let radial = p - (origin + t * d);
+    let half = veneer_half_offset(p, origin);
+    let relative = half.xyz;
+    let t = dot(relative, d);
+    let radial = relative - t * d;
     // On the axis the angle is undefined (WGSL's atan2(0, 0) is), and within 1e-5 of
     // |p - origin| from it the radial vector is rounding noise: call the angle 0 there.
     let across = vec2f(dot(radial, u), dot(radial, v));
-    let on_axis = dot(across, across) <= 1.0e-10 * dot(p - origin, p - origin);
+    let on_axis = dot(across, across) <= 1.0e-10 * dot(relative, relative);
     let theta = select(atan2(across.y, across.x), 0.0, on_axis);
-    return vec3f(t, length(radial), theta);
+    return vec3f(veneer_finite_vec2f(half.w * vec2f(t, length(radial))), theta);
+}
+
+// ---- shaders/math.wgsl
+
+// `x` clamped to the finite range: a sum or product of finite values is finite or an
+// infinity (never NaN), and the clamp turns an infinity into the nearest finite value.
+fn veneer_finite_vec3f(x: vec3f) -> vec3f {
+    return clamp(x, vec3f(-3.0e38), vec3f(3.0e38));
+}
+
+// ---- shaders/coords.wgsl
+
+// `p * scale` clamped to +-1e38: a rotation of it (which keeps its length, at most
+// sqrt(3) times that) and each step of the rotation stay finite.
+fn veneer_scaled(p: vec3f, scale: vec3f) -> vec3f {
+    return clamp(p * scale, vec3f(-1.0e38), vec3f(1.0e38));
+}
+
+// `rotate(p * scale) + offset`, with Euler angles in degrees applied about x, then y, then
+// z; the scaled point clamped to +-1e38 and the result to the finite range.
+fn veneer_transform(p: vec3f, scale: vec3f, rotation: vec3f, offset: vec3f) -> vec3f {
+    let a = radians(rotation);
+    let c = cos(a);
+    let s = sin(a);
+    var q = veneer_scaled(p, scale);
+    q = vec3f(q.x, c.x * q.y - s.x * q.z, s.x * q.y + c.x * q.z);
+    q = vec3f(c.y * q.x + s.y * q.z, q.y, -s.y * q.x + c.y * q.z);
+    q = vec3f(c.z * q.x - s.z * q.y, s.z * q.x + c.z * q.y, q.z);
+    return veneer_finite_vec3f(q + offset);
+}
+
+// `p * scale + offset` (a transform without rotation), clamped like `veneer_transform`.
+fn veneer_scale_offset(p: vec3f, scale: vec3f, offset: vec3f) -> vec3f {
+    return veneer_finite_vec3f(veneer_scaled(p, scale) + offset);
 }
 
 // ---- shaders/hash.wgsl
+
+// `p` within the lattice's range (+-2147483520 per axis, where the cells' integer
+// coordinates saturate anyway): every lattice noise samples its point through this, so
+// any coordinate (an overflowed product too) gives a finite value.
+fn veneer_lattice_domain(p: vec3f) -> vec3f {
+    let limit = vec3f(2147483520.0);
+    return clamp(p, -limit, limit);
+}
 
 // The sine hash of seed 000: cheap, but its value depends on the GPU's sin and it
 // loses all randomness once dot(p, k) is large (see `veneer report`).
@@ -61,7 +125,8 @@ fn veneer_lattice_sine(cell: vec3f) -> f32 {
 // ---- shaders/value.wgsl
 
 // Value noise in [0, 1] with the lattice hash sine.
-fn veneer_noise_value_sine(p: vec3f) -> f32 {
+fn veneer_noise_value_sine(point: vec3f) -> f32 {
+    let p = veneer_lattice_domain(point);
     let i = floor(p);
     let f = fract(p);
     let u = f * f * (3.0 - 2.0 * f);
@@ -96,11 +161,13 @@ fn veneer_octave_mean_fbm() -> f32 {
 }
 
 // Sum of `octaves` octaves; each multiplies the frequency by `lacunarity` and the
-// amplitude by `gain`. With `normalize` the sum is divided by the sum of amplitudes.
-// Octave i counts fully below `cutoff - 1`, fades to its average over the next octave
-// and is replaced by its average from `cutoff` on: those octaves are summed in a second
-// loop without any noise, so a coarse footprint shortens the expensive one (software
-// rasterisers run both sides of a branch; a shorter loop is what saves them work).
+// amplitude by `gain` (the frequency, the amplitude and the sums clamped to the finite
+// range, so no octave overflows into a NaN). With `normalize` the sum is divided by the
+// sum of amplitudes. Octave i counts fully below `cutoff - 1`, fades to its average over
+// the next octave and is replaced by its average from `cutoff` on: those octaves are
+// summed in a second loop without any noise, so a coarse footprint shortens the
+// expensive one (software rasterisers run both sides of a branch; a shorter loop is what
+// saves them work).
 fn veneer_fbm_value_sine(p: vec3f, octaves: i32, lacunarity: f32, gain: f32, amplitude: f32, normalize: bool, cutoff: f32) -> f32 {
     var sum = 0.0;
     var amp = amplitude;
@@ -110,45 +177,72 @@ fn veneer_fbm_value_sine(p: vec3f, octaves: i32, lacunarity: f32, gain: f32, amp
     let evaluated = min(octaves, i32(clamp(ceil(cutoff), 0.0, 64.0)));
     for (var i = 0; i < evaluated; i++) {
         let shown = clamp(cutoff - f32(i), 0.0, 1.0);
-        sum += amp * (shown * veneer_octave_fbm_value_sine(p * freq) + (1.0 - shown) * mean);
-        total += abs(amp);
-        freq *= lacunarity;
-        amp *= gain;
+        sum = clamp(sum + amp * (shown * veneer_octave_fbm_value_sine(p * freq) + (1.0 - shown) * mean), -3.0e38, 3.0e38);
+        total = min(total + abs(amp), 3.0e38);
+        freq = clamp(freq * lacunarity, -3.0e38, 3.0e38);
+        amp = clamp(amp * gain, -3.0e38, 3.0e38);
     }
     for (var i = evaluated; i < octaves; i++) {
-        sum += amp * mean;
-        total += abs(amp);
-        amp *= gain;
+        sum = clamp(sum + amp * mean, -3.0e38, 3.0e38);
+        total = min(total + abs(amp), 3.0e38);
+        amp = clamp(amp * gain, -3.0e38, 3.0e38);
     }
     return select(sum, sum / total, normalize && total > 0.0);
 }
 
-// ---- shaders/math.wgsl
+// ---- shaders/map_range.wgsl
 
-// a / b, 0 where b is 0, clamped to the finite f32 range.
-fn veneer_safe_div_f32(a: f32, b: f32) -> f32 {
-    let q = select(a / b, f32(0.0), b == f32(0.0));
-    return clamp(q, f32(-3.0e38), f32(3.0e38));
+// Where x lies from from_min (0) to from_max (1), unclamped; 0 when the range is empty.
+// The operands are halved first (an exact scaling) so that no difference overflows, and
+// the quotient is clamped to the finite range.
+fn veneer_map_range_factor(x: f32, from_min: f32, from_max: f32) -> f32 {
+    let span = 0.5 * from_max - 0.5 * from_min;
+    let t = (0.5 * x - 0.5 * from_min) / select(span, 1.0, span == 0.0);
+    return select(clamp(t, -3.0e38, 3.0e38), 0.0, span == 0.0);
 }
 
-// Linear map of x from [from_min, from_max] to [to_min, to_max].
+// to_min + t (to_max - to_min), halved like the factor, clamped to the finite range; then
+// clamped to the target range (either order) when `clamp_result`.
+fn veneer_map_range_to(t: f32, to_min: f32, to_max: f32, clamp_result: bool) -> f32 {
+    let y = clamp(to_min + t * (0.5 * to_max - 0.5 * to_min) * 2.0, -3.0e38, 3.0e38);
+    return select(y, clamp(y, min(to_min, to_max), max(to_min, to_max)), clamp_result);
+}
+
+// Linear: to_min + t (to_max - to_min), t = (x - from_min) / (from_max - from_min).
+fn veneer_map_range_linear(x: f32, from_min: f32, from_max: f32, to_min: f32, to_max: f32, clamp_result: bool) -> f32 {
+    return veneer_map_range_to(veneer_map_range_factor(x, from_min, from_max), to_min, to_max, clamp_result);
+}
+
+// ---- shaders/math.wgsl
+
+// Linear map of x from [from_min, from_max] to [to_min, to_max] (to_min where the source
+// range is empty): the linear Map Range without clamping.
 fn veneer_remap(x: f32, from_min: f32, from_max: f32, to_min: f32, to_max: f32) -> f32 {
-    return to_min + veneer_safe_div_f32(x - from_min, from_max - from_min) * (to_max - to_min);
+    return veneer_map_range_linear(x, from_min, from_max, to_min, to_max, false);
+}
+
+// `x` clamped to the finite range: a sum or product of finite values is finite or an
+// infinity (never NaN), and the clamp turns an infinity into the nearest finite value.
+fn veneer_finite_f32(x: f32) -> f32 {
+    return clamp(x, f32(-3.0e38), f32(3.0e38));
 }
 
 // ---- shaders/patterns.wgsl
 
-// Marble bands of seed 000: 0.5 + 0.5 sin(frequency x + distortion turbulence).
+// Marble bands of seed 000: 0.5 + 0.5 sin(frequency x + distortion turbulence), the
+// products and the phase clamped to the finite range.
 fn veneer_sine_band(x: f32, frequency: f32, distortion: f32, turbulence: f32) -> f32 {
-    return 0.5 + 0.5 * sin(frequency * x + distortion * turbulence);
+    let phase = veneer_finite_f32(frequency * x) + veneer_finite_f32(distortion * turbulence);
+    return 0.5 + 0.5 * sin(veneer_finite_f32(phase));
 }
 
 // ---- shaders/math.wgsl
 
-// Clamped linear ramp from edge0 to edge1 (a step at the edge when they are equal).
+// Clamped linear ramp from edge0 to edge1 (a step at the edge when they are equal). The
+// operands are halved first (an exact scaling), so that no difference overflows.
 fn veneer_linearstep(edge0: f32, edge1: f32, x: f32) -> f32 {
-    let span = edge1 - edge0;
-    let t = clamp((x - edge0) / select(span, 1.0, span == 0.0), 0.0, 1.0);
+    let span = 0.5 * edge1 - 0.5 * edge0;
+    let t = clamp((0.5 * x - 0.5 * edge0) / select(span, 1.0, span == 0.0), 0.0, 1.0);
     return select(t, step(edge0, x), span == 0.0);
 }
 
@@ -157,6 +251,18 @@ fn veneer_linearstep(edge0: f32, edge1: f32, x: f32) -> f32 {
 fn veneer_smoothstep(edge0: f32, edge1: f32, x: f32) -> f32 {
     let t = veneer_linearstep(edge0, edge1, x);
     return t * t * (3.0 - 2.0 * t);
+}
+
+// `a (1 - t) + b t` written out (a GPU's mix may compute a + t (b - a), which overflows
+// for far-apart finite values), each product and the sum clamped to the finite range.
+fn veneer_mix_vec3f(a: vec3f, b: vec3f, t: f32) -> vec3f {
+    return veneer_finite_vec3f(veneer_finite_vec3f(a * (1.0 - t)) + veneer_finite_vec3f(b * t));
+}
+
+// `a (1 - t) + b t` written out (a GPU's mix may compute a + t (b - a), which overflows
+// for far-apart finite values), each product and the sum clamped to the finite range.
+fn veneer_mix_f32(a: f32, b: f32, t: f32) -> f32 {
+    return veneer_finite_f32(veneer_finite_f32(a * (1.0 - t)) + veneer_finite_f32(b * t));
 }
 
 // ---- node groups
@@ -171,67 +277,67 @@ fn veneer_group_ring_wood(s: VeneerSurface) -> veneer_group_ring_wood_out {
     // Cylindrical 'trunk' (#1)
     let trunk = veneer_cylindrical(s.position, vec3f(25.0f, 0.0f, 25.0f), vec3f(0.2f, 1.0f, -0.1f));
     // Transform 'warp space' (#2)
-    let warp_space: vec3f = s.position * vec3f(0.2f, 0.2f, 0.2f) + vec3f(0.0f, 0.0f, 0.0f);
+    let warp_space: vec3f = veneer_scale_offset(s.position, vec3f(0.2f, 0.2f, 0.2f), vec3f(0.0f, 0.0f, 0.0f));
     // Transform 'coarse warp space' (#3)
-    let coarse_warp_space: vec3f = warp_space * vec3f(2.0f, 2.0f, 2.0f) + vec3f(0.0f, 0.0f, 0.0f);
+    let coarse_warp_space: vec3f = veneer_scale_offset(warp_space, vec3f(2.0f, 2.0f, 2.0f), vec3f(0.0f, 0.0f, 0.0f));
     // fBm 'coarse warp' (#4)
     let coarse_warp: f32 = veneer_fbm_value_sine(coarse_warp_space * 1.0f, 5, 2.0f, 0.5f, 0.5f, false, 1000000000.0f);
     // Remap 'coarse warp signed' (#5)
     let coarse_warp_signed: f32 = veneer_remap(coarse_warp, 0.0f, 1.0f, -1.0f, 1.0f);
     // Math 'coarse warp amount' (#9)
-    let coarse_warp_amount: f32 = coarse_warp_signed * 0.35f;
+    let coarse_warp_amount: f32 = veneer_finite_f32(coarse_warp_signed * 0.35f);
     // Math 'radius coarse' (#11)
-    let radius_coarse: f32 = trunk.y + coarse_warp_amount;
+    let radius_coarse: f32 = veneer_finite_f32(trunk.y + coarse_warp_amount);
     // Transform 'fine warp space' (#6)
-    let fine_warp_space: vec3f = warp_space * vec3f(6.0f, 6.0f, 6.0f) + vec3f(13.7f, 13.7f, 13.7f);
+    let fine_warp_space: vec3f = veneer_scale_offset(warp_space, vec3f(6.0f, 6.0f, 6.0f), vec3f(13.7f, 13.7f, 13.7f));
     // fBm 'fine warp' (#7)
     let fine_warp: f32 = veneer_fbm_value_sine(fine_warp_space * 1.0f, 5, 2.0f, 0.5f, 0.5f, false, 1000000000.0f);
     // Remap 'fine warp signed' (#8)
     let fine_warp_signed: f32 = veneer_remap(fine_warp, 0.0f, 1.0f, -1.0f, 1.0f);
     // Math 'fine warp amount' (#10)
-    let fine_warp_amount: f32 = fine_warp_signed * 0.1f;
+    let fine_warp_amount: f32 = veneer_finite_f32(fine_warp_signed * 0.1f);
     // Math 'warped radius' (#12)
-    let warped_radius: f32 = radius_coarse + fine_warp_amount;
+    let warped_radius: f32 = veneer_finite_f32(radius_coarse + fine_warp_amount);
     // Math 'taper' (#13)
-    let taper: f32 = warped_radius * 0.25f;
+    let taper: f32 = veneer_finite_f32(warped_radius * 0.25f);
     // Math 'taper squared' (#14)
-    let taper_squared: f32 = taper * warped_radius;
+    let taper_squared: f32 = veneer_finite_f32(taper * warped_radius);
     // Math 'tapered radius' (#15)
-    let tapered_radius: f32 = warped_radius + taper_squared;
+    let tapered_radius: f32 = veneer_finite_f32(warped_radius + taper_squared);
     // Math 'ring phase' (#16)
-    let ring_phase: f32 = tapered_radius * 0.5f;
+    let ring_phase: f32 = veneer_finite_f32(tapered_radius * 0.5f);
     // Sine band 'rings' (#17)
     let rings: f32 = veneer_sine_band(ring_phase, 1.0f, 0.0f, 0.0f);
     // Smoothstep 'ring sharp' (#18)
     let ring_sharp: f32 = veneer_smoothstep(0.25f, 0.85f, rings);
     // Mix 'ring colour' (#26)
-    let ring_colour: vec3f = mix(vec3f(0.089f, 0.024f, 0.007f), vec3f(0.342f, 0.147f, 0.04f), ring_sharp);
+    let ring_colour: vec3f = veneer_mix_vec3f(vec3f(0.089f, 0.024f, 0.007f), vec3f(0.342f, 0.147f, 0.04f), ring_sharp);
     // Math 'grain along' (#19)
-    let grain_along: f32 = trunk.x * 0.6f;
+    let grain_along: f32 = veneer_finite_f32(trunk.x * 0.6f);
     // Combine 'grain coords' (#20)
     let grain_coords: vec3f = vec3f(grain_along, trunk.z, 0.0f);
     // Transform 'grain drift' (#21)
-    let grain_drift: vec3f = s.position * vec3f(0.05f, 0.05f, 0.05f) + vec3f(0.0f, 0.0f, 0.0f);
+    let grain_drift: vec3f = veneer_scale_offset(s.position, vec3f(0.05f, 0.05f, 0.05f), vec3f(0.0f, 0.0f, 0.0f));
     // Math 'grain space' (#22)
-    let grain_space: vec3f = grain_coords + grain_drift;
+    let grain_space: vec3f = veneer_finite_vec3f(grain_coords + grain_drift);
     // fBm 'grain' (#23)
     let grain: f32 = veneer_fbm_value_sine(grain_space * 1.0f, 5, 2.0f, 0.5f, 0.5f, false, 1000000000.0f);
     // Smoothstep 'grain contrast' (#24)
     let grain_contrast: f32 = veneer_smoothstep(0.35f, 0.75f, grain);
     // Mix 'grain shade' (#25)
-    let grain_shade: f32 = mix(0.85f, 1.05f, grain_contrast);
+    let grain_shade: f32 = veneer_mix_f32(0.85f, 1.05f, grain_contrast);
     // Math 'grained colour' (#27)
-    let grained_colour: vec3f = ring_colour * vec3f(grain_shade);
+    let grained_colour: vec3f = veneer_finite_vec3f(ring_colour * vec3f(grain_shade));
     // Transform 'tint space' (#28)
-    let tint_space: vec3f = s.position * vec3f(0.08f, 0.08f, 0.08f) + vec3f(4.2f, 4.2f, 4.2f);
+    let tint_space: vec3f = veneer_scale_offset(s.position, vec3f(0.08f, 0.08f, 0.08f), vec3f(4.2f, 4.2f, 4.2f));
     // fBm 'tint' (#29)
     let tint: f32 = veneer_fbm_value_sine(tint_space * 1.0f, 5, 2.0f, 0.5f, 0.5f, false, 1000000000.0f);
     // Math 'tint amount' (#30)
-    let tint_amount: f32 = tint * 0.1f;
+    let tint_amount: f32 = veneer_finite_f32(tint * 0.1f);
     // Math 'tint shade' (#31)
-    let tint_shade: f32 = tint_amount + 0.95f;
+    let tint_shade: f32 = veneer_finite_f32(tint_amount + 0.95f);
     // Math 'wood colour' (#32)
-    let wood_colour: vec3f = grained_colour * vec3f(tint_shade);
+    let wood_colour: vec3f = veneer_finite_vec3f(grained_colour * vec3f(tint_shade));
     return veneer_group_ring_wood_out(wood_colour, ring_sharp);
 }
 
@@ -241,7 +347,7 @@ fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     // Group 'wood' (#1)
     let wood = veneer_group_ring_wood(s);
     // Mix 'late wood roughness' (#3)
-    let late_wood_roughness: f32 = mix(0.22f, 0.38f, wood.rings);
+    let late_wood_roughness: f32 = veneer_mix_f32(0.22f, 0.38f, wood.rings);
     // Material 'material' (#2)
     return VeneerMaterial(
         wood.albedo, // albedo
