@@ -271,6 +271,12 @@ static TERMINATION_HEARD: AtomicBool = AtomicBool::new(false);
 /// recovery file then holds the work as of the last autosave.
 pub const TERMINATION_GRACE: std::time::Duration = std::time::Duration::from_secs(3);
 
+/// How long the editor may take to finish closing once it has begun (its work is in
+/// the recovery file by then) before the process exits regardless, with status 0:
+/// background work — the preview thread compiling a 10,000-node material on a software
+/// rasteriser — must not hold the process after its window has gone.
+pub const CLOSING_LIMIT: std::time::Duration = std::time::Duration::from_secs(10);
+
 /// Whether the process was asked to end (SIGTERM, SIGINT, SIGHUP) since
 /// [`watch_termination`].
 pub fn termination_requested() -> bool {
@@ -332,10 +338,14 @@ pub fn watch_termination(ctx: &egui::Context) {
                     if termination_requested() {
                         ctx.request_repaint();
                         let since = *asked.get_or_insert_with(std::time::Instant::now);
-                        if !TERMINATION_HEARD.load(Ordering::SeqCst)
-                            && since.elapsed() > TERMINATION_GRACE
-                        {
+                        let heard = TERMINATION_HEARD.load(Ordering::SeqCst);
+                        if !heard && since.elapsed() > TERMINATION_GRACE {
                             end_by_signal();
+                        }
+                        if heard && since.elapsed() > TERMINATION_GRACE + CLOSING_LIMIT {
+                            // SAFETY: ends the process at once, running no exit handlers
+                            // that could wait on the threads still at work.
+                            unsafe { libc::_exit(0) };
                         }
                     }
                 }

@@ -443,7 +443,17 @@ fn may_write(args: &[String], path: &Path) -> bool {
             let stem = output.file_stem().unwrap_or_default().to_string_lossy();
             pair[0] == "-o" && output.with_file_name(format!("{stem}.parameters.json")) == path
         });
-    under_output || description || (args[0] == "fmt" && named)
+    // `bake` without `-o` writes `<graph>_<map>.<ext>` into the folder it runs in.
+    let baked_here = args[0] == "bake"
+        && !args.iter().any(|arg| arg == "-o")
+        && path
+            .parent()
+            .is_some_and(|folder| folder.as_os_str().is_empty())
+        && inputs(args).iter().any(|graph| {
+            let stem = Path::new(graph).file_stem().unwrap_or_default();
+            name.starts_with(&format!("{}_", stem.to_string_lossy()))
+        });
+    under_output || description || baked_here || (args[0] == "fmt" && named)
 }
 
 /// Runs one command line in a fresh fixture and checks the contract.

@@ -44,6 +44,7 @@ fn only_used_library_functions_are_emitted() {
     assert_eq!(
         module.library,
         [
+            "veneer_lattice_domain",
             "veneer_cell_bits",
             "veneer_pcg3d",
             "veneer_unit_floats",
