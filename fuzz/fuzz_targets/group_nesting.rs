@@ -40,9 +40,9 @@ struct FuzzGroup {
 
 #[derive(Arbitrary, Debug)]
 struct FuzzGraph {
-    /// Groups `chain0` › `chain1` › … nested this deep (modulo 8,192), the top level's
-    /// first node a node of `chain0`.
-    chain: u16,
+    /// Groups `chain0` › `chain1` › … nested this deep (255: 20,000 deep), a node of
+    /// `chain0` at the top level.
+    chain: u8,
     groups: Vec<FuzzGroup>,
     top: Vec<FuzzNode>,
     wires: Vec<FuzzWire>,
@@ -84,7 +84,10 @@ fn wires(fuzz: &[FuzzWire], count: usize) -> Vec<Wire> {
 }
 
 fn build(fuzz: &FuzzGraph) -> Graph {
-    let chain = fuzz.chain as usize % 8_192;
+    let chain = match fuzz.chain {
+        u8::MAX => 20_000,
+        depth => depth as usize,
+    };
     let mut names: Vec<String> = (0..fuzz.groups.len()).map(|k| format!("g{k}")).collect();
     names.extend((0..chain).map(|k| format!("chain{k}")));
     let mut graph = Graph::default();
