@@ -391,7 +391,7 @@ fn the_group_input_node_renames_retunes_and_removes_the_group_inputs() {
 
 /// Group 'bark' holds a node of group 'grain', which holds one of 'bark': a graph that
 /// loads but does not check, its top-level wire reading the output 'bark' declares.
-const SELF_CONTAINING: &str = r#"(
+pub(crate) const SELF_CONTAINING: &str = r#"(
     version: 2,
     name: "Loop",
     nodes: [

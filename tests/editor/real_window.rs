@@ -284,6 +284,36 @@ fn ten_thousand_nodes_at_one_point_open_laid_out_in_a_real_window() {
     session.finish();
 }
 
+#[test]
+fn a_fifo_for_a_recent_list_and_a_group_containing_itself_change_nothing_in_a_real_window() {
+    require_tools();
+    let mut session = Session::start("fifo_and_group_loop");
+    // A FIFO where the recent-files list goes: opening a file remembers it there, which
+    // waited for a reader forever (a black window that ignored SIGTERM).
+    let state = session.dir.join("state/veneer");
+    std::fs::create_dir_all(&state).expect("the state folder");
+    let status = Command::new("mkfifo")
+        .arg(state.join("recent.ron"))
+        .status()
+        .expect("mkfifo");
+    assert!(status.success());
+    let path = session.dir.join("loop.ron");
+    std::fs::write(&path, crate::groups::SELF_CONTAINING).expect("the graph is written");
+
+    session.step("open a graph whose group contains itself: it opens, not edited");
+    session.start_editor(&path, "loop.ron — Veneer");
+    let whole = full(&session.shot());
+    session.settled(whole);
+    session.expect_title("loop.ron — Veneer");
+
+    session.step("close the editor with SIGTERM: it ends, the file as it was");
+    session.close_editor();
+    if std::fs::read_to_string(&path).unwrap() != crate::groups::SELF_CONTAINING {
+        session.fail("the graph file changed");
+    }
+    session.finish();
+}
+
 /// Fails, naming the README's test command, when a tool the test needs is missing.
 fn require_tools() {
     let missing: Vec<String> = TOOLS
