@@ -187,5 +187,6 @@ pub fn run(args: SnapshotArgs) -> Result<(), Failure> {
         "{failed} of {} snapshots differ; approve with --update or {UPDATE_VARIABLE}=1",
         reports.len()
     );
-    Err(Failure(if args.json { String::new() } else { hint }, 1))
+    // On stderr with --json too: stdout stays the JSON alone.
+    Err(Failure(hint, 1))
 }

@@ -3,13 +3,14 @@
 //! memory, non-numbers, special files (`/dev/zero`, a FIFO, a folder, a link to
 //! `/dev/zero`), missing and full outputs, outputs that are FIFOs without a reader,
 //! regular files under `/dev/shm` longer than what replaces them, outputs that are the
-//! command's own inputs, batches whose jobs collide or write their own batch file, and
-//! graphs whose node settings and constants sit at the ends of the f32 range — and the
-//! real binary must, for each: exit 0, 1 or 2 with a message when not 0, never panic nor
-//! die by a signal, finish within a time limit under a 6 GiB address-space limit, touch
-//! no file but its outputs, never change one of its inputs, leave no output that ends in
-//! the old file's tail, and write only finite samples into EXR maps. The generator is
-//! seeded, so a failure names a case that replays.
+//! command's own inputs, batches whose jobs collide or write their own batch file, preset
+//! and group names shaped as paths out of their folders, and graphs whose node settings
+//! and constants sit at the ends of the f32 range — and the real binary must, for each:
+//! exit 0, 1 or 2 with a message when not 0, never panic nor die by a signal, finish
+//! within a time limit under a 6 GiB address-space limit, touch no file but its outputs,
+//! never change one of its inputs, leave no output that ends in the old file's tail, and
+//! write only finite samples into EXR maps. The generator is seeded, so a failure names a
+//! case that replays.
 
 use crate::support::root;
 use proptest::prelude::*;
@@ -30,6 +31,7 @@ const ADDRESS_SPACE: u64 = 6 << 30;
 /// Inputs every case's folder holds; the hostile ones are made by [`fixture`].
 const GRAPHS: &[&str] = &["wood.ron", "fields.ron"];
 const HOSTILE_GRAPHS: &[&str] = &[
+    "escaping-group.ron",
     "zero.ron",
     "fifo.ron",
     "folder.ron",
@@ -47,6 +49,15 @@ const HOSTILE_MESHES: &[&str] = &[
     "missing.obj",
     "empty.stl",
     "wood.ron",
+];
+/// Preset names that would name files out of a golden folder, or no file at all.
+const HOSTILE_PRESETS: &[&str] = &[
+    "x/../../escape",
+    "../escape",
+    "/tmp/escape",
+    "",
+    ".",
+    "nope",
 ];
 const SIZES: &[&str] = &["1", "7", "32"];
 const HOSTILE_SIZES: &[&str] = &["0", "200000", "4294967296", "-3", "abc", "NaN"];
@@ -116,6 +127,13 @@ fn fixture(dir: &Path, shm: &Path) {
     std::fs::create_dir_all(dir.join("out")).expect("folder");
     std::fs::copy(root("graphs/wood.ron"), dir.join("wood.ron")).expect("copied");
     std::fs::copy(root("graphs/isolines.ron"), dir.join("fields.ron")).expect("copied");
+    // The wood preset with its linked group named as a path out of the library.
+    let wood = std::fs::read_to_string(root("graphs/wood.ron")).expect("the wood preset");
+    std::fs::write(
+        dir.join("escaping-group.ron"),
+        wood.replace("\"ring_wood\"", "\"../../escape/ring_wood\""),
+    )
+    .expect("written");
     std::fs::copy(root("tests/meshes/tetrahedron.obj"), dir.join("mesh.obj")).expect("copied");
     for name in ["zero.ron", "zero.obj"] {
         std::os::unix::fs::symlink("/dev/zero", dir.join(name)).expect("link");
@@ -219,6 +237,8 @@ fn command_line() -> impl Strategy<Value = Vec<String>> {
     let size = || usual_or(SIZES, HOSTILE_SIZES);
     let output = || option("-o", usual_or(OUTPUTS, HOSTILE_OUTPUTS));
     let time = || option("--time", usual_or(&["0", "2.5"], HOSTILE_NUMBERS));
+    // Preset names become golden file names (`snapshot`): none may leave the folder.
+    let preset = || option("--preset", usual_or(&["oak", "walnut"], HOSTILE_PRESETS));
     let flat = || {
         usual_or(
             &["0,0,1,1,0", "-2,-2,2,2,0.5"],
@@ -234,6 +254,7 @@ fn command_line() -> impl Strategy<Value = Vec<String>> {
             time(),
             option("--flat", flat()),
             option("--detail", usual_or(&["footprint", "full"], &["none"])),
+            preset(),
         ]),
     )
         .prop_map(|(graph, rest)| [vec!["render".into(), graph], rest].concat());
@@ -271,6 +292,7 @@ fn command_line() -> impl Strategy<Value = Vec<String>> {
                 usual_or(&["glsl", "spv", "hlsl", "msl", "wgsl"], &["cobol"]),
             ),
             option("--params", usual_or(&["uniform", "baked"], &["none"])),
+            preset(),
         ]),
     )
         .prop_map(|(graph, rest)| [vec!["compile".into(), graph], rest].concat());
@@ -333,6 +355,7 @@ fn command_line() -> impl Strategy<Value = Vec<String>> {
             time(),
             flag("--update"),
             flag("--json"),
+            preset(),
         ]),
     )
         .prop_map(|(graphs, golden, rest)| {

@@ -71,6 +71,10 @@ fn an_unchanged_graph_passes_and_a_changed_one_exits_1_naming_it_with_a_diff() {
         serde_json::from_slice(&output.stdout).expect("JSON on stdout");
     assert_eq!(summary[0]["status"], "differs");
     assert!(summary[0]["share_outside"].as_f64().unwrap() > 0.0);
+    // A failing run says why on stderr, with --json too (the contract: no silent exit 1).
+    assert_eq!(output.status.code(), Some(1));
+    let message = String::from_utf8_lossy(&output.stderr);
+    assert!(message.contains("1 of 1 snapshots differ"), "{message}");
     let output = snapshot_cli(&dir, &["--update"]);
     assert_eq!(output.status.code(), Some(0));
     assert!(
