@@ -145,7 +145,7 @@ fn bench_dragged(
             let going_right = *right;
             let step = |harness: &mut Editor, at: egui::Pos2| {
                 let next = drag_frame(harness, at, going_right);
-                (part(&harness.state().profile), next)
+                (part(&harness.state().profile()), next)
             };
             dragged_frames(harness, at, frames, step)
         })
@@ -195,7 +195,11 @@ fn wood_drag(c: &mut Criterion) {
             total
         })
     });
-    assert_eq!(harness.state().live.compiles, 1, "a drag never recompiles");
+    assert_eq!(
+        harness.state().live().compiles,
+        1,
+        "a drag never recompiles"
+    );
     group.finish();
     drop(harness);
     preview_draws(c);
@@ -346,7 +350,7 @@ fn ui_while_compiling(c: &mut Criterion) {
                 for _ in 0..edits {
                     // Toggle the flat view's "every octave" detail: a recompile of the material.
                     wired = !wired;
-                    harness.state_mut().live.full_detail = wired;
+                    harness.state_mut().set_full_detail(wired);
                     let started = Instant::now();
                     harness.event(egui::Event::PointerMoved(egui::pos2(300.0, 300.0)));
                     harness.step();
@@ -385,7 +389,7 @@ fn big_graphs_frames(c: &mut Criterion) {
             let mut total = Duration::ZERO;
             for _ in 0..frames {
                 harness.step();
-                total += harness.state().profile.total;
+                total += harness.state().profile().total;
             }
             total
         })

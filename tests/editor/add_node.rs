@@ -44,7 +44,7 @@ fn hover(harness: &mut Editor, pos: Pos2) {
 /// A new, almost empty graph (the material output only).
 fn new_graph(harness: &mut Editor) {
     press(harness, Key::N, true);
-    assert_eq!(harness.state().document.graph.nodes.len(), 1);
+    assert_eq!(harness.state().document().graph.nodes.len(), 1);
 }
 
 /// The text field that has keyboard focus, if any: its screen rectangle and text.
@@ -56,7 +56,7 @@ fn focused_field(harness: &Editor) -> Option<(egui::Rect, String)> {
 
 /// The node with the largest id: the one added last.
 fn newest(harness: &Editor) -> veneer::graph::Node {
-    let graph = &harness.state().document.graph;
+    let graph = &harness.state().document().graph;
     graph
         .nodes
         .iter()
@@ -90,7 +90,7 @@ fn assert_under(harness: &Editor, node: &veneer::graph::Node, mouse: Pos2) {
 /// Opens the search with `opener` at `mouse`, types `query` without clicking, presses
 /// Enter, and checks the search was at the mouse with its text box focused.
 fn add_by_keyboard(harness: &mut Editor, mouse: Pos2, opener: (Modifiers, Key, &str), query: &str) {
-    let before = harness.state().document.graph.nodes.len();
+    let before = harness.state().document().graph.nodes.len();
     hover(harness, mouse);
     let (modifiers, opener, text) = opener;
     key(
@@ -115,7 +115,7 @@ fn add_by_keyboard(harness: &mut Editor, mouse: Pos2, opener: (Modifiers, Key, &
     );
     key(harness, Modifiers::NONE, Key::Enter, None);
     assert_eq!(
-        harness.state().document.graph.nodes.len(),
+        harness.state().document().graph.nodes.len(),
         before + 1,
         "Enter added the highlighted node"
     );
@@ -147,7 +147,7 @@ fn space_tab_and_shift_a_open_the_search_at_the_mouse_every_time() {
         assert!(node.kind.title().starts_with("Worley"), "{:?}", node.kind);
         assert_under(&harness, &node, mouse);
     }
-    assert_eq!(harness.state().document.graph.nodes.len(), 6);
+    assert_eq!(harness.state().document().graph.nodes.len(), 6);
 }
 
 #[test]
@@ -196,7 +196,7 @@ fn escape_closes_the_search_and_it_opens_again() {
             "round {round}: nothing of it stays"
         );
     }
-    assert_eq!(harness.state().document.graph.nodes.len(), 1);
+    assert_eq!(harness.state().document().graph.nodes.len(), 1);
     // Edit → Add node opens it too, over the graph: its text box takes the typing.
     harness.get_by_label("Edit").click();
     harness.run();
@@ -208,11 +208,11 @@ fn escape_closes_the_search_and_it_opens_again() {
     );
     typing(&mut harness, "tiles");
     key(&mut harness, Modifiers::NONE, Key::Enter, None);
-    assert_eq!(harness.state().document.graph.nodes.len(), 2);
+    assert_eq!(harness.state().document().graph.nodes.len(), 2);
     let node = newest(&harness);
     let corner = on_screen(&harness, node.position);
     assert!(
-        harness.state().document.graph.nodes.len() == 2
+        harness.state().document().graph.nodes.len() == 2
             && (0.0..900.0).contains(&corner.x)
             && (30.0..860.0).contains(&corner.y),
         "the new node is in view: {corner:?}"
@@ -251,7 +251,7 @@ fn a_click_on_the_search_does_not_reach_the_node_under_it() {
     typing(&mut harness, "tiles");
     harness.get_by_label("Tiles").click();
     harness.run();
-    assert_eq!(harness.state().document.graph.nodes.len(), 2);
+    assert_eq!(harness.state().document().graph.nodes.len(), 2);
     assert_eq!(newest(&harness).kind.title(), "Tiles");
     assert!(shows(&harness, "#2"), "the inspector shows the new node");
 }
@@ -310,7 +310,7 @@ fn pasted_and_duplicated_nodes_land_at_the_mouse_in_their_layout() {
     harness.event(Event::Paste(copied.clone()));
     harness.run();
     let pasted = newest(&harness);
-    assert_eq!(harness.state().document.graph.nodes.len(), 4);
+    assert_eq!(harness.state().document().graph.nodes.len(), 4);
     let corner = on_screen(&harness, pasted.position);
     assert!(
         (corner - mouse).length() < 2.0,
@@ -337,7 +337,7 @@ fn frames_come_from_the_search_and_ctrl_j() {
     key(&mut harness, Modifiers::NONE, Key::Space, Some(" "));
     typing(&mut harness, "comment");
     key(&mut harness, Modifiers::NONE, Key::Enter, None);
-    let frames = harness.state().document.graph.frames.clone();
+    let frames = harness.state().document().graph.frames.clone();
     assert_eq!(frames.len(), 1, "the search's Frame entry added a frame");
     let corner = on_screen(&harness, frames[0].min);
     assert!(
@@ -345,7 +345,7 @@ fn frames_come_from_the_search_and_ctrl_j() {
         "{corner:?} is not at {mouse:?}"
     );
     assert_eq!(
-        harness.state().document.graph.nodes.len(),
+        harness.state().document().graph.nodes.len(),
         1,
         "no node added"
     );
@@ -357,7 +357,7 @@ fn frames_come_from_the_search_and_ctrl_j() {
     typing(&mut harness, "frame around");
     key(&mut harness, Modifiers::NONE, Key::Enter, None);
     key(&mut harness, Modifiers::COMMAND, Key::J, None);
-    let graph = &harness.state().document.graph;
+    let graph = &harness.state().document().graph;
     assert_eq!(graph.frames.len(), 3);
     let (x, y) = graph.nodes[0].position;
     for frame in &graph.frames[1..] {
@@ -411,7 +411,7 @@ fn a_wire_dropped_on_empty_canvas_offers_groups_by_their_pins() {
     // ring_wood (the library's) takes floats: offered, placed and wired to its first.
     typing(&mut harness, "ring_wood");
     key(&mut harness, Modifiers::NONE, Key::Enter, None);
-    let graph = &harness.state().document.graph;
+    let graph = &harness.state().document().graph;
     let group = graph
         .nodes
         .iter()
@@ -457,7 +457,7 @@ fn a_wire_dropped_on_empty_canvas_offers_the_nodes_it_fits_and_connects_the_pick
     let remap = newest(&harness);
     assert_eq!(remap.kind.title(), "Remap");
     assert_under(&harness, &remap, drop);
-    let graph = &harness.state().document.graph;
+    let graph = &harness.state().document().graph;
     let wire = graph
         .wires
         .iter()

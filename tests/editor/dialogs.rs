@@ -67,9 +67,9 @@ fn dialog_up(harness: &Editor, heading: &str) -> bool {
 
 /// Makes the document dirty (a rename, as the inspector would make).
 fn edit(harness: &mut Editor, name: &str) {
-    harness.state_mut().document.graph.name = name.into();
+    harness.state_mut().document_mut().graph.name = name.into();
     harness.run();
-    assert!(harness.state().document.is_dirty());
+    assert!(harness.state().document().is_dirty());
 }
 
 /// A copy of the preset `name` in `dir`.
@@ -107,11 +107,11 @@ fn save_as_takes_the_typed_path_and_enter_without_a_click() {
     key(&mut harness, egui::Key::Enter);
     assert!(target.exists(), "Enter saved to the typed path");
     assert_eq!(
-        harness.state().document.path.as_deref(),
+        harness.state().document().path.as_deref(),
         Some(target.as_path())
     );
     assert!(!dialog_up(&harness, "Save graph as"));
-    assert!(!harness.state().document.is_dirty());
+    assert!(!harness.state().document().is_dirty());
 
     // Ctrl+Shift+S asks again; a typed path of another existing file asks before
     // replacing it, and Enter there is the safe choice (back to Save as).
@@ -143,9 +143,9 @@ fn open_takes_the_typed_path_and_enter_without_a_click() {
     assert!(dialog_up(&harness, "Open graph"));
     type_text(&mut harness, &marble.display().to_string());
     key(&mut harness, egui::Key::Enter);
-    assert_eq!(harness.state().document.graph.name, "Marble");
+    assert_eq!(harness.state().document().graph.name, "Marble");
     assert_eq!(
-        harness.state().document.path.as_deref(),
+        harness.state().document().path.as_deref(),
         Some(marble.as_path())
     );
     assert!(!dialog_up(&harness, "Open graph"));
@@ -207,8 +207,8 @@ fn escape_cancels_every_dialog() {
     assert!(dialog_up(&harness, "Unsaved changes"));
     key(&mut harness, egui::Key::Escape);
     assert!(!dialog_up(&harness, "Unsaved changes"));
-    assert_eq!(harness.state().document.graph.name, "Edited");
-    assert!(harness.state().document.is_dirty());
+    assert_eq!(harness.state().document().graph.name, "Edited");
+    assert!(harness.state().document().is_dirty());
     assert_eq!(recovery_files(&dir).len(), 1, "the edit is autosaved");
 }
 
@@ -269,7 +269,7 @@ fn enter_confirms_every_dialog() {
     wait(&mut harness, 1.0);
     key(&mut harness, egui::Key::Enter);
     assert!(!dialog_up(&harness, "Unsaved changes"));
-    assert_eq!(harness.state().document.graph.name, "Edited");
+    assert_eq!(harness.state().document().graph.name, "Edited");
 }
 
 /// The screen position of a graph node's title that lies left of `max_x`.
@@ -277,7 +277,7 @@ fn node_left_of(harness: &Editor, max_x: f32) -> (String, egui::Pos2) {
     let to_screen = harness.state().graph_to_screen();
     let titles: Vec<String> = harness
         .state()
-        .document
+        .document()
         .graph
         .nodes
         .iter()
@@ -321,14 +321,14 @@ fn dialogs_are_modal_clicks_do_not_reach_the_graph() {
     );
     assert!(dialog_up(&harness, "Open graph"), "the dialog stays up");
     // The keyboard is the dialog's too: Delete does not remove nodes.
-    let nodes = harness.state().document.graph.nodes.len();
+    let nodes = harness.state().document().graph.nodes.len();
     key(&mut harness, egui::Key::Escape);
     // Without the dialog the same click selects the node.
     click_at(&mut harness, position);
     assert!(inspected(&harness, &title), "the click selects '{title}'");
     press(&mut harness, egui::Key::O, true);
     key(&mut harness, egui::Key::Delete);
-    assert_eq!(harness.state().document.graph.nodes.len(), nodes);
+    assert_eq!(harness.state().document().graph.nodes.len(), nodes);
     key(&mut harness, egui::Key::Escape);
 }
 
@@ -363,10 +363,10 @@ fn the_unsaved_changes_prompt_never_puts_save_or_discard_under_the_open_button()
         "a click meant for Open overwrote the file"
     );
     assert_eq!(
-        harness.state().document.path.as_deref(),
+        harness.state().document().path.as_deref(),
         Some(mine.as_path())
     );
-    assert!(harness.state().document.is_dirty());
+    assert!(harness.state().document().is_dirty());
 
     // Just after the prompt appears even its own destructive buttons wait a moment.
     key(&mut harness, egui::Key::Escape);
@@ -380,7 +380,7 @@ fn the_unsaved_changes_prompt_never_puts_save_or_discard_under_the_open_button()
     click_in_one_frame(&mut harness, discard);
     harness.run_steps(2);
     assert_eq!(
-        harness.state().document.path.as_deref(),
+        harness.state().document().path.as_deref(),
         Some(mine.as_path())
     );
     // Then Discard does what it says.
@@ -388,7 +388,7 @@ fn the_unsaved_changes_prompt_never_puts_save_or_discard_under_the_open_button()
     harness.get_by_label("Discard").click();
     harness.run();
     assert_eq!(
-        harness.state().document.path.as_deref(),
+        harness.state().document().path.as_deref(),
         Some(other.as_path())
     );
     assert_eq!(std::fs::read_to_string(&mine).unwrap(), before);
@@ -433,9 +433,9 @@ fn the_file_browser_lists_the_folder_and_opens_a_file_by_double_click() {
     click_in_one_frame(&mut harness, entry);
     click_in_one_frame(&mut harness, entry);
     harness.run_steps(4);
-    assert_eq!(harness.state().document.graph.name, "Marble");
+    assert_eq!(harness.state().document().graph.name, "Marble");
     assert_eq!(
-        harness.state().document.path.as_deref(),
+        harness.state().document().path.as_deref(),
         Some(dir.join("marble.ron").as_path())
     );
 }
@@ -494,7 +494,7 @@ fn status_messages_go_away_after_a_few_seconds() {
     assert!(shows(&harness, "saved "), "the status bar says it saved");
     wait(&mut harness, 8.0);
     assert!(!shows(&harness, "saved "), "the message went stale");
-    assert!(harness.state().message.is_none());
+    assert!(harness.state().message().is_none());
 }
 
 #[test]
@@ -506,7 +506,7 @@ fn undo_back_to_the_saved_graph_and_saving_remove_the_recovery_file() {
     wait(&mut harness, 1.0);
     assert_eq!(recovery_files(&dir).len(), 1, "the edit is autosaved");
     press(&mut harness, egui::Key::Z, true);
-    assert!(!harness.state().document.is_dirty());
+    assert!(!harness.state().document().is_dirty());
     wait(&mut harness, 1.0);
     assert!(
         recovery_files(&dir).is_empty(),
@@ -517,7 +517,7 @@ fn undo_back_to_the_saved_graph_and_saving_remove_the_recovery_file() {
     wait(&mut harness, 1.0);
     assert_eq!(recovery_files(&dir).len(), 1);
     press(&mut harness, egui::Key::S, true);
-    assert!(!harness.state().document.is_dirty());
+    assert!(!harness.state().document().is_dirty());
     assert!(recovery_files(&dir).is_empty(), "saved: nothing to recover");
 }
 
@@ -571,8 +571,8 @@ fn the_work_of_a_gone_window_is_offered_and_recovered_once() {
     assert!(dialog_up(&harness, "Recover unsaved work?"));
     // Enter recovers.
     key(&mut harness, egui::Key::Enter);
-    assert_eq!(harness.state().document.graph.name, "Lost marble");
-    assert!(harness.state().document.is_dirty());
+    assert_eq!(harness.state().document().graph.name, "Lost marble");
+    assert!(harness.state().document().is_dirty());
     let files = recovery_files(&dir);
     assert_eq!(files.len(), 1, "{files:?}");
     assert_ne!(files[0], orphan, "the work moved to this window's own file");
@@ -605,7 +605,7 @@ fn discarded_session_child() {
     wait(&mut harness, 1.0);
     harness.get_by_label("Discard").click();
     harness.run();
-    assert_eq!(harness.state().document.graph.name, "Marble");
+    assert_eq!(harness.state().document().graph.name, "Marble");
     std::fs::write(dir.join("discarded"), "").expect("marker");
     run_until_killed(&mut harness);
 }

@@ -22,8 +22,8 @@ fn opens_on_the_wood_preset_with_the_material_on_a_sphere() {
     harness.run_steps(16);
     let image = screen(&mut harness);
     let app = harness.state();
-    assert_eq!(app.document.graph.name, "Wood");
-    assert!(app.live.errors.is_empty() && app.live.compiled.is_some());
+    assert_eq!(app.document().graph.name, "Wood");
+    assert!(app.live().errors.is_empty() && app.live().compiled.is_some());
     assert_eq!(
         app.pipelines_built(),
         1,
@@ -52,9 +52,9 @@ fn opens_on_the_wood_preset_with_the_material_on_a_sphere() {
 fn adds_a_node_through_the_search_menu_and_wires_it_from_the_inspector() {
     let dir = scratch("add");
     let mut harness = flat_wood_editor(&dir);
-    let before = harness.state().document.graph.nodes.len();
+    let before = harness.state().document().graph.nodes.len();
     add_node(&mut harness, "worley", "Worley");
-    let graph = &harness.state().document.graph;
+    let graph = &harness.state().document().graph;
     assert_eq!(graph.nodes.len(), before + 1);
     let worley = graph
         .nodes
@@ -67,7 +67,7 @@ fn adds_a_node_through_the_search_menu_and_wires_it_from_the_inspector() {
     // in a thumbnail: the bare rings, brown.
     select_node(&mut harness, "ring colour");
     let image = crate::support::screen(&mut harness);
-    assert!(harness.state().thumbnail.compiled.is_some());
+    assert!(harness.state().thumbnail().compiled.is_some());
     let rings = image.get_pixel(1030, 615).0;
     assert!(
         rings[0] > rings[2] + 30,
@@ -76,11 +76,11 @@ fn adds_a_node_through_the_search_menu_and_wires_it_from_the_inspector() {
     select_node(&mut harness, "wood colour");
     // Wire the new node into the material's alpha through the inspector's connect choice.
     wire_into_alpha(&mut harness, "Worley · value");
-    let graph = &harness.state().document.graph;
+    let graph = &harness.state().document().graph;
     let wire = graph.wire_into(graph.material().unwrap().id, "alpha");
     assert_eq!(wire.map(|w| w.from.node), Some(worley));
     assert_eq!(
-        harness.state().live.compiles,
+        harness.state().live().compiles,
         3,
         "adding and wiring are structural edits"
     );
@@ -91,15 +91,15 @@ fn a_parameter_edit_changes_the_preview_without_recompiling_and_undo_restores_it
     let dir = scratch("parameter");
     let mut harness = editor(&dir, None);
     let original = preview_pixels(&screen(&mut harness));
-    let compiles = harness.state().live.compiles;
+    let compiles = harness.state().live().compiles;
     select_node(&mut harness, "material");
     // Type a much lower shininess into the inspector's drag value: a broad highlight.
     retype_drag_value(&mut harness, "24.0", "2");
-    assert!(harness.state().document.is_dirty());
+    assert!(harness.state().document().is_dirty());
     let edited = preview_pixels(&screen(&mut harness));
     assert_ne!(original, edited, "the preview shows the new colour");
     assert_eq!(
-        harness.state().live.compiles,
+        harness.state().live().compiles,
         compiles,
         "a parameter edit never recompiles"
     );
@@ -108,7 +108,7 @@ fn a_parameter_edit_changes_the_preview_without_recompiling_and_undo_restores_it
     press(&mut harness, egui::Key::Z, true);
     let undone = preview_pixels(&screen(&mut harness));
     assert_eq!(undone, original, "undo restores the preview");
-    assert!(!harness.state().document.is_dirty());
+    assert!(!harness.state().document().is_dirty());
 }
 
 #[test]
@@ -120,7 +120,7 @@ fn a_compile_error_is_shown_on_the_node_that_caused_it() {
     wire_into_alpha(&mut harness, "Smoothstep · result");
     let app = harness.state();
     let smoothstep = app
-        .document
+        .document()
         .graph
         .nodes
         .iter()
@@ -128,19 +128,22 @@ fn a_compile_error_is_shown_on_the_node_that_caused_it() {
         .max()
         .expect("the new node has the largest id");
     assert_eq!(
-        app.document.graph.node(smoothstep).unwrap().kind,
+        app.document().graph.node(smoothstep).unwrap().kind,
         NodeKind::Smoothstep
     );
     assert!(
-        app.live.errors.contains_key(&Some(smoothstep)),
+        app.live().errors.contains_key(&Some(smoothstep)),
         "{:?}",
-        app.live.errors
+        app.live().errors
     );
     assert!(shows(
         &harness,
         &format!("node 'Smoothstep' ({smoothstep}): input 'x' (float) must be connected")
     ));
-    assert!(app.live.compiled.is_some(), "the last good material stays");
+    assert!(
+        app.live().compiled.is_some(),
+        "the last good material stays"
+    );
     let after = preview_pixels(&screen(&mut harness));
     assert_eq!(
         harness.state().pipelines_built(),
@@ -164,16 +167,16 @@ fn a_comment_frame_is_drawn_around_the_selected_nodes_and_undone() {
         .get_by_label("Frame selected nodes")
         .click_accesskit();
     harness.run();
-    let frames = &harness.state().document.graph.frames;
+    let frames = &harness.state().document().graph.frames;
     assert_eq!(frames.len(), 1);
     assert_eq!(
-        harness.state().live.compiles,
+        harness.state().live().compiles,
         1,
         "a comment frame never recompiles"
     );
     let node = harness
         .state()
-        .document
+        .document()
         .graph
         .nodes
         .iter()
@@ -189,7 +192,7 @@ fn a_comment_frame_is_drawn_around_the_selected_nodes_and_undone() {
     press(&mut harness, egui::Key::Escape, false);
     press(&mut harness, egui::Key::Z, true);
     assert!(
-        harness.state().document.graph.frames.is_empty(),
+        harness.state().document().graph.frames.is_empty(),
         "undo removes the frame"
     );
 }
@@ -203,7 +206,7 @@ fn a_numerical_hazard_is_marked_on_its_node_without_blocking_the_material() {
     retype_drag_value(&mut harness, "0.250", "0.85");
     let app = harness.state();
     let node = app
-        .document
+        .document()
         .graph
         .nodes
         .iter()
@@ -212,16 +215,16 @@ fn a_numerical_hazard_is_marked_on_its_node_without_blocking_the_material() {
         .id;
     eprintln!(
         "inputs: {:?}",
-        app.document.graph.node(node).unwrap().inputs
+        app.document().graph.node(node).unwrap().inputs
     );
     assert!(
-        app.live
+        app.live()
             .warnings
             .get(&node)
             .is_some_and(|w| w.contains("a hard step")),
         "{:?}",
-        app.live.warnings
+        app.live().warnings
     );
-    assert!(app.live.errors.is_empty(), "a warning is not an error");
+    assert!(app.live().errors.is_empty(), "a warning is not an error");
     assert!(shows(&harness, "numerical warnings"));
 }

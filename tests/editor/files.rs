@@ -28,7 +28,7 @@ fn save_as_then_reload_is_byte_identical() {
         std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/graphs/wood.ron")).unwrap();
     assert_eq!(saved, preset, "an unedited preset saves to the same bytes");
     assert_eq!(
-        harness.state().document.path.as_deref(),
+        harness.state().document().path.as_deref(),
         Some(target.as_path())
     );
 
@@ -47,10 +47,10 @@ fn save_as_then_reload_is_byte_identical() {
         "the saved file is a recent file in the next session"
     );
     assert_eq!(
-        veneer::graph::to_ron(&reopened.state().document.graph),
+        veneer::graph::to_ron(&reopened.state().document().graph),
         saved
     );
-    assert!(!reopened.state().document.is_dirty());
+    assert!(!reopened.state().document().is_dirty());
 }
 
 #[test]
@@ -73,7 +73,7 @@ fn an_invalid_file_is_rejected_with_a_message_and_the_graph_is_kept() {
     );
     assert!(shows(&harness, "Teapot"));
     assert_eq!(
-        harness.state().document.graph.name,
+        harness.state().document().graph.name,
         "Wood",
         "the open graph is untouched"
     );
@@ -91,8 +91,8 @@ fn presets_open_from_the_menu() {
     harness.run();
     harness.get_by_label("marble").click_accesskit();
     harness.run();
-    assert_eq!(harness.state().document.graph.name, "Marble");
-    assert!(harness.state().live.errors.is_empty());
+    assert_eq!(harness.state().document().graph.name, "Marble");
+    assert!(harness.state().live().errors.is_empty());
 }
 
 /// The child half of [`unsaved_work_survives_killing_the_editor`]: edits the wood preset
@@ -115,7 +115,7 @@ fn killed_session_child() {
     harness.run();
     harness.get_by(label_field).type_text(" (oiled)");
     harness.run();
-    assert!(harness.state().document.is_dirty());
+    assert!(harness.state().document().is_dirty());
     // Let the autosave interval pass.
     for _ in 0..6 {
         harness.step();
@@ -123,7 +123,7 @@ fn killed_session_child() {
         harness.input_mut().time = Some(harness.input().time.unwrap_or(0.0) + 1.0);
     }
     harness.run();
-    let edited = veneer::graph::to_ron(&harness.state().document.graph);
+    let edited = veneer::graph::to_ron(&harness.state().document().graph);
     veneer::fsutil::write_atomic(&dir.join("edited.ron"), edited.as_bytes()).expect("marker");
     run_until_killed(&mut harness);
 }
@@ -148,11 +148,11 @@ fn unsaved_work_survives_killing_the_editor() {
     restarted.get_by_label("Recover").click();
     restarted.run();
     assert_eq!(
-        veneer::graph::to_ron(&restarted.state().document.graph),
+        veneer::graph::to_ron(&restarted.state().document().graph),
         edited
     );
     assert!(
-        restarted.state().document.is_dirty(),
+        restarted.state().document().is_dirty(),
         "recovered work is not saved yet"
     );
 }
@@ -178,7 +178,7 @@ fn the_preview_shows_a_mesh_file_and_refuses_a_broken_one() {
     let sphere = crate::support::preview_pixels(&crate::support::screen(&mut harness));
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
     load_mesh(&mut harness, &root.join("tests/meshes/cube_quads.ply"));
-    assert!(harness.state().message.is_none());
+    assert!(harness.state().message().is_none());
     let cube = crate::support::preview_pixels(&crate::support::screen(&mut harness));
     assert_ne!(sphere, cube, "the preview now shows the cube");
 

@@ -29,7 +29,7 @@ fn isolines(scratch_name: &str) -> Harness<'static, VeneerApp> {
 }
 
 fn sources(harness: &Harness<'static, VeneerApp>) -> Vec<u32> {
-    harness.state().document.graph.preview.fields[0]
+    harness.state().document().graph.preview.fields[0]
         .sources
         .clone()
 }
@@ -56,7 +56,7 @@ fn fields_solve_for_the_preview_and_a_click_on_the_mesh_adds_a_source() {
     harness.step();
     let picked = sources(&harness);
     assert_eq!(picked.len(), 3, "the click added a source: {picked:?}");
-    assert!(harness.state().document.is_dirty(), "picking is an edit");
+    assert!(harness.state().document().is_dirty(), "picking is an edit");
 
     wait_for_fields(&mut harness);
     for _ in 0..3 {

@@ -39,7 +39,7 @@ fn small_editor(dir: &Path) -> Harness<'static, VeneerApp> {
 
 /// The graph's file text.
 fn text(harness: &Harness<'static, VeneerApp>) -> String {
-    to_ron(&harness.state().document.graph)
+    to_ron(&harness.state().document().graph)
 }
 
 /// Selects "noise" and "shade" with a rectangle dragged over them from empty canvas.
@@ -74,12 +74,12 @@ fn ctrl_g_groups_the_selection_and_ctrl_z_restores_the_graph() {
     // The Material alone: nothing to group, and the status bar says why.
     select_node(&mut harness, "material");
     press(&mut harness, Key::G, true);
-    assert!(harness.state().document.graph.groups.is_empty());
+    assert!(harness.state().document().graph.groups.is_empty());
     assert!(shows(&harness, "nothing to group"));
 
     select_noise_and_shade(&mut harness);
     press(&mut harness, Key::G, true);
-    let graph = &harness.state().document.graph;
+    let graph = &harness.state().document().graph;
     let group = graph.groups.get("group").expect("a group named 'group'");
     assert_eq!(group.nodes.len(), 2, "the noise and the multiply went in");
     assert_eq!(
@@ -93,7 +93,7 @@ fn ctrl_g_groups_the_selection_and_ctrl_z_restores_the_graph() {
         "the new group node is selected"
     );
     assert!(
-        harness.state().live.errors.is_empty(),
+        harness.state().live().errors.is_empty(),
         "the grouped graph compiles"
     );
 
@@ -142,7 +142,7 @@ fn tab_enters_the_group_and_leaves_it() {
     // An edit inside changes the definition (and is one undo step).
     select_node(&mut harness, "shade");
     retype_drag_value(&mut harness, "0.30", "0.5");
-    let definition = &harness.state().document.graph.groups["group"];
+    let definition = &harness.state().document().graph.groups["group"];
     let scale = definition
         .nodes
         .iter()
@@ -150,7 +150,7 @@ fn tab_enters_the_group_and_leaves_it() {
         .unwrap();
     assert_eq!(scale.inputs.get("b"), Some(&Value::Float(0.5)));
     press(&mut harness, Key::Z, true);
-    let definition = &harness.state().document.graph.groups["group"];
+    let definition = &harness.state().document().graph.groups["group"];
     let scale = definition
         .nodes
         .iter()
@@ -194,7 +194,7 @@ fn the_parameters_panel_and_its_presets_set_the_group_node_inputs() {
     let mut harness = editor(&dir, Some(wood));
     assert!(shows(&harness, "Parameters"));
     let wood_node = |harness: &Harness<'static, VeneerApp>| {
-        let graph = &harness.state().document.graph;
+        let graph = &harness.state().document().graph;
         graph
             .nodes
             .iter()
@@ -230,12 +230,12 @@ fn the_parameters_panel_and_its_presets_set_the_group_node_inputs() {
 fn the_add_node_search_finds_library_groups_and_places_them() {
     let dir = scratch("group-search");
     let mut harness = small_editor(&dir);
-    let before = harness.state().document.graph.nodes.len();
+    let before = harness.state().document().graph.nodes.len();
     press(&mut harness, Key::Space, false);
     type_into_field(&mut harness, "ring_wood");
     harness.get_by_label("ring_wood").click();
     harness.run();
-    let graph = &harness.state().document.graph;
+    let graph = &harness.state().document().graph;
     assert_eq!(graph.nodes.len(), before + 1);
     let placed = graph
         .nodes
@@ -266,7 +266,7 @@ fn groups_nest_and_ungroup_inside_a_group() {
     // Inside "group", the noise alone becomes "group_2", used by "group".
     select_node(&mut harness, "noise");
     press(&mut harness, Key::G, true);
-    let graph = &harness.state().document.graph;
+    let graph = &harness.state().document().graph;
     assert!(graph.groups.contains_key("group_2"));
     let outer = &graph.groups["group"];
     assert!(
@@ -277,7 +277,7 @@ fn groups_nest_and_ungroup_inside_a_group() {
         "{outer:?}"
     );
     assert!(
-        harness.state().live.errors.is_empty(),
+        harness.state().live().errors.is_empty(),
         "the nested groups compile"
     );
     press(&mut harness, Key::Tab, false);
@@ -294,7 +294,7 @@ fn groups_nest_and_ungroup_inside_a_group() {
     assert!(
         !harness
             .state()
-            .document
+            .document()
             .graph
             .groups
             .contains_key("group_2")
@@ -330,7 +330,7 @@ fn the_group_input_node_renames_retunes_and_removes_the_group_inputs() {
     harness.event(egui::Event::Text("rings_per_unit".into()));
     harness.key_press(Key::Enter);
     harness.run();
-    let graph = &harness.state().document.graph;
+    let graph = &harness.state().document().graph;
     let group = &graph.groups["ring_wood"];
     assert!(
         group
@@ -356,11 +356,11 @@ fn the_group_input_node_renames_retunes_and_removes_the_group_inputs() {
         .expect("a range checkbox")
         .click();
     harness.run();
-    let group = &harness.state().document.graph.groups["ring_wood"];
+    let group = &harness.state().document().graph.groups["ring_wood"];
     assert_eq!(group.inputs[0].range, None);
 
     // Remove the first input (its × button): its wires go, the pins keep its value.
-    let before = harness.state().document.graph.groups["ring_wood"]
+    let before = harness.state().document().graph.groups["ring_wood"]
         .inputs
         .len();
     harness
@@ -369,7 +369,7 @@ fn the_group_input_node_renames_retunes_and_removes_the_group_inputs() {
         .expect("a remove button")
         .click();
     harness.run();
-    let group = &harness.state().document.graph.groups["ring_wood"];
+    let group = &harness.state().document().graph.groups["ring_wood"];
     assert_eq!(group.inputs.len(), before - 1);
     assert!(
         group
@@ -385,7 +385,7 @@ fn the_group_input_node_renames_retunes_and_removes_the_group_inputs() {
     assert_eq!(phase.inputs.get("b"), Some(&Value::Float(0.5)));
     // One undo step each.
     press(&mut harness, Key::Z, true);
-    let group = &harness.state().document.graph.groups["ring_wood"];
+    let group = &harness.state().document().graph.groups["ring_wood"];
     assert_eq!(group.inputs.len(), before);
 }
 
@@ -419,7 +419,7 @@ fn a_group_that_contains_itself_never_edits_the_document_and_says_why() {
     let opened = to_ron(&veneer::graph::load(&path).expect("loads"));
     harness.run_steps(4);
     assert_eq!(text(&harness), opened);
-    assert!(!harness.state().document.is_dirty());
+    assert!(!harness.state().document().is_dirty());
     assert!(shows(&harness, "groups contain themselves"));
     // Inside the group and back: the wires the view cannot show stay too.
     select_node(&mut harness, "bark");
@@ -427,7 +427,7 @@ fn a_group_that_contains_itself_never_edits_the_document_and_says_why() {
     assert!(shows(&harness, "Group output"));
     press(&mut harness, Key::Tab, false);
     assert_eq!(text(&harness), opened);
-    assert!(!harness.state().document.is_dirty());
+    assert!(!harness.state().document().is_dirty());
 }
 
 /// A graph whose albedo is group `wide`'s result, `wide` declaring `inputs` inputs of
@@ -456,10 +456,10 @@ fn a_group_with_more_inputs_than_a_group_may_show_opens_unchanged_and_says_why()
         let mut harness = editor(&dir, Some(path));
         harness.run_steps(4);
         assert_eq!(text(&harness), opened, "{inputs} inputs");
-        assert!(!harness.state().document.is_dirty());
+        assert!(!harness.state().document().is_dirty());
         match problem {
             Some(problem) => assert!(shows(&harness, problem), "{inputs} inputs"),
-            None => assert!(harness.state().live.errors.is_empty(), "{inputs} inputs"),
+            None => assert!(harness.state().live().errors.is_empty(), "{inputs} inputs"),
         }
     }
 }

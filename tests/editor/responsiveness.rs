@@ -49,7 +49,7 @@ fn the_ui_answers_while_a_new_material_compiles_on_the_preview_thread() {
     // Every octave instead of what the footprint shows: a new material.
     harness.get_by_label("every octave").click();
     harness.step();
-    assert_eq!(harness.state().live.compiles, 2, "the click recompiled");
+    assert_eq!(harness.state().live().compiles, 2, "the click recompiled");
     assert!(
         !harness.state().preview_settled(),
         "the frame came back before the new pipeline was built"
@@ -109,9 +109,13 @@ fn a_drag_draws_drafts_without_recompiling_and_refines_when_let_go() {
     harness.event(press(at, false));
     settle_previews(&mut harness);
     assert_eq!(harness.state().preview_quality(), Some(Quality::Full));
-    assert_eq!(harness.state().live.compiles, 1, "a drag never recompiles");
+    assert_eq!(
+        harness.state().live().compiles,
+        1,
+        "a drag never recompiles"
+    );
     assert!(
-        harness.state().document.is_dirty(),
+        harness.state().document().is_dirty(),
         "the drag changed the shininess"
     );
 }
@@ -136,7 +140,7 @@ fn time_plays_and_starts_again_paused_with_another_graph() {
     harness.run_steps(3);
     harness.get_by_label("marble").click_accesskit();
     harness.run_steps(3);
-    assert_eq!(harness.state().document.graph.name, "Marble");
+    assert_eq!(harness.state().document().graph.name, "Marble");
     assert_eq!(harness.state().preview_time(), (0.0, false));
 }
 
@@ -151,8 +155,8 @@ fn a_graph_of_two_thousand_nodes_opens_and_shows_its_material() {
     // The software rasteriser takes its time over a shader of two thousand nodes.
     settle_previews_within(&mut harness, 300);
     let app = harness.state();
-    assert!(app.live.errors.is_empty(), "{:?}", app.live.errors);
-    let module = &app.live.compiled.as_ref().expect("it compiles").module;
+    assert!(app.live().errors.is_empty(), "{:?}", app.live().errors);
+    let module = &app.live().compiled.as_ref().expect("it compiles").module;
     assert!(
         module.params.len() > veneer::app::UNIFORM_SLOTS,
         "more parameters than a uniform block holds: {}",
@@ -160,5 +164,5 @@ fn a_graph_of_two_thousand_nodes_opens_and_shows_its_material() {
     );
     assert_eq!(app.pipelines_built(), 1, "and the preview shows it");
     assert!(app.preview_error().is_none(), "{:?}", app.preview_error());
-    assert_eq!(app.document.graph.nodes.len(), 2000);
+    assert_eq!(app.document().graph.nodes.len(), 2000);
 }

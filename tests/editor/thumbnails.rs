@@ -18,12 +18,13 @@ pub fn settle(harness: &mut Harness<'static, VeneerApp>) {
     let started = std::time::Instant::now();
     loop {
         harness.step();
-        if harness.state().thumbnails.settled() && !harness.state().thumbnails.pins().is_empty() {
+        if harness.state().thumbnails().settled() && !harness.state().thumbnails().pins().is_empty()
+        {
             // One more frame, so the node bodies show the last tiles that came in.
             harness.step();
             return;
         }
-        let error = harness.state().thumbnails.error.clone();
+        let error = harness.state().thumbnails().error.clone();
         assert!(error.is_none(), "thumbnails failed: {error:?}");
         assert!(
             started.elapsed() < std::time::Duration::from_secs(120),
@@ -114,12 +115,15 @@ fn each_node_shows_its_output_as_the_cpu_evaluates_it() {
         (PinRef::new(split, "x"), ValueType::Float),
     ];
     assert_eq!(
-        app.thumbnails.pins(),
+        app.thumbnails().pins(),
         &pins.clone().map(|(pin, _)| pin),
         "one tile per node with outputs, none for the material"
     );
     for (pin, ty) in &pins {
-        let tile = app.thumbnails.tile_pixels(pin).expect("the tile is drawn");
+        let tile = app
+            .thumbnails()
+            .tile_pixels(pin)
+            .expect("the tile is drawn");
         let mut worst = 0;
         for j in 0..TILE_PIXELS {
             for i in 0..TILE_PIXELS {
@@ -133,7 +137,7 @@ fn each_node_shows_its_output_as_the_cpu_evaluates_it() {
         assert!(worst <= 1, "{pin:?}: off by {worst} from the CPU evaluator");
     }
     // The ramp runs black to white left to right; the position's red follows x too.
-    let ramp = app.thumbnails.tile_pixels(&pins[2].0).unwrap();
+    let ramp = app.thumbnails().tile_pixels(&pins[2].0).unwrap();
     assert!(ramp[0][0] < 5 && ramp[(TILE_PIXELS - 1) as usize][0] > 250);
     // The node on screen shows the tile: a 64-point square (at the view's zoom) of the
     // constant colour (F frames every node).
@@ -180,20 +184,20 @@ fn thumbnails_switch_off_per_node_and_all_at_once() {
     let shown = |harness: &Harness<'static, VeneerApp>| {
         harness
             .state()
-            .thumbnails
+            .thumbnails()
             .pins()
             .iter()
             .map(|pin| pin.node)
             .collect::<Vec<_>>()
     };
     assert_eq!(shown(&harness), [colour, split]);
-    assert!(!harness.state().thumbnails.shows(position));
+    assert!(!harness.state().thumbnails().shows(position));
 
     // T hides them all: no node body, no tile; the View menu brings them back.
     press(&mut harness, egui::Key::T, false);
     harness.run_steps(2);
-    assert!(!harness.state().thumbnails.enabled);
-    assert!(harness.state().thumbnails.pins().is_empty());
+    assert!(!harness.state().thumbnails().enabled);
+    assert!(harness.state().thumbnails().pins().is_empty());
     harness.get_by_label("View").click();
     harness.run();
     harness.get_by_label("☐ Node thumbnails").click();
@@ -235,18 +239,19 @@ fn a_parameter_edit_redraws_only_the_tiles_it_reaches_without_recompiling() {
     let mut harness = flat_wood_editor(&dir);
     settle(&mut harness);
     let app = harness.state();
-    let tiles = app.thumbnails.pins().len();
+    let tiles = app.thumbnails().pins().len();
     assert_eq!(
         tiles,
-        app.document.graph.nodes.len() - 1,
+        app.document().graph.nodes.len() - 1,
         "every node but the material"
     );
     assert_eq!(
-        app.thumbnails.tiles_drawn, tiles as u64,
+        app.thumbnails().tiles_drawn,
+        tiles as u64,
         "each drawn once on opening"
     );
-    let compiles = app.thumbnails.atlas.compiles;
-    let graph = app.document.graph.clone();
+    let compiles = app.thumbnails().atlas.compiles;
+    let graph = app.document().graph.clone();
     let tint = graph
         .nodes
         .iter()
@@ -259,7 +264,7 @@ fn a_parameter_edit_redraws_only_the_tiles_it_reaches_without_recompiling() {
     settle(&mut harness);
     let app = harness.state();
     let redrawn: BTreeSet<NodeId> = app
-        .thumbnails
+        .thumbnails()
         .last_drawn
         .iter()
         .map(|pin| pin.node)
@@ -267,9 +272,10 @@ fn a_parameter_edit_redraws_only_the_tiles_it_reaches_without_recompiling() {
     let mut reached = downstream(&graph, tint);
     reached.retain(|node| graph.node(*node).unwrap().kind != NodeKind::Material);
     assert_eq!(redrawn, reached, "tint amount, tint shade, wood colour");
-    assert_eq!(app.thumbnails.tiles_drawn, (tiles + reached.len()) as u64);
+    assert_eq!(app.thumbnails().tiles_drawn, (tiles + reached.len()) as u64);
     assert_eq!(
-        app.thumbnails.atlas.compiles, compiles,
+        app.thumbnails().atlas.compiles,
+        compiles,
         "a value edit never recompiles"
     );
 }
@@ -291,7 +297,7 @@ fn hovering_a_wire_shows_the_value_it_carries() {
     graph.connect(split, "z", material, "alpha");
     let mut harness = open("thumbnail-wire", &graph);
     let z = PinRef::new(split, "z");
-    assert!(!harness.state().thumbnails.pins().contains(&z));
+    assert!(!harness.state().thumbnails().pins().contains(&z));
     let middle = wire_middle(&harness, &z, &PinRef::new(material, "alpha"));
     harness.hover_at(middle);
     settle(&mut harness);
@@ -301,7 +307,7 @@ fn hovering_a_wire_shows_the_value_it_carries() {
     );
     let tile = harness
         .state()
-        .thumbnails
+        .thumbnails()
         .tile_pixels(&z)
         .expect("the wire's tile");
     for (i, j) in [(5, 2), (30, 33), (60, 61)] {
@@ -330,7 +336,7 @@ fn a_node_dropped_on_a_wire_is_inserted_and_one_undo_takes_it_out() {
     );
     graph.node_mut(tint).unwrap().position = (220.0, 360.0);
     let mut harness = open("thumbnail-drop", &graph);
-    let before = harness.state().document.graph.clone();
+    let before = harness.state().document().graph.clone();
     let target = wire_middle(
         &harness,
         &PinRef::new(colour, "value"),
@@ -359,13 +365,13 @@ fn a_node_dropped_on_a_wire_is_inserted_and_one_undo_takes_it_out() {
         modifiers: Default::default(),
     });
     harness.run_steps(3);
-    let graph = &harness.state().document.graph;
+    let graph = &harness.state().document().graph;
     let into = |node: NodeId, pin: &str| graph.wire_into(node, pin).map(|w| w.from.clone());
     assert_eq!(into(tint, "value"), Some(PinRef::new(colour, "value")));
     assert_eq!(into(material, "albedo"), Some(PinRef::new(tint, "value")));
     press(&mut harness, egui::Key::Z, true);
     assert_eq!(
-        harness.state().document.graph,
+        harness.state().document().graph,
         before,
         "one undo puts the wire and the node back"
     );

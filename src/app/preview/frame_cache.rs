@@ -1,0 +1,57 @@
+//! What each preview slot draws, kept between frames: the material's code (shared until
+//! it changes) and its parameter values (worked out again only when the graph changes).
+
+use crate::app::preview::live::LiveMaterial;
+use crate::app::preview::state::MaterialFrame;
+use crate::graph::Graph;
+use std::sync::Arc;
+
+/// Set in the generations of field-view materials, so that the preview never mistakes
+/// one for the graph's material of the same generation.
+pub(in crate::app) const FIELD_VIEW_GENERATIONS: u64 = 1 << 48;
+
+/// What a preview's material is made of, kept between frames: the code (shared until
+/// it changes) and the parameter values (worked out again only when the graph changes).
+#[derive(Default)]
+pub(in crate::app) struct FrameCache {
+    code: Option<(u64, Arc<str>)>,
+    /// The values, for the code generation and graph revision they were worked out for.
+    params: Option<(ParamsKey, Arc<[[f32; 4]]>)>,
+}
+
+/// A code generation and a graph revision.
+type ParamsKey = (u64, u64);
+
+/// What a preview should draw this frame: `live`'s code and its parameter values for
+/// `graph` at `revision` (taken from `cache` while neither changed).
+pub(in crate::app) fn material_frame(
+    live: &LiveMaterial,
+    cache: &mut FrameCache,
+    graph: &Graph,
+    revision: u64,
+) -> Option<MaterialFrame> {
+    let module = &live.compiled.as_ref()?.module;
+    if cache
+        .code
+        .as_ref()
+        .is_none_or(|(generation, _)| *generation != live.generation)
+    {
+        cache.code = Some((live.generation, Arc::from(module.source.as_str())));
+    }
+    let key = (live.generation, revision);
+    if cache.params.as_ref().is_none_or(|(seen, _)| *seen != key) {
+        cache.params = Some((key, live.params(graph).into()));
+    }
+    let wgsl = cache.code.as_ref().map(|(_, code)| code.clone())?;
+    let params = cache.params.as_ref().map(|(_, params)| params.clone())?;
+    Some(MaterialFrame {
+        code: crate::render::LiveMaterialCode {
+            generation: live.generation,
+            wgsl,
+            slots: module.params.len(),
+            uses: module.uses,
+        },
+        params,
+        tessellation: None,
+    })
+}

@@ -1,0 +1,283 @@
+//! The live compile loop: a structural edit recompiles the material (parameters as
+//! uniforms), a parameter edit does not; a failed compile keeps the last good material.
+
+use crate::codegen::{
+    CompileError, CompileOptions, Compiled, Detail, ParamMode, SurfaceUse, compile, param_values,
+};
+use crate::graph::{Graph, NodeId, Value};
+use std::collections::BTreeMap;
+
+/// The most parameter slots a uniform block takes: 16 KiB, what every device offers.
+/// Past it parameters go to a storage buffer (uniform blocks are kept below it: reads
+/// from them are known to be uniform, which some drivers, lavapipe among them, need for
+/// the screen-space derivatives of footprint-aware noise to come out clean).
+pub const UNIFORM_SLOTS: usize = 1024;
+
+/// The material the preview shows, kept in step with the edited graph.
+#[derive(Default)]
+pub struct LiveMaterial {
+    /// Structure of the graph last compiled (nodes, kinds and settings, wires), and the
+    /// detail it was compiled with.
+    structure: Option<(Graph, bool)>,
+    /// The last graph that compiled, in uniform mode.
+    pub compiled: Option<Compiled>,
+    /// Errors of the last compile, by node (`None`: not tied to a node).
+    pub errors: BTreeMap<Option<NodeId>, String>,
+    /// How many times the graph was compiled (parameter edits never count).
+    pub compiles: u64,
+    /// Bumped whenever the module's code changes, so the preview knows to rebuild its pipeline.
+    pub generation: u64,
+    /// Numerical hazards of the graph, by node (one message per line).
+    pub warnings: BTreeMap<NodeId, String>,
+    /// Noise detail: footprint-aware unless the user asks for every octave.
+    pub full_detail: bool,
+    /// Parameters past [`UNIFORM_SLOTS`] in a storage buffer instead of a uniform block.
+    storage: bool,
+}
+
+/// What decides the generated code: nodes with their kinds and settings, and the wires.
+/// Labels, positions, constant values (inside groups too), frames, preview settings and
+/// library links are left out: they never need a recompile.
+pub(in crate::app) fn structure(graph: &Graph) -> Graph {
+    let mut skeleton = graph.clone();
+    skeleton.name.clear();
+    skeleton.frames.clear();
+    skeleton.preview = Default::default();
+    for group in skeleton.groups.values_mut() {
+        // Following the library or not changes no code.
+        group.linked = false;
+        for node in &mut group.nodes {
+            node.label.clear();
+            node.position = (0.0, 0.0);
+            node.inputs.clear();
+        }
+    }
+    for node in &mut skeleton.nodes {
+        node.label.clear();
+        node.position = (0.0, 0.0);
+        if node.kind == crate::graph::NodeKind::Material {
+            // What the material's unwired bump, height and alpha are decides what the
+            // pipeline does: kept as whether each shows, so that crossing that line
+            // recompiles and nothing else does.
+            node.inputs.retain(|pin, value| {
+                SurfaceUse::input_shows(pin, value, graph.alpha).is_some_and(|shows| {
+                    *value = Value::Float(f64::from(u8::from(shows)));
+                    true
+                })
+            });
+        } else {
+            node.inputs.clear();
+        }
+    }
+    skeleton
+}
+
+/// The values of parameter slots `slots` for `graph`, its groups inlined first as the
+/// compile inlined them (the slots name the inlined nodes).
+pub(in crate::app) fn slot_values(
+    graph: &Graph,
+    slots: &[crate::codegen::ParamSlot],
+) -> Vec<[f32; 4]> {
+    match crate::graph::group::flatten(graph) {
+        Ok(flat) => param_values(&flat, slots),
+        Err(_) => param_values(graph, slots),
+    }
+}
+
+impl LiveMaterial {
+    /// A live material that moves its parameters to a storage buffer when they pass
+    /// what a uniform block holds, so that graphs of any size compile for the preview
+    /// ([`ParamMode::Storage`]).
+    pub fn in_storage() -> LiveMaterial {
+        LiveMaterial {
+            storage: true,
+            ..LiveMaterial::default()
+        }
+    }
+
+    /// Recompiles if the graph's structure changed since the last call; returns whether it did.
+    pub fn update(&mut self, graph: &Graph) -> bool {
+        let key = (structure(graph), self.full_detail);
+        if self.structure.as_ref() == Some(&key) {
+            return false;
+        }
+        self.structure = Some(key);
+        self.compiles += 1;
+        self.errors.clear();
+        let detail = if self.full_detail {
+            Detail::Full
+        } else {
+            Detail::Footprint
+        };
+        let mut options = CompileOptions {
+            params: ParamMode::Uniform,
+            detail,
+        };
+        let mut result = compile(graph, &options);
+        let slots = |result: &Result<Compiled, _>| {
+            result
+                .as_ref()
+                .map_or(0, |c: &Compiled| c.module.params.len())
+        };
+        if self.storage && slots(&result) > UNIFORM_SLOTS {
+            options.params = ParamMode::Storage;
+            result = compile(graph, &options);
+        }
+        match result {
+            Ok(compiled) => {
+                // Nodes the output does not reach are pruned: the code may well be
+                // unchanged. What the pipeline does with it (alpha mode, relief) may not.
+                if self.compiled.as_ref().is_none_or(|old| {
+                    old.source() != compiled.source() || old.uses() != compiled.uses()
+                }) {
+                    self.generation += 1;
+                }
+                self.compiled = Some(compiled);
+            }
+            Err(CompileError::Check(errors)) => {
+                for error in errors {
+                    let entry = self.errors.entry(error.node).or_default();
+                    if !entry.is_empty() {
+                        entry.push('\n');
+                    }
+                    entry.push_str(&error.message);
+                }
+            }
+            Err(CompileError::Validation(error)) => {
+                self.errors.insert(error.node, error.message);
+            }
+        }
+        true
+    }
+
+    /// Finds the numerical hazards of `graph` (constants matter here, unlike for
+    /// compiling); the editor calls it once per revision of the graph.
+    pub fn lint(&mut self, graph: &Graph) {
+        self.warnings.clear();
+        if let Ok(checked) = crate::graph::check(graph) {
+            for lint in crate::lint::lint(&checked, crate::lint::preview_positions(graph)) {
+                let entry = self.warnings.entry(lint.node).or_default();
+                if !entry.is_empty() {
+                    entry.push('\n');
+                }
+                entry.push_str(&lint.message);
+            }
+        }
+    }
+
+    /// The uniform values of the current module for `graph`.
+    pub fn params(&self, graph: &Graph) -> Vec<[f32; 4]> {
+        self.compiled
+            .as_ref()
+            .map(|compiled| slot_values(graph, &compiled.module.params))
+            .unwrap_or_default()
+    }
+
+    /// One line for the status bar: the first error, or `None` when the graph compiles.
+    pub fn status(&self, graph: &Graph) -> Option<String> {
+        let (node, message) = self.errors.iter().next()?;
+        let first_line = message.lines().next().unwrap_or_default();
+        Some(match (*node).and_then(|id| graph.node(id)) {
+            Some(node) => format!("{node}: {first_line}"),
+            None => first_line.to_string(),
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::graph::{NodeKind, Value};
+    use crate::nodes::{Noise, Worley};
+
+    fn graph() -> (Graph, NodeId, NodeId) {
+        let mut graph = Graph::default();
+        let noise = graph.add(
+            "noise",
+            NodeKind::Noise(Noise {
+                basis: crate::graph::Basis::Gradient,
+            }),
+        );
+        let material = graph.add("material", NodeKind::Material);
+        graph.connect(noise, "value", material, "albedo");
+        (graph, noise, material)
+    }
+
+    #[test]
+    fn parameter_edits_never_recompile_and_structural_edits_do() {
+        let (mut graph, noise, material) = graph();
+        let mut live = LiveMaterial::default();
+        assert!(live.update(&graph));
+        let slot = live
+            .compiled
+            .as_ref()
+            .unwrap()
+            .module
+            .params
+            .iter()
+            .position(|p| p.pin == "scale")
+            .unwrap();
+        graph.set_input(noise, "scale", Value::Float(7.5));
+        graph.node_mut(noise).unwrap().label = "renamed".into();
+        assert!(!live.update(&graph));
+        assert_eq!(live.params(&graph)[slot][0], 7.5);
+        graph.wires.clear();
+        graph.connect(noise, "value", material, "alpha");
+        assert!(live.update(&graph));
+        assert_eq!(live.compiles, 2);
+        let generation = live.generation;
+        graph.add(
+            "unused",
+            NodeKind::Worley(Worley {
+                feature: crate::graph::WorleyFeature::F1,
+                metric: crate::graph::Metric::Euclidean,
+                octaves: 1,
+            }),
+        );
+        assert!(live.update(&graph), "a new node is a structural edit");
+        assert_eq!(
+            live.generation, generation,
+            "but an unconnected one leaves the code, and the pipeline, as they were"
+        );
+    }
+
+    #[test]
+    fn constants_inside_a_group_are_parameters_too() {
+        let mut graph = crate::graph::preset("wood").expect("the wood preset");
+        let mut live = LiveMaterial::default();
+        assert!(live.update(&graph));
+        assert!(live.errors.is_empty(), "{:?}", live.errors);
+        let before = live.params(&graph);
+        let definition = graph.groups.get_mut("ring_wood").expect("ring_wood");
+        let shade = definition
+            .nodes
+            .iter_mut()
+            .find(|node| node.label == "tint shade")
+            .expect("the tint shade");
+        shade.inputs.insert("b".into(), Value::Float(0.25));
+        shade.position = (5.0, 5.0);
+        assert!(!live.update(&graph), "an inner constant does not recompile");
+        let after = live.params(&graph);
+        let changed: Vec<_> = before.iter().zip(&after).filter(|(a, b)| a != b).collect();
+        assert_eq!(changed.len(), 1, "one slot follows the constant");
+        assert_eq!(changed[0].1[0], 0.25);
+    }
+
+    #[test]
+    fn a_failed_compile_keeps_the_last_good_material_and_names_the_node() {
+        let (mut graph, _, material) = graph();
+        let mut live = LiveMaterial::default();
+        live.update(&graph);
+        let good = live.generation;
+        let smooth = graph.add("edge", NodeKind::Smoothstep);
+        graph.connect(smooth, "result", material, "alpha");
+        live.update(&graph);
+        assert_eq!(live.generation, good);
+        assert!(live.compiled.is_some());
+        assert!(live.errors.contains_key(&Some(smooth)));
+        assert_eq!(
+            live.status(&graph).unwrap(),
+            "node 'edge' (#3): input 'x' (float) must be connected"
+        );
+    }
+}

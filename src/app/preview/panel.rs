@@ -1,0 +1,460 @@
+//! The right-hand panel: the live material on its mesh, time and light, the distance
+//! fields and picking their sources, and the selected node's thumbnail.
+
+use crate::app::preview::frame_cache::{FIELD_VIEW_GENERATIONS, material_frame};
+use crate::app::preview::{fields, probe, state};
+use crate::app::*;
+use crate::render::{Backdrop, ToneMap};
+
+impl VeneerApp {
+    /// The selected node's output, flat, above the inspector.
+    pub(in crate::app) fn node_thumbnail(&mut self, ui: &mut Ui, node: egui_snarl::NodeId) {
+        if !self.preview.previews.available() {
+            return;
+        }
+        let key = (self.session.revision.number, self.canvas.snarl[node].id);
+        if self
+            .preview
+            .probe
+            .as_ref()
+            .is_none_or(|(seen, _)| *seen != key)
+        {
+            let probe = probe::probe_graph(&self.session.document.graph, key.1);
+            if let Some(probe) = &probe {
+                self.preview.thumbnail.update(probe);
+            }
+            self.preview.probe = Some((key, probe));
+        }
+        let Some((_, Some(probe))) = &self.preview.probe else {
+            return;
+        };
+        let material = if self.preview.thumbnail.errors.is_empty() {
+            let cache = &mut self.preview.frames[Slot::Node as usize];
+            material_frame(&self.preview.thumbnail, cache, probe, key.0)
+        } else {
+            None
+        };
+        ui.horizontal(|ui| {
+            let size = egui::vec2(160.0, 160.0);
+            state::thumbnail(
+                ui,
+                &self.preview.state,
+                &mut self.preview.previews,
+                material,
+                size,
+            );
+            ui.weak("this node's output,\nflat over the preview square");
+        });
+    }
+
+    pub(in crate::app) fn preview_panel(&mut self, ui: &mut Ui) {
+        ui.horizontal(|ui| {
+            let shown = std::path::Path::new(&self.preview.state.mesh)
+                .file_name()
+                .map(|n| n.to_string_lossy().into_owned());
+            egui::ComboBox::from_id_salt("mesh")
+                .selected_text(shown.unwrap_or_default())
+                .show_ui(ui, |ui| {
+                    for name in crate::mesh::PRIMITIVES {
+                        if ui
+                            .selectable_label(self.preview.state.mesh == name, name)
+                            .clicked()
+                        {
+                            self.preview.state.mesh = name.to_string();
+                            self.preview.state.file = None;
+                        }
+                    }
+                    if ui.button("Mesh file…").clicked() {
+                        self.chrome.dialog = Some(Dialog::LoadMesh {
+                            path: String::new(),
+                        });
+                    }
+                });
+            ui.checkbox(&mut self.preview.state.flat, "flat albedo");
+            ui.checkbox(&mut self.preview.live.full_detail, "every octave")
+                .on_hover_text("off: noise leaves out octaves finer than a pixel (less aliasing, faster far away)");
+            ui.label("background");
+            ui.color_edit_button_rgb(&mut self.preview.state.view.background);
+        });
+        let width = ui.available_width();
+        self.solve_fields();
+        let material = match (self.preview.previews.available(), self.preview.fields.view) {
+            (false, _) => None,
+            (true, Some(slot)) => {
+                let graph = fields::field_view_graph(slot as u8);
+                self.preview.field_view.update(&graph);
+                material_frame(
+                    &self.preview.field_view,
+                    &mut self.preview.field_view_frame,
+                    &graph,
+                    0,
+                )
+                .map(|mut frame| {
+                    frame.code.generation |= FIELD_VIEW_GENERATIONS;
+                    frame
+                })
+            }
+            (true, None) => material_frame(
+                &self.preview.live,
+                &mut self.preview.frames[Slot::Main as usize],
+                &self.session.document.graph,
+                self.session.revision.number,
+            )
+            .map(|mut frame| {
+                frame.tessellation = self.tessellation_input(&frame);
+                frame
+            }),
+        };
+        if self.preview.previews.available() {
+            let response = state::show(
+                ui,
+                &mut self.preview.state,
+                &mut self.preview.previews,
+                material,
+                egui::vec2(width, width.min(ui.available_height() * 0.55)),
+            );
+            self.pick_source(&response);
+            self.fields_warning(ui, response.rect);
+        } else {
+            ui.label("(no GPU: preview unavailable)");
+        }
+        ui.horizontal(|ui| {
+            let label = if self.preview.state.playing {
+                "⏸"
+            } else {
+                "▶"
+            };
+            if ui
+                .button(label)
+                .on_hover_text("play / pause time")
+                .clicked()
+            {
+                self.preview.state.playing = !self.preview.state.playing;
+            }
+            ui.add(
+                egui::Slider::new(&mut self.preview.state.view.time, 0.0..=20.0).text("time (s)"),
+            );
+            if ui
+                .button("reset view")
+                .on_hover_text("put this mesh's camera back where it starts")
+                .clicked()
+            {
+                self.preview.state.reset_camera();
+            }
+        });
+        if let Some(error) = self.preview.previews.error() {
+            ui.colored_label(ui.visuals().warn_fg_color, format!("preview: {error}"));
+        }
+        ui.horizontal(|ui| {
+            ui.label("light");
+            let light = &mut self.preview.state.view.light;
+            ui.add(
+                egui::DragValue::new(&mut light[0])
+                    .speed(0.02)
+                    .range(-1.0..=1.0),
+            );
+            ui.add(
+                egui::DragValue::new(&mut light[1])
+                    .speed(0.02)
+                    .range(-1.0..=1.0),
+            );
+            ui.add(
+                egui::DragValue::new(&mut light[2])
+                    .speed(0.02)
+                    .range(-1.0..=1.0),
+            );
+        });
+        self.surface_settings(ui);
+        self.lighting_settings(ui);
+        fields::fields_panel(
+            ui,
+            &mut self.session.document.graph.preview.fields,
+            &mut self.preview.fields,
+        );
+        self.preview.state.tick(std::time::Instant::now());
+        if self.preview.state.playing {
+            ui.ctx().request_repaint();
+        }
+    }
+
+    /// What the preview's drawing thread needs to refine the mesh of a displaced
+    /// material whose graph asks for tessellation (the graph checked once a revision).
+    fn tessellation_input(&mut self, frame: &MaterialFrame) -> Option<TessellationInput> {
+        let settings = self.session.document.graph.preview.tessellation?;
+        if !frame.code.uses.displacement || self.preview.state.flat {
+            return None;
+        }
+        let revision = self.session.revision.number;
+        if self
+            .preview
+            .tessellation_graph
+            .as_ref()
+            .is_none_or(|(seen, _)| *seen != revision)
+        {
+            let checked = crate::graph::check(&self.session.document.graph).ok()?;
+            self.preview.tessellation_graph = Some((revision, Arc::new(checked)));
+        }
+        let (_, graph) = self.preview.tessellation_graph.as_ref()?;
+        Some(TessellationInput {
+            revision,
+            graph: Arc::clone(graph),
+            refinement: settings.refinement(),
+        })
+    }
+
+    /// How metallic-roughness materials are lit and shown: the environment (the sky, or
+    /// a panorama file), its turn, the key light, exposure, tone mapper and backdrop.
+    fn lighting_settings(&mut self, ui: &mut Ui) {
+        if self.session.document.graph.shading != Shading::MetallicRoughness {
+            return;
+        }
+        ui.horizontal_wrapped(|ui| {
+            let lit_by = self
+                .preview
+                .state.environment
+                .0
+                .as_ref()
+                .map_or(crate::render::SKY.to_string(), |e| e.name.clone());
+            egui::ComboBox::from_id_salt("environment")
+                .selected_text(lit_by)
+                .show_ui(ui, |ui| {
+                    if ui
+                        .selectable_label(self.preview.state.environment.0.is_none(), crate::render::SKY)
+                        .clicked()
+                    {
+                        self.preview.state.environment = Default::default();
+                    }
+                    if ui.button("Environment file…").clicked() {
+                        self.chrome.dialog = Some(Dialog::LoadEnvironment {
+                            path: String::new(),
+                        });
+                    }
+                })
+                .response
+                .on_hover_text("the environment lighting the material: the procedural sky, or an equirectangular .hdr/.exr panorama");
+            let view = &mut self.preview.state.view;
+            ui.add(
+                egui::DragValue::new(&mut view.environment_turn)
+                    .speed(1.0)
+                    .range(-180.0..=180.0)
+                    .prefix("turn ")
+                    .suffix("°"),
+            )
+            .on_hover_text("turns the environment about the vertical axis");
+            ui.add(
+                egui::DragValue::new(&mut view.key_light)
+                    .speed(0.05)
+                    .range(0.0..=20.0)
+                    .prefix("key light "),
+            )
+            .on_hover_text("irradiance of the key light (0: the environment alone)");
+            ui.add(
+                egui::DragValue::new(&mut view.exposure)
+                    .speed(0.05)
+                    .range(-8.0..=8.0)
+                    .prefix("exposure ")
+                    .suffix(" EV"),
+            );
+            let tone_maps = [
+                (ToneMap::PbrNeutral, "PBR Neutral"),
+                (ToneMap::Aces, "ACES"),
+                (ToneMap::Agx, "AgX"),
+                (ToneMap::None, "no tone map"),
+            ];
+            choice(ui, "tone map", &mut view.tone_map, &tone_maps)
+                .on_hover_text("how scene light maps to the display: Khronos PBR Neutral keeps base colours true; ACES (fitted) and AgX are filmic");
+            let backdrops = [
+                (Backdrop::Blurred, "blurred"),
+                (Backdrop::Environment, "environment"),
+                (Backdrop::Colour, "colour"),
+            ];
+            ui.label("backdrop");
+            choice(ui, "backdrop", &mut view.backdrop, &backdrops)
+                .on_hover_text("what shows behind the mesh: the environment blurred or sharp, or the background colour");
+        });
+    }
+
+    /// The material's shading and alpha mode and the preview's adaptive tessellation.
+    fn surface_settings(&mut self, ui: &mut Ui) {
+        ui.horizontal(|ui| {
+            let shading = &mut self.session.document.graph.shading;
+            let shading_name = |shading: Shading| match shading {
+                Shading::BlinnPhong => "Blinn-Phong",
+                Shading::MetallicRoughness => "metallic-roughness",
+            };
+            egui::ComboBox::from_id_salt("shading")
+                .selected_text(shading_name(*shading))
+                .show_ui(ui, |ui| {
+                    for choice in [Shading::BlinnPhong, Shading::MetallicRoughness] {
+                        ui.selectable_value(shading, choice, shading_name(choice));
+                    }
+                })
+                .response
+                .on_hover_text("Blinn-Phong: albedo, specular and shininess under the seeds' lighting; metallic-roughness: base colour, metallic, roughness and occlusion shaded by GGX, as glTF and the engines do");
+            let alpha = &mut self.session.document.graph.alpha;
+            let name = |mode: &AlphaMode| match mode {
+                AlphaMode::Mask { .. } => "cut out",
+                AlphaMode::Blend => "blend",
+                AlphaMode::Opaque => "opaque",
+            };
+            ui.label("alpha");
+            egui::ComboBox::from_id_salt("alpha mode")
+                .selected_text(name(alpha))
+                .show_ui(ui, |ui| {
+                    for mode in [AlphaMode::default(), AlphaMode::Blend, AlphaMode::Opaque] {
+                        let same = std::mem::discriminant(&mode) == std::mem::discriminant(alpha);
+                        if ui.selectable_label(same, name(&mode)).clicked() && !same {
+                            *alpha = mode;
+                        }
+                    }
+                })
+                .response
+                .on_hover_text("cut out: holes where the alpha is below the cutoff; blend: see-through in proportion to the alpha; opaque: alpha ignored");
+            if let AlphaMode::Mask { cutoff } = alpha {
+                // The cutoff is built into the pipeline: applied when a drag ends, not
+                // at every step.
+                let id = ui.id().with("alpha cutoff");
+                let mut value = ui.data(|d| d.get_temp::<f64>(id)).unwrap_or(*cutoff);
+                let response = ui.add(
+                    egui::DragValue::new(&mut value)
+                        .speed(0.01)
+                        .range(0.0..=1.0)
+                        .prefix("cutoff "),
+                );
+                if response.dragged() {
+                    ui.data_mut(|d| d.insert_temp(id, value));
+                } else {
+                    ui.data_mut(|d| d.remove::<f64>(id));
+                    *cutoff = value;
+                }
+            }
+            let tessellation = &mut self.session.document.graph.preview.tessellation;
+            let mut on = tessellation.is_some();
+            if ui
+                .checkbox(&mut on, "tessellate")
+                .on_hover_text("refine a displaced mesh where its height needs it, until the displaced surface is within the tolerance of its triangles on screen (at rest; drafts reuse the last refinement)")
+                .changed()
+            {
+                *tessellation = on.then(crate::graph::Tessellation::default);
+            }
+            if let Some(settings) = tessellation {
+                ui.add(
+                    egui::DragValue::new(&mut settings.tolerance)
+                        .speed(0.02)
+                        .range(f64::from(crate::mesh::Refinement::MIN_TOLERANCE_PX)..=8.0)
+                        .suffix(" px"),
+                );
+            }
+        });
+    }
+
+    /// Over the bottom of the preview: why the material's distance fields could not be
+    /// solved on this mesh (a GeoTexture then shows as if no front had reached anywhere,
+    /// which can look like an empty preview).
+    fn fields_warning(&self, ui: &mut Ui, preview: egui::Rect) {
+        let Some(error) = &self.preview.fields.error else {
+            return;
+        };
+        let text = egui::RichText::new(format!("⚠ fields not solved on this mesh: {error}"))
+            .color(egui::Color32::from_rgb(255, 170, 120))
+            .background_color(egui::Color32::from_black_alpha(200));
+        let band = egui::Rect::from_min_max(
+            preview.left_bottom() - egui::vec2(-6.0, 48.0),
+            preview.right_bottom() - egui::vec2(6.0, 6.0),
+        );
+        ui.put(band, egui::Label::new(text).wrap());
+    }
+
+    /// Keeps the preview mesh's fields in step with the graph (solving in the background)
+    /// and hands the solved mesh to the preview.
+    pub(in crate::app) fn solve_fields(&mut self) {
+        let mut used = self
+            .preview
+            .live
+            .compiled
+            .as_ref()
+            .map(|c| c.uses().fields)
+            .unwrap_or_default();
+        if let Some(slot) = self.preview.fields.view {
+            used[slot.min(3)] = true;
+        }
+        let name = self.preview.state.mesh.clone();
+        let preview = &self.preview.state;
+        self.preview.fields.update(
+            &name,
+            || preview.plain_mesh(),
+            &self.session.document.graph.preview.fields,
+            used,
+        );
+        let mesh_prefix = format!("{name}|");
+        self.preview.state.prepared = self
+            .preview
+            .fields
+            .ready
+            .clone()
+            .filter(|(key, _)| key.starts_with(&mesh_prefix));
+    }
+
+    /// A click on the preview while picking adds (or removes) the vertex under it as a
+    /// source of the picked field.
+    pub(in crate::app) fn pick_source(&mut self, response: &egui::Response) {
+        let (Some(slot), Some(click)) =
+            (self.preview.fields.picking, response.interact_pointer_pos())
+        else {
+            return;
+        };
+        if !response.clicked() || self.preview.state.flat {
+            return;
+        }
+        let rect = response.rect;
+        let ndc = [
+            (click.x - rect.left()) / rect.width() * 2.0 - 1.0,
+            1.0 - (click.y - rect.top()) / rect.height() * 2.0,
+        ];
+        let (origin, direction) = self
+            .preview
+            .state
+            .view
+            .ray(rect.width() / rect.height().max(1.0), ndc);
+        // The solved mesh has the plain one's vertices: no need to make it again.
+        let prepared = self
+            .preview
+            .state
+            .prepared
+            .as_ref()
+            .map(|(_, mesh)| mesh.clone());
+        let Some(mesh) = prepared.or_else(|| self.preview.state.plain_mesh()) else {
+            return;
+        };
+        let fields = &mut self.session.document.graph.preview.fields;
+        // Sources count vertices as the mesh file lists them.
+        if let (Some(vertex), Some(field)) = (
+            crate::mesh::pick_vertex(&mesh, origin, direction),
+            fields.get_mut(slot),
+        ) {
+            fields::toggle_source(field, mesh.file_vertex(vertex));
+            self.chrome.message = Some(format!("field {slot}: {} sources", field.sources.len()));
+        }
+    }
+}
+
+/// A combo box choosing `value` among `choices` (value, label), known by `id`.
+fn choice<T: Copy + PartialEq>(
+    ui: &mut Ui,
+    id: &str,
+    value: &mut T,
+    choices: &[(T, &str)],
+) -> egui::Response {
+    let shown = choices
+        .iter()
+        .find(|(option, _)| option == value)
+        .map_or("", |(_, label)| *label);
+    egui::ComboBox::from_id_salt(id)
+        .selected_text(shown)
+        .show_ui(ui, |ui| {
+            for (option, label) in choices {
+                ui.selectable_value(value, *option, *label);
+            }
+        })
+        .response
+}

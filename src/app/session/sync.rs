@@ -1,0 +1,150 @@
+//! Keeping the document in step with the graph view after each frame's panels, and
+//! measuring where the main thread's time goes. Whole-graph work happens only on frames
+//! where the user may have edited (input arrived) and, past the cheap comparison that
+//! finds an edit, only when something changed: each change bumps the graph's revision,
+//! and the compile, the lint, the thumbnails, the undo history and the title follow it.
+
+use crate::app::VeneerApp;
+use crate::graph::{Graph, NodeId};
+use std::time::{Duration, Instant};
+
+/// The graph's revision: bumped on every change, and the revision each follower (the
+/// compile, the lint, the undo history) last took in.
+#[derive(Default)]
+pub(in crate::app) struct Revision {
+    pub number: u64,
+    /// Frames that read the graph view back (for tests: idle frames never do).
+    pub reads: u64,
+    /// The graph at `number`, to tell a change from a frame that changed nothing.
+    seen: Graph,
+    /// The revision compiled, and with which noise detail (a setting of the preview's).
+    compiled: Option<(u64, bool)>,
+    linted: u64,
+    committed: u64,
+}
+
+/// Where the main thread's time went in one frame of the editor.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct FrameProfile {
+    /// The whole of [`eframe::App::ui`]: laying out the panels and everything below.
+    pub total: Duration,
+    /// The CPU time the main thread spent in it: `total` less the time other threads
+    /// (the previews, the driver's rasteriser) had the core.
+    pub cpu: Duration,
+    /// Reading the graph view back into the document and finding whether it changed.
+    pub sync: Duration,
+    /// Deciding whether to recompile, and recompiling.
+    pub compile: Duration,
+    pub lint: Duration,
+    /// Bringing the node thumbnails in step (the drawing is on another thread).
+    pub thumbnails: Duration,
+    /// Undo history, title and autosave.
+    pub history: Duration,
+}
+
+impl FrameProfile {
+    /// The time spent laying out and drawing the panels (egui and egui-snarl): the
+    /// whole frame less the document's upkeep.
+    pub fn panels(&self) -> Duration {
+        self.total
+            .saturating_sub(self.sync + self.compile + self.lint + self.thumbnails + self.history)
+    }
+}
+
+/// Whether the user may have edited this frame: input other than pointer movement
+/// arrived, or a button is held or was let go (drags, clicks). Repaints for animation,
+/// the previews or thumbnails coming back do no whole-graph work.
+fn may_edit(ctx: &egui::Context) -> bool {
+    ctx.input(|input| {
+        input.pointer.any_down()
+            || input.pointer.any_released()
+            || input.events.iter().any(|event| {
+                !matches!(
+                    event,
+                    egui::Event::PointerMoved(_) | egui::Event::MouseMoved(_)
+                )
+            })
+    })
+}
+
+impl VeneerApp {
+    /// After the panels: reads the edited graph back, recompiles if needed, commits undo
+    /// steps, autosaves (the frame's total is filled in when it ends).
+    pub(in crate::app) fn after_edits(&mut self, ctx: &egui::Context) {
+        let mut clock = Instant::now();
+        let mut lap = || {
+            let now = Instant::now();
+            std::mem::replace(&mut clock, now).elapsed()
+        };
+        let pointer_down = ctx.input(|input| input.pointer.any_down());
+        // The first frame takes in the graph the editor opened on.
+        if self.session.revision.number == 0 || may_edit(ctx) {
+            self.session.revision.reads += 1;
+            let graph = self.shown_graph();
+            if graph != self.session.document.graph {
+                self.session.document.graph = graph;
+            }
+            // Edits made to the document directly (fields, frames, picking, undo) too.
+            if self.session.document.graph != self.session.revision.seen {
+                self.session.revision.seen = self.session.document.graph.clone();
+                self.session.revision.number += 1;
+            }
+            // Saving (and undoing to what was saved) changes this without an edit.
+            self.session.dirty = self.session.document.is_dirty();
+        }
+        let revision = self.session.revision.number;
+        let sync = lap();
+        let compile_key = Some((revision, self.preview.live.full_detail));
+        if self.session.revision.compiled != compile_key {
+            self.session.revision.compiled = compile_key;
+            self.preview.live.update(&self.session.document.graph);
+        }
+        let compile = lap();
+        // The lint waits for a drag to end (it reads every constant).
+        if self.session.revision.linted != revision && !pointer_down {
+            self.session.revision.linted = revision;
+            self.preview.live.lint(&self.session.document.graph);
+        }
+        let lint = lap();
+        let time = self.preview.state.view.time;
+        let hovered = self.canvas.hovered_wire.as_ref();
+        // Asked only of graphs with more nodes than tiles.
+        let visible = std::cell::OnceCell::new();
+        let on_screen = |node: NodeId| {
+            visible
+                .get_or_init(|| {
+                    let shown = self.canvas.navigation.on_screen();
+                    let ids = shown.filter_map(|id| self.canvas.snarl.get_node(id).map(|n| n.id));
+                    ids.collect::<rustc_hash::FxHashSet<NodeId>>()
+                })
+                .contains(&node)
+        };
+        let graph = &self.session.document.graph;
+        self.thumbnails
+            .update(ctx, graph, revision, hovered, time, &on_screen);
+        let thumbnails = lap();
+        if self.session.revision.committed != revision && !pointer_down {
+            self.session.revision.committed = revision;
+            self.session
+                .document
+                .history
+                .commit(&self.session.document.graph);
+        }
+        let title = self.session.document.title(self.session.dirty);
+        if title != self.session.title {
+            ctx.send_viewport_cmd(egui::ViewportCommand::Title(title.clone()));
+            self.session.title = title;
+        }
+        self.autosave_tick(ctx);
+        let history = lap();
+        self.chrome.profile = FrameProfile {
+            total: Duration::ZERO,
+            cpu: Duration::ZERO,
+            sync,
+            compile,
+            lint,
+            thumbnails,
+            history,
+        };
+    }
+}

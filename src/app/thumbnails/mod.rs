@@ -1,0 +1,408 @@
+//! Thumbnails of node outputs in the graph: which outputs get a tile, the atlas graph
+//! compiled once per structure (parameters are uniforms), which tiles changed since they
+//! were drawn, and the egui texture the drawn atlas lands in.
+//!
+//! A tile shows one output pin over the preview square (see `probe.rs` for how each
+//! type maps to a colour). Tiles go to the drawing thread only when something upstream
+//! of their pin changed: a node's kind, settings or constants, a wire, the placement, the
+//! code, or the time for tiles that read it.
+
+pub(in crate::app) mod keys;
+pub(in crate::app) mod worker;
+
+use crate::app::preview::live::LiveMaterial;
+use crate::app::preview::probe::atlas_graph;
+use crate::app::thumbnails::worker::{Done, Job, Worker};
+use crate::graph::{Graph, NodeId, PinRef};
+use crate::render::{AtlasLayout, FlatRect};
+use std::collections::BTreeSet;
+use std::hash::{Hash, Hasher};
+use std::sync::Arc;
+
+/// A tile's width and height in pixels.
+pub const TILE_PIXELS: u32 = 64;
+/// Tiles to a row of the atlas.
+const ATLAS_COLUMNS: u32 = 8;
+/// The most tiles drawn: past it only nodes on screen get one.
+pub const MAX_TILES: usize = 256;
+
+/// The thumbnails' state, kept by the app between frames.
+pub struct Thumbnails {
+    /// Thumbnails on nodes at all (View menu, T).
+    pub enabled: bool,
+    /// Nodes whose thumbnail is switched off (node menu).
+    pub hidden: BTreeSet<NodeId>,
+    /// The atlas graph's compiles (a parameter edit never adds one).
+    pub atlas: LiveMaterial,
+    /// Output pins with a tile, in tile order.
+    pins: Vec<PinRef>,
+    /// The Mix node selecting each tile (see `probe::AtlasGraph`).
+    selectors: Vec<NodeId>,
+    layout: AtlasLayout,
+    /// What each tile was last sent to draw (`None`: never, or since the layout changed).
+    sent: Vec<Option<u64>>,
+    /// Whether each tile has pixels in the texture for the current layout.
+    ready: Vec<bool>,
+    /// Nodes whose code fails to compile: left out with what reads them, until the
+    /// graph's structure changes.
+    broken: (Graph, BTreeSet<NodeId>),
+    texture: Option<egui::TextureHandle>,
+    /// The atlas as last read back (RGBA8 rows).
+    pixels: Vec<u8>,
+    worker: Option<Worker>,
+    in_flight: bool,
+    /// Tiles drawn so far (a tile drawn twice counts twice).
+    pub tiles_drawn: u64,
+    /// The pins drawn by the last job to come back.
+    pub last_drawn: Vec<PinRef>,
+    /// Why the last draw failed, if it did.
+    pub error: Option<String>,
+    /// What the tiles were last brought in step with; nothing is done again until it
+    /// changes or a job comes back.
+    seen: Option<Seen>,
+}
+
+/// What the tiles depend on besides the drawing thread: the graph's revision, the
+/// time and which pins would get a tile.
+#[derive(Clone, PartialEq)]
+struct Seen {
+    revision: u64,
+    time: u32,
+    pins: Vec<PinRef>,
+}
+
+impl Default for Thumbnails {
+    fn default() -> Thumbnails {
+        Thumbnails {
+            enabled: true,
+            hidden: BTreeSet::new(),
+            atlas: LiveMaterial::default(),
+            pins: Vec::new(),
+            selectors: Vec::new(),
+            layout: AtlasLayout::for_tiles(0, ATLAS_COLUMNS, TILE_PIXELS),
+            sent: Vec::new(),
+            ready: Vec::new(),
+            broken: Default::default(),
+            texture: None,
+            pixels: Vec::new(),
+            worker: None,
+            in_flight: false,
+            tiles_drawn: 0,
+            last_drawn: Vec::new(),
+            error: None,
+            seen: None,
+        }
+    }
+}
+
+impl Thumbnails {
+    /// Whether `node` shows its thumbnail.
+    pub fn shows(&self, node: NodeId) -> bool {
+        self.enabled && !self.hidden.contains(&node)
+    }
+
+    /// The pins that would get a tile: the first output of every node that shows its
+    /// thumbnail and, in graphs with more of them than [`MAX_TILES`], only of those on
+    /// screen (`on_screen`), up to that many; and `hovered` (the wire under the pointer).
+    fn candidates(
+        &self,
+        graph: &Graph,
+        hovered: Option<&PinRef>,
+        on_screen: &dyn Fn(NodeId) -> bool,
+    ) -> Vec<PinRef> {
+        let all: Vec<PinRef> = graph
+            .nodes
+            .iter()
+            .filter(|node| self.shows(node.id))
+            .filter_map(|node| {
+                let output = node.kind.signature().outputs.first()?.name;
+                Some(PinRef::new(node.id, output))
+            })
+            .collect();
+        let mut pins: BTreeSet<PinRef> = if all.len() > MAX_TILES {
+            let shown = all.into_iter().filter(|pin| on_screen(pin.node));
+            shown.take(MAX_TILES).collect()
+        } else {
+            all.into_iter().collect()
+        };
+        pins.extend(hovered.cloned());
+        pins.into_iter().collect()
+    }
+
+    /// The candidates that get a tile: those not reading a node that fails to compile.
+    fn wanted(&self, graph: &Graph, candidates: &[PinRef]) -> Vec<PinRef> {
+        let tainted = crate::app::thumbnails::keys::downstream_of(graph, &self.broken.1);
+        let mut pins = candidates.to_vec();
+        pins.retain(|pin| !tainted.contains(&pin.node));
+        pins
+    }
+
+    /// Brings the tiles in step with `graph` at `revision` (which changes whenever the
+    /// graph does): recompiles the atlas if its structure changed, sends the tiles whose
+    /// inputs changed to the drawing thread, and takes in what it drew. `hovered` is the
+    /// output pin of the wire under the pointer. Does nothing when neither these nor
+    /// the thread's work changed since the last call.
+    pub fn update(
+        &mut self,
+        ctx: &egui::Context,
+        graph: &Graph,
+        revision: u64,
+        hovered: Option<&PinRef>,
+        time: f32,
+        on_screen: &dyn Fn(NodeId) -> bool,
+    ) {
+        let received = self.receive(ctx);
+        let seen = Seen {
+            revision,
+            time: time.to_bits(),
+            pins: self.candidates(graph, hovered, on_screen),
+        };
+        if !received && self.seen.as_ref() == Some(&seen) {
+            return;
+        }
+        let candidates = seen.pins.clone();
+        self.seen = Some(seen);
+        let structure = crate::app::preview::live::structure(graph);
+        if self.broken.0 != structure {
+            self.broken = (structure, BTreeSet::new());
+        }
+        // A node that fails to compile is left out (with what reads it) and the rest
+        // compiled again; each round leaves out at least one more node.
+        let atlas = loop {
+            let pins = self.wanted(graph, &candidates);
+            let Some(atlas) = atlas_graph(graph, &pins) else {
+                self.pins.clear();
+                return;
+            };
+            self.atlas.update(&atlas.graph);
+            let failed: Vec<NodeId> = self.atlas.errors.keys().flatten().copied().collect();
+            if failed.is_empty() || failed.iter().all(|node| self.broken.1.contains(node)) {
+                break atlas;
+            }
+            self.broken.1.extend(failed);
+        };
+        let Some(compiled) = &self.atlas.compiled else {
+            return;
+        };
+        if !self.atlas.errors.is_empty() {
+            return;
+        }
+        let layout = AtlasLayout::for_tiles(atlas.pins.len(), ATLAS_COLUMNS, TILE_PIXELS);
+        if atlas.pins != self.pins || layout != self.layout {
+            self.sent = vec![None; atlas.pins.len()];
+            self.ready = vec![false; atlas.pins.len()];
+            self.pins = atlas.pins;
+            self.layout = layout;
+        }
+        self.selectors = atlas.selectors;
+        if self.in_flight {
+            return;
+        }
+        let upstream = crate::app::thumbnails::keys::upstream_hashes(graph, time);
+        let rect = placement(graph);
+        let slots = &compiled.module.params;
+        let values = crate::app::preview::live::slot_values(&atlas.graph, slots);
+        let mut tiles = Vec::new();
+        for (index, pin) in self.pins.iter().enumerate() {
+            let key = tile_key(&upstream, pin, self.atlas.generation, rect);
+            if self.sent[index] == Some(key) {
+                continue;
+            }
+            self.sent[index] = Some(key);
+            tiles.push((index, tile_params(&values, slots, &self.selectors, index)));
+        }
+        if tiles.is_empty() {
+            return;
+        }
+        let wake = ctx.clone();
+        let worker = self
+            .worker
+            .get_or_insert_with(|| Worker::start(move || wake.request_repaint()));
+        worker.send(Job {
+            generation: self.atlas.generation,
+            wgsl: Arc::from(compiled.source()),
+            slots: slots.len(),
+            layout: self.layout,
+            rect,
+            time,
+            tiles,
+        });
+        self.in_flight = true;
+    }
+
+    /// Takes in a finished job (its tiles' pixels go into the texture); returns whether
+    /// one came back.
+    fn receive(&mut self, ctx: &egui::Context) -> bool {
+        let Some(worker) = &self.worker else {
+            return false;
+        };
+        let done = match worker.try_done() {
+            Ok(Some(done)) => done,
+            Ok(None) => return false,
+            Err(()) => {
+                self.worker = None;
+                self.in_flight = false;
+                return true;
+            }
+        };
+        self.in_flight = false;
+        let Done {
+            layout,
+            tiles,
+            pixels,
+        } = done;
+        let pixels = match pixels {
+            Ok(pixels) => pixels,
+            Err(error) => {
+                self.error = Some(error);
+                return true;
+            }
+        };
+        self.error = None;
+        self.tiles_drawn += tiles.len() as u64;
+        self.last_drawn = tiles
+            .iter()
+            .filter_map(|index| self.pins.get(*index).cloned())
+            .collect();
+        if layout != self.layout {
+            return true;
+        }
+        let (width, height) = layout.size();
+        let image =
+            egui::ColorImage::from_rgba_unmultiplied([width as usize, height as usize], &pixels);
+        let options = egui::TextureOptions::LINEAR;
+        match &mut self.texture {
+            Some(texture) if texture.size() == [width as usize, height as usize] => {
+                for index in &tiles {
+                    let (x, y) = layout.origin(*index);
+                    let tile = TILE_PIXELS as usize;
+                    let part = image.region_by_pixels([x as usize, y as usize], [tile, tile]);
+                    texture.set_partial([x as usize, y as usize], part, options);
+                }
+            }
+            _ => self.texture = Some(ctx.load_texture("node thumbnails", image, options)),
+        }
+        for index in tiles {
+            if let Some(ready) = self.ready.get_mut(index) {
+                *ready = true;
+            }
+        }
+        self.pixels = pixels;
+        true
+    }
+
+    /// The output pins that have a tile, in tile order.
+    pub fn pins(&self) -> &[PinRef] {
+        &self.pins
+    }
+
+    /// Whether every tile has been drawn as it is now (nothing sent or waiting).
+    pub fn settled(&self) -> bool {
+        !self.in_flight && self.ready.iter().all(|ready| *ready)
+    }
+
+    /// The texture and the part of it showing `pin`, once drawn.
+    pub fn tile(&self, pin: &PinRef) -> Option<(egui::TextureId, egui::Rect)> {
+        let index = self.pins.iter().position(|p| p == pin)?;
+        if !*self.ready.get(index)? {
+            return None;
+        }
+        let texture = self.texture.as_ref()?;
+        let (width, height) = self.layout.size();
+        let (x, y) = self.layout.origin(index);
+        let tile = TILE_PIXELS as f32;
+        let min = egui::pos2(x as f32 / width as f32, y as f32 / height as f32);
+        let size = egui::vec2(tile / width as f32, tile / height as f32);
+        Some((texture.id(), egui::Rect::from_min_size(min, size)))
+    }
+
+    /// The RGBA8 pixels of `pin`'s tile, rows from the top, once drawn.
+    pub fn tile_pixels(&self, pin: &PinRef) -> Option<Vec<[u8; 4]>> {
+        let index = self.pins.iter().position(|p| p == pin)?;
+        if !*self.ready.get(index)? {
+            return None;
+        }
+        let (width, _) = self.layout.size();
+        let (x, y) = self.layout.origin(index);
+        let mut tile = Vec::with_capacity((TILE_PIXELS * TILE_PIXELS) as usize);
+        for row in y..y + TILE_PIXELS {
+            for column in x..x + TILE_PIXELS {
+                let at = ((row * width + column) * 4) as usize;
+                let pixel = self.pixels.get(at..at + 4)?;
+                tile.push([pixel[0], pixel[1], pixel[2], pixel[3]]);
+            }
+        }
+        Some(tile)
+    }
+}
+
+/// The parameter values that make the atlas module show tile `index`: `values` (the
+/// atlas graph's, see [`crate::codegen::param_values`]) with every selector's factor 0 but tile
+/// `index`'s, which is 1.
+pub fn tile_params(
+    values: &[[f32; 4]],
+    slots: &[crate::codegen::ParamSlot],
+    selectors: &[NodeId],
+    index: usize,
+) -> Vec<[f32; 4]> {
+    let mut tile = values.to_vec();
+    let selected = selectors.get(index);
+    let selectors: rustc_hash::FxHashSet<&NodeId> = selectors.iter().collect();
+    for (slot, param) in slots.iter().enumerate() {
+        if selectors.contains(&param.node) {
+            tile[slot][0] = if selected == Some(&param.node) {
+                1.0
+            } else {
+                0.0
+            };
+        }
+    }
+    tile
+}
+
+/// The square every tile samples: the preview's placement (centre ± size in x and z,
+/// at the centre's y), as the inspector's thumbnail shows it.
+pub fn placement(graph: &Graph) -> FlatRect {
+    let (x, y, z) = graph.preview.center;
+    let size = graph.preview.size;
+    FlatRect {
+        x0: x - size,
+        z0: z - size,
+        x1: x + size,
+        z1: z + size,
+        y,
+    }
+}
+
+/// What a tile shows depends on: its pin, the nodes upstream of it (kinds, settings,
+/// constants) and the wires between them, the code, the placement, and the time when
+/// some node upstream reads it — `upstream` holds all but the pin, code and placement.
+fn tile_key(
+    upstream: &rustc_hash::FxHashMap<NodeId, u64>,
+    pin: &PinRef,
+    generation: u64,
+    rect: FlatRect,
+) -> u64 {
+    let mut hasher = std::collections::hash_map::DefaultHasher::new();
+    pin.hash(&mut hasher);
+    generation.hash(&mut hasher);
+    format!("{rect:?}").hash(&mut hasher);
+    upstream.get(&pin.node).hash(&mut hasher);
+    hasher.finish()
+}
+
+/// The thumbnail of `node` as a node body shows it: its tile, or an empty square of the
+/// same size until the tile is first drawn.
+pub fn show_tile(ui: &mut egui::Ui, thumbnails: &Thumbnails, node: &crate::graph::Node) {
+    let size = egui::Vec2::splat(TILE_PIXELS as f32);
+    let output = node.kind.signature().outputs.first().map(|o| o.name);
+    let tile = output.and_then(|output| thumbnails.tile(&PinRef::new(node.id, output)));
+    match tile {
+        Some((texture, uv)) => {
+            ui.add(egui::Image::new((texture, size)).uv(uv));
+        }
+        None => {
+            ui.allocate_exact_size(size, egui::Sense::hover());
+        }
+    }
+}
