@@ -11,11 +11,11 @@ mod thumbnails;
 mod widgets;
 
 pub use crate::graph::{PRESETS, preset};
+pub use chrome::frame_clock::FrameProfile;
 pub use chrome::frame_clock::{FRAME_LOG_HEADER, FrameLog};
 pub use preview::live::{LiveMaterial, UNIFORM_SLOTS};
 pub use preview::probe::{AtlasGraph, atlas_graph};
 pub use session::document::Document;
-pub use session::sync::FrameProfile;
 pub use thumbnails::{TILE_PIXELS, Thumbnails, placement, tile_params};
 
 use crate::graph::{AlphaMode, Graph, Shading};

@@ -6,7 +6,8 @@ use crate::app::VeneerApp;
 use crate::app::canvas::scope::{self, Declared};
 use crate::app::canvas::snarl_model::next_node_id;
 use crate::app::inspector::group::GroupAction;
-use crate::graph::{Graph, Node, NodeId, NodeKind, group, library};
+use crate::app::inspector::group_interface::InterfaceEdit;
+use crate::graph::{Graph, Node, NodeId, NodeKind, group, group_interface, library};
 use crate::nodes::Group;
 use egui::Pos2;
 use std::collections::BTreeSet;
@@ -270,4 +271,49 @@ pub(in crate::app) fn group_kind(graph: &Graph, name: &str) -> Option<NodeKind> 
         name: name.to_string(),
         pins,
     }))
+}
+
+impl VeneerApp {
+    /// Applies `edit` to the group shown: one undo step; the boundary node stays
+    /// selected.
+    pub(in crate::app) fn edit_interface(&mut self, edit: InterfaceEdit) {
+        let Some(name) = self.canvas.scope.current().map(str::to_string) else {
+            return;
+        };
+        let selected = self
+            .canvas
+            .selection
+            .first()
+            .and_then(|id| self.canvas.snarl.get_node(*id));
+        let side = selected.and_then(crate::app::canvas::boundary::boundary);
+        let done = self.edit_document(|app, graph| {
+            app.unlink_edited(graph, &name);
+            match edit {
+                InterfaceEdit::Rename { side, old, new } => {
+                    group_interface::rename(graph, &name, side, &old, &new)?;
+                    Ok(Some(format!(
+                        "renamed '{old}' to '{new}' in group '{name}'"
+                    )))
+                }
+                InterfaceEdit::Remove { side, name: pin } => {
+                    group_interface::remove(graph, &name, side, &pin)?;
+                    Ok(Some(format!("removed '{pin}' from group '{name}'")))
+                }
+                InterfaceEdit::Input { name: pin, input } => {
+                    let definition = graph.groups.get_mut(&name);
+                    let declared = definition
+                        .and_then(|definition| definition.inputs.iter_mut().find(|i| i.name == pin))
+                        .ok_or(format!("group '{name}' has no input '{pin}'"))?;
+                    *declared = input;
+                    Ok(None)
+                }
+            }
+        });
+        match done {
+            Ok(message) => self.chrome.message = message.or(self.chrome.message.take()),
+            Err(error) => self.chrome.message = Some(error),
+        }
+        self.canvas.clicked = side.and_then(|side| scope::boundary_in(&self.canvas.snarl, side));
+        self.canvas.selection = self.canvas.clicked.into_iter().collect();
+    }
 }

@@ -17,7 +17,7 @@ pub(in crate::app) struct Chrome {
     /// Whether the status bar shows the frame rate (View → Frame rate).
     pub show_frame_rate: bool,
     /// Where the main thread's time went in the last frame.
-    pub profile: crate::app::session::sync::FrameProfile,
+    pub profile: frame_clock::FrameProfile,
     /// Frames a second and main-thread time over the last second.
     pub frame_clock: frame_clock::FrameClock,
     /// Where each frame is written down, when asked (`veneer edit --frame-log`).

@@ -3,12 +3,10 @@
 //! `graph::group_interface`, which follows them into every instance, inherited input,
 //! exposed parameter and parameter preset.
 
-use crate::app::VeneerApp;
 use crate::app::canvas::boundary::Boundary;
-use crate::app::canvas::scope;
 use crate::app::widgets::value_editor;
 use crate::graph::group::{GroupDef, GroupInput, Hint};
-use crate::graph::group_interface::{self, Side};
+use crate::graph::group_interface::Side;
 use egui::{DragValue, RichText, Ui};
 
 /// One change to a group's interface asked for in the inspector.
@@ -188,50 +186,5 @@ fn hint_name(hint: &Hint) -> &'static str {
         Hint::Colour => "colour",
         Hint::Toggle => "toggle",
         Hint::Choice(_) => "choice",
-    }
-}
-
-impl VeneerApp {
-    /// Applies `edit` to the group shown: one undo step; the boundary node stays
-    /// selected.
-    pub(in crate::app) fn edit_interface(&mut self, edit: InterfaceEdit) {
-        let Some(name) = self.canvas.scope.current().map(str::to_string) else {
-            return;
-        };
-        let selected = self
-            .canvas
-            .selection
-            .first()
-            .and_then(|id| self.canvas.snarl.get_node(*id));
-        let side = selected.and_then(crate::app::canvas::boundary::boundary);
-        let done = self.edit_document(|app, graph| {
-            app.unlink_edited(graph, &name);
-            match edit {
-                InterfaceEdit::Rename { side, old, new } => {
-                    group_interface::rename(graph, &name, side, &old, &new)?;
-                    Ok(Some(format!(
-                        "renamed '{old}' to '{new}' in group '{name}'"
-                    )))
-                }
-                InterfaceEdit::Remove { side, name: pin } => {
-                    group_interface::remove(graph, &name, side, &pin)?;
-                    Ok(Some(format!("removed '{pin}' from group '{name}'")))
-                }
-                InterfaceEdit::Input { name: pin, input } => {
-                    let definition = graph.groups.get_mut(&name);
-                    let declared = definition
-                        .and_then(|definition| definition.inputs.iter_mut().find(|i| i.name == pin))
-                        .ok_or(format!("group '{name}' has no input '{pin}'"))?;
-                    *declared = input;
-                    Ok(None)
-                }
-            }
-        });
-        match done {
-            Ok(message) => self.chrome.message = message.or(self.chrome.message.take()),
-            Err(error) => self.chrome.message = Some(error),
-        }
-        self.canvas.clicked = side.and_then(|side| scope::boundary_in(&self.canvas.snarl, side));
-        self.canvas.selection = self.canvas.clicked.into_iter().collect();
     }
 }

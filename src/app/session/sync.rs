@@ -5,6 +5,7 @@
 //! and the compile, the lint, the thumbnails, the undo history and the title follow it.
 
 use crate::app::VeneerApp;
+use crate::app::chrome::frame_clock::FrameProfile;
 use crate::graph::{Graph, NodeId};
 use std::time::{Duration, Instant};
 
@@ -21,34 +22,6 @@ pub(in crate::app) struct Revision {
     compiled: Option<(u64, bool)>,
     linted: u64,
     committed: u64,
-}
-
-/// Where the main thread's time went in one frame of the editor.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct FrameProfile {
-    /// The whole of [`eframe::App::ui`]: laying out the panels and everything below.
-    pub total: Duration,
-    /// The CPU time the main thread spent in it: `total` less the time other threads
-    /// (the previews, the driver's rasteriser) had the core.
-    pub cpu: Duration,
-    /// Reading the graph view back into the document and finding whether it changed.
-    pub sync: Duration,
-    /// Deciding whether to recompile, and recompiling.
-    pub compile: Duration,
-    pub lint: Duration,
-    /// Bringing the node thumbnails in step (the drawing is on another thread).
-    pub thumbnails: Duration,
-    /// Undo history, title and autosave.
-    pub history: Duration,
-}
-
-impl FrameProfile {
-    /// The time spent laying out and drawing the panels (egui and egui-snarl): the
-    /// whole frame less the document's upkeep.
-    pub fn panels(&self) -> Duration {
-        self.total
-            .saturating_sub(self.sync + self.compile + self.lint + self.thumbnails + self.history)
-    }
 }
 
 /// Whether the user may have edited this frame: input other than pointer movement
