@@ -116,6 +116,7 @@ impl VeneerApp {
     /// The document, to change it as a script or test does (the editor takes the change
     /// in on the next frame).
     pub fn document_mut(&mut self) -> &mut Document {
+        self.session.revision.touched = true;
         &mut self.session.document
     }
 
@@ -253,8 +254,9 @@ impl VeneerApp {
         }
     }
 
-    /// Saves to the document's file, or asks for one.
-    pub fn save(&mut self) {
+    /// Saves to the document's file, or asks for one (and then does `then`, when the
+    /// save was asked for before going on with it).
+    pub fn save(&mut self, then: Option<Pending>) {
         match self.session.document.save() {
             Ok(path) => {
                 self.remember(&path);
@@ -262,7 +264,7 @@ impl VeneerApp {
                 self.session.autosave.forget();
             }
             Err(_) if self.session.document.path.is_none() => {
-                self.chrome.dialog = Some(Dialog::save_as(&self.session.document))
+                self.chrome.dialog = Some(Dialog::save_as(&self.session.document, then))
             }
             Err(error) => self.chrome.dialog = Some(Dialog::Message(error)),
         }

@@ -414,7 +414,8 @@ pub fn resolve(graph: &mut Graph) {
 /// Turns `selection` (nodes of the top level, not the material) into group `name` and
 /// puts one instance of it in their place; returns the instance's id. Every wire that
 /// enters the selection becomes an input (one per source pin, named after the first pin
-/// it feeds), every output read outside becomes an output.
+/// it feeds), every output read outside becomes an output, named after the node that
+/// feeds it (and its pin, when the node has several outputs).
 pub fn group_nodes(
     graph: &mut Graph,
     selection: &BTreeSet<NodeId>,
@@ -494,7 +495,7 @@ pub fn group_nodes(
                 let output = match results.get(&wire.from) {
                     Some(output) => output.clone(),
                     None => {
-                        let output = unique(&wire.from.pin, |n| {
+                        let output = unique(&output_name(graph, &wire.from), |n| {
                             definition.outputs.iter().any(|o| o.name == n)
                         });
                         definition.outputs.push(GroupOutput {
@@ -530,6 +531,20 @@ pub fn group_nodes(
     resolve(graph);
     graph.canonicalize();
     Ok(instance)
+}
+
+/// The name of a group output fed by `pin`: the feeding node's name (its label, or its
+/// kind's title), with the pin's name when the node has more than one output.
+fn output_name(graph: &Graph, pin: &PinRef) -> String {
+    let Some(node) = graph.node(pin.node) else {
+        return pin.pin.clone();
+    };
+    let name = node.display_name();
+    if node.kind.signature().outputs.len() > 1 {
+        format!("{name} {}", pin.pin)
+    } else {
+        name.to_string()
+    }
 }
 
 /// `base`, or `base_2`, `base_3`, … — the first that `taken` refuses.
@@ -629,5 +644,30 @@ mod tests {
         };
         graph.add("top", NodeKind::Group(Group::named("g0".into())));
         resolve(&mut graph);
+    }
+
+    #[test]
+    fn outputs_are_named_after_the_nodes_that_feed_them() {
+        let noise = || {
+            NodeKind::Noise(crate::nodes::Noise {
+                basis: crate::graph::Basis::Gradient,
+            })
+        };
+        let mut graph = Graph::default();
+        let grain = graph.add("grain", noise());
+        let pores = graph.add("", noise());
+        let also_grain = graph.add("grain", noise());
+        let material = graph.add("material", NodeKind::Material);
+        graph.connect(grain, "value", material, "albedo");
+        graph.connect(pores, "value", material, "roughness");
+        graph.connect(also_grain, "value", material, "bump");
+        let selection = BTreeSet::from([grain, pores, also_grain]);
+        group_nodes(&mut graph, &selection, "wood").expect("groups");
+        let names: Vec<&str> = graph.groups["wood"]
+            .outputs
+            .iter()
+            .map(|output| output.name.as_str())
+            .collect();
+        assert_eq!(names, ["grain", "Noise", "grain_2"]);
     }
 }

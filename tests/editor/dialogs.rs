@@ -152,6 +152,43 @@ fn open_takes_the_typed_path_and_enter_without_a_click() {
 }
 
 /// Opens the Export shader or Export PNG dialog from the File menu.
+#[test]
+fn saving_an_untitled_graph_from_the_prompt_goes_on_to_the_new_graph() {
+    let dir = scratch("dialog-untitled-new");
+    let mut harness = editor(&dir, None);
+    // Twice: the second time the graph being replaced is itself an untitled new one.
+    for round in 1..=2 {
+        press(&mut harness, egui::Key::N, true);
+        if round == 1 {
+            // The wood preset, unedited: Ctrl+N goes straight on.
+            assert!(!dialog_up(&harness, "Unsaved changes"));
+        }
+        edit(&mut harness, &format!("Untitled edit {round}"));
+        assert_eq!(harness.state().document().path, None);
+        press(&mut harness, egui::Key::N, true);
+        assert!(dialog_up(&harness, "Unsaved changes"));
+        wait(&mut harness, 1.0);
+        harness.get_by_label("Save").click();
+        harness.run();
+        assert!(dialog_up(&harness, "Save graph as"), "round {round}");
+        let target = dir.join(format!("untitled-{round}.ron"));
+        type_text(&mut harness, &target.display().to_string());
+        key(&mut harness, egui::Key::Enter);
+        let saved = veneer::graph::load(&target).expect("Enter saved the untitled graph");
+        assert_eq!(saved.name, format!("Untitled edit {round}"));
+        let document = harness.state().document();
+        assert_eq!(
+            (
+                document.path.as_deref(),
+                document.graph.name.as_str(),
+                document.is_dirty()
+            ),
+            (None, "Untitled", false),
+            "round {round}: once saved, the editor goes on to the new graph"
+        );
+    }
+}
+
 fn from_file_menu(harness: &mut Editor, entry: &str) {
     harness.get_by_label("File").click_accesskit();
     harness.run();

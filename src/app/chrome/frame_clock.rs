@@ -194,10 +194,16 @@ mod tests {
         let before = thread_cpu_time();
         std::thread::sleep(Duration::from_millis(30));
         let slept = thread_cpu_time() - before;
+        // Busy until the thread has run 30 ms (or 5 s have passed: on a loaded machine
+        // the thread gets only part of a core).
         let started = Instant::now();
         let mut sum = 0u64;
-        while started.elapsed() < Duration::from_millis(30) {
-            sum = sum.wrapping_add(std::hint::black_box(1));
+        while thread_cpu_time() - before - slept < Duration::from_millis(30)
+            && started.elapsed() < Duration::from_secs(5)
+        {
+            for _ in 0..1000 {
+                sum = sum.wrapping_add(std::hint::black_box(1));
+            }
         }
         let worked = thread_cpu_time() - before - slept;
         assert!(slept < Duration::from_millis(10), "{slept:?} while asleep");

@@ -66,9 +66,9 @@ impl VeneerApp {
             self.undo();
         }
         if pressed(SAVE_AS) {
-            self.chrome.dialog = Some(Dialog::save_as(&self.session.document));
+            self.chrome.dialog = Some(Dialog::save_as(&self.session.document, None));
         } else if pressed(SAVE) {
-            self.save();
+            self.save(None);
         }
         if pressed(EXPORT_PNG) {
             self.chrome.dialog = Some(Dialog::export_png(&self.session.document));
@@ -174,10 +174,10 @@ impl VeneerApp {
                     }
                 });
                 if shortcut_entry(ui, "Save", &SAVE, true) {
-                    self.save();
+                    self.save(None);
                 }
                 if shortcut_entry(ui, "Save as…", &SAVE_AS, true) {
-                    self.chrome.dialog = Some(Dialog::save_as(&self.session.document));
+                    self.chrome.dialog = Some(Dialog::save_as(&self.session.document, None));
                 }
                 ui.separator();
                 if shortcut_entry(ui, "Export shader…", &EXPORT_SHADER, true) {

@@ -99,15 +99,13 @@ impl PreviewState {
     }
 
     /// Takes the placement (centre and size in texture space) of `preview` for a graph
-    /// just opened: the time starts again from 0, paused, and every camera resets.
+    /// just opened: the time starts again from 0, paused, every camera resets, and the
+    /// lighting is the default again.
     pub fn follow(&mut self, preview: &Preview) {
-        self.view.center = [
-            preview.center.0 as f32,
-            preview.center.1 as f32,
-            preview.center.2 as f32,
-        ];
-        self.view.size = preview.size as f32;
-        self.view.time = 0.0;
+        // Lighting, exposure, tone mapping and the environment start afresh with each
+        // graph: what suited the last one is not carried into the next.
+        self.view = MeshView::for_preview(preview);
+        self.environment = EnvironmentChoice::default();
         self.playing = false;
         self.last_tick = None;
         self.cameras.clear();
@@ -530,6 +528,38 @@ mod tests {
             (0.0, false),
             "a new graph starts at 0"
         );
+    }
+
+    #[test]
+    fn a_graph_opened_starts_with_the_default_lighting() {
+        let mut state = PreviewState::for_graph(&Preview::default());
+        let default = state.look();
+        state.view.exposure = 2.7;
+        state.view.key_light = 0.1;
+        state.view.environment_turn = 90.0;
+        state.view.tone_map = crate::render::ToneMap::Aces;
+        state.environment = EnvironmentChoice(Some(Arc::new(crate::render::Environment::from_fn(
+            "red",
+            8,
+            |_| glam::Vec3::X,
+        ))));
+        state.follow(&Preview::default());
+        let look = state.look();
+        assert_eq!(
+            (
+                look.exposure,
+                look.key_light,
+                look.environment_turn,
+                look.tone_map
+            ),
+            (
+                default.exposure,
+                default.key_light,
+                default.environment_turn,
+                default.tone_map
+            ),
+        );
+        assert!(state.environment.0.is_none(), "lit by the sky again");
     }
 
     #[test]

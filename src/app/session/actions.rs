@@ -18,11 +18,17 @@ impl VeneerApp {
                 self.guard(Pending::Open(path));
                 Ok(None)
             }
-            Action::SaveAs(path) => self.session.document.save_as(&path).map(|()| {
-                self.remember(&path);
-                self.session.autosave.forget();
-                Some(format!("saved {}", path.display()))
-            }),
+            Action::SaveAs(path, then) => {
+                let saved = self.session.document.save_as(&path).map(|()| {
+                    self.remember(&path);
+                    self.session.autosave.forget();
+                    Some(format!("saved {}", path.display()))
+                });
+                if let (Ok(_), Some(pending)) = (&saved, then) {
+                    self.perform(pending);
+                }
+                saved
+            }
             Action::ExportShader {
                 path,
                 target,
@@ -47,7 +53,8 @@ impl VeneerApp {
                 .load_environment(&path)
                 .map(|name| Some(format!("lit by {name}"))),
             Action::SaveThen(pending) => {
-                self.save();
+                // An untitled graph asks for a file first, and goes on once saved there.
+                self.save(Some(pending.clone()));
                 if !self.session.document.is_dirty() {
                     self.perform(pending);
                 }
@@ -90,8 +97,15 @@ impl VeneerApp {
     /// clean); on SIGTERM, SIGINT or SIGHUP, autosaves and closes the window.
     pub(in crate::app) fn autosave_tick(&mut self, ctx: &egui::Context) {
         let now = ctx.input(|input| input.time);
-        if let Err(error) = self.session.autosave.tick(now, &self.session.document) {
-            self.chrome.message = Some(format!("autosave failed: {error}"));
+        let revision = self.session.revision.number;
+        match self
+            .session
+            .autosave
+            .tick(now, &self.session.document, revision)
+        {
+            Ok(Some(wait)) => ctx.request_repaint_after(std::time::Duration::from_secs_f64(wait)),
+            Ok(None) => {}
+            Err(error) => self.chrome.message = Some(format!("autosave failed: {error}")),
         }
         if recovery::termination_requested() && !self.session.allowed_to_close {
             recovery::termination_heard();

@@ -188,6 +188,9 @@ pub struct Autosave {
     last_write: f64,
     /// A hash of what the file holds, if this window wrote it.
     written: Option<u64>,
+    /// The document's revision the file (or its absence, for a clean document) is up
+    /// to date with.
+    settled: Option<u64>,
 }
 
 impl Autosave {
@@ -198,26 +201,43 @@ impl Autosave {
             last_check: f64::NEG_INFINITY,
             last_write: f64::NEG_INFINITY,
             written: None,
+            settled: None,
         }
     }
 
-    /// Call every frame with the editor's clock: writes the work soon after the document
-    /// becomes dirty and every [`AUTOSAVE_SECONDS`] while it changes; removes the file
-    /// once the document is clean again (undone back to what was saved).
-    pub fn tick(&mut self, now: f64, document: &Document) -> std::io::Result<()> {
+    /// Call every frame with the editor's clock and the document's revision: writes the
+    /// work soon after the document becomes dirty and at most every [`AUTOSAVE_SECONDS`]
+    /// while it changes; removes the file once the document is clean again (undone back
+    /// to what was saved). Returns in how many seconds it wants to be called again, when
+    /// an edit is not on disk yet: the editor wakes for it even when nothing else asks
+    /// for a frame (an edit, then a still mouse).
+    pub fn tick(
+        &mut self,
+        now: f64,
+        document: &Document,
+        revision: u64,
+    ) -> std::io::Result<Option<f64>> {
         self.now = now;
-        if now - self.last_check < CHECK_SECONDS {
-            return Ok(());
+        if self.settled == Some(revision) {
+            return Ok(None);
+        }
+        let since_check = now - self.last_check;
+        if since_check < CHECK_SECONDS {
+            return Ok(Some(CHECK_SECONDS - since_check));
         }
         self.last_check = now;
         if !document.is_dirty() {
             self.forget();
-            Ok(())
-        } else if self.written.is_none() || now - self.last_write >= AUTOSAVE_SECONDS {
-            self.write_now(document)
-        } else {
-            Ok(())
+            self.settled = Some(revision);
+            return Ok(None);
         }
+        let wait = AUTOSAVE_SECONDS - (now - self.last_write);
+        if self.written.is_some() && wait > 0.0 {
+            return Ok(Some(wait));
+        }
+        self.write_now(document)?;
+        self.settled = Some(revision);
+        Ok(None)
     }
 
     /// Writes the document's work now if it is dirty (removes the file if not).
@@ -461,5 +481,37 @@ mod tests {
         assert_eq!(found.len(), 1, "{found:?}");
         assert_eq!(found[0].file, orphan);
         assert_eq!(found[0].graph, graph);
+    }
+
+    #[test]
+    fn an_edit_after_a_write_asks_for_a_wake_and_is_written_then() {
+        let dir = std::env::temp_dir().join(format!("veneer-autosave-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        let mut document = Document::new(crate::graph::preset("wood").unwrap(), None);
+        let mut autosave = Autosave::new(dir.join("recovery-1-0.ron"));
+        document.graph.name = "first edit".into();
+        assert_eq!(
+            autosave.tick(10.0, &document, 1).unwrap(),
+            None,
+            "written at once"
+        );
+        let on_disk = |file: &Path| read(file).map(|r| r.graph.name);
+        assert_eq!(on_disk(&autosave.file).as_deref(), Some("first edit"));
+        // A second edit within the autosave interval: not written yet, but the editor is
+        // told when to come back, even if nothing else wakes it.
+        document.graph.name = "second edit".into();
+        let wait = autosave.tick(11.0, &document, 2).unwrap();
+        assert_eq!(wait, Some(AUTOSAVE_SECONDS - 1.0));
+        assert_eq!(on_disk(&autosave.file).as_deref(), Some("first edit"));
+        assert_eq!(
+            autosave
+                .tick(10.0 + AUTOSAVE_SECONDS, &document, 2)
+                .unwrap(),
+            None
+        );
+        assert_eq!(on_disk(&autosave.file).as_deref(), Some("second edit"));
+        // Nothing new: no wake asked for.
+        assert_eq!(autosave.tick(30.0, &document, 2).unwrap(), None);
+        let _ = std::fs::remove_dir_all(&dir);
     }
 }

@@ -16,6 +16,9 @@ pub(in crate::app) struct Revision {
     pub number: u64,
     /// Frames that read the graph view back (for tests: idle frames never do).
     pub reads: u64,
+    /// The document was changed from outside the editor's own panels (a script or a
+    /// test): the next frame takes it in even without input.
+    pub touched: bool,
     /// The graph at `number`, to tell a change from a frame that changed nothing.
     seen: Graph,
     /// The revision compiled, and with which noise detail (a setting of the preview's).
@@ -51,7 +54,8 @@ impl VeneerApp {
         };
         let pointer_down = ctx.input(|input| input.pointer.any_down());
         // The first frame takes in the graph the editor opened on.
-        if self.session.revision.number == 0 || may_edit(ctx) {
+        let touched = std::mem::take(&mut self.session.revision.touched);
+        if self.session.revision.number == 0 || touched || may_edit(ctx) {
             self.session.revision.reads += 1;
             let graph = self.shown_graph();
             if graph != self.session.document.graph {

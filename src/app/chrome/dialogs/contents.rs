@@ -15,7 +15,7 @@ impl Dialog {
                 frame.path_field(ui, path);
                 frame.path_buttons(ui, "Open");
             }
-            Dialog::SaveAs { path } => {
+            Dialog::SaveAs { path, .. } => {
                 ui.heading("Save graph as");
                 frame.path_field(ui, path);
                 frame.path_buttons(ui, "Save");
@@ -83,7 +83,7 @@ impl Dialog {
                 frame.path_field(ui, path);
                 frame.path_buttons(ui, "Load");
             }
-            Dialog::Replace(path) => {
+            Dialog::Replace(path, _) => {
                 ui.heading("Replace file?");
                 ui.label(format!(
                     "{} already exists. Replace it with this graph?",

@@ -43,8 +43,9 @@ pub enum Pending {
 pub enum Action {
     /// Open a graph file (asking first about unsaved changes).
     Open(PathBuf),
-    /// Save the document to this file.
-    SaveAs(PathBuf),
+    /// Save the document to this file, then go on with what the save was asked for
+    /// (the prompt about unsaved work of an untitled graph).
+    SaveAs(PathBuf, Option<Pending>),
     /// Write the material as a shader for `target`.
     ExportShader {
         path: PathBuf,
@@ -80,6 +81,8 @@ pub enum Dialog {
     },
     SaveAs {
         path: String,
+        /// What to do once saved (Save in the prompt about unsaved work).
+        then: Option<Pending>,
     },
     ExportShader {
         path: String,
@@ -101,8 +104,9 @@ pub enum Dialog {
     LoadEnvironment {
         path: String,
     },
-    /// Save as onto an existing file: asks before replacing it.
-    Replace(PathBuf),
+    /// Save as onto an existing file: asks before replacing it (and what to do once
+    /// saved).
+    Replace(PathBuf, Option<Pending>),
     Discard(Pending),
     /// Autosaved work of windows that did not exit cleanly, newest first.
     Recover(Vec<Recovery>),
@@ -126,9 +130,10 @@ impl Dialog {
             path: String::new(),
         }
     }
-    /// Save as, suggesting the current file or the graph's name.
-    pub fn save_as(document: &Document) -> Dialog {
+    /// Save as, suggesting the current file or the graph's name; once saved, `then`.
+    pub fn save_as(document: &Document, then: Option<Pending>) -> Dialog {
         Dialog::SaveAs {
+            then,
             path: document
                 .path
                 .as_ref()
@@ -171,7 +176,7 @@ impl Dialog {
     fn path_mut(&mut self) -> Option<&mut String> {
         match self {
             Dialog::Open { path }
-            | Dialog::SaveAs { path }
+            | Dialog::SaveAs { path, .. }
             | Dialog::ExportShader { path, .. }
             | Dialog::ExportPng { path, .. }
             | Dialog::ExportGltf { path, .. }
@@ -253,7 +258,7 @@ impl Dialog {
                     }
                     match self {
                         // The browser asked before replacing a file.
-                        Dialog::SaveAs { .. } => (None, Some(Action::SaveAs(path))),
+                        Dialog::SaveAs { then, .. } => (None, Some(Action::SaveAs(path, then))),
                         Dialog::Open { .. }
                         | Dialog::LoadMesh { .. }
                         | Dialog::LoadEnvironment { .. } => self.confirm(document),
@@ -320,7 +325,7 @@ impl Dialog {
             },
             Some(Choice::Destroy) => match self {
                 Dialog::Discard(pending) => (None, Some(Action::Discard(pending))),
-                Dialog::Replace(path) => (None, Some(Action::SaveAs(path))),
+                Dialog::Replace(path, then) => (None, Some(Action::SaveAs(path, then))),
                 dialog => (Some(dialog), None),
             },
             Some(Choice::Recover(index)) => match self {
@@ -347,12 +352,12 @@ impl Dialog {
     fn confirm(self, document: &Document) -> (Option<Dialog>, Option<Action>) {
         let action = match &self {
             Dialog::Open { path } if !path.trim().is_empty() => Action::Open(typed_path(path)),
-            Dialog::SaveAs { path } if !path.trim().is_empty() => {
+            Dialog::SaveAs { path, then } if !path.trim().is_empty() => {
                 let path = typed_path(path);
                 if path.exists() && document.path.as_ref() != Some(&path) {
-                    return (Some(Dialog::Replace(path)), None);
+                    return (Some(Dialog::Replace(path, then.clone())), None);
                 }
-                Action::SaveAs(path)
+                Action::SaveAs(path, then.clone())
             }
             Dialog::ExportShader {
                 path,
@@ -384,7 +389,7 @@ impl Dialog {
             Dialog::LoadEnvironment { path } if !path.trim().is_empty() => {
                 Action::LoadEnvironment(typed_path(path).display().to_string())
             }
-            Dialog::Replace(path) => Action::SaveAs(path.clone()),
+            Dialog::Replace(path, then) => Action::SaveAs(path.clone(), then.clone()),
             // The safe choice: keep the unsaved changes and stay.
             Dialog::Discard(_) | Dialog::Message(_) => return (None, None),
             Dialog::Recover(saved) if !saved.is_empty() => {
@@ -400,9 +405,10 @@ impl Dialog {
     fn cancel(self) -> (Option<Dialog>, Option<Action>) {
         match self {
             // Back to Save as, with the path to change.
-            Dialog::Replace(path) => (
+            Dialog::Replace(path, then) => (
                 Some(Dialog::SaveAs {
                     path: path.display().to_string(),
+                    then,
                 }),
                 None,
             ),
