@@ -21,6 +21,12 @@
 //! (empty) canvas that changed when it was added, and its pins are the discs of a pin
 //! colour at its left and right edges.
 
+mod canvas;
 mod first_minute;
+mod gestures;
+mod on_disk;
+mod panning;
+mod probe;
+mod selection;
 mod session;
 mod shot;
