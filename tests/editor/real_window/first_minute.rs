@@ -22,9 +22,7 @@ fn add_wire_save_and_reopen_in_a_real_window() {
 
     // The graph opens framed, filling the canvas: zoom out about its top-left corner.
     session.step("make room: the wheel zooms out about the pointer");
-    session.move_mouse((12, 40));
-    session.xdotool(&["click", "--repeat", "2", "--delay", "100", "5"]);
-    let first = session.settled(whole);
+    let first = session.zoom_out((12, 40), 2);
 
     session.step("find empty canvas for two nodes");
     let (at_noise, at_remap) = match free_spots(&first) {

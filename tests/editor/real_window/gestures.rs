@@ -2,7 +2,7 @@
 //! wiring two pins, adding a node through the search.
 
 use super::session::{STEP, Session};
-use super::shot::{Rect, Shot, diff, pins};
+use super::shot::{Rect, Shot, diff, full, pins};
 use std::time::Duration;
 
 /// About a frame or two of the editor's: how long a hand rests between pressing,
@@ -14,6 +14,31 @@ pub(super) struct Added {
     pub(super) bounds: Rect,
     pub(super) input: Option<(i32, i32)>,
     pub(super) output: Option<(i32, i32)>,
+}
+
+/// How the add-node search is opened, the mouse where the node is to go.
+#[derive(Clone, Copy)]
+pub(super) enum Opener {
+    Space,
+    RightClick,
+}
+
+impl Opener {
+    fn name(self) -> &'static str {
+        match self {
+            Opener::Space => "Space",
+            Opener::RightClick => "a right click on empty canvas",
+        }
+    }
+}
+
+/// The add-node search, open: where the mouse is, the window before it opened, the
+/// columns of the window it may cover, and where it shows.
+pub(super) struct Search {
+    at: (i32, i32),
+    before: Shot,
+    columns: Rect,
+    popup: Rect,
 }
 
 impl Session {
@@ -99,9 +124,9 @@ impl Session {
         self.xdotool(&["mouseup", "1"]);
     }
 
-    /// Adds a node at `at` as a user does: Space with the mouse there, the query typed
-    /// (each key seen in the search before the next), Enter. Returns the node's pins.
-    pub(super) fn add_node(&mut self, at: (i32, i32), query: &str) -> Added {
+    /// Opens the add-node search with the mouse at `at`, by `opener`, and waits for
+    /// it to show there.
+    pub(super) fn open_search(&mut self, at: (i32, i32), opener: Opener) -> Search {
         self.move_mouse(at);
         let room = Rect::room(at);
         let height = self.shot().height as i32;
@@ -112,12 +137,44 @@ impl Session {
             y1: height - 30,
         };
         let before = self.settled(columns);
-        self.key("space");
+        match opener {
+            Opener::Space => self.key("space"),
+            Opener::RightClick => self.click(at, "3"),
+        }
         // The popup may sit higher than the mouse near the window's bottom edge.
-        let popup = self.wait_for("the add-node search to open at the mouse", STEP, |s| {
+        let what = "the add-node search to open at the mouse";
+        let popup = self.try_wait_for(what, STEP, |s| {
             let (count, bounds) = diff(&before, &s.shot(), columns, true);
             bounds.filter(|b| count > 2000 && b.x0 <= at.0 + 5 && b.x1 >= at.0 + 100)
         });
+        let Some(popup) = popup else {
+            self.fail(&format!(
+                "{} opened nothing within {STEP:?}: it opens the add-node search at the mouse",
+                opener.name()
+            ));
+        };
+        Search {
+            at,
+            before,
+            columns,
+            popup,
+        }
+    }
+
+    /// Adds a node at `at` as a user does: Space with the mouse there, the query typed
+    /// (each key seen in the search before the next), Enter. Returns the node's pins.
+    pub(super) fn add_node(&mut self, at: (i32, i32), query: &str) -> Added {
+        self.add_node_by(Opener::Space, at, query)
+    }
+
+    /// [`Session::add_node`], the search opened by `opener`.
+    pub(super) fn add_node_by(&mut self, opener: Opener, at: (i32, i32), query: &str) -> Added {
+        let Search {
+            at,
+            before,
+            columns,
+            popup,
+        } = self.open_search(at, opener);
         let mut last = self.shot();
         for c in query.chars() {
             self.type_text(&c.to_string());
@@ -128,6 +185,7 @@ impl Session {
             });
         }
         self.key("Return");
+        let room = Rect::room(at);
         let mut previous: Option<Shot> = None;
         let (bounds, found) = self.wait_for(
             "the new node under the mouse, the search closed",
@@ -160,6 +218,24 @@ impl Session {
             input: topmost(false),
             output: topmost(true),
         }
+    }
+
+    /// Adds a node at `at` as a quick typist does: Space, and once the search shows,
+    /// the query and Enter at once. Does not wait for the node.
+    pub(super) fn add_node_at_once(&mut self, at: (i32, i32), query: &str) {
+        self.open_search(at, Opener::Space);
+        self.type_text(query);
+        self.key("Return");
+    }
+
+    /// Zooms the view out by `notches` of the wheel about `at` (the graph's top-left
+    /// corner, to make room beside it) and returns the window once it settles.
+    pub(super) fn zoom_out(&mut self, at: (i32, i32), notches: u32) -> Shot {
+        self.move_mouse(at);
+        let repeat = notches.to_string();
+        self.xdotool(&["click", "--repeat", &repeat, "--delay", "100", "5"]);
+        let whole = full(&self.shot());
+        self.settled(whole)
     }
 
     /// Clicks mouse `button` (1 left, 3 right) at `at` as a hand does: the pointer

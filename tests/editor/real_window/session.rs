@@ -442,6 +442,15 @@ impl Session {
         }
     }
 
+    /// Fails with `otherwise` unless the title gains its star within a step's time:
+    /// what was done edited the document.
+    pub(super) fn expect_edited(&mut self, otherwise: &str) {
+        let star = |s: &mut Session| s.title().starts_with("* ").then_some(());
+        if self.try_wait_for("the title's star", STEP, star).is_none() {
+            self.fail(otherwise);
+        }
+    }
+
     /// The test passed: the scratch folder goes.
     pub(super) fn finish(self) {
         let dir = self.dir.clone();
