@@ -12,10 +12,9 @@ use veneer::graph::NodeKind;
 fn a_right_click_opens_the_search_and_typing_goes_into_it_in_a_real_window() {
     require_tools();
     let mut session = Session::start("right_click_search");
-    let file = session.dir.join("grid.ron");
     let mut graph = grid(2, &[NodeKind::Position, NodeKind::Invert]);
     session.step("open two nodes with thumbnails, and make room beside them");
-    session.open_drawn(&file, &graph);
+    let (file, _) = session.open_drawn("grid.ron", &graph);
     let shot = session.zoom_out((12, 40), 1);
     let drawn = session.drawn(&graph);
     let Some((first, second)) = free_spots(&shot) else {

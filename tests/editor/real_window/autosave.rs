@@ -2,7 +2,7 @@
 //! (no input, so no repaint), and SIGTERM leaves the last edit there.
 
 use super::canvas::grid;
-use super::session::{STEP, Session, require_tools};
+use super::session::{Session, require_tools};
 use super::shot::free_spots;
 use std::time::Duration;
 use veneer::graph::{Graph, NodeKind};
@@ -22,10 +22,9 @@ fn titles(graph: &Graph) -> Vec<&'static str> {
 fn edits_reach_the_recovery_file_with_the_mouse_still_and_after_sigterm_in_a_real_window() {
     require_tools();
     let mut session = Session::start("still_mouse_autosave");
-    let file = session.dir.join("grid.ron");
     let graph = grid(2, &[NodeKind::Position, NodeKind::Invert]);
     session.step("open two nodes");
-    session.open_drawn(&file, &graph);
+    session.open_drawn("grid.ron", &graph);
     session.step("make room: the wheel zooms out about the pointer");
     let shot = session.zoom_out((12, 40), 2);
     let Some((first, second)) = free_spots(&shot) else {
@@ -37,14 +36,12 @@ fn edits_reach_the_recovery_file_with_the_mouse_still_and_after_sigterm_in_a_rea
         titles
     };
 
-    session.step("add a Noise node: the first edit is autosaved at once");
+    session.step("add a Noise node, then keep the mouse still");
     session.add_node_at_once(first, "noise");
     let noise = with(&["Noise"]);
-    session.wait_for("the recovery file to hold the Noise node", STEP, |s| {
-        s.recovered().filter(|saved| titles(saved) == noise)
-    });
+    expect_recovered(&mut session, &noise, "adding a Noise node");
 
-    // Within the autosave interval of the first write, so that only the timer (or a
+    // Within the autosave interval of the last write, so that only the timer (or a
     // repaint) can write it.
     session.step("add a Remap node at once, then keep the mouse still");
     session.add_node_at_once(second, "remap");
@@ -79,12 +76,14 @@ fn expect_recovered(session: &mut Session, expected: &[&str], edit: &str) {
         s.recovered().filter(|saved| titles(saved) == expected)
     });
     if found.is_none() {
-        let held = session.recovered();
+        let held = match session.recovered() {
+            Some(graph) => format!("the recovery file holds {:?}", titles(&graph)),
+            None => format!("the recovery files are {:?}", session.recovery_files()),
+        };
         session.fail(&format!(
-            "{STILL:?} after {edit}, the mouse still, the recovery file holds {:?}, not \
-             {expected:?}: autosave must write the work on its timer (every AUTOSAVE_SECONDS, \
-             5 s), not only when the window repaints",
-            held.as_ref().map(titles)
+            "{STILL:?} after {edit}, the mouse still, {held}, not {expected:?}: autosave must \
+             write the work on its timer (every AUTOSAVE_SECONDS, 5 s), not only when the \
+             window repaints"
         ));
     }
 }

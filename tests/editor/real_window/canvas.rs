@@ -3,8 +3,8 @@
 //! opened (a graph written by the test: its nodes laid out in rows, apart and unwired).
 
 use super::session::{STEP, Session};
-use super::shot::{Rect, Shot, full};
-use std::path::Path;
+use super::shot::{Rect, Shot, full, islands_where};
+use std::path::PathBuf;
 use veneer::graph::{Graph, NodeId, NodeKind};
 
 /// How far a pixel's channels may be from the canvas colour and still be canvas (the
@@ -32,6 +32,18 @@ pub(super) fn grid(columns: usize, kinds: &[NodeKind]) -> Graph {
     }
     place("material", NodeKind::Material, columns, 0);
     graph
+}
+
+/// Four nodes in two rows of two (the first row's without inputs) and a Material, as
+/// [`grid`] lays them out: for the flows that click, drag and copy nodes.
+pub(super) fn four_nodes() -> Graph {
+    let kinds = [
+        NodeKind::Position,
+        NodeKind::Uv,
+        NodeKind::Invert,
+        NodeKind::Gamma,
+    ];
+    grid(2, &kinds)
 }
 
 /// The id of `graph`'s node labelled `label`.
@@ -104,41 +116,12 @@ pub(super) fn canvas_area(shot: &Shot) -> Rect {
     }
 }
 
-/// The islands of pixels other than the canvas colour in `area` (eight-connected), at
-/// least [`NODE_PIXELS`] wide and tall: the nodes, when nothing joins them.
+/// The islands of pixels other than the canvas colour in `area`, at least
+/// [`NODE_PIXELS`] wide and tall: the nodes, when nothing joins them.
 pub(super) fn islands(shot: &Shot, area: Rect) -> Vec<Rect> {
     let canvas = canvas_colour(shot);
-    let area = area.clip(shot);
-    let width = (area.x1 - area.x0).max(0) as usize;
-    let height = (area.y1 - area.y0).max(0) as usize;
-    let mut seen = vec![false; width * height];
-    let index = |x: i32, y: i32| (y - area.y0) as usize * width + (x - area.x0) as usize;
-    let mut found = Vec::new();
-    for y in area.y0..area.y1 {
-        for x in area.x0..area.x1 {
-            if seen[index(x, y)] || is_canvas(shot.px(x, y), canvas) {
-                continue;
-            }
-            seen[index(x, y)] = true;
-            let mut bounds = Rect::around((x, y), 0);
-            let mut todo = vec![(x, y)];
-            while let Some((px, py)) = todo.pop() {
-                bounds = Rect::include(Some(bounds), (px, py));
-                for (nx, ny) in (-1..=1).flat_map(|dy| (-1..=1).map(move |dx| (px + dx, py + dy))) {
-                    if area.contains((nx, ny))
-                        && !seen[index(nx, ny)]
-                        && !is_canvas(shot.px(nx, ny), canvas)
-                    {
-                        seen[index(nx, ny)] = true;
-                        todo.push((nx, ny));
-                    }
-                }
-            }
-            if bounds.x1 - bounds.x0 >= NODE_PIXELS && bounds.y1 - bounds.y0 >= NODE_PIXELS {
-                found.push(bounds);
-            }
-        }
-    }
+    let mut found = islands_where(shot, area, |p| !is_canvas(p, canvas));
+    found.retain(|r| r.x1 - r.x0 >= NODE_PIXELS && r.y1 - r.y0 >= NODE_PIXELS);
     found
 }
 
@@ -147,7 +130,7 @@ pub(super) fn islands(shot: &Shot, area: Rect) -> Vec<Rect> {
 pub(super) struct Drawn {
     pub(super) nodes: Vec<(NodeId, Rect)>,
     /// Screen pixels per graph unit.
-    pub(super) zoom: f64,
+    zoom: f64,
     /// Where the graph's origin is on screen (a node's top-left corner is
     /// `origin + zoom × position`).
     origin: (f64, f64),
@@ -169,9 +152,8 @@ impl Drawn {
         }
         let mut nodes: Vec<&veneer::graph::Node> = graph.nodes.iter().collect();
         nodes.sort_by(|a, b| {
-            (a.position.1, a.position.0)
-                .partial_cmp(&(b.position.1, b.position.0))
-                .unwrap()
+            let (a, b) = (a.position, b.position);
+            a.1.total_cmp(&b.1).then(a.0.total_cmp(&b.0))
         });
         let mut paired = Vec::new();
         let mut rest = nodes.as_slice();
@@ -253,12 +235,14 @@ impl Drawn {
 }
 
 impl Session {
-    /// Writes `graph` to `file`, opens the editor on it and finds its nodes on screen.
-    pub(super) fn open_drawn(&mut self, file: &Path, graph: &Graph) -> Drawn {
-        veneer::graph::save(graph, file).expect("the graph is written");
-        let name = file.file_name().unwrap_or_default().to_string_lossy();
-        self.start_editor(file, &format!("{name} — Veneer"));
-        self.drawn(graph)
+    /// Writes `graph` to the file `name` in the scratch folder, opens the editor on it
+    /// and finds its nodes on screen: the file, and the nodes as drawn.
+    pub(super) fn open_drawn(&mut self, name: &str, graph: &Graph) -> (PathBuf, Drawn) {
+        let file = self.dir.join(name);
+        veneer::graph::save(graph, &file).expect("the graph is written");
+        self.start_editor(&file, &format!("{name} — Veneer"));
+        let drawn = self.drawn(graph);
+        (file, drawn)
     }
 
     /// Waits for the window to settle with every node of `graph` drawn where

@@ -1,9 +1,9 @@
 //! Pasted and duplicated nodes land clear of the nodes already there, and become the
 //! selection: Delete right after takes the new node away, not the one copied.
 
-use super::canvas::{Drawn, grid, id};
+use super::canvas::{Drawn, four_nodes, id};
 use super::session::{Session, require_tools};
-use veneer::graph::{Graph, NodeKind};
+use veneer::graph::Graph;
 
 /// How the node is copied: the keys, and what the user calls it.
 const WAYS: [(&[&str], &str); 2] = [
@@ -16,16 +16,9 @@ const WAYS: [(&[&str], &str); 2] = [
 fn pasted_and_duplicated_nodes_land_clear_and_are_selected_in_a_real_window() {
     require_tools();
     let mut session = Session::start("paste_and_duplicate");
-    let file = session.dir.join("grid.ron");
-    let kinds = [
-        NodeKind::Position,
-        NodeKind::Uv,
-        NodeKind::Invert,
-        NodeKind::Gamma,
-    ];
-    let graph = grid(2, &kinds);
+    let graph = four_nodes();
     session.step("open four nodes in two rows of two");
-    let mut drawn = session.open_drawn(&file, &graph);
+    let (file, mut drawn) = session.open_drawn("grid.ron", &graph);
     for label in ["n0", "n3"] {
         for (keys, done) in WAYS {
             session.step(&format!("click {label}'s title, then {}", keys.join(", ")));

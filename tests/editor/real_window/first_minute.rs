@@ -74,11 +74,7 @@ fn add_wire_save_and_reopen_in_a_real_window() {
     let saved_as = dir.join("saved as.ron");
     let before = session.shot();
     session.key("ctrl+shift+s");
-    // A modal dialog dims everything behind it.
-    session.wait_for("the Save as dialog", STEP, |s| {
-        let (changed, _) = diff(&before, &s.shot(), full(&before), false);
-        (changed * 3 > before.width * before.height).then_some(())
-    });
+    session.expect_dialog(&before, "the Save as dialog");
     session.type_text(&saved_as.display().to_string());
     session.key("Return");
     session.wait_for("the file written by Save as", STEP, |_| {

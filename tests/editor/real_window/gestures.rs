@@ -19,11 +19,14 @@ pub(super) struct Added {
 /// How the add-node search is opened, the mouse where the node is to go.
 #[derive(Clone, Copy)]
 pub(super) enum Opener {
+    /// The Space key.
     Space,
+    /// A right click on empty canvas.
     RightClick,
 }
 
 impl Opener {
+    /// What the user did, in words.
     fn name(self) -> &'static str {
         match self {
             Opener::Space => "Space",
@@ -42,16 +45,19 @@ pub(super) struct Search {
 }
 
 impl Session {
+    /// Presses `keys` (an `xdotool key` chord such as `ctrl+s`) in the editor's window.
     pub(super) fn key(&mut self, keys: &str) {
         let window = self.window.clone().expect("a window");
         self.xdotool(&["windowfocus", "--sync", &window]);
         self.xdotool(&["key", keys]);
     }
 
+    /// Types `text` as a typist does, a key every 20 ms.
     pub(super) fn type_text(&mut self, text: &str) {
         self.xdotool(&["type", "--delay", "20", "--", text]);
     }
 
+    /// Moves the pointer to `(x, y)` in the window and waits for it to get there.
     pub(super) fn move_mouse(&mut self, (x, y): (i32, i32)) {
         let window = self.window.clone().expect("a window");
         let (x_text, y_text) = (x.to_string(), y.to_string());

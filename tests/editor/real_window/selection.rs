@@ -10,7 +10,6 @@ use veneer::graph::NodeKind;
 fn a_click_after_a_rectangle_selects_one_node_and_delete_or_x_deletes_it_in_a_real_window() {
     require_tools();
     let mut session = Session::start("click_after_rectangle");
-    let file = session.dir.join("grid.ron");
     let kinds = [
         NodeKind::Position,
         NodeKind::Uv,
@@ -21,7 +20,7 @@ fn a_click_after_a_rectangle_selects_one_node_and_delete_or_x_deletes_it_in_a_re
     ];
     let mut graph = grid(3, &kinds);
     session.step("open six nodes in two rows of three");
-    let mut drawn = session.open_drawn(&file, &graph);
+    let (file, mut drawn) = session.open_drawn("grid.ron", &graph);
     // Each row: a rectangle around its first two nodes, a click on the third, a key.
     for (row, key) in [(0, "Delete"), (1, "x")] {
         let label = |column: usize| format!("n{}", 3 * row + column);

@@ -1,7 +1,7 @@
 //! The test's own X server and editor, driven by `xdotool` and watched through
 //! ImageMagick's `import`: input, waits, screenshots and failures.
 
-use super::shot::{Rect, Shot, diff};
+use super::shot::{Rect, Shot, diff, full};
 use std::fs::File;
 use std::io::Read;
 use std::os::fd::{FromRawFd, OwnedFd};
@@ -421,6 +421,17 @@ impl Session {
             last = next;
             same.then(|| last.clone())
         })
+    }
+
+    /// Waits for a modal dialog, `what`, to open over the window as it was in `before`
+    /// (a modal dialog dims everything behind it) and to settle; returns the window then.
+    pub(super) fn expect_dialog(&mut self, before: &Shot, what: &str) -> Shot {
+        let whole = full(before);
+        self.wait_for(what, STEP, |s| {
+            let (changed, _) = diff(before, &s.shot(), whole, false);
+            (changed * 3 > before.width * before.height).then_some(())
+        });
+        self.settled(whole)
     }
 
     /// The editor window's title now.

@@ -148,6 +148,41 @@ pub(super) fn diff(a: &Shot, b: &Shot, rect: Rect, ignore_tinted: bool) -> (usiz
     (count, bounds)
 }
 
+/// The bounds of each island of pixels that are `inside` in `area` (eight-connected).
+pub(super) fn islands_where(
+    shot: &Shot,
+    area: Rect,
+    inside: impl Fn([u8; 3]) -> bool,
+) -> Vec<Rect> {
+    let area = area.clip(shot);
+    let width = (area.x1 - area.x0).max(0) as usize;
+    let height = (area.y1 - area.y0).max(0) as usize;
+    let mut seen = vec![false; width * height];
+    let index = |x: i32, y: i32| (y - area.y0) as usize * width + (x - area.x0) as usize;
+    let mut found = Vec::new();
+    for y in area.y0..area.y1 {
+        for x in area.x0..area.x1 {
+            if seen[index(x, y)] || !inside(shot.px(x, y)) {
+                continue;
+            }
+            seen[index(x, y)] = true;
+            let mut bounds = Rect::around((x, y), 0);
+            let mut todo = vec![(x, y)];
+            while let Some((px, py)) = todo.pop() {
+                bounds = Rect::include(Some(bounds), (px, py));
+                for (nx, ny) in (-1..=1).flat_map(|dy| (-1..=1).map(move |dx| (px + dx, py + dy))) {
+                    if area.contains((nx, ny)) && !seen[index(nx, ny)] && inside(shot.px(nx, ny)) {
+                        seen[index(nx, ny)] = true;
+                        todo.push((nx, ny));
+                    }
+                }
+            }
+            found.push(bounds);
+        }
+    }
+    found
+}
+
 /// Two places for the mouse whose [`Rect::room`]s are empty canvas and apart, side by
 /// side if there is room.
 pub(super) fn free_spots(shot: &Shot) -> Option<((i32, i32), (i32, i32))> {
