@@ -18,7 +18,6 @@ fn titles(graph: &Graph) -> Vec<&'static str> {
 }
 
 #[test]
-#[ignore = "issue 30: fails until autosave runs on a timer, not only when the window repaints"]
 fn edits_reach_the_recovery_file_with_the_mouse_still_and_after_sigterm_in_a_real_window() {
     require_tools();
     let mut session = Session::start("still_mouse_autosave");
