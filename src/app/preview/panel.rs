@@ -208,7 +208,10 @@ impl VeneerApp {
         if self.session.document.graph.shading != Shading::MetallicRoughness {
             return;
         }
-        ui.horizontal_wrapped(|ui| {
+        // Two rows of fixed content, not one that wraps: a field turned into a text box
+        // while typed in is narrower, and a row wrapped anew around it was once wider
+        // than the panel, which then stayed that wide over the graph.
+        ui.horizontal(|ui| {
             let lit_by = self
                 .preview
                 .state.environment
@@ -248,6 +251,9 @@ impl VeneerApp {
                     .prefix("key light "),
             )
             .on_hover_text("irradiance of the key light (0: the environment alone)");
+        });
+        ui.horizontal(|ui| {
+            let view = &mut self.preview.state.view;
             ui.add(
                 egui::DragValue::new(&mut view.exposure)
                     .speed(0.05)
