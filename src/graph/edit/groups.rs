@@ -20,11 +20,11 @@ fn definition<'g>(graph: &'g mut Graph, name: &str) -> Result<&'g mut GroupDef, 
         .ok_or_else(|| EditError::UnknownGroup(name.to_string()))
 }
 
-/// The word for a side in messages.
-fn word(side: Side) -> &'static str {
+/// The names of the pins on `side` of `definition`, in order.
+fn pin_names(definition: &GroupDef, side: Side) -> Vec<&str> {
     match side {
-        Side::Input => "input",
-        Side::Output => "output",
+        Side::Input => definition.inputs.iter().map(|i| i.name.as_str()).collect(),
+        Side::Output => definition.outputs.iter().map(|o| o.name.as_str()).collect(),
     }
 }
 
@@ -37,27 +37,18 @@ pub(super) fn add_pin(
 ) -> Result<Applied, EditError> {
     let definition = definition(graph, &name)?;
     let side = pin.side();
-    let (count, taken) = match side {
-        Side::Input => (
-            definition.inputs.len(),
-            definition.inputs.iter().any(|i| i.name == pin.name()),
-        ),
-        Side::Output => (
-            definition.outputs.len(),
-            definition.outputs.iter().any(|o| o.name == pin.name()),
-        ),
-    };
-    if taken {
+    let names = pin_names(definition, side);
+    if names.contains(&pin.name()) {
         return Err(EditError::Refused(format!(
             "group '{name}' has an {} named '{}' already",
-            word(side),
+            side.word(),
             pin.name()
         )));
     }
-    if index > count {
+    if index > names.len() {
         return Err(EditError::UnknownGroupPin {
             group: name,
-            side: word(side),
+            side: side.word(),
             index,
         });
     }
@@ -82,14 +73,10 @@ pub(super) fn drop_pin(
     index: usize,
 ) -> Result<Applied, EditError> {
     let definition = definition(graph, &name)?;
-    let count = match side {
-        Side::Input => definition.inputs.len(),
-        Side::Output => definition.outputs.len(),
-    };
-    if index >= count {
+    if index >= pin_names(definition, side).len() {
         return Err(EditError::UnknownGroupPin {
             group: name,
-            side: word(side),
+            side: side.word(),
             index,
         });
     }

@@ -15,7 +15,7 @@ pub struct History {
     /// The edits that undo each step, the last step last.
     undo: VecDeque<GraphEdit>,
     /// The edits that redo each undone step, the last undone last.
-    redo: Vec<GraphEdit>,
+    redo: VecDeque<GraphEdit>,
     /// While a gesture is under way: the inverses of its edits so far, in the order
     /// they were made.
     gesture: Option<Vec<GraphEdit>>,
@@ -72,33 +72,13 @@ impl History {
     /// the step stays and the graph is as it was.
     pub fn undo(&mut self, graph: &mut Graph) -> Option<Result<Vec<Change>, EditError>> {
         self.end_gesture();
-        let step = self.undo.pop_back()?;
-        Some(match apply(graph, step.clone()) {
-            Ok(applied) => {
-                self.redo.push(applied.inverse);
-                Ok(applied.changes)
-            }
-            Err(error) => {
-                self.undo.push_back(step);
-                Err(error)
-            }
-        })
+        travel(graph, &mut self.undo, &mut self.redo)
     }
 
-    /// Redoes the last undone step; `None` when there is none.
+    /// Redoes the last undone step (as [`History::undo`] undoes).
     pub fn redo(&mut self, graph: &mut Graph) -> Option<Result<Vec<Change>, EditError>> {
         self.end_gesture();
-        let step = self.redo.pop()?;
-        Some(match apply(graph, step.clone()) {
-            Ok(applied) => {
-                self.undo.push_back(applied.inverse);
-                Ok(applied.changes)
-            }
-            Err(error) => {
-                self.redo.push(step);
-                Err(error)
-            }
-        })
+        travel(graph, &mut self.redo, &mut self.undo)
     }
 
     /// Whether there is a step to undo.
@@ -118,6 +98,26 @@ impl History {
             self.undo.pop_front();
         }
     }
+}
+
+/// Applies the last step of `from` and puts the step that takes it back on `to`; a
+/// step the graph refuses stays where it was.
+fn travel(
+    graph: &mut Graph,
+    from: &mut VecDeque<GraphEdit>,
+    to: &mut VecDeque<GraphEdit>,
+) -> Option<Result<Vec<Change>, EditError>> {
+    let step = from.pop_back()?;
+    Some(match apply(graph, step.clone()) {
+        Ok(applied) => {
+            to.push_back(applied.inverse);
+            Ok(applied.changes)
+        }
+        Err(error) => {
+            from.push_back(step);
+            Err(error)
+        }
+    })
 }
 
 /// Adds `inverse` to the inverses of a gesture. When it undoes an edit of the same

@@ -3,6 +3,7 @@
 
 use super::EditError;
 use crate::graph::group::{BOUNDARY, GroupInput, GroupOutput};
+use crate::graph::group_interface::Side;
 use crate::graph::{Graph, Node, NodeId, PinRef, ValueType, Wire};
 use std::cmp::Ordering;
 use std::fmt;
@@ -119,44 +120,31 @@ impl Contents<'_> {
         self.wires.binary_search(wire).is_ok()
     }
 
-    /// The type of output `pin`: a node's output, or a group input read from the
-    /// boundary.
-    pub fn output_type(&self, pin: &PinRef) -> Result<ValueType, EditError> {
-        let found = match self.boundary {
-            Some((inputs, _)) if pin.node == BOUNDARY => {
+    /// The type of pin `pin` on `side` of its node: a node's input or output, or at a
+    /// group's boundary, a group output fed (an input of the boundary) or a group input
+    /// read (an output of it).
+    pub fn pin_type(&self, pin: &PinRef, side: Side) -> Result<ValueType, EditError> {
+        let found = match (self.boundary, side) {
+            (Some((inputs, _)), Side::Output) if pin.node == BOUNDARY => {
                 inputs.iter().find(|i| i.name == pin.pin).map(|i| i.ty)
             }
-            _ => {
-                let node = &self.nodes[self.find(pin.node)?];
-                let signature = node.kind.signature();
-                signature.output(&pin.pin).map(|(_, output)| output.ty)
-            }
-        };
-        found.ok_or_else(|| self.unknown_pin(pin, "output"))
-    }
-
-    /// The type of input `pin`: a node's input, or a group output fed at the boundary.
-    pub fn input_type(&self, pin: &PinRef) -> Result<ValueType, EditError> {
-        let found = match self.boundary {
-            Some((_, outputs)) if pin.node == BOUNDARY => {
+            (Some((_, outputs)), Side::Input) if pin.node == BOUNDARY => {
                 outputs.iter().find(|o| o.name == pin.pin).map(|o| o.ty)
             }
             _ => {
-                let node = &self.nodes[self.find(pin.node)?];
-                let signature = node.kind.signature();
-                signature.input(&pin.pin).map(|(_, input)| input.ty)
+                let signature = self.nodes[self.find(pin.node)?].kind.signature();
+                match side {
+                    Side::Input => signature.input(&pin.pin).map(|(_, input)| input.ty),
+                    Side::Output => signature.output(&pin.pin).map(|(_, output)| output.ty),
+                }
             }
         };
-        found.ok_or_else(|| self.unknown_pin(pin, "input"))
-    }
-
-    fn unknown_pin(&self, pin: &PinRef, side: &'static str) -> EditError {
-        EditError::UnknownPin {
+        found.ok_or_else(|| EditError::UnknownPin {
             level: self.level.clone(),
             node: pin.node,
-            side,
+            side: side.word(),
             pin: pin.pin.clone(),
-        }
+        })
     }
 }
 

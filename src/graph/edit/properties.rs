@@ -45,26 +45,18 @@ fn some_node(nodes: &[Node], seed: u32) -> NodeId {
     }
 }
 
-/// An output of a node of `nodes`, picked by `seed`.
-fn some_output(nodes: &[Node], seed: u32) -> PinRef {
+/// An input or output (`side`) of a node of `nodes`, picked by `seed`.
+fn some_pin(nodes: &[Node], seed: u32, side: Side) -> PinRef {
     let node = some_node(nodes, seed);
-    let kind = nodes
+    let signature = nodes
         .iter()
         .find(|n| n.id == node)
         .map(|n| n.kind.signature());
-    let pin = kind.and_then(|s| nth(&s.outputs, seed / 7).map(|p| p.name));
-    PinRef::new(node, pin.unwrap_or("result"))
-}
-
-/// An input of a node of `nodes`, picked by `seed`.
-fn some_input(nodes: &[Node], seed: u32) -> PinRef {
-    let node = some_node(nodes, seed);
-    let kind = nodes
-        .iter()
-        .find(|n| n.id == node)
-        .map(|n| n.kind.signature());
-    let pin = kind.and_then(|s| nth(&s.inputs, seed / 7).map(|p| p.name));
-    PinRef::new(node, pin.unwrap_or("a"))
+    let pin = signature.and_then(|s| match side {
+        Side::Input => nth(&s.inputs, seed / 7).map(|p| p.name),
+        Side::Output => nth(&s.outputs, seed / 7).map(|p| p.name),
+    });
+    PinRef::new(node, pin.unwrap_or(side.word()))
 }
 
 /// A node kind from the registry's examples, picked by `seed` (no Material).
@@ -110,7 +102,7 @@ fn random_edit(graph: &Graph, (op, a, b, c): Pick) -> GraphEdit {
             let first = node.kind.signature().inputs.first().map(|pin| pin.name);
             let wires = first
                 .map(|pin| Wire {
-                    from: some_output(nodes, c),
+                    from: some_pin(nodes, c, Side::Output),
                     to: PinRef::new(node.id, pin),
                 })
                 .into_iter()
@@ -137,15 +129,15 @@ fn random_edit(graph: &Graph, (op, a, b, c): Pick) -> GraphEdit {
         2 => GraphEdit::Connect {
             level,
             wire: Wire {
-                from: some_output(nodes, b),
-                to: some_input(nodes, c),
+                from: some_pin(nodes, b, Side::Output),
+                to: some_pin(nodes, c, Side::Input),
             },
         },
         3 => {
             let wire = nth(wires, b).cloned().filter(|_| !c.is_multiple_of(13));
             let wire = wire.unwrap_or_else(|| Wire {
-                from: some_output(nodes, b),
-                to: some_input(nodes, c),
+                from: some_pin(nodes, b, Side::Output),
+                to: some_pin(nodes, c, Side::Input),
             });
             GraphEdit::Disconnect {
                 level,
@@ -153,7 +145,7 @@ fn random_edit(graph: &Graph, (op, a, b, c): Pick) -> GraphEdit {
             }
         }
         4 => {
-            let target = some_input(nodes, b);
+            let target = some_pin(nodes, b, Side::Input);
             let ty = nodes
                 .iter()
                 .find(|n| n.id == target.node)

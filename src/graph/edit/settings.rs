@@ -6,35 +6,36 @@ use crate::graph::Graph;
 
 /// Sets one of the graph's settings.
 pub(super) fn set(graph: &mut Graph, setting: GraphSetting) -> Applied {
-    fn swap<T: PartialEq>(place: &mut T, value: T) -> (T, bool) {
-        let old = std::mem::replace(place, value);
-        let changed = old != *place;
-        (old, changed)
-    }
-    let (old, changed, change) = match setting {
-        GraphSetting::Name(name) => {
-            let (old, changed) = swap(&mut graph.name, name);
-            (GraphSetting::Name(old), changed, Change::Settings)
-        }
-        GraphSetting::Preview(preview) => {
-            let (old, changed) = swap(&mut graph.preview, preview);
-            (GraphSetting::Preview(old), changed, Change::Settings)
-        }
-        GraphSetting::Alpha(alpha) => {
-            let (old, changed) = swap(&mut graph.alpha, alpha);
-            (GraphSetting::Alpha(old), changed, Change::Settings)
-        }
-        GraphSetting::Shading(shading) => {
-            let (old, changed) = swap(&mut graph.shading, shading);
-            (GraphSetting::Shading(old), changed, Change::Settings)
-        }
-        GraphSetting::Frames(frames) => {
-            let (old, changed) = swap(&mut graph.frames, frames);
-            (GraphSetting::Frames(old), changed, Change::Layout)
-        }
+    let old = read(graph, &setting);
+    let changed = old != setting;
+    let change = match setting {
+        GraphSetting::Frames(_) => Change::Layout,
+        _ => Change::Settings,
     };
-    let inverse = GraphEdit::Set(old);
-    Applied::when(changed, inverse, change)
+    write(graph, setting);
+    Applied::when(changed, GraphEdit::Set(old), change)
+}
+
+/// The graph's value of the setting `like` is.
+fn read(graph: &Graph, like: &GraphSetting) -> GraphSetting {
+    match like {
+        GraphSetting::Name(_) => GraphSetting::Name(graph.name.clone()),
+        GraphSetting::Preview(_) => GraphSetting::Preview(graph.preview.clone()),
+        GraphSetting::Alpha(_) => GraphSetting::Alpha(graph.alpha),
+        GraphSetting::Shading(_) => GraphSetting::Shading(graph.shading),
+        GraphSetting::Frames(_) => GraphSetting::Frames(graph.frames.clone()),
+    }
+}
+
+/// Puts `setting` in the graph.
+fn write(graph: &mut Graph, setting: GraphSetting) {
+    match setting {
+        GraphSetting::Name(name) => graph.name = name,
+        GraphSetting::Preview(preview) => graph.preview = preview,
+        GraphSetting::Alpha(alpha) => graph.alpha = alpha,
+        GraphSetting::Shading(shading) => graph.shading = shading,
+        GraphSetting::Frames(frames) => graph.frames = frames,
+    }
 }
 
 /// Links group `group` to the library, or makes it local.

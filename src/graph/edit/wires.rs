@@ -3,6 +3,7 @@
 
 use super::level::{Contents, contents};
 use super::{Applied, Change, EditError, GraphEdit, Level};
+use crate::graph::group_interface::Side;
 use crate::graph::{Graph, NodeId, Wire};
 use std::collections::{HashMap, HashSet};
 
@@ -72,8 +73,8 @@ pub(super) fn disconnect(
 /// Refuses `wire` unless it runs from an output to an input that exist, of types that
 /// convert.
 pub(super) fn check_pins(at: &Contents, wire: &Wire) -> Result<(), EditError> {
-    let given = at.output_type(&wire.from)?;
-    let expected = at.input_type(&wire.to)?;
+    let given = at.pin_type(&wire.from, Side::Output)?;
+    let expected = at.pin_type(&wire.to, Side::Input)?;
     if given.converts_to(expected) {
         Ok(())
     } else {
