@@ -188,8 +188,7 @@ mod tests {
                 .apply(&mut graph, moved(frame as f32 * 3.3))
                 .unwrap();
         }
-        // Each frame set the value, then moved: the runs alternate, so both kinds
-        // are kept once per frame. A drag of one thing keeps one edit.
+        // (Two things set in turn: each frame's inverses are kept.)
         history.end_gesture();
         let after = graph.clone();
         assert!(history.undo(&mut graph).unwrap().is_ok());
@@ -198,6 +197,7 @@ mod tests {
         assert!(history.redo(&mut graph).unwrap().is_ok());
         assert!(graph == after);
 
+        // One thing set frame after frame: the first frame's inverse alone.
         let mut history = History::new();
         history.begin_gesture();
         for frame in 1..=30 {
