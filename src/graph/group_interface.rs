@@ -59,7 +59,8 @@ fn pin_names(graph: &Graph, group: &str, side: Side, name: &str) -> Result<Vec<S
 }
 
 impl Side {
-    fn word(self) -> &'static str {
+    /// The side's name in messages: `input` or `output`.
+    pub fn word(self) -> &'static str {
         match self {
             Side::Input => "input",
             Side::Output => "output",

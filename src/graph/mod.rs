@@ -2,6 +2,7 @@
 
 pub mod check;
 mod declarations;
+pub mod edit;
 mod field;
 pub mod group;
 pub mod group_interface;
