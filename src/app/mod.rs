@@ -10,6 +10,9 @@ mod session;
 mod thumbnails;
 mod widgets;
 
+#[cfg(test)]
+mod structure_tests;
+
 pub use crate::graph::{PRESETS, preset};
 pub use chrome::frame_clock::FrameProfile;
 pub use chrome::frame_clock::{FRAME_LOG_HEADER, FrameLog};

@@ -13,21 +13,26 @@ pub fn type_color(ty: ValueType) -> Color32 {
     }
 }
 
-/// An editor for one value offered within `range` (dragging steps by its step and
-/// stops at its limits; a value from a file outside them is kept until edited);
-/// returns whether it changed.
+/// An editor for one value offered within `range`: dragging steps by the range's step
+/// for the value (Shift ten times finer, Ctrl snapping to [`PinRange::snap`]), dragged
+/// and typed values stop at the hard limits (a value from a file outside them is kept
+/// until edited); returns whether it changed.
 pub fn value_editor(ui: &mut Ui, value: &mut Value, range: PinRange) -> bool {
     let drag = |ui: &mut Ui, x: &mut f64| {
         let step = range.step(*x);
-        ui.add(
+        let response = ui.add(
             DragValue::new(x)
                 .speed(step)
                 .range(range.min..=range.max)
                 .clamp_existing_to_range(false)
                 .min_decimals(1)
                 .max_decimals(4),
-        )
-        .changed()
+        );
+        if response.dragged() && response.changed() && ui.input(|i| i.modifiers.ctrl) {
+            let snap = range.snap();
+            *x = ((*x / snap).round() * snap).clamp(range.min, range.max);
+        }
+        response.changed()
     };
     match value {
         Value::Float(x) => drag(ui, x),

@@ -14,6 +14,10 @@ pub enum PinDefault {
     Required,
 }
 
+/// Points of pointer travel a drag takes to change a value by its own size (or, near
+/// zero, by a twentieth of its pin's soft span).
+pub const DRAG_POINTS: f64 = 200.0;
+
 /// How the inspector offers a constant input: hard limits for dragging, and the span
 /// artists usually work in (its width sets the drag step).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -33,11 +37,26 @@ impl PinRange {
         soft_max: 1.0,
     };
 
-    /// The drag step for a value of `magnitude`: a two-hundredth of the soft span, or a
-    /// hundredth of the value when that is more (large values drag as fast as small ones).
+    /// The drag step (change per point of pointer travel) for a value of `magnitude`:
+    /// a drag of [`DRAG_POINTS`] changes the value by its own size, so that 1 drags as
+    /// finely as 1,000 does coarsely; near zero, by a twentieth of the soft span. Shift
+    /// drags ten times finer, Ctrl snaps to [`PinRange::snap`].
     pub fn step(&self, magnitude: f64) -> f64 {
         let span = self.soft_max - self.soft_min;
-        (span / 200.0).max(magnitude.abs() / 100.0).min(1.0e6)
+        (magnitude.abs().max(span / 20.0) / DRAG_POINTS).min(1.0e6)
+    }
+
+    /// What a drag with Ctrl held snaps to: a round step (1, 2 or 5 × 10ⁿ) no larger
+    /// than a twentieth of the soft span.
+    pub fn snap(&self) -> f64 {
+        let span = (self.soft_max - self.soft_min).clamp(1e-9, 1e12);
+        let target = span / 20.0;
+        let decade = 10f64.powf(target.log10().floor());
+        [5.0, 2.0, 1.0]
+            .into_iter()
+            .map(|factor| factor * decade)
+            .find(|step| *step <= target)
+            .unwrap_or(decade)
     }
 }
 
@@ -239,4 +258,42 @@ pub fn intern(name: &str) -> &'static str {
     let stored: &'static str = Box::leak(name.to_owned().into_boxed_str());
     names.insert(stored);
     stored
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_drag_moves_a_scale_of_one_by_about_itself_in_two_hundred_points() {
+        // Worley's scale (soft 0 to 50) once went from 1 to 52 in 200 points.
+        let step = SCALE.range.step(1.0);
+        assert!((200.0 * step - 2.5).abs() < 1e-9, "{}", 200.0 * step);
+        // Large values drag as fast, relatively.
+        assert_eq!(SCALE.range.step(400.0), 2.0);
+        // A span of 0 to 1 (roughness) takes 4,000 points near zero.
+        let unit = PinRange {
+            min: 0.0,
+            max: 1.0,
+            soft_min: 0.0,
+            soft_max: 1.0,
+        };
+        assert_eq!(unit.step(0.0), 0.05 / DRAG_POINTS);
+    }
+
+    #[test]
+    fn ctrl_snaps_to_a_round_twentieth_of_the_soft_span() {
+        let range = |soft_min, soft_max| PinRange {
+            soft_min,
+            soft_max,
+            ..PinRange::ANY
+        };
+        assert_eq!(range(0.0, 50.0).snap(), 2.0);
+        assert_eq!(range(0.0, 1.0).snap(), 0.05);
+        assert_eq!(range(-1.0, 1.0).snap(), 0.1);
+        assert_eq!(range(0.0, 360.0).snap(), 10.0);
+        // No span: a tiny step, not zero (nothing divides by it).
+        let degenerate = range(3.0, 3.0).snap();
+        assert!((degenerate - 5e-11).abs() < 1e-20, "{degenerate}");
+    }
 }

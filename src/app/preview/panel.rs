@@ -238,7 +238,7 @@ impl VeneerApp {
             let view = &mut self.preview.state.view;
             ui.add(
                 egui::DragValue::new(&mut view.environment_turn)
-                    .speed(1.0)
+                    .speed(0.5)
                     .range(-180.0..=180.0)
                     .prefix("turn ")
                     .suffix("°"),
@@ -246,7 +246,7 @@ impl VeneerApp {
             .on_hover_text("turns the environment about the vertical axis");
             ui.add(
                 egui::DragValue::new(&mut view.key_light)
-                    .speed(0.05)
+                    .speed(0.02)
                     .range(0.0..=20.0)
                     .prefix("key light "),
             )
@@ -255,8 +255,9 @@ impl VeneerApp {
         ui.horizontal(|ui| {
             let view = &mut self.preview.state.view;
             ui.add(
+                // A tenth of a stop every ten points (Shift: every hundred).
                 egui::DragValue::new(&mut view.exposure)
-                    .speed(0.05)
+                    .speed(0.01)
                     .range(-8.0..=8.0)
                     .prefix("exposure ")
                     .suffix(" EV"),

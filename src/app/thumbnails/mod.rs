@@ -8,21 +8,20 @@
 //! code, or the time for tiles that read it.
 
 pub(in crate::app) mod keys;
+pub(in crate::app) mod tiles;
 pub(in crate::app) mod worker;
 
 use crate::app::preview::live::LiveMaterial;
 use crate::app::preview::probe::atlas_graph;
+pub use crate::app::thumbnails::tiles::TILE_PIXELS;
+use crate::app::thumbnails::tiles::Tiles;
 use crate::app::thumbnails::worker::{Done, Job, Worker};
 use crate::graph::{Graph, NodeId, PinRef};
-use crate::render::{AtlasLayout, FlatRect};
+use crate::render::FlatRect;
 use std::collections::BTreeSet;
 use std::hash::{Hash, Hasher};
 use std::sync::Arc;
 
-/// A tile's width and height in pixels.
-pub const TILE_PIXELS: u32 = 64;
-/// Tiles to a row of the atlas.
-const ATLAS_COLUMNS: u32 = 8;
 /// The most tiles drawn: past it only nodes on screen get one.
 pub const MAX_TILES: usize = 256;
 
@@ -34,21 +33,13 @@ pub struct Thumbnails {
     pub hidden: BTreeSet<NodeId>,
     /// The atlas graph's compiles (a parameter edit never adds one).
     pub atlas: LiveMaterial,
-    /// Output pins with a tile, in tile order.
-    pins: Vec<PinRef>,
+    /// The tiles: which pins, where in the atlas, what was sent and what is drawn.
+    tiles: Tiles,
     /// The Mix node selecting each tile (see `probe::AtlasGraph`).
     selectors: Vec<NodeId>,
-    layout: AtlasLayout,
-    /// What each tile was last sent to draw (`None`: never, or since the layout changed).
-    sent: Vec<Option<u64>>,
-    /// Whether each tile has pixels in the texture for the current layout.
-    ready: Vec<bool>,
     /// Nodes whose code fails to compile: left out with what reads them, until the
     /// graph's structure changes.
     broken: (Graph, BTreeSet<NodeId>),
-    texture: Option<egui::TextureHandle>,
-    /// The atlas as last read back (RGBA8 rows).
-    pixels: Vec<u8>,
     worker: Option<Worker>,
     in_flight: bool,
     /// Tiles drawn so far (a tile drawn twice counts twice).
@@ -77,14 +68,9 @@ impl Default for Thumbnails {
             enabled: true,
             hidden: BTreeSet::new(),
             atlas: LiveMaterial::default(),
-            pins: Vec::new(),
+            tiles: Tiles::default(),
             selectors: Vec::new(),
-            layout: AtlasLayout::for_tiles(0, ATLAS_COLUMNS, TILE_PIXELS),
-            sent: Vec::new(),
-            ready: Vec::new(),
             broken: Default::default(),
-            texture: None,
-            pixels: Vec::new(),
             worker: None,
             in_flight: false,
             tiles_drawn: 0,
@@ -171,7 +157,7 @@ impl Thumbnails {
         let atlas = loop {
             let pins = self.wanted(graph, &candidates);
             let Some(atlas) = atlas_graph(graph, &pins) else {
-                self.pins.clear();
+                self.tiles.clear();
                 return;
             };
             self.atlas.update(&atlas.graph);
@@ -187,13 +173,7 @@ impl Thumbnails {
         if !self.atlas.errors.is_empty() {
             return;
         }
-        let layout = AtlasLayout::for_tiles(atlas.pins.len(), ATLAS_COLUMNS, TILE_PIXELS);
-        if atlas.pins != self.pins || layout != self.layout {
-            self.sent = vec![None; atlas.pins.len()];
-            self.ready = vec![false; atlas.pins.len()];
-            self.pins = atlas.pins;
-            self.layout = layout;
-        }
+        self.tiles.lay_out(atlas.pins);
         self.selectors = atlas.selectors;
         if self.in_flight {
             return;
@@ -202,15 +182,14 @@ impl Thumbnails {
         let rect = placement(graph);
         let slots = &compiled.module.params;
         let values = crate::app::preview::live::slot_values(&atlas.graph, slots);
-        let mut tiles = Vec::new();
-        for (index, pin) in self.pins.iter().enumerate() {
-            let key = tile_key(&upstream, pin, self.atlas.generation, rect);
-            if self.sent[index] == Some(key) {
-                continue;
-            }
-            self.sent[index] = Some(key);
-            tiles.push((index, tile_params(&values, slots, &self.selectors, index)));
-        }
+        let generation = self.atlas.generation;
+        let changed = self
+            .tiles
+            .to_send(|pin| tile_key(&upstream, pin, generation, rect));
+        let tiles: Vec<_> = changed
+            .into_iter()
+            .map(|index| (index, tile_params(&values, slots, &self.selectors, index)))
+            .collect();
         if tiles.is_empty() {
             return;
         }
@@ -222,7 +201,7 @@ impl Thumbnails {
             generation: self.atlas.generation,
             wgsl: Arc::from(compiled.source()),
             slots: slots.len(),
-            layout: self.layout,
+            layout: self.tiles.layout(),
             rect,
             time,
             tiles,
@@ -262,77 +241,30 @@ impl Thumbnails {
         self.tiles_drawn += tiles.len() as u64;
         self.last_drawn = tiles
             .iter()
-            .filter_map(|index| self.pins.get(*index).cloned())
+            .filter_map(|index| self.tiles.pins().get(*index).cloned())
             .collect();
-        if layout != self.layout {
-            return true;
-        }
-        let (width, height) = layout.size();
-        let image =
-            egui::ColorImage::from_rgba_unmultiplied([width as usize, height as usize], &pixels);
-        let options = egui::TextureOptions::LINEAR;
-        match &mut self.texture {
-            Some(texture) if texture.size() == [width as usize, height as usize] => {
-                for index in &tiles {
-                    let (x, y) = layout.origin(*index);
-                    let tile = TILE_PIXELS as usize;
-                    let part = image.region_by_pixels([x as usize, y as usize], [tile, tile]);
-                    texture.set_partial([x as usize, y as usize], part, options);
-                }
-            }
-            _ => self.texture = Some(ctx.load_texture("node thumbnails", image, options)),
-        }
-        for index in tiles {
-            if let Some(ready) = self.ready.get_mut(index) {
-                *ready = true;
-            }
-        }
-        self.pixels = pixels;
+        self.tiles.take_in(ctx, layout, &tiles, pixels);
         true
     }
 
     /// The output pins that have a tile, in tile order.
     pub fn pins(&self) -> &[PinRef] {
-        &self.pins
+        self.tiles.pins()
     }
 
     /// Whether every tile has been drawn as it is now (nothing sent or waiting).
     pub fn settled(&self) -> bool {
-        !self.in_flight && self.ready.iter().all(|ready| *ready)
+        !self.in_flight && self.tiles.all_ready()
     }
 
     /// The texture and the part of it showing `pin`, once drawn.
     pub fn tile(&self, pin: &PinRef) -> Option<(egui::TextureId, egui::Rect)> {
-        let index = self.pins.iter().position(|p| p == pin)?;
-        if !*self.ready.get(index)? {
-            return None;
-        }
-        let texture = self.texture.as_ref()?;
-        let (width, height) = self.layout.size();
-        let (x, y) = self.layout.origin(index);
-        let tile = TILE_PIXELS as f32;
-        let min = egui::pos2(x as f32 / width as f32, y as f32 / height as f32);
-        let size = egui::vec2(tile / width as f32, tile / height as f32);
-        Some((texture.id(), egui::Rect::from_min_size(min, size)))
+        self.tiles.tile(pin)
     }
 
     /// The RGBA8 pixels of `pin`'s tile, rows from the top, once drawn.
     pub fn tile_pixels(&self, pin: &PinRef) -> Option<Vec<[u8; 4]>> {
-        let index = self.pins.iter().position(|p| p == pin)?;
-        if !*self.ready.get(index)? {
-            return None;
-        }
-        let (width, _) = self.layout.size();
-        let (x, y) = self.layout.origin(index);
-        let mut tile = Vec::with_capacity((TILE_PIXELS * TILE_PIXELS) as usize);
-        for row in y..y + TILE_PIXELS {
-            for column in x..x + TILE_PIXELS {
-                let at = ((row * width + column) * 4) as usize;
-                let pixel = self.pixels.get(at..at + 4)?;
-                tile.push([pixel[0], pixel[1], pixel[2], pixel[3]]);
-            }
-        }
-        Some(tile)
+        self.tiles.tile_pixels(pin)
     }
 }
 
