@@ -148,6 +148,11 @@ impl VeneerApp {
         self.chrome.profile
     }
 
+    /// Whether an export runs on its thread (the status bar shows its progress).
+    pub fn exporting(&self) -> bool {
+        self.session.export.is_some()
+    }
+
     /// Whether the preview compiles every octave of the flat view's fractals.
     pub fn set_full_detail(&mut self, full: bool) {
         self.preview.live.full_detail = full;
@@ -575,10 +580,11 @@ impl eframe::App for VeneerApp {
             let (still_open, action) =
                 dialog.show(&ctx, &self.session.document, &mut self.chrome.browser);
             if let Some(action) = action {
-                self.apply(action);
+                self.apply(&ctx, action);
             }
             self.chrome.dialog = self.chrome.dialog.take().or(still_open);
         }
+        self.poll_export();
         // After the dialogs too, so that what their buttons did (save, open) shows now.
         self.after_edits(&ctx);
         self.handle_close(&ctx);

@@ -115,6 +115,9 @@ pub enum BakeError {
     /// The thread writing a map panicked.
     #[error("{path}: the map writer panicked")]
     WriterPanicked { path: PathBuf },
+    /// Whoever asked for the export took it back; nothing was written.
+    #[error("cancelled; nothing was written")]
+    Cancelled,
 }
 
 /// The renderer of a bake's surface.

@@ -282,6 +282,7 @@ fn run_gltf(args: &BakeArgs, out: &std::path::Path) -> Result<(), Failure> {
     let written = export_gltf(&gpu, &compiled, &settings, out, |done, total| {
         bar.set_length(total);
         bar.set_position(done);
+        true
     })
     .map_err(|error| Failure::new(format!("{}: {error}", graph_path.display())))?;
     bar.finish_and_clear();

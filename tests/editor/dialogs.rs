@@ -151,6 +151,17 @@ fn open_takes_the_typed_path_and_enter_without_a_click() {
     assert!(!dialog_up(&harness, "Open graph"));
 }
 
+/// Lets the editor run until its export (on a thread of its own) has ended.
+fn wait_for_export(harness: &mut Editor) {
+    let started = std::time::Instant::now();
+    while harness.state().exporting() {
+        assert!(started.elapsed().as_secs() < 120, "the export never ended");
+        std::thread::sleep(std::time::Duration::from_millis(20));
+        harness.step();
+    }
+    harness.step();
+}
+
 /// Opens the Export shader or Export PNG dialog from the File menu.
 #[test]
 fn saving_an_untitled_graph_from_the_prompt_goes_on_to_the_new_graph() {
@@ -266,8 +277,11 @@ fn enter_confirms_every_dialog() {
     from_file_menu(&mut harness, "Export PNG");
     let png = dir.join("wood.png");
     type_text(&mut harness, &png.display().to_string());
-    key(&mut harness, egui::Key::Enter);
+    // The export's progress repaints the window while it runs: step, not run.
+    harness.key_press(egui::Key::Enter);
+    harness.step();
     assert!(!dialog_up(&harness, "Export PNG"));
+    wait_for_export(&mut harness);
     let bytes = std::fs::read(&png).expect("Enter exported the PNG");
     assert_eq!(&bytes[1..4], b"PNG");
 
@@ -275,8 +289,21 @@ fn enter_confirms_every_dialog() {
     from_file_menu(&mut harness, "Export glTF");
     let glb = dir.join("wood.glb");
     type_text(&mut harness, &glb.display().to_string());
-    key(&mut harness, egui::Key::Enter);
+    // The export's progress repaints the window while it runs: step, not run.
+    harness.key_press(egui::Key::Enter);
+    harness.step();
     assert!(!dialog_up(&harness, "Export glTF"));
+    // The bake runs on a thread of its own: the window answers, the status bar shows it.
+    assert!(
+        harness.state().exporting(),
+        "the glTF export runs on its own thread"
+    );
+    assert!(shows(&harness, "exporting wood.glb"));
+    wait_for_export(&mut harness);
+    assert!(
+        shows(&harness, "exported "),
+        "the status bar says it exported"
+    );
     let bytes = std::fs::read(&glb).expect("Enter exported the glTF");
     assert_eq!(&bytes[..4], b"glTF");
 

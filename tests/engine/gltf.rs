@@ -50,7 +50,7 @@ fn export(compiled: &Compiled, path: &Path) -> Result<Vec<PathBuf>, BakeError> {
         size: 64,
         time: 0.0,
     };
-    export_gltf(gpu(), compiled, &settings, path, |_, _| {})
+    export_gltf(gpu(), compiled, &settings, path, |_, _| true)
 }
 
 #[test]
@@ -77,6 +77,27 @@ fn every_preset_exports_to_a_valid_glb() {
     // The marching-tetrahedra genus2 has no texture coordinates: those got an atlas.
     assert!(unwrapped >= 6, "{unwrapped} presets on meshes without UVs");
     validate(&files);
+}
+
+#[test]
+fn an_export_cancelled_from_its_progress_writes_nothing() {
+    let dir = temp_dir("gltf-cancelled");
+    let graph = veneer::graph::preset("wood").expect("preset");
+    let settings = GltfSettings {
+        mesh: None,
+        size: 64,
+        time: 0.0,
+    };
+    let path = dir.join("wood.gltf");
+    let mut reports = 0;
+    let result = export_gltf(gpu(), &compiled(&graph), &settings, &path, |_, _| {
+        reports += 1;
+        false
+    });
+    assert!(matches!(result, Err(BakeError::Cancelled)), "{result:?}");
+    assert!(reports >= 1);
+    let left: Vec<_> = std::fs::read_dir(&dir).unwrap().flatten().collect();
+    assert!(left.is_empty(), "a cancelled export left {left:?}");
 }
 
 #[test]

@@ -330,6 +330,20 @@ impl VeneerApp {
                         ));
                 }
             }
+            if let Some(job) = &self.session.export {
+                ui.separator();
+                let bar = egui::ProgressBar::new(job.fraction().unwrap_or(0.0))
+                    .desired_width(160.0)
+                    .text(format!("exporting {}", job.what));
+                ui.add(bar.animate(job.fraction().is_none()));
+                if ui
+                    .add_enabled(!job.cancelled(), egui::Button::new("Cancel"))
+                    .on_hover_text("stops the export; nothing is written")
+                    .clicked()
+                {
+                    job.cancel();
+                }
+            }
             ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
                 // The nodes of the level shown.
                 let graph = &self.session.document.graph;

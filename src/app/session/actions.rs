@@ -4,15 +4,16 @@
 use crate::app::VeneerApp;
 use crate::app::chrome::dialogs::{Action, Dialog, Pending};
 use crate::app::session::document::Document;
+use crate::app::session::export_job::{ExportJob, Outcome};
 use crate::app::session::recovery;
 use crate::codegen::export::Target;
 use crate::codegen::{CompileOptions, ParamMode};
 use crate::graph::Graph;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 impl VeneerApp {
     /// Carries out what the user decided in a dialog; a failure shows a message.
-    pub(in crate::app) fn apply(&mut self, action: Action) {
+    pub(in crate::app) fn apply(&mut self, ctx: &egui::Context, action: Action) {
         let done = match action {
             Action::Open(path) => {
                 self.guard(Pending::Open(path));
@@ -35,19 +36,8 @@ impl VeneerApp {
                 params,
             } => export_shader(&self.session.document.graph, &path, target, params)
                 .map(|()| Some(format!("exported {}", path.display()))),
-            Action::ExportPng { path, size, flat } => self
-                .export_png(&path, size, flat)
-                .map(|()| Some(format!("exported {}", path.display()))),
-            Action::ExportGltf { path, size } => self.export_gltf(&path, size).map(|written| {
-                Some(format!(
-                    "exported {}",
-                    written
-                        .iter()
-                        .map(|p| p.display().to_string())
-                        .collect::<Vec<_>>()
-                        .join(", ")
-                ))
-            }),
+            Action::ExportPng { path, size, flat } => self.export_png(ctx, path, size, flat),
+            Action::ExportGltf { path, size } => self.export_gltf(ctx, path, size),
             Action::LoadMesh(path) => self.load_mesh(&path).map(|()| None),
             Action::LoadEnvironment(path) => self
                 .load_environment(&path)
@@ -127,9 +117,53 @@ impl VeneerApp {
         ))
     }
 
+    /// Takes in the outcome of the export running on its thread, once it has ended.
+    pub(in crate::app) fn poll_export(&mut self) {
+        let Some(job) = &self.session.export else {
+            return;
+        };
+        let Some(outcome) = job.poll() else {
+            return;
+        };
+        let cancelled = job.cancelled();
+        self.session.export = None;
+        match outcome {
+            Ok(message) => self.chrome.message = Some(message),
+            Err(_) if cancelled => self.chrome.message = Some("export cancelled".into()),
+            Err(error) => self.chrome.dialog = Some(Dialog::Message(error)),
+        }
+    }
+
+    /// Starts `work` on a thread of its own, writing `path` (one export at a time).
+    fn start_export(
+        &mut self,
+        ctx: &egui::Context,
+        path: &Path,
+        work: impl FnOnce(&dyn Fn(u64, u64) -> bool) -> Outcome + Send + 'static,
+    ) -> Result<Option<String>, String> {
+        if let Some(job) = &self.session.export {
+            return Err(format!(
+                "{} is still being exported: wait for it, or cancel it in the status bar",
+                job.what
+            ));
+        }
+        let what = path.file_name().map_or_else(
+            || path.display().to_string(),
+            |name| name.to_string_lossy().into_owned(),
+        );
+        self.session.export = Some(ExportJob::start(ctx, what, work));
+        Ok(None)
+    }
+
     /// Renders the document as the preview shows it (its lighting, environment and
-    /// tone mapping), or its flat albedo, into a PNG.
-    fn export_png(&self, path: &Path, size: u32, flat: bool) -> Result<(), String> {
+    /// tone mapping), or its flat albedo, into a PNG, on a thread of its own.
+    fn export_png(
+        &mut self,
+        ctx: &egui::Context,
+        path: PathBuf,
+        size: u32,
+        flat: bool,
+    ) -> Result<Option<String>, String> {
         let gpu = self.export_gpu()?;
         let view = if flat {
             crate::render::View::PreviewFlat
@@ -139,22 +173,27 @@ impl VeneerApp {
         let compiled =
             crate::codegen::compile(&self.session.document.graph, &CompileOptions::default())
                 .map_err(|error| error.to_string())?;
-        let image = crate::render::render_material_with(
-            &gpu,
-            &compiled,
-            &view,
-            size,
-            self.preview.state.view.time,
-            self.preview.state.look(),
-        )
-        .map_err(|error| error.to_string())?
-        .image;
-        let png = image.to_png().map_err(|error| error.to_string())?;
-        crate::fsutil::write_atomic(path, &png).map_err(|e| format!("{}: {e}", path.display()))
+        let (time, look) = (self.preview.state.view.time, self.preview.state.look());
+        self.start_export(ctx, &path.clone(), move |_| {
+            let image =
+                crate::render::render_material_with(&gpu, &compiled, &view, size, time, look)
+                    .map_err(|error| error.to_string())?
+                    .image;
+            let png = image.to_png().map_err(|error| error.to_string())?;
+            crate::fsutil::write_atomic(&path, &png)
+                .map_err(|e| format!("{}: {e}", path.display()))?;
+            Ok(format!("exported {}", path.display()))
+        })
     }
 
-    /// Bakes the document into a glTF file on the preview mesh; returns the files written.
-    fn export_gltf(&self, path: &Path, size: u32) -> Result<Vec<std::path::PathBuf>, String> {
+    /// Bakes the document into a glTF file on the preview mesh, on a thread of its own
+    /// that reports its tiles (and stops, writing nothing, when cancelled).
+    fn export_gltf(
+        &mut self,
+        ctx: &egui::Context,
+        path: PathBuf,
+        size: u32,
+    ) -> Result<Option<String>, String> {
         let gpu = self.export_gpu()?;
         let compiled =
             crate::codegen::compile(&self.session.document.graph, &CompileOptions::default())
@@ -164,8 +203,12 @@ impl VeneerApp {
             size,
             time: self.preview.state.view.time,
         };
-        crate::bake::export_gltf(&gpu, &compiled, &settings, path, |_, _| {})
-            .map_err(|error| error.to_string())
+        self.start_export(ctx, &path.clone(), move |report| {
+            let written = crate::bake::export_gltf(&gpu, &compiled, &settings, &path, report)
+                .map_err(|error| error.to_string())?;
+            let names: Vec<String> = written.iter().map(|p| p.display().to_string()).collect();
+            Ok(format!("exported {}", names.join(", ")))
+        })
     }
 }
 

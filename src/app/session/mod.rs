@@ -3,6 +3,7 @@
 
 pub(in crate::app) mod actions;
 pub(in crate::app) mod document;
+pub(in crate::app) mod export_job;
 pub(in crate::app) mod history;
 pub(in crate::app) mod recovery;
 pub(in crate::app) mod sync;
@@ -26,6 +27,8 @@ pub(in crate::app) struct Session {
     pub revision: sync::Revision,
     /// Whether the document had unsaved changes when input last arrived.
     pub dirty: bool,
+    /// The export running on its own thread, if one is.
+    pub export: Option<export_job::ExportJob>,
 }
 
 impl Session {
@@ -40,6 +43,7 @@ impl Session {
             title: String::new(),
             revision: Default::default(),
             dirty: false,
+            export: None,
         }
     }
 }

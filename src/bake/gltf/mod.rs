@@ -87,7 +87,9 @@ pub fn gltf_files(path: &Path) -> Vec<PathBuf> {
 }
 
 /// Exports `compiled` (parameters baked) to `path` (`.glb`, or `.gltf` with its buffer and
-/// PNGs beside it), calling `progress(done, total)` as tiles render. The files are put in
+/// PNGs beside it), calling `progress(done, total)` as tiles render: once it answers
+/// `false`, the export stops after the map being rendered ([`BakeError::Cancelled`],
+/// nothing written). The files are put in
 /// place together once all are written, so a failed export leaves none of them; the
 /// files beside a `.gltf` are named by Veneer and never written through links
 /// ([`crate::fsutil::Naming::Implied`]). The paths written come back, the document first.
@@ -96,7 +98,7 @@ pub fn export_gltf(
     compiled: &Compiled,
     settings: &GltfSettings,
     path: &Path,
-    mut progress: impl FnMut(u64, u64),
+    mut progress: impl FnMut(u64, u64) -> bool,
 ) -> Result<Vec<PathBuf>, BakeError> {
     crate::render::baked_parameters(compiled)?;
     let packaging = packaging(path);
@@ -129,9 +131,13 @@ pub fn export_gltf(
     let per_pass = u64::from(size.div_ceil(crate::render::tile_size(gpu))).pow(2);
     let total = per_pass * passes.len() as u64;
     let mut rendered = Vec::new();
+    let mut wanted = true;
     for (index, channels) in passes.iter().enumerate() {
+        if !wanted {
+            return Err(BakeError::Cancelled);
+        }
         let base = index as u64 * per_pass;
-        let report = |done: u32, _| progress(base + u64::from(done), total);
+        let report = |done: u32, _| wanted &= progress(base + u64::from(done), total);
         let mut pixels = renderer.render_channels(
             gpu,
             &gpu_mesh,
@@ -143,6 +149,9 @@ pub fn export_gltf(
         )?;
         fill_uncovered(&mut pixels, size, UV_PADDING);
         rendered.push(pixels);
+    }
+    if !wanted {
+        return Err(BakeError::Cancelled);
     }
     let stem = stem(path);
     let texture_name = |what: &str| texture_name(&stem, what);
