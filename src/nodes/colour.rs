@@ -44,6 +44,20 @@ impl Definition for ColorRamp {
     fn title(&self) -> &'static str {
         "Colour ramp"
     }
+    /// The gradient, sampled through the node's own CPU evaluation so that it shows
+    /// exactly what the shader computes, with a tick at each stop.
+    fn body(&self) -> Option<super::Body<'_>> {
+        let pins = self.signature().inputs;
+        let colour = move |factor: f64| {
+            let surface = super::cpu::Surface::<f64>::at([0.0; 3]);
+            let inputs = [[factor; 3]];
+            super::Evaluate::eval(self, &super::cpu::Eval::new(&pins, &inputs, &surface))[0]
+        };
+        Some(super::Body::Gradient {
+            colour: Box::new(colour),
+            ticks: self.stops.iter().map(|stop| stop.position).collect(),
+        })
+    }
     computed_in!(Category::Colour);
     fn keywords(&self) -> &'static [&'static str] {
         &["color ramp", "gradient", "lookup", "palette", "valtorgb"]
@@ -456,5 +470,35 @@ impl Catalogue for Blend {
             .into_iter()
             .map(|mode| Blend { mode })
             .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::nodes::Body;
+    use crate::nodes::settings::{MathOp, RampInterpolation, RampStop};
+
+    #[test]
+    fn a_ramp_declares_its_gradient_with_a_tick_at_each_stop() {
+        let stop = |position, color| RampStop { position, color };
+        let ramp = ColorRamp {
+            stops: vec![stop(0.2, (1.0, 0.0, 0.0)), stop(0.8, (0.0, 0.0, 1.0))],
+            interpolation: RampInterpolation::Linear,
+        };
+        let Some(Body::Gradient { colour, ticks }) = ramp.body() else {
+            panic!("a colour ramp shows its gradient");
+        };
+        assert_eq!(ticks, [0.2, 0.8]);
+        assert_eq!(colour(0.0), [1.0, 0.0, 0.0]);
+        assert_eq!(colour(1.0), [0.0, 0.0, 1.0]);
+        let middle = colour(0.5);
+        assert!((middle[0] - 0.5).abs() < 1e-9 && (middle[2] - 0.5).abs() < 1e-9);
+        let math = crate::nodes::Math {
+            op: MathOp::Divide,
+            ty: crate::graph::ValueType::Float,
+        };
+        assert_eq!(math.shown_title(), "Divide");
+        assert_eq!(ramp.shown_title(), "Colour ramp");
     }
 }

@@ -58,6 +58,10 @@ impl Definition for Math {
     fn title(&self) -> &'static str {
         "Math"
     }
+    /// The operation ("Divide", "Sin"), as the add-node menu names it.
+    fn shown_title(&self) -> String {
+        format!("{:?}", self.op)
+    }
     fn keywords(&self) -> &'static [&'static str] {
         &[
             "add",
@@ -204,6 +208,10 @@ impl Definition for Unary {
     computed_in!(Category::Math);
     fn title(&self) -> &'static str {
         "Unary"
+    }
+    /// The operation ("Divide", "Sin"), as the add-node menu names it.
+    fn shown_title(&self) -> String {
+        format!("{:?}", self.op)
     }
     fn keywords(&self) -> &'static [&'static str] {
         &[

@@ -211,6 +211,27 @@ pub trait Definition {
     fn emit(&self, io: &mut Emit);
     /// The ranges of the outputs given the ranges of the inputs, warning of hazards.
     fn ranges(&self, io: &mut Ranges) -> Vec<Lanes>;
+    /// The title an unlabelled node of these settings shows: the kind's, unless a
+    /// setting names it better (a Math node's operation).
+    fn shown_title(&self) -> String {
+        self.title().to_string()
+    }
+    /// A picture of the settings that the editor draws in the node's body and its
+    /// inspector (the colour ramp's gradient); none by default.
+    fn body(&self) -> Option<Body<'_>> {
+        None
+    }
+}
+
+/// A picture of a node's settings, declared by its definition and drawn by the editor
+/// (which matches on this, never on node kinds).
+pub enum Body<'a> {
+    /// A bar of the colours `colour` gives each factor from 0 to 1, with a tick at each
+    /// of `ticks` (factors).
+    Gradient {
+        colour: Box<dyn Fn(f64) -> [f64; 3] + 'a>,
+        ticks: Vec<f64>,
+    },
 }
 
 /// CPU evaluation, generic over the precision (f32 like the GPU, f64 as the reference).

@@ -5,17 +5,13 @@ use crate::graph::{Node, NodeKind, PinDefault};
 use crate::nodes::pins::{InputPin, OutputPin, PinRange};
 use crate::nodes::value::Value;
 
-/// The title a node shows: its label, or for an unlabelled math node its operation
-/// ("Divide", "Sin"), as the add-node menu names it, or else its kind's title.
+/// The title a node shows: its label, or the title its definition shows for its
+/// settings (a math node's operation).
 pub fn title(node: &Node) -> String {
     if !node.label.is_empty() {
         return node.display_name().to_string();
     }
-    match &node.kind {
-        NodeKind::Math(math) => format!("{:?}", math.op),
-        NodeKind::Unary(unary) => format!("{:?}", unary.op),
-        kind => kind.title().to_string(),
-    }
+    node.kind.definition().shown_title()
 }
 
 /// The header's tooltip: the kind, its category and the names peers give it.

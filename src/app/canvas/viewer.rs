@@ -165,10 +165,10 @@ impl SnarlViewer<Node> for Viewer<'_> {
     }
 
     fn has_body(&mut self, node: &Node) -> bool {
-        matches!(node.kind, crate::graph::NodeKind::ColorRamp(_))
+        node.kind.definition().body().is_some()
     }
 
-    /// A colour ramp shows its gradient.
+    /// The picture the node's definition declares (a colour ramp's gradient).
     fn show_body(
         &mut self,
         id: egui_snarl::NodeId,
@@ -177,8 +177,8 @@ impl SnarlViewer<Node> for Viewer<'_> {
         ui: &mut Ui,
         snarl: &mut Snarl<Node>,
     ) {
-        if let crate::graph::NodeKind::ColorRamp(ramp) = &snarl[id].kind {
-            crate::app::inspector::ramp_bar::ramp_bar(ui, ramp, 160.0);
+        if let Some(body) = snarl[id].kind.definition().body() {
+            crate::app::inspector::body::show_body(ui, &body, 160.0);
         }
     }
 

@@ -65,7 +65,9 @@ fn ramp_editor(ui: &mut Ui, stops: &mut Vec<RampStop>, interpolation: &mut RampI
         stops: stops.clone(),
         interpolation: *interpolation,
     };
-    crate::app::inspector::ramp_bar::ramp_bar(ui, &ramp, ui.available_width().max(80.0));
+    if let Some(body) = crate::nodes::Definition::body(&ramp) {
+        crate::app::inspector::body::show_body(ui, &body, ui.available_width().max(80.0));
+    }
     let mut remove = None;
     for (index, stop) in stops.iter_mut().enumerate() {
         ui.horizontal(|ui| {

@@ -1,27 +1,29 @@
-//! The colour ramp drawn as a gradient bar, sampled through the node's own CPU
-//! evaluation so that the bar shows exactly what the shader computes.
+//! The picture a node's definition declares for its body ([`crate::nodes::Body`]),
+//! drawn in the node and in the inspector.
 
-use crate::nodes::cpu::{Eval, Surface};
-use crate::nodes::{ColorRamp, Evaluate};
+use crate::nodes::Body;
 use egui::{Color32, Rgba, Sense, Ui, vec2};
 
-/// Slices the bar is drawn in (enough for constant ramps' edges to look sharp).
+/// Slices a gradient is drawn in (enough for constant ramps' edges to look sharp).
 const SLICES: usize = 128;
 
-/// Draws `ramp` as a bar `width` wide, with a tick at each stop.
-pub fn ramp_bar(ui: &mut Ui, ramp: &ColorRamp, width: f32) {
+/// Draws `body` `width` wide.
+pub fn show_body(ui: &mut Ui, body: &Body<'_>, width: f32) {
+    match body {
+        Body::Gradient { colour, ticks } => gradient(ui, colour, ticks, width),
+    }
+}
+
+/// A bar of `colour` from 0 to 1, with a tick at each of `ticks`.
+fn gradient(ui: &mut Ui, colour: &dyn Fn(f64) -> [f64; 3], ticks: &[f64], width: f32) {
     let (rect, _) = ui.allocate_exact_size(vec2(width, 18.0), Sense::hover());
-    let pins = crate::nodes::Definition::signature(ramp).inputs;
-    let surface = Surface::<f64>::at([0.0; 3]);
     let painter = ui.painter();
     for slice in 0..SLICES {
         let (from, to) = (
             slice as f32 / SLICES as f32,
             (slice + 1) as f32 / SLICES as f32,
         );
-        let factor = f64::from((from + to) * 0.5);
-        let inputs = [[factor; 3]];
-        let [r, g, b] = ramp.eval(&Eval::new(&pins, &inputs, &surface))[0].map(|c| c as f32);
+        let [r, g, b] = colour(f64::from((from + to) * 0.5)).map(|c| c as f32);
         let slice_rect = egui::Rect::from_x_y_ranges(
             rect.lerp_inside(vec2(from, 0.0)).x..=rect.lerp_inside(vec2(to, 0.0)).x + 0.5,
             rect.y_range(),
@@ -30,8 +32,8 @@ pub fn ramp_bar(ui: &mut Ui, ramp: &ColorRamp, width: f32) {
     }
     let stroke = ui.visuals().widgets.noninteractive.fg_stroke;
     painter.rect_stroke(rect, 2.0, stroke, egui::StrokeKind::Outside);
-    for stop in &ramp.stops {
-        let x = rect.lerp_inside(vec2(stop.position as f32, 0.0)).x;
+    for tick in ticks {
+        let x = rect.lerp_inside(vec2(*tick as f32, 0.0)).x;
         painter.vline(x, rect.bottom() - 5.0..=rect.bottom() + 3.0, stroke);
     }
 }
