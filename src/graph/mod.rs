@@ -18,6 +18,8 @@ mod node_file;
 pub mod parameters;
 mod presets;
 mod preview;
+mod shading;
+pub use shading::Shading;
 
 pub use crate::nodes::pins::{InputPin, OutputPin, PinDefault, PinRange, Signature};
 pub use crate::nodes::settings::{
@@ -326,24 +328,6 @@ pub struct Graph {
         deserialize_with = "presets_file"
     )]
     pub presets: BTreeMap<String, BTreeMap<String, Value>>,
-}
-
-/// The lighting model the preview and `veneer render` shade a material with. Every
-/// material returns every channel; the model says which ones the lighting reads.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, clap::ValueEnum)]
-pub enum Shading {
-    /// Albedo, specular colour and shininess under the seeds' key light and ambient.
-    #[default]
-    BlinnPhong,
-    /// Base colour (the albedo), metallic, roughness, occlusion and the tangent-space
-    /// normal: Cook-Torrance GGX under the key light and the environment.
-    MetallicRoughness,
-}
-
-impl Shading {
-    fn is_default(&self) -> bool {
-        *self == Shading::default()
-    }
 }
 
 /// How a material's alpha shows where it is below 1 (glTF's `alphaMode`, Blender's

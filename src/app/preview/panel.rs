@@ -285,15 +285,11 @@ impl VeneerApp {
     fn surface_settings(&mut self, ui: &mut Ui) {
         ui.horizontal(|ui| {
             let shading = &mut self.session.document.graph.shading;
-            let shading_name = |shading: Shading| match shading {
-                Shading::BlinnPhong => "Blinn-Phong",
-                Shading::MetallicRoughness => "metallic-roughness",
-            };
             egui::ComboBox::from_id_salt("shading")
-                .selected_text(shading_name(*shading))
+                .selected_text(shading.name())
                 .show_ui(ui, |ui| {
                     for choice in [Shading::BlinnPhong, Shading::MetallicRoughness] {
-                        ui.selectable_value(shading, choice, shading_name(choice));
+                        ui.selectable_value(shading, choice, choice.name());
                     }
                 })
                 .response

@@ -1,0 +1,80 @@
+//! The lighting model a material is shaded with, and which of the material's inputs
+//! each model's lighting reads.
+
+use serde::{Deserialize, Serialize};
+
+/// The lighting model the preview and `veneer render` shade a material with. Every
+/// material returns every channel; the model says which ones the lighting reads.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, clap::ValueEnum)]
+pub enum Shading {
+    /// Albedo, specular colour and shininess under the seeds' key light and ambient.
+    #[default]
+    BlinnPhong,
+    /// Base colour (the albedo), metallic, roughness, occlusion and the tangent-space
+    /// normal: Cook-Torrance GGX under the key light and the environment.
+    MetallicRoughness,
+}
+
+impl Shading {
+    pub(super) fn is_default(&self) -> bool {
+        *self == Shading::default()
+    }
+
+    /// The model's name as the editor shows it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Shading::BlinnPhong => "Blinn-Phong",
+            Shading::MetallicRoughness => "metallic-roughness",
+        }
+    }
+
+    /// Whether the lighting reads the material's input `pin` (Blinn-Phong leaves out
+    /// metallic, roughness and occlusion; metallic-roughness, specular and shininess).
+    pub fn reads(self, pin: &str) -> bool {
+        let ignored: &[&str] = match self {
+            Shading::BlinnPhong => &["metallic", "roughness", "occlusion"],
+            Shading::MetallicRoughness => &["specular", "shininess"],
+        };
+        !ignored.contains(&pin)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The inputs one shading's lighting reads and the other's does not are those its
+    /// WGSL lighting file reads from the material.
+    #[test]
+    fn the_inputs_a_shading_reads_are_those_its_lighting_file_reads() {
+        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("shaders");
+        let material =
+            crate::graph::Node::new(crate::graph::NodeId(1), crate::graph::NodeKind::Material);
+        let pins = material.kind.signature().inputs;
+        let files = [
+            (Shading::BlinnPhong, "render_lit_blinn_phong.wgsl"),
+            (
+                Shading::MetallicRoughness,
+                "render_lit_metallic_roughness.wgsl",
+            ),
+        ];
+        let texts = files.map(|(_, file)| std::fs::read_to_string(root.join(file)).unwrap());
+        for pin in pins {
+            let lit = texts
+                .each_ref()
+                .map(|text| text.contains(&format!("material.{}", pin.name)));
+            // Inputs read outside the lighting (alpha, bump, height, normal) or by both.
+            if lit[0] == lit[1] {
+                assert!(
+                    files.iter().all(|(shading, _)| shading.reads(pin.name)),
+                    "{}",
+                    pin.name
+                );
+                continue;
+            }
+            for ((shading, file), read) in files.iter().zip(lit) {
+                assert_eq!(shading.reads(pin.name), read, "{} in {file}", pin.name);
+            }
+        }
+    }
+}
