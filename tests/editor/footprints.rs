@@ -3,8 +3,8 @@
 //! reckons for it, and no two nodes are drawn over each other, as shipped or after
 //! *Arrange nodes*.
 
-use super::support::{click_node, editor, press, scratch};
-use egui::{Event, Modifiers, Rect, pos2, vec2};
+use super::support::{click_node, editor, press, scratch, wheel_notch};
+use egui::{Event, Rect, pos2, vec2};
 use egui_kittest::Harness;
 use egui_kittest::kittest::{NodeT, Queryable};
 use veneer::app::VeneerApp;
@@ -28,13 +28,7 @@ fn open(name: &str) -> Harness<'static, VeneerApp> {
 fn zoom_to_legible(harness: &mut Harness<'static, VeneerApp>) {
     harness.event(Event::PointerMoved(pos2(465.0, 450.0)));
     while harness.state().graph_to_screen().scaling < LEGIBLE_ZOOM {
-        harness.event(Event::MouseWheel {
-            unit: egui::MouseWheelUnit::Line,
-            delta: vec2(0.0, 1.0),
-            phase: egui::TouchPhase::Move,
-            modifiers: Modifiers::NONE,
-        });
-        harness.run_steps(2);
+        wheel_notch(harness);
     }
     harness.run_steps(12);
 }

@@ -115,7 +115,7 @@ pub(super) fn depths(nodes: &[Node], wires: &[Wire]) -> Vec<usize> {
 mod tests {
     use super::*;
     use crate::graph::layout::footprint::bounds;
-    use crate::graph::layout::tests::overlap;
+    use crate::graph::layout::footprint::overlapping;
     use crate::graph::{Basis, NodeKind};
 
     /// Node `id`'s rectangle as drawn: (left, top, right, bottom).
@@ -230,7 +230,7 @@ mod tests {
             wires: group.wires.clone(),
             ..Graph::default()
         };
-        assert_eq!(overlap(&inside.nodes, &inside.wires), None);
+        assert_eq!(overlapping(&inside.nodes, &inside.wires), None);
         let boundary = crate::graph::group::BOUNDARY;
         let inner = inside
             .wires

@@ -162,6 +162,26 @@ pub fn bounds(nodes: &[Node], wires: &[Wire]) -> Vec<Bounds> {
         .collect()
 }
 
+/// Two of `nodes` (joined by `wires`) whose footprints intersect, if any: the first
+/// found sweeping from left to right.
+pub fn overlapping(nodes: &[Node], wires: &[Wire]) -> Option<(NodeId, NodeId)> {
+    let drawn = bounds(nodes, wires);
+    let mut order: Vec<usize> = (0..nodes.len()).collect();
+    order.sort_by(|a, b| drawn[*a].min.0.total_cmp(&drawn[*b].min.0));
+    // Only nodes whose spans in x meet are compared.
+    for (k, &a) in order.iter().enumerate() {
+        for &b in &order[k + 1..] {
+            if drawn[b].min.0 >= drawn[a].max.0 {
+                break;
+            }
+            if drawn[a].intersects(&drawn[b]) {
+                return Some((nodes[a].id, nodes[b].id));
+            }
+        }
+    }
+    None
+}
+
 /// How wide `text` is drawn at `size`.
 fn text_width(text: &str, size: f32) -> f32 {
     let ems: f32 = text

@@ -220,7 +220,7 @@ fn nearest_open_y(crossing: &[(f32, f32)]) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::graph::layout::tests::overlap;
+    use crate::graph::layout::footprint::overlapping;
     use crate::graph::{Graph, NodeKind};
     use proptest::prelude::*;
 
@@ -309,7 +309,7 @@ mod tests {
         let mut placed = node.clone();
         placed.position = at;
         level.push(placed);
-        assert_eq!(overlap(&level, &graph.wires), None);
+        assert_eq!(overlapping(&level, &graph.wires), None);
         let distance = (at.0 - middle.0).hypot(at.1 - middle.1);
         assert!(distance < 2_000.0, "{distance} away from {middle:?}");
     }

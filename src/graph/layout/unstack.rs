@@ -66,7 +66,7 @@ pub fn unstack_levels(graph: &mut Graph) -> usize {
 #[cfg(test)]
 pub(super) mod tests {
     use super::*;
-    use crate::graph::layout::tests::overlap;
+    use crate::graph::layout::footprint::overlapping;
     use crate::graph::{NodeKind, PinRef};
 
     /// A chain of `count` nodes (a position, then transforms), all at the origin.
@@ -89,7 +89,7 @@ pub(super) mod tests {
     fn a_level_stacked_at_one_point_is_laid_out_without_overlaps() {
         let mut graph = stacked_chain(300);
         assert_eq!(unstack(&mut graph.nodes, &graph.wires), 299);
-        assert_eq!(overlap(&graph.nodes, &graph.wires), None);
+        assert_eq!(overlapping(&graph.nodes, &graph.wires), None);
         // Wrapped into bands about a screen wide, not one row 300 columns long.
         let right = graph.nodes.iter().map(|n| n.position.0).fold(0.0, f32::max);
         assert!(right < 2.0 * UNSTACKED_BAND.0, "{right}");
@@ -117,7 +117,7 @@ pub(super) mod tests {
         for drawn in &moved[9..] {
             assert!(drawn.min.1 > bottom, "{drawn:?} not below {bottom}");
         }
-        assert_eq!(overlap(&graph.nodes, &graph.wires), None);
+        assert_eq!(overlapping(&graph.nodes, &graph.wires), None);
     }
 
     #[test]
