@@ -16,7 +16,7 @@ fn varied_graph(kinds: &[u32], choices: &[u32], seeds: &[u32]) -> Graph {
     for node in &mut graph.nodes {
         let pick = *seed.next().expect("seeds are not empty");
         node.label = "w".repeat(pick as usize % 40);
-        if pick % 3 == 0 {
+        if pick.is_multiple_of(3) {
             for pin in node.kind.signature().inputs {
                 let large = f64::from(pick) * 1.0e-3 - 1.0e3;
                 let value = Value::Vec3(large, -large, large).convert(pin.ty);
