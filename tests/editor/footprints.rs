@@ -4,11 +4,11 @@
 //! *Arrange nodes*.
 
 use super::support::{click_node, editor, press, scratch, wheel_notch};
-use egui::{Event, Rect, pos2, vec2};
+use egui::{Event, Rect, pos2};
 use egui_kittest::Harness;
 use egui_kittest::kittest::{NodeT, Queryable};
 use veneer::app::VeneerApp;
-use veneer::graph::layout::{Bounds, footprints};
+use veneer::graph::layout::{Bounds, bounds, footprints};
 use veneer::graph::{Graph, Node, NodeId, Wire};
 
 /// The zoom from which node titles are drawn at their usual size (24 canvas units);
@@ -33,9 +33,9 @@ fn zoom_to_legible(harness: &mut Harness<'static, VeneerApp>) {
     harness.run_steps(12);
 }
 
-/// Where each node of the level shown was drawn (canvas units), by its position: a
-/// node's frame is the largest widget whose corner is its frame's margin up and left of
-/// the node's position.
+/// Where each node of the level shown was drawn (canvas units), found by its position:
+/// a node's frame is the largest widget whose top-left corner is its footprint's (the
+/// frame's margin up and left of the node's position).
 fn drawn(harness: &Harness<'static, VeneerApp>, nodes: &[Node]) -> Vec<(NodeId, Rect)> {
     let widgets: Vec<Rect> = harness
         .query_all_by(|node| node.role() == egui::accesskit::Role::Unknown)
@@ -47,10 +47,13 @@ fn drawn(harness: &Harness<'static, VeneerApp>, nodes: &[Node]) -> Vec<(NodeId, 
             ))
         })
         .collect();
+    // A footprint's corner does not depend on the node's wires.
+    let corners = bounds(nodes, &[]);
     nodes
         .iter()
-        .map(|node| {
-            let corner = pos2(node.position.0, node.position.1) - vec2(7.0, 7.0);
+        .zip(corners)
+        .map(|(node, footprint)| {
+            let corner = pos2(footprint.min.0, footprint.min.1);
             let rect = widgets
                 .iter()
                 .filter(|rect| (rect.min - corner).length() < 0.5)

@@ -8,8 +8,8 @@
 use crate::graph::{Node, NodeId, NodeKind, PinDefault, Value, Wire};
 use std::collections::HashSet;
 
-/// Widths of the printable ASCII characters (space to `~`) in egui's proportional font,
-/// in ems, rounded up; any other character is reckoned an em wide.
+/// Widths of the printable ASCII characters (space to `~`) in egui's proportional font
+/// (Ubuntu Light), in ems to three decimals; any other character is reckoned an em wide.
 const ADVANCE: [f32; 95] = [
     0.228, 0.274, 0.392, 0.653, 0.564, 0.831, 0.648, 0.240, 0.310, 0.310, 0.472, 0.564, 0.246,
     0.282, 0.246, 0.359, 0.564, 0.564, 0.564, 0.564, 0.564, 0.564, 0.564, 0.564, 0.564, 0.564,
@@ -113,12 +113,15 @@ impl Footprint {
             input_rows.fold(0.0, f32::max),
             output_rows.fold(0.0, f32::max),
         );
-        let ramp = matches!(node.kind, NodeKind::ColorRamp(_));
-        let body = if ramp { RAMP_BAR } else { (0.0, 0.0) };
-        let pins_width = inputs + SPACE + outputs + if ramp { body.0 + SPACE } else { 0.0 };
+        // The colour ramp draws its bar between its inputs and outputs.
+        let (bar_width, bar_height) = match node.kind {
+            NodeKind::ColorRamp(_) => (RAMP_BAR.0 + SPACE, RAMP_BAR.1),
+            _ => (0.0, 0.0),
+        };
+        let pins_width = inputs + SPACE + bar_width + outputs;
         let title = TITLE_LEAD + text_width(&node.title(), TITLE_SIZE) + SIGN;
         let rows = signature.inputs.len().max(signature.outputs.len()) as f32;
-        let pins_height = (rows * (ROW + ROW_SPACE)).max(body.1);
+        let pins_height = (rows * (ROW + ROW_SPACE)).max(bar_height);
         let footer = if signature.outputs.is_empty() {
             0.0
         } else {

@@ -118,10 +118,17 @@ pub fn place_node(nodes: &[Node], wires: &[Wire], node: &Node, wanted: (f32, f32
     (wanted.0 + dx, wanted.1 + dy)
 }
 
-/// Moves `placed` (nodes joined by `wires`, pasted or duplicated onto the level of
-/// `nodes`) together, their layout kept, so that their top-left position is as near
-/// `corner` as it can be with none of them within [`CLEARANCE`] of a node already there.
-pub fn place_nodes(nodes: &[Node], wires: &[Wire], placed: &mut [Node], corner: (f32, f32)) {
+/// Moves `placed` (nodes joined by `placed_wires`, pasted or duplicated onto the level
+/// of `nodes` joined by `wires`) together, their layout kept, so that their top-left
+/// position is as near `corner` as it can be with none of them within [`CLEARANCE`] of
+/// a node already there.
+pub fn place_nodes(
+    nodes: &[Node],
+    wires: &[Wire],
+    placed: &mut [Node],
+    placed_wires: &[Wire],
+    corner: (f32, f32),
+) {
     let Some(top_left) = placed
         .iter()
         .map(|node| node.position)
@@ -139,7 +146,7 @@ pub fn place_nodes(nodes: &[Node], wires: &[Wire], placed: &mut [Node], corner: 
             (node.position.1 + to_corner.1).round(),
         );
     }
-    let (dx, dy) = Taken::of(nodes, wires).clear_move(&bounds(placed, wires));
+    let (dx, dy) = Taken::of(nodes, wires).clear_move(&bounds(placed, placed_wires));
     for node in placed.iter_mut() {
         node.position = (node.position.0 + dx, node.position.1 + dy);
     }
@@ -280,9 +287,14 @@ mod tests {
     fn pasted_nodes_keep_their_layout_and_land_clear_of_the_originals() {
         let graph = crate::graph::preset("rusted_metal").unwrap();
         let mut copies: Vec<Node> = graph.nodes[2..5].to_vec();
+        let copied = |id| copies.iter().any(|n: &Node| n.id == id);
+        let among: Vec<Wire> = (graph.wires.iter())
+            .filter(|w| copied(w.from.node) && copied(w.to.node))
+            .cloned()
+            .collect();
         let before: Vec<(f32, f32)> = copies.iter().map(|n| n.position).collect();
         let corner = graph.nodes[2].position;
-        place_nodes(&graph.nodes, &graph.wires, &mut copies, corner);
+        place_nodes(&graph.nodes, &graph.wires, &mut copies, &among, corner);
         let shift = (
             copies[0].position.0 - before[0].0,
             copies[0].position.1 - before[0].1,
@@ -292,7 +304,7 @@ mod tests {
             assert_eq!(copy.position, kept, "the layout is kept");
         }
         let taken = bounds(&graph.nodes, &graph.wires);
-        assert!(clear(&taken, &bounds(&copies, &[]), (0.0, 0.0)));
+        assert!(clear(&taken, &bounds(&copies, &among), (0.0, 0.0)));
     }
 
     #[test]
@@ -322,7 +334,13 @@ mod tests {
             .iter()
             .map(|n| n.position)
             .fold((f32::MAX, f32::MAX), |a, b| (a.0.min(b.0), a.1.min(b.1)));
-        place_nodes(&graph.nodes, &graph.wires, &mut copies, corner);
+        place_nodes(
+            &graph.nodes,
+            &graph.wires,
+            &mut copies,
+            &graph.wires,
+            corner,
+        );
         let taken = bounds(&graph.nodes, &graph.wires);
         let landed = bounds(&copies, &graph.wires);
         assert!(clear(&taken, &landed, (0.0, 0.0)));
