@@ -157,6 +157,17 @@ impl Node {
             clip(&self.label, MAX_TEXT_CHARS).0
         }
     }
+
+    /// The title the editor shows: the label, or for an unlabelled math node its
+    /// operation ("Divide", "Sin"), as the add-node menu names it, or else the kind's title.
+    pub fn title(&self) -> String {
+        match &self.kind {
+            _ if !self.label.is_empty() => self.display_name().to_string(),
+            NodeKind::Math(math) => format!("{:?}", math.op),
+            NodeKind::Unary(unary) => format!("{:?}", unary.op),
+            kind => kind.title().to_string(),
+        }
+    }
 }
 
 impl Node {

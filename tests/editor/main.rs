@@ -5,6 +5,7 @@ mod add_node;
 mod dialogs;
 mod editing;
 mod files;
+mod footprints;
 mod geotextures;
 mod groups;
 mod navigation;

@@ -3,7 +3,7 @@
 //! removes), Home/F frame everything and '.' the selection; every preset opens whole
 //! and legible.
 
-use super::support::{editor, flat_wood_editor, press, scratch};
+use super::support::{editor, flat_wood_editor, press, scratch, wheel_notch};
 use egui::{Event, Modifiers, PointerButton, Pos2, Rect, pos2, vec2};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
@@ -71,13 +71,7 @@ fn the_wheel_zooms_about_the_cursor() {
     let under_cursor = before.inverse() * cursor;
     harness.event(Event::PointerMoved(cursor));
     for _ in 0..3 {
-        harness.event(Event::MouseWheel {
-            unit: egui::MouseWheelUnit::Line,
-            delta: vec2(0.0, 1.0),
-            phase: egui::TouchPhase::Move,
-            modifiers: Modifiers::NONE,
-        });
-        harness.run_steps(2);
+        wheel_notch(&mut harness);
     }
     harness.run_steps(30);
     let after = harness.state().graph_to_screen();

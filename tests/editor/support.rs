@@ -123,6 +123,18 @@ pub fn press(harness: &mut Harness<'static, VeneerApp>, key: egui::Key, command:
     harness.run();
 }
 
+/// Turns the mouse wheel a notch towards the user (the graph zooms in about the
+/// pointer), and lets two frames pass.
+pub fn wheel_notch(harness: &mut Harness<'static, VeneerApp>) {
+    harness.event(egui::Event::MouseWheel {
+        unit: egui::MouseWheelUnit::Line,
+        delta: egui::vec2(0.0, 1.0),
+        phase: egui::TouchPhase::Move,
+        modifiers: egui::Modifiers::NONE,
+    });
+    harness.run_steps(2);
+}
+
 /// Clicks the node whose title is `title` in the graph panel, and checks that the
 /// inspector now shows that node (its label field holds the title).
 pub fn select_node(harness: &mut Harness<'static, VeneerApp>, title: &str) {

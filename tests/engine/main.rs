@@ -27,6 +27,7 @@ mod hostile_messages;
 mod hostile_outputs;
 mod hostile_scale;
 mod image_based_lighting;
+mod layout;
 mod limits;
 mod lint;
 mod meshes;
