@@ -158,14 +158,14 @@ impl Node {
         }
     }
 
-    /// The title the editor shows: the label, or for an unlabelled math node its
-    /// operation ("Divide", "Sin"), as the add-node menu names it, or else the kind's title.
+    /// The title the editor shows: the label, or the title the kind's definition shows
+    /// for its settings (a math node's operation, "Divide", as the add-node menu names
+    /// it; else the kind's title).
     pub fn title(&self) -> String {
-        match &self.kind {
-            _ if !self.label.is_empty() => self.display_name().to_string(),
-            NodeKind::Math(math) => format!("{:?}", math.op),
-            NodeKind::Unary(unary) => format!("{:?}", unary.op),
-            kind => kind.title().to_string(),
+        if self.label.is_empty() {
+            self.kind.definition().shown_title()
+        } else {
+            self.display_name().to_string()
         }
     }
 }

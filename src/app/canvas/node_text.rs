@@ -1,18 +1,9 @@
-//! What the graph view says about a node beyond its pins: its title, and the tooltips
-//! of its header and pins, all read from the node kind's single definition.
+//! What the graph view says about a node beyond its pins and title: the tooltips of its
+//! header and pins, all read from the node kind's single definition.
 
-use crate::graph::{Node, NodeKind, PinDefault};
+use crate::graph::{NodeKind, PinDefault};
 use crate::nodes::pins::{InputPin, OutputPin, PinRange};
 use crate::nodes::value::Value;
-
-/// The title a node shows: its label, or the title its definition shows for its
-/// settings (a math node's operation).
-pub fn title(node: &Node) -> String {
-    if !node.label.is_empty() {
-        return node.display_name().to_string();
-    }
-    node.kind.definition().shown_title()
-}
 
 /// The header's tooltip: the kind, its category and the names peers give it.
 pub fn kind_tip(kind: &NodeKind) -> String {

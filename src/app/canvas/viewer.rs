@@ -92,7 +92,7 @@ impl SnarlViewer<Node> for Viewer<'_> {
     }
 
     fn title(&mut self, node: &Node) -> String {
-        crate::app::canvas::node_text::title(node)
+        node.title()
     }
 
     fn final_node_rect(
@@ -142,11 +142,9 @@ impl SnarlViewer<Node> for Viewer<'_> {
         let node = &snarl[id];
         let selected = self.selected == Some(id);
         ui.horizontal(|ui| {
-            let title = RichText::new(crate::app::canvas::node_text::title(node))
-                .strong()
-                .size(crate::app::canvas::navigation::title_size(
-                    self.navigation.transform.scaling,
-                ));
+            let title = RichText::new(node.title()).strong().size(
+                crate::app::canvas::navigation::title_size(self.navigation.transform.scaling),
+            );
             ui.label(if selected {
                 title.color(Color32::from_rgb(255, 190, 80))
             } else {
