@@ -24,10 +24,8 @@ pub use thumbnails::{TILE_PIXELS, Thumbnails, placement, tile_params};
 use crate::graph::{AlphaMode, Graph, Shading};
 use canvas::navigation::{Framing, Navigation};
 use canvas::snarl_model::snarl_from_graph;
-use canvas::viewer::Viewer;
 use chrome::dialogs::{Dialog, Pending};
 use egui::{Key, KeyboardShortcut, Modifiers, Ui};
-use egui_snarl::ui::SnarlWidget;
 use preview::state::MaterialFrame;
 use preview::worker::{Slot, TessellationInput};
 use std::path::PathBuf;
@@ -188,7 +186,7 @@ impl VeneerApp {
         self.canvas.snarl = snarl_from_graph(&document.graph);
         self.session.document = document;
         self.canvas.selection.clear();
-        self.canvas.clicked = None;
+        self.canvas.grab.forget();
         self.canvas.navigation = Navigation::default();
         self.canvas.navigation.frame(Framing::Open);
         self.preview.live.update(&self.session.document.graph);
@@ -281,7 +279,6 @@ impl VeneerApp {
     /// Undoes the last edit (inside a group too; a group undone away is left).
     pub fn undo(&mut self) {
         if let Some(graph) = self.session.document.history.undo() {
-            self.canvas.clicked = None;
             self.session.document.graph = graph;
             self.rebuild_snarl();
         }
@@ -290,7 +287,6 @@ impl VeneerApp {
     /// Redoes the last undone edit.
     pub fn redo(&mut self) {
         if let Some(graph) = self.session.document.history.redo() {
-            self.canvas.clicked = None;
             self.session.document.graph = graph;
             self.rebuild_snarl();
         }
@@ -325,6 +321,27 @@ impl VeneerApp {
             .filter_map(|node| self.canvas.snarl.get_node(*node))
             .map(|node| node.label.clone())
             .collect()
+    }
+
+    /// The ids of the selected nodes, in selection order.
+    pub fn selected_nodes(&self) -> Vec<crate::graph::NodeId> {
+        self.canvas
+            .selection
+            .iter()
+            .filter_map(|node| self.canvas.snarl.get_node(*node))
+            .map(|node| node.id)
+            .collect()
+    }
+
+    /// Where node `node` of the level shown was drawn last frame, on screen.
+    pub fn node_on_screen(&self, node: crate::graph::NodeId) -> Option<egui::Rect> {
+        let (id, _) = self
+            .canvas
+            .snarl
+            .node_ids()
+            .find(|(_, shown)| shown.id == node)?;
+        let rect = *self.canvas.spots.borrow().nodes.get(&id)?;
+        Some(self.canvas.navigation.transform * rect)
     }
 
     /// Where the pin `pin` (an output when `output`) was drawn last frame, on screen.
@@ -379,103 +396,9 @@ impl VeneerApp {
         self.preview.previews.settled()
     }
 
-    fn graph_panel(&mut self, ui: &mut Ui) {
-        let mut hint = None;
-        let mut dropped = None;
-        self.canvas.add.set_graph_rect(ui.max_rect());
-        // Node titles and pin names are not text to select: a click on a title selects
-        // the node, and Ctrl+C copies the node, not the title.
-        ui.style_mut().interaction.selectable_labels = false;
-        let modifiers = self.canvas.navigation.before(
-            ui.ctx(),
-            ui.max_rect(),
-            &self.canvas.snarl,
-            &self.canvas.selection,
-        );
-        let before = self.canvas.clicked.take();
-        // Inside a group, messages, frames and thumbnails of the top level do not apply:
-        // its nodes' ids are the definition's own.
-        let in_group = self.canvas.scope.current().is_some();
-        let (no_errors, no_warnings) = (Default::default(), Default::default());
-        let (mut declared, mut expose, mut group_action) = (Vec::new(), None, None);
-        let mut viewer = Viewer {
-            errors: if in_group {
-                &no_errors
-            } else {
-                &self.preview.live.errors
-            },
-            warnings: if in_group {
-                &no_warnings
-            } else {
-                &self.preview.live.warnings
-            },
-            hint: &mut hint,
-            dropped: &mut dropped,
-            clicked: &mut self.canvas.clicked,
-            selected: before,
-            navigation: &mut self.canvas.navigation,
-            frames: if in_group {
-                &[]
-            } else {
-                &self.session.document.graph.frames
-            },
-            thumbnails: &mut self.thumbnails,
-            spots: self.canvas.spots.clone(),
-            in_group,
-            groups: &self.session.document.graph.groups,
-            declared: &mut declared,
-            expose: &mut expose,
-            group_action: &mut group_action,
-        };
-        *self.canvas.spots.borrow_mut() = Default::default();
-        // In big graphs nodes off screen are not laid out at all (our egui-snarl patch).
-        let big = self.canvas.snarl.node_ids().count() > canvas::navigation::BIG_GRAPH;
-        let widget = SnarlWidget::new()
-            .id_salt(("graph", self.canvas.view_generation))
-            .style(canvas::painting::graph_style(ui.style()))
-            .cull_offscreen(big);
-        let response = widget.show(&mut self.canvas.snarl, &mut viewer, ui);
-        self.wire_pointer(ui);
-        self.canvas.navigation.after(ui.ctx(), modifiers);
-        if self.chrome.dialog.is_some() {
-            // A click on a dialog is not for the node under it.
-            self.canvas.clicked = before;
-        }
-        if self.canvas.clicked.is_none() && !response.clicked() {
-            self.canvas.clicked = before.filter(|node| self.canvas.snarl.get_node(*node).is_some());
-        }
-        self.canvas.selection = widget.get_selected_nodes(ui);
-        if self.canvas.navigation.clicked_empty_canvas() && self.chrome.dialog.is_none() {
-            // A click on empty canvas selects nothing (egui-snarl's own selection goes
-            // with a fresh view).
-            self.canvas.clicked = None;
-            if !self.canvas.selection.is_empty() {
-                self.canvas.view_generation += 1;
-                self.canvas.selection.clear();
-            }
-        }
-        if self.canvas.selection.is_empty() {
-            self.canvas.selection.extend(self.canvas.clicked);
-        }
-        if hint.is_some() {
-            self.chrome.message = hint;
-        }
-        declared.extend(expose.and_then(|pin| self.expose_input(pin)));
-        self.declare(declared);
-        if let Some(action) = group_action {
-            self.group_action(action);
-        }
-        self.breadcrumb(ui.ctx(), ui.max_rect());
-        // A right click on empty canvas, or a wire dropped there, opens the add-node search.
-        if dropped.is_some() || response.secondary_clicked() {
-            self.open_add_node(ui.ctx(), dropped, None);
-        }
-        self.add_node_popup(ui.ctx());
-    }
-
-    /// The inspector of the selected node, or a hint and the comment frames.
+    /// The inspector of the active node, or a hint and the comment frames.
     fn inspector(&mut self, ui: &mut Ui) {
-        match self.canvas.selection.first().copied() {
+        match self.canvas.selection.active() {
             Some(node) if self.canvas.snarl.get_node(node).is_some() => {
                 ui.separator();
                 self.inspect(ui, node);

@@ -9,10 +9,10 @@ use egui_kittest::kittest::Queryable;
 use veneer::app::VeneerApp;
 use veneer::graph::NodeKind;
 
-type Editor = Harness<'static, VeneerApp>;
+pub type Editor = Harness<'static, VeneerApp>;
 
 /// A key as a real keyboard sends it: down, the text it types, up.
-fn key(harness: &mut Editor, modifiers: Modifiers, key: Key, text: Option<&str>) {
+pub fn key(harness: &mut Editor, modifiers: Modifiers, key: Key, text: Option<&str>) {
     let event = |pressed| Event::Key {
         key,
         pressed,
@@ -31,12 +31,12 @@ fn key(harness: &mut Editor, modifiers: Modifiers, key: Key, text: Option<&str>)
 }
 
 /// Typing on the keyboard, into whatever has focus (no click first).
-fn typing(harness: &mut Editor, text: &str) {
+pub fn typing(harness: &mut Editor, text: &str) {
     harness.event(Event::Text(text.into()));
     harness.run();
 }
 
-fn hover(harness: &mut Editor, pos: Pos2) {
+pub fn hover(harness: &mut Editor, pos: Pos2) {
     harness.hover_at(pos);
     harness.run();
 }
@@ -48,14 +48,14 @@ fn new_graph(harness: &mut Editor) {
 }
 
 /// The text field that has keyboard focus, if any: its screen rectangle and text.
-fn focused_field(harness: &Editor) -> Option<(egui::Rect, String)> {
+pub fn focused_field(harness: &Editor) -> Option<(egui::Rect, String)> {
     harness
         .query_by(|node| node.role() == egui::accesskit::Role::TextInput && node.is_focused())
         .map(|node| (node.rect(), node.value().unwrap_or_default()))
 }
 
 /// The node with the largest id: the one added last.
-fn newest(harness: &Editor) -> veneer::graph::Node {
+pub fn newest(harness: &Editor) -> veneer::graph::Node {
     let graph = &harness.state().document().graph;
     graph
         .nodes
@@ -134,12 +134,14 @@ fn space_tab_and_shift_a_open_the_search_at_the_mouse_every_time() {
     let dir = scratch("add-every-time");
     let mut harness = editor(&dir, None);
     new_graph(&mut harness);
+    // Spots clear of each other's nodes and of the material (a node added over others
+    // lands beside them: see the selection tests).
     let spots = [
         (Pos2::new(150.0, 150.0), SPACE),
-        (Pos2::new(300.0, 620.0), SPACE),
+        (Pos2::new(300.0, 680.0), SPACE),
         (Pos2::new(120.0, 420.0), TAB),
-        (Pos2::new(420.0, 700.0), SHIFT_A),
-        (Pos2::new(250.0, 300.0), SPACE),
+        (Pos2::new(650.0, 700.0), SHIFT_A),
+        (Pos2::new(700.0, 150.0), SPACE),
     ];
     for (mouse, opener) in spots {
         add_by_keyboard(&mut harness, mouse, opener, "worley");
@@ -263,10 +265,19 @@ fn pasted_and_duplicated_nodes_land_at_the_mouse_in_their_layout() {
     new_graph(&mut harness);
     add_by_keyboard(&mut harness, Pos2::new(120.0, 150.0), SPACE, "worley");
     let original = newest(&harness);
-    // Ctrl+D: a copy under the mouse.
-    let mouse = Pos2::new(200.0, 600.0);
+    // Ctrl+D: a copy under the mouse (it follows the mouse until a click puts it down).
+    let mouse = Pos2::new(200.0, 680.0);
     hover(&mut harness, mouse);
     key(&mut harness, Modifiers::COMMAND, Key::D, None);
+    harness.drag_at(mouse);
+    harness.run();
+    harness.event(Event::PointerButton {
+        pos: mouse,
+        button: egui::PointerButton::Primary,
+        pressed: false,
+        modifiers: Modifiers::NONE,
+    });
+    harness.run();
     let duplicate = newest(&harness);
     assert_ne!(duplicate.id, original.id, "Ctrl+D added a node");
     assert_eq!(duplicate.kind, original.kind);
@@ -305,7 +316,7 @@ fn pasted_and_duplicated_nodes_land_at_the_mouse_in_their_layout() {
         "Ctrl+C copied {copied:?}, not the node"
     );
     harness.run();
-    let mouse = Pos2::new(420.0, 250.0);
+    let mouse = Pos2::new(650.0, 150.0);
     hover(&mut harness, mouse);
     harness.event(Event::Paste(copied.clone()));
     harness.run();
@@ -435,7 +446,8 @@ fn a_wire_dropped_on_empty_canvas_offers_the_nodes_it_fits_and_connects_the_pick
     new_graph(&mut harness);
     add_by_keyboard(&mut harness, Pos2::new(150.0, 200.0), SPACE, "noise");
     let noise = newest(&harness);
-    let drop = Pos2::new(250.0, 600.0);
+    // Clear of the material (a node added over others lands beside them).
+    let drop = Pos2::new(150.0, 560.0);
     drop_wire_from_value(&mut harness, drop);
     let (field, _) = focused_field(&harness).expect("the dropped wire opened the search");
     assert!(

@@ -12,5 +12,6 @@ mod navigation;
 mod painting;
 mod real_window;
 mod responsiveness;
+mod selection;
 mod support;
 mod thumbnails;

@@ -12,7 +12,7 @@ use veneer::app::VeneerApp;
 
 /// The graph panel's screen area in the 1400×900 test window (left of the side panel,
 /// between the menu and the status bar).
-const GRAPH_AREA: Rect = Rect::from_min_max(pos2(0.0, 20.0), pos2(930.0, 875.0));
+pub const GRAPH_AREA: Rect = Rect::from_min_max(pos2(0.0, 20.0), pos2(930.0, 875.0));
 
 /// Where the node titled `title` is on screen (its largest label: the title, not a pin
 /// or field of the same name).
@@ -134,12 +134,20 @@ fn a_left_drag_on_empty_canvas_selects_shift_adds_ctrl_removes() {
         transform_before,
         "the drag selected, it did not pan"
     );
-    let left_of_tint = pos2(tint.min.x - 12.0, tint.center().y);
+    // From the canvas right of the node's frame (and its pins), short of the next node.
+    let graph = &harness.state().document().graph;
+    let tint_node = graph
+        .nodes
+        .iter()
+        .find(|n| n.label == "tint space")
+        .unwrap();
+    let frame = harness.state().node_on_screen(tint_node.id).unwrap();
+    let right_of_tint = pos2(frame.max.x + 12.0, frame.center().y);
     drag(
         &mut harness,
         PointerButton::Primary,
         Modifiers::SHIFT,
-        left_of_tint,
+        right_of_tint,
         tint.center(),
     );
     assert_eq!(

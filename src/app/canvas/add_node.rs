@@ -298,7 +298,7 @@ impl VeneerApp {
 
     /// Adds what `entry` names where `search` was opened, wired to its dropped wire.
     fn add_entry(&mut self, entry: Entry, search: Search) {
-        let kind = match entry.item {
+        let added = match entry.item {
             Item::Frame => {
                 self.session
                     .document
@@ -319,22 +319,20 @@ impl VeneerApp {
                 self.frame_selection();
                 return;
             }
-            Item::Group(name) => {
-                self.canvas.clicked = self.add_group_instance(&name, search.graph - GRAB);
-                if let (Some(id), Some(dropped)) = (self.canvas.clicked, search.dropped) {
-                    self.wire_dropped(id, dropped);
-                }
-                return;
+            Item::Group(name) => self.add_group_instance(&name, search.graph - GRAB),
+            Item::Node(kind) => {
+                let node = Node::new(next_node_id(&self.canvas.snarl), kind);
+                Some(self.canvas.snarl.insert_node(search.graph - GRAB, node))
             }
-            Item::Node(kind) => kind,
         };
-        let node = Node::new(next_node_id(&self.canvas.snarl), kind);
-        let id = self.canvas.snarl.insert_node(search.graph - GRAB, node);
+        let Some(id) = added else {
+            return;
+        };
         if let Some(dropped) = search.dropped {
             self.wire_dropped(id, dropped);
         }
-        // The new node is the selected one, its settings in the inspector.
-        self.canvas.clicked = Some(id);
+        // The new node is the selection, its settings in the inspector.
+        self.canvas.placed(vec![id]);
     }
 
     /// Connects new node `id` to the wire `dropped` by its first compatible pin.
@@ -374,24 +372,30 @@ impl VeneerApp {
         }
     }
 
-    /// Pastes copied nodes at the mouse.
+    /// Pastes copied nodes at the mouse, clear of the others; they become the selection.
     pub(in crate::app) fn paste_at_mouse(&mut self, ctx: &egui::Context, text: &str) {
         let (_, at) = self.placement(ctx);
-        if let Err(error) = crate::app::canvas::clipboard::paste(
-            &mut self.canvas.snarl,
-            text,
-            at,
-            &self.session.document.graph.groups,
-        ) {
-            self.chrome.message = Some(format!("nothing pasted: {error}"));
+        let groups = &self.session.document.graph.groups;
+        match crate::app::canvas::clipboard::paste(&mut self.canvas.snarl, text, at, groups) {
+            Ok(pasted) => self.canvas.placed(pasted),
+            Err(error) => self.chrome.message = Some(format!("nothing pasted: {error}")),
         }
     }
 
-    /// Duplicates the selected nodes at the mouse.
+    /// Duplicates the selected nodes at the mouse, clear of the others: the copies are
+    /// the selection, and follow the mouse until a click.
     pub(in crate::app) fn duplicate_at_mouse(&mut self, ctx: &egui::Context) {
         let (_, at) = self.placement(ctx);
         let selection = self.editable_selection();
         let groups = &self.session.document.graph.groups;
-        crate::app::canvas::clipboard::duplicate(&mut self.canvas.snarl, &selection, at, groups);
+        let copies = crate::app::canvas::clipboard::duplicate(
+            &mut self.canvas.snarl,
+            &selection,
+            at,
+            groups,
+        );
+        if !copies.is_empty() {
+            self.grab_new(ctx, copies);
+        }
     }
 }

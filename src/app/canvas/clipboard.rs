@@ -24,15 +24,11 @@ pub fn copy(snarl: &Snarl<Node>, selection: &[egui_snarl::NodeId]) -> String {
     crate::graph::to_ron(&fragment)
 }
 
-/// How far a paste that would land on its originals is moved down and right.
-const NUDGE: f32 = 40.0;
-
 /// Inserts the nodes of a copied fragment with fresh ids, wires between them kept, moved
 /// together (their layout kept) so that their top-left corner is at `at` (the mouse, in
-/// graph coordinates); nudged down and right while that would put one right on a node
-/// already there.
-/// Group nodes get the pins of `groups` (the graph's) by their group's name.
-/// Returns the snarl ids of the new nodes.
+/// graph coordinates). Group nodes get the pins of `groups` (the graph's) by their
+/// group's name. Returns the snarl ids of the new nodes (the caller places them clear of
+/// the others).
 pub fn paste(
     snarl: &mut Snarl<Node>,
     text: &str,
@@ -54,24 +50,7 @@ pub fn paste(
         .map(|node| Pos2::new(node.position.0, node.position.1))
         .reduce(|a, b| a.min(b))
         .unwrap_or(at);
-    let mut shift = at - corner;
-    // Step aside while a pasted node would sit right on a node already there (its
-    // original, or an earlier paste at the same spot).
-    let taken: Vec<Pos2> = snarl.nodes_pos().map(|(pos, _)| pos).collect();
-    let covers = |shift: egui::Vec2| {
-        fragment.nodes.iter().any(|node| {
-            let pos = Pos2::new(node.position.0, node.position.1) + shift;
-            taken
-                .iter()
-                .any(|other| (*other - pos).length() < NUDGE * 0.5)
-        })
-    };
-    for _ in 0..64 {
-        if !covers(shift) {
-            break;
-        }
-        shift += egui::vec2(NUDGE, NUDGE);
-    }
+    let shift = at - corner;
     let placed = insert_graph(snarl, &fragment, |snarl, node| {
         let mut copy = node.clone();
         copy.id = next_node_id(snarl);
@@ -147,32 +126,24 @@ mod tests {
     }
 
     #[test]
-    fn a_duplicate_at_its_originals_is_moved_aside() {
+    fn a_duplicate_at_its_originals_is_placed_beside_them_and_selected() {
         let graph = crate::app::preset("marble").unwrap();
-        let mut snarl = snarl_from_graph(&graph);
-        let (node, _) = snarl.node_ids().next().unwrap();
-        let original = snarl.get_node_info(node).unwrap().pos;
-        let copies = duplicate(
-            &mut snarl,
-            &[node],
-            original + egui::vec2(5.0, 5.0),
-            &graph.groups,
-        );
-        let copy = snarl.get_node_info(copies[0]).unwrap().pos;
-        assert!(
-            (copy - original).length() >= NUDGE,
-            "{copy:?} on {original:?}"
-        );
-        let again = duplicate(
-            &mut snarl,
-            &[node],
-            original + egui::vec2(5.0, 5.0),
-            &graph.groups,
-        );
-        let again = snarl.get_node_info(again[0]).unwrap().pos;
-        assert!(
-            (again - copy).length() >= NUDGE,
-            "{again:?} on the first copy"
-        );
+        let mut canvas = crate::app::canvas::Canvas::new(snarl_from_graph(&graph));
+        let (node, _) = canvas.snarl.node_ids().next().unwrap();
+        let original = canvas.snarl.get_node_info(node).unwrap().pos;
+        for _ in 0..2 {
+            let at = original + egui::vec2(5.0, 5.0);
+            let copies = duplicate(&mut canvas.snarl, &[node], at, &graph.groups);
+            canvas.placed(copies.clone());
+            assert_eq!(*canvas.selection, copies);
+            let copy = canvas.snarl.get_node_info(copies[0]).unwrap().pos;
+            let others = canvas
+                .snarl
+                .nodes_pos_ids()
+                .filter(|(id, ..)| *id != copies[0]);
+            for (_, pos, _) in others {
+                assert!((copy - pos).length() >= 40.0, "{copy:?} on {pos:?}");
+            }
+        }
     }
 }

@@ -283,8 +283,8 @@ impl VeneerApp {
         let selected = self
             .canvas
             .selection
-            .first()
-            .and_then(|id| self.canvas.snarl.get_node(*id));
+            .active()
+            .and_then(|id| self.canvas.snarl.get_node(id));
         let side = selected.and_then(crate::app::canvas::boundary::boundary);
         let done = self.edit_document(|app, graph| {
             app.unlink_edited(graph, &name);
@@ -313,7 +313,7 @@ impl VeneerApp {
             Ok(message) => self.chrome.message = message.or(self.chrome.message.take()),
             Err(error) => self.chrome.message = Some(error),
         }
-        self.canvas.clicked = side.and_then(|side| scope::boundary_in(&self.canvas.snarl, side));
-        self.canvas.selection = self.canvas.clicked.into_iter().collect();
+        let boundary = side.and_then(|side| scope::boundary_in(&self.canvas.snarl, side));
+        self.canvas.selection.set(boundary);
     }
 }

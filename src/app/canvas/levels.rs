@@ -47,8 +47,16 @@ impl VeneerApp {
         }
     }
 
-    /// Shows the document at the level shown (the top level when that group is gone).
+    /// Shows the document at the level shown (the top level when that group is gone),
+    /// the nodes selected before still selected.
     pub(in crate::app) fn rebuild_snarl(&mut self) {
+        let selected: Vec<NodeId> = self
+            .canvas
+            .selection
+            .iter()
+            .filter_map(|id| Some(self.canvas.snarl.get_node(*id)?.id))
+            .collect();
+        self.canvas.grab.forget();
         if self
             .canvas
             .scope
@@ -63,32 +71,34 @@ impl VeneerApp {
             }
             None => snarl_from_graph(&self.session.document.graph),
         };
+        let ids: std::collections::HashMap<NodeId, egui_snarl::NodeId> = self
+            .canvas
+            .snarl
+            .node_ids()
+            .map(|(id, node)| (node.id, id))
+            .collect();
+        let kept = selected.iter().filter_map(|node| ids.get(node).copied());
+        self.canvas.selection.set(kept);
     }
 
     /// Starts the graph view afresh (its selection is for other nodes now).
     pub(in crate::app) fn new_view(&mut self) {
         self.canvas.view_generation += 1;
         self.canvas.selection.clear();
-        self.canvas.clicked = None;
     }
 
     /// Selects the node `node` of the level shown.
     pub(in crate::app) fn select(&mut self, node: NodeId) {
-        self.canvas.clicked = self
-            .canvas
-            .snarl
-            .node_ids()
-            .find(|(_, shown)| {
-                shown.id == node && crate::app::canvas::boundary::boundary(shown).is_none()
-            })
-            .map(|(id, _)| id);
-        self.canvas.selection = self.canvas.clicked.into_iter().collect();
+        let shown = self.canvas.snarl.node_ids().find(|(_, shown)| {
+            shown.id == node && crate::app::canvas::boundary::boundary(shown).is_none()
+        });
+        self.canvas.selection.set(shown.map(|(id, _)| id));
     }
 
     /// Tab: enters the selected group node, else leaves the group shown. Returns
     /// `false` when it did neither (at the top level, no group node selected).
     pub(in crate::app) fn tab(&mut self) -> bool {
-        let selected = self.canvas.selection.first().copied().filter(|id| {
+        let selected = self.canvas.selection.active().filter(|id| {
             self.canvas
                 .snarl
                 .get_node(*id)

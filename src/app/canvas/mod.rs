@@ -5,12 +5,16 @@ pub(in crate::app) mod add_node;
 pub(in crate::app) mod boundary;
 pub(in crate::app) mod catalogue;
 pub(in crate::app) mod clipboard;
+pub(in crate::app) mod grab;
 pub(in crate::app) mod group_edit;
 pub(in crate::app) mod levels;
 pub(in crate::app) mod navigation;
 pub(in crate::app) mod node_text;
 pub(in crate::app) mod painting;
+pub(in crate::app) mod panel;
+pub(in crate::app) mod placement;
 pub(in crate::app) mod scope;
+pub(in crate::app) mod selection;
 pub(in crate::app) mod snarl_model;
 pub(in crate::app) mod viewer;
 pub(in crate::app) mod wire_pointer;
@@ -30,19 +34,20 @@ pub(in crate::app) struct Canvas {
     pub hovered_wire: Option<PinRef>,
     /// The node the primary button went down on, and where it was then.
     pub node_drag: Option<(egui_snarl::NodeId, egui::Pos2)>,
-    /// Nodes selected in the graph (snarl ids).
-    pub selection: Vec<egui_snarl::NodeId>,
+    /// The nodes selected (snarl ids), the active one last: the one truth, told to
+    /// egui-snarl each frame.
+    pub selection: selection::Selection,
     /// The node groups entered: the graph view shows the innermost one's definition.
     pub scope: scope::Scope,
     /// Bumped whenever the graph view starts afresh (entering or leaving a group,
-    /// grouping): the view's id, so that its selection is not carried over.
+    /// grouping): the view's id, so that egui-snarl's state of it is not carried over.
     pub view_generation: u64,
-    /// The node picked by a plain click.
-    pub clicked: Option<egui_snarl::NodeId>,
     /// The graph view's transform and the gestures moving it.
     pub navigation: navigation::Navigation,
     /// The add-node search (Space, Tab, Shift+A) and where the graph is on screen.
     pub add: add_node::AddNode,
+    /// Duplicates following the mouse until a click.
+    pub grab: grab::Grab,
 }
 
 impl Canvas {
@@ -55,12 +60,20 @@ impl Canvas {
             spots: Default::default(),
             hovered_wire: None,
             node_drag: None,
-            selection: Vec::new(),
+            selection: Default::default(),
             scope: Default::default(),
             view_generation: 0,
-            clicked: None,
             navigation,
             add: Default::default(),
+            grab: Default::default(),
         }
+    }
+
+    /// New nodes (added, pasted, duplicated) are moved clear of the others and become
+    /// the selection.
+    pub fn placed(&mut self, nodes: Vec<egui_snarl::NodeId>) {
+        let navigation = &self.navigation;
+        placement::clear_of(&mut self.snarl, &nodes, |id| navigation.drawn(id));
+        self.selection.set(nodes);
     }
 }

@@ -1,8 +1,8 @@
 //! Moving around the graph as in Blender and Material Maker: the wheel zooms about the
-//! cursor, middle-drag (or Alt-drag) pans, a left-drag on empty canvas draws a
-//! selection rectangle (Shift adds, Ctrl removes), Home/F frame every node and '.' the
-//! selection. The view's transform is ours: egui-snarl's own pan and zoom (wheel pans,
-//! any drag on the canvas pans) are overridden each frame.
+//! cursor, middle-drag (or Alt-drag, wherever it starts) pans, a left-drag on empty
+//! canvas draws a selection box, Home/F frame every node and '.' the selection. The
+//! view's transform is ours: egui-snarl's own pan and zoom (wheel pans, any drag on the
+//! canvas pans) are overridden each frame, and a pan takes the pointer from the nodes.
 
 use crate::graph::Node;
 use egui::emath::TSTransform;
@@ -68,10 +68,12 @@ pub struct Navigation {
     zoom_to_come: f32,
     /// A pan drag is in progress.
     panning: bool,
-    /// A left-drag that began on empty canvas is drawing a selection rectangle.
-    selecting: bool,
-    /// This frame's input holds a plain click on empty canvas (it clears the selection).
-    empty_click: bool,
+    /// Where a left-drag that began on empty canvas began (graph coordinates): it draws
+    /// a selection box. A click there is an empty box.
+    boxing: Option<Pos2>,
+    /// The box let go of this frame (graph coordinates), and whether a right click on
+    /// empty canvas came this frame.
+    released: (Option<Rect>, bool),
     /// Every node's rectangle when last drawn, in graph coordinates.
     rects: std::collections::HashMap<egui_snarl::NodeId, Rect>,
     /// Where the graph is on screen (`None` before the first frame).
@@ -90,15 +92,17 @@ impl Navigation {
     }
 
     /// Before the graph is shown: moves the view as the input and any framing ask, and
-    /// makes a left-drag on empty canvas a rectangle selection (egui-snarl selects by
-    /// rectangle only while Shift is held: it is told so for such a drag). Returns the
-    /// modifiers to restore once the graph has been shown.
+    /// starts or ends a selection box (not while `boxes` is false). egui-snarl selects
+    /// by its own rectangle while Shift is held, and deselects on a Ctrl click: over
+    /// empty canvas it is told neither is held. Returns the modifiers held, to restore
+    /// once the graph has been shown.
     pub fn before(
         &mut self,
         ctx: &Context,
         viewport: Rect,
         snarl: &Snarl<Node>,
         selection: &[egui_snarl::NodeId],
+        boxes: bool,
     ) -> egui::Modifiers {
         self.rects.retain(|id, _| snarl.get_node(*id).is_some());
         self.viewport = Some(viewport);
@@ -113,35 +117,62 @@ impl Navigation {
         let over_node = on_canvas.is_some_and(|pos| self.node_at(pos));
         self.zoom(ctx, on_canvas);
         self.pan(ctx, on_canvas.is_some(), modifiers.alt);
-        let (pressed, released, down) = ctx.input(|input| {
+        let (pressed, released, secondary) = ctx.input(|input| {
+            let pointer = &input.pointer;
             (
-                input.pointer.button_pressed(PointerButton::Primary),
-                input.pointer.button_released(PointerButton::Primary),
-                input.pointer.button_down(PointerButton::Primary),
+                pointer.button_pressed(PointerButton::Primary),
+                pointer.button_released(PointerButton::Primary),
+                pointer.button_clicked(PointerButton::Secondary),
             )
         });
         let empty = on_canvas.is_some() && !over_node && !self.panning;
-        if pressed {
-            self.selecting = empty;
+        let to_graph = self.transform.inverse();
+        if pressed && empty && boxes {
+            let origin = ctx.input(|input| input.pointer.press_origin()).or(pointer);
+            self.boxing = origin.map(|pos| to_graph * pos);
         }
-        let hovering = empty && !down && !released;
-        let fake_shift = (hovering || (self.selecting && !released)) && !modifiers.alt;
-        if released {
-            self.selecting = false;
+        self.released = (None, secondary && empty);
+        if released && let Some(origin) = self.boxing.take() {
+            let end = pointer.map_or(origin, |pos| to_graph * pos);
+            self.released.0 = Some(Rect::from_two_pos(origin, end));
         }
-        let clicked = ctx.input(|input| input.pointer.primary_clicked());
-        self.empty_click = clicked && empty && modifiers.is_none();
-        if fake_shift {
-            ctx.input_mut(|input| input.modifiers.shift = true);
+        if (empty && !ctx.input(|input| input.pointer.any_down())) || self.boxing.is_some() {
+            ctx.input_mut(|input| {
+                input.modifiers.shift = false;
+                input.modifiers.command = false;
+                input.modifiers.ctrl = false;
+            });
         }
         modifiers
     }
 
-    /// Whether this frame's input holds a plain click on empty canvas (seen by
-    /// [`Navigation::before`]: egui-snarl is told Shift is held then, so it keeps its
-    /// selection).
-    pub fn clicked_empty_canvas(&self) -> bool {
-        self.empty_click
+    /// The selection box let go of this frame, in graph coordinates (a click on empty
+    /// canvas is an empty one).
+    pub fn released_box(&self) -> Option<Rect> {
+        self.released.0
+    }
+
+    /// Whether a right click on empty canvas came this frame.
+    pub fn right_clicked_empty_canvas(&self) -> bool {
+        self.released.1
+    }
+
+    /// The selection box being drawn, on screen.
+    pub fn selection_box(&self, ctx: &Context) -> Option<Rect> {
+        let pointer = ctx.input(|input| input.pointer.latest_pos())?;
+        Some(Rect::from_two_pos(self.transform * self.boxing?, pointer))
+    }
+
+    /// The nodes whose rectangle, when last drawn, meets `area` (graph coordinates).
+    pub fn nodes_in(&self, area: Rect) -> Vec<egui_snarl::NodeId> {
+        let meets = |rect: &Rect| rect.intersects(area) && area.is_finite();
+        let nodes = self.rects.iter().filter(|(_, rect)| meets(rect));
+        nodes.map(|(id, _)| *id).collect()
+    }
+
+    /// Where node `id` was last drawn, in graph coordinates.
+    pub fn drawn(&self, id: egui_snarl::NodeId) -> Option<Rect> {
+        self.rects.get(&id).copied()
     }
 
     /// After the graph is shown: puts back the modifiers [`Navigation::before`] changed.
@@ -220,6 +251,8 @@ impl Navigation {
             });
             if down {
                 self.transform.translation += delta;
+                // The drag is the pan's: no node under the pointer moves with it.
+                ctx.set_dragged_id(egui::Id::new("veneer pan"));
             } else {
                 self.panning = false;
             }

@@ -50,3 +50,21 @@ pub fn graph_style(style: &Style) -> SnarlStyle {
     graph.header_frame = Some(node.fill(Color32::TRANSPARENT));
     graph
 }
+
+/// Paints the selection box `area` (on screen) over the graph, as egui-snarl draws its own.
+pub fn paint_selection_box(ui: &Ui, area: Rect) {
+    let layer = egui::LayerId::new(egui::Order::Foreground, egui::Id::new("selection box"));
+    let painter = ui.ctx().layer_painter(layer).with_clip_rect(ui.max_rect());
+    let selection = &ui.visuals().selection;
+    let stroke = egui::Stroke::new(
+        selection.stroke.width,
+        selection.stroke.color.gamma_multiply(0.5),
+    );
+    painter.rect(
+        area,
+        0.0,
+        selection.bg_fill.gamma_multiply(0.3),
+        stroke,
+        egui::StrokeKind::Inside,
+    );
+}

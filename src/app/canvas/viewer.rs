@@ -14,21 +14,35 @@ use egui_snarl::ui::{AnyPins, PinInfo, SnarlPin, SnarlViewer};
 use egui_snarl::{InPin, InPinId, OutPin, OutPinId, Snarl};
 use std::collections::BTreeMap;
 
+/// What the graph's nodes, pins and menus asked for this frame.
+#[derive(Default)]
+pub struct Asked {
+    /// A message for the status bar (e.g. why a wire was refused).
+    pub hint: Option<String>,
+    /// Set when a wire is dropped on empty canvas: the add-node search opens for it.
+    pub dropped: Option<DroppedWire>,
+    /// The node a primary click landed on (the topmost one under it).
+    pub clicked: Option<egui_snarl::NodeId>,
+    /// The nodes a node menu's *Duplicate* added.
+    pub duplicated: Option<Vec<egui_snarl::NodeId>>,
+    /// What wires dropped on a boundary node's "+" declared.
+    pub declared: Vec<Declared>,
+    /// An inner input chosen for *Expose as group input*.
+    pub expose: Option<InPinId>,
+    /// What a group node's context menu asked.
+    pub group_action: Option<GroupAction>,
+}
+
 /// The snarl viewer: how nodes, pins and menus look and what edits do.
 pub struct Viewer<'a> {
     /// Compile errors by node, shown on the nodes.
     pub errors: &'a BTreeMap<Option<NodeId>, String>,
     /// Numerical hazards by node, shown on the nodes.
     pub warnings: &'a BTreeMap<NodeId, String>,
-    /// A message for the status bar (e.g. why a wire was refused).
-    pub hint: &'a mut Option<String>,
-    /// Set when a wire is dropped on empty canvas: the add-node search opens for it.
-    pub dropped: &'a mut Option<DroppedWire>,
-    /// The node selected by a plain click (snarl itself selects only with Shift or a
-    /// rectangle); set here when a node is clicked this frame.
-    pub clicked: &'a mut Option<egui_snarl::NodeId>,
-    /// The node selected before this frame, drawn highlighted.
-    pub selected: Option<egui_snarl::NodeId>,
+    /// Receives what the nodes and menus asked.
+    pub asked: &'a mut Asked,
+    /// The active node (the inspector's), its title drawn highlighted.
+    pub active: Option<egui_snarl::NodeId>,
     /// The view's transform (which this viewer imposes on the snarl) and node sizes.
     pub navigation: &'a mut crate::app::canvas::navigation::Navigation,
     /// Comment frames to draw behind the nodes.
@@ -41,12 +55,6 @@ pub struct Viewer<'a> {
     pub in_group: bool,
     /// The graph's node groups (duplicated group nodes take their pins).
     pub groups: &'a BTreeMap<String, crate::graph::group::GroupDef>,
-    /// What wires dropped on a boundary node's "+" declared this frame.
-    pub declared: &'a mut Vec<Declared>,
-    /// An inner input chosen for *Expose as group input*.
-    pub expose: &'a mut Option<InPinId>,
-    /// What a group node's context menu asked.
-    pub group_action: &'a mut Option<GroupAction>,
 }
 
 impl SnarlViewer<Node> for Viewer<'_> {
@@ -126,8 +134,7 @@ impl SnarlViewer<Node> for Viewer<'_> {
                     .is_none_or(|layer| layer.order == egui::Order::Background)
         });
         if clicked {
-            *self.clicked = Some(node);
-            ui.ctx().request_repaint();
+            self.asked.clicked = Some(node);
         }
     }
 
@@ -140,7 +147,7 @@ impl SnarlViewer<Node> for Viewer<'_> {
         snarl: &mut Snarl<Node>,
     ) {
         let node = &snarl[id];
-        let selected = self.selected == Some(id);
+        let selected = self.active == Some(id);
         ui.horizontal(|ui| {
             let title = RichText::new(node.title()).strong().size(
                 crate::app::canvas::navigation::title_size(self.navigation.transform.scaling),
@@ -211,7 +218,7 @@ impl SnarlViewer<Node> for Viewer<'_> {
         if exposable {
             name.context_menu(|ui| {
                 if ui.button("Expose as group input").clicked() {
-                    *self.expose = Some(pin.id);
+                    self.asked.expose = Some(pin.id);
                     ui.close();
                 }
             });
@@ -257,20 +264,22 @@ impl SnarlViewer<Node> for Viewer<'_> {
             || crate::app::canvas::boundary::is_add_pin(&snarl[to.id.node], input.name)
         {
             match scope::expose(snarl, from.id, to.id) {
-                Some(declared) => self.declared.push(declared),
-                None => *self.hint = Some("cannot connect: wire a + pin to an inner pin".into()),
+                Some(declared) => self.asked.declared.push(declared),
+                None => {
+                    self.asked.hint = Some("cannot connect: wire a + pin to an inner pin".into())
+                }
             }
             return;
         }
         if !output.ty.converts_to(input.ty) {
-            *self.hint = Some(format!(
+            self.asked.hint = Some(format!(
                 "cannot connect: '{}' gives {} but '{}' expects {}",
                 output.name, output.ty, input.name, input.ty
             ));
             return;
         }
         if would_cycle(snarl, from.id.node, to.id.node) {
-            *self.hint = Some("cannot connect: the wire would make a cycle".into());
+            self.asked.hint = Some("cannot connect: the wire would make a cycle".into());
             return;
         }
         snarl.drop_inputs(to.id);
@@ -280,7 +289,7 @@ impl SnarlViewer<Node> for Viewer<'_> {
     /// A wire dropped on empty canvas opens the add-node search (the app's, at the mouse)
     /// offering only the kinds it can attach to; snarl's own menu stays shut.
     fn has_dropped_wire_menu(&mut self, src_pins: AnyPins, snarl: &mut Snarl<Node>) -> bool {
-        *self.dropped = match src_pins {
+        self.asked.dropped = match src_pins {
             AnyPins::Out(pins @ [pin, ..]) => Some(DroppedWire::Out(
                 Dangling::FromOutput(snarl[pin.node].kind.signature().outputs[pin.output].ty),
                 pins.to_vec(),
@@ -327,11 +336,11 @@ impl SnarlViewer<Node> for Viewer<'_> {
     ) {
         if crate::app::canvas::boundary::is_instance(&snarl[node]) {
             if ui.button("Edit group (Tab)").clicked() {
-                *self.group_action = Some(GroupAction::Enter(node));
+                self.asked.group_action = Some(GroupAction::Enter(node));
                 ui.close();
             }
             if ui.button("Ungroup (Alt+G)").clicked() {
-                *self.group_action = Some(GroupAction::Ungroup(node));
+                self.asked.group_action = Some(GroupAction::Ungroup(node));
                 ui.close();
             }
             ui.separator();
@@ -339,7 +348,8 @@ impl SnarlViewer<Node> for Viewer<'_> {
         if ui.button("Duplicate").clicked() {
             // Where the menu opened (where the node was right-clicked), in graph space.
             let at = self.navigation.transform.inverse() * ui.min_rect().min;
-            crate::app::canvas::clipboard::duplicate(snarl, &[node], at, self.groups);
+            let copies = crate::app::canvas::clipboard::duplicate(snarl, &[node], at, self.groups);
+            self.asked.duplicated = Some(copies);
             ui.close();
         }
         let id = snarl[node].id;

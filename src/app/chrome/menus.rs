@@ -97,7 +97,9 @@ impl VeneerApp {
             self.ungroup_selection();
         }
         let pressed = |modifiers, key| pressed(KeyboardShortcut::new(modifiers, key));
-        if pressed(Modifiers::NONE, Key::Delete) || pressed(Modifiers::NONE, Key::Backspace) {
+        // (Not while typing: a field or the add-node search has the keys then.)
+        let delete = [Key::Delete, Key::Backspace, Key::X];
+        if delete.into_iter().any(|key| pressed(Modifiers::NONE, key)) {
             for node in self.editable_selection() {
                 self.canvas.snarl.remove_node(node);
             }
@@ -345,14 +347,17 @@ impl VeneerApp {
                 }
             }
             ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
-                // The nodes of the level shown.
-                let graph = &self.session.document.graph;
+                // The nodes of the level shown, as the graph view has them now (the
+                // document takes its edits in at the end of the frame).
+                let count = self
+                    .canvas
+                    .snarl
+                    .nodes()
+                    .filter(|node| crate::app::canvas::boundary::boundary(node).is_none())
+                    .count();
                 let nodes = match self.canvas.scope.current() {
-                    Some(name) => {
-                        let count = graph.groups.get(name).map_or(0, |group| group.nodes.len());
-                        format!("{} in {name}", counted(count, "node"))
-                    }
-                    None => counted(graph.nodes.len(), "node"),
+                    Some(name) => format!("{} in {name}", counted(count, "node")),
+                    None => counted(count, "node"),
                 };
                 ui.weak(format!(
                     "{nodes} · {}",

@@ -52,10 +52,13 @@ impl VeneerApp {
             let now = Instant::now();
             std::mem::replace(&mut clock, now).elapsed()
         };
-        let pointer_down = ctx.input(|input| input.pointer.any_down());
+        // Nodes following the mouse (a grab) are an edit in progress, like a drag: read
+        // back as the mouse moves, committed once put down.
+        let grabbing = self.canvas.grab.is_moving();
+        let pointer_down = ctx.input(|input| input.pointer.any_down()) || grabbing;
         // The first frame takes in the graph the editor opened on.
         let touched = std::mem::take(&mut self.session.revision.touched);
-        if self.session.revision.number == 0 || touched || may_edit(ctx) {
+        if self.session.revision.number == 0 || touched || may_edit(ctx) || grabbing {
             self.session.revision.reads += 1;
             let graph = self.shown_graph();
             if graph != self.session.document.graph {
@@ -65,6 +68,9 @@ impl VeneerApp {
             if self.session.document.graph != self.session.revision.seen {
                 self.session.revision.seen = self.session.document.graph.clone();
                 self.session.revision.number += 1;
+                // What was drawn before the graph view (the status bar, the inspector)
+                // shows the change in the next frame.
+                ctx.request_repaint();
             }
             // Saving (and undoing to what was saved) changes this without an edit.
             self.session.dirty = self.session.document.is_dirty();

@@ -612,6 +612,23 @@ impl SnarlWidget {
     }
 }
 
+impl SnarlWidget {
+    /// Makes `nodes` the selection of the `SnarlWidget` with the same id, before it is
+    /// shown with the same `Ui` (Veneer's patch: the application keeps the selection,
+    /// and the widget draws it and drags it).
+    #[inline]
+    pub fn set_selected_nodes(self, ui: &Ui, nodes: &[NodeId]) {
+        let snarl_id = self.get_id(ui.id());
+        ui.ctx().data_mut(|d| {
+            if nodes.is_empty() {
+                d.remove_temp::<SelectedNodes>(snarl_id);
+            } else {
+                d.insert_temp(snarl_id, SelectedNodes(nodes.to_smallvec()));
+            }
+        });
+    }
+}
+
 /// Returns nodes selected in the UI for the `SnarlWidget` with same ID.
 ///
 /// Only works if [`SnarlWidget::id`] was used.
