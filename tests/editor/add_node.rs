@@ -41,6 +41,22 @@ pub fn hover(harness: &mut Editor, pos: Pos2) {
     harness.run();
 }
 
+/// Ctrl+C: the text the editor put on the clipboard (the selected nodes as RON).
+pub fn copy(harness: &mut Editor) -> String {
+    harness.event(Event::Copy);
+    harness.step();
+    harness
+        .output()
+        .platform_output
+        .commands
+        .iter()
+        .find_map(|command| match command {
+            egui::OutputCommand::CopyText(text) => Some(text.clone()),
+            _ => None,
+        })
+        .expect("Ctrl+C copied the selected nodes")
+}
+
 /// A new, almost empty graph (the material output only).
 fn new_graph(harness: &mut Editor) {
     press(harness, Key::N, true);
@@ -299,18 +315,7 @@ fn pasted_and_duplicated_nodes_land_at_the_mouse_in_their_layout() {
         modifiers: Modifiers::NONE,
     });
     harness.run();
-    harness.event(Event::Copy);
-    harness.step();
-    let copied = harness
-        .output()
-        .platform_output
-        .commands
-        .iter()
-        .find_map(|command| match command {
-            egui::OutputCommand::CopyText(text) => Some(text.clone()),
-            _ => None,
-        })
-        .expect("Ctrl+C copied the selected node");
+    let copied = copy(&mut harness);
     assert!(
         copied.contains("nodes"),
         "Ctrl+C copied {copied:?}, not the node"

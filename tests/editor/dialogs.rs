@@ -359,28 +359,18 @@ fn node_left_of(harness: &Editor, max_x: f32) -> (String, egui::Pos2) {
     panic!("no node title left of x = {max_x}");
 }
 
-/// Whether the inspector shows the node titled `title` (its label field holds it).
-fn inspected(harness: &Editor, title: &str) -> bool {
-    harness
-        .query_by(|node| {
-            node.role() == egui::accesskit::Role::TextInput
-                && node.value().as_deref() == Some(title)
-        })
-        .is_some()
-}
-
 #[test]
 fn dialogs_are_modal_clicks_do_not_reach_the_graph() {
     let dir = scratch("dialog-modal");
     let mut harness = editor(&dir, None);
     // Left of the dialog, which is centred in the 1400 px window.
     let (title, position) = node_left_of(&harness, 400.0);
-    assert!(!inspected(&harness, &title));
+    assert!(!crate::support::inspects(&harness, &title));
     press(&mut harness, egui::Key::O, true);
     assert!(dialog_up(&harness, "Open graph"));
     click_at(&mut harness, position);
     assert!(
-        !inspected(&harness, &title),
+        !crate::support::inspects(&harness, &title),
         "a click beside the dialog selected '{title}' under it"
     );
     assert!(dialog_up(&harness, "Open graph"), "the dialog stays up");
@@ -389,7 +379,10 @@ fn dialogs_are_modal_clicks_do_not_reach_the_graph() {
     key(&mut harness, egui::Key::Escape);
     // Without the dialog the same click selects the node.
     click_at(&mut harness, position);
-    assert!(inspected(&harness, &title), "the click selects '{title}'");
+    assert!(
+        crate::support::inspects(&harness, &title),
+        "the click selects '{title}'"
+    );
     press(&mut harness, egui::Key::O, true);
     key(&mut harness, egui::Key::Delete);
     assert_eq!(harness.state().document().graph.nodes.len(), nodes);

@@ -57,7 +57,7 @@ pub fn drag(
 }
 
 /// The labels of the selected nodes, sorted.
-fn selected(harness: &Harness<'static, VeneerApp>) -> Vec<String> {
+pub fn selected(harness: &Harness<'static, VeneerApp>) -> Vec<String> {
     let mut labels = harness.state().selected_labels();
     labels.sort();
     labels

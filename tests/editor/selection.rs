@@ -5,9 +5,9 @@
 //! until a click (Escape puts it back). Alt+drag pans and never moves a node; a right
 //! click on empty canvas opens the add-node search, which takes the typing.
 
-use crate::add_node::{Editor, focused_field, hover, key, newest, typing};
-use crate::navigation::{GRAPH_AREA, drag, on_screen};
-use crate::support::{flat_wood_editor, press, scratch, shows};
+use crate::add_node::{Editor, copy, focused_field, hover, key, newest, typing};
+use crate::navigation::{GRAPH_AREA, drag, on_screen, selected};
+use crate::support::{flat_wood_editor, inspects, press, scratch, shows};
 use egui::{Event, Key, Modifiers, PointerButton, Pos2, Rect, vec2};
 use egui_kittest::kittest::Queryable;
 use veneer::graph::NodeId;
@@ -39,23 +39,6 @@ fn click_title(harness: &mut Editor, title: &str, modifiers: Modifiers) {
 /// The labels of the selected nodes, in selection order (the active one last).
 fn selection(harness: &Editor) -> Vec<String> {
     harness.state().selected_labels()
-}
-
-/// The labels of the selected nodes, sorted.
-fn selected(harness: &Editor) -> Vec<String> {
-    let mut labels = selection(harness);
-    labels.sort();
-    labels
-}
-
-/// Whether the inspector shows the node labelled `label` (its label field holds it).
-fn inspects(harness: &Editor, label: &str) -> bool {
-    harness
-        .query_by(|node| {
-            node.role() == egui::accesskit::Role::TextInput
-                && node.value().as_deref() == Some(label)
-        })
-        .is_some()
 }
 
 /// The id of the node labelled `label`, if the graph has one.
@@ -284,18 +267,7 @@ fn pasted_and_added_nodes_become_the_selection_clear_of_the_others() {
     let (none, shift) = (Modifiers::NONE, Modifiers::SHIFT);
     click_title(&mut harness, "trunk", none);
     click_title(&mut harness, "tint space", shift);
-    harness.event(Event::Copy);
-    harness.step();
-    let copied = harness
-        .output()
-        .platform_output
-        .commands
-        .iter()
-        .find_map(|command| match command {
-            egui::OutputCommand::CopyText(text) => Some(text.clone()),
-            _ => None,
-        })
-        .expect("Ctrl+C copied the selection");
+    let copied = copy(&mut harness);
     harness.run();
     let before: Vec<NodeId> = harness
         .state()

@@ -139,13 +139,20 @@ pub fn wheel_notch(harness: &mut Harness<'static, VeneerApp>) {
 /// inspector now shows that node (its label field holds the title).
 pub fn select_node(harness: &mut Harness<'static, VeneerApp>, title: &str) {
     click_node(harness, title);
-    let inspected = harness
+    assert!(
+        inspects(harness, title),
+        "clicking '{title}' did not select it"
+    );
+}
+
+/// Whether the inspector shows the node labelled `label` (its label field holds it).
+pub fn inspects(harness: &Harness<'static, VeneerApp>, label: &str) -> bool {
+    harness
         .query_by(|node| {
             node.role() == egui::accesskit::Role::TextInput
-                && node.value().as_deref() == Some(title)
+                && node.value().as_deref() == Some(label)
         })
-        .is_some();
-    assert!(inspected, "clicking '{title}' did not select it");
+        .is_some()
 }
 
 /// Clicks the node whose title is `title` in the graph panel.
