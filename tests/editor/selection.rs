@@ -259,6 +259,11 @@ fn duplicates_become_the_selection_and_follow_the_mouse_until_a_click() {
     hover(&mut harness, mouse);
     assert_eq!(newest(&harness).position, second.position, "and it stays");
     assert_eq!(harness.state().selected_nodes(), [second.id]);
+    // Deleted while they follow the mouse, copies are let go of: the next click selects.
+    key(&mut harness, Modifiers::COMMAND, Key::D, None);
+    press(&mut harness, Key::Delete, false);
+    click_title(&mut harness, "trunk", Modifiers::NONE);
+    assert_eq!(selection(&harness), ["trunk"]);
 }
 
 #[test]

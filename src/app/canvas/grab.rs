@@ -52,9 +52,15 @@ impl Grab {
             self.claim_drag(ctx);
             return true;
         }
-        let Some((placed, mouse)) = &self.moving else {
+        let Some((placed, mouse)) = &mut self.moving else {
             return false;
         };
+        // Nodes deleted while they followed the mouse are let go of.
+        placed.retain(|(id, _)| snarl.get_node(*id).is_some());
+        if placed.is_empty() {
+            self.moving = None;
+            return false;
+        }
         let (pointer, put_down, cancel) = ctx.input(|input| {
             let pointer = &input.pointer;
             (

@@ -8,7 +8,6 @@ use super::shot::{diff, free_spots};
 use veneer::graph::NodeKind;
 
 #[test]
-#[ignore = "issue 30: fails until a right click on empty canvas opens the add-node search"]
 fn a_right_click_opens_the_search_and_typing_goes_into_it_in_a_real_window() {
     require_tools();
     let mut session = Session::start("right_click_search");

@@ -12,7 +12,6 @@ const WAYS: [(&[&str], &str); 2] = [
 ];
 
 #[test]
-#[ignore = "issue 30: fails until pasted and duplicated nodes land clear of others and are selected"]
 fn pasted_and_duplicated_nodes_land_clear_and_are_selected_in_a_real_window() {
     require_tools();
     let mut session = Session::start("paste_and_duplicate");

@@ -4,7 +4,6 @@ use super::canvas::{four_nodes, id};
 use super::session::{Session, require_tools};
 
 #[test]
-#[ignore = "issue 30: fails until an Alt+drag that starts on a node leaves the node where it is"]
 fn alt_drag_on_a_node_pans_the_view_and_leaves_the_node_in_a_real_window() {
     require_tools();
     let mut session = Session::start("alt_drag_on_a_node");

@@ -6,7 +6,6 @@ use super::session::{Session, require_tools};
 use veneer::graph::NodeKind;
 
 #[test]
-#[ignore = "issue 30: fails until a click selects the clicked node alone and X deletes"]
 fn a_click_after_a_rectangle_selects_one_node_and_delete_or_x_deletes_it_in_a_real_window() {
     require_tools();
     let mut session = Session::start("click_after_rectangle");
