@@ -157,8 +157,8 @@ pub fn inspects(harness: &Harness<'static, VeneerApp>, label: &str) -> bool {
 
 /// Clicks the node whose title is `title` in the graph panel.
 pub fn click_node(harness: &mut Harness<'static, VeneerApp>, title: &str) {
-    // Node widgets report their bounds in graph coordinates: click where they are on screen.
-    let position = harness.state().graph_to_screen() * harness.get_by_label(title).rect().center();
+    // The title (a group output may be named after the node too), where it is on screen.
+    let position = crate::navigation::on_screen(harness, title).center();
     harness.event(egui::Event::PointerMoved(position));
     for pressed in [true, false] {
         let button = egui::PointerButton::Primary;

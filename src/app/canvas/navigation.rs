@@ -71,9 +71,10 @@ pub struct Navigation {
     /// Where a left-drag that began on empty canvas began (graph coordinates): it draws
     /// a selection box. A click there is an empty box.
     boxing: Option<Pos2>,
-    /// The box let go of this frame (graph coordinates), and whether a right click on
-    /// empty canvas came this frame.
-    released: (Option<Rect>, bool),
+    /// The box let go of this frame (graph coordinates).
+    box_released: Option<Rect>,
+    /// A right click on empty canvas came this frame.
+    right_click: bool,
     /// Every node's rectangle when last drawn, in graph coordinates.
     rects: std::collections::HashMap<egui_snarl::NodeId, Rect>,
     /// Where the graph is on screen (`None` before the first frame).
@@ -131,10 +132,11 @@ impl Navigation {
             let origin = ctx.input(|input| input.pointer.press_origin()).or(pointer);
             self.boxing = origin.map(|pos| to_graph * pos);
         }
-        self.released = (None, secondary && empty);
+        self.right_click = secondary && empty;
+        self.box_released = None;
         if released && let Some(origin) = self.boxing.take() {
             let end = pointer.map_or(origin, |pos| to_graph * pos);
-            self.released.0 = Some(Rect::from_two_pos(origin, end));
+            self.box_released = Some(Rect::from_two_pos(origin, end));
         }
         if (empty && !ctx.input(|input| input.pointer.any_down())) || self.boxing.is_some() {
             ctx.input_mut(|input| {
@@ -149,12 +151,12 @@ impl Navigation {
     /// The selection box let go of this frame, in graph coordinates (a click on empty
     /// canvas is an empty one).
     pub fn released_box(&self) -> Option<Rect> {
-        self.released.0
+        self.box_released
     }
 
     /// Whether a right click on empty canvas came this frame.
     pub fn right_clicked_empty_canvas(&self) -> bool {
-        self.released.1
+        self.right_click
     }
 
     /// The selection box being drawn, on screen.
