@@ -72,8 +72,7 @@ impl Canvas {
     /// New nodes (added, pasted, duplicated) are moved clear of the others and become
     /// the selection.
     pub fn placed(&mut self, nodes: Vec<egui_snarl::NodeId>) {
-        let navigation = &self.navigation;
-        placement::clear_of(&mut self.snarl, &nodes, |id| navigation.drawn(id));
+        placement::clear_of(&mut self.snarl, &nodes);
         self.selection.set(nodes);
     }
 }

@@ -172,11 +172,6 @@ impl Navigation {
         nodes.map(|(id, _)| *id).collect()
     }
 
-    /// Where node `id` was last drawn, in graph coordinates.
-    pub fn drawn(&self, id: egui_snarl::NodeId) -> Option<Rect> {
-        self.rects.get(&id).copied()
-    }
-
     /// After the graph is shown: puts back the modifiers [`Navigation::before`] changed.
     pub fn after(&self, ctx: &Context, modifiers: egui::Modifiers) {
         ctx.input_mut(|input| input.modifiers = modifiers);
