@@ -26,7 +26,7 @@ pub fn value_editor(ui: &mut Ui, value: &mut Value, range: PinRange) -> bool {
                 .range(range.min..=range.max)
                 .clamp_existing_to_range(false)
                 .min_decimals(1)
-                .max_decimals(4),
+                .max_decimals(3),
         );
         if response.dragged() && response.changed() && ui.input(|i| i.modifiers.ctrl) {
             let snap = range.snap();

@@ -141,7 +141,7 @@ fn tab_enters_the_group_and_leaves_it() {
 
     // An edit inside changes the definition (and is one undo step).
     select_node(&mut harness, "shade");
-    retype_drag_value(&mut harness, "0.30", "0.5");
+    retype_drag_value(&mut harness, "0.300", "0.5");
     let definition = &harness.state().document().graph.groups["group"];
     let scale = definition
         .nodes

@@ -260,7 +260,7 @@ fn a_parameter_edit_redraws_only_the_tiles_it_reaches_without_recompiling() {
         .id;
 
     select_node(&mut harness, "tint amount");
-    retype_drag_value(&mut harness, "0.10", "0.3");
+    retype_drag_value(&mut harness, "0.100", "0.3");
     settle(&mut harness);
     let app = harness.state();
     let redrawn: BTreeSet<NodeId> = app
