@@ -55,6 +55,7 @@ impl VeneerApp {
             spots: canvas.spots.clone(),
             in_group,
             groups: &graph.groups,
+            shading: graph.shading,
         };
         *canvas.spots.borrow_mut() = Default::default();
         // In big graphs nodes off screen are not laid out at all (our egui-snarl patch).

@@ -8,7 +8,7 @@ use crate::app::canvas::snarl_model::would_cycle;
 use crate::app::canvas::wires::{PinSide, SpottedPin};
 use crate::app::inspector::group::GroupAction;
 use crate::app::widgets::{input_editor, type_color};
-use crate::graph::{Node, NodeId, PinDefault};
+use crate::graph::{Node, NodeId, NodeKind, PinDefault};
 use egui::{Color32, Pos2, RichText, Ui};
 use egui_snarl::ui::{AnyPins, PinInfo, SnarlPin, SnarlViewer};
 use egui_snarl::{InPin, InPinId, OutPin, OutPinId, Snarl};
@@ -55,6 +55,8 @@ pub struct Viewer<'a> {
     pub in_group: bool,
     /// The graph's node groups (duplicated group nodes take their pins).
     pub groups: &'a BTreeMap<String, crate::graph::group::GroupDef>,
+    /// The material's shading: the inputs its lighting does not read are greyed out.
+    pub shading: crate::graph::Shading,
 }
 
 impl SnarlViewer<Node> for Viewer<'_> {
@@ -157,7 +159,14 @@ impl SnarlViewer<Node> for Viewer<'_> {
             } else {
                 title
             })
-            .on_hover_text(crate::app::canvas::node_text::kind_tip(&node.kind));
+            .on_hover_text(match node.kind {
+                NodeKind::Material => format!(
+                    "{}\nshaded {} (the preview's shading menu)",
+                    crate::app::canvas::node_text::kind_tip(&node.kind),
+                    self.shading.name()
+                ),
+                _ => crate::app::canvas::node_text::kind_tip(&node.kind),
+            });
             if let Some(warning) = self.warnings.get(&node.id) {
                 ui.label(RichText::new("⚠").color(Color32::from_rgb(230, 180, 60)))
                     .on_hover_text(warning);
@@ -208,9 +217,19 @@ impl SnarlViewer<Node> for Viewer<'_> {
                 .on_hover_text("drop a wire from an inner output here to add a group output");
             return self.pin(spec.ty, PinSide::In(pin.id));
         }
+        let ignored = node.kind == NodeKind::Material && !self.shading.reads(spec.name);
+        let label = if ignored {
+            RichText::new(spec.name).weak()
+        } else {
+            RichText::new(spec.name)
+        };
+        let mut tip = crate::app::canvas::node_text::input_tip(&spec);
+        if ignored {
+            tip = format!("{tip}\nnot read by the {} shading", self.shading.name());
+        }
         let name = ui
-            .add(egui::Label::new(spec.name).sense(egui::Sense::click()))
-            .on_hover_text(crate::app::canvas::node_text::input_tip(&spec));
+            .add(egui::Label::new(label).sense(egui::Sense::click()))
+            .on_hover_text(tip);
         let exposable = self.in_group
             && pin.remotes.is_empty()
             && crate::app::canvas::boundary::boundary(node).is_none()
