@@ -185,7 +185,7 @@ impl Thumbnails {
         let generation = self.atlas.generation;
         let changed = self
             .tiles
-            .to_send(|pin| tile_key(&upstream, pin, generation, rect));
+            .take_changed(|pin| tile_key(&upstream, pin, generation, rect));
         let tiles: Vec<_> = changed
             .into_iter()
             .map(|index| (index, tile_params(&values, slots, &self.selectors, index)))

@@ -66,7 +66,7 @@ impl Tiles {
 
     /// The tiles whose `key` (what they depend on) changed since they were last sent,
     /// marked as sent with it.
-    pub fn to_send(&mut self, key: impl Fn(&PinRef) -> u64) -> Vec<usize> {
+    pub fn take_changed(&mut self, key: impl Fn(&PinRef) -> u64) -> Vec<usize> {
         let mut changed = Vec::new();
         for (index, pin) in self.pins.iter().enumerate() {
             let key = key(pin);
