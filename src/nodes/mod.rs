@@ -234,6 +234,12 @@ pub enum Body<'a> {
     },
 }
 
+impl Body<'_> {
+    /// The size the editor draws a body picture at in a node, in canvas units (the
+    /// layout's footprints reckon with it).
+    pub const SIZE: (f32, f32) = (160.0, 18.0);
+}
+
 /// CPU evaluation, generic over the precision (f32 like the GPU, f64 as the reference).
 pub trait Evaluate {
     /// The outputs, each as three lanes, given the inputs.

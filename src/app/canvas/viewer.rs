@@ -192,7 +192,7 @@ impl SnarlViewer<Node> for Viewer<'_> {
         snarl: &mut Snarl<Node>,
     ) {
         if let Some(body) = snarl[id].kind.definition().body() {
-            crate::app::inspector::body::show_body(ui, &body, 160.0);
+            crate::app::inspector::body::show_body(ui, &body, crate::nodes::Body::SIZE.0);
         }
     }
 

@@ -16,7 +16,7 @@ pub fn show_body(ui: &mut Ui, body: &Body<'_>, width: f32) {
 
 /// A bar of `colour` from 0 to 1, with a tick at each of `ticks`.
 fn gradient(ui: &mut Ui, colour: &dyn Fn(f64) -> [f64; 3], ticks: &[f64], width: f32) {
-    let (rect, _) = ui.allocate_exact_size(vec2(width, 18.0), Sense::hover());
+    let (rect, _) = ui.allocate_exact_size(vec2(width, Body::SIZE.1), Sense::hover());
     let painter = ui.painter();
     for slice in 0..SLICES {
         let (from, to) = (

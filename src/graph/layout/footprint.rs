@@ -5,7 +5,8 @@
 //! drawn (the editor's tests measure it), so footprints that do not intersect are nodes
 //! that do not overlap on screen.
 
-use crate::graph::{Node, NodeId, NodeKind, PinDefault, Value, Wire};
+use crate::graph::{Node, NodeId, PinDefault, Value, Wire};
+use crate::nodes::Body;
 use std::collections::HashSet;
 
 /// Widths of the printable ASCII characters (space to `~`) in egui's proportional font
@@ -44,8 +45,7 @@ const PIN: f32 = 11.0;
 const FIELD: f32 = 40.0;
 const FIELD_PADDING: f32 = 8.0;
 const SWATCH: f32 = 40.0;
-/// The colour ramp's bar, and the thumbnail under the pins of a node with an output.
-const RAMP_BAR: (f32, f32) = (160.0, 18.0);
+/// The thumbnail under the pins of a node with an output.
 const THUMBNAIL: f32 = 64.0;
 
 /// A rectangle of the canvas, in canvas units.
@@ -113,10 +113,10 @@ impl Footprint {
             input_rows.fold(0.0, f32::max),
             output_rows.fold(0.0, f32::max),
         );
-        // The colour ramp draws its bar between its inputs and outputs.
-        let (bar_width, bar_height) = match node.kind {
-            NodeKind::ColorRamp(_) => (RAMP_BAR.0 + SPACE, RAMP_BAR.1),
-            _ => (0.0, 0.0),
+        // A body picture (the colour ramp's bar) sits between the inputs and outputs.
+        let (bar_width, bar_height) = match node.kind.definition().body() {
+            Some(_) => (Body::SIZE.0 + SPACE, Body::SIZE.1),
+            None => (0.0, 0.0),
         };
         let pins_width = inputs + SPACE + bar_width + outputs;
         let title = TITLE_LEAD + text_width(&node.title(), TITLE_SIZE) + SIGN;
@@ -246,7 +246,7 @@ mod tests {
         let mut graph = Graph::default();
         graph.add("", ramp);
         let pins = text_width("factor", TEXT_SIZE) + text_width("color", TEXT_SIZE);
-        assert!(alone(&graph, 0).width > RAMP_BAR.0 + pins + 2.0 * PIN);
+        assert!(alone(&graph, 0).width > Body::SIZE.0 + pins + 2.0 * PIN);
     }
 
     #[test]
