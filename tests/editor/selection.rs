@@ -417,3 +417,36 @@ fn the_status_bar_counts_the_nodes_in_the_frame_of_the_edit() {
     one_frame_key(&mut harness, Key::D, true);
     assert!(counts(&harness, count + 1), "in the frame of the duplicate");
 }
+
+#[test]
+fn ctrl_z_and_ctrl_d_leave_the_graph_alone_while_typing() {
+    let mut harness = flat_wood_editor(&scratch("sel-typing-ctrl"));
+    // Something to undo: a node deleted.
+    click_title(&mut harness, "ring sharp", Modifiers::NONE);
+    key(&mut harness, Modifiers::NONE, Key::X, Some("x"));
+    assert_eq!(node(&harness, "ring sharp"), None);
+    click_title(&mut harness, "tint space", Modifiers::NONE);
+    let before = harness.state().document().graph.clone();
+    harness
+        .get_all_by_value("tint space")
+        .next()
+        .expect("the label field")
+        .focus();
+    harness.run();
+    key(&mut harness, Modifiers::COMMAND, Key::Z, None);
+    key(&mut harness, Modifiers::COMMAND, Key::D, None);
+    assert_eq!(
+        harness.state().document().graph.nodes.len(),
+        before.nodes.len(),
+        "Ctrl+Z or Ctrl+D reached the graph while a field had the keyboard"
+    );
+    assert_eq!(node(&harness, "ring sharp"), None, "the graph's undo ran");
+    // Out of the field, Ctrl+Z undoes the deletion.
+    press(&mut harness, Key::Escape, false);
+    harness.run();
+    key(&mut harness, Modifiers::COMMAND, Key::Z, None);
+    assert!(
+        node(&harness, "ring sharp").is_some(),
+        "Ctrl+Z undid the deletion"
+    );
+}

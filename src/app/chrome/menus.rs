@@ -59,12 +59,8 @@ impl VeneerApp {
         let typing = ctx.memory(|memory| memory.focused().is_some());
         let pressed =
             |shortcut: KeyboardShortcut| ctx.input_mut(|input| input.consume_shortcut(&shortcut));
-        // Shift variants first: Ctrl+S also matches Ctrl+Shift+S.
-        if pressed(REDO) {
-            self.redo();
-        } else if pressed(UNDO) {
-            self.undo();
-        }
+        // Shift variants first: Ctrl+S also matches Ctrl+Shift+S. The file's commands
+        // work while a field has the keyboard.
         if pressed(SAVE_AS) {
             self.chrome.dialog = Some(Dialog::save_as(&self.session.document, None));
         } else if pressed(SAVE) {
@@ -81,6 +77,16 @@ impl VeneerApp {
         if pressed(NEW) {
             self.guard(Pending::New);
         }
+        // The graph's commands not while typing: Ctrl+Z undoes the text, Ctrl+D, Ctrl+J
+        // and Ctrl+G are no field's to take.
+        if typing {
+            return;
+        }
+        if pressed(REDO) {
+            self.redo();
+        } else if pressed(UNDO) {
+            self.undo();
+        }
         if pressed(DUPLICATE) {
             self.duplicate_at_mouse(ctx);
         }
@@ -89,9 +95,6 @@ impl VeneerApp {
         }
         if pressed(GROUP) {
             self.group_selection();
-        }
-        if typing {
-            return;
         }
         if pressed(UNGROUP) {
             self.ungroup_selection();
