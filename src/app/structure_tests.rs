@@ -8,18 +8,6 @@ use std::path::{Path, PathBuf};
 /// The most fields a struct of the editor has.
 const MAX_FIELDS: usize = 12;
 
-/// The top-level folders of `src/app` that `mod.rs` names without `crate::app::`.
-const PARTS: [&str; 8] = [
-    "canvas",
-    "chrome",
-    "inspector",
-    "preview",
-    "session",
-    "thumbnails",
-    "widgets",
-    "allocator",
-];
-
 /// Every `.rs` file under `dir`, with its module path below `crate::app` (`""` for
 /// `mod.rs` itself, `canvas::viewer`, `chrome::dialogs` for a folder's `mod.rs`).
 fn modules(dir: &Path, prefix: &str, found: &mut BTreeMap<String, PathBuf>) {
@@ -98,8 +86,9 @@ fn imports() -> BTreeMap<String, BTreeSet<String>> {
     for (module, path) in &found {
         let mut code = code(path);
         if module.is_empty() {
-            // `mod.rs` names its parts without the crate path.
-            for part in PARTS {
+            // `mod.rs` names its parts (the top-level modules) without the crate path.
+            let parts = found.keys().filter(|m| !m.is_empty() && !m.contains("::"));
+            for part in parts {
                 code = code.replace(&format!(" {part}::"), &format!(" crate::app::{part}::"));
                 code = code.replace(&format!("({part}::"), &format!("(crate::app::{part}::"));
             }
