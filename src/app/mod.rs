@@ -22,7 +22,7 @@ pub use session::document::Document;
 pub use thumbnails::{TILE_PIXELS, Thumbnails, placement, tile_params};
 
 use crate::graph::{AlphaMode, Graph, Shading};
-use canvas::navigation::{Framing, Navigation};
+use canvas::navigation::Framing;
 use canvas::snarl_model::snarl_from_graph;
 use chrome::dialogs::{Dialog, Pending};
 use egui::{Key, KeyboardShortcut, Modifiers, Ui};
@@ -117,7 +117,10 @@ impl VeneerApp {
     /// The document, to change it as a script or test does (the editor takes the change
     /// in on the next frame).
     pub fn document_mut(&mut self) -> &mut Document {
-        self.session.revision.touched = true;
+        let revision = &mut self.session.revision;
+        if revision.outside.is_none() {
+            revision.outside = Some(self.session.document.graph.clone());
+        }
         &mut self.session.document
     }
 
@@ -182,13 +185,13 @@ impl VeneerApp {
             self.preview.state.mesh = mesh;
             self.preview.state.file = None;
         }
-        self.canvas.scope = Default::default();
-        self.canvas.snarl = snarl_from_graph(&document.graph);
+        let generation = self.canvas.view_generation + 1;
+        self.canvas = canvas::Canvas::new(snarl_from_graph(&document.graph));
+        self.canvas.view_generation = generation;
         self.session.document = document;
-        self.canvas.selection.clear();
-        self.canvas.grab.forget();
-        self.canvas.navigation = Navigation::default();
-        self.canvas.navigation.frame(Framing::Open);
+        self.session.revision.outside = None;
+        self.session.revision.gesture = false;
+        self.session.revision.recheck();
         self.preview.live.update(&self.session.document.graph);
     }
 
@@ -267,7 +270,7 @@ impl VeneerApp {
             Ok(path) => {
                 self.remember(&path);
                 self.chrome.message = Some(format!("saved {}", path.display()));
-                self.session.autosave.forget();
+                self.session.saved();
             }
             Err(_) if self.session.document.path.is_none() => {
                 self.chrome.dialog = Some(Dialog::save_as(&self.session.document, then))
@@ -276,19 +279,11 @@ impl VeneerApp {
         }
     }
 
-    /// Undoes the last edit (inside a group too; a group undone away is left).
-    pub fn undo(&mut self) {
-        if let Some(graph) = self.session.document.history.undo() {
-            self.session.document.graph = graph;
-            self.rebuild_snarl();
-        }
-    }
-
-    /// Redoes the last undone edit.
-    pub fn redo(&mut self) {
-        if let Some(graph) = self.session.document.history.redo() {
-            self.session.document.graph = graph;
-            self.rebuild_snarl();
+    /// Makes `frames` the graph's comment frames: one edit, when they changed.
+    pub(in crate::app) fn set_frames(&mut self, frames: Vec<crate::graph::Frame>) {
+        if frames != self.session.document.graph.frames {
+            let setting = crate::graph::edit::GraphSetting::Frames(frames);
+            self.edit(crate::graph::edit::GraphEdit::Set(setting));
         }
     }
 
@@ -369,7 +364,8 @@ impl VeneerApp {
     }
 
     /// How many times the graph has changed since the editor started, and how many
-    /// frames read the graph view back to find out (frames without input never do).
+    /// frames took edits in from the graph view (frames where nothing was done to it
+    /// never do).
     pub fn revision(&self) -> (u64, u64) {
         (self.session.revision.number, self.session.revision.reads)
     }
@@ -407,7 +403,9 @@ impl VeneerApp {
                 ui.weak(
                     "Select a node to edit it. Right-click the graph (or press Space) to add one.",
                 );
-                inspector::frames::frames_editor(ui, &mut self.session.document.graph.frames);
+                let mut frames = self.session.document.graph.frames.clone();
+                inspector::frames::frames_editor(ui, &mut frames);
+                self.set_frames(frames);
             }
         }
     }
@@ -473,6 +471,7 @@ impl eframe::App for VeneerApp {
         let cpu_before = chrome::frame_clock::thread_cpu_time();
         let ctx = ui.ctx().clone();
         self.preview.previews.receive(&ctx);
+        self.before_edits(&ctx);
         self.shortcuts(&ctx);
         self.clipboard(&ctx);
         egui::Panel::top("menu").show(ui, |ui| self.menu_bar(ui));

@@ -61,14 +61,21 @@ pub fn input_value(node: &Node, pin: &str) -> Option<(Value, PinRange)> {
     Some((value, spec.range))
 }
 
-/// An editor for the constant of input `pin` of `node`; stores the value only when edited.
-pub fn input_editor(ui: &mut Ui, node: &mut Node, pin: &str) -> bool {
-    let Some((mut value, range)) = input_value(node, pin) else {
-        return false;
-    };
-    let changed = value_editor(ui, &mut value, range);
-    if changed {
-        node.inputs.insert(pin.to_string(), value);
+/// An editor for the constant of input `pin` of `node`: the value, when edited.
+pub fn input_editor(ui: &mut Ui, node: &Node, pin: &str) -> Option<Value> {
+    let (mut value, range) = input_value(node, pin)?;
+    value_editor(ui, &mut value, range).then_some(value)
+}
+
+/// Stores `value`, edited by [`input_editor`], as the constant of input `pin` of node
+/// `id` of `snarl` (the view's journal takes the edit to the document).
+pub fn store_input(
+    snarl: &mut egui_snarl::Snarl<Node>,
+    id: egui_snarl::NodeId,
+    pin: &str,
+    value: Option<Value>,
+) {
+    if let Some(value) = value {
+        snarl[id].inputs.insert(pin.to_string(), value);
     }
-    changed
 }

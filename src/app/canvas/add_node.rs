@@ -300,19 +300,17 @@ impl VeneerApp {
     fn add_entry(&mut self, entry: Entry, search: Search) {
         let added = match entry.item {
             Item::Frame => {
-                self.session
-                    .document
-                    .graph
-                    .frames
-                    .push(crate::graph::Frame {
-                        title: "Comment".into(),
-                        min: (search.graph.x - GRAB.x, search.graph.y - GRAB.y),
-                        max: (
-                            search.graph.x - GRAB.x + 400.0,
-                            search.graph.y - GRAB.y + 260.0,
-                        ),
-                        color: FRAME_COLOR,
-                    });
+                let mut frames = self.session.document.graph.frames.clone();
+                frames.push(crate::graph::Frame {
+                    title: "Comment".into(),
+                    min: (search.graph.x - GRAB.x, search.graph.y - GRAB.y),
+                    max: (
+                        search.graph.x - GRAB.x + 400.0,
+                        search.graph.y - GRAB.y + 260.0,
+                    ),
+                    color: FRAME_COLOR,
+                });
+                self.set_frames(frames);
                 return;
             }
             Item::FrameSelection => {
@@ -367,7 +365,11 @@ impl VeneerApp {
             return;
         }
         match frame_around(&self.canvas.snarl, &self.canvas.selection, "Comment") {
-            Some(frame) => self.session.document.graph.frames.push(frame),
+            Some(frame) => {
+                let mut frames = self.session.document.graph.frames.clone();
+                frames.push(frame);
+                self.set_frames(frames);
+            }
             None => self.chrome.message = Some("select the nodes to frame first".into()),
         }
     }

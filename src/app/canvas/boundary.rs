@@ -14,9 +14,6 @@ pub enum Boundary {
     Input,
     /// *Group output*: inputs are the group's outputs.
     Output,
-    /// The whole boundary as one node (inputs: the outputs, outputs: the inputs), for
-    /// edits that work on a definition as a graph of its own ([`as_graph`]).
-    Whole,
 }
 
 impl Boundary {
@@ -26,7 +23,6 @@ impl Boundary {
         match self {
             Boundary::Input => "<group input>",
             Boundary::Output => "<group output>",
-            Boundary::Whole => "<group boundary>",
         }
     }
 
@@ -34,7 +30,6 @@ impl Boundary {
         match self {
             Boundary::Input => "Group input",
             Boundary::Output => "Group output",
-            Boundary::Whole => "Group boundary",
         }
     }
 }
@@ -42,7 +37,7 @@ impl Boundary {
 /// Which boundary node `node` is, if it is one.
 pub fn boundary(node: &Node) -> Option<Boundary> {
     let name = group_name(node).filter(|_| node.id == BOUNDARY)?;
-    [Boundary::Input, Boundary::Output, Boundary::Whole]
+    [Boundary::Input, Boundary::Output]
         .into_iter()
         .find(|side| side.mark() == name)
 }

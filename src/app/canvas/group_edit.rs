@@ -7,50 +7,13 @@ use crate::app::canvas::scope::{self, Declared};
 use crate::app::canvas::snarl_model::next_node_id;
 use crate::app::inspector::group::GroupAction;
 use crate::app::inspector::group_interface::InterfaceEdit;
-use crate::graph::{Graph, Node, NodeId, NodeKind, group, group_interface, library};
+use crate::graph::edit::GraphEdit;
+use crate::graph::{Graph, Node, NodeId, NodeKind, group, library};
 use crate::nodes::Group;
 use egui::Pos2;
 use std::collections::BTreeSet;
 
 impl VeneerApp {
-    /// Runs `edit` on a copy of the whole graph, then takes the result in and shows
-    /// it: one undo step. When `edit` fails nothing changes.
-    pub(in crate::app) fn edit_document<T>(
-        &mut self,
-        edit: impl FnOnce(&mut Self, &mut Graph) -> Result<T, String>,
-    ) -> Result<T, String> {
-        self.sync_document();
-        let mut graph = self.session.document.graph.clone();
-        let done = edit(self, &mut graph)?;
-        group::resolve(&mut graph);
-        graph.canonicalize();
-        self.session.document.graph = graph;
-        self.rebuild_snarl();
-        Ok(done)
-    }
-
-    /// Runs `edit` on the level shown as a whole graph (a group's definition with its
-    /// boundary as one node), then shows the result: one undo step.
-    pub(in crate::app) fn edit_level<T>(
-        &mut self,
-        edit: impl FnOnce(&mut Graph) -> Result<T, String>,
-    ) -> Result<T, String> {
-        let shown = self.canvas.scope.current().map(str::to_string);
-        let done = self.edit_document(|app, graph| match shown {
-            None => edit(graph),
-            Some(name) => {
-                let (mut local, definition) =
-                    scope::as_graph(graph, &name).ok_or("the group shown is gone")?;
-                let done = edit(&mut local)?;
-                scope::put_back(graph, &name, definition, local);
-                app.unlink_edited(graph, &name);
-                Ok(done)
-            }
-        })?;
-        self.new_view();
-        Ok(done)
-    }
-
     /// The selected nodes of the level shown, less its boundary nodes.
     pub(in crate::app) fn editable_selection(&self) -> Vec<egui_snarl::NodeId> {
         self.canvas
@@ -92,15 +55,31 @@ impl VeneerApp {
                 .map(String::as_str),
             "group",
         );
-        match self.edit_level(|graph| group::group_nodes(graph, &chosen, &name)) {
-            Ok(instance) => {
-                self.select(instance);
-                self.chrome.message = Some(format!(
-                    "grouped {} into '{name}': Tab edits it, Alt+G ungroups it",
-                    crate::app::chrome::menus::counted(chosen.len(), "node")
-                ));
-            }
-            Err(error) => self.chrome.message = Some(format!("cannot group: {error}")),
+        let level = self.canvas.scope.level();
+        // The new node takes the next free id of the level.
+        self.take_in_view_edits();
+        let instance = NodeId(
+            self.canvas
+                .snarl
+                .nodes()
+                .map(|node| node.id.0)
+                .max()
+                .unwrap_or(0)
+                + 1,
+        );
+        let count = chosen.len();
+        let edit = GraphEdit::Group {
+            level,
+            nodes: chosen,
+            name: name.clone(),
+        };
+        if self.edit(edit) {
+            self.new_view();
+            self.select(instance);
+            self.chrome.message = Some(format!(
+                "grouped {} into '{name}': Tab edits it, Alt+G ungroups it",
+                crate::app::chrome::menus::counted(count, "node")
+            ));
         }
     }
 
@@ -122,13 +101,16 @@ impl VeneerApp {
             self.chrome.message = Some("nothing to ungroup: select a group node first".into());
             return;
         }
-        let done = self.edit_level(|graph| {
-            instances
-                .iter()
-                .try_for_each(|id| group::ungroup(graph, *id).map(drop))
-        });
-        if let Err(error) = done {
-            self.chrome.message = Some(format!("cannot ungroup: {error}"));
+        let level = self.canvas.scope.level();
+        let edits = instances
+            .into_iter()
+            .map(|node| GraphEdit::Ungroup {
+                level: level.clone(),
+                node,
+            })
+            .collect();
+        if self.edit(GraphEdit::Batch(edits)) {
+            self.new_view();
         }
     }
 
@@ -141,15 +123,18 @@ impl VeneerApp {
                 self.ungroup(instance.into_iter().collect());
             }
             GroupAction::MakeLocal(name) => {
-                if let Some(definition) = self.session.document.graph.groups.get_mut(&name) {
-                    definition.linked = false;
+                let edit = GraphEdit::SetLinked {
+                    group: name.clone(),
+                    linked: false,
+                };
+                if self.edit(edit) {
                     self.chrome.message = Some(format!(
                         "group '{name}' is local to this graph: library updates no longer apply"
                     ));
                 }
             }
             GroupAction::SaveToLibrary(name) => {
-                self.sync_document();
+                self.take_in_view_edits();
                 let Some(definition) = self.session.document.graph.groups.get(&name) else {
                     return;
                 };
@@ -161,28 +146,22 @@ impl VeneerApp {
         }
     }
 
-    /// Adds what wires dropped on "+" pins declared to the group shown.
+    /// Adds what wires dropped on "+" pins declared to the group shown (before the
+    /// view's wires to them are taken in).
     pub(in crate::app) fn declare(&mut self, declared: Vec<Declared>) {
         let Some(name) = self.canvas.scope.current().map(str::to_string) else {
             return;
         };
-        let Some(definition) = self.session.document.graph.groups.get_mut(&name) else {
-            return;
-        };
         for declaration in declared {
-            let added = match declaration {
-                Declared::Input(input) => {
-                    let text = format!("added input '{}' to group '{name}'", input.name);
-                    definition.inputs.push(input);
-                    text
-                }
-                Declared::Output(output) => {
-                    let text = format!("added output '{}' to group '{name}'", output.name);
-                    definition.outputs.push(output);
-                    text
-                }
+            let what = match &declaration {
+                Declared::Input(input) => format!("input '{}'", input.name),
+                Declared::Output(output) => format!("output '{}'", output.name),
             };
-            self.chrome.message = Some(added);
+            let edit = declaration.edit(&name, &self.session.document.graph);
+            self.chrome.message = Some(match self.commit(edit) {
+                Ok(_) => format!("added {what} to group '{name}'"),
+                Err(error) => format!("cannot add {what}: {error}"),
+            });
         }
     }
 
@@ -236,9 +215,34 @@ impl VeneerApp {
         name: &str,
         at: Pos2,
     ) -> Option<egui_snarl::NodeId> {
-        if let Err(message) = library::adopt(&mut self.session.document.graph, name) {
-            self.chrome.message = Some(message);
-            return None;
+        if !self.session.document.graph.groups.contains_key(name) {
+            // A linked copy of the library's.
+            let found = library::find(name).map_err(|error| error.to_string());
+            let definition = match found {
+                Ok(Some((mut definition, _))) => {
+                    definition.linked = true;
+                    definition
+                }
+                Ok(None) => {
+                    self.chrome.message = Some(format!(
+                        "no group named '{}' in the graph or the library",
+                        crate::graph::names::shown(name)
+                    ));
+                    return None;
+                }
+                Err(error) => {
+                    self.chrome.message = Some(error);
+                    return None;
+                }
+            };
+            let adopt = GraphEdit::SetGroup {
+                name: name.to_string(),
+                definition: Some(Box::new(definition)),
+            };
+            if let Err(error) = self.commit(adopt) {
+                self.chrome.message = Some(error);
+                return None;
+            }
         }
         let interfaces = group::interfaces(&self.session.document.graph.groups);
         let pins = match interfaces.as_ref().map(|all| all.get(name)) {
@@ -286,32 +290,34 @@ impl VeneerApp {
             .active()
             .and_then(|id| self.canvas.snarl.get_node(id));
         let side = selected.and_then(crate::app::canvas::boundary::boundary);
-        let done = self.edit_document(|app, graph| {
-            app.unlink_edited(graph, &name);
-            match edit {
-                InterfaceEdit::Rename { side, old, new } => {
-                    group_interface::rename(graph, &name, side, &old, &new)?;
-                    Ok(Some(format!(
-                        "renamed '{old}' to '{new}' in group '{name}'"
-                    )))
-                }
-                InterfaceEdit::Remove { side, name: pin } => {
-                    group_interface::remove(graph, &name, side, &pin)?;
-                    Ok(Some(format!("removed '{pin}' from group '{name}'")))
-                }
-                InterfaceEdit::Input { name: pin, input } => {
-                    let definition = graph.groups.get_mut(&name);
-                    let declared = definition
-                        .and_then(|definition| definition.inputs.iter_mut().find(|i| i.name == pin))
-                        .ok_or(format!("group '{name}' has no input '{pin}'"))?;
-                    *declared = input;
-                    Ok(None)
-                }
-            }
-        });
-        match done {
-            Ok(message) => self.chrome.message = message.or(self.chrome.message.take()),
-            Err(error) => self.chrome.message = Some(error),
+        let (edit, message) = match edit {
+            InterfaceEdit::Rename { side, old, new } => (
+                GraphEdit::RenameGroupPin {
+                    group: name.clone(),
+                    side,
+                    old: old.clone(),
+                    new: new.clone(),
+                },
+                Some(format!("renamed '{old}' to '{new}' in group '{name}'")),
+            ),
+            InterfaceEdit::Remove { side, name: pin } => (
+                GraphEdit::RemoveGroupPin {
+                    group: name.clone(),
+                    side,
+                    name: pin.clone(),
+                },
+                Some(format!("removed '{pin}' from group '{name}'")),
+            ),
+            InterfaceEdit::Input { input, .. } => (
+                GraphEdit::SetGroupInput {
+                    group: name.clone(),
+                    input,
+                },
+                None,
+            ),
+        };
+        if self.edit(edit) {
+            self.chrome.message = message.or(self.chrome.message.take());
         }
         let boundary = side.and_then(|side| scope::boundary_in(&self.canvas.snarl, side));
         self.canvas.selection.set(boundary);

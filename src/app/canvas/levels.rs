@@ -1,52 +1,17 @@
 //! The level of the graph the view shows: the top level, or the definition of a group
 //! entered with Tab (groups nest; Tab or the breadcrumb goes back up). The document
-//! always holds the whole graph: while a group is shown, every frame's edits are
-//! written into its definition, so the preview, undo and saving see them at once.
+//! always holds the whole graph: while a group is shown, the view's edits are edits of
+//! its definition, so the preview, undo and saving see them at once.
 
 use crate::app::VeneerApp;
 use crate::app::canvas::navigation::{Framing, Navigation};
 use crate::app::canvas::scope::{self, Level};
-use crate::app::canvas::snarl_model::{graph_from_snarl, snarl_from_graph};
-use crate::graph::{Graph, NodeId, group};
+use crate::app::canvas::snarl_model::snarl_from_graph;
+use crate::app::canvas::view_edits::Shown;
+use crate::graph::{NodeId, group};
 use egui::Rect;
 
 impl VeneerApp {
-    /// The whole graph as the graph view shows it now (the level shown written into
-    /// its place).
-    pub(in crate::app) fn shown_graph(&mut self) -> Graph {
-        let Some(name) = self.canvas.scope.current().map(str::to_string) else {
-            return graph_from_snarl(&self.canvas.snarl, &self.session.document.graph);
-        };
-        let mut graph = self.session.document.graph.clone();
-        if scope::write_back(&mut graph, &name, &self.canvas.snarl) {
-            self.unlink_edited(&mut graph, &name);
-            group::resolve(&mut graph);
-        }
-        graph
-    }
-
-    /// Reads the graph view back into the document.
-    pub(in crate::app) fn sync_document(&mut self) {
-        let graph = self.shown_graph();
-        if graph != self.session.document.graph {
-            self.session.document.graph = graph;
-        }
-    }
-
-    /// A linked group takes the library's version when its graph is loaded: one edited
-    /// here stops following the library, so that the edits are kept.
-    pub(in crate::app) fn unlink_edited(&mut self, graph: &mut Graph, name: &str) {
-        if let Some(definition) = graph.groups.get_mut(name)
-            && definition.linked
-        {
-            definition.linked = false;
-            self.chrome.message = Some(format!(
-                "group '{name}' is local to this graph now (edited): library updates no \
-                 longer apply; Save to library shares the edits"
-            ));
-        }
-    }
-
     /// Shows the document at the level shown (the top level when that group is gone),
     /// the nodes selected before still selected.
     pub(in crate::app) fn rebuild_snarl(&mut self) {
@@ -71,6 +36,7 @@ impl VeneerApp {
             }
             None => snarl_from_graph(&self.session.document.graph),
         };
+        self.canvas.shown = Shown::of(&self.canvas.snarl);
         let ids: std::collections::HashMap<NodeId, egui_snarl::NodeId> = self
             .canvas
             .snarl
@@ -134,7 +100,7 @@ impl VeneerApp {
             instance: instance.id,
             view: self.canvas.navigation.transform,
         };
-        self.sync_document();
+        self.take_in_view_edits();
         self.canvas.scope.levels.push(level);
         self.rebuild_snarl();
         self.new_view();
@@ -148,7 +114,7 @@ impl VeneerApp {
         if depth >= self.canvas.scope.levels.len() {
             return;
         }
-        self.sync_document();
+        self.take_in_view_edits();
         let left = self.canvas.scope.levels.split_off(depth);
         self.rebuild_snarl();
         self.new_view();

@@ -1,4 +1,6 @@
-//! The graph canvas: the node view (an egui-snarl view of the document's graph), its
+//! The graph canvas: the node view (an egui-snarl view of the document's graph, whose
+//! changes become graph edits: `view_edits`, and which follows the document's:
+//! `snarl_patch`), its
 //! navigation, selection, the add-node search, the clipboard, wires and group levels.
 
 pub(in crate::app) mod add_node;
@@ -16,6 +18,8 @@ pub(in crate::app) mod placement;
 pub(in crate::app) mod scope;
 pub(in crate::app) mod selection;
 pub(in crate::app) mod snarl_model;
+pub(in crate::app) mod snarl_patch;
+pub(in crate::app) mod view_edits;
 pub(in crate::app) mod viewer;
 pub(in crate::app) mod wire_pointer;
 pub(in crate::app) mod wires;
@@ -48,6 +52,8 @@ pub(in crate::app) struct Canvas {
     pub add: add_node::AddNode,
     /// Duplicates following the mouse until a click.
     pub grab: grab::Grab,
+    /// Which graph node each node of the view shows.
+    pub shown: view_edits::Shown,
 }
 
 impl Canvas {
@@ -56,7 +62,6 @@ impl Canvas {
         let mut navigation = navigation::Navigation::default();
         navigation.frame(navigation::Framing::Open);
         Canvas {
-            snarl,
             spots: Default::default(),
             hovered_wire: None,
             node_drag: None,
@@ -66,6 +71,8 @@ impl Canvas {
             navigation,
             add: Default::default(),
             grab: Default::default(),
+            shown: view_edits::Shown::of(&snarl),
+            snarl,
         }
     }
 

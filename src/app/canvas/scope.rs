@@ -6,7 +6,7 @@
 //! from the view are the definition's wires as they are stored.
 
 use crate::app::canvas::boundary::{ADD_PIN, Boundary, boundary, is_add_pin};
-use crate::app::canvas::snarl_model::{graph_from_snarl, insert_graph};
+use crate::app::canvas::snarl_model::insert_graph;
 use crate::app::widgets::input_value;
 use crate::graph::group::{BOUNDARY, GroupDef, GroupInput, GroupOutput, Hint, group_name};
 use crate::graph::{Graph, Node, NodeId, NodeKind, Value, ValueType};
@@ -40,6 +40,14 @@ impl Scope {
         self.levels.last().map(|level| level.group.as_str())
     }
 
+    /// The level of the graph shown, as graph edits name it.
+    pub fn level(&self) -> crate::graph::edit::Level {
+        match self.current() {
+            Some(name) => crate::graph::edit::Level::Group(name.to_string()),
+            None => crate::graph::edit::Level::Top,
+        }
+    }
+
     /// Drops the levels from the first whose group `graph` no longer has (after an undo
     /// or a load); returns whether it dropped any.
     pub fn keep_existing(&mut self, graph: &Graph) -> bool {
@@ -56,12 +64,12 @@ impl Scope {
 
 /// The boundary node `side` of `definition`.
 fn boundary_node(side: Boundary, definition: &GroupDef) -> Node {
-    let add = || (side != Boundary::Whole).then_some(intern(ADD_PIN));
+    let add = || std::iter::once((intern(ADD_PIN), ValueType::Float));
     let inputs: Vec<InputPin> = definition
         .outputs
         .iter()
         .map(|output| (intern(&output.name), output.ty))
-        .chain(add().map(|name| (name, ValueType::Float)))
+        .chain(add())
         .map(|(name, ty)| InputPin {
             name,
             ty,
@@ -73,13 +81,12 @@ fn boundary_node(side: Boundary, definition: &GroupDef) -> Node {
         .inputs
         .iter()
         .map(|input| (intern(&input.name), input.ty))
-        .chain(add().map(|name| (name, ValueType::Float)))
+        .chain(add())
         .map(|(name, ty)| OutputPin { name, ty })
         .collect();
     let pins = match side {
         Boundary::Input => Signature::new(Vec::new(), outputs),
         Boundary::Output => Signature::new(inputs, Vec::new()),
-        Boundary::Whole => Signature::new(inputs, outputs),
     };
     let mut node = Node::new(
         BOUNDARY,
@@ -93,7 +100,7 @@ fn boundary_node(side: Boundary, definition: &GroupDef) -> Node {
 }
 
 /// A snarl showing group `group` of `graph`: its nodes at their places, *Group input*
-/// on their left and *Group output* on their right.
+/// on their left and *Group output* on their right (its journal empty).
 pub fn snarl_for_group(graph: &Graph, group: &str) -> Option<Snarl<Node>> {
     let definition = graph.groups.get(group)?;
     let crosses =
@@ -155,68 +162,9 @@ pub fn snarl_for_group(graph: &Graph, group: &str) -> Option<Snarl<Node>> {
             snarl.connect(OutPinId { node: from, output }, InPinId { node: to, input });
         }
     }
+    // Building the view is no edit.
+    snarl.take_journal();
     Some(snarl)
-}
-
-/// Writes what `snarl` (a view made by [`snarl_for_group`]) shows into group `group`
-/// of `graph`; returns whether the definition changed.
-pub fn write_back(graph: &mut Graph, group: &str, snarl: &Snarl<Node>) -> bool {
-    let Some(definition) = graph.groups.get_mut(group) else {
-        return false;
-    };
-    let stored = Graph {
-        wires: definition.wires.clone(),
-        ..Graph::default()
-    };
-    let view = graph_from_snarl(snarl, &stored);
-    let nodes: Vec<Node> = view
-        .nodes
-        .into_iter()
-        .filter(|node| boundary(node).is_none())
-        .collect();
-    let mut before = Graph {
-        nodes: definition.nodes.clone(),
-        wires: definition.wires.clone(),
-        ..Graph::default()
-    };
-    before.canonicalize();
-    if before.nodes == nodes && before.wires == view.wires {
-        return false;
-    }
-    definition.nodes = nodes;
-    definition.wires = view.wires;
-    true
-}
-
-/// Group `group` of `graph` as a graph of its own, for edits that work on a whole
-/// graph (grouping, ungrouping): its nodes, the boundary as one node of id
-/// [`BOUNDARY`], its wires, and the graph's other groups. Returns it and the
-/// definition's declarations, for [`put_back`].
-pub fn as_graph(graph: &Graph, group: &str) -> Option<(Graph, GroupDef)> {
-    let mut groups = graph.groups.clone();
-    let definition = groups.remove(group)?;
-    let mut nodes = definition.nodes.clone();
-    nodes.push(boundary_node(Boundary::Whole, &definition));
-    let local = Graph {
-        nodes,
-        wires: definition.wires.clone(),
-        groups,
-        ..Graph::default()
-    };
-    Some((local, definition))
-}
-
-/// Puts a graph made by [`as_graph`] (and edited) back as group `group` of `graph`,
-/// with the groups it has now.
-pub fn put_back(graph: &mut Graph, group: &str, mut definition: GroupDef, local: Graph) {
-    definition.nodes = local
-        .nodes
-        .into_iter()
-        .filter(|node| node.id != BOUNDARY)
-        .collect();
-    definition.wires = local.wires;
-    graph.groups = local.groups;
-    graph.groups.insert(group.to_string(), definition);
 }
 
 /// Whether group `outer` uses group `inner`, directly or through other groups (or is it).
@@ -243,6 +191,28 @@ pub enum Declared {
     Input(GroupInput),
     /// A new group output (a wire into *Group output*'s "+").
     Output(GroupOutput),
+}
+
+impl Declared {
+    /// The edit that declares it in group `group` of `graph`, after the pins there.
+    pub fn edit(self, group: &str, graph: &Graph) -> crate::graph::edit::GraphEdit {
+        let declared = graph.groups.get(group);
+        let (index, pin) = match self {
+            Declared::Input(input) => (
+                declared.map_or(0, |group| group.inputs.len()),
+                crate::graph::edit::GroupPin::Input(input),
+            ),
+            Declared::Output(output) => (
+                declared.map_or(0, |group| group.outputs.len()),
+                crate::graph::edit::GroupPin::Output(output),
+            ),
+        };
+        crate::graph::edit::GraphEdit::AddGroupPin {
+            group: group.to_string(),
+            index,
+            pin,
+        }
+    }
 }
 
 /// A wire from `from` to `to` where one end is a boundary node's "+": declares a group
@@ -366,6 +336,7 @@ pub fn boundary_in(snarl: &Snarl<Node>, side: Boundary) -> Option<egui_snarl::No
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::app::canvas::snarl_model::graph_from_snarl;
 
     /// The wood preset, as the editor keeps it: one `ring_wood` group node.
     fn wood() -> Graph {
@@ -376,13 +347,23 @@ mod tests {
 
     #[test]
     fn a_group_read_back_from_its_view_is_unchanged() {
-        let mut graph = wood();
+        let graph = wood();
         let snarl = snarl_for_group(&graph, "ring_wood").expect("the group");
         let sides: Vec<_> = snarl.nodes().filter_map(boundary).collect();
         assert_eq!(sides, [Boundary::Input, Boundary::Output]);
-        let before = graph.clone();
-        assert!(!write_back(&mut graph, "ring_wood", &snarl));
-        assert_eq!(graph, before);
+        let definition = &graph.groups["ring_wood"];
+        let stored = Graph {
+            wires: definition.wires.clone(),
+            ..Graph::default()
+        };
+        let view = graph_from_snarl(&snarl, &stored);
+        let inner: Vec<Node> = view
+            .nodes
+            .into_iter()
+            .filter(|node| boundary(node).is_none())
+            .collect();
+        assert!(inner == definition.nodes);
+        assert!(view.wires == definition.wires);
     }
 
     #[test]
@@ -404,21 +385,39 @@ mod tests {
             node: shade,
             input: b,
         };
-        let Some(Declared::Input(declared)) = expose(&mut snarl, from, to) else {
+        let declared = expose(&mut snarl, from, to).expect("a declaration");
+        let Declared::Input(declared_input) = &declared else {
             panic!("no input declared");
         };
-        assert_eq!(declared.name, "b");
-        assert_eq!(declared.default, Value::Float(0.95), "the pin's value");
+        assert_eq!(declared_input.name, "b");
+        assert_eq!(
+            declared_input.default,
+            Value::Float(0.95),
+            "the pin's value"
+        );
         let pins = snarl[input].kind.signature();
         assert_eq!(pins.outputs[plus].name, "b", "the new pin comes before +");
         assert_eq!(pins.outputs.last().map(|pin| pin.name), Some(ADD_PIN));
-        graph
-            .groups
-            .get_mut("ring_wood")
-            .unwrap()
-            .inputs
-            .push(declared);
-        assert!(write_back(&mut graph, "ring_wood", &snarl));
+        let level = crate::graph::edit::Level::Group("ring_wood".into());
+        let declare = declared.edit("ring_wood", &graph);
+        crate::graph::edit::apply(&mut graph, declare).expect("declared");
+        let journal = snarl.take_journal();
+        let mut shown = crate::app::canvas::view_edits::Shown::of(&snarl);
+        let before = graph.clone();
+        let edits = crate::app::canvas::view_edits::edits_from_journal(
+            &journal,
+            &snarl,
+            &mut shown,
+            &level,
+            |id| {
+                before.groups["ring_wood"]
+                    .nodes
+                    .iter()
+                    .find(|node| node.id == id)
+            },
+        );
+        crate::graph::edit::apply(&mut graph, crate::graph::edit::GraphEdit::Batch(edits))
+            .expect("the wire from the new input");
         let wires = &graph.groups["ring_wood"].wires;
         assert!(
             wires.iter().any(|wire| wire.from.node == BOUNDARY

@@ -7,12 +7,14 @@ use egui_snarl::Snarl;
 use egui_snarl::{InPinId, OutPinId};
 use std::collections::BTreeMap;
 
-/// A snarl showing `graph`, nodes at their saved positions.
+/// A snarl showing `graph`, nodes at their saved positions (its journal empty).
 pub fn snarl_from_graph(graph: &Graph) -> Snarl<Node> {
     let mut snarl = Snarl::new();
     insert_graph(&mut snarl, graph, |_, node| {
         (node.clone(), Pos2::new(node.position.0, node.position.1))
     });
+    // Building the view is no edit.
+    snarl.take_journal();
     snarl
 }
 

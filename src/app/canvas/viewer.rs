@@ -7,7 +7,7 @@ use crate::app::canvas::scope::{self, Declared};
 use crate::app::canvas::snarl_model::would_cycle;
 use crate::app::canvas::wires::{PinSide, SpottedPin};
 use crate::app::inspector::group::GroupAction;
-use crate::app::widgets::{input_editor, type_color};
+use crate::app::widgets::{input_editor, store_input, type_color};
 use crate::graph::{Node, NodeId, NodeKind, PinDefault};
 use egui::{Color32, Pos2, RichText, Ui};
 use egui_snarl::ui::{AnyPins, PinInfo, SnarlPin, SnarlViewer};
@@ -210,7 +210,7 @@ impl SnarlViewer<Node> for Viewer<'_> {
         ui: &mut Ui,
         snarl: &mut Snarl<Node>,
     ) -> impl SnarlPin + 'static {
-        let node = &mut snarl[pin.id.node];
+        let node = &snarl[pin.id.node];
         let spec = node.kind.signature().inputs[pin.id.input];
         if crate::app::canvas::boundary::is_add_pin(node, spec.name) {
             ui.weak(spec.name)
@@ -245,7 +245,8 @@ impl SnarlViewer<Node> for Viewer<'_> {
         if pin.remotes.is_empty() {
             match spec.default {
                 PinDefault::Const(_) => {
-                    input_editor(ui, node, spec.name);
+                    let edited = input_editor(ui, node, spec.name);
+                    store_input(snarl, pin.id.node, spec.name, edited);
                 }
                 PinDefault::Position => {
                     ui.weak("position");

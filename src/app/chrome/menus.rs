@@ -251,13 +251,8 @@ impl VeneerApp {
                 }
                 ui.separator();
                 if ui.button("Arrange nodes").clicked() {
-                    let arranged = self.edit_level(|graph| {
-                        crate::graph::layout::arrange(graph);
-                        Ok(())
-                    });
-                    if let Err(error) = arranged {
-                        self.chrome.message = Some(error);
-                    }
+                    let level = self.canvas.scope.level();
+                    self.edit(crate::graph::edit::GraphEdit::Arrange { level });
                     self.canvas.navigation.frame(Framing::All);
                 }
             });

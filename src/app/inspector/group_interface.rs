@@ -46,9 +46,6 @@ pub fn show(ui: &mut Ui, side: Boundary, definition: &GroupDef) -> Option<Interf
         }
     }
     if side != Boundary::Input {
-        if side == Boundary::Whole {
-            ui.separator();
-        }
         ui.label(RichText::new("Group outputs").strong());
         ui.label(RichText::new("Drop a wire from an inner output on the + pin to add one.").weak());
         for output in &definition.outputs {

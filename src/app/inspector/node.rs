@@ -2,7 +2,7 @@
 //! values, colour pickers, enum choices, colour-ramp stops, and a "connect from" choice
 //! per input.
 
-use crate::app::widgets::{input_editor, type_color};
+use crate::app::widgets::{input_editor, store_input, type_color};
 use crate::graph::{Node, PinDefault, RampInterpolation, RampStop, ValueType};
 use crate::nodes::settings::{RAMP_INTERPOLATIONS, Setting};
 use egui::{ComboBox, RichText, Ui};
@@ -179,7 +179,8 @@ pub fn show(
     error: Option<&String>,
     warning: Option<&String>,
 ) {
-    let Some(node) = snarl.get_node_mut(id) else {
+    // Edited as a copy, put back when changed: the view's journal then lists it.
+    let Some(mut node) = snarl.get_node(id).cloned() else {
         return;
     };
     ui.horizontal(|ui| {
@@ -199,9 +200,12 @@ pub fn show(
             format!("⚠ {warning}"),
         );
     }
-    settings(ui, node);
-    ui.separator();
+    settings(ui, &mut node);
     let inputs = node.kind.signature().inputs;
+    if node != snarl[id] {
+        snarl[id] = node;
+    }
+    ui.separator();
     for (index, pin) in inputs.iter().enumerate() {
         let pin_id = InPinId {
             node: id,
@@ -241,7 +245,8 @@ pub fn show(
                 }
             }
             if chosen.is_none() && matches!(pin.default, PinDefault::Const(_)) {
-                input_editor(ui, &mut snarl[id], pin.name);
+                let edited = input_editor(ui, &snarl[id], pin.name);
+                store_input(snarl, id, pin.name, edited);
             }
         });
     }

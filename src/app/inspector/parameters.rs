@@ -3,9 +3,10 @@
 //! parameter presets. Values go through `graph::parameters`, as the command line's do.
 
 use crate::app::VeneerApp;
+use crate::graph::edit::{GraphEdit, Level};
 use crate::graph::group::Hint;
-use crate::graph::parameters::{self, Exposed, Given, ParameterError};
-use crate::graph::{Graph, Value, ValueType};
+use crate::graph::parameters::{self, Exposed, Given};
+use crate::graph::{Value, ValueType};
 use egui::Ui;
 
 impl VeneerApp {
@@ -38,8 +39,9 @@ impl VeneerApp {
                                 }
                             }
                         });
-                    if let Some(name) = chosen {
-                        self.change_parameters(|graph| parameters::apply_preset(graph, &name));
+                    if let Some(name) = chosen
+                        && self.edit(GraphEdit::ApplyPreset { name: name.clone() })
+                    {
                         self.chrome.message = Some(format!("applied preset '{name}'"));
                     }
                 }
@@ -52,10 +54,7 @@ impl VeneerApp {
                                 .on_hover_text(format!("--set {}=…", entry.name));
                             let mut value = entry.value;
                             if parameter_editor(ui, entry, &mut value) {
-                                let given = Given::of(&value);
-                                self.change_parameters(|graph| {
-                                    parameters::set(graph, &entry.name, &given)
-                                });
+                                self.set_parameter(entry, &value);
                             }
                             ui.end_row();
                         }
@@ -63,25 +62,19 @@ impl VeneerApp {
             });
     }
 
-    /// Applies `change` to the document's parameters (top-level inputs): into the
-    /// graph view's nodes when it shows the top level, so that the edit is read back
-    /// with the others (one undo step for a whole drag).
-    fn change_parameters(&mut self, change: impl FnOnce(&mut Graph) -> Result<(), ParameterError>) {
-        let mut graph = self.session.document.graph.clone();
-        if let Err(error) = change(&mut graph) {
-            self.chrome.message = Some(error.to_string());
-            return;
-        }
-        if self.canvas.scope.current().is_some() {
-            self.session.document.graph = graph;
-            return;
-        }
-        for (_, shown) in self.canvas.snarl.nodes_ids_mut() {
-            if let Some(changed) = graph.node(shown.id)
-                && changed.inputs != shown.inputs
-            {
-                shown.inputs = changed.inputs.clone();
+    /// Sets exposed parameter `entry` to `value`, checked against its type and range
+    /// as the command line's `--set` is: an edit of the input it stands for.
+    fn set_parameter(&mut self, entry: &Exposed, value: &Value) {
+        match entry.value_of(&Given::of(value)) {
+            Ok(value) => {
+                self.edit(GraphEdit::SetInput {
+                    level: Level::Top,
+                    node: entry.target.node,
+                    pin: entry.target.pin.clone(),
+                    value: Some(value),
+                });
             }
+            Err(error) => self.chrome.message = Some(error.to_string()),
         }
     }
 }

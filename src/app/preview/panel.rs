@@ -4,6 +4,7 @@
 use crate::app::preview::frame_cache::{FIELD_VIEW_GENERATIONS, material_frame};
 use crate::app::preview::{fields, probe, state};
 use crate::app::*;
+use crate::graph::edit::{GraphEdit, GraphSetting};
 use crate::render::{Backdrop, ToneMap};
 
 impl VeneerApp {
@@ -166,11 +167,9 @@ impl VeneerApp {
         });
         self.surface_settings(ui);
         self.lighting_settings(ui);
-        fields::fields_panel(
-            ui,
-            &mut self.session.document.graph.preview.fields,
-            &mut self.preview.fields,
-        );
+        let mut shown_fields = self.session.document.graph.preview.fields.clone();
+        fields::fields_panel(ui, &mut shown_fields, &mut self.preview.fields);
+        self.set_preview(|preview| preview.fields = shown_fields);
         self.preview.state.tick(std::time::Instant::now());
         if self.preview.state.playing {
             ui.ctx().request_repaint();
@@ -283,8 +282,11 @@ impl VeneerApp {
 
     /// The material's shading and alpha mode and the preview's adaptive tessellation.
     fn surface_settings(&mut self, ui: &mut Ui) {
+        let graph = &self.session.document.graph;
+        let (mut shading, mut alpha) = (graph.shading, graph.alpha);
+        let mut tessellation = graph.preview.tessellation;
         ui.horizontal(|ui| {
-            let shading = &mut self.session.document.graph.shading;
+            let shading = &mut shading;
             egui::ComboBox::from_id_salt("shading")
                 .selected_text(shading.name())
                 .show_ui(ui, |ui| {
@@ -294,7 +296,7 @@ impl VeneerApp {
                 })
                 .response
                 .on_hover_text("Blinn-Phong: albedo, specular and shininess under the seeds' lighting; metallic-roughness: base colour, metallic, roughness and occlusion shaded by GGX, as glTF and the engines do");
-            let alpha = &mut self.session.document.graph.alpha;
+            let alpha = &mut alpha;
             let name = |mode: &AlphaMode| match mode {
                 AlphaMode::Mask { .. } => "cut out",
                 AlphaMode::Blend => "blend",
@@ -331,7 +333,7 @@ impl VeneerApp {
                     *cutoff = value;
                 }
             }
-            let tessellation = &mut self.session.document.graph.preview.tessellation;
+            let tessellation = &mut tessellation;
             let mut on = tessellation.is_some();
             if ui
                 .checkbox(&mut on, "tessellate")
@@ -349,6 +351,24 @@ impl VeneerApp {
                 );
             }
         });
+        let graph = &self.session.document.graph;
+        if shading != graph.shading {
+            self.edit(GraphEdit::Set(GraphSetting::Shading(shading)));
+        }
+        if alpha != self.session.document.graph.alpha {
+            self.edit(GraphEdit::Set(GraphSetting::Alpha(alpha)));
+        }
+        self.set_preview(|preview| preview.tessellation = tessellation);
+    }
+
+    /// Changes the graph's preview settings as `change` does: one edit, when it changes
+    /// something.
+    fn set_preview(&mut self, change: impl FnOnce(&mut crate::graph::Preview)) {
+        let mut preview = self.session.document.graph.preview.clone();
+        change(&mut preview);
+        if preview != self.session.document.graph.preview {
+            self.edit(GraphEdit::Set(GraphSetting::Preview(preview)));
+        }
     }
 
     /// Over the bottom of the preview: why the material's distance fields could not be
@@ -429,7 +449,7 @@ impl VeneerApp {
         let Some(mesh) = prepared.or_else(|| self.preview.state.plain_mesh()) else {
             return;
         };
-        let fields = &mut self.session.document.graph.preview.fields;
+        let mut fields = self.session.document.graph.preview.fields.clone();
         // Sources count vertices as the mesh file lists them.
         if let (Some(vertex), Some(field)) = (
             crate::mesh::pick_vertex(&mesh, origin, direction),
@@ -437,6 +457,7 @@ impl VeneerApp {
         ) {
             fields::toggle_source(field, mesh.file_vertex(vertex));
             self.chrome.message = Some(format!("field {slot}: {} sources", field.sources.len()));
+            self.set_preview(|preview| preview.fields = fields);
         }
     }
 }

@@ -22,7 +22,7 @@ impl VeneerApp {
             Action::SaveAs(path, then) => {
                 let saved = self.session.document.save_as(&path).map(|()| {
                     self.remember(&path);
-                    self.session.autosave.forget();
+                    self.session.saved();
                     Some(format!("saved {}", path.display()))
                 });
                 if let (Ok(_), Some(pending)) = (&saved, then) {

@@ -1,8 +1,8 @@
 //! The graph being edited: where it lives on disk, whether it has unsaved changes, and
-//! its undo history.
+//! its undo history, made of the edits ([`GraphEdit`]) that change it.
 
-use crate::app::session::history::History;
 use crate::graph::Graph;
+use crate::graph::edit::{Change, EditError, GraphEdit, History};
 use std::path::{Path, PathBuf};
 
 /// A graph open in the editor.
@@ -13,6 +13,7 @@ pub struct Document {
     /// The graph as last loaded or saved, to tell whether it is dirty (`None`: never
     /// saved as it is, like recovered work).
     saved: Option<Graph>,
+    /// Undo and redo: the edits that take each step back.
     pub history: History,
 }
 
@@ -24,7 +25,7 @@ impl Document {
         graph.canonicalize();
         Document {
             saved: Some(graph.clone()),
-            history: History::new(graph.clone()),
+            history: History::new(),
             graph,
             path,
         }
@@ -36,10 +37,16 @@ impl Document {
         graph.canonicalize();
         Document {
             saved: None,
-            history: History::new(graph.clone()),
+            history: History::new(),
             graph,
             path,
         }
+    }
+
+    /// Carries out `edit` on the graph and records its undo (a step of its own, or part
+    /// of the gesture under way); a refused edit changes nothing. Returns what changed.
+    pub fn apply(&mut self, edit: GraphEdit) -> Result<Vec<Change>, EditError> {
+        self.history.apply(&mut self.graph, edit)
     }
 
     /// Whether the graph differs from what was last loaded or saved.

@@ -2,9 +2,9 @@
 //! actions that save and export it.
 
 pub(in crate::app) mod actions;
+pub(in crate::app) mod commands;
 pub(in crate::app) mod document;
 pub(in crate::app) mod export_job;
-pub(in crate::app) mod history;
 pub(in crate::app) mod recovery;
 pub(in crate::app) mod sync;
 
@@ -45,5 +45,12 @@ impl Session {
             dirty: false,
             export: None,
         }
+    }
+
+    /// The document was just saved: nothing to recover, and its dirty mark is worked
+    /// out again.
+    pub fn saved(&mut self) {
+        self.autosave.forget();
+        self.revision.recheck();
     }
 }

@@ -1,90 +1,118 @@
-//! Keeping the document in step with the graph view after each frame's panels, and
-//! measuring where the main thread's time goes. Whole-graph work happens only on frames
-//! where the user may have edited (input arrived) and, past the cheap comparison that
-//! finds an edit, only when something changed: each change bumps the graph's revision,
-//! and the compile, the lint, the thumbnails, the undo history and the title follow it.
+//! Keeping the followers of the document in step after each frame's panels, and
+//! measuring where the main thread's time goes. Every change is an edit
+//! ([`crate::graph::edit::GraphEdit`], `session::commands`) that bumps the revision and
+//! says what it changed: a structure change recompiles, a value does not, and the lint,
+//! the thumbnails, the dirty mark and the title follow the revision. No frame compares
+//! or copies the whole graph to find out whether something changed.
 
 use crate::app::VeneerApp;
 use crate::app::chrome::frame_clock::FrameProfile;
-use crate::graph::{Graph, NodeId};
+use crate::graph::edit::{Change, Level};
+use crate::graph::{Graph, NodeId, NodeKind};
 use std::time::{Duration, Instant};
 
-/// The graph's revision: bumped on every change, and the revision each follower (the
-/// compile, the lint, the undo history) last took in.
+/// The graph's revision: bumped on every change, and what the followers (the compile,
+/// the lint, the dirty mark) last took in.
 #[derive(Default)]
 pub(in crate::app) struct Revision {
     pub number: u64,
-    /// Frames that read the graph view back (for tests: idle frames never do).
+    /// Frames that took edits in from the graph view (for tests: idle frames never do).
     pub reads: u64,
     /// The document was changed from outside the editor's own panels (a script or a
-    /// test): the next frame takes it in even without input.
-    pub touched: bool,
-    /// The graph at `number`, to tell a change from a frame that changed nothing.
-    seen: Graph,
-    /// The revision compiled, and with which noise detail (a setting of the preview's).
-    compiled: Option<(u64, bool)>,
+    /// test, through `document_mut`): the graph as it was before, to make the change
+    /// one undoable step on the next frame.
+    pub outside: Option<Graph>,
+    /// Whether a change since the last compile may change the code.
+    recompile: bool,
+    /// The noise detail compiled with (a setting of the preview's), `None` before the
+    /// first compile.
+    detail: Option<bool>,
     linted: u64,
-    committed: u64,
+    /// The revision whose dirty mark was worked out (`None`: work it out again, after
+    /// a save or a load).
+    dirty_known: Option<u64>,
+    /// Whether a gesture (a drag, a grab) is under way: its edits are one undo step.
+    pub gesture: bool,
 }
 
-/// Whether the user may have edited this frame: input other than pointer movement
-/// arrived, or a button is held or was let go (drags, clicks). Repaints for animation,
-/// the previews or thumbnails coming back do no whole-graph work.
-fn may_edit(ctx: &egui::Context) -> bool {
-    ctx.input(|input| {
-        input.pointer.any_down()
-            || input.pointer.any_released()
-            || input.events.iter().any(|event| {
-                !matches!(
-                    event,
-                    egui::Event::PointerMoved(_) | egui::Event::MouseMoved(_)
-                )
-            })
-    })
+impl Revision {
+    /// Takes in `changes` of one edit to `graph`: a new revision, compiled again when
+    /// the code may change (a structure or setting, or a constant of the material node,
+    /// which decides what its pipeline does).
+    pub fn changed(&mut self, changes: &[Change], graph: &Graph) {
+        if changes.is_empty() {
+            return;
+        }
+        self.number += 1;
+        self.recompile |= changes.iter().any(|change| match change {
+            Change::Structure | Change::Settings => true,
+            Change::Value {
+                level: Level::Top,
+                node,
+                ..
+            } => is_material(graph, *node),
+            Change::Value { .. } | Change::Layout => false,
+        });
+    }
+
+    /// The document was saved or replaced: its dirty mark is worked out again.
+    pub fn recheck(&mut self) {
+        self.dirty_known = None;
+    }
+}
+
+/// Whether node `id` of the top level is the material node.
+fn is_material(graph: &Graph, id: NodeId) -> bool {
+    graph
+        .node(id)
+        .is_some_and(|node| node.kind == NodeKind::Material)
 }
 
 impl VeneerApp {
-    /// After the panels: reads the edited graph back, recompiles if needed, commits undo
-    /// steps, autosaves (the frame's total is filled in when it ends).
+    /// Before the panels: a gesture starts when a button goes down (its edits are one
+    /// undo step).
+    pub(in crate::app) fn before_edits(&mut self, ctx: &egui::Context) {
+        if self.holding(ctx) {
+            self.begin_gesture();
+        }
+    }
+
+    /// After the panels: takes in the graph view's edits, recompiles if needed, ends the
+    /// gesture once let go, autosaves (the frame's total is filled in when it ends).
     pub(in crate::app) fn after_edits(&mut self, ctx: &egui::Context) {
         let mut clock = Instant::now();
         let mut lap = || {
             let now = Instant::now();
             std::mem::replace(&mut clock, now).elapsed()
         };
-        // Nodes following the mouse (a grab) are an edit in progress, like a drag: read
-        // back as the mouse moves, committed once put down.
-        let grabbing = self.canvas.grab.is_moving();
-        let pointer_down = ctx.input(|input| input.pointer.any_down()) || grabbing;
-        // The first frame takes in the graph the editor opened on.
-        let touched = std::mem::take(&mut self.session.revision.touched);
-        if self.session.revision.number == 0 || touched || may_edit(ctx) || grabbing {
-            self.session.revision.reads += 1;
-            let graph = self.shown_graph();
-            if graph != self.session.document.graph {
-                self.session.document.graph = graph;
-            }
-            // Edits made to the document directly (fields, frames, picking, undo) too.
-            if self.session.document.graph != self.session.revision.seen {
-                self.session.revision.seen = self.session.document.graph.clone();
-                self.session.revision.number += 1;
-                // What was drawn before the graph view (the status bar, the inspector)
-                // shows the change in the next frame.
-                ctx.request_repaint();
-            }
-            // Saving (and undoing to what was saved) changes this without an edit.
-            self.session.dirty = self.session.document.is_dirty();
+        let held = self.holding(ctx);
+        if held {
+            // (Ctrl+D's copies start following the mouse after the frame's start.)
+            self.begin_gesture();
+        }
+        let before = self.session.revision.number;
+        self.take_in_outside_change();
+        self.take_in_view_edits();
+        if !held && self.session.revision.gesture {
+            self.session.revision.gesture = false;
+            self.session.document.history.end_gesture();
+        }
+        if self.session.revision.number != before {
+            // What was drawn before the graph view (the status bar, the inspector)
+            // shows the change in the next frame.
+            ctx.request_repaint();
         }
         let revision = self.session.revision.number;
         let sync = lap();
-        let compile_key = Some((revision, self.preview.live.full_detail));
-        if self.session.revision.compiled != compile_key {
-            self.session.revision.compiled = compile_key;
+        let detail = Some(self.preview.live.full_detail);
+        if self.session.revision.recompile || self.session.revision.detail != detail {
+            self.session.revision.recompile = false;
+            self.session.revision.detail = detail;
             self.preview.live.update(&self.session.document.graph);
         }
         let compile = lap();
-        // The lint waits for a drag to end (it reads every constant).
-        if self.session.revision.linted != revision && !pointer_down {
+        // The lint and the dirty mark wait for a drag to end (they read every node).
+        if self.session.revision.linted != revision && !held {
             self.session.revision.linted = revision;
             self.preview.live.lint(&self.session.document.graph);
         }
@@ -106,12 +134,16 @@ impl VeneerApp {
         self.thumbnails
             .update(ctx, graph, revision, hovered, time, &on_screen);
         let thumbnails = lap();
-        if self.session.revision.committed != revision && !pointer_down {
-            self.session.revision.committed = revision;
-            self.session
-                .document
-                .history
-                .commit(&self.session.document.graph);
+        let known = self.session.revision.dirty_known;
+        if known != Some(revision) {
+            if held && known.is_some() {
+                // Edited during the drag; whether back to what was saved, once let go
+                // (or saved meanwhile).
+                self.session.dirty = true;
+            } else {
+                self.session.revision.dirty_known = Some(revision);
+                self.session.dirty = self.session.document.is_dirty();
+            }
         }
         let title = self.session.document.title(self.session.dirty);
         if title != self.session.title {
@@ -129,5 +161,19 @@ impl VeneerApp {
             thumbnails,
             history,
         };
+    }
+
+    /// Whether a button is held or nodes follow the mouse: edits then belong to a
+    /// gesture.
+    fn holding(&self, ctx: &egui::Context) -> bool {
+        ctx.input(|input| input.pointer.any_down()) || self.canvas.grab.is_moving()
+    }
+
+    /// Starts a gesture unless one is under way.
+    fn begin_gesture(&mut self) {
+        if !self.session.revision.gesture {
+            self.session.revision.gesture = true;
+            self.session.document.history.begin_gesture();
+        }
     }
 }

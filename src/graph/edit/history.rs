@@ -9,6 +9,13 @@ use std::collections::VecDeque;
 /// The most steps kept (the oldest go first).
 pub const LIMIT: usize = 500;
 
+/// A step undone or redone: the edit carried out, and what it changed.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Step {
+    pub edit: GraphEdit,
+    pub changes: Vec<Change>,
+}
+
 /// The undo and redo stacks of a graph's edits.
 #[derive(Clone, Debug, Default)]
 pub struct History {
@@ -70,13 +77,13 @@ impl History {
     /// Undoes the last step (ending the gesture under way); `None` when there is none.
     /// Should its edit be refused (the graph was changed behind the history's back),
     /// the step stays and the graph is as it was.
-    pub fn undo(&mut self, graph: &mut Graph) -> Option<Result<Vec<Change>, EditError>> {
+    pub fn undo(&mut self, graph: &mut Graph) -> Option<Result<Step, EditError>> {
         self.end_gesture();
         travel(graph, &mut self.undo, &mut self.redo)
     }
 
     /// Redoes the last undone step (as [`History::undo`] undoes).
-    pub fn redo(&mut self, graph: &mut Graph) -> Option<Result<Vec<Change>, EditError>> {
+    pub fn redo(&mut self, graph: &mut Graph) -> Option<Result<Step, EditError>> {
         self.end_gesture();
         travel(graph, &mut self.redo, &mut self.undo)
     }
@@ -106,12 +113,15 @@ fn travel(
     graph: &mut Graph,
     from: &mut VecDeque<GraphEdit>,
     to: &mut VecDeque<GraphEdit>,
-) -> Option<Result<Vec<Change>, EditError>> {
+) -> Option<Result<Step, EditError>> {
     let step = from.pop_back()?;
     Some(match apply(graph, step.clone()) {
         Ok(applied) => {
             to.push_back(applied.inverse);
-            Ok(applied.changes)
+            Ok(Step {
+                edit: step,
+                changes: applied.changes,
+            })
         }
         Err(error) => {
             from.push_back(step);

@@ -28,7 +28,7 @@ mod wires;
 
 pub use command::{GraphEdit, GraphSetting, GroupPin};
 pub use error::EditError;
-pub use history::History;
+pub use history::{History, Step};
 pub use level::Level;
 
 use super::{Graph, NodeId};

@@ -210,6 +210,28 @@ pub struct Snarl<T> {
     // #[cfg_attr(feature = "serde", serde(with = "serde_nodes"))]
     nodes: Slab<Node<T>>,
     wires: Wires,
+    /// Veneer patch: what changed since [`Snarl::take_journal`] last emptied it.
+    #[cfg_attr(feature = "serde", serde(skip))]
+    journal: Vec<Change>,
+}
+
+/// Veneer patch: one change made to a [`Snarl`], by the application or by the widget
+/// itself (a drag, a wire dropped, a pin right-clicked), in the order made.
+/// A node removed takes its wires with it: they are not listed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Change {
+    /// A node was inserted.
+    Inserted(NodeId),
+    /// A node was removed (with its wires).
+    Removed(NodeId),
+    /// A wire was added.
+    Connected(OutPinId, InPinId),
+    /// A wire was removed.
+    Disconnected(OutPinId, InPinId),
+    /// A node's value or position was handed out mutably (it may have changed).
+    Touched(NodeId),
+    /// Every node was handed out mutably (a mutable iterator).
+    TouchedAll,
 }
 
 impl<T> Snarl<T> {
@@ -226,7 +248,13 @@ impl<T> Snarl<T> {
         Snarl {
             nodes: Slab::new(),
             wires: Wires::new(),
+            journal: Vec::new(),
         }
+    }
+
+    /// Veneer patch: the changes made since the last call, in the order made.
+    pub fn take_journal(&mut self) -> Vec<Change> {
+        std::mem::take(&mut self.journal)
     }
 
     /// Adds a node to the Snarl.
@@ -245,7 +273,7 @@ impl<T> Snarl<T> {
             pos,
             open: true,
         });
-
+        self.journal.push(Change::Inserted(NodeId(idx)));
         NodeId(idx)
     }
 
@@ -265,7 +293,7 @@ impl<T> Snarl<T> {
             pos,
             open: false,
         });
-
+        self.journal.push(Change::Inserted(NodeId(idx)));
         NodeId(idx)
     }
 
@@ -298,6 +326,7 @@ impl<T> Snarl<T> {
     pub fn remove_node(&mut self, idx: NodeId) -> T {
         let value = self.nodes.remove(idx.0).value;
         self.wires.drop_node(idx);
+        self.journal.push(Change::Removed(idx));
         value
     }
 
@@ -317,7 +346,11 @@ impl<T> Snarl<T> {
             out_pin: from,
             in_pin: to,
         };
-        self.wires.insert(wire)
+        let added = self.wires.insert(wire);
+        if added {
+            self.journal.push(Change::Connected(from, to));
+        }
+        added
     }
 
     /// Disconnects two nodes.
@@ -335,8 +368,11 @@ impl<T> Snarl<T> {
             out_pin: from,
             in_pin: to,
         };
-
-        self.wires.remove(&wire)
+        let removed = self.wires.remove(&wire);
+        if removed {
+            self.journal.push(Change::Disconnected(from, to));
+        }
+        removed
     }
 
     /// Removes all connections to the node's pin.
@@ -349,6 +385,8 @@ impl<T> Snarl<T> {
     #[track_caller]
     pub fn drop_inputs(&mut self, pin: InPinId) -> usize {
         assert!(self.nodes.contains(pin.node.0));
+        let dropped = self.wires.wired_outputs(pin).map(|from| Change::Disconnected(from, pin));
+        self.journal.extend(dropped.collect::<Vec<_>>());
         self.wires.drop_inputs(pin)
     }
 
@@ -361,6 +399,8 @@ impl<T> Snarl<T> {
     #[track_caller]
     pub fn drop_outputs(&mut self, pin: OutPinId) -> usize {
         assert!(self.nodes.contains(pin.node.0));
+        let dropped = self.wires.wired_inputs(pin).map(|to| Change::Disconnected(pin, to));
+        self.journal.extend(dropped.collect::<Vec<_>>());
         self.wires.drop_outputs(pin)
     }
 
@@ -372,6 +412,9 @@ impl<T> Snarl<T> {
 
     /// Returns mutable reference to the node.
     pub fn get_node_mut(&mut self, idx: NodeId) -> Option<&mut T> {
+        if self.nodes.contains(idx.0) {
+            self.journal.push(Change::Touched(idx));
+        }
         match self.nodes.get_mut(idx.0) {
             Some(node) => Some(&mut node.value),
             None => None,
@@ -386,6 +429,9 @@ impl<T> Snarl<T> {
 
     /// Returns mutable reference to the node data.
     pub fn get_node_info_mut(&mut self, idx: NodeId) -> Option<&mut Node<T>> {
+        if self.nodes.contains(idx.0) {
+            self.journal.push(Change::Touched(idx));
+        }
         self.nodes.get_mut(idx.0)
     }
 
@@ -398,6 +444,7 @@ impl<T> Snarl<T> {
 
     /// Iterates over mutable references to each node.
     pub fn nodes_mut(&mut self) -> NodesIterMut<'_, T> {
+        self.journal.push(Change::TouchedAll);
         NodesIterMut {
             nodes: self.nodes.iter_mut(),
         }
@@ -412,6 +459,7 @@ impl<T> Snarl<T> {
 
     /// Iterates over mutable references to each node and its position.
     pub fn nodes_pos_mut(&mut self) -> NodesPosIterMut<'_, T> {
+        self.journal.push(Change::TouchedAll);
         NodesPosIterMut {
             nodes: self.nodes.iter_mut(),
         }
@@ -426,6 +474,7 @@ impl<T> Snarl<T> {
 
     /// Iterates over mutable references to each node and its identifier.
     pub fn nodes_ids_mut(&mut self) -> NodesIdsIterMut<'_, T> {
+        self.journal.push(Change::TouchedAll);
         NodesIdsIterMut {
             nodes: self.nodes.iter_mut(),
         }
@@ -440,6 +489,7 @@ impl<T> Snarl<T> {
 
     /// Iterates over mutable references to each node, its position and its identifier.
     pub fn nodes_pos_ids_mut(&mut self) -> NodesPosIdsIterMut<'_, T> {
+        self.journal.push(Change::TouchedAll);
         NodesPosIdsIterMut {
             nodes: self.nodes.iter_mut(),
         }
@@ -454,6 +504,7 @@ impl<T> Snarl<T> {
 
     /// Iterates over mutable references to each node data.
     pub fn nodes_info_mut(&mut self) -> NodeInfoIterMut<'_, T> {
+        self.journal.push(Change::TouchedAll);
         NodeInfoIterMut {
             nodes: self.nodes.iter_mut(),
         }
@@ -468,6 +519,7 @@ impl<T> Snarl<T> {
 
     /// Iterates over mutable references to each node id and data.
     pub fn nodes_ids_data_mut(&mut self) -> NodeIdsDataIterMut<'_, T> {
+        self.journal.push(Change::TouchedAll);
         NodeIdsDataIterMut {
             nodes: self.nodes.iter_mut(),
         }
@@ -505,6 +557,7 @@ impl<T> IndexMut<NodeId> for Snarl<T> {
     #[inline]
     #[track_caller]
     fn index_mut(&mut self, idx: NodeId) -> &mut Self::Output {
+        self.journal.push(Change::Touched(idx));
         &mut self.nodes[idx.0].value
     }
 }

@@ -1465,13 +1465,14 @@ where
         && snarl.nodes.contains(node.0)
     {
         ui.ctx().request_repaint();
+        // (Through `get_node_info_mut`, so that the journal lists the moves.)
         if snarl_state.selected_nodes().contains(&node) {
             for node in snarl_state.selected_nodes() {
-                let node = &mut snarl.nodes[node.0];
-                node.pos += delta;
+                if let Some(node) = snarl.get_node_info_mut(*node) {
+                    node.pos += delta;
+                }
             }
-        } else {
-            let node = &mut snarl.nodes[node.0];
+        } else if let Some(node) = snarl.get_node_info_mut(node) {
             node.pos += delta;
         }
     }
