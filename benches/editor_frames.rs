@@ -394,7 +394,7 @@ fn big_graphs_frames(c: &mut Criterion) {
             total
         })
     });
-    let mut at = grab(&mut harness, "1.0");
+    let mut at = grab(&mut harness, "1.000");
     let mut right = true;
     let parts: [(&str, ProfilePart); 2] = [
         ("a frame while a parameter is dragged (main thread)", |p| {
@@ -412,6 +412,7 @@ fn big_graphs_frames(c: &mut Criterion) {
     let graph = big_graphs::chain(10_000);
     let mut group = c.benchmark_group("editor: a 10,000-node chain");
     group.sample_size(10);
+    undo_on_ten_thousand_nodes(&mut group);
     group.bench_function(
         "open: check and compile it for the preview (main thread)",
         |b| {
@@ -425,6 +426,52 @@ fn big_graphs_frames(c: &mut Criterion) {
         },
     );
     group.finish();
+}
+
+/// A node in the middle of a 10,000-node chain deleted, then undone and redone: the
+/// main thread's frame of each (the edit, the view following it and the compile check),
+/// against a frame with nothing happening.
+fn undo_on_ten_thousand_nodes(
+    group: &mut criterion::BenchmarkGroup<criterion::measurement::WallTime>,
+) {
+    let path = chain_file(10_000);
+    let mut harness = editor(&path);
+    let middle = harness.state().document().graph.nodes[5_000].id;
+    let remove = veneer::graph::edit::GraphEdit::RemoveNodes {
+        level: veneer::graph::edit::Level::Top,
+        nodes: vec![middle],
+    };
+    harness
+        .state_mut()
+        .apply_edit(remove)
+        .expect("the node goes");
+    harness.step();
+    // The main thread's time: the undo (made outside a frame, as a script does) and the
+    // frame after it.
+    let frame = |harness: &mut Editor, travel: fn(&mut VeneerApp)| {
+        let started = Instant::now();
+        travel(harness.state_mut());
+        let travelled = started.elapsed();
+        harness.step();
+        travelled + harness.state().profile().total
+    };
+    group.bench_function("a frame with nothing happening (main thread)", |b| {
+        b.iter_custom(|frames| (0..frames).map(|_| frame(&mut harness, |_| {})).sum())
+    });
+    group.bench_function(
+        "undo then redo of a node deleted, two frames (main thread)",
+        |b| {
+            b.iter_custom(|pairs| {
+                (0..pairs)
+                    .map(|_| {
+                        frame(&mut harness, VeneerApp::undo) + frame(&mut harness, VeneerApp::redo)
+                    })
+                    .sum()
+            })
+        },
+    );
+    drop(harness);
+    let _ = std::fs::remove_file(&path);
 }
 
 criterion_group!(benches, wood_drag, structural_edit, big_graphs_frames);

@@ -16,7 +16,8 @@ mod structure_tests;
 pub use crate::graph::{PRESETS, preset};
 pub use chrome::frame_clock::FrameProfile;
 pub use chrome::frame_clock::{FRAME_LOG_HEADER, FrameLog};
-pub use preview::live::{LiveMaterial, UNIFORM_SLOTS};
+pub use preview::compile_thread::{BACKGROUND_NODES, UNIFORM_SLOTS};
+pub use preview::live::LiveMaterial;
 pub use preview::probe::{AtlasGraph, atlas_graph};
 pub use session::document::Document;
 pub use thumbnails::{TILE_PIXELS, Thumbnails, placement, tile_params};
@@ -389,7 +390,7 @@ impl VeneerApp {
     /// Whether the previews show, at full quality, what was last asked of them (they
     /// are drawn on another thread: tests wait for this before looking).
     pub fn preview_settled(&self) -> bool {
-        self.preview.previews.settled()
+        self.preview.previews.settled() && !self.preview.live.is_compiling()
     }
 
     /// The inspector of the active node, or a hint and the comment frames.

@@ -272,6 +272,79 @@ fn duplicates_become_the_selection_and_follow_the_mouse_until_a_click() {
 }
 
 #[test]
+fn undo_while_a_duplicate_follows_the_mouse_takes_back_the_duplicate_alone() {
+    let mut harness = flat_wood_editor(&scratch("sel-duplicate-undo"));
+    // A step before: a node deleted.
+    click_title(&mut harness, "tint space", Modifiers::NONE);
+    press(&mut harness, Key::Delete, false);
+    assert!(node(&harness, "tint space").is_none());
+    let before = harness.state().document().graph.clone();
+    click_title(&mut harness, "trunk", Modifiers::NONE);
+    let mouse = on_screen(&harness, "trunk").center();
+    hover(&mut harness, mouse);
+    key(&mut harness, Modifiers::COMMAND, Key::D, None);
+    hover(&mut harness, mouse + vec2(120.0, 60.0));
+    assert_eq!(
+        harness.state().document().graph.nodes.len(),
+        before.nodes.len() + 1
+    );
+    key(&mut harness, Modifiers::COMMAND, Key::Z, None);
+    assert!(
+        harness.state().document().graph == before,
+        "Ctrl+Z during the move takes back the copy and its moves, nothing before"
+    );
+    // The copy is let go of: the mouse moves nothing now.
+    hover(&mut harness, mouse + vec2(300.0, 200.0));
+    assert!(harness.state().document().graph == before);
+    key(&mut harness, Modifiers::COMMAND, Key::Z, None);
+    assert!(
+        node(&harness, "tint space").is_some(),
+        "the next Ctrl+Z the deletion"
+    );
+    key(
+        &mut harness,
+        Modifiers::COMMAND | Modifiers::SHIFT,
+        Key::Z,
+        None,
+    );
+    key(
+        &mut harness,
+        Modifiers::COMMAND | Modifiers::SHIFT,
+        Key::Z,
+        None,
+    );
+    let redone = &harness.state().document().graph;
+    assert_eq!(
+        redone.nodes.len(),
+        before.nodes.len() + 1,
+        "redo puts the copy back"
+    );
+}
+
+#[test]
+fn a_name_typed_letter_by_letter_is_one_undo_step() {
+    let mut harness = flat_wood_editor(&scratch("sel-typed-name"));
+    click_title(&mut harness, "tint space", Modifiers::NONE);
+    focus_label_field(&mut harness, "tint space");
+    key(&mut harness, Modifiers::NONE, Key::End, None);
+    for letter in ["2", "b"] {
+        typing(&mut harness, letter);
+    }
+    press(&mut harness, Key::Enter, false);
+    assert!(
+        node(&harness, "tint space2b").is_some(),
+        "the name was typed"
+    );
+    // The field has let go of the keyboard: Ctrl+Z is the graph's.
+    assert!(focused_field(&harness).is_none());
+    key(&mut harness, Modifiers::COMMAND, Key::Z, None);
+    assert!(
+        node(&harness, "tint space").is_some(),
+        "one Ctrl+Z takes back the whole name, not its last letter"
+    );
+}
+
+#[test]
 fn pasted_and_added_nodes_become_the_selection_clear_of_the_others() {
     let mut harness = flat_wood_editor(&scratch("sel-paste"));
     let (none, shift) = (Modifiers::NONE, Modifiers::SHIFT);

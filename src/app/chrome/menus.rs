@@ -278,7 +278,12 @@ impl VeneerApp {
     pub(in crate::app) fn status_bar(&mut self, ui: &mut Ui) {
         let mut stale = false;
         ui.horizontal(|ui| {
+            let compiling = self.preview.live.is_compiling();
             match self.preview.live.status(&self.session.document.graph) {
+                _ if compiling => {
+                    ui.spinner();
+                    ui.label("compiling the material…");
+                }
                 Some(error) => {
                     ui.colored_label(egui::Color32::from_rgb(240, 80, 60), format!("⚠ {error}"));
                 }

@@ -39,7 +39,14 @@ pub(in crate::app) fn material_frame(
         cache.code = Some((live.generation, Arc::from(module.source.as_str())));
     }
     let key = (live.generation, revision);
-    if cache.params.as_ref().is_none_or(|(seen, _)| *seen != key) {
+    // While a big graph compiles, the values stay those of the code shown (the slots of
+    // the new graph are the new code's).
+    let stale = cache.params.as_ref().is_none_or(|(seen, _)| *seen != key);
+    let shown_code = cache
+        .params
+        .as_ref()
+        .is_some_and(|((generation, _), _)| *generation == live.generation && live.is_compiling());
+    if stale && !shown_code {
         cache.params = Some((key, live.params(graph).into()));
     }
     let wgsl = cache.code.as_ref().map(|(_, code)| code.clone())?;

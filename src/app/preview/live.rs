@@ -1,17 +1,10 @@
 //! The live compile loop: a structural edit recompiles the material (parameters as
 //! uniforms), a parameter edit does not; a failed compile keeps the last good material.
 
-use crate::codegen::{
-    CompileError, CompileOptions, Compiled, Detail, ParamMode, SurfaceUse, compile, param_values,
-};
+use crate::app::preview::compile_thread::{BACKGROUND_NODES, Compiling, Outcome, Request};
+use crate::codegen::{CompileError, Compiled, SurfaceUse, param_values};
 use crate::graph::{Graph, NodeId, Value};
 use std::collections::BTreeMap;
-
-/// The most parameter slots a uniform block takes: 16 KiB, what every device offers.
-/// Past it parameters go to a storage buffer (uniform blocks are kept below it: reads
-/// from them are known to be uniform, which some drivers, lavapipe among them, need for
-/// the screen-space derivatives of footprint-aware noise to come out clean).
-pub const UNIFORM_SLOTS: usize = 1024;
 
 /// The material the preview shows, kept in step with the edited graph.
 #[derive(Default)]
@@ -31,8 +24,14 @@ pub struct LiveMaterial {
     pub warnings: BTreeMap<NodeId, String>,
     /// Noise detail: footprint-aware unless the user asks for every octave.
     pub full_detail: bool,
-    /// Parameters past [`UNIFORM_SLOTS`] in a storage buffer instead of a uniform block.
+    /// Parameters past [`UNIFORM_SLOTS`](crate::app::preview::compile_thread::UNIFORM_SLOTS)
+    /// in a storage buffer instead of a uniform block.
     storage: bool,
+    /// Where big graphs compile on a thread of their own: the context woken when one
+    /// is done (`None`: every graph compiles at once).
+    background: Option<egui::Context>,
+    /// The compile running on its thread, if one is.
+    compiling: Option<Compiling>,
 }
 
 /// What decides the generated code: nodes with their kinds and settings, and the wires.
@@ -72,6 +71,12 @@ pub(in crate::app) fn structure(graph: &Graph) -> Graph {
     skeleton
 }
 
+/// The nodes of `graph`, inside its groups too.
+fn node_count(graph: &Graph) -> usize {
+    let inner: usize = graph.groups.values().map(|group| group.nodes.len()).sum();
+    graph.nodes.len() + inner
+}
+
 /// The values of parameter slots `slots` for `graph`, its groups inlined first as the
 /// compile inlined them (the slots name the inlined nodes).
 pub(in crate::app) fn slot_values(
@@ -95,7 +100,17 @@ impl LiveMaterial {
         }
     }
 
-    /// Recompiles if the graph's structure changed since the last call; returns whether it did.
+    /// [`LiveMaterial::in_storage`] that compiles graphs of more than
+    /// [`BACKGROUND_NODES`] nodes on a thread of its own, waking `ctx` when done.
+    pub fn in_background(ctx: &egui::Context) -> LiveMaterial {
+        LiveMaterial {
+            background: Some(ctx.clone()),
+            ..LiveMaterial::in_storage()
+        }
+    }
+
+    /// Recompiles if the graph's structure changed since the last call; returns whether it did
+    /// (a big graph's compile may still run: see [`LiveMaterial::receive`]).
     pub fn update(&mut self, graph: &Graph) -> bool {
         let key = (structure(graph), self.full_detail);
         if self.structure.as_ref() == Some(&key) {
@@ -103,27 +118,42 @@ impl LiveMaterial {
         }
         self.structure = Some(key);
         self.compiles += 1;
-        self.errors.clear();
-        let detail = if self.full_detail {
-            Detail::Full
-        } else {
-            Detail::Footprint
+        let request = Request {
+            full_detail: self.full_detail,
+            storage: self.storage,
         };
-        let mut options = CompileOptions {
-            params: ParamMode::Uniform,
-            detail,
-        };
-        let mut result = compile(graph, &options);
-        let slots = |result: &Result<Compiled, _>| {
-            result
-                .as_ref()
-                .map_or(0, |c: &Compiled| c.module.params.len())
-        };
-        if self.storage && slots(&result) > UNIFORM_SLOTS {
-            options.params = ParamMode::Storage;
-            result = compile(graph, &options);
+        match &self.background {
+            Some(ctx) if node_count(graph) > BACKGROUND_NODES => {
+                self.compiling = Some(Compiling::start(graph.clone(), request, ctx.clone()));
+            }
+            _ => {
+                self.compiling = None;
+                self.install(request.compile(graph));
+            }
         }
-        match result {
+        true
+    }
+
+    /// Takes in the compile finished on its thread, if one is; returns whether one was.
+    pub fn receive(&mut self) -> bool {
+        let Some(outcome) = self.compiling.as_ref().and_then(Compiling::outcome) else {
+            return false;
+        };
+        self.compiling = None;
+        self.install(outcome);
+        true
+    }
+
+    /// Whether a compile runs on its thread (the preview shows the last material).
+    pub fn is_compiling(&self) -> bool {
+        self.compiling.is_some()
+    }
+
+    /// Makes a compile's outcome the material shown: a failed compile keeps the last
+    /// good material and names the nodes at fault.
+    fn install(&mut self, outcome: Outcome) {
+        self.errors.clear();
+        match outcome {
             Ok(compiled) => {
                 // Nodes the output does not reach are pruned: the code may well be
                 // unchanged. What the pipeline does with it (alpha mode, relief) may not.
@@ -147,7 +177,6 @@ impl LiveMaterial {
                 self.errors.insert(error.node, error.message);
             }
         }
-        true
     }
 
     /// Finds the numerical hazards of `graph` (constants matter here, unlike for
@@ -279,5 +308,48 @@ mod tests {
             live.status(&graph).unwrap(),
             "node 'edge' (#3): input 'x' (float) must be connected"
         );
+    }
+
+    #[test]
+    fn big_graphs_compile_on_their_own_thread_and_small_ones_at_once() {
+        let ctx = egui::Context::default();
+        let (small, _, _) = graph();
+        let mut live = LiveMaterial::in_background(&ctx);
+        assert!(live.update(&small));
+        assert!(!live.is_compiling(), "a small graph compiles in the frame");
+        assert!(live.compiled.is_some());
+        // A chain of Math nodes past the limit.
+        let (mut big, noise, material) = graph();
+        let mut previous = noise;
+        for k in 0..BACKGROUND_NODES {
+            let next = big.add(
+                &format!("step {k}"),
+                NodeKind::Math(crate::nodes::Math {
+                    op: crate::graph::MathOp::Add,
+                    ty: crate::graph::ValueType::Float,
+                }),
+            );
+            big.connect(previous, if k == 0 { "value" } else { "result" }, next, "a");
+            previous = next;
+        }
+        big.connect(previous, "result", material, "albedo");
+        let generation = live.generation;
+        assert!(live.update(&big));
+        assert!(live.is_compiling(), "a big one on its thread");
+        assert_eq!(
+            live.generation, generation,
+            "the last material stays meanwhile"
+        );
+        let started = std::time::Instant::now();
+        while !live.receive() {
+            assert!(
+                started.elapsed().as_secs() < 120,
+                "the compile never came back"
+            );
+            std::thread::sleep(std::time::Duration::from_millis(5));
+        }
+        assert!(!live.is_compiling());
+        assert!(live.errors.is_empty(), "{:?}", live.errors);
+        assert_eq!(live.generation, generation + 1, "then the new one is in");
     }
 }

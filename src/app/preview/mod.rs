@@ -1,6 +1,7 @@
 //! The live preview: the compiled material, its drawing thread, the mesh's distance
 //! fields, the selected node's probe, and the panel that shows them.
 
+pub(in crate::app) mod compile_thread;
 pub(in crate::app) mod drawing_thread;
 pub(in crate::app) mod fields;
 pub(in crate::app) mod frame_cache;
@@ -49,7 +50,7 @@ impl Preview {
         render_state: Option<eframe::egui_wgpu::RenderState>,
     ) -> Preview {
         Preview {
-            live: LiveMaterial::in_storage(),
+            live: LiveMaterial::in_background(ctx),
             thumbnail: LiveMaterial::in_storage(),
             state: state::PreviewState::for_graph(settings),
             previews: state::Previews::new(ctx, render_state.is_some()),

@@ -15,9 +15,20 @@ pub fn probe_graph(graph: &Graph, node: NodeId) -> Option<Graph> {
     let output = *graph.node(node)?.kind.signature().outputs.first()?;
     let material = graph.material()?.id;
     let mut probe = graph.clone();
+    // Flat: the material's other inputs (a height, a bump) would light or move it.
+    cut_material(&mut probe, material);
     let (colour, pin) = as_colour(&mut probe, &PinRef::new(node, output.name), output.ty);
     probe.connect(colour, pin, material, "albedo");
     Some(probe)
+}
+
+/// Cuts every wire into node `material` of `graph` and clears its constants, so that
+/// only what is wired to it afterwards shows (and gets code).
+fn cut_material(graph: &mut Graph, material: NodeId) {
+    graph.wires.retain(|wire| wire.to.node != material);
+    if let Some(node) = graph.node_mut(material) {
+        node.inputs.clear();
+    }
 }
 
 /// The graph behind the thumbnail atlas (see [`atlas_graph`]).
@@ -39,10 +50,7 @@ pub struct AtlasGraph {
 pub fn atlas_graph(graph: &Graph, pins: &[PinRef]) -> Option<AtlasGraph> {
     let material = graph.material()?.id;
     let mut atlas = graph.clone();
-    atlas.wires.retain(|wire| wire.to.node != material);
-    if let Some(node) = atlas.node_mut(material) {
-        node.inputs.clear();
-    }
+    cut_material(&mut atlas, material);
     let (mut shown, mut selectors, mut chain) = (Vec::new(), Vec::new(), None);
     for pin in pins {
         let Some(output) = graph
@@ -166,5 +174,26 @@ mod tests {
             assert_eq!(atlas.pins, pins);
             compile(&atlas.graph, &Default::default()).unwrap_or_else(|e| panic!("{name}: {e}"));
         }
+    }
+
+    #[test]
+    fn a_probe_shows_the_node_flat_even_when_it_feeds_the_materials_height() {
+        let mut graph = crate::app::preset("wood").unwrap();
+        let material = graph.material().unwrap().id;
+        let group = graph.nodes.iter().find(|n| n.id != material).unwrap().id;
+        let output = graph.node(group).unwrap().kind.signature().outputs[0].name;
+        graph.connect(group, output, material, "height");
+        let probe = probe_graph(&graph, group).unwrap();
+        let into_material: Vec<&str> = probe
+            .wires
+            .iter()
+            .filter(|wire| wire.to.node == material)
+            .map(|wire| wire.to.pin.as_str())
+            .collect();
+        assert_eq!(
+            into_material,
+            ["albedo"],
+            "only the probed output reaches it"
+        );
     }
 }

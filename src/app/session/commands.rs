@@ -15,17 +15,21 @@ impl VeneerApp {
     /// shows it. A refused edit changes nothing and says why in the status bar; returns
     /// whether it was carried out.
     pub(in crate::app) fn edit(&mut self, edit: GraphEdit) -> bool {
-        self.take_in_view_edits();
-        match self.commit(edit.clone()) {
-            Ok(_) => {
-                self.follow(&edit);
-                true
-            }
-            Err(error) => {
-                self.chrome.message = Some(error);
-                false
-            }
+        let done = self.apply_edit(edit);
+        if let Err(error) = &done {
+            self.chrome.message = Some(error.clone());
         }
+        done.is_ok()
+    }
+
+    /// Carries out `edit` on the document as the editor's panels do (for scripts, tests
+    /// and benchmarks): an undo step (or part of the gesture under way), shown by the
+    /// graph view. A refused edit changes nothing and says why.
+    pub fn apply_edit(&mut self, edit: GraphEdit) -> Result<(), String> {
+        self.take_in_view_edits();
+        self.commit(edit.clone())?;
+        self.follow(&edit);
+        Ok(())
     }
 
     /// Carries out `edit` on the document only: the graph view shows it already (a

@@ -104,6 +104,8 @@ impl VeneerApp {
         }
         let revision = self.session.revision.number;
         let sync = lap();
+        // A big graph's compile, done on its thread.
+        self.preview.live.receive();
         let detail = Some(self.preview.live.full_detail);
         if self.session.revision.recompile || self.session.revision.detail != detail {
             self.session.revision.recompile = false;
@@ -163,10 +165,13 @@ impl VeneerApp {
         };
     }
 
-    /// Whether a button is held or nodes follow the mouse: edits then belong to a
-    /// gesture.
+    /// Whether a button is held, nodes follow the mouse or a field has the keyboard:
+    /// edits then belong to a gesture (a drag, a grab, a name or number typed is one
+    /// undo step).
     fn holding(&self, ctx: &egui::Context) -> bool {
-        ctx.input(|input| input.pointer.any_down()) || self.canvas.grab.is_moving()
+        ctx.input(|input| input.pointer.any_down())
+            || self.canvas.grab.is_moving()
+            || ctx.memory(|memory| memory.focused().is_some())
     }
 
     /// Starts a gesture unless one is under way.
