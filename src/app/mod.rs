@@ -16,7 +16,7 @@ mod structure_tests;
 pub use crate::graph::{PRESETS, preset};
 pub use chrome::frame_clock::FrameProfile;
 pub use chrome::frame_clock::{FRAME_LOG_HEADER, FrameLog};
-pub use preview::compile_thread::{BACKGROUND_NODES, UNIFORM_SLOTS};
+pub use preview::background::{BACKGROUND_NODES, UNIFORM_SLOTS};
 pub use preview::live::LiveMaterial;
 pub use preview::probe::{AtlasGraph, atlas_graph};
 pub use session::document::Document;

@@ -228,3 +228,30 @@ fn a_numerical_hazard_is_marked_on_its_node_without_blocking_the_material() {
     assert!(app.live().errors.is_empty(), "a warning is not an error");
     assert!(shows(&harness, "numerical warnings"));
 }
+
+#[test]
+fn the_material_node_names_its_shading_beside_its_title() {
+    use veneer::graph::Shading;
+    use veneer::graph::edit::{GraphEdit, GraphSetting};
+    let mut harness = editor(&scratch("shading-name"), None);
+    // Drawn in the node's header: level with its title.
+    let beside_title = |harness: &crate::add_node::Editor, name: &str| {
+        let title = harness
+            .query_all_by_label("material")
+            .map(|node| node.rect())
+            .max_by(|a, b| a.height().total_cmp(&b.height()))
+            .expect("the material node's title");
+        harness
+            .query_all_by_label(name)
+            .any(|label| (label.rect().center().y - title.center().y).abs() < title.height())
+    };
+    assert!(beside_title(&harness, "Blinn-Phong"));
+    let metallic = GraphEdit::Set(GraphSetting::Shading(Shading::MetallicRoughness));
+    harness
+        .state_mut()
+        .apply_edit(metallic)
+        .expect("shading set");
+    harness.run();
+    assert!(beside_title(&harness, "metallic-roughness"));
+    assert!(!beside_title(&harness, "Blinn-Phong"));
+}

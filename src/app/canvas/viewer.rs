@@ -167,6 +167,10 @@ impl SnarlViewer<Node> for Viewer<'_> {
                 ),
                 _ => crate::app::canvas::node_text::kind_tip(&node.kind),
             });
+            if node.kind == NodeKind::Material {
+                // The shading decides which inputs are read (the others are greyed).
+                ui.weak(self.shading.name());
+            }
             if let Some(warning) = self.warnings.get(&node.id) {
                 ui.label(RichText::new("⚠").color(Color32::from_rgb(230, 180, 60)))
                     .on_hover_text(warning);

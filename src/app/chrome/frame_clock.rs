@@ -131,14 +131,14 @@ pub struct FrameProfile {
     /// The CPU time the main thread spent in it: `total` less the time other threads
     /// (the previews, the driver's rasteriser) had the core.
     pub cpu: Duration,
-    /// Reading the graph view back into the document and finding whether it changed.
+    /// Taking the graph view's edits into the document.
     pub sync: Duration,
     /// Deciding whether to recompile, and recompiling.
     pub compile: Duration,
     pub lint: Duration,
     /// Bringing the node thumbnails in step (the drawing is on another thread).
     pub thumbnails: Duration,
-    /// Undo history, title and autosave.
+    /// The dirty mark, title and autosave.
     pub history: Duration,
 }
 

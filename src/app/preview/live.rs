@@ -1,7 +1,7 @@
 //! The live compile loop: a structural edit recompiles the material (parameters as
 //! uniforms), a parameter edit does not; a failed compile keeps the last good material.
 
-use crate::app::preview::compile_thread::{BACKGROUND_NODES, Compiling, Outcome, Request};
+use crate::app::preview::background::{BACKGROUND_NODES, Background, Outcome, Request};
 use crate::codegen::{CompileError, Compiled, SurfaceUse, param_values};
 use crate::graph::{Graph, NodeId, Value};
 use std::collections::BTreeMap;
@@ -11,7 +11,7 @@ use std::collections::BTreeMap;
 pub struct LiveMaterial {
     /// Structure of the graph last compiled (nodes, kinds and settings, wires), and the
     /// detail it was compiled with.
-    structure: Option<(Graph, bool)>,
+    structure: Option<Structure>,
     /// The last graph that compiled, in uniform mode.
     pub compiled: Option<Compiled>,
     /// Errors of the last compile, by node (`None`: not tied to a node).
@@ -24,15 +24,24 @@ pub struct LiveMaterial {
     pub warnings: BTreeMap<NodeId, String>,
     /// Noise detail: footprint-aware unless the user asks for every octave.
     pub full_detail: bool,
-    /// Parameters past [`UNIFORM_SLOTS`](crate::app::preview::compile_thread::UNIFORM_SLOTS)
+    /// Parameters past [`UNIFORM_SLOTS`](crate::app::preview::background::UNIFORM_SLOTS)
     /// in a storage buffer instead of a uniform block.
     storage: bool,
-    /// Where big graphs compile on a thread of their own: the context woken when one
-    /// is done (`None`: every graph compiles at once).
+    /// Where big graphs are compiled and linted on a thread of their own: the context
+    /// woken when that is done (`None`: every graph at once).
     background: Option<egui::Context>,
-    /// The compile running on its thread, if one is.
-    compiling: Option<Compiling>,
+    /// The compile running on its thread, if one is (and the structure key it works
+    /// out, when not known when it started).
+    compiling: Option<Background<(Outcome, Option<Structure>)>>,
+    /// The lint running on its thread, if one is.
+    linting: Option<Background<Warnings>>,
 }
+
+/// Numerical hazards by node (one message per line).
+type Warnings = BTreeMap<NodeId, String>;
+
+/// What decides a graph's code ([`structure`]) and the noise detail asked for.
+type Structure = (Graph, bool);
 
 /// What decides the generated code: nodes with their kinds and settings, and the wires.
 /// Labels, positions, constant values (inside groups too), frames, preview settings and
@@ -71,6 +80,21 @@ pub(in crate::app) fn structure(graph: &Graph) -> Graph {
     skeleton
 }
 
+/// The numerical hazards of `graph`, by node.
+fn warnings_of(graph: &Graph) -> Warnings {
+    let mut warnings = Warnings::new();
+    if let Ok(checked) = crate::graph::check(graph) {
+        for lint in crate::lint::lint(&checked, crate::lint::preview_positions(graph)) {
+            let entry: &mut String = warnings.entry(lint.node).or_default();
+            if !entry.is_empty() {
+                entry.push('\n');
+            }
+            entry.push_str(&lint.message);
+        }
+    }
+    warnings
+}
+
 /// The nodes of `graph`, inside its groups too.
 fn node_count(graph: &Graph) -> usize {
     let inner: usize = graph.groups.values().map(|group| group.nodes.len()).sum();
@@ -103,9 +127,16 @@ impl LiveMaterial {
     /// [`LiveMaterial::in_storage`] that compiles graphs of more than
     /// [`BACKGROUND_NODES`] nodes on a thread of its own, waking `ctx` when done.
     pub fn in_background(ctx: &egui::Context) -> LiveMaterial {
-        LiveMaterial {
-            background: Some(ctx.clone()),
-            ..LiveMaterial::in_storage()
+        let mut live = LiveMaterial::in_storage();
+        live.work_in_background(ctx);
+        live
+    }
+
+    /// From now on, compiles and lints graphs of more than [`BACKGROUND_NODES`] nodes
+    /// on a thread of their own, waking `ctx` when done.
+    pub fn work_in_background(&mut self, ctx: &egui::Context) {
+        if self.background.is_none() {
+            self.background = Some(ctx.clone());
         }
     }
 
@@ -116,30 +147,57 @@ impl LiveMaterial {
         if self.structure.as_ref() == Some(&key) {
             return false;
         }
-        self.structure = Some(key);
+        self.compile(graph, Some(key));
+        true
+    }
+
+    /// Compiles `graph`, known to have changed its structure (no comparison made).
+    pub fn recompile(&mut self, graph: &Graph) {
+        self.compile(graph, None);
+    }
+
+    /// Compiles `graph`, whose structure key is `key` (worked out here when `None`):
+    /// at once, or on a thread of its own when it is big (the key too).
+    fn compile(&mut self, graph: &Graph, key: Option<Structure>) {
         self.compiles += 1;
+        let detail = self.full_detail;
         let request = Request {
             full_detail: self.full_detail,
             storage: self.storage,
         };
         match &self.background {
             Some(ctx) if node_count(graph) > BACKGROUND_NODES => {
-                self.compiling = Some(Compiling::start(graph.clone(), request, ctx.clone()));
+                let graph = graph.clone();
+                let known = key.is_some();
+                self.structure = key;
+                let compile = move || {
+                    let key = (!known).then(|| (structure(&graph), detail));
+                    (request.compile(&graph), key)
+                };
+                self.compiling = Some(Background::start(compile, ctx.clone()));
             }
             _ => {
                 self.compiling = None;
+                self.structure = Some(key.unwrap_or_else(|| (structure(graph), detail)));
                 self.install(request.compile(graph));
             }
         }
-        true
     }
 
-    /// Takes in the compile finished on its thread, if one is; returns whether one was.
+    /// Takes in the compile and the lint finished on their threads, if they are;
+    /// returns whether the compile was.
     pub fn receive(&mut self) -> bool {
-        let Some(outcome) = self.compiling.as_ref().and_then(Compiling::outcome) else {
+        if let Some(warnings) = self.linting.as_ref().and_then(Background::outcome) {
+            self.linting = None;
+            self.warnings = warnings;
+        }
+        let Some((outcome, key)) = self.compiling.as_ref().and_then(Background::outcome) else {
             return false;
         };
         self.compiling = None;
+        if key.is_some() {
+            self.structure = key;
+        }
         self.install(outcome);
         true
     }
@@ -180,16 +238,18 @@ impl LiveMaterial {
     }
 
     /// Finds the numerical hazards of `graph` (constants matter here, unlike for
-    /// compiling); the editor calls it once per revision of the graph.
+    /// compiling); the editor calls it once per revision of the graph. A big graph's
+    /// are found on a thread of their own (the last ones stay meanwhile).
     pub fn lint(&mut self, graph: &Graph) {
-        self.warnings.clear();
-        if let Ok(checked) = crate::graph::check(graph) {
-            for lint in crate::lint::lint(&checked, crate::lint::preview_positions(graph)) {
-                let entry = self.warnings.entry(lint.node).or_default();
-                if !entry.is_empty() {
-                    entry.push('\n');
-                }
-                entry.push_str(&lint.message);
+        match &self.background {
+            Some(ctx) if node_count(graph) > BACKGROUND_NODES => {
+                let graph = graph.clone();
+                let lint = move || warnings_of(&graph);
+                self.linting = Some(Background::start(lint, ctx.clone()));
+            }
+            _ => {
+                self.linting = None;
+                self.warnings = warnings_of(graph);
             }
         }
     }

@@ -1,7 +1,7 @@
 //! The live preview: the compiled material, its drawing thread, the mesh's distance
 //! fields, the selected node's probe, and the panel that shows them.
 
-pub(in crate::app) mod compile_thread;
+pub(in crate::app) mod background;
 pub(in crate::app) mod drawing_thread;
 pub(in crate::app) mod fields;
 pub(in crate::app) mod frame_cache;

@@ -22,8 +22,9 @@ pub(in crate::app) struct Revision {
     /// test, through `document_mut`): the graph as it was before, to make the change
     /// one undoable step on the next frame.
     pub outside: Option<Graph>,
-    /// Whether a change since the last compile may change the code.
-    recompile: bool,
+    /// Whether a change since the last compile changed the structure (compile), or
+    /// may change the code (compare the structure first).
+    recompile: Recompile,
     /// The noise detail compiled with (a setting of the preview's), `None` before the
     /// first compile.
     detail: Option<bool>,
@@ -44,21 +45,38 @@ impl Revision {
             return;
         }
         self.number += 1;
-        self.recompile |= changes.iter().any(|change| match change {
-            Change::Structure | Change::Settings => true,
-            Change::Value {
-                level: Level::Top,
-                node,
-                ..
-            } => is_material(graph, *node),
-            Change::Value { .. } | Change::Layout => false,
-        });
+        for change in changes {
+            let needed = match change {
+                Change::Structure => Recompile::Compile,
+                Change::Settings => Recompile::Compare,
+                Change::Value {
+                    level: Level::Top,
+                    node,
+                    ..
+                } if is_material(graph, *node) => Recompile::Compare,
+                Change::Value { .. } | Change::Layout => Recompile::No,
+            };
+            self.recompile = self.recompile.max(needed);
+        }
     }
 
     /// The document was saved or replaced: its dirty mark is worked out again.
     pub fn recheck(&mut self) {
         self.dirty_known = None;
     }
+}
+
+/// What the material needs after the changes since its last compile.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, PartialOrd, Ord)]
+pub(in crate::app) enum Recompile {
+    /// Nothing: values and layout only.
+    #[default]
+    No,
+    /// Compared with the structure compiled, compiled if that changed (settings, the
+    /// material's constants).
+    Compare,
+    /// Compiled (nodes, wires or node settings changed).
+    Compile,
 }
 
 /// Whether node `id` of the top level is the material node.
@@ -107,11 +125,14 @@ impl VeneerApp {
         // A big graph's compile, done on its thread.
         self.preview.live.receive();
         let detail = Some(self.preview.live.full_detail);
-        if self.session.revision.recompile || self.session.revision.detail != detail {
-            self.session.revision.recompile = false;
-            self.session.revision.detail = detail;
-            self.preview.live.update(&self.session.document.graph);
+        let recompile = std::mem::take(&mut self.session.revision.recompile);
+        let graph = &self.session.document.graph;
+        if recompile == Recompile::Compile {
+            self.preview.live.recompile(graph);
+        } else if recompile == Recompile::Compare || self.session.revision.detail != detail {
+            self.preview.live.update(graph);
         }
+        self.session.revision.detail = detail;
         let compile = lap();
         // The lint and the dirty mark wait for a drag to end (they read every node).
         if self.session.revision.linted != revision && !held {

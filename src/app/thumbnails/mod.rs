@@ -138,12 +138,15 @@ impl Thumbnails {
         on_screen: &dyn Fn(NodeId) -> bool,
     ) {
         let received = self.receive(ctx);
+        // A big graph's atlas compiles on a thread of its own.
+        self.atlas.work_in_background(ctx);
+        let compiled = self.atlas.receive();
         let seen = Seen {
             revision,
             time: time.to_bits(),
             pins: self.candidates(graph, hovered, on_screen),
         };
-        if !received && self.seen.as_ref() == Some(&seen) {
+        if !received && !compiled && self.seen.as_ref() == Some(&seen) {
             return;
         }
         let candidates = seen.pins.clone();
@@ -161,6 +164,10 @@ impl Thumbnails {
                 return;
             };
             self.atlas.update(&atlas.graph);
+            if self.atlas.is_compiling() {
+                // Tiles are drawn once the code for them is in.
+                return;
+            }
             let failed: Vec<NodeId> = self.atlas.errors.keys().flatten().copied().collect();
             if failed.is_empty() || failed.iter().all(|node| self.broken.1.contains(node)) {
                 break atlas;
@@ -254,7 +261,7 @@ impl Thumbnails {
 
     /// Whether every tile has been drawn as it is now (nothing sent or waiting).
     pub fn settled(&self) -> bool {
-        !self.in_flight && self.tiles.all_ready()
+        !self.in_flight && !self.atlas.is_compiling() && self.tiles.all_ready()
     }
 
     /// The texture and the part of it showing `pin`, once drawn.

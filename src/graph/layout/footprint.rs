@@ -5,7 +5,7 @@
 //! drawn (the editor's tests measure it), so footprints that do not intersect are nodes
 //! that do not overlap on screen.
 
-use crate::graph::{Node, NodeId, PinDefault, Value, Wire};
+use crate::graph::{Node, NodeId, NodeKind, PinDefault, Shading, Value, Wire};
 use crate::nodes::Body;
 use std::collections::HashSet;
 
@@ -119,7 +119,13 @@ impl Footprint {
             None => (0.0, 0.0),
         };
         let pins_width = inputs + SPACE + bar_width + outputs;
-        let title = TITLE_LEAD + text_width(&node.title(), TITLE_SIZE) + SIGN;
+        let mut title = TITLE_LEAD + text_width(&node.title(), TITLE_SIZE) + SIGN;
+        if node.kind == NodeKind::Material {
+            // The shading's name after the title, whichever it is.
+            let names = [Shading::BlinnPhong, Shading::MetallicRoughness];
+            let widest = names.map(|shading| text_width(shading.name(), TEXT_SIZE));
+            title += SPACE + widest.into_iter().fold(0.0, f32::max);
+        }
         let rows = signature.inputs.len().max(signature.outputs.len()) as f32;
         let pins_height = (rows * (ROW + ROW_SPACE)).max(bar_height);
         let footer = if signature.outputs.is_empty() {

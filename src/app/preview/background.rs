@@ -1,14 +1,15 @@
-//! Compiling the preview's material: at once for small graphs, on a thread of its own
-//! for big ones (a 10,000-node graph takes half a second to check and compile: the UI
-//! keeps answering meanwhile, and the preview shows the last material until the new
-//! one is in).
+//! Work on a big graph done on a thread of its own: compiling the preview's material
+//! and the thumbnails' atlas, and the lint. A 10,000-node graph takes half a second to
+//! check and compile and a tenth to lint: done in the frame of an edit, that would be
+//! the UI's pause; done here, the UI keeps answering and shows the last material (and
+//! warnings) until the new ones are in. Small graphs are done at once, in the frame.
 
 use crate::codegen::{CompileError, CompileOptions, Compiled, Detail, ParamMode, compile};
 use crate::graph::Graph;
-use std::sync::{Arc, mpsc};
+use std::sync::{Arc, Mutex, mpsc};
 
-/// Graphs of more nodes than this (counting the nodes inside groups) compile on a
-/// thread of their own; smaller ones compile in the frame of the edit.
+/// Graphs of more nodes than this (counting the nodes inside groups) are compiled and
+/// linted on a thread of their own; smaller ones in the frame of the edit.
 pub const BACKGROUND_NODES: usize = 500;
 
 /// The most parameter slots a uniform block takes: 16 KiB, what every device offers.
@@ -20,7 +21,7 @@ pub const UNIFORM_SLOTS: usize = 1024;
 /// A compile's outcome.
 pub type Outcome = Result<Compiled, CompileError>;
 
-/// How the preview compiles a graph.
+/// How the editor compiles a graph for the preview.
 #[derive(Clone, Copy, Debug)]
 pub struct Request {
     /// Every octave of fractals, not just what the pixel footprint shows.
@@ -52,34 +53,39 @@ impl Request {
     }
 }
 
-/// A compile running on its own thread.
-pub struct Compiling {
-    outcome: mpsc::Receiver<Outcome>,
+/// Work running on a thread of its own, its outcome taken when done.
+pub struct Background<T> {
+    outcome: mpsc::Receiver<T>,
 }
 
-impl Compiling {
-    /// Compiles `graph` as `request` says on a thread of its own, waking `ctx` when
-    /// done.
-    pub fn start(graph: Graph, request: Request, ctx: egui::Context) -> Compiling {
+impl<T: Send + 'static> Background<T> {
+    /// Runs `work` on a thread of its own, waking `ctx` when done (or here and now,
+    /// should no thread be had).
+    pub fn start(work: impl FnOnce() -> T + Send + 'static, ctx: egui::Context) -> Background<T> {
         let (send, outcome) = mpsc::channel();
-        let graph = Arc::new(graph);
-        let (job_graph, job_send) = (Arc::clone(&graph), send.clone());
+        let work = Arc::new(Mutex::new(Some(work)));
+        let (job, job_send) = (Arc::clone(&work), send.clone());
         let spawned = std::thread::Builder::new()
-            .name("veneer-compile".into())
+            .name("veneer-background".into())
             .spawn(move || {
-                // (The editor may have moved on to a newer compile: then no one listens.)
-                let _ = job_send.send(request.compile(&job_graph));
-                ctx.request_repaint();
+                let work = job.lock().ok().and_then(|mut work| work.take());
+                if let Some(work) = work {
+                    // (The editor may have moved on to newer work: then no one listens.)
+                    let _ = job_send.send(work());
+                    ctx.request_repaint();
+                }
             });
         if spawned.is_err() {
-            // No thread to be had: compiled here, as a small graph is.
-            let _ = send.send(request.compile(&graph));
+            let work = work.lock().ok().and_then(|mut work| work.take());
+            if let Some(work) = work {
+                let _ = send.send(work());
+            }
         }
-        Compiling { outcome }
+        Background { outcome }
     }
 
-    /// The outcome, once the compile is done.
-    pub fn outcome(&self) -> Option<Outcome> {
+    /// The outcome, once the work is done.
+    pub fn outcome(&self) -> Option<T> {
         self.outcome.try_recv().ok()
     }
 }
