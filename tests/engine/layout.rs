@@ -5,7 +5,7 @@
 use crate::properties::random_graph;
 use proptest::prelude::*;
 use std::collections::BTreeSet;
-use veneer::graph::layout::{Footprint, arrange_in_rows, bounds, overlapping, place_node, unstack};
+use veneer::graph::layout::{Footprint, Taken, arrange_in_rows, bounds, overlapping, unstack};
 use veneer::graph::{Graph, Node, NodeKind, Value};
 
 /// A random graph whose nodes' sizes vary: labels of random lengths (`seeds`), and
@@ -47,7 +47,10 @@ proptest! {
         prop_assert_eq!(overlapping(&graph.nodes, &graph.wires), None, "arranged");
         // A new node wanted where the first one is lands clear of them all.
         let new = Node::new(graph.next_id(), NodeKind::Transform);
-        let at = place_node(&graph.nodes, &graph.wires, &new, graph.nodes[0].position);
+        let wanted = graph.nodes[0].position;
+        let area = Footprint::of(&new, |_| false).at(wanted);
+        let (dx, dy) = Taken::of(&graph.nodes, &graph.wires).clear_move(&[area]);
+        let at = (wanted.0 + dx, wanted.1 + dy);
         let taken = bounds(&graph.nodes, &graph.wires);
         let placed = Footprint::of(&new, |_| false).at(at);
         prop_assert!(taken.iter().all(|b| !b.intersects(&placed)), "placed at {:?}", at);

@@ -9,7 +9,7 @@ mod unstack;
 
 pub use arrange::{arrange, arrange_groups, arrange_in_rows, arrange_nodes};
 pub use footprint::{Bounds, Footprint, bounds, footprints, overlapping};
-pub use placement::{CLEARANCE, Taken, place_node, place_nodes};
+pub use placement::{CLEARANCE, Taken};
 pub use unstack::{UNSTACKED_BAND, unstack, unstack_levels};
 
 #[cfg(test)]

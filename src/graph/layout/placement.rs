@@ -2,7 +2,7 @@
 //! duplicated nodes (moved together, their layout kept) go to the position nearest the
 //! one asked for where their footprints, with a margin, intersect no node's.
 
-use super::footprint::{Bounds, Footprint, bounds};
+use super::footprint::{Bounds, bounds};
 use crate::graph::{Node, Wire};
 use std::collections::HashMap;
 
@@ -109,49 +109,6 @@ impl Taken {
     }
 }
 
-/// The position for `node`, added unwired, nearest `wanted` where it is clear of the
-/// nodes `nodes` (joined by `wires`) already on its level.
-pub fn place_node(nodes: &[Node], wires: &[Wire], node: &Node, wanted: (f32, f32)) -> (f32, f32) {
-    let wanted = (wanted.0.round(), wanted.1.round());
-    let area = Footprint::of(node, |_| false).at(wanted);
-    let (dx, dy) = Taken::of(nodes, wires).clear_move(&[area]);
-    (wanted.0 + dx, wanted.1 + dy)
-}
-
-/// Moves `placed` (nodes joined by `placed_wires`, pasted or duplicated onto the level
-/// of `nodes` joined by `wires`) together, their layout kept, so that their top-left
-/// position is as near `corner` as it can be with none of them within [`CLEARANCE`] of
-/// a node already there.
-pub fn place_nodes(
-    nodes: &[Node],
-    wires: &[Wire],
-    placed: &mut [Node],
-    placed_wires: &[Wire],
-    corner: (f32, f32),
-) {
-    let Some(top_left) = placed
-        .iter()
-        .map(|node| node.position)
-        .reduce(|a, b| (a.0.min(b.0), a.1.min(b.1)))
-    else {
-        return;
-    };
-    let to_corner = (
-        corner.0.round() - top_left.0.round(),
-        corner.1.round() - top_left.1.round(),
-    );
-    for node in placed.iter_mut() {
-        node.position = (
-            (node.position.0 + to_corner.0).round(),
-            (node.position.1 + to_corner.1).round(),
-        );
-    }
-    let (dx, dy) = Taken::of(nodes, wires).clear_move(&bounds(placed, placed_wires));
-    for node in placed.iter_mut() {
-        node.position = (node.position.0 + dx, node.position.1 + dy);
-    }
-}
-
 /// The grid cells `area` covers.
 fn cells_over(area: &Bounds) -> impl Iterator<Item = (i64, i64)> {
     let cell = |v: f32| (v / CELL).floor() as i64;
@@ -227,6 +184,51 @@ fn nearest_open_y(crossing: &[(f32, f32)]) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::graph::layout::Footprint;
+
+    /// The position for `node`, added unwired, nearest `wanted` where it is clear of the
+    /// nodes `nodes` (joined by `wires`) already on its level.
+    fn place_node(nodes: &[Node], wires: &[Wire], node: &Node, wanted: (f32, f32)) -> (f32, f32) {
+        let wanted = (wanted.0.round(), wanted.1.round());
+        let area = Footprint::of(node, |_| false).at(wanted);
+        let (dx, dy) = Taken::of(nodes, wires).clear_move(&[area]);
+        (wanted.0 + dx, wanted.1 + dy)
+    }
+
+    /// Moves `placed` (nodes joined by `placed_wires`, pasted or duplicated onto the level
+    /// of `nodes` joined by `wires`) together, their layout kept, so that their top-left
+    /// position is as near `corner` as it can be with none of them within [`CLEARANCE`] of
+    /// a node already there.
+    fn place_nodes(
+        nodes: &[Node],
+        wires: &[Wire],
+        placed: &mut [Node],
+        placed_wires: &[Wire],
+        corner: (f32, f32),
+    ) {
+        let Some(top_left) = placed
+            .iter()
+            .map(|node| node.position)
+            .reduce(|a, b| (a.0.min(b.0), a.1.min(b.1)))
+        else {
+            return;
+        };
+        let to_corner = (
+            corner.0.round() - top_left.0.round(),
+            corner.1.round() - top_left.1.round(),
+        );
+        for node in placed.iter_mut() {
+            node.position = (
+                (node.position.0 + to_corner.0).round(),
+                (node.position.1 + to_corner.1).round(),
+            );
+        }
+        let (dx, dy) = Taken::of(nodes, wires).clear_move(&bounds(placed, placed_wires));
+        for node in placed.iter_mut() {
+            node.position = (node.position.0 + dx, node.position.1 + dy);
+        }
+    }
+
     use crate::graph::layout::footprint::overlapping;
     use crate::graph::{Graph, NodeKind};
     use proptest::prelude::*;
