@@ -23,7 +23,7 @@ pub fn follow(
         GraphEdit::Batch(edits) => edits
             .iter()
             .all(|edit| follow(snarl, shown, shown_level, edit, graph)),
-        _ => match edit_level(edit) {
+        _ => match edit.node_level() {
             // Edits of nodes at a level not shown change nothing shown.
             Some(level) if level != shown_level => true,
             // Inside a group wires reach its boundary, which both boundary nodes
@@ -36,22 +36,6 @@ pub fn follow(
     // What was just done to the view is the document's already.
     snarl.take_journal();
     followed
-}
-
-/// The level a node or wire edit is made at; `None` for the others.
-fn edit_level(edit: &GraphEdit) -> Option<&Level> {
-    match edit {
-        GraphEdit::AddNodes { level, .. }
-        | GraphEdit::RemoveNodes { level, .. }
-        | GraphEdit::Restore { level, .. }
-        | GraphEdit::Connect { level, .. }
-        | GraphEdit::Disconnect { level, .. }
-        | GraphEdit::SetInput { level, .. }
-        | GraphEdit::SetLabel { level, .. }
-        | GraphEdit::SetKind { level, .. }
-        | GraphEdit::MoveNodes { level, .. } => Some(level),
-        _ => None,
-    }
 }
 
 /// The nodes of `level` of `graph`, in id order.
@@ -182,7 +166,7 @@ mod tests {
     use super::*;
     use crate::app::canvas::snarl_model::{graph_from_snarl, snarl_from_graph};
     use crate::graph::edit::{History, apply};
-    use crate::graph::{NodeKind, PinRef, Value};
+    use crate::graph::{NodeKind, Value};
 
     /// The flat wood graph: its group dissolved, so the top level has many nodes.
     fn flat_wood() -> Graph {
@@ -242,33 +226,26 @@ mod tests {
                 moves: vec![(last, (-500.0, 20.0))],
             },
         ];
+        // The view follows each edit, and shows the document after it.
+        let mut followed = |snarl: &mut Snarl<Node>, edit: &GraphEdit, graph: &Graph| {
+            assert!(
+                follow(snarl, &mut shown, &Level::Top, edit, graph),
+                "{edit:?}"
+            );
+            assert!(graph_from_snarl(snarl, graph) == *graph, "{edit:?}");
+        };
         for edit in edits {
             history.apply(&mut graph, edit.clone()).expect("applies");
-            assert!(follow(&mut snarl, &mut shown, &Level::Top, &edit, &graph));
-            assert!(graph_from_snarl(&snarl, &graph) == graph);
+            followed(&mut snarl, &edit, &graph);
         }
         for _ in 0..3 {
             let step = history.undo(&mut graph).unwrap().expect("undoes");
-            assert!(follow(
-                &mut snarl,
-                &mut shown,
-                &Level::Top,
-                &step.edit,
-                &graph
-            ));
-            assert!(graph_from_snarl(&snarl, &graph) == graph, "{:?}", step.edit);
+            followed(&mut snarl, &step.edit, &graph);
         }
         assert!(graph == flat_wood());
         for _ in 0..3 {
             let step = history.redo(&mut graph).unwrap().expect("redoes");
-            assert!(follow(
-                &mut snarl,
-                &mut shown,
-                &Level::Top,
-                &step.edit,
-                &graph
-            ));
-            assert!(graph_from_snarl(&snarl, &graph) == graph);
+            followed(&mut snarl, &step.edit, &graph);
         }
         // A wire made and taken back.
         let wire = graph.wires[0].clone();
@@ -277,20 +254,10 @@ mod tests {
             wires: vec![wire.clone()],
         };
         history.apply(&mut graph, edit.clone()).unwrap();
-        assert!(follow(&mut snarl, &mut shown, &Level::Top, &edit, &graph));
+        followed(&mut snarl, &edit, &graph);
         let step = history.undo(&mut graph).unwrap().unwrap();
-        assert!(follow(
-            &mut snarl,
-            &mut shown,
-            &Level::Top,
-            &step.edit,
-            &graph
-        ));
-        assert!(graph_from_snarl(&snarl, &graph) == graph);
-        assert!(graph.wires.contains(&Wire {
-            from: PinRef::new(wire.from.node, &wire.from.pin),
-            to: PinRef::new(wire.to.node, &wire.to.pin),
-        }));
+        followed(&mut snarl, &step.edit, &graph);
+        assert!(graph.wires.contains(&wire));
         assert!(
             snarl.take_journal().is_empty(),
             "following leaves no journal"

@@ -8,7 +8,8 @@
 use crate::app::VeneerApp;
 use crate::app::canvas::snarl_patch;
 use crate::app::canvas::view_edits::edits_from_journal;
-use crate::graph::edit::{Change, GraphEdit, Level, Step};
+use crate::graph::Graph;
+use crate::graph::edit::{Change, EditError, GraphEdit, History, Level, Step};
 
 impl VeneerApp {
     /// Carries out `edit` on the document (after the graph view's edits so far) and
@@ -117,28 +118,24 @@ impl VeneerApp {
 
     /// Undoes the last step (inside a group too; a group undone away is left).
     pub fn undo(&mut self) {
-        self.take_in_view_edits();
-        let step = self
-            .session
-            .document
-            .history
-            .undo(&mut self.session.document.graph);
-        self.travelled(step);
+        self.travel(History::undo);
     }
 
     /// Redoes the last undone step.
     pub fn redo(&mut self) {
+        self.travel(History::redo);
+    }
+
+    /// Undoes or redoes (`step`) after taking in the view's edits, and shows it.
+    fn travel(&mut self, step: fn(&mut History, &mut Graph) -> Option<Result<Step, EditError>>) {
         self.take_in_view_edits();
-        let step = self
-            .session
-            .document
-            .history
-            .redo(&mut self.session.document.graph);
+        let document = &mut self.session.document;
+        let step = step(&mut document.history, &mut document.graph);
         self.travelled(step);
     }
 
     /// Shows a step undone or redone.
-    fn travelled(&mut self, step: Option<Result<Step, crate::graph::edit::EditError>>) {
+    fn travelled(&mut self, step: Option<Result<Step, EditError>>) {
         // Undo ends the gesture under way (Ctrl+Z while copies follow the mouse).
         self.session.revision.gesture = false;
         self.canvas.grab.forget();

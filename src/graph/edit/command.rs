@@ -169,9 +169,9 @@ impl GroupPin {
 }
 
 impl GraphEdit {
-    /// The group whose definition the edit changes, if it is one group's (an edit of
-    /// a group's contents makes a linked group local).
-    pub(super) fn edited_group(&self) -> Option<&str> {
+    /// The level of an edit of nodes or wires in place (adding, removing or restoring
+    /// nodes, wiring, a constant, a label, settings, places); `None` for the others.
+    pub fn node_level(&self) -> Option<&Level> {
         match self {
             GraphEdit::AddNodes { level, .. }
             | GraphEdit::RemoveNodes { level, .. }
@@ -181,8 +181,19 @@ impl GraphEdit {
             | GraphEdit::SetInput { level, .. }
             | GraphEdit::SetLabel { level, .. }
             | GraphEdit::SetKind { level, .. }
-            | GraphEdit::MoveNodes { level, .. }
-            | GraphEdit::Arrange { level }
+            | GraphEdit::MoveNodes { level, .. } => Some(level),
+            _ => None,
+        }
+    }
+
+    /// The group whose definition the edit changes, if it is one group's (an edit of
+    /// a group's contents makes a linked group local).
+    pub(super) fn edited_group(&self) -> Option<&str> {
+        if let Some(level) = self.node_level() {
+            return level.group();
+        }
+        match self {
+            GraphEdit::Arrange { level }
             | GraphEdit::Group { level, .. }
             | GraphEdit::Ungroup { level, .. } => level.group(),
             GraphEdit::AddGroupPin { group, .. }
@@ -190,12 +201,8 @@ impl GraphEdit {
             | GraphEdit::SetGroupInput { group, .. }
             | GraphEdit::RenameGroupPin { group, .. }
             | GraphEdit::RemoveGroupPin { group, .. } => Some(group),
-            GraphEdit::Set(_)
-            | GraphEdit::ApplyPreset { .. }
-            | GraphEdit::SetLinked { .. }
-            | GraphEdit::SetGroup { .. }
-            | GraphEdit::ReplaceGraph(_)
-            | GraphEdit::Batch(_) => None,
+            // (Node and wire edits: their level's group, above.)
+            _ => None,
         }
     }
 
