@@ -122,8 +122,11 @@ impl VeneerApp {
         }
         let revision = self.session.revision.number;
         let sync = lap();
-        // A big graph's compile, done on its thread.
-        self.preview.live.receive();
+        // A big graph's compile, done on its thread: the preview, drawn before, shows
+        // it in the next frame.
+        if self.preview.live.receive() {
+            ctx.request_repaint();
+        }
         let detail = Some(self.preview.live.full_detail);
         let recompile = std::mem::take(&mut self.session.revision.recompile);
         let graph = &self.session.document.graph;
