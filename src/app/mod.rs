@@ -6,6 +6,7 @@ mod canvas;
 mod chrome;
 mod inspector;
 mod preview;
+mod priority;
 mod session;
 mod thumbnails;
 mod widgets;

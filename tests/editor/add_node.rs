@@ -92,6 +92,28 @@ fn on_screen(harness: &Editor, position: (f32, f32)) -> Pos2 {
     harness.state().graph_to_screen() * Pos2::new(position.0, position.1)
 }
 
+/// A point of the graph panel where a copy of `node` put down with its top-left corner
+/// there would touch no node on screen.
+fn clear_of_nodes(harness: &Editor, node: veneer::graph::NodeId) -> Pos2 {
+    let app = harness.state();
+    let size = app.node_on_screen(node).expect("the node is drawn").size();
+    let rects: Vec<egui::Rect> = app
+        .document()
+        .graph
+        .nodes
+        .iter()
+        .filter_map(|other| app.node_on_screen(other.id))
+        .collect();
+    let corners = (0..12).flat_map(|y| (0..12).map(move |x| (x, y)));
+    corners
+        .map(|(x, y)| Pos2::new(100.0 + 60.0 * x as f32, 120.0 + 60.0 * y as f32))
+        .find(|corner| {
+            let footprint = egui::Rect::from_min_size(*corner, size).expand(80.0);
+            rects.iter().all(|rect| !rect.intersects(footprint))
+        })
+        .expect("the graph panel has room for a copy")
+}
+
 /// Asserts that `node` sits under `mouse`: its top-left corner a little up-left of it.
 fn assert_under(harness: &Editor, node: &veneer::graph::Node, mouse: Pos2) {
     let corner = on_screen(harness, node.position);
@@ -321,7 +343,7 @@ fn pasted_and_duplicated_nodes_land_at_the_mouse_in_their_layout() {
         "Ctrl+C copied {copied:?}, not the node"
     );
     harness.run();
-    let mouse = Pos2::new(650.0, 150.0);
+    let mouse = clear_of_nodes(&harness, original.id);
     hover(&mut harness, mouse);
     harness.event(Event::Paste(copied.clone()));
     harness.run();

@@ -2,6 +2,9 @@
 //! machine's adapter (lavapipe or llvmpipe on CI).
 
 mod add_node;
+#[path = "../engine/big_graphs.rs"]
+#[allow(dead_code)]
+mod big_graphs;
 mod dialogs;
 mod editing;
 mod files;

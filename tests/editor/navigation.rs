@@ -3,7 +3,9 @@
 //! removes), Home/F frame everything and '.' the selection; every preset opens whole
 //! and legible.
 
-use super::support::{editor, flat_wood_editor, press, scratch, wheel_notch};
+use super::support::{
+    chain_editor, click_at, editor, flat_wood_editor, press, scratch, wheel_notch,
+};
 use egui::{Event, Modifiers, PointerButton, Pos2, Rect, pos2, vec2};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
@@ -244,4 +246,54 @@ fn an_unlabelled_math_node_is_titled_by_its_operation() {
     };
     assert_eq!(titles("Math"), 0, "the new Divide node is titled 'Math'");
     assert_eq!(titles("Divide"), 1, "the new node is titled 'Divide'");
+}
+
+#[test]
+fn a_big_graph_zoomed_out_draws_outlines_that_still_select() {
+    // 220 nodes (a big graph) in bands, taller than wide, that Home frames zoomed out
+    // below the zoom graphs open at (0.3), with empty canvas left and right.
+    let mut harness = chain_editor(&scratch("nav-outlines"), 220, 2500.0);
+    harness.run_steps(2);
+    press(&mut harness, egui::Key::Home, false);
+    harness.run_steps(4);
+    let scaling = harness.state().graph_to_screen().scaling;
+    assert!(scaling < 0.3, "Home framed the chain at zoom {scaling}");
+    // Outlines: a painted box and title, no widgets inside the node.
+    assert!(
+        harness.query_by_label("step 1").is_none(),
+        "the node is drawn in full at zoom {scaling}"
+    );
+    let node = |harness: &Harness<'static, VeneerApp>, label: &str| {
+        let graph = &harness.state().document().graph;
+        let node = graph.nodes.iter().find(|n| n.label == label).unwrap();
+        let rect = harness.state().node_on_screen(node.id).expect("on screen");
+        (node.id, rect)
+    };
+    // A click on an outline selects its node alone.
+    let (noise, noise_rect) = node(&harness, "noise 3");
+    click_at(&mut harness, noise_rect.center());
+    assert_eq!(harness.state().selected_nodes(), [noise]);
+    // A box from empty canvas left of the first outline to the second selects both.
+    let ((start, start_rect), (step, step_rect)) =
+        (node(&harness, "start"), node(&harness, "step 1"));
+    let corner = pos2(start_rect.min.x - 8.0, start_rect.center().y);
+    assert!(GRAPH_AREA.contains(corner), "{corner:?} is off the panel");
+    drag(
+        &mut harness,
+        PointerButton::Primary,
+        Modifiers::NONE,
+        corner,
+        step_rect.center(),
+    );
+    let mut boxed = harness.state().selected_nodes();
+    boxed.sort();
+    assert_eq!(boxed, [start, step]);
+    // Framed close, the nodes are whole again.
+    press(&mut harness, egui::Key::Period, false);
+    harness.run_steps(4);
+    assert!(harness.state().graph_to_screen().scaling >= 0.3);
+    assert!(
+        harness.query_by_label("step 1").is_some(),
+        "framed close, the node is still an outline"
+    );
 }

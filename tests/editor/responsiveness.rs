@@ -5,15 +5,12 @@
 //! parameters than a uniform block holds) open and show their material.
 
 use crate::support::{
-    editor, preview_pixels, scratch, screen, select_node, settle_previews, settle_previews_within,
+    chain_editor, editor, preview_pixels, scratch, screen, select_node, settle_previews,
+    settle_previews_within,
 };
 use egui::{Event, PointerButton, pos2};
 use egui_kittest::kittest::Queryable;
 use veneer::render::Quality;
-
-#[path = "../engine/big_graphs.rs"]
-#[allow(dead_code)]
-mod big_graphs;
 
 #[test]
 fn frames_without_input_do_no_whole_graph_work() {
@@ -148,12 +145,7 @@ fn time_plays_and_starts_again_paused_with_another_graph() {
 
 #[test]
 fn a_graph_of_two_thousand_nodes_opens_and_shows_its_material() {
-    let dir = scratch("big");
-    let mut graph = big_graphs::chain(2000);
-    veneer::graph::layout::arrange_in_rows(&mut graph, 1620.0, 1000.0);
-    let path = dir.join("chain.ron");
-    veneer::graph::save(&graph, &path).expect("the graph saves");
-    let mut harness = editor(&dir, Some(path));
+    let mut harness = chain_editor(&scratch("big"), 2000, 1620.0);
     // The software rasteriser takes its time over a shader of two thousand nodes.
     settle_previews_within(&mut harness, 300);
     let app = harness.state();

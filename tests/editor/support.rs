@@ -13,6 +13,16 @@ pub fn scratch(name: &str) -> PathBuf {
     dir
 }
 
+/// The editor on a chain of `nodes` nodes ([`crate::big_graphs::chain`]) laid out in
+/// bands `width` canvas units wide, saved in `dir`.
+pub fn chain_editor(dir: &Path, nodes: usize, width: f32) -> Harness<'static, VeneerApp> {
+    let mut graph = crate::big_graphs::chain(nodes);
+    veneer::graph::layout::arrange_in_rows(&mut graph, width, 1000.0);
+    let path = dir.join("chain.ron");
+    veneer::graph::save(&graph, &path).expect("the graph saves");
+    editor(dir, Some(path))
+}
+
 /// The editor in a 1400×900 window, rendering through wgpu, on `graph` (or the wood
 /// preset), autosaving into `dir`.
 pub fn editor(dir: &Path, graph: Option<PathBuf>) -> Harness<'static, VeneerApp> {
@@ -158,7 +168,14 @@ pub fn inspects(harness: &Harness<'static, VeneerApp>, label: &str) -> bool {
 /// Clicks the node whose title is `title` in the graph panel.
 pub fn click_node(harness: &mut Harness<'static, VeneerApp>, title: &str) {
     // The title (a group output may be named after the node too), where it is on screen.
-    let position = crate::navigation::on_screen(harness, title).center();
+    click_at(
+        harness,
+        crate::navigation::on_screen(harness, title).center(),
+    );
+}
+
+/// A left click at `position`, and a frame to take it in.
+pub fn click_at(harness: &mut Harness<'static, VeneerApp>, position: egui::Pos2) {
     harness.event(egui::Event::PointerMoved(position));
     for pressed in [true, false] {
         let button = egui::PointerButton::Primary;

@@ -29,6 +29,7 @@ mod hostile_scale;
 mod image_based_lighting;
 mod layout;
 mod limits;
+mod live_preview;
 mod lint;
 mod meshes;
 mod node_kinds;

@@ -38,7 +38,18 @@ const UNMEASURED: Vec2 = egui::vec2(240.0, 160.0);
 const PIN_REACH: f32 = 10.0;
 /// Graphs of more nodes than this skip the nodes off screen (egui-snarl's
 /// `cull_offscreen`, our patch).
-pub const BIG_GRAPH: usize = 200;
+const BIG_GRAPH: usize = 200;
+
+/// Whether a graph of `nodes` nodes is big: its nodes off screen are skipped, and
+/// zoomed out below [`OUTLINE_ZOOM`] they are outlines.
+pub fn is_big(nodes: usize) -> bool {
+    nodes > BIG_GRAPH
+}
+
+/// Zoomed out below this, big graphs draw their nodes as outlines: a box, the title
+/// where it fits, straight wires (egui-snarl's `outline_below`, our patch). Their pins'
+/// names would be under 4 points tall. Graphs open at it or closer, in full.
+pub const OUTLINE_ZOOM: f32 = OPEN_ZOOM;
 
 /// Frames a framing follows the nodes' sizes for: egui settles a node's size over its
 /// first frames, and thumbnails arrive after it.
@@ -175,6 +186,17 @@ impl Navigation {
     /// After the graph is shown: puts back the modifiers [`Navigation::before`] changed.
     pub fn after(&self, ctx: &Context, modifiers: egui::Modifiers) {
         ctx.input_mut(|input| input.modifiers = modifiers);
+    }
+
+    /// Whether a graph of `nodes` nodes is drawn as outlines at the current zoom (then no
+    /// node shows its thumbnail).
+    pub fn outlines(&self, nodes: usize) -> bool {
+        is_big(nodes) && self.transform.scaling < OUTLINE_ZOOM
+    }
+
+    /// Whether the view is moving: a pan held, a zoom easing in, or a framing settling.
+    pub fn moving(&self) -> bool {
+        self.panning || self.zoom_to_come != 0.0 || self.framing.is_some()
     }
 
     /// The nodes whose rectangle, when last drawn, was at least partly on screen.

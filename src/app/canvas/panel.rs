@@ -58,12 +58,14 @@ impl VeneerApp {
             shading: graph.shading,
         };
         *canvas.spots.borrow_mut() = Default::default();
-        // In big graphs nodes off screen are not laid out at all (our egui-snarl patch).
-        let big = canvas.snarl.node_ids().count() > navigation::BIG_GRAPH;
+        // In big graphs nodes off screen are not laid out at all, and zoomed out they are
+        // outlines (our egui-snarl patch).
+        let big = navigation::is_big(canvas.snarl.node_ids().count());
         let widget = SnarlWidget::new()
             .id_salt(("graph", canvas.view_generation))
             .style(painting::graph_style(ui.style()))
-            .cull_offscreen(big);
+            .cull_offscreen(big)
+            .outline_below(navigation::OUTLINE_ZOOM);
         widget.set_selected_nodes(ui, &canvas.selection);
         widget.show(&mut canvas.snarl, &mut viewer, ui);
         self.wire_pointer(ui);

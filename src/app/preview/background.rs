@@ -2,7 +2,8 @@
 //! and the thumbnails' atlas, and the lint. A 10,000-node graph takes half a second to
 //! check and compile and a tenth to lint: done in the frame of an edit, that would be
 //! the UI's pause; done here, the UI keeps answering and shows the last material (and
-//! warnings) until the new ones are in. Small graphs are done at once, in the frame.
+//! warnings) until the new ones are in, the thread behind the window in priority. Small
+//! graphs are done at once, in the frame.
 
 use crate::codegen::{CompileError, CompileOptions, Compiled, Detail, ParamMode, compile};
 use crate::graph::Graph;
@@ -68,6 +69,7 @@ impl<T: Send + 'static> Background<T> {
         let spawned = std::thread::Builder::new()
             .name("veneer-background".into())
             .spawn(move || {
+                crate::app::priority::behind_the_window();
                 let work = job.lock().ok().and_then(|mut work| work.take());
                 if let Some(work) = work {
                     // (The editor may have moved on to newer work: then no one listens.)

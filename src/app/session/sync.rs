@@ -145,20 +145,26 @@ impl VeneerApp {
         let lint = lap();
         let time = self.preview.state.view.time;
         let hovered = self.canvas.hovered_wire.as_ref();
-        // Asked only of graphs with more nodes than tiles.
+        // Asked only of graphs with more nodes than tiles: the nodes on screen, none
+        // when they are outlines, and while the view moves the same as before.
+        let navigation = &self.canvas.navigation;
         let visible = std::cell::OnceCell::new();
         let on_screen = |node: NodeId| {
             visible
                 .get_or_init(|| {
-                    let shown = self.canvas.navigation.on_screen();
+                    if navigation.outlines(self.canvas.snarl.node_ids().count()) {
+                        return Default::default();
+                    }
+                    let shown = navigation.on_screen();
                     let ids = shown.filter_map(|id| self.canvas.snarl.get_node(id).map(|n| n.id));
                     ids.collect::<rustc_hash::FxHashSet<NodeId>>()
                 })
                 .contains(&node)
         };
+        let view = (!navigation.moving()).then_some(&on_screen as &dyn Fn(NodeId) -> bool);
         let graph = &self.session.document.graph;
         self.thumbnails
-            .update(ctx, graph, revision, hovered, time, &on_screen);
+            .update(ctx, graph, revision, hovered, time, view);
         let thumbnails = lap();
         let known = self.session.revision.dirty_known;
         if known != Some(revision) {

@@ -89,12 +89,13 @@ impl Thumbnails {
 
     /// The pins that would get a tile: the first output of every node that shows its
     /// thumbnail and, in graphs with more of them than [`MAX_TILES`], only of those on
-    /// screen (`on_screen`), up to that many; and `hovered` (the wire under the pointer).
+    /// screen (`on_screen`; `None` while the view moves: those of the last call), up to
+    /// that many; and `hovered` (the wire under the pointer).
     fn candidates(
         &self,
         graph: &Graph,
         hovered: Option<&PinRef>,
-        on_screen: &dyn Fn(NodeId) -> bool,
+        on_screen: Option<&dyn Fn(NodeId) -> bool>,
     ) -> Vec<PinRef> {
         let all: Vec<PinRef> = graph
             .nodes
@@ -106,6 +107,10 @@ impl Thumbnails {
             })
             .collect();
         let mut pins: BTreeSet<PinRef> = if all.len() > MAX_TILES {
+            let Some(on_screen) = on_screen else {
+                let last = self.seen.as_ref().map(|seen| seen.pins.clone());
+                return last.unwrap_or_default();
+            };
             let shown = all.into_iter().filter(|pin| on_screen(pin.node));
             shown.take(MAX_TILES).collect()
         } else {
@@ -126,8 +131,9 @@ impl Thumbnails {
     /// Brings the tiles in step with `graph` at `revision` (which changes whenever the
     /// graph does): recompiles the atlas if its structure changed, sends the tiles whose
     /// inputs changed to the drawing thread, and takes in what it drew. `hovered` is the
-    /// output pin of the wire under the pointer. Does nothing when neither these nor
-    /// the thread's work changed since the last call.
+    /// output pin of the wire under the pointer; `on_screen` which nodes are on screen
+    /// (`None` while the view moves). Does nothing when neither these nor the thread's
+    /// work changed since the last call.
     pub fn update(
         &mut self,
         ctx: &egui::Context,
@@ -135,7 +141,7 @@ impl Thumbnails {
         revision: u64,
         hovered: Option<&PinRef>,
         time: f32,
-        on_screen: &dyn Fn(NodeId) -> bool,
+        on_screen: Option<&dyn Fn(NodeId) -> bool>,
     ) {
         let received = self.receive(ctx);
         // A big graph's atlas compiles on a thread of its own.

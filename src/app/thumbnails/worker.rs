@@ -45,6 +45,7 @@ impl Worker {
         let (jobs, job_receiver) = channel::<Job>();
         let (done_sender, done) = channel();
         let thread = DrawingThread::spawn("veneer thumbnails", move || {
+            crate::app::priority::behind_the_window();
             let gpu = GpuContext::new().map_err(|error| error.to_string());
             let mut renderer: Option<(u64, ThumbnailRenderer)> = None;
             for job in job_receiver {

@@ -19,6 +19,7 @@ use smallvec::SmallVec;
 use crate::{InPin, InPinId, Node, NodeId, OutPin, OutPinId, Snarl, ui::wire::WireId};
 
 mod background_pattern;
+mod outline;
 mod pin;
 mod scale;
 mod state;
@@ -829,6 +830,17 @@ struct DrawnNode {
     rect: Rect,
     inputs: Vec<(InPinId, PinResponse)>,
     outputs: Vec<(OutPinId, PinResponse)>,
+    /// How many pins the node had (the lists above hold those drawn).
+    input_count: usize,
+    output_count: usize,
+}
+
+/// How much of the graph to draw (Veneer's patch): skip nodes off screen, and outline
+/// nodes below a zoom.
+#[derive(Clone, Copy)]
+struct Detail {
+    cull: bool,
+    outline_below: f32,
 }
 
 /// The nodes as last drawn, kept in egui's memory for one snarl.
@@ -844,6 +856,7 @@ pub struct SnarlWidget {
     min_size: Vec2,
     max_size: Vec2,
     cull: bool,
+    outline_below: f32,
 }
 
 impl Default for SnarlWidget {
@@ -865,6 +878,7 @@ impl SnarlWidget {
             min_size: Vec2::ZERO,
             max_size: Vec2::INFINITY,
             cull: false,
+            outline_below: 0.0,
         }
     }
 
@@ -875,6 +889,16 @@ impl SnarlWidget {
     #[must_use]
     pub const fn cull_offscreen(mut self, cull: bool) -> Self {
         self.cull = cull;
+        self
+    }
+
+    /// Zoomed out below `scale`, nodes already drawn once are drawn as outlines: a box,
+    /// the title where it fits, straight wires (a level of detail for big graphs). Only
+    /// with [`SnarlWidget::cull_offscreen`]; never by default. (Veneer's patch.)
+    #[inline]
+    #[must_use]
+    pub const fn outline_below(mut self, scale: f32) -> Self {
+        self.outline_below = scale;
         self
     }
 
@@ -945,7 +969,10 @@ impl SnarlWidget {
             self.style,
             self.min_size,
             self.max_size,
-            self.cull,
+            Detail {
+                cull: self.cull,
+                outline_below: self.outline_below,
+            },
             snarl,
             viewer,
             ui,
@@ -960,7 +987,10 @@ fn show_snarl<T, V>(
     mut style: SnarlStyle,
     min_size: Vec2,
     max_size: Vec2,
-    cull: bool,
+    Detail {
+        cull,
+        outline_below,
+    }: Detail,
     snarl: &mut Snarl<T>,
     viewer: &mut V,
     ui: &mut Ui,
@@ -1114,9 +1144,39 @@ where
         HashMap::new()
     };
     drawn.retain(|node, _| snarl.nodes.contains(node.0));
+    let outlines = (cull && to_global.scaling < outline_below).then_some(outline::Outlines {
+        style: &style,
+        snarl_id,
+        modifiers,
+        viewport,
+        scale: to_global.scaling,
+    });
 
     for node_idx in draw_order {
         if !snarl.nodes.contains(node_idx.0) {
+            continue;
+        }
+
+        if let Some(outlines) = &outlines
+            && let Some(last) = drawn.get(&node_idx)
+            && last.shows(viewer, &snarl.nodes[node_idx.0].value)
+        {
+            let response = outlines.draw(
+                snarl,
+                &mut ui,
+                node_idx,
+                last,
+                viewer,
+                &mut snarl_state,
+                &mut input_info,
+                &mut output_info,
+            );
+            node_to_top = response.node_to_top.or(node_to_top);
+            node_moved = response.node_moved.or(node_moved);
+            nodes_bb = nodes_bb.union(response.final_rect);
+            if rect_selection_ended.is_some() {
+                node_rects.push((node_idx, response.final_rect));
+            }
             continue;
         }
 
@@ -1164,11 +1224,13 @@ where
                 node_rects.push((node_idx, response.final_rect));
             }
             if cull && let Some(node) = snarl.nodes.get(node_idx.0) {
-                let inputs = (0..viewer.inputs(&node.value))
+                let (input_count, output_count) =
+                    (viewer.inputs(&node.value), viewer.outputs(&node.value));
+                let inputs = (0..input_count)
                     .map(|input| InPinId { node: node_idx, input })
                     .filter_map(|pin| Some((pin, *input_info.get(&pin)?)))
                     .collect();
-                let outputs = (0..viewer.outputs(&node.value))
+                let outputs = (0..output_count)
                     .map(|output| OutPinId { node: node_idx, output })
                     .filter_map(|pin| Some((pin, *output_info.get(&pin)?)))
                     .collect();
@@ -1177,6 +1239,8 @@ where
                     rect: response.final_rect,
                     inputs,
                     outputs,
+                    input_count,
+                    output_count,
                 };
                 drawn.insert(node_idx, entry);
             }
@@ -1198,6 +1262,13 @@ where
         let Some(to_r) = input_info.get(&wire.in_pin) else {
             continue;
         };
+
+        if outlines.is_some() {
+            let color = mix_colors(from_r.wire_color, to_r.wire_color);
+            let stroke = Stroke::new(wire_width, color);
+            wire_shapes.extend(outline::wire(viewport, from_r.pos, to_r.pos, stroke));
+            continue;
+        }
 
         if !snarl_state.has_new_wires() && snarl_resp.contains_pointer() && hovered_wire.is_none() {
             // Try to find hovered wire
@@ -2644,7 +2715,10 @@ impl<T> Snarl<T> {
             *style,
             Vec2::ZERO,
             Vec2::INFINITY,
-            false,
+            Detail {
+                cull: false,
+                outline_below: 0.0,
+            },
             self,
             viewer,
             ui,
