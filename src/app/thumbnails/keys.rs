@@ -1,7 +1,7 @@
 //! What each node thumbnail depends on, worked out for the whole graph in one pass each
 //! (linear in nodes and wires, so graphs of thousands of nodes cost no more per node
-//! than small ones): a hash of everything upstream of each node, and the nodes that
-//! read, directly or not, a node that fails to compile.
+//! than small ones): a hash of everything upstream of each node, the nodes that read,
+//! directly or not, a node that fails to compile, and which tiles fit one atlas.
 
 use crate::graph::{Graph, NodeId, NodeKind};
 use rustc_hash::{FxHashMap, FxHashSet};
@@ -85,6 +85,47 @@ pub fn downstream_of(
     reached
 }
 
+/// The pins of `pins` whose tiles fit an atlas of at most `limit` graph nodes, and the
+/// nodes of those that do not. Pins are taken in order, each adding the nodes upstream
+/// of it that no pin before it needed; one that would take the atlas past `limit` is
+/// left out (the walk over its nodes stops there, so the work is at most `limit` nodes
+/// a pin). The atlas is one shader: a tile of a node 5,000 deep in a chain made it a
+/// shader of 5,000 nodes, which lavapipe took over 20 seconds to compile.
+pub fn within_atlas(
+    graph: &Graph,
+    pins: &[crate::graph::PinRef],
+    limit: usize,
+) -> (Vec<crate::graph::PinRef>, FxHashSet<NodeId>) {
+    let mut sources: FxHashMap<NodeId, Vec<NodeId>> = FxHashMap::default();
+    for wire in &graph.wires {
+        sources
+            .entry(wire.to.node)
+            .or_default()
+            .push(wire.from.node);
+    }
+    let mut taken: FxHashSet<NodeId> = FxHashSet::default();
+    let (mut kept, mut left_out) = (Vec::new(), FxHashSet::default());
+    for pin in pins {
+        let mut new: FxHashSet<NodeId> = FxHashSet::default();
+        let mut stack = vec![pin.node];
+        while let Some(node) = stack.pop() {
+            if taken.len() + new.len() > limit {
+                break;
+            }
+            if !taken.contains(&node) && new.insert(node) {
+                stack.extend(sources.get(&node).into_iter().flatten().copied());
+            }
+        }
+        if taken.len() + new.len() > limit {
+            left_out.insert(pin.node);
+        } else {
+            taken.extend(new);
+            kept.push(pin.clone());
+        }
+    }
+    (kept, left_out)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -139,5 +180,26 @@ mod tests {
         assert_eq!(upstream_hashes(&graph, 0.0).len(), 100_001);
         let broken = [graph.nodes[50_000].id].into_iter().collect();
         assert_eq!(downstream_of(&graph, &broken).len(), 50_001);
+    }
+
+    #[test]
+    fn tiles_fit_the_atlas_in_order_and_deep_ones_are_left_out() {
+        // start → n1 → … → n9: node k has k + 1 nodes upstream of it, itself included.
+        let mut graph = Graph::default();
+        let mut chain = vec![graph.add("start", NodeKind::Position)];
+        for k in 1..10 {
+            let node = graph.add(&format!("n{k}"), NodeKind::Transform);
+            let from = if k == 1 { "position" } else { "p" };
+            graph.connect(chain[k - 1], from, node, "p");
+            chain.push(node);
+        }
+        let pin = |k: usize| crate::graph::PinRef::new(chain[k], "p");
+        // n2 needs 3 nodes, n4 two more, n8 four more: 9 > 6, left out.
+        let (kept, left_out) = within_atlas(&graph, &[pin(2), pin(4), pin(8), pin(5)], 6);
+        assert_eq!(kept, [pin(2), pin(4), pin(5)]);
+        assert_eq!(left_out, FxHashSet::from_iter([chain[8]]));
+        // Shared nodes count once: n9 alone fits 10 nodes, and n3 then adds none.
+        let (kept, left_out) = within_atlas(&graph, &[pin(9), pin(3)], 10);
+        assert_eq!((kept.len(), left_out.len()), (2, 0));
     }
 }

@@ -25,6 +25,10 @@ use std::sync::Arc;
 /// The most tiles drawn: past it only nodes on screen get one.
 pub const MAX_TILES: usize = 256;
 
+/// The most graph nodes the atlas compiles: a tile that would take it past this is left
+/// out (see [`keys::within_atlas`]).
+pub const ATLAS_NODES: usize = 1_000;
+
 /// The thumbnails' state, kept by the app between frames.
 pub struct Thumbnails {
     /// Thumbnails on nodes at all (View menu, T).
@@ -37,9 +41,8 @@ pub struct Thumbnails {
     tiles: Tiles,
     /// The Mix node selecting each tile (see `probe::AtlasGraph`).
     selectors: Vec<NodeId>,
-    /// Nodes whose code fails to compile: left out with what reads them, until the
-    /// graph's structure changes.
-    broken: (Graph, BTreeSet<NodeId>),
+    /// Nodes left out of the atlas, and why.
+    left_out: LeftOut,
     worker: Option<Worker>,
     in_flight: bool,
     /// Tiles drawn so far (a tile drawn twice counts twice).
@@ -51,6 +54,18 @@ pub struct Thumbnails {
     /// What the tiles were last brought in step with; nothing is done again until it
     /// changes or a job comes back.
     seen: Option<Seen>,
+}
+
+/// Nodes whose tiles the atlas leaves out.
+#[derive(Default)]
+struct LeftOut {
+    /// The structure `broken` was found in: it is forgotten when that changes.
+    structure: Graph,
+    /// Nodes whose code fails to compile: left out with what reads them.
+    broken: BTreeSet<NodeId>,
+    /// Nodes with too much upstream for the atlas (more than [`ATLAS_NODES`] with the
+    /// tiles before them).
+    too_deep: rustc_hash::FxHashSet<NodeId>,
 }
 
 /// What the tiles depend on besides the drawing thread: the graph's revision, the
@@ -70,7 +85,7 @@ impl Default for Thumbnails {
             atlas: LiveMaterial::default(),
             tiles: Tiles::default(),
             selectors: Vec::new(),
-            broken: Default::default(),
+            left_out: LeftOut::default(),
             worker: None,
             in_flight: false,
             tiles_drawn: 0,
@@ -120,12 +135,20 @@ impl Thumbnails {
         pins.into_iter().collect()
     }
 
-    /// The candidates that get a tile: those not reading a node that fails to compile.
-    fn wanted(&self, graph: &Graph, candidates: &[PinRef]) -> Vec<PinRef> {
-        let tainted = crate::app::thumbnails::keys::downstream_of(graph, &self.broken.1);
+    /// The candidates that get a tile: those not reading a node that fails to compile,
+    /// as many as the atlas takes (the others are noted as too deep).
+    fn wanted(&mut self, graph: &Graph, candidates: &[PinRef]) -> Vec<PinRef> {
+        let tainted = keys::downstream_of(graph, &self.left_out.broken);
         let mut pins = candidates.to_vec();
         pins.retain(|pin| !tainted.contains(&pin.node));
+        let (pins, too_deep) = keys::within_atlas(graph, &pins, ATLAS_NODES);
+        self.left_out.too_deep = too_deep;
         pins
+    }
+
+    /// Whether `node`'s tile is left out for having more upstream than the atlas takes.
+    pub fn too_deep(&self, node: NodeId) -> bool {
+        self.left_out.too_deep.contains(&node)
     }
 
     /// Brings the tiles in step with `graph` at `revision` (which changes whenever the
@@ -158,8 +181,9 @@ impl Thumbnails {
         let candidates = seen.pins.clone();
         self.seen = Some(seen);
         let structure = crate::app::preview::live::structure(graph);
-        if self.broken.0 != structure {
-            self.broken = (structure, BTreeSet::new());
+        if self.left_out.structure != structure {
+            self.left_out.structure = structure;
+            self.left_out.broken.clear();
         }
         // A node that fails to compile is left out (with what reads it) and the rest
         // compiled again; each round leaves out at least one more node.
@@ -175,10 +199,14 @@ impl Thumbnails {
                 return;
             }
             let failed: Vec<NodeId> = self.atlas.errors.keys().flatten().copied().collect();
-            if failed.is_empty() || failed.iter().all(|node| self.broken.1.contains(node)) {
+            if failed.is_empty()
+                || failed
+                    .iter()
+                    .all(|node| self.left_out.broken.contains(node))
+            {
                 break atlas;
             }
-            self.broken.1.extend(failed);
+            self.left_out.broken.extend(failed);
         };
         let Some(compiled) = &self.atlas.compiled else {
             return;
@@ -337,7 +365,7 @@ fn tile_key(
 }
 
 /// The thumbnail of `node` as a node body shows it: its tile, or an empty square of the
-/// same size until the tile is first drawn.
+/// same size until the tile is first drawn (saying why on hover when it never will be).
 pub fn show_tile(ui: &mut egui::Ui, thumbnails: &Thumbnails, node: &crate::graph::Node) {
     let size = egui::Vec2::splat(TILE_PIXELS as f32);
     let output = node.kind.signature().outputs.first().map(|o| o.name);
@@ -347,7 +375,13 @@ pub fn show_tile(ui: &mut egui::Ui, thumbnails: &Thumbnails, node: &crate::graph
             ui.add(egui::Image::new((texture, size)).uv(uv));
         }
         None => {
-            ui.allocate_exact_size(size, egui::Sense::hover());
+            let (_, square) = ui.allocate_exact_size(size, egui::Sense::hover());
+            if thumbnails.too_deep(node.id) {
+                square.on_hover_text(format!(
+                    "No thumbnail: with the thumbnails before it, it needs more than \
+                     {ATLAS_NODES} nodes upstream, more than the thumbnails' shader takes"
+                ));
+            }
         }
     }
 }
