@@ -63,18 +63,25 @@ pub fn upstream_hashes(graph: &Graph, time: f32) -> FxHashMap<NodeId, u64> {
     hashes
 }
 
+/// For every node, the nodes its wires lead to: `ends` gives a wire's node and the node
+/// it leads to (the reader, or the source).
+fn linked(
+    graph: &Graph,
+    ends: impl Fn(&crate::graph::Wire) -> (NodeId, NodeId),
+) -> FxHashMap<NodeId, Vec<NodeId>> {
+    let mut linked: FxHashMap<NodeId, Vec<NodeId>> = FxHashMap::default();
+    for (node, other) in graph.wires.iter().map(ends) {
+        linked.entry(node).or_default().push(other);
+    }
+    linked
+}
+
 /// `broken` and every node that reads one of them, directly or not.
 pub fn downstream_of(
     graph: &Graph,
     broken: &std::collections::BTreeSet<NodeId>,
 ) -> FxHashSet<NodeId> {
-    let mut readers: FxHashMap<NodeId, Vec<NodeId>> = FxHashMap::default();
-    for wire in &graph.wires {
-        readers
-            .entry(wire.from.node)
-            .or_default()
-            .push(wire.to.node);
-    }
+    let readers = linked(graph, |wire| (wire.from.node, wire.to.node));
     let mut reached: FxHashSet<NodeId> = FxHashSet::default();
     let mut stack: Vec<NodeId> = broken.iter().copied().collect();
     while let Some(node) = stack.pop() {
@@ -96,13 +103,7 @@ pub fn within_atlas(
     pins: &[crate::graph::PinRef],
     limit: usize,
 ) -> (Vec<crate::graph::PinRef>, FxHashSet<NodeId>) {
-    let mut sources: FxHashMap<NodeId, Vec<NodeId>> = FxHashMap::default();
-    for wire in &graph.wires {
-        sources
-            .entry(wire.to.node)
-            .or_default()
-            .push(wire.from.node);
-    }
+    let sources = linked(graph, |wire| (wire.to.node, wire.from.node));
     let mut taken: FxHashSet<NodeId> = FxHashSet::default();
     let (mut kept, mut left_out) = (Vec::new(), FxHashSet::default());
     for pin in pins {
