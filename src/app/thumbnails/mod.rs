@@ -16,7 +16,7 @@ use crate::app::preview::probe::atlas_graph;
 pub use crate::app::thumbnails::tiles::TILE_PIXELS;
 use crate::app::thumbnails::tiles::Tiles;
 use crate::app::thumbnails::worker::{Done, Job, Worker};
-use crate::graph::{Graph, NodeId, PinRef};
+use crate::graph::{Graph, Node, NodeId, PinRef};
 use crate::render::FlatRect;
 use std::collections::BTreeSet;
 use std::hash::{Hash, Hasher};
@@ -112,24 +112,22 @@ impl Thumbnails {
         hovered: Option<&PinRef>,
         on_screen: Option<&dyn Fn(NodeId) -> bool>,
     ) -> Vec<PinRef> {
-        let all: Vec<PinRef> = graph
-            .nodes
-            .iter()
-            .filter(|node| self.shows(node.id))
-            .filter_map(|node| {
-                let output = node.kind.signature().outputs.first()?.name;
-                Some(PinRef::new(node.id, output))
-            })
-            .collect();
-        let mut pins: BTreeSet<PinRef> = if all.len() > MAX_TILES {
+        // Pins are made (a name each) only for the nodes that get one: while the view of
+        // a big graph moves, this runs every frame.
+        let showing =
+            |node: &&Node| self.shows(node.id) && !node.kind.signature().outputs.is_empty();
+        let first_output =
+            |node: &Node| PinRef::new(node.id, node.kind.signature().outputs[0].name);
+        let nodes = graph.nodes.iter().filter(showing);
+        let mut pins: BTreeSet<PinRef> = if nodes.clone().nth(MAX_TILES).is_some() {
             let Some(on_screen) = on_screen else {
                 let last = self.seen.as_ref().map(|seen| seen.pins.clone());
                 return last.unwrap_or_default();
             };
-            let shown = all.into_iter().filter(|pin| on_screen(pin.node));
-            shown.take(MAX_TILES).collect()
+            let shown = nodes.filter(|node| on_screen(node.id));
+            shown.take(MAX_TILES).map(first_output).collect()
         } else {
-            all.into_iter().collect()
+            nodes.map(first_output).collect()
         };
         pins.extend(hovered.cloned());
         pins.into_iter().collect()

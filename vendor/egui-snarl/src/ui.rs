@@ -1184,8 +1184,7 @@ where
             && last.pos == snarl.nodes[node_idx.0].pos
             && !viewport.intersects(last.rect)
         {
-            input_info.extend(last.inputs.iter().copied());
-            output_info.extend(last.outputs.iter().copied());
+            // Its pins are looked up where they were drawn (`input_at`, `output_at`).
             nodes_bb = nodes_bb.union(last.rect);
             if rect_selection_ended.is_some() {
                 node_rects.push((node_idx, last.rect));
@@ -1246,9 +1245,15 @@ where
             }
         }
     }
-    if cull {
-        ui.ctx().data_mut(|d| d.insert_temp(drawn_id, DrawnNodes(drawn)));
-    }
+    // Veneer's patch: the pins of a node skipped above are where it last drew them.
+    let input_at = |pin: &InPinId| {
+        let last = || drawn.get(&pin.node)?.inputs.iter().find(|(at, _)| at == pin);
+        input_info.get(pin).or_else(|| last().map(|(_, response)| response))
+    };
+    let output_at = |pin: &OutPinId| {
+        let last = || drawn.get(&pin.node)?.outputs.iter().find(|(at, _)| at == pin);
+        output_info.get(pin).or_else(|| last().map(|(_, response)| response))
+    };
 
     let mut hovered_wire = None;
     let mut hovered_wire_disconnect = false;
@@ -1256,10 +1261,10 @@ where
 
     // Draw and interact with wires
     for wire in snarl.wires.iter() {
-        let Some(from_r) = output_info.get(&wire.out_pin) else {
+        let Some(from_r) = output_at(&wire.out_pin) else {
             continue;
         };
-        let Some(to_r) = input_info.get(&wire.in_pin) else {
+        let Some(to_r) = input_at(&wire.in_pin) else {
             continue;
         };
 
@@ -1476,7 +1481,9 @@ where
         Some(NewWires::In(in_pins)) => {
             for &in_pin in in_pins {
                 let from_pos = wire_end_pos;
-                let to_r = &input_info[&in_pin];
+                let Some(to_r) = input_at(&in_pin) else {
+                    continue;
+                };
 
                 draw_wire(
                     &ui,
@@ -1495,7 +1502,9 @@ where
         }
         Some(NewWires::Out(out_pins)) => {
             for &out_pin in out_pins {
-                let from_r = &output_info[&out_pin];
+                let Some(from_r) = output_at(&out_pin) else {
+                    continue;
+                };
                 let to_pos = wire_end_pos;
 
                 draw_wire(
@@ -1513,6 +1522,10 @@ where
                 );
             }
         }
+    }
+
+    if cull {
+        ui.ctx().data_mut(|d| d.insert_temp(drawn_id, DrawnNodes(drawn)));
     }
 
     match wire_shape_idx {
