@@ -20,7 +20,7 @@ use veneer::app::FRAME_LOG_HEADER;
 const SCREEN: &str = "1600x900x24";
 /// Where the rings' frequency field is in the window as wood opens (the inspector is
 /// not needed: node bodies edit their constants).
-const RINGS_FREQUENCY: (i32, i32) = (546, 617);
+const RINGS_FREQUENCY: (i32, i32) = (292, 331);
 /// An empty spot of the canvas, for the pointer to move over.
 const EMPTY_CANVAS: (i32, i32) = (600, 760);
 /// How long each scenario runs, and how much of its start is left out (the first
