@@ -7,7 +7,7 @@
 
 use egui::{
     Color32, FontId, Id, Modifiers, PointerButton, Pos2, Rect, Sense, Shape, Stroke, StrokeKind,
-    Ui,
+    Ui, Vec2,
 };
 
 use super::{DrawNodeResponse, DrawnNode, PinResponse, SnarlStyle, SnarlViewer, state::SnarlState};
@@ -56,12 +56,16 @@ impl Outlines<'_> {
     ) -> DrawNodeResponse {
         let moved = snarl.nodes[node.0].pos - last.pos;
         let rect = last.rect.translate(moved);
-        let shifted = |response: &PinResponse| PinResponse {
-            pos: response.pos + moved,
-            ..*response
-        };
-        input_positions.extend(last.inputs.iter().map(|(pin, at)| (*pin, shifted(at))));
-        output_positions.extend(last.outputs.iter().map(|(pin, at)| (*pin, shifted(at))));
+        // The pins of an outline not moved are looked up in `last` by the wires; only a
+        // moved one's are written down, where they are now.
+        if moved != Vec2::ZERO {
+            let shifted = |response: &PinResponse| PinResponse {
+                pos: response.pos + moved,
+                ..*response
+            };
+            input_positions.extend(last.inputs.iter().map(|(pin, at)| (*pin, shifted(at))));
+            output_positions.extend(last.outputs.iter().map(|(pin, at)| (*pin, shifted(at))));
+        }
         let mut response = DrawNodeResponse {
             node_moved: None,
             node_to_top: None,
