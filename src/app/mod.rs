@@ -193,7 +193,7 @@ impl VeneerApp {
         self.session.document = document;
         self.session.revision.outside = None;
         self.session.revision.gesture = false;
-        self.session.revision.recheck();
+        self.session.revision.replaced();
         self.preview.live.update(&self.session.document.graph);
     }
 
@@ -437,16 +437,18 @@ impl VeneerApp {
             ui.separator();
         }
         // Inside a group the nodes' ids are the definition's: the top level's
-        // thumbnails and messages are not theirs.
-        if self.canvas.scope.current().is_some() {
-            inspector::node::show(ui, &mut self.canvas.snarl, node, None, None);
+        // thumbnails and errors are not theirs (its warnings are found for each group).
+        if let Some(group) = self.canvas.scope.current() {
+            let id = self.canvas.snarl[node].id;
+            let warning = self.preview.live.warnings.of_level(Some(group)).get(&id);
+            inspector::node::show(ui, &mut self.canvas.snarl, node, None, warning);
             return;
         }
         self.node_thumbnail(ui, node);
         let id = self.canvas.snarl[node].id;
         let (error, warning) = (
             self.preview.live.errors.get(&Some(id)),
-            self.preview.live.warnings.get(&id),
+            self.preview.live.warnings.top.get(&id),
         );
         inspector::node::show(ui, &mut self.canvas.snarl, node, error, warning);
     }
@@ -520,7 +522,7 @@ impl eframe::App for VeneerApp {
         if let Some(log) = &mut self.chrome.frame_log {
             log.record(
                 started_at,
-                self.chrome.profile.total,
+                &self.chrome.profile,
                 self.session.revision.number,
                 self.preview.live.compiles,
             );

@@ -247,6 +247,7 @@ impl Inlining<'_> {
                 return Err(failed(unknown_pin("input", pin, interface)));
             }
         }
+        let definition_name = name.clone();
         let name = shown(&name);
 
         // The inner nodes, renumbered.
@@ -292,6 +293,8 @@ impl Inlining<'_> {
                 inner.origin = Some(Box::new(Origin {
                     groups: path.clone(),
                     id: node.id,
+                    top: instance.origin.as_ref().map_or(instance.id, |outer| outer.top),
+                    definition: definition_name.clone(),
                 }));
                 inner.position = instance.position;
             }

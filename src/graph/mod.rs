@@ -16,6 +16,7 @@ pub mod names;
 pub mod nesting;
 mod node_file;
 pub mod parameters;
+mod part;
 mod presets;
 mod preview;
 mod shading;
@@ -92,6 +93,10 @@ pub struct Origin {
     pub groups: GroupPath,
     /// Its id inside its group's definition.
     pub id: NodeId,
+    /// The top level's group node it was inlined from (the outermost instance).
+    pub top: NodeId,
+    /// The name of the group definition it sits in (the innermost instance's).
+    pub definition: String,
 }
 
 /// Group instances, one inside the other, each as `group 'label'`: shown outermost

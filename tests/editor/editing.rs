@@ -220,6 +220,7 @@ fn a_numerical_hazard_is_marked_on_its_node_without_blocking_the_material() {
     assert!(
         app.live()
             .warnings
+            .top
             .get(&node)
             .is_some_and(|w| w.contains("a hard step")),
         "{:?}",

@@ -463,3 +463,33 @@ fn a_group_with_more_inputs_than_a_group_may_show_opens_unchanged_and_says_why()
         }
     }
 }
+
+#[test]
+fn a_numerical_hazard_inside_a_group_is_marked_inside_it_and_on_the_group() {
+    let dir = scratch("group-lint");
+    let mut graph = veneer::graph::preset("wood").expect("the wood preset");
+    let definition = graph.groups.get_mut("ring_wood").expect("the wood group");
+    // (Not following the library, which would bring its own back on opening.)
+    definition.linked = false;
+    let sharp = definition.nodes.iter_mut().find(|n| n.label == "ring sharp");
+    // Equal edges: a hard step.
+    let sharp = sharp.expect("the rings' smoothstep");
+    sharp.inputs.insert("edge0".into(), Value::Float(0.85));
+    let path = dir.join("wood.ron");
+    veneer::graph::save(&graph, &path).expect("the graph saves");
+    let mut harness = editor(&dir, Some(path));
+    select_node(&mut harness, "wood");
+    assert!(
+        shows(&harness, "node 'ring sharp'") && shows(&harness, "a hard step"),
+        "the group node names the hazard inside it: {:?}",
+        harness.state().live().warnings
+    );
+    press(&mut harness, Key::Tab, false);
+    harness.run_steps(4);
+    assert_eq!(harness.state().group_path(), ["ring_wood"]);
+    select_node(&mut harness, "ring sharp");
+    assert!(
+        shows(&harness, "not a smooth one (in group 'wood')"),
+        "inside, the node itself is marked"
+    );
+}

@@ -31,9 +31,9 @@ impl VeneerApp {
             !grabbed,
         );
         // Inside a group, messages, frames and thumbnails of the top level do not apply:
-        // its nodes' ids are the definition's own.
+        // its nodes' ids are the definition's own. Its warnings are its own.
         let in_group = canvas.scope.current().is_some();
-        let (no_errors, no_warnings) = (Default::default(), Default::default());
+        let no_errors = Default::default();
         let mut asked = Asked::default();
         let graph = &self.session.document.graph;
         let mut viewer = Viewer {
@@ -42,11 +42,7 @@ impl VeneerApp {
             } else {
                 &self.preview.live.errors
             },
-            warnings: if in_group {
-                &no_warnings
-            } else {
-                &self.preview.live.warnings
-            },
+            warnings: self.preview.live.warnings.of_level(canvas.scope.current()),
             asked: &mut asked,
             active: canvas.selection.active(),
             navigation: &mut canvas.navigation,

@@ -82,13 +82,16 @@ pub fn thread_cpu_time() -> Duration {
 /// `veneer edit --frame-log FILE`: one CSV line per frame, for measuring the real window
 /// from outside (`benches/editor_window.rs`): when the frame began (seconds since the
 /// Unix epoch), the main thread's time in it, and the graph's revision and compile count
-/// after it (a drag that edits bumps the revision; it must not recompile).
+/// after it (a drag that edits bumps the revision; it must not recompile); then where
+/// the main thread's time went ([`FrameProfile`]: its CPU time, the panels, and the
+/// document's followers).
 pub struct FrameLog {
     file: std::io::BufWriter<std::fs::File>,
 }
 
 /// The frame log's first line.
-pub const FRAME_LOG_HEADER: &str = "unix_seconds,main_thread_ms,revision,compiles";
+pub const FRAME_LOG_HEADER: &str = "unix_seconds,main_thread_ms,revision,compiles,\
+cpu_ms,panels_ms,sync_ms,compile_ms,lint_ms,thumbnails_ms,history_ms";
 
 impl FrameLog {
     /// Creates (or empties) `path` and writes the header. `path` is opened by what it is
@@ -109,7 +112,7 @@ impl FrameLog {
     pub fn record(
         &mut self,
         started: SystemTime,
-        main_thread: Duration,
+        profile: &FrameProfile,
         revision: u64,
         compiles: u64,
     ) {
@@ -117,8 +120,19 @@ impl FrameLog {
             .duration_since(SystemTime::UNIX_EPOCH)
             .unwrap_or_default()
             .as_secs_f64();
-        let main = main_thread.as_secs_f64() * 1e3;
-        let _ = writeln!(self.file, "{seconds:.6},{main:.3},{revision},{compiles}")
+        let ms = |time: Duration| time.as_secs_f64() * 1e3;
+        let parts = [
+            profile.cpu,
+            profile.panels(),
+            profile.sync,
+            profile.compile,
+            profile.lint,
+            profile.thumbnails,
+            profile.history,
+        ];
+        let parts: String = parts.map(|part| format!(",{:.3}", ms(part))).concat();
+        let main = ms(profile.total);
+        let _ = writeln!(self.file, "{seconds:.6},{main:.3},{revision},{compiles}{parts}")
             .and_then(|()| self.file.flush());
     }
 }
@@ -219,11 +233,21 @@ mod tests {
         let path = dir.path().join("frames.csv");
         let mut log = FrameLog::create(&path).unwrap();
         let at = SystemTime::UNIX_EPOCH + Duration::from_millis(1_700_000_000_250);
-        log.record(at, Duration::from_micros(2_500), 7, 1);
+        let profile = FrameProfile {
+            total: Duration::from_micros(2_500),
+            cpu: Duration::from_micros(2_000),
+            compile: Duration::from_micros(500),
+            thumbnails: Duration::from_micros(250),
+            ..FrameProfile::default()
+        };
+        log.record(at, &profile, 7, 1);
         let text = std::fs::read_to_string(&path).unwrap();
         assert_eq!(
             text,
-            format!("{FRAME_LOG_HEADER}\n1700000000.250000,2.500,7,1\n")
+            format!(
+                "{FRAME_LOG_HEADER}\n1700000000.250000,2.500,7,1,\
+                 2.000,1.750,0.000,0.500,0.000,0.250,0.000\n"
+            )
         );
         assert!(FrameLog::create(&dir.path().join("missing/frames.csv")).is_err());
     }

@@ -287,7 +287,7 @@ impl VeneerApp {
                 Some(error) => {
                     ui.colored_label(egui::Color32::from_rgb(240, 80, 60), format!("⚠ {error}"));
                 }
-                None if self.preview.live.warnings.is_empty() => {
+                None if self.preview.live.warnings.top.is_empty() => {
                     ui.label("✔ material compiles");
                 }
                 None => {
@@ -295,6 +295,7 @@ impl VeneerApp {
                         .preview
                         .live
                         .warnings
+                        .top
                         .values()
                         .map(|w| w.lines().count())
                         .sum::<usize>();

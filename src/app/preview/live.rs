@@ -1,7 +1,7 @@
 //! The live compile loop: a structural edit recompiles the material (parameters as
 //! uniforms), a parameter edit does not; a failed compile keeps the last good material.
 
-use crate::app::preview::background::{BACKGROUND_NODES, Background, Outcome, Request};
+use crate::app::preview::background::{Background, Outcome, Request, Snapshot, is_big};
 use crate::codegen::{CompileError, Compiled, SurfaceUse, param_values};
 use crate::graph::{Graph, NodeId, Value};
 use std::collections::BTreeMap;
@@ -21,7 +21,7 @@ pub struct LiveMaterial {
     /// Bumped whenever the module's code changes, so the preview knows to rebuild its pipeline.
     pub generation: u64,
     /// Numerical hazards of the graph, by node (one message per line).
-    pub warnings: BTreeMap<NodeId, String>,
+    pub warnings: Warnings,
     /// Noise detail: footprint-aware unless the user asks for every octave.
     pub full_detail: bool,
     /// Parameters past [`UNIFORM_SLOTS`](crate::app::preview::background::UNIFORM_SLOTS)
@@ -30,6 +30,9 @@ pub struct LiveMaterial {
     /// Where big graphs are compiled and linted on a thread of their own: the context
     /// woken when that is done (`None`: every graph at once).
     background: Option<egui::Context>,
+    /// Small graphs too go to a thread (the thumbnails' atlas of a big graph: a part of
+    /// it, but one that may grow to hundreds of nodes with the next edit).
+    small_too: bool,
     /// The compile running on its thread, if one is (and the structure key it works
     /// out, when not known when it started).
     compiling: Option<Background<(Outcome, Option<Structure>)>>,
@@ -37,8 +40,39 @@ pub struct LiveMaterial {
     linting: Option<Background<Warnings>>,
 }
 
-/// Numerical hazards by node (one message per line).
-type Warnings = BTreeMap<NodeId, String>;
+/// Numerical hazards by node, one message per line: of the top level's nodes, and of
+/// the nodes inside each group definition (whose messages also show on the group node
+/// they were inlined from).
+#[derive(Clone, Debug, Default)]
+pub struct Warnings {
+    /// By top-level node; a group node's name the nodes inside it.
+    pub top: BTreeMap<NodeId, String>,
+    /// By group definition, then by the node's id inside it; each message says which
+    /// instance it was found in.
+    pub in_groups: BTreeMap<String, BTreeMap<NodeId, String>>,
+}
+
+impl Warnings {
+    /// The messages of the level shown: the top level, or inside group `group`.
+    pub fn of_level(&self, group: Option<&str>) -> &BTreeMap<NodeId, String> {
+        static NONE: BTreeMap<NodeId, String> = BTreeMap::new();
+        match group {
+            None => &self.top,
+            Some(name) => self.in_groups.get(name).unwrap_or(&NONE),
+        }
+    }
+}
+
+/// Adds `line` to the lines of `entry`, unless it has it already.
+fn add_line(entry: &mut String, line: &str) {
+    if entry.lines().any(|known| known == line) {
+        return;
+    }
+    if !entry.is_empty() {
+        entry.push('\n');
+    }
+    entry.push_str(line);
+}
 
 /// What decides a graph's code ([`structure`]) and the noise detail asked for.
 type Structure = (Graph, bool);
@@ -82,23 +116,26 @@ pub(in crate::app) fn structure(graph: &Graph) -> Graph {
 
 /// The numerical hazards of `graph`, by node.
 fn warnings_of(graph: &Graph) -> Warnings {
-    let mut warnings = Warnings::new();
-    if let Ok(checked) = crate::graph::check(graph) {
-        for lint in crate::lint::lint(&checked, crate::lint::preview_positions(graph)) {
-            let entry: &mut String = warnings.entry(lint.node).or_default();
-            if !entry.is_empty() {
-                entry.push('\n');
-            }
-            entry.push_str(&lint.message);
-        }
+    let mut warnings = Warnings::default();
+    let Ok(checked) = crate::graph::check(graph) else {
+        return warnings;
+    };
+    let origins: rustc_hash::FxHashMap<NodeId, &crate::graph::Origin> = checked
+        .order
+        .iter()
+        .filter_map(|inlined| Some((inlined.node.id, inlined.node.origin.as_deref()?)))
+        .collect();
+    for lint in crate::lint::lint(&checked, crate::lint::preview_positions(graph)) {
+        let Some(origin) = origins.get(&lint.node) else {
+            add_line(warnings.top.entry(lint.node).or_default(), &lint.message);
+            continue;
+        };
+        add_line(warnings.top.entry(origin.top).or_default(), &lint.to_string());
+        let inside = warnings.in_groups.entry(origin.definition.clone());
+        let line = format!("{} (in {})", lint.message, origin.groups);
+        add_line(inside.or_default().entry(origin.id).or_default(), &line);
     }
     warnings
-}
-
-/// The nodes of `graph`, inside its groups too.
-fn node_count(graph: &Graph) -> usize {
-    let inner: usize = graph.groups.values().map(|group| group.nodes.len()).sum();
-    graph.nodes.len() + inner
 }
 
 /// The values of parameter slots `slots` for `graph`, its groups inlined first as the
@@ -124,20 +161,26 @@ impl LiveMaterial {
         }
     }
 
-    /// [`LiveMaterial::in_storage`] that compiles graphs of more than
-    /// [`BACKGROUND_NODES`] nodes on a thread of its own, waking `ctx` when done.
+    /// [`LiveMaterial::in_storage`] that compiles big graphs ([`is_big`]) on a thread
+    /// of its own, waking `ctx` when done.
     pub fn in_background(ctx: &egui::Context) -> LiveMaterial {
         let mut live = LiveMaterial::in_storage();
         live.work_in_background(ctx);
         live
     }
 
-    /// From now on, compiles and lints graphs of more than [`BACKGROUND_NODES`] nodes
-    /// on a thread of their own, waking `ctx` when done.
+    /// From now on, compiles and lints big graphs ([`is_big`]) on a thread of their
+    /// own, waking `ctx` when done.
     pub fn work_in_background(&mut self, ctx: &egui::Context) {
         if self.background.is_none() {
             self.background = Some(ctx.clone());
         }
+    }
+
+    /// Whether graphs of any size are compiled on a thread of their own (once
+    /// [`LiveMaterial::work_in_background`] was called).
+    pub fn small_too(&mut self, small_too: bool) {
+        self.small_too = small_too;
     }
 
     /// Recompiles if the graph's structure changed since the last call; returns whether it did
@@ -147,18 +190,19 @@ impl LiveMaterial {
         if self.structure.as_ref() == Some(&key) {
             return false;
         }
-        self.compile(graph, Some(key));
+        self.compile(&Snapshot::new(graph), Some(key));
         true
     }
 
-    /// Compiles `graph`, known to have changed its structure (no comparison made).
-    pub fn recompile(&mut self, graph: &Graph) {
-        self.compile(graph, None);
+    /// Compiles the graph, known to have changed its structure (no comparison made).
+    pub fn recompile(&mut self, snapshot: &Snapshot) {
+        self.compile(snapshot, None);
     }
 
-    /// Compiles `graph`, whose structure key is `key` (worked out here when `None`):
+    /// Compiles the graph, whose structure key is `key` (worked out here when `None`):
     /// at once, or on a thread of its own when it is big (the key too).
-    fn compile(&mut self, graph: &Graph, key: Option<Structure>) {
+    fn compile(&mut self, snapshot: &Snapshot, key: Option<Structure>) {
+        let graph = snapshot.graph;
         self.compiles += 1;
         let detail = self.full_detail;
         let request = Request {
@@ -166,8 +210,8 @@ impl LiveMaterial {
             storage: self.storage,
         };
         match &self.background {
-            Some(ctx) if node_count(graph) > BACKGROUND_NODES => {
-                let graph = graph.clone();
+            Some(ctx) if self.small_too || is_big(graph) => {
+                let graph = snapshot.shared();
                 let known = key.is_some();
                 self.structure = key;
                 let compile = move || {
@@ -240,10 +284,11 @@ impl LiveMaterial {
     /// Finds the numerical hazards of `graph` (constants matter here, unlike for
     /// compiling); the editor calls it once per revision of the graph. A big graph's
     /// are found on a thread of their own (the last ones stay meanwhile).
-    pub fn lint(&mut self, graph: &Graph) {
+    pub fn lint(&mut self, snapshot: &Snapshot) {
+        let graph = snapshot.graph;
         match &self.background {
-            Some(ctx) if node_count(graph) > BACKGROUND_NODES => {
-                let graph = graph.clone();
+            Some(ctx) if self.small_too || is_big(graph) => {
+                let graph = snapshot.shared();
                 let lint = move || warnings_of(&graph);
                 self.linting = Some(Background::start(lint, ctx.clone()));
             }
@@ -276,6 +321,7 @@ impl LiveMaterial {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::app::preview::background::BACKGROUND_NODES;
     use crate::graph::{NodeKind, Value};
     use crate::nodes::{Noise, Worley};
 
@@ -411,5 +457,32 @@ mod tests {
         assert!(!live.is_compiling());
         assert!(live.errors.is_empty(), "{:?}", live.errors);
         assert_eq!(live.generation, generation + 1, "then the new one is in");
+    }
+
+    #[test]
+    fn a_hazard_inside_a_group_shows_inside_it_and_on_the_group_node() {
+        let mut graph = crate::graph::preset("wood").unwrap();
+        let definition = graph.groups.get_mut("ring_wood").unwrap();
+        let sharp = definition
+            .nodes
+            .iter_mut()
+            .find(|node| node.label == "ring sharp")
+            .unwrap();
+        // Equal edges: a hard step.
+        sharp.inputs.insert("edge0".into(), Value::Float(0.85));
+        let sharp = sharp.id;
+        let warnings = warnings_of(&graph);
+        let inside = warnings.of_level(Some("ring_wood"));
+        assert!(
+            inside[&sharp].contains("a hard step") && inside[&sharp].contains("group 'wood'"),
+            "{warnings:?}"
+        );
+        let group_node = graph.nodes.iter().find(|node| node.label == "wood").unwrap();
+        let on_group = &warnings.of_level(None)[&group_node.id];
+        assert!(
+            on_group.contains("ring sharp") && on_group.contains("a hard step"),
+            "{on_group}"
+        );
+        assert!(warnings.of_level(Some("no such group")).is_empty());
     }
 }

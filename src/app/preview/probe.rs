@@ -9,17 +9,26 @@
 use crate::graph::{Graph, MathOp, NodeId, NodeKind, PinRef, Value, ValueType};
 use crate::nodes::{Combine, Math, Mix, Split};
 
-/// `graph` with the first output of `node` wired into the material's albedo, or `None`
-/// for the material node itself and nodes without outputs.
+/// The part of `graph` that `node` reads, its first output wired into the material's
+/// albedo (see [`Graph::part`]), or `None` for the material node itself and nodes
+/// without outputs.
 pub fn probe_graph(graph: &Graph, node: NodeId) -> Option<Graph> {
     let output = *graph.node(node)?.kind.signature().outputs.first()?;
     let material = graph.material()?.id;
-    let mut probe = graph.clone();
+    let mut probe = part_shown(graph, [node], material);
     // Flat: the material's other inputs (a height, a bump) would light or move it.
     cut_material(&mut probe, material);
     let (colour, pin) = as_colour(&mut probe, &PinRef::new(node, output.name), output.ty);
     probe.connect(colour, pin, material, "albedo");
     Some(probe)
+}
+
+/// The part of `graph` that `shown` read, with its `material` node (see
+/// [`Graph::part`]): what a thumbnail needs, however big the graph is.
+fn part_shown(graph: &Graph, shown: impl IntoIterator<Item = NodeId>, material: NodeId) -> Graph {
+    let mut keep = graph.upstream(shown);
+    keep.insert(material);
+    graph.part(&keep)
 }
 
 /// Cuts every wire into node `material` of `graph` and clears its constants, so that
@@ -45,11 +54,11 @@ pub struct AtlasGraph {
 /// `graph` with the material's albedo showing one of `pins` (outputs of its nodes),
 /// chosen by uniform parameters: a chain of colour Mix nodes, one per pin, each mixing
 /// the chain so far with its pin's colour by a factor left as a parameter. The
-/// material's other inputs are cut, so only the nodes the pins read get code.
+/// material's other inputs are cut, and only the nodes the pins read are copied.
 /// `None` when the graph has no material or no pin is an output of its nodes.
 pub fn atlas_graph(graph: &Graph, pins: &[PinRef]) -> Option<AtlasGraph> {
     let material = graph.material()?.id;
-    let mut atlas = graph.clone();
+    let mut atlas = part_shown(graph, pins.iter().map(|pin| pin.node), material);
     cut_material(&mut atlas, material);
     let (mut shown, mut selectors, mut chain) = (Vec::new(), Vec::new(), None);
     for pin in pins {

@@ -155,12 +155,23 @@ fn start_time(pid: u32) -> Option<u64> {
 }
 
 /// Writes `recovery` to the recovery file `path` (atomically, and only as a regular file
-/// of its own: a link or special file there is refused).
-pub fn autosave(path: &Path, recovery: &Recovery) -> std::io::Result<()> {
+/// of its own: a link or special file there is refused), unless what it would write
+/// hashes to `written` (the file holds it already); returns the hash of what the file
+/// holds.
+fn autosave(path: &Path, recovery: &Recovery, written: Option<u64>) -> std::io::Result<u64> {
+    use std::hash::{Hash, Hasher};
     let text = ron::ser::to_string_pretty(recovery, ron::ser::PrettyConfig::new().depth_limit(2))
         .map_err(std::io::Error::other)?;
-    write_own_file(path, &text)
+    let mut hasher = std::collections::hash_map::DefaultHasher::new();
+    text.hash(&mut hasher);
+    let hash = hasher.finish();
+    if written != Some(hash) {
+        write_own_file(path, &text)?;
+    }
+    Ok(hash)
 }
+
+
 
 /// Writes one of the editor's own files (a recovery file, the recent list), making its
 /// folder when missing; it is never written through a link nor into a FIFO or device
@@ -188,6 +199,9 @@ pub struct Autosave {
     last_write: f64,
     /// A hash of what the file holds, if this window wrote it.
     written: Option<u64>,
+    /// A big graph's write under way on its thread (writing a 10,000-node graph out
+    /// takes a frame's 20 ms and more; see `background::is_big`).
+    writing: Option<std::thread::JoinHandle<std::io::Result<u64>>>,
     /// The document's revision the file (or its absence, for a clean document) is up
     /// to date with.
     settled: Option<u64>,
@@ -201,6 +215,7 @@ impl Autosave {
             last_check: f64::NEG_INFINITY,
             last_write: f64::NEG_INFINITY,
             written: None,
+            writing: None,
             settled: None,
         }
     }
@@ -218,6 +233,10 @@ impl Autosave {
         revision: u64,
     ) -> std::io::Result<Option<f64>> {
         self.now = now;
+        if self.writing.as_ref().is_some_and(|writing| !writing.is_finished()) {
+            return Ok(Some(CHECK_SECONDS));
+        }
+        self.finish_writing()?;
         if self.settled == Some(revision) {
             return Ok(None);
         }
@@ -235,47 +254,67 @@ impl Autosave {
         if self.written.is_some() && wait > 0.0 {
             return Ok(Some(wait));
         }
-        self.write_now(document)?;
+        let recovery = recovery_of(document);
+        self.last_write = self.now;
+        let (file, written) = (self.file.clone(), self.written);
+        let write = move || autosave(&file, &recovery, written);
+        if crate::app::preview::background::is_big(&document.graph) {
+            let spawned = std::thread::Builder::new()
+                .name("veneer-autosave".into())
+                .spawn(write);
+            self.writing = Some(spawned?);
+        } else {
+            self.written = Some(write()?);
+        }
         self.settled = Some(revision);
         Ok(None)
     }
 
-    /// Writes the document's work now if it is dirty (removes the file if not).
-    pub fn write_now(&mut self, document: &Document) -> std::io::Result<()> {
-        if !document.is_dirty() {
-            self.forget();
+    /// Takes in the write running on its thread, waiting for it to end.
+    fn finish_writing(&mut self) -> std::io::Result<()> {
+        let Some(writing) = self.writing.take() else {
             return Ok(());
-        }
-        let pid = std::process::id();
-        let recovery = Recovery {
-            original: document.path.clone(),
-            graph: document.graph.clone(),
-            pid: Some(pid),
-            started: start_time(pid),
-            file: PathBuf::new(),
-            saved: None,
         };
-        let hash = {
-            use std::hash::{Hash, Hasher};
-            let mut hasher = std::collections::hash_map::DefaultHasher::new();
-            crate::graph::to_ron(&recovery.graph).hash(&mut hasher);
-            recovery.original.hash(&mut hasher);
-            hasher.finish()
-        };
-        self.last_write = self.now;
-        if self.written == Some(hash) {
-            return Ok(());
-        }
-        autosave(&self.file, &recovery)?;
-        self.written = Some(hash);
+        let written = writing
+            .join()
+            .map_err(|_| std::io::Error::other("the autosave thread failed"))?;
+        self.written = Some(written?);
         Ok(())
     }
 
-    /// Removes the window's recovery file: the work was saved or deliberately dropped.
+    /// Writes the document's work now if it is dirty (removes the file if not), once a
+    /// write under way on its thread has ended.
+    pub fn write_now(&mut self, document: &Document) -> std::io::Result<()> {
+        let finished = self.finish_writing();
+        if !document.is_dirty() {
+            self.forget();
+            return finished;
+        }
+        self.last_write = self.now;
+        self.written = Some(autosave(&self.file, &recovery_of(document), self.written)?);
+        Ok(())
+    }
+
+    /// Removes the window's recovery file: the work was saved or deliberately dropped
+    /// (a write under way on its thread ends first, so nothing lands after).
     pub fn forget(&mut self) {
+        let _ = self.finish_writing();
         if self.written.take().is_some() || self.file.exists() {
             clear(&self.file);
         }
+    }
+}
+
+/// What the recovery file of `document`'s window holds.
+fn recovery_of(document: &Document) -> Recovery {
+    let pid = std::process::id();
+    Recovery {
+        original: document.path.clone(),
+        graph: document.graph.clone(),
+        pid: Some(pid),
+        started: start_time(pid),
+        file: PathBuf::new(),
+        saved: None,
     }
 }
 
@@ -470,13 +509,13 @@ mod tests {
             saved: None,
         };
         let mine = window_file(&base);
-        autosave(&mine, &recovery(std::process::id())).unwrap();
+        autosave(&mine, &recovery(std::process::id()), None).unwrap();
         // A process that has ended: a child that has been reaped.
         let mut child = std::process::Command::new("true").spawn().unwrap();
         let gone = child.id();
         child.wait().unwrap();
         let orphan = base.with_file_name(format!("recovery-{gone}-0.ron"));
-        autosave(&orphan, &recovery(gone)).unwrap();
+        autosave(&orphan, &recovery(gone), None).unwrap();
         let found = orphans(&base);
         assert_eq!(found.len(), 1, "{found:?}");
         assert_eq!(found[0].file, orphan);

@@ -7,6 +7,7 @@
 
 use crate::app::VeneerApp;
 use crate::app::chrome::frame_clock::FrameProfile;
+use crate::app::preview::background::Snapshot;
 use crate::graph::edit::{Change, Level};
 use crate::graph::{Graph, NodeId, NodeKind};
 use std::time::{Duration, Instant};
@@ -16,6 +17,10 @@ use std::time::{Duration, Instant};
 #[derive(Default)]
 pub(in crate::app) struct Revision {
     pub number: u64,
+    /// Bumped with `number` whenever a change may change the code (a node, a wire, a
+    /// setting, the material's constants) and when the document is replaced: what a
+    /// follower keyed by the graph's structure compares instead of the graph.
+    pub structure: u64,
     /// Frames that took edits in from the graph view (for tests: idle frames never do).
     pub reads: u64,
     /// The document was changed from outside the editor's own panels (a script or a
@@ -28,7 +33,9 @@ pub(in crate::app) struct Revision {
     /// The noise detail compiled with (a setting of the preview's), `None` before the
     /// first compile.
     detail: Option<bool>,
-    linted: u64,
+    /// The revision last linted (`None` before the first: a graph opened with a hazard
+    /// shows it at once).
+    linted: Option<u64>,
     /// The revision whose dirty mark was worked out (`None`: work it out again, after
     /// a save or a load).
     dirty_known: Option<u64>,
@@ -45,6 +52,7 @@ impl Revision {
             return;
         }
         self.number += 1;
+        let mut needed_now = Recompile::No;
         for change in changes {
             let needed = match change {
                 Change::Structure => Recompile::Compile,
@@ -56,8 +64,19 @@ impl Revision {
                 } if is_material(graph, *node) => Recompile::Compare,
                 Change::Value { .. } | Change::Layout => Recompile::No,
             };
-            self.recompile = self.recompile.max(needed);
+            needed_now = needed_now.max(needed);
         }
+        self.recompile = self.recompile.max(needed_now);
+        if needed_now != Recompile::No {
+            self.structure += 1;
+        }
+    }
+
+    /// The document was replaced (opened, new, recovered): every follower starts over.
+    pub fn replaced(&mut self) {
+        self.number += 1;
+        self.structure += 1;
+        self.recheck();
     }
 
     /// The document was saved or replaced: its dirty mark is worked out again.
@@ -129,18 +148,18 @@ impl VeneerApp {
         }
         let detail = Some(self.preview.live.full_detail);
         let recompile = std::mem::take(&mut self.session.revision.recompile);
-        let graph = &self.session.document.graph;
+        let snapshot = Snapshot::new(&self.session.document.graph);
         if recompile == Recompile::Compile {
-            self.preview.live.recompile(graph);
+            self.preview.live.recompile(&snapshot);
         } else if recompile == Recompile::Compare || self.session.revision.detail != detail {
-            self.preview.live.update(graph);
+            self.preview.live.update(snapshot.graph);
         }
         self.session.revision.detail = detail;
         let compile = lap();
         // The lint and the dirty mark wait for a drag to end (they read every node).
-        if self.session.revision.linted != revision && !held {
-            self.session.revision.linted = revision;
-            self.preview.live.lint(&self.session.document.graph);
+        if self.session.revision.linted != Some(revision) && !held {
+            self.session.revision.linted = Some(revision);
+            self.preview.live.lint(&snapshot);
         }
         let lint = lap();
         let time = self.preview.state.view.time;
@@ -163,8 +182,11 @@ impl VeneerApp {
         };
         let view = (!navigation.moving()).then_some(&on_screen as &dyn Fn(NodeId) -> bool);
         let graph = &self.session.document.graph;
-        self.thumbnails
-            .update(ctx, graph, revision, hovered, time, view);
+        let stamp = crate::app::thumbnails::Stamp {
+            revision,
+            structure: self.session.revision.structure,
+        };
+        self.thumbnails.update(ctx, graph, stamp, hovered, time, view);
         let thumbnails = lap();
         let known = self.session.revision.dirty_known;
         if known != Some(revision) {

@@ -43,8 +43,8 @@ pub struct Thumbnails {
     selectors: Vec<NodeId>,
     /// Nodes left out of the atlas, and why.
     left_out: LeftOut,
-    worker: Option<Worker>,
-    in_flight: bool,
+    /// The drawing thread and the job sent to it.
+    drawing: Drawing,
     /// Tiles drawn so far (a tile drawn twice counts twice).
     pub tiles_drawn: u64,
     /// The pins drawn by the last job to come back.
@@ -56,16 +56,35 @@ pub struct Thumbnails {
     seen: Option<Seen>,
 }
 
+/// The thread that draws the tiles, and what it was sent.
+#[derive(Default)]
+struct Drawing {
+    worker: Option<Worker>,
+    /// A job is out.
+    in_flight: bool,
+    /// Tiles changed while a job was out: sent once it comes back.
+    waiting: bool,
+}
+
 /// Nodes whose tiles the atlas leaves out.
 #[derive(Default)]
 struct LeftOut {
-    /// The structure `broken` was found in: it is forgotten when that changes.
-    structure: Graph,
+    /// The structure `broken` was found in ([`Stamp::structure`]): it is forgotten when
+    /// that changes.
+    structure: u64,
     /// Nodes whose code fails to compile: left out with what reads them.
     broken: BTreeSet<NodeId>,
     /// Nodes with too much upstream for the atlas (more than [`ATLAS_NODES`] with the
     /// tiles before them).
     too_deep: rustc_hash::FxHashSet<NodeId>,
+}
+
+/// Where the edited graph stands: its revision, bumped on every change, and its
+/// structure's, bumped when a change may change the code (the app's `Revision`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Stamp {
+    pub revision: u64,
+    pub structure: u64,
 }
 
 /// What the tiles depend on besides the drawing thread: the graph's revision, the
@@ -86,8 +105,7 @@ impl Default for Thumbnails {
             tiles: Tiles::default(),
             selectors: Vec::new(),
             left_out: LeftOut::default(),
-            worker: None,
-            in_flight: false,
+            drawing: Drawing::default(),
             tiles_drawn: 0,
             last_drawn: Vec::new(),
             error: None,
@@ -124,8 +142,10 @@ impl Thumbnails {
                 let last = self.seen.as_ref().map(|seen| seen.pins.clone());
                 return last.unwrap_or_default();
             };
-            let shown = nodes.filter(|node| on_screen(node.id));
-            shown.take(MAX_TILES).map(first_output).collect()
+            // (Whether a node is on screen is asked first: it is the cheaper question.)
+            let shown = graph.nodes.iter().filter(|node| on_screen(node.id));
+            let shown = shown.filter(showing).take(MAX_TILES);
+            shown.map(first_output).collect()
         } else {
             nodes.map(first_output).collect()
         };
@@ -136,9 +156,11 @@ impl Thumbnails {
     /// The candidates that get a tile: those not reading a node that fails to compile,
     /// as many as the atlas takes (the others are noted as too deep).
     fn wanted(&mut self, graph: &Graph, candidates: &[PinRef]) -> Vec<PinRef> {
-        let tainted = keys::downstream_of(graph, &self.left_out.broken);
         let mut pins = candidates.to_vec();
-        pins.retain(|pin| !tainted.contains(&pin.node));
+        if !self.left_out.broken.is_empty() {
+            let tainted = keys::downstream_of(graph, &self.left_out.broken);
+            pins.retain(|pin| !tainted.contains(&pin.node));
+        }
         let (pins, too_deep) = keys::within_atlas(graph, &pins, ATLAS_NODES);
         self.left_out.too_deep = too_deep;
         pins
@@ -149,9 +171,10 @@ impl Thumbnails {
         self.left_out.too_deep.contains(&node)
     }
 
-    /// Brings the tiles in step with `graph` at `revision` (which changes whenever the
-    /// graph does): recompiles the atlas if its structure changed, sends the tiles whose
-    /// inputs changed to the drawing thread, and takes in what it drew. `hovered` is the
+    /// Brings the tiles in step with `graph` at `stamp` (whose revision changes whenever
+    /// the graph does): recompiles the atlas if its structure changed, sends the tiles
+    /// whose inputs changed to the drawing thread, and takes in what it drew. The work
+    /// grows with the tiles' upstream, not with the graph (see [`Graph::part`]). `hovered` is the
     /// output pin of the wire under the pointer; `on_screen` which nodes are on screen
     /// (`None` while the view moves). Does nothing when neither these nor the thread's
     /// work changed since the last call.
@@ -159,17 +182,20 @@ impl Thumbnails {
         &mut self,
         ctx: &egui::Context,
         graph: &Graph,
-        revision: u64,
+        stamp: Stamp,
         hovered: Option<&PinRef>,
         time: f32,
         on_screen: Option<&dyn Fn(NodeId) -> bool>,
     ) {
-        let received = self.receive(ctx);
+        // A job come back matters here only when tiles wait to be sent.
+        let received = self.receive(ctx) && std::mem::take(&mut self.drawing.waiting);
         // A big graph's atlas compiles on a thread of its own.
         self.atlas.work_in_background(ctx);
+        self.atlas
+            .small_too(crate::app::preview::background::is_big(graph));
         let compiled = self.atlas.receive();
         let seen = Seen {
-            revision,
+            revision: stamp.revision,
             time: time.to_bits(),
             pins: self.candidates(graph, hovered, on_screen),
         };
@@ -178,9 +204,8 @@ impl Thumbnails {
         }
         let candidates = seen.pins.clone();
         self.seen = Some(seen);
-        let structure = crate::app::preview::live::structure(graph);
-        if self.left_out.structure != structure {
-            self.left_out.structure = structure;
+        if self.left_out.structure != stamp.structure {
+            self.left_out.structure = stamp.structure;
             self.left_out.broken.clear();
         }
         // A node that fails to compile is left out (with what reads it) and the rest
@@ -214,10 +239,12 @@ impl Thumbnails {
         }
         self.tiles.lay_out(atlas.pins);
         self.selectors = atlas.selectors;
-        if self.in_flight {
+        if self.drawing.in_flight {
+            self.drawing.waiting = true;
             return;
         }
-        let upstream = crate::app::thumbnails::keys::upstream_hashes(graph, time);
+        // (The atlas holds everything upstream of its pins, wires included.)
+        let upstream = crate::app::thumbnails::keys::upstream_hashes(&atlas.graph, time);
         let rect = placement(graph);
         let slots = &compiled.module.params;
         let values = crate::app::preview::live::slot_values(&atlas.graph, slots);
@@ -234,6 +261,7 @@ impl Thumbnails {
         }
         let wake = ctx.clone();
         let worker = self
+            .drawing
             .worker
             .get_or_insert_with(|| Worker::start(move || wake.request_repaint()));
         worker.send(Job {
@@ -245,25 +273,26 @@ impl Thumbnails {
             time,
             tiles,
         });
-        self.in_flight = true;
+        self.drawing.in_flight = true;
     }
 
     /// Takes in a finished job (its tiles' pixels go into the texture); returns whether
     /// one came back.
     fn receive(&mut self, ctx: &egui::Context) -> bool {
-        let Some(worker) = &self.worker else {
+        let Some(worker) = &self.drawing.worker else {
             return false;
         };
         let done = match worker.try_done() {
             Ok(Some(done)) => done,
             Ok(None) => return false,
             Err(()) => {
-                self.worker = None;
-                self.in_flight = false;
+                self.drawing.worker = None;
+                self.drawing.in_flight = false;
+                self.drawing.waiting = true;
                 return true;
             }
         };
-        self.in_flight = false;
+        self.drawing.in_flight = false;
         let Done {
             layout,
             tiles,
@@ -293,7 +322,7 @@ impl Thumbnails {
 
     /// Whether every tile has been drawn as it is now (nothing sent or waiting).
     pub fn settled(&self) -> bool {
-        !self.in_flight && !self.atlas.is_compiling() && self.tiles.all_ready()
+        !self.drawing.in_flight && !self.atlas.is_compiling() && self.tiles.all_ready()
     }
 
     /// The texture and the part of it showing `pin`, once drawn.

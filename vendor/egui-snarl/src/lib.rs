@@ -97,6 +97,9 @@ struct Wire {
 #[derive(Clone, Debug)]
 struct Wires {
     wires: HashSet<Wire>,
+    /// Veneer's patch: the wires at each node (at either end), so that a pin's wires are
+    /// found without walking every wire (each pin drawn asks for its wires, every frame).
+    at_node: ahash::HashMap<NodeId, smallvec::SmallVec<[Wire; 4]>>,
 }
 
 #[cfg(feature = "serde")]
@@ -124,7 +127,7 @@ impl<'de> serde::Deserialize<'de> for Wires {
         struct Visitor;
 
         impl<'de> serde::de::Visitor<'de> for Visitor {
-            type Value = HashSet<Wire>;
+            type Value = Wires;
 
             fn expecting(&self, formatter: &mut std::fmt::Formatter) -> std::fmt::Result {
                 formatter.write_str("a sequence of wires")
@@ -134,7 +137,7 @@ impl<'de> serde::Deserialize<'de> for Wires {
             where
                 A: serde::de::SeqAccess<'de>,
             {
-                let mut wires = HashSet::with_hasher(ahash::RandomState::new());
+                let mut wires = Wires::new();
                 while let Some(wire) = seq.next_element()? {
                     wires.insert(wire);
                 }
@@ -142,8 +145,7 @@ impl<'de> serde::Deserialize<'de> for Wires {
             }
         }
 
-        let wires = deserializer.deserialize_seq(Visitor)?;
-        Ok(Wires { wires })
+        deserializer.deserialize_seq(Visitor)
     }
 }
 
@@ -151,46 +153,73 @@ impl Wires {
     fn new() -> Self {
         Wires {
             wires: HashSet::with_hasher(ahash::RandomState::new()),
+            at_node: ahash::HashMap::default(),
         }
     }
 
     fn insert(&mut self, wire: Wire) -> bool {
-        self.wires.insert(wire)
+        if !self.wires.insert(wire) {
+            return false;
+        }
+        self.at_node.entry(wire.out_pin.node).or_default().push(wire);
+        if wire.in_pin.node != wire.out_pin.node {
+            self.at_node.entry(wire.in_pin.node).or_default().push(wire);
+        }
+        true
     }
 
     fn remove(&mut self, wire: &Wire) -> bool {
-        self.wires.remove(wire)
+        if !self.wires.remove(wire) {
+            return false;
+        }
+        for node in [wire.out_pin.node, wire.in_pin.node] {
+            if let Some(at) = self.at_node.get_mut(&node) {
+                at.retain(|other| other != wire);
+                if at.is_empty() {
+                    self.at_node.remove(&node);
+                }
+            }
+        }
+        true
+    }
+
+    /// Removes the wires at `node` that `which` picks; returns how many.
+    fn remove_at(&mut self, node: NodeId, which: impl Fn(&Wire) -> bool) -> usize {
+        let Some(at) = self.at_node.get(&node) else {
+            return 0;
+        };
+        let picked: smallvec::SmallVec<[Wire; 4]> = at.iter().copied().filter(which).collect();
+        for wire in &picked {
+            self.remove(wire);
+        }
+        picked.len()
     }
 
     fn drop_node(&mut self, node: NodeId) -> usize {
-        let count = self.wires.len();
-        self.wires
-            .retain(|wire| wire.out_pin.node != node && wire.in_pin.node != node);
-        count - self.wires.len()
+        self.remove_at(node, |_| true)
     }
 
     fn drop_inputs(&mut self, pin: InPinId) -> usize {
-        let count = self.wires.len();
-        self.wires.retain(|wire| wire.in_pin != pin);
-        count - self.wires.len()
+        self.remove_at(pin.node, |wire| wire.in_pin == pin)
     }
 
     fn drop_outputs(&mut self, pin: OutPinId) -> usize {
-        let count = self.wires.len();
-        self.wires.retain(|wire| wire.out_pin != pin);
-        count - self.wires.len()
+        self.remove_at(pin.node, |wire| wire.out_pin == pin)
+    }
+
+    /// The wires at `node`.
+    fn at(&self, node: NodeId) -> impl Iterator<Item = &Wire> + '_ {
+        self.at_node.get(&node).into_iter().flatten()
     }
 
     fn wired_inputs(&self, out_pin: OutPinId) -> impl Iterator<Item = InPinId> + '_ {
-        self.wires
-            .iter()
+        self.at(out_pin.node)
             .filter(move |wire| wire.out_pin == out_pin)
             .map(|wire| wire.in_pin)
     }
 
     fn wired_outputs(&self, in_pin: InPinId) -> impl Iterator<Item = OutPinId> + '_ {
-        self.wires
-            .iter()
+        self.at(in_pin.node)
             .filter(move |wire| wire.in_pin == in_pin)
             .map(|wire| wire.out_pin)
     }

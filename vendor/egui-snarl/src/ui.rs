@@ -1,6 +1,6 @@
 //! This module provides functionality for showing [`Snarl`] graph in [`Ui`].
 
-use std::collections::HashMap;
+use ahash::HashMap;
 
 use egui::{
     Align, Color32, CornerRadius, Frame, Id, LayerId, Layout, Margin, Modifiers, PointerButton,
@@ -1123,8 +1123,8 @@ where
         WireLayer::AboveNodes => None,
     };
 
-    let mut input_info = HashMap::new();
-    let mut output_info = HashMap::new();
+    let mut input_info = HashMap::default();
+    let mut output_info = HashMap::default();
 
     let mut pin_hovered = None;
 
@@ -1141,7 +1141,7 @@ where
         let last = ui.ctx().data_mut(|d| d.remove_temp::<DrawnNodes>(drawn_id));
         last.unwrap_or_default().0
     } else {
-        HashMap::new()
+        HashMap::default()
     };
     drawn.retain(|node, _| snarl.nodes.contains(node.0));
     let outlines = (cull && to_global.scaling < outline_below).then_some(outline::Outlines {
@@ -1267,6 +1267,22 @@ where
         let Some(to_r) = input_at(&wire.in_pin) else {
             continue;
         };
+
+        // Veneer's patch: a wire wholly off screen is neither hit-tested nor drawn.
+        if cull
+            && !viewport.intersects(
+                wire::wire_reach(
+                    wire_frame_size,
+                    style.get_upscale_wire_frame(),
+                    style.get_downscale_wire_frame(),
+                    from_r.pos,
+                    to_r.pos,
+                )
+                .expand(wire_width.max(2.0)),
+            )
+        {
+            continue;
+        }
 
         if outlines.is_some() {
             let color = mix_colors(from_r.wire_color, to_r.wire_color);

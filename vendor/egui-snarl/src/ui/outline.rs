@@ -51,8 +51,8 @@ impl Outlines<'_> {
         last: &DrawnNode,
         viewer: &mut V,
         snarl_state: &mut SnarlState,
-        input_positions: &mut std::collections::HashMap<InPinId, PinResponse>,
-        output_positions: &mut std::collections::HashMap<OutPinId, PinResponse>,
+        input_positions: &mut ahash::HashMap<InPinId, PinResponse>,
+        output_positions: &mut ahash::HashMap<OutPinId, PinResponse>,
     ) -> DrawNodeResponse {
         let moved = snarl.nodes[node.0].pos - last.pos;
         let rect = last.rect.translate(moved);

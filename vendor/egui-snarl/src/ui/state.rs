@@ -478,6 +478,13 @@ impl SnarlState {
     }
 
     pub(crate) fn update_draw_order<T>(&mut self, snarl: &Snarl<T>) -> Vec<NodeId> {
+        // Veneer's patch: as many nodes as the order holds, each still there, means the
+        // same nodes (the order holds no id twice): no set of every node to build.
+        if self.draw_order.len() == snarl.nodes.len()
+            && self.draw_order.iter().all(|id| snarl.nodes.contains(id.0))
+        {
+            return self.draw_order.clone();
+        }
         let mut node_ids = snarl
             .nodes
             .iter()

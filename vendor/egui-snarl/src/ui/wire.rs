@@ -98,6 +98,24 @@ fn adjust_frame_size(
     frame_size
 }
 
+/// Veneer's patch: a rectangle that holds the whole wire from `from` to `to`, of any
+/// style (each style's control points and turns stay within twice the frame size of
+/// the two ends, and an axis-aligned wire's within half the height between them).
+pub(crate) fn wire_reach(
+    frame_size: f32,
+    upscale: bool,
+    downscale: bool,
+    from: Pos2,
+    to: Pos2,
+) -> Rect {
+    let frame_size = adjust_frame_size(frame_size, upscale, downscale, from, to);
+    let height = (from.y - to.y).abs();
+    Rect::from_two_pos(from, to).expand2(egui::vec2(
+        2.0 * frame_size + height / 2.0,
+        2.0 * frame_size,
+    ))
+}
+
 /// Returns 5th degree bezier curve control points for the wire
 fn wire_bezier_5(frame_size: f32, from: Pos2, to: Pos2) -> [Pos2; 6] {
     let from_norm_x = frame_size;
