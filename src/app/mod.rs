@@ -289,6 +289,12 @@ impl VeneerApp {
         }
     }
 
+    /// The nodes of the level the graph view shows: the top level's, or those of the
+    /// group open.
+    pub fn level_nodes(&self) -> Vec<crate::graph::Node> {
+        self.canvas.snarl.nodes().cloned().collect()
+    }
+
     /// The groups entered, outermost first (empty at the top level).
     pub fn group_path(&self) -> Vec<String> {
         self.canvas

@@ -376,3 +376,44 @@ fn a_node_dropped_on_a_wire_is_inserted_and_one_undo_takes_it_out() {
         "one undo puts the wire and the node back"
     );
 }
+
+/// The pixels of the tile of the node titled `title` (its first output) in the level
+/// shown, once the thumbnails settle.
+fn tile_of(harness: &mut Harness<'static, VeneerApp>, title: &str) -> Vec<[u8; 4]> {
+    settle(harness);
+    let node = harness
+        .state()
+        .level_nodes()
+        .into_iter()
+        .find(|node| node.label == title)
+        .unwrap_or_else(|| panic!("no node '{title}' in the level shown"));
+    let output = node.kind.signature().outputs[0].name;
+    let pin = PinRef::new(node.id, output);
+    let tile = harness.state().thumbnails().tile_pixels(&pin);
+    tile.unwrap_or_else(|| panic!("no tile for '{title}'"))
+}
+
+#[test]
+fn inside_a_group_each_node_shows_its_output_in_the_groups_first_instance() {
+    let dissolved = tile_of(&mut flat_wood_editor(&scratch("thumbnail-flat")), "ring sharp");
+    let mut harness = editor(&scratch("thumbnail-group"), None);
+    select_node(&mut harness, "wood");
+    press(&mut harness, egui::Key::Tab, false);
+    harness.run_steps(4);
+    assert_eq!(harness.state().group_path(), ["ring_wood"]);
+    let inside = tile_of(&mut harness, "ring sharp");
+    let worst = inside
+        .iter()
+        .zip(&dissolved)
+        .flat_map(|(a, b)| (0..3).map(move |k| a[k].abs_diff(b[k])))
+        .max();
+    assert_eq!(inside.len(), dissolved.len());
+    assert!(worst <= Some(1), "off by {worst:?} from the group dissolved");
+    let rings = tile_of(&mut harness, "rings");
+    assert_ne!(rings, inside, "each node its own tile");
+    // Back at the top level, the group node's tile is the group's first output.
+    press(&mut harness, egui::Key::Tab, false);
+    harness.run_steps(4);
+    assert!(harness.state().group_path().is_empty());
+    tile_of(&mut harness, "wood");
+}

@@ -30,9 +30,10 @@ impl VeneerApp {
             &canvas.selection,
             !grabbed,
         );
-        // Inside a group, messages, frames and thumbnails of the top level do not apply:
-        // its nodes' ids are the definition's own. Its warnings are its own.
+        // Inside a group, the top level's errors and frames do not apply: its nodes' ids
+        // are the definition's own. Its warnings and thumbnails are its own.
         let in_group = canvas.scope.current().is_some();
+        self.thumbnails.show_level(canvas.scope.current());
         let no_errors = Default::default();
         let mut asked = Asked::default();
         let graph = &self.session.document.graph;

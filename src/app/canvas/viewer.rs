@@ -328,7 +328,8 @@ impl SnarlViewer<Node> for Viewer<'_> {
     }
 
     fn has_footer(&mut self, node: &Node) -> bool {
-        !self.in_group
+        // (A group's boundary nodes stand for no node of the graph drawn.)
+        crate::app::canvas::boundary::boundary(node).is_none()
             && self.thumbnails.shows(node.id)
             && !node.kind.signature().outputs.is_empty()
     }

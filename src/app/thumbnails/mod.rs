@@ -8,6 +8,7 @@
 //! code, or the time for tiles that read it.
 
 pub(in crate::app) mod keys;
+pub(in crate::app) mod level;
 pub(in crate::app) mod tiles;
 pub(in crate::app) mod worker;
 
@@ -54,6 +55,8 @@ pub struct Thumbnails {
     /// What the tiles were last brought in step with; nothing is done again until it
     /// changes or a job comes back.
     seen: Option<Seen>,
+    /// The level shown (the top level or a group), and the graph its tiles come from.
+    level: level::Level,
 }
 
 /// The thread that draws the tiles, and what it was sent.
@@ -110,6 +113,7 @@ impl Default for Thumbnails {
             last_drawn: Vec::new(),
             error: None,
             seen: None,
+            level: level::Level::default(),
         }
     }
 }
@@ -120,10 +124,18 @@ impl Thumbnails {
         self.enabled && !self.hidden.contains(&node)
     }
 
-    /// The pins that would get a tile: the first output of every node that shows its
-    /// thumbnail and, in graphs with more of them than [`MAX_TILES`], only of those on
-    /// screen (`on_screen`; `None` while the view moves: those of the last call), up to
-    /// that many; and `hovered` (the wire under the pointer).
+    /// The graph view shows the top level (`None`) or group `group`: tiles are asked
+    /// for by its nodes from now on (inside a group, each drawn as it works in the
+    /// group's first instance).
+    pub fn show_level(&mut self, group: Option<&str>) {
+        self.level.show(group);
+    }
+
+    /// The pins (of the tiles' graph) that would get a tile: the first output of every
+    /// node of the level shown that shows its thumbnail and, in graphs with more of them
+    /// than [`MAX_TILES`], only of those on screen (`on_screen`; `None` while the view
+    /// moves: those of the last call), up to that many; and `hovered` (the wire under
+    /// the pointer).
     fn candidates(
         &self,
         graph: &Graph,
@@ -132,8 +144,11 @@ impl Thumbnails {
     ) -> Vec<PinRef> {
         // Pins are made (a name each) only for the nodes that get one: while the view of
         // a big graph moves, this runs every frame.
-        let showing =
-            |node: &&Node| self.shows(node.id) && !node.kind.signature().outputs.is_empty();
+        let shown = |node: &Node| self.level.shown_node(node.id);
+        let showing = |node: &&Node| {
+            shown(node).is_some_and(|id| self.shows(id))
+                && !node.kind.signature().outputs.is_empty()
+        };
         let first_output =
             |node: &Node| PinRef::new(node.id, node.kind.signature().outputs[0].name);
         let nodes = graph.nodes.iter().filter(showing);
@@ -143,13 +158,14 @@ impl Thumbnails {
                 return last.unwrap_or_default();
             };
             // (Whether a node is on screen is asked first: it is the cheaper question.)
-            let shown = graph.nodes.iter().filter(|node| on_screen(node.id));
-            let shown = shown.filter(showing).take(MAX_TILES);
-            shown.map(first_output).collect()
+            let nodes = graph.nodes.iter();
+            let on_screen = nodes.filter(|node| shown(node).is_some_and(on_screen));
+            let on_screen = on_screen.filter(showing).take(MAX_TILES);
+            on_screen.map(first_output).collect()
         } else {
             nodes.map(first_output).collect()
         };
-        pins.extend(hovered.cloned());
+        pins.extend(hovered.and_then(|pin| self.level.drawn_pin(pin)));
         pins.into_iter().collect()
     }
 
@@ -168,7 +184,8 @@ impl Thumbnails {
 
     /// Whether `node`'s tile is left out for having more upstream than the atlas takes.
     pub fn too_deep(&self, node: NodeId) -> bool {
-        self.left_out.too_deep.contains(&node)
+        let drawn = self.level.drawn_node(node);
+        drawn.is_some_and(|node| self.left_out.too_deep.contains(&node))
     }
 
     /// Brings the tiles in step with `graph` at `stamp` (whose revision changes whenever
@@ -194,6 +211,13 @@ impl Thumbnails {
         self.atlas
             .small_too(crate::app::preview::background::is_big(graph));
         let compiled = self.atlas.receive();
+        // Inside a group, the tiles come from the graph flattened.
+        let flat = self.level.flattened(graph, stamp.revision);
+        if self.level.in_group() && flat.is_none() {
+            self.tiles.clear();
+            return;
+        }
+        let graph: &Graph = flat.as_deref().unwrap_or(graph);
         let seen = Seen {
             revision: stamp.revision,
             time: time.to_bits(),
@@ -325,14 +349,16 @@ impl Thumbnails {
         !self.drawing.in_flight && !self.atlas.is_compiling() && self.tiles.all_ready()
     }
 
-    /// The texture and the part of it showing `pin`, once drawn.
+    /// The texture and the part of it showing `pin` (of a node of the level shown),
+    /// once drawn.
     pub fn tile(&self, pin: &PinRef) -> Option<(egui::TextureId, egui::Rect)> {
-        self.tiles.tile(pin)
+        self.tiles.tile(&self.level.drawn_pin(pin)?)
     }
 
-    /// The RGBA8 pixels of `pin`'s tile, rows from the top, once drawn.
+    /// The RGBA8 pixels of `pin`'s tile (of a node of the level shown), rows from the
+    /// top, once drawn.
     pub fn tile_pixels(&self, pin: &PinRef) -> Option<Vec<[u8; 4]>> {
-        self.tiles.tile_pixels(pin)
+        self.tiles.tile_pixels(&self.level.drawn_pin(pin)?)
     }
 }
 
