@@ -397,7 +397,12 @@ impl VeneerApp {
     /// Whether the previews show, at full quality, what was last asked of them (they
     /// are drawn on another thread: tests wait for this before looking).
     pub fn preview_settled(&self) -> bool {
-        self.preview.previews.settled() && !self.preview.live.is_compiling()
+        let live = &self.preview.live;
+        // (A compile taken in after the preview was drawn reaches it in the next frame.)
+        let handed_over = live.compiled.is_none()
+            || self.preview.frames[preview::worker::Slot::Main as usize]
+                .has_code_of(live.generation);
+        self.preview.previews.settled() && !live.is_compiling() && handed_over
     }
 
     /// The inspector of the active node, or a hint and the comment frames.
@@ -522,6 +527,8 @@ impl eframe::App for VeneerApp {
         self.handle_close(&ctx);
         self.chrome.profile.total = started.elapsed();
         self.chrome.profile.cpu = chrome::frame_clock::thread_cpu_time().saturating_sub(cpu_before);
+        // Work this frame started on threads of its own begins now.
+        preview::background::frame_ended();
         self.chrome
             .frame_clock
             .record(started, self.chrome.profile.total);

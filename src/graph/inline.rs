@@ -293,7 +293,10 @@ impl Inlining<'_> {
                 inner.origin = Some(Box::new(Origin {
                     groups: path.clone(),
                     id: node.id,
-                    top: instance.origin.as_ref().map_or(instance.id, |outer| outer.top),
+                    top: instance
+                        .origin
+                        .as_ref()
+                        .map_or(instance.id, |outer| outer.top),
                     definition: definition_name.clone(),
                 }));
                 inner.position = instance.position;

@@ -467,14 +467,7 @@ fn a_group_with_more_inputs_than_a_group_may_show_opens_unchanged_and_says_why()
 #[test]
 fn a_numerical_hazard_inside_a_group_is_marked_inside_it_and_on_the_group() {
     let dir = scratch("group-lint");
-    let mut graph = veneer::graph::preset("wood").expect("the wood preset");
-    let definition = graph.groups.get_mut("ring_wood").expect("the wood group");
-    // (Not following the library, which would bring its own back on opening.)
-    definition.linked = false;
-    let sharp = definition.nodes.iter_mut().find(|n| n.label == "ring sharp");
-    // Equal edges: a hard step.
-    let sharp = sharp.expect("the rings' smoothstep");
-    sharp.inputs.insert("edge0".into(), Value::Float(0.85));
+    let graph = crate::support::wood_with_a_hazard_inside();
     let path = dir.join("wood.ron");
     veneer::graph::save(&graph, &path).expect("the graph saves");
     let mut harness = editor(&dir, Some(path));

@@ -39,6 +39,24 @@ pub fn editor(dir: &Path, graph: Option<PathBuf>) -> Harness<'static, VeneerApp>
     harness
 }
 
+/// The wood preset with a hazard inside its group: the rings' smoothstep with equal
+/// edges (a hard step). The group no longer follows the library, which would bring its
+/// own definition back on opening.
+pub fn wood_with_a_hazard_inside() -> veneer::graph::Graph {
+    let mut graph = veneer::graph::preset("wood").expect("the wood preset");
+    let definition = graph.groups.get_mut("ring_wood").expect("the wood group");
+    definition.linked = false;
+    let sharp = definition
+        .nodes
+        .iter_mut()
+        .find(|n| n.label == "ring sharp");
+    let sharp = sharp.expect("the rings' smoothstep");
+    sharp
+        .inputs
+        .insert("edge0".into(), veneer::graph::Value::Float(0.85));
+    graph
+}
+
 /// The editor on the wood preset with its `ring_wood` group dissolved (saved in `dir`):
 /// the seed's nodes all at the top level, for tests that select them by name.
 pub fn flat_wood_editor(dir: &Path) -> Harness<'static, VeneerApp> {

@@ -395,7 +395,10 @@ fn tile_of(harness: &mut Harness<'static, VeneerApp>, title: &str) -> Vec<[u8; 4
 
 #[test]
 fn inside_a_group_each_node_shows_its_output_in_the_groups_first_instance() {
-    let dissolved = tile_of(&mut flat_wood_editor(&scratch("thumbnail-flat")), "ring sharp");
+    let dissolved = tile_of(
+        &mut flat_wood_editor(&scratch("thumbnail-flat")),
+        "ring sharp",
+    );
     let mut harness = editor(&scratch("thumbnail-group"), None);
     select_node(&mut harness, "wood");
     press(&mut harness, egui::Key::Tab, false);
@@ -408,7 +411,10 @@ fn inside_a_group_each_node_shows_its_output_in_the_groups_first_instance() {
         .flat_map(|(a, b)| (0..3).map(move |k| a[k].abs_diff(b[k])))
         .max();
     assert_eq!(inside.len(), dissolved.len());
-    assert!(worst <= Some(1), "off by {worst:?} from the group dissolved");
+    assert!(
+        worst <= Some(1),
+        "off by {worst:?} from the group dissolved"
+    );
     let rings = tile_of(&mut harness, "rings");
     assert_ne!(rings, inside, "each node its own tile");
     // Back at the top level, the group node's tile is the group's first output.

@@ -132,8 +132,11 @@ impl FrameLog {
         ];
         let parts: String = parts.map(|part| format!(",{:.3}", ms(part))).concat();
         let main = ms(profile.total);
-        let _ = writeln!(self.file, "{seconds:.6},{main:.3},{revision},{compiles}{parts}")
-            .and_then(|()| self.file.flush());
+        let _ = writeln!(
+            self.file,
+            "{seconds:.6},{main:.3},{revision},{compiles}{parts}"
+        )
+        .and_then(|()| self.file.flush());
     }
 }
 

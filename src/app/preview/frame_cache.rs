@@ -19,6 +19,15 @@ pub(in crate::app) struct FrameCache {
     params: Option<(ParamsKey, Arc<[[f32; 4]]>)>,
 }
 
+impl FrameCache {
+    /// Whether the code of `generation` was handed to the preview.
+    pub fn has_code_of(&self, generation: u64) -> bool {
+        self.code
+            .as_ref()
+            .is_some_and(|(had, _)| *had == generation)
+    }
+}
+
 /// A code generation and a graph revision.
 type ParamsKey = (u64, u64);
 

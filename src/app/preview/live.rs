@@ -130,7 +130,10 @@ fn warnings_of(graph: &Graph) -> Warnings {
             add_line(warnings.top.entry(lint.node).or_default(), &lint.message);
             continue;
         };
-        add_line(warnings.top.entry(origin.top).or_default(), &lint.to_string());
+        add_line(
+            warnings.top.entry(origin.top).or_default(),
+            &lint.to_string(),
+        );
         let inside = warnings.in_groups.entry(origin.definition.clone());
         let line = format!("{} (in {})", lint.message, origin.groups);
         add_line(inside.or_default().entry(origin.id).or_default(), &line);
@@ -477,7 +480,11 @@ mod tests {
             inside[&sharp].contains("a hard step") && inside[&sharp].contains("group 'wood'"),
             "{warnings:?}"
         );
-        let group_node = graph.nodes.iter().find(|node| node.label == "wood").unwrap();
+        let group_node = graph
+            .nodes
+            .iter()
+            .find(|node| node.label == "wood")
+            .unwrap();
         let on_group = &warnings.of_level(None)[&group_node.id];
         assert!(
             on_group.contains("ring sharp") && on_group.contains("a hard step"),

@@ -85,13 +85,17 @@ impl VeneerApp {
 
     /// Autosaves unsaved work (or removes the window's recovery file once the document is
     /// clean); on SIGTERM, SIGINT or SIGHUP, autosaves and closes the window.
-    pub(in crate::app) fn autosave_tick(&mut self, ctx: &egui::Context) {
+    pub(in crate::app) fn autosave_tick(
+        &mut self,
+        ctx: &egui::Context,
+        copy: Option<std::sync::Arc<crate::graph::Graph>>,
+    ) {
         let now = ctx.input(|input| input.time);
         let revision = self.session.revision.number;
         match self
             .session
             .autosave
-            .tick(now, &self.session.document, revision)
+            .tick(now, &self.session.document, revision, copy)
         {
             Ok(Some(wait)) => ctx.request_repaint_after(std::time::Duration::from_secs_f64(wait)),
             Ok(None) => {}

@@ -19,12 +19,12 @@ pub const AUTOSAVE_SECONDS: f64 = 5.0;
 /// Seconds between looks at whether the document is dirty (a look serialises the graph).
 const CHECK_SECONDS: f64 = 0.5;
 
-/// What a recovery file holds.
+/// What a recovery file holds (written with the graph borrowed: `Recovery<&Graph>`).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct Recovery {
+pub struct Recovery<G = Graph> {
     /// The file the unsaved graph belongs to, if it had one.
     pub original: Option<PathBuf>,
-    pub graph: Graph,
+    pub graph: G,
     /// The process that wrote it (absent in files of older versions).
     #[serde(default)]
     pub pid: Option<u32>,
@@ -158,7 +158,11 @@ fn start_time(pid: u32) -> Option<u64> {
 /// of its own: a link or special file there is refused), unless what it would write
 /// hashes to `written` (the file holds it already); returns the hash of what the file
 /// holds.
-fn autosave(path: &Path, recovery: &Recovery, written: Option<u64>) -> std::io::Result<u64> {
+fn autosave(
+    path: &Path,
+    recovery: &Recovery<&Graph>,
+    written: Option<u64>,
+) -> std::io::Result<u64> {
     use std::hash::{Hash, Hasher};
     let text = ron::ser::to_string_pretty(recovery, ron::ser::PrettyConfig::new().depth_limit(2))
         .map_err(std::io::Error::other)?;
@@ -170,8 +174,6 @@ fn autosave(path: &Path, recovery: &Recovery, written: Option<u64>) -> std::io::
     }
     Ok(hash)
 }
-
-
 
 /// Writes one of the editor's own files (a recovery file, the recent list), making its
 /// folder when missing; it is never written through a link nor into a FIFO or device
@@ -226,14 +228,22 @@ impl Autosave {
     /// to what was saved). Returns in how many seconds it wants to be called again, when
     /// an edit is not on disk yet: the editor wakes for it even when nothing else asks
     /// for a frame (an edit, then a still mouse).
+    ///
+    /// A big graph is written on a thread of its own, from `copy` when the frame made
+    /// one (for the compile and lint threads) and from a copy made here otherwise.
     pub fn tick(
         &mut self,
         now: f64,
         document: &Document,
         revision: u64,
+        copy: Option<std::sync::Arc<Graph>>,
     ) -> std::io::Result<Option<f64>> {
         self.now = now;
-        if self.writing.as_ref().is_some_and(|writing| !writing.is_finished()) {
+        if self
+            .writing
+            .as_ref()
+            .is_some_and(|writing| !writing.is_finished())
+        {
             return Ok(Some(CHECK_SECONDS));
         }
         self.finish_writing()?;
@@ -254,17 +264,18 @@ impl Autosave {
         if self.written.is_some() && wait > 0.0 {
             return Ok(Some(wait));
         }
-        let recovery = recovery_of(document);
         self.last_write = self.now;
-        let (file, written) = (self.file.clone(), self.written);
-        let write = move || autosave(&file, &recovery, written);
         if crate::app::preview::background::is_big(&document.graph) {
-            let spawned = std::thread::Builder::new()
-                .name("veneer-autosave".into())
-                .spawn(write);
+            let graph = copy.unwrap_or_else(|| std::sync::Arc::new(document.graph.clone()));
+            let (file, written, original) =
+                (self.file.clone(), self.written, document.path.clone());
+            let write = move || autosave(&file, &Recovery::written_now(original, &*graph), written);
+            let spawned =
+                crate::app::preview::background::spawn_after_frame("veneer-autosave", write);
             self.writing = Some(spawned?);
         } else {
-            self.written = Some(write()?);
+            let recovery = Recovery::written_now(document.path.clone(), &document.graph);
+            self.written = Some(autosave(&self.file, &recovery, self.written)?);
         }
         self.settled = Some(revision);
         Ok(None)
@@ -291,7 +302,8 @@ impl Autosave {
             return finished;
         }
         self.last_write = self.now;
-        self.written = Some(autosave(&self.file, &recovery_of(document), self.written)?);
+        let recovery = Recovery::written_now(document.path.clone(), &document.graph);
+        self.written = Some(autosave(&self.file, &recovery, self.written)?);
         Ok(())
     }
 
@@ -305,16 +317,18 @@ impl Autosave {
     }
 }
 
-/// What the recovery file of `document`'s window holds.
-fn recovery_of(document: &Document) -> Recovery {
-    let pid = std::process::id();
-    Recovery {
-        original: document.path.clone(),
-        graph: document.graph.clone(),
-        pid: Some(pid),
-        started: start_time(pid),
-        file: PathBuf::new(),
-        saved: None,
+impl<G> Recovery<G> {
+    /// What this process writes for `graph`, unsaved work on `original` if it has a file.
+    fn written_now(original: Option<PathBuf>, graph: G) -> Recovery<G> {
+        let pid = std::process::id();
+        Recovery {
+            original,
+            graph,
+            pid: Some(pid),
+            started: start_time(pid),
+            file: PathBuf::new(),
+            saved: None,
+        }
     }
 }
 
@@ -502,7 +516,7 @@ mod tests {
         let graph = crate::graph::preset("marble").unwrap();
         let recovery = |pid| Recovery {
             original: None,
-            graph: graph.clone(),
+            graph: &graph,
             pid: Some(pid),
             started: start_time(pid),
             file: PathBuf::new(),
@@ -530,7 +544,7 @@ mod tests {
         let mut autosave = Autosave::new(dir.join("recovery-1-0.ron"));
         document.graph.name = "first edit".into();
         assert_eq!(
-            autosave.tick(10.0, &document, 1).unwrap(),
+            autosave.tick(10.0, &document, 1, None).unwrap(),
             None,
             "written at once"
         );
@@ -539,18 +553,18 @@ mod tests {
         // A second edit within the autosave interval: not written yet, but the editor is
         // told when to come back, even if nothing else wakes it.
         document.graph.name = "second edit".into();
-        let wait = autosave.tick(11.0, &document, 2).unwrap();
+        let wait = autosave.tick(11.0, &document, 2, None).unwrap();
         assert_eq!(wait, Some(AUTOSAVE_SECONDS - 1.0));
         assert_eq!(on_disk(&autosave.file).as_deref(), Some("first edit"));
         assert_eq!(
             autosave
-                .tick(10.0 + AUTOSAVE_SECONDS, &document, 2)
+                .tick(10.0 + AUTOSAVE_SECONDS, &document, 2, None)
                 .unwrap(),
             None
         );
         assert_eq!(on_disk(&autosave.file).as_deref(), Some("second edit"));
         // Nothing new: no wake asked for.
-        assert_eq!(autosave.tick(30.0, &document, 2).unwrap(), None);
+        assert_eq!(autosave.tick(30.0, &document, 2, None).unwrap(), None);
         let _ = std::fs::remove_dir_all(&dir);
     }
 }

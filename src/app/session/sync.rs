@@ -161,6 +161,8 @@ impl VeneerApp {
             self.session.revision.linted = Some(revision);
             self.preview.live.lint(&snapshot);
         }
+        // (The autosave writes a big graph from the same copy.)
+        let copy = snapshot.into_copy();
         let lint = lap();
         let time = self.preview.state.view.time;
         let hovered = self.canvas.hovered_wire.as_ref();
@@ -186,7 +188,8 @@ impl VeneerApp {
             revision,
             structure: self.session.revision.structure,
         };
-        self.thumbnails.update(ctx, graph, stamp, hovered, time, view);
+        self.thumbnails
+            .update(ctx, graph, stamp, hovered, time, view);
         let thumbnails = lap();
         let known = self.session.revision.dirty_known;
         if known != Some(revision) {
@@ -204,7 +207,7 @@ impl VeneerApp {
             ctx.send_viewport_cmd(egui::ViewportCommand::Title(title.clone()));
             self.session.title = title;
         }
-        self.autosave_tick(ctx);
+        self.autosave_tick(ctx, copy);
         let history = lap();
         self.chrome.profile = FrameProfile {
             total: Duration::ZERO,

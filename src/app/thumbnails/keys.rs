@@ -1,7 +1,7 @@
 //! What each node thumbnail depends on, worked out for the whole graph in one pass each
 //! (linear in nodes and wires, so graphs of thousands of nodes cost no more per node
-//! than small ones): a hash of everything upstream of each node, the nodes that read,
-//! directly or not, a node that fails to compile, and which tiles fit one atlas.
+//! than small ones): a hash of everything upstream of each node, and which tiles fit
+//! one atlas.
 
 use crate::graph::{Graph, NodeId, NodeKind};
 use rustc_hash::{FxHashMap, FxHashSet};
@@ -63,35 +63,6 @@ pub fn upstream_hashes(graph: &Graph, time: f32) -> FxHashMap<NodeId, u64> {
     hashes
 }
 
-/// For every node, the nodes its wires lead to: `ends` gives a wire's node and the node
-/// it leads to (the reader, or the source).
-fn linked(
-    graph: &Graph,
-    ends: impl Fn(&crate::graph::Wire) -> (NodeId, NodeId),
-) -> FxHashMap<NodeId, Vec<NodeId>> {
-    let mut linked: FxHashMap<NodeId, Vec<NodeId>> = FxHashMap::default();
-    for (node, other) in graph.wires.iter().map(ends) {
-        linked.entry(node).or_default().push(other);
-    }
-    linked
-}
-
-/// `broken` and every node that reads one of them, directly or not.
-pub fn downstream_of(
-    graph: &Graph,
-    broken: &std::collections::BTreeSet<NodeId>,
-) -> FxHashSet<NodeId> {
-    let readers = linked(graph, |wire| (wire.from.node, wire.to.node));
-    let mut reached: FxHashSet<NodeId> = FxHashSet::default();
-    let mut stack: Vec<NodeId> = broken.iter().copied().collect();
-    while let Some(node) = stack.pop() {
-        if reached.insert(node) {
-            stack.extend(readers.get(&node).into_iter().flatten().copied());
-        }
-    }
-    reached
-}
-
 /// The pins of `pins` whose tiles fit an atlas of at most `limit` graph nodes, and the
 /// nodes of those that do not. Pins are taken in order, each adding the nodes upstream
 /// of it that no pin before it needed; one that would take the atlas past `limit` is
@@ -103,7 +74,7 @@ pub fn within_atlas(
     pins: &[crate::graph::PinRef],
     limit: usize,
 ) -> (Vec<crate::graph::PinRef>, FxHashSet<NodeId>) {
-    let sources = linked(graph, |wire| (wire.to.node, wire.from.node));
+    let sources = graph.linked(|wire| (wire.to.node, wire.from.node));
     let mut taken: FxHashSet<NodeId> = FxHashSet::default();
     let (mut kept, mut left_out) = (Vec::new(), FxHashSet::default());
     for pin in pins {
@@ -179,8 +150,7 @@ mod tests {
             pin = "p";
         }
         assert_eq!(upstream_hashes(&graph, 0.0).len(), 100_001);
-        let broken = [graph.nodes[50_000].id].into_iter().collect();
-        assert_eq!(downstream_of(&graph, &broken).len(), 50_001);
+        assert_eq!(graph.downstream([graph.nodes[50_000].id]).len(), 50_001);
     }
 
     #[test]

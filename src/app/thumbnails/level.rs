@@ -109,13 +109,20 @@ mod tests {
             .unwrap()
             .id;
         let mut level = Level::default();
-        assert!(level.flattened(&graph, 1).is_none(), "the top level is drawn as it is");
+        assert!(
+            level.flattened(&graph, 1).is_none(),
+            "the top level is drawn as it is"
+        );
         assert_eq!(level.drawn_node(sharp), Some(sharp));
         level.show(Some("ring_wood"));
         let flat = level.flattened(&graph, 1).unwrap();
         let drawn = level.drawn_node(sharp).unwrap();
         let origin = flat.node(drawn).unwrap().origin.as_deref().unwrap();
-        assert_eq!((origin.id, origin.top), (sharp, wood.id), "the first instance's");
+        assert_eq!(
+            (origin.id, origin.top),
+            (sharp, wood.id),
+            "the first instance's"
+        );
         assert_eq!(level.shown_node(drawn), Some(sharp));
         assert!(Arc::ptr_eq(&flat, &level.flattened(&graph, 1).unwrap()));
         level.show(None);

@@ -174,7 +174,7 @@ impl Thumbnails {
     fn wanted(&mut self, graph: &Graph, candidates: &[PinRef]) -> Vec<PinRef> {
         let mut pins = candidates.to_vec();
         if !self.left_out.broken.is_empty() {
-            let tainted = keys::downstream_of(graph, &self.left_out.broken);
+            let tainted = graph.downstream(self.left_out.broken.iter().copied());
             pins.retain(|pin| !tainted.contains(&pin.node));
         }
         let (pins, too_deep) = keys::within_atlas(graph, &pins, ATLAS_NODES);

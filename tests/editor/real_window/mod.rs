@@ -20,7 +20,9 @@
 //!   the file and goes on to the new graph;
 //! - [`autosave`]: an edit reaches the recovery file with the mouse still, and SIGTERM
 //!   leaves it there;
-//! - [`side_panel`]: clicking the lighting row's number fields keeps the panel's width.
+//! - [`side_panel`]: clicking the lighting row's number fields keeps the panel's width;
+//! - [`groups`]: inside a group its nodes show their thumbnails, and a hazard inside it
+//!   marks the group node.
 //!
 //! The flows of issue 30's bugs are `#[ignore]`d until the fix of each lands (they fail
 //! on the editor as it was, which is their point): run them with
@@ -49,6 +51,7 @@ mod canvas;
 mod clipboard;
 mod first_minute;
 mod gestures;
+mod groups;
 mod on_disk;
 mod panning;
 mod selection;
