@@ -1152,7 +1152,7 @@ where
         scale: to_global.scaling,
     });
 
-    for node_idx in draw_order {
+    for &node_idx in draw_order.iter() {
         if !snarl.nodes.contains(node_idx.0) {
             continue;
         }

@@ -1,3 +1,5 @@
+use std::sync::Arc;
+
 use ahash::HashSet;
 use egui::{
     Context, Id, Pos2, Rect, Ui, Vec2,
@@ -173,15 +175,16 @@ pub struct SnarlState {
     /// Active rect selection.
     rect_selection: Option<RectSelect>,
 
-    /// Order of nodes to draw.
-    draw_order: Vec<NodeId>,
+    /// Order of nodes to draw (Veneer's patch: shared, so that a frame takes it
+    /// without copying every node's id).
+    draw_order: Arc<Vec<NodeId>>,
 
     /// List of currently selected nodes.
     selected_nodes: SmallVec<[NodeId; 8]>,
 }
 
 #[derive(Clone, Default)]
-struct DrawOrder(Vec<NodeId>);
+struct DrawOrder(Arc<Vec<NodeId>>);
 
 impl DrawOrder {
     fn save(self, cx: &Context, id: Id) {
@@ -302,7 +305,7 @@ impl SnarlState {
             new_wires_menu: false,
             id,
             dirty: true,
-            draw_order: Vec::new(),
+            draw_order: Arc::default(),
             rect_selection: None,
             selected_nodes: SmallVec::new(),
         }
@@ -477,13 +480,13 @@ impl SnarlState {
         self.new_wires_menu = true;
     }
 
-    pub(crate) fn update_draw_order<T>(&mut self, snarl: &Snarl<T>) -> Vec<NodeId> {
+    pub(crate) fn update_draw_order<T>(&mut self, snarl: &Snarl<T>) -> Arc<Vec<NodeId>> {
         // Veneer's patch: as many nodes as the order holds, each still there, means the
         // same nodes (the order holds no id twice): no set of every node to build.
         if self.draw_order.len() == snarl.nodes.len()
             && self.draw_order.iter().all(|id| snarl.nodes.contains(id.0))
         {
-            return self.draw_order.clone();
+            return Arc::clone(&self.draw_order);
         }
         let mut node_ids = snarl
             .nodes
@@ -491,25 +494,28 @@ impl SnarlState {
             .map(|(id, _)| NodeId(id))
             .collect::<HashSet<_>>();
 
-        self.draw_order.retain(|id| {
+        let dirty = &mut self.dirty;
+        let draw_order = Arc::make_mut(&mut self.draw_order);
+        draw_order.retain(|id| {
             let has = node_ids.remove(id);
-            self.dirty |= !has;
+            *dirty |= !has;
             has
         });
 
-        self.dirty |= !node_ids.is_empty();
+        *dirty |= !node_ids.is_empty();
 
         for new_id in node_ids {
-            self.draw_order.push(new_id);
+            draw_order.push(new_id);
         }
 
-        self.draw_order.clone()
+        Arc::clone(&self.draw_order)
     }
 
     pub(crate) fn node_to_top(&mut self, node: NodeId) {
         if let Some(order) = self.draw_order.iter().position(|idx| *idx == node) {
-            self.draw_order.remove(order);
-            self.draw_order.push(node);
+            let draw_order = Arc::make_mut(&mut self.draw_order);
+            draw_order.remove(order);
+            draw_order.push(node);
         }
         self.dirty = true;
     }
