@@ -1,7 +1,7 @@
 //! The live compile loop: a structural edit recompiles the material (parameters as
 //! uniforms), a parameter edit does not; a failed compile keeps the last good material.
 
-use crate::app::preview::background::{Background, Outcome, Request, Snapshot, is_big};
+use crate::app::preview::background::{Latest, Outcome, Request, Snapshot, is_big};
 use crate::codegen::{CompileError, Compiled, SurfaceUse, param_values};
 use crate::graph::{Graph, NodeId, Value};
 use std::collections::BTreeMap;
@@ -33,11 +33,11 @@ pub struct LiveMaterial {
     /// Small graphs too go to a thread (the thumbnails' atlas of a big graph: a part of
     /// it, but one that may grow to hundreds of nodes with the next edit).
     small_too: bool,
-    /// The compile running on its thread, if one is (and the structure key it works
-    /// out, when not known when it started).
-    compiling: Option<Background<(Outcome, Option<Structure>)>>,
-    /// The lint running on its thread, if one is.
-    linting: Option<Background<Warnings>>,
+    /// The compile running on its thread, if one is, and the latest one asked for since
+    /// (each with the structure key it works out, when not known when it started).
+    compiling: Latest<(Outcome, Option<Structure>)>,
+    /// The lint running on its thread, if one is, and the latest one asked for since.
+    linting: Latest<Warnings>,
 }
 
 /// Numerical hazards by node, one message per line: of the top level's nodes, and of
@@ -221,10 +221,10 @@ impl LiveMaterial {
                     let key = (!known).then(|| (structure(&graph), detail));
                     (request.compile(&graph), key)
                 };
-                self.compiling = Some(Background::start(compile, ctx.clone()));
+                self.compiling.start(compile, ctx.clone());
             }
             _ => {
-                self.compiling = None;
+                self.compiling.forget();
                 self.structure = Some(key.unwrap_or_else(|| (structure(graph), detail)));
                 self.install(request.compile(graph));
             }
@@ -234,14 +234,12 @@ impl LiveMaterial {
     /// Takes in the compile and the lint finished on their threads, if they are;
     /// returns whether the compile was.
     pub fn receive(&mut self) -> bool {
-        if let Some(warnings) = self.linting.as_ref().and_then(Background::outcome) {
-            self.linting = None;
+        if let Some(warnings) = self.linting.outcome() {
             self.warnings = warnings;
         }
-        let Some((outcome, key)) = self.compiling.as_ref().and_then(Background::outcome) else {
+        let Some((outcome, key)) = self.compiling.outcome() else {
             return false;
         };
-        self.compiling = None;
         if key.is_some() {
             self.structure = key;
         }
@@ -251,7 +249,7 @@ impl LiveMaterial {
 
     /// Whether a compile runs on its thread (the preview shows the last material).
     pub fn is_compiling(&self) -> bool {
-        self.compiling.is_some()
+        self.compiling.busy()
     }
 
     /// Makes a compile's outcome the material shown: a failed compile keeps the last
@@ -293,10 +291,10 @@ impl LiveMaterial {
             Some(ctx) if self.small_too || is_big(graph) => {
                 let graph = snapshot.shared();
                 let lint = move || warnings_of(&graph);
-                self.linting = Some(Background::start(lint, ctx.clone()));
+                self.linting.start(lint, ctx.clone());
             }
             _ => {
-                self.linting = None;
+                self.linting.forget();
                 self.warnings = warnings_of(graph);
             }
         }
