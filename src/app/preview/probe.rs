@@ -8,6 +8,7 @@
 
 use crate::graph::{Graph, MathOp, NodeId, NodeKind, PinRef, Value, ValueType};
 use crate::nodes::{Combine, Math, Mix, Split};
+use rustc_hash::FxHashSet;
 
 /// The part of `graph` that `node` reads, its first output wired into the material's
 /// albedo (see [`Graph::part`]), or `None` for the material node itself and nodes
@@ -15,7 +16,7 @@ use crate::nodes::{Combine, Math, Mix, Split};
 pub fn probe_graph(graph: &Graph, node: NodeId) -> Option<Graph> {
     let output = *graph.node(node)?.kind.signature().outputs.first()?;
     let material = graph.material()?.id;
-    let mut probe = part_shown(graph, [node], material);
+    let mut probe = part_with(graph, graph.upstream([node]), material);
     // Flat: the material's other inputs (a height, a bump) would light or move it.
     cut_material(&mut probe, material);
     let (colour, pin) = as_colour(&mut probe, &PinRef::new(node, output.name), output.ty);
@@ -23,10 +24,9 @@ pub fn probe_graph(graph: &Graph, node: NodeId) -> Option<Graph> {
     Some(probe)
 }
 
-/// The part of `graph` that `shown` read, with its `material` node (see
-/// [`Graph::part`]): what a thumbnail needs, however big the graph is.
-fn part_shown(graph: &Graph, shown: impl IntoIterator<Item = NodeId>, material: NodeId) -> Graph {
-    let mut keep = graph.upstream(shown);
+/// The part of `graph` made of `keep` (the nodes some outputs read) and its `material`
+/// node (see [`Graph::part`]): what a thumbnail needs, however big the graph is.
+fn part_with(graph: &Graph, mut keep: FxHashSet<NodeId>, material: NodeId) -> Graph {
     keep.insert(material);
     graph.part(&keep)
 }
@@ -57,8 +57,17 @@ pub struct AtlasGraph {
 /// material's other inputs are cut, and only the nodes the pins read are copied.
 /// `None` when the graph has no material or no pin is an output of its nodes.
 pub fn atlas_graph(graph: &Graph, pins: &[PinRef]) -> Option<AtlasGraph> {
+    atlas_graph_reading(graph, pins, graph.upstream(pins.iter().map(|pin| pin.node)))
+}
+
+/// [`atlas_graph`] when the nodes the pins read, `upstream`, are known already.
+pub fn atlas_graph_reading(
+    graph: &Graph,
+    pins: &[PinRef],
+    upstream: FxHashSet<NodeId>,
+) -> Option<AtlasGraph> {
     let material = graph.material()?.id;
-    let mut atlas = part_shown(graph, pins.iter().map(|pin| pin.node), material);
+    let mut atlas = part_with(graph, upstream, material);
     cut_material(&mut atlas, material);
     let (mut shown, mut selectors, mut chain) = (Vec::new(), Vec::new(), None);
     for pin in pins {

@@ -63,17 +63,23 @@ pub fn upstream_hashes(graph: &Graph, time: f32) -> FxHashMap<NodeId, u64> {
     hashes
 }
 
-/// The pins of `pins` whose tiles fit an atlas of at most `limit` graph nodes, and the
-/// nodes of those that do not. Pins are taken in order, each adding the nodes upstream
+/// The tiles that fit one atlas ([`within_atlas`]).
+pub struct Fit {
+    /// The pins kept, in order.
+    pub pins: Vec<crate::graph::PinRef>,
+    /// The nodes of the pins left out.
+    pub too_deep: FxHashSet<NodeId>,
+    /// Every node upstream of the pins kept, themselves included: what the atlas copies.
+    pub upstream: FxHashSet<NodeId>,
+}
+
+/// The pins of `pins` whose tiles fit an atlas of at most `limit` graph nodes, the
+/// nodes of those that do not, and the nodes the kept ones read. Pins are taken in order, each adding the nodes upstream
 /// of it that no pin before it needed; one that would take the atlas past `limit` is
 /// left out (the walk over its nodes stops there, so the work is at most `limit` nodes
 /// a pin). The atlas is one shader: a tile of a node 5,000 deep in a chain made it a
 /// shader of 5,000 nodes, which lavapipe took over 20 seconds to compile.
-pub fn within_atlas(
-    graph: &Graph,
-    pins: &[crate::graph::PinRef],
-    limit: usize,
-) -> (Vec<crate::graph::PinRef>, FxHashSet<NodeId>) {
+pub fn within_atlas(graph: &Graph, pins: &[crate::graph::PinRef], limit: usize) -> Fit {
     let sources = graph.linked(|wire| (wire.to.node, wire.from.node));
     let mut taken: FxHashSet<NodeId> = FxHashSet::default();
     let (mut kept, mut left_out) = (Vec::new(), FxHashSet::default());
@@ -95,7 +101,11 @@ pub fn within_atlas(
             kept.push(pin.clone());
         }
     }
-    (kept, left_out)
+    Fit {
+        pins: kept,
+        too_deep: left_out,
+        upstream: taken,
+    }
 }
 
 #[cfg(test)]
@@ -166,11 +176,12 @@ mod tests {
         }
         let pin = |k: usize| crate::graph::PinRef::new(chain[k], "p");
         // n2 needs 3 nodes, n4 two more, n8 four more: 9 > 6, left out.
-        let (kept, left_out) = within_atlas(&graph, &[pin(2), pin(4), pin(8), pin(5)], 6);
-        assert_eq!(kept, [pin(2), pin(4), pin(5)]);
-        assert_eq!(left_out, FxHashSet::from_iter([chain[8]]));
+        let fit = within_atlas(&graph, &[pin(2), pin(4), pin(8), pin(5)], 6);
+        assert_eq!(fit.pins, [pin(2), pin(4), pin(5)]);
+        assert_eq!(fit.too_deep, FxHashSet::from_iter([chain[8]]));
+        assert_eq!(fit.upstream, graph.upstream([chain[5]]), "what n5 reads");
         // Shared nodes count once: n9 alone fits 10 nodes, and n3 then adds none.
-        let (kept, left_out) = within_atlas(&graph, &[pin(9), pin(3)], 10);
-        assert_eq!((kept.len(), left_out.len()), (2, 0));
+        let fit = within_atlas(&graph, &[pin(9), pin(3)], 10);
+        assert_eq!((fit.pins.len(), fit.too_deep.len()), (2, 0));
     }
 }

@@ -13,7 +13,7 @@ pub(in crate::app) mod tiles;
 pub(in crate::app) mod worker;
 
 use crate::app::preview::live::LiveMaterial;
-use crate::app::preview::probe::atlas_graph;
+use crate::app::preview::probe::atlas_graph_reading;
 pub use crate::app::thumbnails::tiles::TILE_PIXELS;
 use crate::app::thumbnails::tiles::Tiles;
 use crate::app::thumbnails::worker::{Done, Job, Worker};
@@ -170,16 +170,21 @@ impl Thumbnails {
     }
 
     /// The candidates that get a tile: those not reading a node that fails to compile,
-    /// as many as the atlas takes (the others are noted as too deep).
-    fn wanted(&mut self, graph: &Graph, candidates: &[PinRef]) -> Vec<PinRef> {
+    /// as many as the atlas takes (the others are noted as too deep); and the nodes
+    /// they read.
+    fn wanted(
+        &mut self,
+        graph: &Graph,
+        candidates: &[PinRef],
+    ) -> (Vec<PinRef>, rustc_hash::FxHashSet<NodeId>) {
         let mut pins = candidates.to_vec();
         if !self.left_out.broken.is_empty() {
             let tainted = graph.downstream(self.left_out.broken.iter().copied());
             pins.retain(|pin| !tainted.contains(&pin.node));
         }
-        let (pins, too_deep) = keys::within_atlas(graph, &pins, ATLAS_NODES);
-        self.left_out.too_deep = too_deep;
-        pins
+        let fit = keys::within_atlas(graph, &pins, ATLAS_NODES);
+        self.left_out.too_deep = fit.too_deep;
+        (fit.pins, fit.upstream)
     }
 
     /// Whether `node`'s tile is left out for having more upstream than the atlas takes.
@@ -235,8 +240,8 @@ impl Thumbnails {
         // A node that fails to compile is left out (with what reads it) and the rest
         // compiled again; each round leaves out at least one more node.
         let atlas = loop {
-            let pins = self.wanted(graph, &candidates);
-            let Some(atlas) = atlas_graph(graph, &pins) else {
+            let (pins, upstream) = self.wanted(graph, &candidates);
+            let Some(atlas) = atlas_graph_reading(graph, &pins, upstream) else {
                 self.tiles.clear();
                 return;
             };
