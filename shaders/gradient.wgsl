@@ -29,3 +29,18 @@ fn veneer_noise_gradient(point: vec3f) -> f32 {
     let n = mix(mix(nx00, nx10, u.y), mix(nx01, nx11, u.y), u.z);
     return 0.5 + 0.5 * clamp(n, -1.0, 1.0);
 }
+
+// Gradient noise in [0, 1] repeating every `period` cells along each axis (the cells
+// whose gradients are hashed are wrapped).
+fn veneer_noise_gradient_periodic(point: vec3f, period: i32) -> f32 {
+    let p = veneer_lattice_periodic(point, period);
+    let i = floor(p);
+    let f = p - i;
+    var n: array<f32, 8>;
+    for (var k = 0u; k < 8u; k++) {
+        let corner = veneer_cell_corner(k);
+        n[k] = veneer_gradient_dot(veneer_wrap_cell(i + corner, period), f - corner);
+    }
+    let u = f * f * f * (f * (f * 6.0 - 15.0) + 10.0);
+    return 0.5 + 0.5 * clamp(veneer_trilinear(n, u), -1.0, 1.0);
+}

@@ -44,3 +44,21 @@ fn veneer_unit_floats(bits: vec3u) -> vec3f {
 fn veneer_lattice_pcg(cell: vec3f) -> f32 {
     return veneer_unit_floats(veneer_pcg3d(veneer_cell_bits(cell))).x;
 }
+
+// `p` within the lattice's range and moved by whole periods into [0, period) per axis
+// (up to rounding): a periodic noise samples its point through this, so its cells stay
+// small whatever the coordinate, and the cell wrap below is exact.
+fn veneer_lattice_periodic(point: vec3f, period: i32) -> vec3f {
+    let p = veneer_lattice_domain(point);
+    let span = f32(period);
+    return p - span * floor(p / span);
+}
+
+// A lattice cell wrapped into [0, period) per axis: noise hashing the wrapped cells
+// repeats every `period` cells along x, y and z. In floats, exact for the whole-number
+// cells near the origin that `veneer_lattice_periodic` leaves (integer vector remainders
+// do not survive every back-end).
+fn veneer_wrap_cell(cell: vec3f, period: i32) -> vec3f {
+    let span = f32(period);
+    return cell - span * floor(cell / span);
+}

@@ -61,3 +61,35 @@ fn veneer_worley_fractal(p: vec3f, jitter: f32, metric: i32, feature: i32, octav
     }
     return sum;
 }
+
+// `veneer_worley` repeating every `period` cells along each axis: the point is moved by
+// whole periods near the origin and the cells whose feature points are hashed are
+// wrapped (the feature points themselves stay beside the point).
+fn veneer_worley_periodic(point: vec3f, jitter: f32, metric: i32, period: i32) -> vec3f {
+    let p = veneer_lattice_periodic(point, period);
+    let spread = clamp(jitter, -1.0, 1.0);
+    var f = vec3f(1.0e9);
+    for (var k = 0; k < 27; k++) {
+        let c = floor(p) + vec3f(vec3i(k % 3, (k / 3) % 3, k / 9) - 1);
+        let r = veneer_unit_floats(veneer_pcg3d(veneer_cell_bits(veneer_wrap_cell(c, period))));
+        let d = veneer_metric(p - (c + 0.5 + spread * (r - 0.5)), metric);
+        f = select(select(select(f, vec3f(f.xy, d), d < f.z), vec3f(f.x, d, f.y), d < f.y), vec3f(d, f.xy), d < f.x);
+    }
+    return f;
+}
+
+// `veneer_worley_fractal` repeating every `period` cells: octave i spans the nearest
+// whole number of cells to `period` times its frequency (`veneer_octave_period`).
+fn veneer_worley_fractal_periodic(p: vec3f, jitter: f32, metric: i32, feature: i32, octaves: i32, lacunarity: f32, gain: f32, period: i32) -> f32 {
+    var sum = 0.0;
+    var amp = 1.0;
+    var freq = 1.0;
+    for (var i = 0; i < octaves; i++) {
+        let cells = veneer_octave_period(period, freq, 1);
+        let f = veneer_worley_periodic(p * (f32(cells) / f32(period)), jitter, metric, cells);
+        sum = clamp(sum + amp * veneer_worley_feature(f, feature), -3.0e38, 3.0e38);
+        freq = clamp(freq * lacunarity, -3.0e38, 3.0e38);
+        amp = clamp(amp * gain, -3.0e38, 3.0e38);
+    }
+    return sum;
+}

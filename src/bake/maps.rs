@@ -102,6 +102,9 @@ pub struct Converter {
     next_row: usize,
     /// A band's last row, unconverted, while it waits for the row below.
     held: Vec<[f32; 4]>,
+    /// For a tile: the heights of the rows just above the image and just below it. Its
+    /// normals then take their differences across the edges (wrapping left and right).
+    beyond: Option<(Vec<f32>, Vec<f32>)>,
 }
 
 impl Converter {
@@ -124,7 +127,17 @@ impl Converter {
             first_height_row: 0,
             next_row: 0,
             held: Vec::new(),
+            beyond: None,
         }
+    }
+
+    /// The converter of one tile of a repeating texture, whose heights continue in
+    /// `above` (the row above the top edge, which repeats the bottom row) and `below`
+    /// (the row below the bottom edge): normals take central differences across every
+    /// edge, wrapping left and right, so the normal map tiles too.
+    pub fn tiling(mut self, above: Vec<f32>, below: Vec<f32>) -> Converter {
+        self.beyond = Some((above, below));
+        self
     }
 
     /// Converts the next band of whole rows in place and passes every finished row on to
@@ -188,24 +201,35 @@ impl Converter {
     }
 
     /// Tangent-space normals of image row `row` into `pixels` (its rendered outputs):
-    /// central differences of the heights (one-sided at the image's edges), perturbed by
+    /// central differences of the heights (one-sided at the image's edges, unless it is a
+    /// tile), perturbed by
     /// each pixel's bump (lanes 1..4), encoded as 0.5 + 0.5·n. Slopes are clamped to ±1e18
     /// (steeper is vertical at any precision) and a perturbed normal too long to square is
     /// scaled down first, so any finite heights and bumps give a unit normal.
     fn normal_row(&self, row: usize, pixels: &mut [[f32; 4]]) {
         let n = self.size;
         let (dx, dz) = self.spacing;
-        let (up, down) = (row.saturating_sub(1), (row + 1).min(self.next_row - 1));
-        let rows_apart = (down - up).max(1) as f32;
-        let (up, center, down) = (
-            self.height_row(up),
-            self.height_row(row),
-            self.height_row(down),
-        );
+        let center = self.height_row(row);
+        let beyond = self.beyond.as_ref();
+        let up = match (row.checked_sub(1), beyond) {
+            (Some(above), _) => Some(self.height_row(above)),
+            (None, beyond) => beyond.map(|(above, _)| above.as_slice()),
+        };
+        let down = match (row + 1 < self.next_row, beyond) {
+            (true, _) => Some(self.height_row(row + 1)),
+            (false, beyond) => beyond.map(|(_, below)| below.as_slice()),
+        };
+        let rows_apart = (usize::from(up.is_some()) + usize::from(down.is_some())).max(1) as f32;
+        let (up, down) = (up.unwrap_or(center), down.unwrap_or(center));
         for (i, pixel) in pixels.iter_mut().enumerate() {
-            let (left, right) = (i.saturating_sub(1), (i + 1).min(n - 1));
+            let (left, right, columns_apart) = if beyond.is_some() {
+                ((i + n - 1) % n, (i + 1) % n, 2)
+            } else {
+                let (left, right) = (i.saturating_sub(1), (i + 1).min(n - 1));
+                (left, right, (right - left).max(1))
+            };
             let steepest = 1.0e18;
-            let slope_x = ((center[right] - center[left]) / (dx * (right - left).max(1) as f32))
+            let slope_x = ((center[right] - center[left]) / (dx * columns_apart as f32))
                 .clamp(-steepest, steepest);
             let slope_z = ((down[i] - up[i]) / (dz * rows_apart)).clamp(-steepest, steepest);
             // Object space (y up) with the bump added, as the preview lights it.

@@ -10,6 +10,7 @@ mod exr_rle;
 mod gltf;
 mod maps;
 mod pipeline;
+pub mod tile;
 
 pub use gltf::{GltfSettings, Packaging, export_gltf, gltf_files};
 pub use maps::{Converter, Map, NormalConvention, fill_uncovered};
@@ -54,6 +55,12 @@ pub enum BakeSurface {
     /// Over a rectangle of a plane (`None`: the graph's preview square); tileable when the
     /// graph is periodic over the rectangle.
     Plane(Option<FlatRect>),
+    /// Over a rectangle of a plane (`None`: the unit square, x and z from 0 to 1 at
+    /// y = 0) as one tile of a repeating texture: before anything is written, each map's
+    /// opposite edges are checked to continue each other ([`tile::Seams`]; a bake whose
+    /// seams pass [`tile::SEAM_TOLERANCE`] is refused), and normal maps take their
+    /// differences across the edges, so they tile too.
+    Tile(Option<FlatRect>),
     /// Into the UV layout of a primitive or a mesh file (an automatic atlas when it has
     /// none, [`crate::mesh::Mesh::with_uv_atlas`]), placed as the graph's preview places
     /// it. Seams are padded by growing covered texels outwards.
@@ -82,6 +89,8 @@ pub struct BakedMap {
     pub size: u32,
     pub format: Format,
     pub bytes: u64,
+    /// How far the map's opposite edges are from continuing each other (tiles only).
+    pub seams: Option<tile::Seams>,
 }
 
 /// A bake that failed: refused before any work (outputs, memory), a render that failed,
@@ -115,6 +124,13 @@ pub enum BakeError {
     /// The thread writing a map panicked.
     #[error("{path}: the map writer panicked")]
     WriterPanicked { path: PathBuf },
+    /// A tile's maps whose opposite edges do not continue each other, with their seams.
+    #[error(
+        "the maps do not tile: {}; the tile passes at seams up to {}. Give every noise a period (in cells) that its scale spans a whole number of times over the tile; nothing was baked",
+        .0.iter().map(|(map, seams)| format!("the {} map's edges differ by up to {} left/right and {} top/bottom", map.name(), seams.left_right, seams.top_bottom)).collect::<Vec<_>>().join(", "),
+        tile::SEAM_TOLERANCE
+    )]
+    NotTileable(Vec<(Map, tile::Seams)>),
     /// Whoever asked for the export took it back; nothing was written.
     #[error("cancelled; nothing was written")]
     Cancelled,
@@ -125,6 +141,15 @@ enum Surface {
     Plane(FlatRenderer, FlatRect),
     Uv(UvRenderer, GpuMesh),
 }
+
+/// The unit square a tile bakes over by default: x and z from 0 to 1 at y = 0.
+pub const UNIT_TILE: FlatRect = FlatRect {
+    x0: 0.0,
+    z0: 0.0,
+    x1: 1.0,
+    z1: 1.0,
+    y: 0.0,
+};
 
 /// The file a bake writes `map` to: `<stem>_<map>.<ext>`.
 pub fn map_path(stem: &Path, map: Map, format: Format) -> PathBuf {
@@ -197,8 +222,11 @@ pub fn bake(
     let (module, preview) = (&compiled.module, &compiled.preview);
     let size = settings.size;
     let (surface, spacing) = match &settings.surface {
-        BakeSurface::Plane(rect) => {
-            let rect = rect.unwrap_or_else(|| crate::render::preview_rect(preview));
+        BakeSurface::Plane(rect) | BakeSurface::Tile(rect) => {
+            let rect = match settings.surface {
+                BakeSurface::Tile(_) => rect.unwrap_or(UNIT_TILE),
+                _ => rect.unwrap_or_else(|| crate::render::preview_rect(preview)),
+            };
             let spacing = (
                 (rect.x1 - rect.x0) / f64::from(size),
                 (rect.z1 - rect.z0) / f64::from(size),
@@ -239,6 +267,26 @@ pub fn bake(
         Surface::Uv(..) => u64::from(size.div_ceil(tile)).pow(2),
     };
     let total = tiles_per_pass * settings.maps.len() as u64;
+    let edges = match (&surface, &settings.surface) {
+        (Surface::Plane(flat, rect), BakeSurface::Tile(_)) => {
+            Some(check_tile(gpu, flat, *rect, settings)?)
+        }
+        _ => None,
+    };
+    let seams_of = |map: Map| {
+        let edges = edges.as_ref()?;
+        edges
+            .iter()
+            .find(|(channels, _)| *channels == map.channels())
+            .map(|(_, e)| e.seams)
+    };
+    let beyond = edges.as_ref().and_then(|edges| {
+        let heights = |row: &[[f32; 4]]| row.iter().map(|p| p[0]).collect::<Vec<f32>>();
+        edges
+            .iter()
+            .find(|(channels, _)| *channels == Map::Height.channels())
+            .map(|(_, e)| (heights(&e.above), heights(&e.below)))
+    });
     let paths: Vec<_> = (settings.maps.iter())
         .map(|map| map_path(stem, *map, settings.format))
         .collect();
@@ -251,6 +299,7 @@ pub fn bake(
             format: settings.format,
             spacing,
             convention: settings.normal,
+            beyond: beyond.as_ref(),
         })
         .collect();
     let overlap = settings.format == Format::Exr;
@@ -291,9 +340,41 @@ pub fn bake(
             path,
             size,
             format: settings.format,
+            seams: seams_of(*map),
         })
         .collect();
     Ok(written)
+}
+
+/// The edge checks of a tile bake, one per group of material outputs its maps are made
+/// from; refuses the bake, before anything is written, when a map's seams are past the
+/// tolerance.
+fn check_tile(
+    gpu: &GpuContext,
+    flat: &FlatRenderer,
+    rect: FlatRect,
+    settings: &BakeSettings,
+) -> Result<Vec<(crate::render::FlatChannels, tile::EdgeCheck)>, BakeError> {
+    let mut checks: Vec<(crate::render::FlatChannels, tile::EdgeCheck)> = Vec::new();
+    for map in &settings.maps {
+        let channels = map.channels();
+        if !checks.iter().any(|(done, _)| *done == channels) {
+            let check = tile::check_edges(gpu, flat, rect, settings.size, settings.time, channels)?;
+            checks.push((channels, check));
+        }
+    }
+    let seams: Vec<(Map, tile::Seams)> = (settings.maps.iter())
+        .filter_map(|map| {
+            let (_, check) = checks.iter().find(|(c, _)| *c == map.channels())?;
+            Some((*map, check.seams))
+        })
+        .collect();
+    let failing = tile::failing(&seams);
+    if failing.is_empty() {
+        Ok(checks)
+    } else {
+        Err(BakeError::NotTileable(failing))
+    }
 }
 
 /// Bytes of each band buffer a plane bake renders into.

@@ -28,6 +28,9 @@ pub struct MapTarget<'p> {
     /// Plane distance between pixels in x and z.
     pub spacing: (f64, f64),
     pub convention: NormalConvention,
+    /// For one tile of a repeating texture: the heights of the rows just above and just
+    /// below the image ([`Converter::tiling`]).
+    pub beyond: Option<&'p (Vec<f32>, Vec<f32>)>,
 }
 
 /// Bakes `targets` in order: `render(index, sink)` renders the material outputs of map
@@ -122,6 +125,9 @@ fn write_map(
         target.spacing,
         target.convention,
     );
+    if let Some((above, below)) = target.beyond {
+        converter = converter.tiling(above.clone(), below.clone());
+    }
     let (width, mut rows) = (target.size as usize, 0);
     crate::fsutil::stage(target.path, Naming::Implied, |file| {
         encode(file, target.size, target.format, |emit| {
@@ -161,6 +167,7 @@ mod tests {
                 format,
                 spacing: (1.0, 1.0),
                 convention: NormalConvention::OpenGl,
+                beyond: None,
             };
             let result = bake_maps(&[target], false, |_, sink| {
                 let mut band = vec![[0.5f32, 0.5, 0.5, 1.0]; 4];

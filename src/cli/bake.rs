@@ -53,6 +53,13 @@ pub struct BakeArgs {
     /// The plane rectangle X0,Z0,X1,Z1,Y to bake (default: each graph's preview square).
     #[arg(long, value_name = "X0,Z0,X1,Z1,Y", value_parser = parse_flat, allow_hyphen_values = true, conflicts_with = "mesh")]
     flat: Option<FlatRect>,
+    /// Bake one tile of a repeating texture: over the unit square (x, z from 0 to 1 at
+    /// y = 0, or `--flat`'s rectangle), each map's opposite edges checked to continue
+    /// each other and the seams reported (a graph that does not repeat over the tile is
+    /// refused before anything is written); normal maps take their differences across
+    /// the edges, so they tile too.
+    #[arg(long, conflicts_with = "mesh")]
+    tile: bool,
     /// Bake into the UV layout of this primitive or mesh file instead of over a plane (an
     /// automatic atlas for a mesh without UVs).
     #[arg(long, value_name = "NAME|FILE")]
@@ -67,7 +74,7 @@ pub struct BakeArgs {
     /// graph's preview mesh) with the material's maps baked into its UV layout (an
     /// automatic atlas for a mesh without UVs) as a metallic-roughness material. `.glb`
     /// gives one file; `.gltf` writes its buffer and PNGs beside it. One graph at a time.
-    #[arg(long, value_name = "OUT.glb|OUT.gltf", conflicts_with_all = ["flat", "out_dir", "maps", "format", "normal"])]
+    #[arg(long, value_name = "OUT.glb|OUT.gltf", conflicts_with_all = ["flat", "tile", "out_dir", "maps", "format", "normal"])]
     gltf: Option<PathBuf>,
     /// Print a JSON summary of what was written on stdout.
     #[arg(long)]
@@ -129,6 +136,7 @@ impl BakeArgs {
         BakeSettings {
             surface: match &self.mesh {
                 Some(mesh) => BakeSurface::MeshUv(mesh.clone()),
+                None if self.tile => BakeSurface::Tile(self.flat),
                 None => BakeSurface::Plane(self.flat),
             },
             size: self.size,
@@ -238,8 +246,14 @@ pub fn run(args: BakeArgs) -> Result<(), Failure> {
         out(serde_json::to_string_pretty(&written)?)?;
     } else {
         for map in &written {
+            let seams = map.seams.map_or(String::new(), |seams| {
+                format!(
+                    "; tiles: edges differ by up to {:.1e} left/right, {:.1e} top/bottom",
+                    seams.left_right, seams.top_bottom
+                )
+            });
             note(format!(
-                "wrote {} ({}×{}, {} bytes)",
+                "wrote {} ({}×{}, {} bytes{seams})",
                 map.path.display(),
                 map.size,
                 map.size,

@@ -651,6 +651,7 @@ mod tests {
         let noise = || {
             NodeKind::Noise(crate::nodes::Noise {
                 basis: crate::graph::Basis::Gradient,
+                period: 0,
             })
         };
         let mut graph = Graph::default();

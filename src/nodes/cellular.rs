@@ -7,7 +7,10 @@ use super::formulas::{noise, shapes, worley_edge};
 use super::interval::{self, Interval, Lanes};
 use super::pins::{FLOAT, InputPin, POINT, SCALE, Signature, f, input, output};
 use super::ranges::Ranges;
-use super::settings::{Basis, METRICS, Metric, Setting, WORLEY_FEATURES, WorleyFeature, choice};
+use super::settings::{
+    Basis, METRICS, Metric, Setting, WORLEY_FEATURES, WorleyFeature, check_period, choice,
+    no_period, period, period_setting,
+};
 use super::{Catalogue, Category, Configure, Definition, Evaluate};
 use serde::{Deserialize, Serialize};
 
@@ -50,6 +53,11 @@ pub struct Worley {
     pub feature: WorleyFeature,
     pub metric: Metric,
     pub octaves: u32,
+    /// How many cells the noise repeats over along x, y and z (0: it never repeats);
+    /// each octave spans a whole number of cells over it. Graph files leave it out
+    /// when 0.
+    #[serde(default, skip_serializing_if = "no_period")]
+    pub period: u32,
 }
 
 impl Definition for Worley {
@@ -60,7 +68,9 @@ impl Definition for Worley {
         Category::Cellular
     }
     fn keywords(&self) -> &'static [&'static str] {
-        &["voronoi", "cells", "cellular", "crackle", "stones"]
+        &[
+            "voronoi", "cells", "cellular", "crackle", "stones", "seamless", "tileable",
+        ]
     }
     fn signature(&self) -> Signature {
         Signature::new(
@@ -81,22 +91,27 @@ impl Definition for Worley {
         None
     }
     fn check(&self) -> Option<String> {
-        super::fractal::check_octaves(self.octaves)
+        super::fractal::check_octaves(self.octaves).or_else(|| check_period(self.period, None))
     }
     fn emit(&self, io: &mut Emit) {
         let feature = worley_feature_index(self.feature);
         let metric = metric_index(self.metric);
         let (p, scale, jitter) = (io.input("p"), io.input("scale"), io.input("jitter"));
+        // A periodic noise's functions end in `_periodic` and take the period last.
+        let (suffix, period) = match period(self.period) {
+            None => ("", String::new()),
+            Some(cells) => ("_periodic", format!(", {cells}i")),
+        };
         let expression = if self.octaves == 1 {
-            io.uses("veneer_worley");
+            io.uses(&format!("veneer_worley{suffix}"));
             io.uses("veneer_worley_feature");
             format!(
-                "veneer_worley_feature(veneer_worley({p} * {scale}, {jitter}, {metric}), {feature})"
+                "veneer_worley_feature(veneer_worley{suffix}({p} * {scale}, {jitter}, {metric}{period}), {feature})"
             )
         } else {
-            io.uses("veneer_worley_fractal");
+            io.uses(&format!("veneer_worley_fractal{suffix}"));
             format!(
-                "veneer_worley_fractal({p} * {scale}, {jitter}, {metric}, {feature}, {}, {}, {})",
+                "veneer_worley_fractal{suffix}({p} * {scale}, {jitter}, {metric}, {feature}, {}, {}, {}{period})",
                 self.octaves,
                 io.input("lacunarity"),
                 io.input("gain")
@@ -124,15 +139,26 @@ impl Evaluate for Worley {
         let feature = worley_feature_index(self.feature);
         let p = scale(io.input("p"), io.float("scale"));
         let jitter = io.float("jitter");
-        let octave =
-            |q: V3<R>| shapes::worley_feature(noise::worley(q, jitter, self.metric), feature);
+        let period = period(self.period);
+        let octave = |q: V3<R>, period| {
+            shapes::worley_feature(noise::worley(q, jitter, self.metric, period), feature)
+        };
         if self.octaves == 1 {
-            return vec![splat(octave(p))];
+            return vec![splat(octave(p, period))];
         }
+        // A periodic octave spans a whole number of cells over the period.
+        let sample = |frequency: R| match period {
+            None => octave(scale(p, frequency), None),
+            Some(n) => {
+                let cells = noise::octave_period(n, frequency, 1);
+                let ratio = R::c(f64::from(cells)) / R::c(f64::from(n));
+                octave(scale(p, ratio), Some(cells))
+            }
+        };
         let (lacunarity, gain) = (io.float("lacunarity"), io.float("gain"));
         let (mut sum, mut amplitude, mut frequency) = (R::c(0.0), R::c(1.0), R::c(1.0));
         for _ in 0..self.octaves {
-            sum = finite(sum + amplitude * octave(scale(p, frequency)));
+            sum = finite(sum + amplitude * sample(frequency));
             frequency = finite(frequency * lacunarity);
             amplitude = finite(amplitude * gain);
         }
@@ -150,6 +176,7 @@ impl Configure for Worley {
                 value: &mut self.octaves,
                 range: 1..=8,
             },
+            period_setting(&mut self.period),
         ]
     }
 }
@@ -163,6 +190,7 @@ impl Catalogue for Worley {
                     feature: WorleyFeature::F1,
                     metric: Metric::Euclidean,
                     octaves: 1,
+                    period: 0,
                 },
             ),
             (
@@ -171,19 +199,23 @@ impl Catalogue for Worley {
                     feature: WorleyFeature::F2MinusF1,
                     metric: Metric::Euclidean,
                     octaves: 3,
+                    period: 0,
                 },
             ),
         ]
     }
+    /// Every feature and metric; one and three octaves, infinite and repeating.
     fn examples() -> Vec<Self> {
         WORLEY_FEATURES
             .into_iter()
             .zip(METRICS.into_iter().cycle())
-            .zip([1, 1, 1, 3])
-            .map(|((feature, metric), octaves)| Worley {
+            .zip([(1, 0), (1, 5), (1, 0), (3, 0)])
+            .chain([((WorleyFeature::F2MinusF1, Metric::Euclidean), (3, 4))])
+            .map(|((feature, metric), (octaves, period))| Worley {
                 feature,
                 metric,
                 octaves,
+                period,
             })
             .collect()
     }

@@ -3,11 +3,14 @@
 use super::cpu::Eval;
 use super::emit::{Detail, Emit, float_literal};
 use super::formulas::real::{Real, V3, scale, splat};
-use super::formulas::{octaves, shapes};
+use super::formulas::{noise, octaves, shapes};
 use super::interval::{Interval, Lanes};
 use super::pins::{FLOAT, POINT, SCALE, Signature, f, input, output};
 use super::ranges::Ranges;
-use super::settings::{Basis, FractalMode, MAX_OCTAVES, MAX_OCTAVES_UI, Setting, choice};
+use super::settings::{
+    Basis, FractalMode, MAX_OCTAVES, MAX_OCTAVES_UI, Setting, check_period, choice, no_period,
+    period, period_setting,
+};
 use super::{Catalogue, Category, Configure, Definition, Evaluate};
 use serde::{Deserialize, Serialize};
 
@@ -43,6 +46,11 @@ macro_rules! fractal_kind {
             /// files leave it out when off.
             #[serde(default, skip_serializing_if = "std::ops::Not::not")]
             pub rotate: bool,
+            /// How many lattice cells the sum repeats over along x, y and z (0: it
+            /// never repeats); each octave spans a whole number of cells over it.
+            /// Graph files leave it out when 0.
+            #[serde(default, skip_serializing_if = "no_period")]
+            pub period: u32,
         }
 
         impl Definition for $kind {
@@ -66,9 +74,13 @@ macro_rules! fractal_kind {
             }
             fn check(&self) -> Option<String> {
                 check_octaves(self.octaves)
+                    .or_else(|| check_period(self.period, Some(self.basis)))
+                    .or_else(|| (self.rotate && self.period > 0).then(|| {
+                        "rotated octaves cannot repeat over a period: turn off 'rotate octaves' or set the period to 0".to_string()
+                    }))
             }
             fn emit(&self, io: &mut Emit) {
-                emit($mode, self.basis, self.octaves, self.normalize, self.rotate, io);
+                emit($mode, self.basis, self.octaves, self.normalize, self.rotate, self.period, io);
             }
             fn ranges(&self, io: &mut Ranges) -> Vec<Lanes> {
                 ranges($mode, self.basis, self.octaves, self.normalize, io)
@@ -77,17 +89,17 @@ macro_rules! fractal_kind {
 
         impl Evaluate for $kind {
             fn eval<R: Real>(&self, io: &Eval<R>) -> Vec<V3<R>> {
-                let sum = if self.rotate { octaves::fractal_rotated } else { shapes::fractal };
-                vec![splat(sum(
-                    $mode,
-                    self.basis,
-                    scale(io.input("p"), io.float("scale")),
-                    self.octaves,
-                    [io.float("lacunarity"), io.float("gain"), io.float("amplitude")],
-                    self.normalize,
-                    // Every octave: the CPU has no pixel footprint.
-                    R::c(1.0e9),
-                ))]
+                let p = scale(io.input("p"), io.float("scale"));
+                let shape = [io.float("lacunarity"), io.float("gain"), io.float("amplitude")];
+                // Every octave: the CPU has no pixel footprint.
+                let cutoff = R::c(1.0e9);
+                let (basis, octaves, normalize) = (self.basis, self.octaves, self.normalize);
+                vec![splat(if self.rotate {
+                    octaves::fractal_rotated($mode, basis, p, octaves, shape, normalize, cutoff)
+                } else {
+                    let period = period(self.period);
+                    shapes::fractal($mode, basis, p, octaves, shape, normalize, cutoff, period)
+                })]
             }
         }
 
@@ -108,6 +120,7 @@ macro_rules! fractal_kind {
                         label: "rotate octaves",
                         value: &mut self.rotate,
                     },
+                    period_setting(&mut self.period),
                 ]
             }
         }
@@ -117,7 +130,7 @@ macro_rules! fractal_kind {
                 Basis::ALL
                     .into_iter()
                     .map(|basis| {
-                        let settings = $kind { basis, octaves: $octaves, normalize: false, rotate: false };
+                        let settings = $kind { basis, octaves: $octaves, normalize: false, rotate: false, period: 0 };
                         (format!("{} ({})", $title, basis.menu_name()), settings)
                     })
                     .collect()
@@ -126,12 +139,13 @@ macro_rules! fractal_kind {
                 Basis::ALL
                     .into_iter()
                     .flat_map(|basis| {
-                        [(3, false, false), (4, true, false), (4, false, true)].map(
-                            |(octaves, normalize, rotate)| $kind {
+                        [(3, false, false, 0), (4, true, false, 0), (4, false, true, 0), (3, true, false, 6)].map(
+                            |(octaves, normalize, rotate, period)| $kind {
                                 basis,
                                 octaves,
                                 normalize,
                                 rotate,
+                                period,
                             },
                         )
                     })
@@ -170,12 +184,14 @@ fn signature(amplitude: f64) -> Signature {
     )
 }
 
+/// The call of a fractal kind's library function; `period` is the setting (0: none).
 fn emit(
     mode: FractalMode,
     basis: Basis,
     octaves: u32,
     normalize: bool,
     rotate: bool,
+    period_setting: u32,
     io: &mut Emit,
 ) {
     let turned = if rotate { "_rotated" } else { "" };
@@ -189,12 +205,23 @@ fn emit(
             format!("veneer_octave_cutoff({q}, {lacunarity})")
         }
     };
-    io.single(format!(
-        "{function}({q}, {octaves}, {lacunarity}, {}, {}, {normalize}, {cutoff})",
+    let arguments = format!(
+        "{q}, {octaves}, {lacunarity}, {}, {}, {normalize}, {cutoff}",
         io.input("gain"),
         io.input("amplitude")
-    ));
-    io.uses(&function);
+    );
+    match period(period_setting) {
+        None => {
+            io.single(format!("{function}({arguments})"));
+            io.uses(&function);
+        }
+        Some(cells) => {
+            let step = noise::period_step(basis);
+            let function = format!("{function}_periodic");
+            io.single(format!("{function}({arguments}, {cells}i, {step}i)"));
+            io.uses(&function);
+        }
+    }
 }
 
 fn ranges(

@@ -7,7 +7,7 @@ use super::formulas::{fields, gabor, noise};
 use super::interval::{self, Interval, Lanes};
 use super::pins::{COLOR, FLOAT, POINT, SCALE, Signature, VEC3, f, input, output, v3};
 use super::ranges::Ranges;
-use super::settings::{Basis, Setting, choice};
+use super::settings::{Basis, Setting, check_period, choice, no_period, period, period_setting};
 use super::{Catalogue, Category, Configure, Definition, Evaluate};
 use serde::{Deserialize, Serialize};
 
@@ -21,33 +21,45 @@ macro_rules! kinds {
 }
 pub(super) use kinds;
 
-/// A single octave of lattice noise.
+/// A single octave of lattice noise, repeating every `period` cells when it has one.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[cfg_attr(feature = "arbitrary", derive(arbitrary::Arbitrary))]
 pub struct Noise {
     pub basis: Basis,
+    /// How many lattice cells the noise repeats over along x, y and z (0: it never
+    /// repeats). Graph files leave it out when 0.
+    #[serde(default, skip_serializing_if = "no_period")]
+    pub period: u32,
 }
 
 impl Definition for Noise {
     fn title(&self) -> &'static str {
         "Noise"
     }
-    computed_in!(Category::Noise, sampling);
+    computed_in!(@parts Category::Noise, |self| Some(self.basis));
     fn keywords(&self) -> &'static [&'static str] {
         &[
-            "perlin", "value", "gradient", "simplex", "lattice", "texture",
+            "perlin", "value", "gradient", "simplex", "lattice", "texture", "seamless", "tileable",
+            "periodic",
         ]
     }
     fn signature(&self) -> Signature {
         Signature::new(vec![POINT, SCALE], vec![output("value", FLOAT)])
     }
+    fn check(&self) -> Option<String> {
+        check_period(self.period, Some(self.basis))
+    }
     fn emit(&self, io: &mut Emit) {
+        let q = format!("{} * {}", io.input("p"), io.input("scale"));
         let function = format!("veneer_noise_{}", self.basis.suffix());
-        io.single(format!(
-            "{function}({} * {})",
-            io.input("p"),
-            io.input("scale")
-        ));
+        match period(self.period) {
+            None => io.single(format!("{function}({q})")),
+            Some(cells) => {
+                let function = format!("{function}_periodic");
+                io.single(format!("{function}({q}, {cells}i)"));
+                return io.uses(&function);
+            }
+        }
         io.uses(&function);
     }
     fn ranges(&self, io: &mut Ranges) -> Vec<Lanes> {
@@ -59,11 +71,37 @@ impl Definition for Noise {
 impl Evaluate for Noise {
     fn eval<R: Real>(&self, io: &Eval<R>) -> Vec<V3<R>> {
         let p = scale(io.input("p"), io.float("scale"));
-        vec![splat(noise::basis(self.basis, p))]
+        vec![splat(noise::repeating(self.basis, p, period(self.period)))]
     }
 }
 
-basis_choice!(Noise, "Noise");
+impl Configure for Noise {
+    fn settings(&mut self) -> Vec<Setting<'_>> {
+        vec![
+            choice("basis", &mut self.basis, &Basis::ALL),
+            period_setting(&mut self.period),
+        ]
+    }
+}
+
+impl Catalogue for Noise {
+    fn menu() -> Vec<(String, Self)> {
+        Basis::ALL
+            .into_iter()
+            .map(|basis| {
+                let name = format!("Noise ({})", basis.menu_name());
+                (name, Noise { basis, period: 0 })
+            })
+            .collect()
+    }
+    /// Every basis, infinite and repeating every 6 cells.
+    fn examples() -> Vec<Self> {
+        [0, 6]
+            .into_iter()
+            .flat_map(|period| Basis::ALL.map(|basis| Noise { basis, period }))
+            .collect()
+    }
+}
 
 /// A relief of noise as a bump: minus `strength` times the noise gradient.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]

@@ -167,6 +167,47 @@ pub const MAX_OCTAVES: u32 = 64;
 /// The most octaves the editor's slider offers (more are allowed in files, up to `MAX_OCTAVES`).
 pub const MAX_OCTAVES_UI: u32 = 16;
 
+/// The longest period, in lattice cells, a noise may repeat over: the periodic noises
+/// wrap cells in i32 and sample points near the origin, exact in f32 well past this.
+pub const MAX_PERIOD: u32 = 65536;
+
+/// A noise's period (how many lattice cells it repeats over) as the inspector offers it.
+pub fn period_setting(value: &mut u32) -> Setting<'_> {
+    Setting::Count {
+        label: "period (cells, 0: none)",
+        value,
+        range: 0..=1024,
+    }
+}
+
+/// What is wrong with a noise's `period` over `basis`, if anything: too long, or not a
+/// multiple of the basis' lattice step (3 for simplex noise).
+pub fn check_period(period: u32, basis: Option<Basis>) -> Option<String> {
+    let step = basis.map_or(1, crate::nodes::formulas::noise::period_step) as u32;
+    if period > MAX_PERIOD {
+        Some(format!(
+            "period {period} is out of range (expected 0 for none, or up to {MAX_PERIOD} cells)"
+        ))
+    } else if !period.is_multiple_of(step) {
+        Some(format!(
+            "period {period}: simplex noise repeats only over a multiple of {step} cells (its lattice is skewed); try {} or another basis",
+            (period / step).max(1) * step
+        ))
+    } else {
+        None
+    }
+}
+
+/// The period a noise's setting asks for (0: none).
+pub fn period(setting: u32) -> crate::nodes::formulas::noise::Period {
+    (setting > 0).then_some(setting.min(MAX_PERIOD) as i32)
+}
+
+/// Graph files leave a noise's period out when it has none.
+pub fn no_period(setting: &u32) -> bool {
+    *setting == 0
+}
+
 /// The most stops a colour ramp accepts: each stop is a line of shader code, and past a
 /// few hundred a ramp only costs compile and shading time (a file with more is refused,
 /// naming the node).

@@ -155,7 +155,10 @@ impl FlatRenderer {
     {
         TileDraw {
             clear: wgpu::Color::TRANSPARENT,
-            prepare: move |offset, _| self.write_view(gpu, rect, size, time, channels, offset),
+            prepare: move |offset: (u32, u32), _| {
+                let offset = [offset.0 as f32, offset.1 as f32];
+                self.write_view(gpu, rect, size, time, channels, offset)
+            },
             draw: |pass: &mut wgpu::RenderPass<'_>| self.draw(pass),
         }
     }
@@ -191,7 +194,7 @@ impl FlatRenderer {
         time: f32,
     ) -> Result<std::time::Duration, RenderError> {
         time_pass(gpu, size, |encoder, writes| {
-            self.write_view(gpu, rect, size, time, FlatChannels::AlbedoAlpha, (0, 0));
+            self.write_view(gpu, rect, size, time, FlatChannels::AlbedoAlpha, [0.0; 2]);
             let target = gpu
                 .device
                 .create_texture(&super::tiles::target_descriptor(size, size))
@@ -201,6 +204,52 @@ impl FlatRenderer {
         })
     }
 
+    /// Renders the `extent` pixels from `origin` of the size×size pixel grid over `rect`,
+    /// which may reach past the image's edges (pixel (-1, j) lies one pixel spacing left
+    /// of the image, as if the grid went on): four f32 per pixel of `channels`, row by
+    /// row, in pieces no larger than a tile. A tile check renders the rows and columns
+    /// just beyond a bake's edges this way.
+    #[allow(clippy::too_many_arguments)]
+    pub fn render_region(
+        &self,
+        gpu: &GpuContext,
+        rect: FlatRect,
+        size: u32,
+        time: f32,
+        channels: FlatChannels,
+        origin: (i64, i64),
+        extent: (u32, u32),
+    ) -> Result<Vec<[f32; 4]>, RenderError> {
+        rect.validate().map_err(RenderError::Invalid)?;
+        let mut pixels = vec![[0.0f32; 4]; extent.0 as usize * extent.1 as usize];
+        let tile = super::tile_size(gpu);
+        for (at, part) in super::tiles::tile_grid(extent, (tile, tile)) {
+            let offset = [
+                (origin.0 + i64::from(at.0)) as f32,
+                (origin.1 + i64::from(at.1)) as f32,
+            ];
+            self.write_view(gpu, rect, size, time, channels, offset);
+            let texture = gpu
+                .device
+                .create_texture(&super::tiles::target_descriptor(part.0, part.1));
+            let mut encoder = gpu
+                .device
+                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                    label: Some("region"),
+                });
+            {
+                let view = texture.create_view(&Default::default());
+                let mut pass = clear_pass(&mut encoder, &view, wgpu::Color::TRANSPARENT, None);
+                self.draw(&mut pass);
+            }
+            gpu.queue.submit([encoder.finish()]);
+            let bytes = super::readback::read_texture(gpu, &texture, 16)?;
+            let rows: &[[f32; 4]] = bytemuck::cast_slice(&bytes);
+            super::tiles::paste(&mut pixels, extent.0, at, part.0, rows);
+        }
+        Ok(pixels)
+    }
+
     fn write_view(
         &self,
         gpu: &GpuContext,
@@ -208,7 +257,7 @@ impl FlatRenderer {
         size: u32,
         time: f32,
         channels: FlatChannels,
-        offset: (u32, u32),
+        offset: [f32; 2],
     ) {
         let view = FlatViewUniform {
             rect: [
@@ -217,7 +266,7 @@ impl FlatRenderer {
                 rect.x1 as f32,
                 rect.z1 as f32,
             ],
-            pixel_offset: [offset.0 as f32, offset.1 as f32],
+            pixel_offset: offset,
             plane_y: rect.y as f32,
             size: size as f32,
             time,

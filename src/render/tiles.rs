@@ -103,7 +103,7 @@ where
     };
     filling.start(0, height);
     let mut pending = None;
-    for (index, (origin, extent)) in tile_grid(size, (width, height)).enumerate() {
+    for (index, (origin, extent)) in tile_grid((size, size), (width, height)).enumerate() {
         let (view, texture, readback) = &slots[index % 2];
         (tiles_draw.prepare)(origin, extent);
         let mut encoder = gpu
@@ -199,20 +199,20 @@ pub fn paste<T: Copy>(image: &mut [T], size: u32, origin: (u32, u32), width: u32
 /// The tiles of a `size`² image in tiles of at most `tile`², row by row from the top:
 /// each tile's first texel and extent.
 pub fn tiles(size: u32, tile: u32) -> impl Iterator<Item = ((u32, u32), (u32, u32))> {
-    tile_grid(size, (tile, tile))
+    tile_grid((size, size), (tile, tile))
 }
 
-/// The tiles of a `size`² image in tiles of at most `width`×`height`, row by row from the
-/// top: each tile's first texel and extent.
-fn tile_grid(
-    size: u32,
+/// The tiles of an image of `extent` (width, height) in tiles of at most
+/// `width`×`height`, row by row from the top: each tile's first texel and extent.
+pub fn tile_grid(
+    extent: (u32, u32),
     (width, height): (u32, u32),
 ) -> impl Iterator<Item = ((u32, u32), (u32, u32))> {
     let (width, height) = (width.max(1), height.max(1));
-    (0..size).step_by(height as usize).flat_map(move |y| {
-        (0..size)
+    (0..extent.1).step_by(height as usize).flat_map(move |y| {
+        (0..extent.0)
             .step_by(width as usize)
-            .map(move |x| ((x, y), (width.min(size - x), height.min(size - y))))
+            .map(move |x| ((x, y), (width.min(extent.0 - x), height.min(extent.1 - y))))
     })
 }
 

@@ -67,7 +67,7 @@ pub fn precision(ctx: &Context) -> Result<Section, String> {
     for basis in Basis::ALL {
         cases.push((
             format!("noise ({basis:?})"),
-            single_node(NodeKind::Noise(Noise { basis }), 2.0),
+            single_node(NodeKind::Noise(Noise { basis, period: 0 }), 2.0),
             square,
         ));
         let fbm = NodeKind::Fbm(Fbm {
@@ -75,6 +75,7 @@ pub fn precision(ctx: &Context) -> Result<Section, String> {
             octaves: 6,
             normalize: true,
             rotate: false,
+            period: 0,
         });
         cases.push((format!("fBm 6 ({basis:?})"), single_node(fbm, 2.0), square));
     }
@@ -82,6 +83,7 @@ pub fn precision(ctx: &Context) -> Result<Section, String> {
         feature: crate::graph::WorleyFeature::F1,
         metric: crate::graph::Metric::Euclidean,
         octaves: 3,
+        period: 0,
     });
     cases.push(("Worley, 3 octaves".into(), single_node(worley, 2.0), square));
     let mut table = Table::new(&[
@@ -176,13 +178,14 @@ pub fn hashes(ctx: &Context) -> Result<Section, String> {
     ]);
     let mut series = Vec::new();
     for basis in [Basis::ValueSine, Basis::ValuePcg] {
-        let lattice = single_node(NodeKind::Noise(Noise { basis }), 1.0);
+        let lattice = single_node(NodeKind::Noise(Noise { basis, period: 0 }), 1.0);
         let fbm = single_node(
             NodeKind::Fbm(Fbm {
                 basis,
                 octaves: 8,
                 normalize: true,
                 rotate: false,
+                period: 0,
             }),
             1.0,
         );
@@ -261,6 +264,7 @@ pub fn octaves(ctx: &Context) -> Result<Section, String> {
                 octaves,
                 normalize: false,
                 rotate: false,
+                period: 0,
             })
         } else {
             NodeKind::Fbm(Fbm {
@@ -268,6 +272,7 @@ pub fn octaves(ctx: &Context) -> Result<Section, String> {
                 octaves,
                 normalize: false,
                 rotate: false,
+                period: 0,
             })
         }
     };
@@ -333,6 +338,7 @@ pub fn detail(ctx: &Context) -> Result<Section, String> {
             octaves: 8,
             normalize: true,
             rotate: false,
+            period: 0,
         }),
         1.0,
     );

@@ -15,6 +15,7 @@ pub fn chain(nodes: usize) -> Graph {
             "start",
             NodeKind::Noise(Noise {
                 basis: Basis::ValuePcg,
+                period: 0,
             }),
         ),
         "value",
@@ -23,6 +24,7 @@ pub fn chain(nodes: usize) -> Graph {
         let (kind, input, output) = if k % 3 == 0 {
             let kind = NodeKind::Noise(Noise {
                 basis: Basis::Gradient,
+                period: 0,
             });
             (kind, "scale", "value")
         } else {
@@ -70,6 +72,7 @@ pub fn ramp(stops: usize) -> Graph {
         "noise",
         NodeKind::Noise(Noise {
             basis: Basis::ValuePcg,
+            period: 0,
         }),
     );
     let stops = (0..stops)

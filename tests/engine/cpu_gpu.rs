@@ -25,6 +25,7 @@ fn pcg_graph() -> Graph {
             octaves: 4,
             normalize: true,
             rotate: false,
+            period: 0,
         }),
     );
     g.connect(warp, "p", fbm, "p");
@@ -35,6 +36,7 @@ fn pcg_graph() -> Graph {
             octaves: 3,
             normalize: false,
             rotate: false,
+            period: 0,
         }),
     );
     g.set_input(turbulence, "scale", Value::Float(1.7));
@@ -44,6 +46,7 @@ fn pcg_graph() -> Graph {
             feature: WorleyFeature::F2MinusF1,
             metric: Metric::Euclidean,
             octaves: 2,
+            period: 0,
         }),
     );
     let tiles = g.add("tiles", NodeKind::Tiles);
@@ -52,6 +55,7 @@ fn pcg_graph() -> Graph {
         "gradient",
         NodeKind::Noise(Noise {
             basis: Basis::Gradient,
+            period: 0,
         }),
     );
     g.set_input(gradient, "scale", Value::Float(2.5));

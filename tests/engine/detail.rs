@@ -17,6 +17,7 @@ fn fbm_graph() -> Graph {
             octaves: 8,
             normalize: true,
             rotate: false,
+            period: 0,
         }),
     );
     graph.set_input(fbm, "scale", Value::Float(1.0));

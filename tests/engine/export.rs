@@ -76,6 +76,12 @@ fn every_preset_exports_to_every_target_and_validates() {
 }
 
 #[test]
+fn every_periodic_noise_exports_to_every_target_and_validates() {
+    let graph = crate::tiles::all_periodic_noises();
+    export_everywhere(&graph, "periodic", &scratch("periodic"));
+}
+
+#[test]
 fn labels_that_are_keywords_in_the_target_languages_stay_valid() {
     let mut graph = Graph::default();
     let mut previous = None;
@@ -97,6 +103,7 @@ fn labels_that_are_keywords_in_the_target_languages_stay_valid() {
                     "sampler",
                     NodeKind::Noise(Noise {
                         basis: veneer::graph::Basis::Simplex,
+                        period: 0,
                     }),
                 );
                 graph.connect(noise, "value", node, "x");

@@ -10,6 +10,7 @@ fn small_graph() -> (Graph, veneer::graph::NodeId) {
         "grain",
         NodeKind::Noise(Noise {
             basis: veneer::graph::Basis::ValuePcg,
+            period: 0,
         }),
     );
     let material = graph.add("material", NodeKind::Material);
@@ -26,6 +27,7 @@ fn unconnected_worley_emits_no_worley_code() {
             feature: WorleyFeature::F1,
             metric: Metric::Euclidean,
             octaves: 1,
+            period: 0,
         }),
     );
     let module = compile(&graph, &Default::default())
@@ -125,6 +127,7 @@ fn out_of_range_settings_and_unknown_pins_are_errors() {
             octaves: 65,
             normalize: false,
             rotate: false,
+            period: 0,
         }),
     );
     let messages: Vec<String> = veneer::graph::check(&graph)
@@ -323,6 +326,7 @@ fn constant_subgraphs_fold_to_literals_and_surface_reads_do_not() {
         "noise",
         NodeKind::Noise(Noise {
             basis: veneer::graph::Basis::Gradient,
+            period: 0,
         }),
     );
     let mix = graph.add(

@@ -116,6 +116,7 @@ fn a_material_in_parts_renders_as_the_cpu_evaluates_it() {
         "noise",
         NodeKind::Noise(Noise {
             basis: veneer::graph::Basis::ValuePcg,
+            period: 0,
         }),
     );
     let mut previous = (noise, "value");

@@ -58,6 +58,7 @@ fn fractal_parameters_and_octave_budgets() {
         octaves: 6,
         normalize: false,
         rotate: false,
+        period: 0,
     }));
     graph.set_input(node, "gain", Value::Float(1.2));
     assert_lint(&graph, node, "does not converge");
@@ -69,6 +70,7 @@ fn fractal_parameters_and_octave_budgets() {
         octaves: 64,
         normalize: true,
         rotate: false,
+        period: 0,
     }));
     assert_lint(&graph, node, "past f32's integer precision");
     let (graph, _) = with_node(NodeKind::Fbm(Fbm {
@@ -76,6 +78,7 @@ fn fractal_parameters_and_octave_budgets() {
         octaves: 16,
         normalize: true,
         rotate: false,
+        period: 0,
     }));
     assert!(
         lints(&graph).is_empty(),
@@ -88,11 +91,13 @@ fn fractal_parameters_and_octave_budgets() {
 fn the_sine_hash_far_from_the_origin() {
     let (mut graph, node) = with_node(NodeKind::Noise(Noise {
         basis: Basis::ValueSine,
+        period: 0,
     }));
     graph.preview.size = 5.0e6;
     assert_lint(&graph, node, "sine hash");
     graph.nodes[0].kind = NodeKind::Noise(Noise {
         basis: Basis::ValuePcg,
+        period: 0,
     });
     assert!(lints(&graph).is_empty(), "the PCG hash is fine there");
 }

@@ -44,4 +44,5 @@ mod seed004_reference;
 mod seed_reference;
 mod snapshots;
 mod support;
+mod tiles;
 mod transparency;

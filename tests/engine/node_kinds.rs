@@ -410,6 +410,7 @@ fn named_degenerate_cases_stay_finite() {
         octaves: 64,
         normalize: true,
         rotate: false,
+        period: 0,
     }));
     for p in [[0.3, 0.1, 0.7], [1.0e3, 0.0, -1.0e3], [1.0e7, 1.0e7, 1.0e7]] {
         assert!(finite(&graph, p), "64-octave fBm at {p:?}");

@@ -108,7 +108,7 @@ fn turbulence(p: V3) -> f64 {
 
 /// `fractalcell(p, 1.0, 5.0, 2.0).x`: the fractal sum of the nearest feature distance.
 fn fractalcell_x(p: V3) -> f64 {
-    octaves(p, |q| noise::worley(q, 1.0, Metric::Euclidean)[0])
+    octaves(p, |q| noise::worley(q, 1.0, Metric::Euclidean, None)[0])
 }
 
 /// `position * cellScale + time * 0.5`, the flowing Worley domain of C.2, C.3 and C.5.

@@ -224,7 +224,8 @@ mod tests {
         assert!(
             compatible_pin(
                 &NodeKind::Noise(crate::nodes::Noise {
-                    basis: crate::graph::Basis::Simplex
+                    basis: crate::graph::Basis::Simplex,
+                    period: 0,
                 }),
                 vec2
             )

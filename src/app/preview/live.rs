@@ -332,6 +332,7 @@ mod tests {
             "noise",
             NodeKind::Noise(Noise {
                 basis: crate::graph::Basis::Gradient,
+                period: 0,
             }),
         );
         let material = graph.add("material", NodeKind::Material);
@@ -368,6 +369,7 @@ mod tests {
                 feature: crate::graph::WorleyFeature::F1,
                 metric: crate::graph::Metric::Euclidean,
                 octaves: 1,
+                period: 0,
             }),
         );
         assert!(live.update(&graph), "a new node is a structural edit");

@@ -133,6 +133,7 @@ mod tests {
         let b = graph.add("b", NodeKind::Transform);
         let noise = crate::nodes::Noise {
             basis: Basis::Gradient,
+            period: 0,
         };
         let c = graph.add("c", NodeKind::Noise(noise));
         let d = graph.add("d", NodeKind::Material);

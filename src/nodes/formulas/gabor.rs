@@ -19,7 +19,7 @@ pub fn white_noise_color<R: Real>(p: V3<R>) -> V3<R> {
 
 /// `veneer_noise_value_gradient`: the mean of PCG value noise and gradient noise, in [0, 1].
 pub fn value_gradient<R: Real>(p: V3<R>) -> R {
-    R::c(0.5) * (value(p, lattice_pcg) + gradient(p))
+    R::c(0.5) * (value(p, lattice_pcg, None) + gradient(p, None))
 }
 
 /// WGSL's exp. Rounded from f64, so the f32 result is the correctly rounded one (a GPU's

@@ -17,6 +17,68 @@ pub fn lattice_domain<R: Real>(p: V3<R>) -> V3<R> {
     map(p, |x| x.clamp(-limit, limit))
 }
 
+/// How a lattice noise repeats: `None` never (every cell hashes to its own values),
+/// `Some(n)` every `n` cells along x, y and z (the cells hashed are wrapped).
+pub type Period = Option<i32>;
+
+/// `p` within the lattice's range and moved by whole periods into [0, period) per axis,
+/// up to rounding (`veneer_lattice_periodic`).
+pub fn lattice_periodic<R: Real>(point: V3<R>, period: i32) -> V3<R> {
+    let span = R::c(f64::from(period));
+    map(lattice_domain(point), |x| x - span * (x / span).floor())
+}
+
+/// A lattice cell wrapped into [0, period) per axis (`veneer_wrap_cell`).
+pub fn wrap_cell<R: Real>(cell: V3<R>, period: i32) -> V3<R> {
+    let span = R::c(f64::from(period));
+    map(cell, |c| c - span * (c / span).floor())
+}
+
+/// A simplex-lattice (skewed) cell wrapped so that a shift of space by `period` along any
+/// axis leaves it unchanged (`veneer_wrap_simplex_cell`; `period` a multiple of 3).
+pub fn wrap_simplex_cell<R: Real>(cell: V3<R>, period: i32) -> V3<R> {
+    let span = R::c(f64::from(period));
+    let sum = cell[0] + cell[1] + cell[2];
+    let turns = map(cell, |c| {
+        ((R::c(6.0) * c - sum) / (R::c(6.0) * span)).floor()
+    });
+    let all_turns = turns[0] + turns[1] + turns[2];
+    std::array::from_fn(|k| cell[k] - span * turns[k] - span / R::c(3.0) * all_turns)
+}
+
+/// The lattice step a periodic `basis` takes: a period must be a multiple of it (3 for
+/// simplex noise, whose skewed lattice repeats along the axes only every 3 cells).
+pub fn period_step(basis: Basis) -> i32 {
+    if basis == Basis::Simplex { 3 } else { 1 }
+}
+
+/// How many cells an octave at `frequency` spans over a noise repeating every `period`
+/// cells (`veneer_octave_period`): the nearest multiple of `step` (ties to even, as
+/// WGSL rounds), at least one step and at most 2^24 cells.
+pub fn octave_period<R: Real>(period: i32, frequency: R, step: i32) -> i32 {
+    let steps = (R::c(f64::from(period)) * frequency.abs() / R::c(f64::from(step)))
+        .to_f64()
+        .round_ties_even();
+    step * steps.clamp(1.0, 16777216.0 / f64::from(step)) as i32
+}
+
+/// The point a noise of `period` samples: within the lattice's range, and near the
+/// origin when periodic.
+fn domain<R: Real>(point: V3<R>, period: Period) -> V3<R> {
+    match period {
+        None => lattice_domain(point),
+        Some(n) => lattice_periodic(point, n),
+    }
+}
+
+/// The cell a noise of `period` hashes for `cell`.
+fn wrap<R: Real>(cell: V3<R>, period: Period) -> V3<R> {
+    match period {
+        None => cell,
+        Some(n) => wrap_cell(cell, n),
+    }
+}
+
 /// Integer coordinates of a lattice cell, clamped to the i32 range (`veneer_cell_bits`).
 pub fn cell_bits<R: Real>(cell: V3<R>) -> [u32; 3] {
     let limit = 2147483520.0;
@@ -71,13 +133,17 @@ fn corner<R: Real>(k: usize) -> V3<R> {
     CORNERS[k].map(R::c)
 }
 
-/// Value noise in [0, 1] (`veneer_noise_value_sine` / `_pcg`).
-pub fn value<R: Real>(point: V3<R>, lattice: fn(V3<R>) -> R) -> R {
-    let p = lattice_domain(point);
+/// Value noise in [0, 1] (`veneer_noise_value_sine` / `_pcg`, and their `_periodic`
+/// variants).
+pub fn value<R: Real>(point: V3<R>, lattice: fn(V3<R>) -> R, period: Period) -> R {
+    let p = domain(point, period);
     let i = map(p, R::floor);
     let f = map(p, R::fract);
     let u = map(f, |f| f * f * (R::c(3.0) - R::c(2.0) * f));
-    trilinear(std::array::from_fn(|k| lattice(add(i, corner(k)))), u)
+    trilinear(
+        std::array::from_fn(|k| lattice(wrap(add(i, corner(k)), period))),
+        u,
+    )
 }
 
 /// Hashed edge gradient of `cell` dotted with `d` (`veneer_gradient_dot`).
@@ -94,16 +160,16 @@ pub fn gradient_dot<R: Real>(cell: V3<R>, d: V3<R>) -> R {
     (if h & 1 == 0 { u } else { -u }) + (if h & 2 == 0 { v } else { -v })
 }
 
-/// Gradient noise in [0, 1] (`veneer_noise_gradient`).
-pub fn gradient<R: Real>(point: V3<R>) -> R {
-    let p = lattice_domain(point);
+/// Gradient noise in [0, 1] (`veneer_noise_gradient`, `veneer_noise_gradient_periodic`).
+pub fn gradient<R: Real>(point: V3<R>, period: Period) -> R {
+    let p = domain(point, period);
     let i = map(p, R::floor);
     let f = sub(p, i);
     let u = map(f, |f| {
         f * f * f * (f * (f * R::c(6.0) - R::c(15.0)) + R::c(10.0))
     });
     let n = trilinear(
-        std::array::from_fn(|k| gradient_dot(add(i, corner(k)), sub(f, corner(k)))),
+        std::array::from_fn(|k| gradient_dot(wrap(add(i, corner(k)), period), sub(f, corner(k)))),
         u,
     );
     R::c(0.5) + R::c(0.5) * n.clamp(R::c(-1.0), R::c(1.0))
@@ -115,9 +181,9 @@ fn simplex_corner<R: Real>(cell: V3<R>, d: V3<R>) -> R {
     f2 * f2 * gradient_dot(cell, d)
 }
 
-/// Simplex noise in [0, 1] (`veneer_noise_simplex`).
-pub fn simplex<R: Real>(point: V3<R>) -> R {
-    let p = lattice_domain(point);
+/// Simplex noise in [0, 1] (`veneer_noise_simplex`, `veneer_noise_simplex_periodic`).
+pub fn simplex<R: Real>(point: V3<R>, period: Period) -> R {
+    let p = domain(point, period);
     let skew = (p[0] + p[1] + p[2]) * R::c(1.0 / 3.0);
     let i = map(add(p, splat(skew)), R::floor);
     let unskew = (i[0] + i[1] + i[2]) * R::c(1.0 / 6.0);
@@ -130,26 +196,41 @@ pub fn simplex<R: Real>(point: V3<R>) -> R {
     let x1 = add(sub(x0, i1), splat(R::c(1.0 / 6.0)));
     let x2 = add(sub(x0, i2), splat(R::c(2.0 / 6.0)));
     let x3 = add(sub(x0, splat(R::c(1.0))), splat(R::c(0.5)));
-    let n = simplex_corner(i, x0)
-        + simplex_corner(add(i, i1), x1)
-        + simplex_corner(add(i, i2), x2)
-        + simplex_corner(add(i, splat(R::c(1.0))), x3);
+    let cell = |c: V3<R>| match period {
+        None => c,
+        Some(n) => wrap_simplex_cell(c, n),
+    };
+    let n = simplex_corner(cell(i), x0)
+        + simplex_corner(cell(add(i, i1)), x1)
+        + simplex_corner(cell(add(i, i2)), x2)
+        + simplex_corner(cell(add(i, splat(R::c(1.0)))), x3);
     R::c(0.5) + R::c(0.5) * (R::c(32.0) * n).clamp(R::c(-1.0), R::c(1.0))
 }
 
 /// A basis in its natural range [0, 1] (`veneer_noise_<basis>`).
 pub fn basis<R: Real>(basis: Basis, p: V3<R>) -> R {
+    repeating(basis, p, None)
+}
+
+/// A basis in its natural range [0, 1], repeating every `period` cells
+/// (`veneer_noise_<basis>_periodic`; `veneer_noise_<basis>` when `None`).
+pub fn repeating<R: Real>(basis: Basis, p: V3<R>, period: Period) -> R {
     match basis {
-        Basis::ValueSine => value(p, lattice_sine),
-        Basis::ValuePcg => value(p, lattice_pcg),
-        Basis::Gradient => gradient(p),
-        Basis::Simplex => simplex(p),
+        Basis::ValueSine => value(p, lattice_sine, period),
+        Basis::ValuePcg => value(p, lattice_pcg, period),
+        Basis::Gradient => gradient(p, period),
+        Basis::Simplex => simplex(p, period),
     }
 }
 
 /// A basis in [-1, 1] (`veneer_noise_<basis>_signed`).
 pub fn signed<R: Real>(b: Basis, p: V3<R>) -> R {
-    R::c(2.0) * basis(b, p) - R::c(1.0)
+    signed_repeating(b, p, None)
+}
+
+/// A basis in [-1, 1], repeating every `period` cells (`veneer_noise_<basis>_signed_periodic`).
+pub fn signed_repeating<R: Real>(b: Basis, p: V3<R>, period: Period) -> R {
+    R::c(2.0) * repeating(b, p, period) - R::c(1.0)
 }
 
 fn metric<R: Real>(d: V3<R>, metric: Metric) -> R {
@@ -163,8 +244,10 @@ fn metric<R: Real>(d: V3<R>, metric: Metric) -> R {
 
 /// The three smallest feature distances F1, F2, F3 (`veneer_worley`), `jitter` clamped to
 /// [-1, 1].
-pub fn worley<R: Real>(point: V3<R>, jitter: R, m: Metric) -> V3<R> {
-    let p = lattice_domain(point);
+/// With a `period`, the point is moved by whole periods near the origin and the cells
+/// whose feature points are hashed are wrapped (`veneer_worley_periodic`).
+pub fn worley<R: Real>(point: V3<R>, jitter: R, m: Metric, period: Period) -> V3<R> {
+    let p = domain(point, period);
     let jitter = jitter.clamp(R::c(-1.0), R::c(1.0));
     let cell = map(p, R::floor);
     let mut f = splat(R::c(1.0e9));
@@ -172,7 +255,7 @@ pub fn worley<R: Real>(point: V3<R>, jitter: R, m: Metric) -> V3<R> {
         for y in -1..=1 {
             for x in -1..=1 {
                 let c = add(cell, [R::c(x as f64), R::c(y as f64), R::c(z as f64)]);
-                let r = unit_floats::<R>(pcg3d(cell_bits(c)));
+                let r = unit_floats::<R>(pcg3d(cell_bits(wrap(c, period))));
                 let feature = add(
                     add(c, splat(R::c(0.5))),
                     map(r, |r| jitter * (r - R::c(0.5))),
@@ -232,14 +315,102 @@ mod tests {
         }
     }
 
+    /// Points spread over a few periods, some negative, some on cell corners.
+    fn points() -> impl Iterator<Item = [f64; 3]> {
+        (0..200)
+            .map(|k| {
+                let t = f64::from(k);
+                [
+                    (t * 0.37).sin() * 7.0,
+                    (t * 0.91).cos() * 5.0 - 1.0,
+                    t * 0.113 - 9.0,
+                ]
+            })
+            .chain([[0.0; 3], [3.0, -6.0, 12.0]])
+    }
+
+    #[test]
+    fn periodic_noises_repeat_along_every_axis_and_differ_from_cell_to_cell() {
+        for basis in Basis::ALL {
+            for period in [3, 6, 12] {
+                for p in points() {
+                    let here = repeating::<f64>(basis, p, Some(period));
+                    for axis in 0..3 {
+                        let mut moved = p;
+                        moved[axis] += f64::from(period) * [1.0, -2.0, 3.0][axis];
+                        let there = repeating::<f64>(basis, moved, Some(period));
+                        assert!(
+                            (here - there).abs() < 1e-9,
+                            "{basis:?} period {period} at {p:?} axis {axis}: {here} vs {there}"
+                        );
+                    }
+                }
+                // Not a constant: the noise still varies within the period.
+                let values: Vec<f64> = points()
+                    .map(|p| repeating(basis, p, Some(period)))
+                    .collect();
+                let spread = values.iter().cloned().fold(f64::MIN, f64::max)
+                    - values.iter().cloned().fold(f64::MAX, f64::min);
+                assert!(spread > 0.3, "{basis:?} period {period}: spread {spread}");
+            }
+        }
+        for period in [1, 4, 7] {
+            for p in points() {
+                let here = worley::<f64>(p, 1.0, Metric::Euclidean, Some(period));
+                let moved = [
+                    p[0] - f64::from(period),
+                    p[1] + f64::from(2 * period),
+                    p[2] + f64::from(period),
+                ];
+                let there = worley::<f64>(moved, 1.0, Metric::Euclidean, Some(period));
+                assert!(
+                    (0..3).all(|k| (here[k] - there[k]).abs() < 1e-9),
+                    "worley period {period} at {p:?}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn a_periodic_noise_is_the_infinite_one_within_its_first_period() {
+        // Inside [0, period) the wrap changes no cell that a point's corners reach
+        // except across the far faces, so away from them the two agree exactly.
+        for basis in [Basis::ValuePcg, Basis::Gradient] {
+            for p in points().map(|p| p.map(|x| x.rem_euclid(6.0).min(4.9))) {
+                assert_eq!(
+                    repeating::<f64>(basis, p, Some(6)),
+                    repeating::<f64>(basis, p, None)
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn octave_periods_are_whole_multiples_of_the_step() {
+        assert_eq!(octave_period::<f32>(4, 1.0, 1), 4);
+        assert_eq!(octave_period::<f32>(4, 2.0, 1), 8);
+        assert_eq!(octave_period::<f32>(3, 2.1, 3), 6);
+        assert_eq!(
+            octave_period::<f32>(1, 2.5, 1),
+            2,
+            "ties go to even, as WGSL rounds"
+        );
+        assert_eq!(octave_period::<f32>(5, 0.0, 1), 1, "at least one step");
+        assert_eq!(
+            octave_period::<f32>(9, 3.0e38, 3),
+            16777215,
+            "at most 2^24 cells"
+        );
+    }
+
     #[test]
     fn worley_distances_are_sorted_and_f1_is_zero_at_a_feature_point() {
-        let f = worley::<f64>([0.3, 1.7, -2.2], 1.0, Metric::Euclidean);
+        let f = worley::<f64>([0.3, 1.7, -2.2], 1.0, Metric::Euclidean, None);
         assert!(f[0] <= f[1] && f[1] <= f[2]);
         let cell = [4.0, -2.0, 7.0];
         let r = unit_floats::<f64>(pcg3d(cell_bits(cell)));
         let feature = [0, 1, 2].map(|k| cell[k] + 0.5 + 0.8 * (r[k] - 0.5));
-        assert!(worley::<f64>(feature, 0.8, Metric::Chebyshev)[0] < 1e-12);
+        assert!(worley::<f64>(feature, 0.8, Metric::Chebyshev, None)[0] < 1e-12);
     }
 }
 

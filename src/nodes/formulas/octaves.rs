@@ -36,7 +36,7 @@ pub fn fractal_rotated<R: Real>(
     for i in 0..octaves {
         let shown_from = cutoff - R::c(f64::from(i));
         let one = [lacunarity, gain, amp];
-        sum = finite(sum + fractal(mode, basis, scale(q, freq), 1, one, false, shown_from));
+        sum = finite(sum + fractal(mode, basis, scale(q, freq), 1, one, false, shown_from, None));
         total = (total + amp.abs()).min(R::c(3.0e38));
         freq = finite(freq * lacunarity);
         amp = finite(amp * gain);
@@ -126,7 +126,7 @@ mod tests {
                 let params = [2.0, 0.5, 0.8];
                 let rotated =
                     fractal_rotated::<f64>(mode, Basis::Gradient, p, 1, params, true, 1.0e9);
-                let plain = fractal::<f64>(mode, Basis::Gradient, p, 1, params, true, 1.0e9);
+                let plain = fractal::<f64>(mode, Basis::Gradient, p, 1, params, true, 1.0e9, None);
                 assert_eq!(rotated, plain);
             }
         }

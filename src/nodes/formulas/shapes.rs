@@ -85,8 +85,10 @@ pub fn warp<R: Real>(basis: Basis, p: V3<R>, strength: R, scale_by: R) -> V3<R> 
     map(add(p, scale(w, strength)), finite)
 }
 
-/// Fractal sum of octaves (`veneer_<mode>_<basis>`); the frequency, the amplitude and the
-/// sums clamped to the finite range.
+/// Fractal sum of octaves (`veneer_<mode>_<basis>`, and `veneer_<mode>_<basis>_periodic`
+/// with a `period`); the frequency, the amplitude and the sums clamped to the finite range.
+/// The arguments are the WGSL function's, one for one.
+#[allow(clippy::too_many_arguments)]
 pub fn fractal<R: Real>(
     mode: FractalMode,
     basis: Basis,
@@ -95,11 +97,21 @@ pub fn fractal<R: Real>(
     [lacunarity, gain, amplitude]: [R; 3],
     normalize: bool,
     cutoff: R,
+    period: noise::Period,
 ) -> R {
-    let octave = |q: V3<R>| match mode {
-        FractalMode::Fbm => noise::basis(basis, q),
-        FractalMode::Turbulence => noise::signed(basis, q).abs(),
-        FractalMode::FractalSum => noise::signed(basis, q),
+    let octave = |q: V3<R>, period| match mode {
+        FractalMode::Fbm => noise::repeating(basis, q, period),
+        FractalMode::Turbulence => noise::signed_repeating(basis, q, period).abs(),
+        FractalMode::FractalSum => noise::signed_repeating(basis, q, period),
+    };
+    // A periodic sum's octave i spans a whole number of cells over the period.
+    let sample = |freq: R| match period {
+        None => octave(scale(p, freq), None),
+        Some(n) => {
+            let cells = noise::octave_period(n, freq, noise::period_step(basis));
+            let ratio = R::c(f64::from(cells)) / R::c(f64::from(n));
+            octave(scale(p, ratio), Some(cells))
+        }
     };
     let mean = R::c(match mode {
         FractalMode::Fbm => 0.5,
@@ -110,7 +122,7 @@ pub fn fractal<R: Real>(
     for i in 0..octaves {
         let shown = (cutoff - R::c(f64::from(i))).clamp(R::c(0.0), R::c(1.0));
         let value = if shown > R::c(0.0) {
-            shown * octave(scale(p, freq)) + (R::c(1.0) - shown) * mean
+            shown * sample(freq) + (R::c(1.0) - shown) * mean
         } else {
             mean
         };

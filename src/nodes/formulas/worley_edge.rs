@@ -111,7 +111,7 @@ mod tests {
             // that crossing is on the border, where the distance is 0.
             let b = feature(add(cell, [1.0, 0.0, 0.0]), jitter);
             let nearest_is_a = |p: [f64; 3]| {
-                let f1 = worley::<f64>(p, jitter, Metric::Euclidean)[0];
+                let f1 = worley::<f64>(p, jitter, Metric::Euclidean, None)[0];
                 (length(sub(p, a), 3) - f1).abs() < 1.0e-12
             };
             let (mut inside, mut outside) = (0.0, 1.0);
