@@ -191,7 +191,7 @@ fn bake_marble(c: &mut Criterion) {
     group.bench_function("bake albedo, normal, height to EXR", |b| {
         b.iter(|| {
             let compiled = veneer::codegen::compile(&graph, &Default::default()).expect("compiles");
-            bake(&gpu, &compiled, &settings, &dir.join("marble"), |_, _| {}).expect("bakes")
+            bake(&gpu, &compiled, &settings, &dir.join("marble"), |_, _| true).expect("bakes")
         })
     });
     group.finish();

@@ -127,7 +127,7 @@ pub enum BakeError {
     /// A tile's maps whose opposite edges do not continue each other, with their seams.
     #[error(
         "the maps do not tile: {}; the tile passes at seams up to {}. Give every noise a period (in cells) that its scale spans a whole number of times over the tile; nothing was baked",
-        .0.iter().map(|(map, seams)| format!("the {} map's edges differ by up to {} left/right and {} top/bottom", map.name(), seams.left_right, seams.top_bottom)).collect::<Vec<_>>().join(", "),
+        .0.iter().map(|(map, seams)| format!("the {} map's edges differ by up to {} left/right and {} top/bottom", map.name(), tile::seam_text(seams.left_right), tile::seam_text(seams.top_bottom))).collect::<Vec<_>>().join(", "),
         tile::SEAM_TOLERANCE
     )]
     NotTileable(Vec<(Map, tile::Seams)>),
@@ -207,8 +207,9 @@ fn output_folder(path: &Path) -> Result<&Path, BakeError> {
 }
 
 /// Bakes a compiled material (parameters baked, the default) into `<stem>_<map>.<ext>`
-/// files, calling `progress(done, total)` as tiles finish. The maps are put in place
-/// together once all are written: a bake that fails or is interrupted leaves none of its
+/// files, calling `progress(done, total)` as tiles finish; when it answers `false` the
+/// bake stops ([`BakeError::Cancelled`]). The maps are put in place together once all
+/// are written: a bake that fails, is cancelled or is interrupted leaves none of its
 /// maps, and the old ones as they were. Maps are files Veneer names itself: a link or
 /// special file at one's path is refused ([`crate::fsutil::Naming::Implied`]).
 pub fn bake(
@@ -216,9 +217,11 @@ pub fn bake(
     compiled: &Compiled,
     settings: &BakeSettings,
     stem: &Path,
-    mut progress: impl FnMut(u64, u64),
+    mut progress: impl FnMut(u64, u64) -> bool,
 ) -> Result<Vec<BakedMap>, BakeError> {
     crate::render::baked_parameters(compiled)?;
+    // Whether whoever asked still wants the maps, as `progress` last answered.
+    let wanted = std::cell::Cell::new(true);
     let (module, preview) = (&compiled.module, &compiled.preview);
     let size = settings.size;
     let (surface, spacing) = match &settings.surface {
@@ -303,10 +306,16 @@ pub fn bake(
         })
         .collect();
     let overlap = settings.format == Format::Exr;
-    pipeline::bake_maps(&targets, overlap, |index, sink| {
+    let baked = pipeline::bake_maps(&targets, overlap, |index, sink| {
         let channels = targets[index].map.channels();
         let base = index as u64 * tiles_per_pass;
-        let report = |done: u32, _| progress(base + u64::from(done), total);
+        let report = |done: u32, _| wanted.set(progress(base + u64::from(done), total));
+        let sink = &mut |first_row, band| {
+            if !wanted.get() {
+                return Err(RenderError::Stopped("the bake was cancelled"));
+            }
+            sink(first_row, band)
+        };
         match &surface {
             Surface::Plane(flat, rect) => flat.render_channel_bands(
                 gpu,
@@ -332,7 +341,11 @@ pub fn bake(
                 sink(0, pixels).map(drop)
             }
         }
-    })?;
+    });
+    match baked {
+        Err(_) if !wanted.get() => return Err(BakeError::Cancelled),
+        other => other?,
+    }
     let written = (settings.maps.iter().zip(paths))
         .map(|(map, path)| BakedMap {
             map: *map,

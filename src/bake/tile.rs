@@ -25,6 +25,18 @@ impl Seams {
     }
 }
 
+/// A seam as messages write it: `0`, three decimals, or for tiny ones two significant
+/// digits in scientific notation.
+pub fn seam_text(seam: f32) -> String {
+    if seam == 0.0 {
+        "0".into()
+    } else if seam >= 1.0e-3 {
+        format!("{seam:.3}")
+    } else {
+        format!("{seam:.1e}")
+    }
+}
+
 /// The largest seam a tile passes with, in the material outputs' units. Positions a
 /// period apart differ by f32 rounding (about 1e-7 of the rectangle), which moves a
 /// periodic noise by about 1e-5 at the presets' scales; a graph that does not repeat

@@ -6,6 +6,7 @@ use super::render::parse_flat;
 use clap::{Args, ValueEnum};
 use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
 use std::path::PathBuf;
+use veneer::bake::tile::seam_text;
 use veneer::bake::{
     BakeSettings, BakeSurface, BakedMap, Format, GltfSettings, Map, NormalConvention, bake,
     export_gltf, map_path,
@@ -219,6 +220,7 @@ pub fn run(args: BakeArgs) -> Result<(), Failure> {
                     let result = bake(gpu, compiled, settings, stem, |done, total| {
                         bar.set_length(total);
                         bar.set_position(done);
+                        true
                     });
                     bar.finish();
                     result.map_err(|error| Failure::new(format!("{}: {error}", path.display())))
@@ -248,8 +250,9 @@ pub fn run(args: BakeArgs) -> Result<(), Failure> {
         for map in &written {
             let seams = map.seams.map_or(String::new(), |seams| {
                 format!(
-                    "; tiles: edges differ by up to {:.1e} left/right, {:.1e} top/bottom",
-                    seams.left_right, seams.top_bottom
+                    "; tiles: edges differ by up to {} left/right, {} top/bottom",
+                    seam_text(seams.left_right),
+                    seam_text(seams.top_bottom)
                 )
             });
             note(format!(

@@ -222,12 +222,13 @@ type Opener = (&'static str, fn(&mut Editor));
 fn escape_cancels_every_dialog() {
     let dir = scratch("dialog-escape");
     let mut harness = editor(&dir, None);
-    let openers: [Opener; 6] = [
+    let openers: [Opener; 7] = [
         ("Open graph", |h| press(h, egui::Key::O, true)),
         ("Save graph as", |h| press(h, egui::Key::S, true)),
         ("Export shader", |h| from_file_menu(h, "Export shader")),
         ("Export PNG", |h| from_file_menu(h, "Export PNG")),
         ("Export glTF", |h| from_file_menu(h, "Export glTF")),
+        ("Export maps", |h| from_file_menu(h, "Export maps")),
         ("Preview on a mesh file", mesh_dialog),
     ];
     for (heading, open) in openers {
@@ -334,6 +335,60 @@ fn enter_confirms_every_dialog() {
     key(&mut harness, egui::Key::Enter);
     assert!(!dialog_up(&harness, "Unsaved changes"));
     assert_eq!(harness.state().document().graph.name, "Edited");
+}
+
+/// Export maps from the File menu into `<path stem>_<map>.png`, as one tile when `tile`.
+fn export_maps(harness: &mut Editor, path: &Path, tile: bool) {
+    from_file_menu(harness, "Export maps");
+    type_text(harness, &path.display().to_string());
+    // A dialog's buttons take clicks once it has been up a moment.
+    wait(harness, 1.0);
+    if tile {
+        harness
+            .get_by_label_contains("one tile over the unit square")
+            .click_accesskit();
+        harness.run();
+    }
+    harness.get_by_label("Export").click();
+    // The export's progress repaints the window while it runs: step, not run.
+    harness.step();
+    harness.step();
+    assert!(!dialog_up(harness, "Export maps"));
+    wait_for_export(harness);
+}
+
+#[test]
+fn export_maps_writes_the_chosen_maps_and_refuses_a_tile_that_does_not_repeat() {
+    let dir = scratch("dialog-maps");
+    let mut harness = editor(&dir, None);
+    // The wood preset over its preview square: albedo, normal and height to start with.
+    export_maps(&mut harness, &dir.join("wood.png"), false);
+    assert!(
+        shows(&harness, "exported "),
+        "the status bar says it exported"
+    );
+    for map in ["albedo", "normal", "height"] {
+        let bytes = std::fs::read(dir.join(format!("wood_{map}.png"))).expect("map written");
+        assert_eq!(&bytes[1..4], b"PNG");
+    }
+    // Its rings are a solid texture, not a tile: refused, saying why, nothing written.
+    export_maps(&mut harness, &dir.join("wood_tile.png"), true);
+    assert!(dialog_up(&harness, "Veneer"), "a message says why");
+    assert!(shows(&harness, "the maps do not tile"));
+    assert!(!dir.join("wood_tile_albedo.png").exists());
+    key(&mut harness, egui::Key::Escape);
+
+    // A graph of periodic noises tiles, and the status bar says so.
+    let tiling = dir.join("clouds.ron");
+    let graph = crate::support::periodic_clouds();
+    veneer::graph::save(&graph, &tiling).expect("saved");
+    let mut harness = editor(&dir, Some(tiling));
+    export_maps(&mut harness, &dir.join("clouds.png"), true);
+    assert!(
+        shows(&harness, "they tile"),
+        "the status bar says the maps tile"
+    );
+    assert!(dir.join("clouds_normal.png").exists());
 }
 
 /// The screen position of a graph node's title that lies left of `max_x`.

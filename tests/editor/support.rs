@@ -312,3 +312,27 @@ pub fn run_until_killed(harness: &mut Harness<'static, VeneerApp>) -> ! {
         std::thread::sleep(std::time::Duration::from_millis(10));
     }
 }
+
+/// Clouds that repeat over the unit tile: gradient fBm with a period of 4 cells at scale
+/// 4, as the albedo and the height.
+pub fn periodic_clouds() -> veneer::graph::Graph {
+    use veneer::graph::{Basis, NodeKind, Value};
+    let mut graph = veneer::graph::Graph::default();
+    let position = graph.add("position", NodeKind::Position);
+    let clouds = graph.add(
+        "clouds",
+        NodeKind::Fbm(veneer::nodes::Fbm {
+            basis: Basis::Gradient,
+            octaves: 4,
+            normalize: true,
+            rotate: false,
+            period: 4,
+        }),
+    );
+    graph.set_input(clouds, "scale", Value::Float(4.0));
+    let material = graph.add("material", NodeKind::Material);
+    graph.connect(position, "position", clouds, "p");
+    graph.connect(clouds, "value", material, "albedo");
+    graph.connect(clouds, "value", material, "height");
+    graph
+}

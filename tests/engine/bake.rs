@@ -47,7 +47,7 @@ fn a_baked_4096_albedo_equals_the_flat_render() {
         &compiled(&graph),
         &settings(4096, vec![Map::Albedo], Format::Png8, rect),
         &dir.join("tiles"),
-        |_, _| {},
+        |_, _| true,
     )
     .expect("bakes");
     let baked = image::open(&maps[0].path)
@@ -87,7 +87,7 @@ fn sixteen_bit_maps_keep_a_smooth_ramp_free_of_8_bit_banding() {
         &compiled(&ramp()),
         &settings(2048, vec![Map::Albedo], Format::Png16, rect),
         &dir.join("ramp"),
-        |_, _| {},
+        |_, _| true,
     )
     .expect("bakes");
     let image = image::open(&maps[0].path).expect("a PNG").to_rgb16();
@@ -121,7 +121,7 @@ fn normal_maps_tilt_with_the_height_field_and_flip_green_for_directx() {
         &compiled(&graph),
         &settings(64, vec![Map::Normal], Format::Exr, rect),
         &dir.join("gl"),
-        |_, _| {},
+        |_, _| true,
     )
     .unwrap();
     let texel = image::open(&gl[0].path)
@@ -146,9 +146,15 @@ fn normal_maps_tilt_with_the_height_field_and_flip_green_for_directx() {
     let x = graph.nodes.iter().find(|n| n.label == "x").unwrap().id;
     graph.set_input(x, "direction", Value::Vec3(0.0, 0.0, 1.0));
     let mut dx = settings(64, vec![Map::Normal], Format::Exr, rect);
-    let gl = bake(gpu(), &compiled(&graph), &dx, &dir.join("z-gl"), |_, _| {}).unwrap();
+    let gl = bake(gpu(), &compiled(&graph), &dx, &dir.join("z-gl"), |_, _| {
+        true
+    })
+    .unwrap();
     dx.normal = NormalConvention::DirectX;
-    let directx = bake(gpu(), &compiled(&graph), &dx, &dir.join("z-dx"), |_, _| {}).unwrap();
+    let directx = bake(gpu(), &compiled(&graph), &dx, &dir.join("z-dx"), |_, _| {
+        true
+    })
+    .unwrap();
     let green =
         |path: &std::path::Path| image::open(path).unwrap().to_rgba32f().get_pixel(32, 32).0[1];
     assert!(green(&gl[0].path) > 0.55 && green(&directx[0].path) < 0.45);
@@ -216,7 +222,7 @@ fn a_uv_bake_fills_the_layout_and_pads_its_seams() {
         &compiled(&graph),
         &uv,
         &dir.join("sphere"),
-        |_, _| {},
+        |_, _| true,
     )
     .expect("bakes");
     let image = image::open(&maps[0].path).expect("a PNG").to_rgb8();
@@ -238,8 +244,10 @@ fn a_uv_bake_onto_a_mesh_without_uvs_bakes_into_an_atlas() {
     // A cube of quads without texture coordinates: six square charts (cut at its
     // edges), covering about 60% of the square, grown 8 texels by the padding.
     let uv = uv_albedo(256, "tests/meshes/cube_quads.ply");
-    let maps = bake(gpu(), &compiled(&graph), &uv, &dir.join("cube"), |_, _| {})
-        .expect("bakes into an atlas");
+    let maps = bake(gpu(), &compiled(&graph), &uv, &dir.join("cube"), |_, _| {
+        true
+    })
+    .expect("bakes into an atlas");
     let image = image::open(&maps[0].path).expect("a PNG").to_rgb8();
     let texels = image.pixels().count() as f64;
     let covered = image
@@ -285,7 +293,7 @@ fn banded_exr_and_png_bakes_agree_across_band_seams() {
         &compiled(&graph),
         &settings(3000, maps.clone(), Format::Exr, rect),
         &dir.join("exr"),
-        |_, _| {},
+        |_, _| true,
     )
     .expect("bakes EXR");
     let png = bake(
@@ -293,7 +301,7 @@ fn banded_exr_and_png_bakes_agree_across_band_seams() {
         &compiled(&graph),
         &settings(3000, maps, Format::Png16, rect),
         &dir.join("png"),
-        |_, _| {},
+        |_, _| true,
     )
     .expect("bakes PNG");
     for (exr, png) in exr.iter().zip(&png) {
@@ -326,7 +334,7 @@ fn the_tangent_space_normal_lands_in_the_normal_map_in_the_plane_s_frame() {
             &compiled(graph),
             &settings(16, vec![map], Format::Exr, rect),
             &dir.join(name),
-            |_, _| {},
+            |_, _| true,
         )
         .unwrap();
         image::open(&baked[0].path)

@@ -151,7 +151,7 @@ fn errors_tell_a_graph_error_from_a_render_failure() {
         &uniform,
         &settings,
         &dir.join("wood"),
-        |_, _| {},
+        |_, _| true,
     );
     assert!(
         matches!(

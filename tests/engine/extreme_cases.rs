@@ -356,7 +356,7 @@ fn extreme_material_outputs_bake_into_finite_maps() {
                 &compiled,
                 &settings,
                 &dir.join("extreme"),
-                |_, _| {},
+                |_, _| true,
             )
             .unwrap_or_else(|e| panic!("{shading:?} {surface:?}: {e}"));
             for baked in maps {

@@ -126,7 +126,7 @@ fn every_periodic_noise_bakes_a_tile_whose_edges_continue_each_other() {
             &compiled(&graph),
             &settings,
             &dir.join("tile"),
-            |_, _| {},
+            |_, _| true,
         )
         .unwrap_or_else(|e| panic!("{name}: {e}"));
         for map in &maps {
@@ -150,7 +150,7 @@ fn every_periodic_noise_bakes_a_tile_whose_edges_continue_each_other() {
         }
         let stem = dir.join("infinite");
         let graph = noise_graph(infinite, scale, lacunarity);
-        match bake(gpu(), &compiled(&graph), &settings, &stem, |_, _| {}) {
+        match bake(gpu(), &compiled(&graph), &settings, &stem, |_, _| true) {
             Err(BakeError::NotTileable(failing)) => {
                 assert!(
                     failing
@@ -197,7 +197,7 @@ fn a_tiled_normal_map_rolled_half_a_tile_is_the_tile_baked_half_a_tile_along() {
         &compiled(&graph),
         &tile_settings(BakeSurface::Tile(None), size, maps.clone()),
         &dir.join("first"),
-        |_, _| {},
+        |_, _| true,
     )
     .expect("bakes");
     let second = bake(
@@ -205,7 +205,7 @@ fn a_tiled_normal_map_rolled_half_a_tile_is_the_tile_baked_half_a_tile_along() {
         &compiled(&graph),
         &tile_settings(BakeSurface::Tile(Some(along)), size, maps.clone()),
         &dir.join("second"),
-        |_, _| {},
+        |_, _| true,
     )
     .expect("bakes");
     for (a, b) in first.iter().zip(&second) {
@@ -227,7 +227,7 @@ fn a_tiled_normal_map_rolled_half_a_tile_is_the_tile_baked_half_a_tile_along() {
             maps,
         ),
         &dir.join("plain"),
-        |_, _| {},
+        |_, _| true,
     )
     .expect("bakes");
     let (tile, plain_normal) = (pixels(&first[0].path), pixels(&plain[0].path));

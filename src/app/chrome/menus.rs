@@ -194,6 +194,9 @@ impl VeneerApp {
                 if entry(ui, "Export glTF…", "", true) {
                     self.chrome.dialog = Some(Dialog::export_gltf(&self.session.document));
                 }
+                if entry(ui, "Export maps…", "", true) {
+                    self.chrome.dialog = Some(Dialog::export_maps(&self.session.document));
+                }
             });
             ui.menu_button("Edit", |ui| {
                 if shortcut_entry(ui, "Undo", &UNDO, self.session.document.history.can_undo()) {

@@ -38,6 +38,7 @@ impl VeneerApp {
                 .map(|()| Some(format!("exported {}", path.display()))),
             Action::ExportPng { path, size, flat } => self.export_png(ctx, path, size, flat),
             Action::ExportGltf { path, size } => self.export_gltf(ctx, path, size),
+            Action::ExportMaps { stem, settings } => self.export_maps(ctx, stem, settings),
             Action::LoadMesh(path) => self.load_mesh(&path).map(|()| None),
             Action::LoadEnvironment(path) => self
                 .load_environment(&path)
@@ -212,6 +213,45 @@ impl VeneerApp {
                 .map_err(|error| error.to_string())?;
             let names: Vec<String> = written.iter().map(|p| p.display().to_string()).collect();
             Ok(format!("exported {}", names.join(", ")))
+        })
+    }
+
+    /// Bakes the document's maps into `<stem>_<map>.<ext>` files on a thread of its
+    /// own that reports its tiles (and stops, writing nothing, when cancelled); a tile
+    /// says how far its edges are from continuing each other, or why it was refused.
+    fn export_maps(
+        &mut self,
+        ctx: &egui::Context,
+        stem: PathBuf,
+        mut settings: crate::bake::BakeSettings,
+    ) -> Result<Option<String>, String> {
+        if settings.maps.is_empty() {
+            return Err("choose at least one map to export".into());
+        }
+        let gpu = self.export_gpu()?;
+        let compiled =
+            crate::codegen::compile(&self.session.document.graph, &CompileOptions::default())
+                .map_err(|error| error.to_string())?;
+        settings.time = self.preview.state.view.time;
+        let stems = [stem.as_path()];
+        crate::bake::check_outputs(&stems, &settings).map_err(|error| error.to_string())?;
+        self.start_export(ctx, &stem.clone(), move |report| {
+            let written = crate::bake::bake(&gpu, &compiled, &settings, &stem, report)
+                .map_err(|error| error.to_string())?;
+            let names: Vec<String> = written
+                .iter()
+                .map(|m| m.path.display().to_string())
+                .collect();
+            let seams = written
+                .iter()
+                .filter_map(|m| m.seams)
+                .map(|s| s.worst())
+                .reduce(f32::max);
+            let tiles = seams.map_or(String::new(), |worst| {
+                let worst = crate::bake::tile::seam_text(worst);
+                format!("; they tile (opposite edges differ by up to {worst})")
+            });
+            Ok(format!("exported {}{tiles}", names.join(", ")))
         })
     }
 }

@@ -68,6 +68,49 @@ impl Dialog {
                 ui.add(egui::Slider::new(size, 16..=4096).text("maps (px)"));
                 frame.path_buttons(ui, "Export");
             }
+            Dialog::ExportMaps {
+                path,
+                size,
+                maps,
+                format,
+                tile,
+            } => {
+                ui.heading("Export maps");
+                ui.label("The material's maps over the preview square, or as one tile of a repeating texture: files named after the path, wood.png giving wood_albedo.png, wood_normal.png and so on");
+                frame.path_field(ui, path);
+                ui.add(egui::Slider::new(size, 16..=8192).text("size (px)"));
+                egui::Grid::new("maps").show(ui, |ui| {
+                    let all = crate::bake::Map::ALL.iter().zip(maps.iter_mut());
+                    for (index, (map, chosen)) in all.enumerate() {
+                        ui.checkbox(chosen, map.name());
+                        if index % 5 == 4 {
+                            ui.end_row();
+                        }
+                    }
+                });
+                let before = *format;
+                ui.horizontal(|ui| {
+                    for (choice, name) in [
+                        (crate::bake::Format::Png8, "8-bit PNG"),
+                        (crate::bake::Format::Png16, "16-bit PNG"),
+                        (crate::bake::Format::Exr, "float EXR"),
+                    ] {
+                        ui.radio_value(format, choice, name);
+                    }
+                });
+                if *format != before {
+                    *path = std::path::Path::new(path.trim())
+                        .with_extension(format.extension())
+                        .display()
+                        .to_string();
+                }
+                frame.checkbox(
+                    ui,
+                    tile,
+                    "one tile over the unit square, its opposite edges checked to continue each other (give noises a period)",
+                );
+                frame.path_buttons(ui, "Export");
+            }
             Dialog::LoadEnvironment { path } => {
                 ui.heading("Light with an environment");
                 ui.label("An equirectangular HDR panorama (.hdr or .exr, twice as wide as high) lights metallic-roughness materials");

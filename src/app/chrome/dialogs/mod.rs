@@ -60,6 +60,11 @@ pub enum Action {
     },
     /// Bake the material into a glTF 2.0 file on the preview mesh, maps `size` pixels.
     ExportGltf { path: PathBuf, size: u32 },
+    /// Bake the material's maps into `<stem>_<map>.<ext>` files.
+    ExportMaps {
+        stem: PathBuf,
+        settings: crate::bake::BakeSettings,
+    },
     /// Show a mesh file in the preview.
     LoadMesh(String),
     /// Light metallic-roughness previews with a panorama file.
@@ -97,6 +102,16 @@ pub enum Dialog {
     ExportGltf {
         path: String,
         size: u32,
+    },
+    /// The maps as files beside each other (`path` names the first, `<stem>_<map>.<ext>`).
+    ExportMaps {
+        path: String,
+        size: u32,
+        /// Which of [`crate::bake::Map::ALL`] to write.
+        maps: [bool; 10],
+        format: crate::bake::Format,
+        /// One tile of a repeating texture over the unit square, its seams checked.
+        tile: bool,
     },
     LoadMesh {
         path: String,
@@ -166,6 +181,23 @@ impl Dialog {
         }
     }
 
+    /// Bake the material's maps (albedo, normal and height to start with) over the
+    /// preview square, or as one tile of a repeating texture.
+    pub fn export_maps(document: &Document) -> Dialog {
+        let chosen = [
+            crate::bake::Map::Albedo,
+            crate::bake::Map::Normal,
+            crate::bake::Map::Height,
+        ];
+        Dialog::ExportMaps {
+            path: default_path(document, "png"),
+            size: 1024,
+            maps: crate::bake::Map::ALL.map(|map| chosen.contains(&map)),
+            format: crate::bake::Format::Png8,
+            tile: false,
+        }
+    }
+
     fn kind(&self) -> u64 {
         let mut hasher = std::collections::hash_map::DefaultHasher::new();
         std::mem::discriminant(self).hash(&mut hasher);
@@ -180,6 +212,7 @@ impl Dialog {
             | Dialog::ExportShader { path, .. }
             | Dialog::ExportPng { path, .. }
             | Dialog::ExportGltf { path, .. }
+            | Dialog::ExportMaps { path, .. }
             | Dialog::LoadMesh { path }
             | Dialog::LoadEnvironment { path } => Some(path),
             _ => None,
@@ -223,6 +256,11 @@ impl Dialog {
                 title: "Export glTF",
                 kind: "glTF binary",
                 extension: "glb",
+            },
+            Dialog::ExportMaps { format, .. } => Purpose::Save {
+                title: "Export maps",
+                kind: "Maps",
+                extension: format.extension(),
             },
             _ => return None,
         })
@@ -382,6 +420,31 @@ impl Dialog {
             Dialog::ExportGltf { path, size } if !path.trim().is_empty() => Action::ExportGltf {
                 path: typed_path(path),
                 size: *size,
+            },
+            Dialog::ExportMaps {
+                path,
+                size,
+                maps,
+                format,
+                tile,
+            } if !path.trim().is_empty() => Action::ExportMaps {
+                // `wood.png` (or `wood`) names the maps `wood_albedo.png` and so on.
+                stem: typed_path(path).with_extension(""),
+                settings: crate::bake::BakeSettings {
+                    surface: if *tile {
+                        crate::bake::BakeSurface::Tile(None)
+                    } else {
+                        crate::bake::BakeSurface::Plane(None)
+                    },
+                    size: *size,
+                    maps: (crate::bake::Map::ALL.iter().zip(maps))
+                        .filter(|(_, chosen)| **chosen)
+                        .map(|(map, _)| *map)
+                        .collect(),
+                    format: *format,
+                    normal: crate::bake::NormalConvention::OpenGl,
+                    time: 0.0,
+                },
             },
             Dialog::LoadMesh { path } if !path.trim().is_empty() => {
                 Action::LoadMesh(typed_path(path).display().to_string())
