@@ -77,3 +77,15 @@ fn veneer_warp_BASIS(p: vec3f, strength: f32, scale: f32) -> vec3f {
     );
     return veneer_finite_vec3f(p + strength * w);
 }
+
+// `veneer_warp_BASIS` by noise repeating every `period` cells (at `p * scale`), so a
+// periodic pattern sampled at the warped point still repeats.
+fn veneer_warp_BASIS_periodic(p: vec3f, strength: f32, scale: f32, period: i32) -> vec3f {
+    let q = p * scale;
+    let offsets = array(vec3f(0.0), vec3f(31.4, 47.2, 12.9), vec3f(-23.7, 8.3, 51.1));
+    var w = vec3f(0.0);
+    for (var axis = 0; axis < 3; axis++) {
+        w[axis] = veneer_noise_BASIS_signed_periodic(q + offsets[axis], period);
+    }
+    return veneer_finite_vec3f(p + strength * w);
+}

@@ -38,3 +38,18 @@ fn veneer_noise_bump_BASIS(p: vec3f, scale: f32, strength: f32) -> vec3f {
     ) / (2.0 * h);
     return veneer_finite_vec3f(-strength * gradient);
 }
+
+// `veneer_noise_bump_BASIS` of the noise repeating every `period` cells: the gradient of
+// `veneer_noise_BASIS_periodic`, one axis at a time.
+fn veneer_noise_bump_BASIS_periodic(p: vec3f, scale: f32, strength: f32, period: i32) -> vec3f {
+    let q = p * scale;
+    let h = 0.01;
+    var gradient = vec3f(0.0);
+    for (var axis = 0; axis < 3; axis++) {
+        var step = vec3f(0.0);
+        step[axis] = h;
+        let rise = veneer_noise_BASIS_periodic(q + step, period) - veneer_noise_BASIS_periodic(q - step, period);
+        gradient[axis] = rise / (2.0 * h);
+    }
+    return veneer_finite_vec3f(-strength * gradient);
+}

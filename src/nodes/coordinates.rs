@@ -7,7 +7,7 @@ use super::formulas::shapes;
 use super::interval::{self, Interval, Lanes, max_length};
 use super::pins::{FLOAT, POINT, Signature, VEC3, f, input, output, v3};
 use super::ranges::{Ranges, lanewise};
-use super::settings::{Basis, Setting, choice};
+use super::settings::{Basis, Setting, check_period, choice, no_period, period};
 use super::value::Value;
 use super::{Catalogue, Category, Configure, Definition, Evaluate};
 use serde::{Deserialize, Serialize};
@@ -216,13 +216,21 @@ plain_catalogue!(Cylindrical);
 #[cfg_attr(feature = "arbitrary", derive(arbitrary::Arbitrary))]
 pub struct DomainWarp {
     pub basis: Basis,
+    /// How many lattice cells the warping noise repeats over (0: it never repeats), so
+    /// that a periodic pattern at the warped point still repeats; left out of graph
+    /// files when 0.
+    #[serde(default, skip_serializing_if = "no_period")]
+    pub period: u32,
 }
 
 impl Definition for DomainWarp {
     fn title(&self) -> &'static str {
         "Domain warp"
     }
-    computed_in!(Category::Coordinates, sampling);
+    computed_in!(@parts Category::Coordinates, |self| Some(self.basis));
+    fn check(&self) -> Option<String> {
+        check_period(self.period, Some(self.basis))
+    }
     fn keywords(&self) -> &'static [&'static str] {
         &["distort", "displace", "warp", "noise"]
     }
@@ -237,14 +245,14 @@ impl Definition for DomainWarp {
         )
     }
     fn emit(&self, io: &mut Emit) {
-        let function = format!("veneer_warp_{}", self.basis.suffix());
-        io.single(format!(
-            "{function}({}, {}, {})",
+        let arguments = format!(
+            "{}, {}, {}",
             io.input("p"),
             io.input("strength"),
             io.input("scale")
-        ));
-        io.uses(&function);
+        );
+        let function = format!("veneer_warp_{}", self.basis.suffix());
+        super::noise::periodic_call(io, &function, arguments, self.period);
     }
     fn ranges(&self, io: &mut Ranges) -> Vec<Lanes> {
         io.sampled(Some(self.basis));
@@ -263,6 +271,7 @@ impl Evaluate for DomainWarp {
             io.input("p"),
             io.float("strength"),
             io.float("scale"),
+            period(self.period),
         )]
     }
 }

@@ -61,13 +61,17 @@ macro_rules! plain_catalogue {
     };
 }
 
-/// The settings and catalogue of a kind whose one setting is its lattice basis: a menu
-/// entry per basis, `"<menu name> (<basis>)"`, and every basis in the tests.
+/// The settings and catalogue of a kind whose settings are its lattice basis and the
+/// period its noise repeats over: a menu entry per basis, `"<menu name> (<basis>)"`,
+/// never repeating, and every basis in the tests, never repeating and every 6 cells.
 macro_rules! basis_choice {
     ($kind:ident, $menu:literal) => {
         impl Configure for $kind {
             fn settings(&mut self) -> Vec<Setting<'_>> {
-                vec![choice("basis", &mut self.basis, &Basis::ALL)]
+                vec![
+                    choice("basis", &mut self.basis, &Basis::ALL),
+                    super::settings::period_setting(&mut self.period),
+                ]
             }
         }
 
@@ -78,15 +82,15 @@ macro_rules! basis_choice {
                     .map(|basis| {
                         (
                             format!("{} ({})", $menu, basis.menu_name()),
-                            $kind { basis },
+                            $kind { basis, period: 0 },
                         )
                     })
                     .collect()
             }
             fn examples() -> Vec<Self> {
-                Basis::ALL
+                [0, 6]
                     .into_iter()
-                    .map(|basis| $kind { basis })
+                    .flat_map(|period| Basis::ALL.map(|basis| $kind { basis, period }))
                     .collect()
             }
         }

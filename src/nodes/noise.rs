@@ -51,21 +51,31 @@ impl Definition for Noise {
     }
     fn emit(&self, io: &mut Emit) {
         let q = format!("{} * {}", io.input("p"), io.input("scale"));
-        let function = format!("veneer_noise_{}", self.basis.suffix());
-        match period(self.period) {
-            None => io.single(format!("{function}({q})")),
-            Some(cells) => {
-                let function = format!("{function}_periodic");
-                io.single(format!("{function}({q}, {cells}i)"));
-                return io.uses(&function);
-            }
-        }
-        io.uses(&function);
+        periodic_call(
+            io,
+            &format!("veneer_noise_{}", self.basis.suffix()),
+            q,
+            self.period,
+        );
     }
     fn ranges(&self, io: &mut Ranges) -> Vec<Lanes> {
         io.sampled(Some(self.basis));
         super::unit_range()
     }
+}
+
+/// One output: library function `function` of `arguments`, or with a period (the
+/// setting; 0 for none) its `_periodic` variant with the period appended.
+pub(super) fn periodic_call(io: &mut Emit, function: &str, arguments: String, setting: u32) {
+    let (function, arguments) = match period(setting) {
+        None => (function.to_string(), arguments),
+        Some(cells) => (
+            format!("{function}_periodic"),
+            format!("{arguments}, {cells}i"),
+        ),
+    };
+    io.single(format!("{function}({arguments})"));
+    io.uses(&function);
 }
 
 impl Evaluate for Noise {
@@ -108,13 +118,20 @@ impl Catalogue for Noise {
 #[cfg_attr(feature = "arbitrary", derive(arbitrary::Arbitrary))]
 pub struct NoiseBump {
     pub basis: Basis,
+    /// How many lattice cells the noise repeats over (0: it never repeats); left out of
+    /// graph files when 0.
+    #[serde(default, skip_serializing_if = "no_period")]
+    pub period: u32,
 }
 
 impl Definition for NoiseBump {
     fn title(&self) -> &'static str {
         "Noise bump"
     }
-    computed_in!(Category::Noise, sampling);
+    computed_in!(@parts Category::Noise, |self| Some(self.basis));
+    fn check(&self) -> Option<String> {
+        check_period(self.period, Some(self.basis))
+    }
     fn keywords(&self) -> &'static [&'static str] {
         &["bump", "normal", "relief", "roughness", "gradient"]
     }
@@ -129,14 +146,18 @@ impl Definition for NoiseBump {
         )
     }
     fn emit(&self, io: &mut Emit) {
-        let function = format!("veneer_noise_bump_{}", self.basis.suffix());
-        io.single(format!(
-            "{function}({}, {}, {})",
+        let arguments = format!(
+            "{}, {}, {}",
             io.input("p"),
             io.input("scale"),
             io.input("strength")
-        ));
-        io.uses(&function);
+        );
+        periodic_call(
+            io,
+            &format!("veneer_noise_bump_{}", self.basis.suffix()),
+            arguments,
+            self.period,
+        );
     }
     fn ranges(&self, io: &mut Ranges) -> Vec<Lanes> {
         io.sampled(Some(self.basis));
@@ -152,6 +173,7 @@ impl Evaluate for NoiseBump {
             io.input("p"),
             io.float("scale"),
             io.float("strength"),
+            period(self.period),
         )]
     }
 }

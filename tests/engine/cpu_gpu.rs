@@ -15,6 +15,7 @@ fn pcg_graph() -> Graph {
         "warp",
         NodeKind::DomainWarp(DomainWarp {
             basis: Basis::Gradient,
+            period: 0,
         }),
     );
     g.set_input(warp, "strength", Value::Float(0.3));

@@ -79,6 +79,8 @@ fn every_preset_exports_to_every_target_and_validates() {
 fn every_periodic_noise_exports_to_every_target_and_validates() {
     let graph = crate::tiles::all_periodic_noises();
     export_everywhere(&graph, "periodic", &scratch("periodic"));
+    let graph = crate::tiles::warped_and_bumped(3);
+    export_everywhere(&graph, "periodic-warp", &scratch("periodic"));
 }
 
 #[test]

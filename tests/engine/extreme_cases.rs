@@ -102,6 +102,7 @@ fn named_cases() -> Vec<(&'static str, NodeKind, Inputs)> {
             "domain-warp-scale",
             NodeKind::DomainWarp(DomainWarp {
                 basis: Basis::ValuePcg,
+                period: 0,
             }),
             vec![("scale", Value::Float(3.4e38))],
         ),
@@ -174,6 +175,7 @@ fn named_cases() -> Vec<(&'static str, NodeKind, Inputs)> {
             "noise-bump-strength",
             NodeKind::NoiseBump(NoiseBump {
                 basis: Basis::Simplex,
+                period: 0,
             }),
             vec![("strength", Value::Float(3.4e38))],
         ),

@@ -360,3 +360,74 @@ pub fn all_periodic_noises() -> Graph {
     graph.connect(last, pin, material, "albedo");
     graph
 }
+
+/// Noise at a domain-warped point as the albedo, and a noise bump: both warp and bump
+/// repeat over `period` cells (0: never) at scales that span whole periods of the tile.
+pub fn warped_and_bumped(period: u32) -> Graph {
+    let mut graph = Graph::default();
+    let position = graph.add("position", NodeKind::Position);
+    let warp = graph.add(
+        "warp",
+        NodeKind::DomainWarp(veneer::nodes::DomainWarp {
+            basis: Basis::Gradient,
+            period,
+        }),
+    );
+    graph.set_input(warp, "scale", Value::Float(3.0));
+    graph.set_input(warp, "strength", Value::Float(0.15));
+    let noise = graph.add(
+        "noise",
+        NodeKind::Noise(Noise {
+            basis: Basis::ValuePcg,
+            period: 2 * period,
+        }),
+    );
+    graph.set_input(noise, "scale", Value::Float(6.0));
+    let bump = graph.add(
+        "bump",
+        NodeKind::NoiseBump(veneer::nodes::NoiseBump {
+            basis: Basis::Simplex,
+            period: 2 * period,
+        }),
+    );
+    graph.set_input(bump, "scale", Value::Float(6.0));
+    graph.set_input(bump, "strength", Value::Float(0.3));
+    let material = graph.add("material", NodeKind::Material);
+    graph.connect(position, "position", warp, "p");
+    graph.connect(warp, "p", noise, "p");
+    graph.connect(position, "position", bump, "p");
+    graph.connect(noise, "value", material, "albedo");
+    graph.connect(bump, "bump", material, "bump");
+    graph
+}
+
+#[test]
+fn a_domain_warp_and_a_noise_bump_with_periods_tile_too() {
+    let dir = temp_dir("tiles-warp");
+    let settings = tile_settings(BakeSurface::Tile(None), 64, vec![Map::Albedo, Map::Normal]);
+    let maps = bake(
+        gpu(),
+        &compiled(&warped_and_bumped(3)),
+        &settings,
+        &dir.join("warped"),
+        |_, _| true,
+    )
+    .expect("a periodic warp and bump tile");
+    assert!(
+        maps.iter()
+            .all(|m| m.seams.is_some_and(|s| s.worst() <= SEAM_TOLERANCE)),
+        "{:?}",
+        maps.iter().map(|m| m.seams).collect::<Vec<_>>()
+    );
+    match bake(
+        gpu(),
+        &compiled(&warped_and_bumped(0)),
+        &settings,
+        &dir.join("infinite"),
+        |_, _| true,
+    ) {
+        Err(BakeError::NotTileable(failing)) => assert_eq!(failing.len(), 2, "{failing:?}"),
+        other => panic!("without periods: {:?}", other.map(|m| m.len())),
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

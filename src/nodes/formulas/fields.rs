@@ -35,14 +35,22 @@ pub fn isolines<R: Real>(value: R, spacing: R, width: R) -> R {
 }
 
 /// `veneer_noise_bump_<basis>`.
-pub fn noise_bump<R: Real>(basis: Basis, p: V3<R>, scale_by: R, strength: R) -> V3<R> {
+pub fn noise_bump<R: Real>(
+    basis: Basis,
+    p: V3<R>,
+    scale_by: R,
+    strength: R,
+    period: noise::Period,
+) -> V3<R> {
     let q = scale(p, scale_by);
     let h = R::c(0.01);
     let axis = |k: usize| {
         let mut step = [R::c(0.0); 3];
         step[k] = h;
         let back = scale(step, R::c(-1.0));
-        (noise::basis(basis, add(q, step)) - noise::basis(basis, add(q, back))) / (R::c(2.0) * h)
+        let rise = noise::repeating(basis, add(q, step), period)
+            - noise::repeating(basis, add(q, back), period);
+        rise / (R::c(2.0) * h)
     };
     map(scale([axis(0), axis(1), axis(2)], -strength), finite)
 }

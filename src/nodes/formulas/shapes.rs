@@ -73,14 +73,21 @@ pub fn cylindrical<R: Real>(p: V3<R>, origin: V3<R>, axis: V3<R>) -> V3<R> {
     ]
 }
 
-/// Domain warp by signed noise per axis, clamped to the finite range.
-pub fn warp<R: Real>(basis: Basis, p: V3<R>, strength: R, scale_by: R) -> V3<R> {
+/// Domain warp by signed noise per axis (repeating every `period` cells when it has
+/// one), clamped to the finite range.
+pub fn warp<R: Real>(
+    basis: Basis,
+    p: V3<R>,
+    strength: R,
+    scale_by: R,
+    period: noise::Period,
+) -> V3<R> {
     let q = scale(p, scale_by);
     let offset = |o: [f64; 3]| add(q, o.map(R::c));
     let w = [
-        noise::signed(basis, q),
-        noise::signed(basis, offset([31.4, 47.2, 12.9])),
-        noise::signed(basis, offset([-23.7, 8.3, 51.1])),
+        noise::signed_repeating(basis, q, period),
+        noise::signed_repeating(basis, offset([31.4, 47.2, 12.9]), period),
+        noise::signed_repeating(basis, offset([-23.7, 8.3, 51.1]), period),
     ];
     map(add(p, scale(w, strength)), finite)
 }
