@@ -98,26 +98,25 @@ fn veneer_octave_fractal_sum_BASIS_periodic(q: vec3f, period: i32) -> f32 {
 
 // The fractal sum of `veneer_MODE_BASIS` repeating every `period` cells: octave i spans
 // `veneer_octave_period` cells over the period, its frequency that count over `period`
-// (the lacunarity's powers rounded to whole cells), so that the sum repeats too.
+// (the lacunarity's powers rounded to whole cells), so that the sum repeats too. Octaves
+// from `cutoff` on count as their average, without sampling the noise.
 fn veneer_MODE_BASIS_periodic(p: vec3f, octaves: i32, lacunarity: f32, gain: f32, amplitude: f32, normalize: bool, cutoff: f32, period: i32, step: i32) -> f32 {
+    let mean = veneer_octave_mean_MODE();
     var sum = 0.0;
+    var total = 0.0;
     var amp = amplitude;
     var freq = 1.0;
-    var total = 0.0;
-    let mean = veneer_octave_mean_MODE();
-    let evaluated = min(octaves, i32(clamp(ceil(cutoff), 0.0, 64.0)));
-    for (var i = 0; i < evaluated; i++) {
+    for (var i = 0; i < octaves; i++) {
         let shown = clamp(cutoff - f32(i), 0.0, 1.0);
-        let cells = veneer_octave_period(period, freq, step);
-        let octave = veneer_octave_MODE_BASIS_periodic(p * (f32(cells) / f32(period)), cells);
-        sum = clamp(sum + amp * (shown * octave + (1.0 - shown) * mean), -3.0e38, 3.0e38);
+        var octave = mean;
+        if shown > 0.0 {
+            let cells = veneer_octave_period(period, freq, step);
+            let noise = veneer_octave_MODE_BASIS_periodic(p * (f32(cells) / f32(period)), cells);
+            octave = shown * noise + (1.0 - shown) * mean;
+        }
+        sum = clamp(sum + amp * octave, -3.0e38, 3.0e38);
         total = min(total + abs(amp), 3.0e38);
         freq = clamp(freq * lacunarity, -3.0e38, 3.0e38);
-        amp = clamp(amp * gain, -3.0e38, 3.0e38);
-    }
-    for (var i = evaluated; i < octaves; i++) {
-        sum = clamp(sum + amp * mean, -3.0e38, 3.0e38);
-        total = min(total + abs(amp), 3.0e38);
         amp = clamp(amp * gain, -3.0e38, 3.0e38);
     }
     return select(sum, sum / total, normalize && total > 0.0);

@@ -23,43 +23,30 @@ pub fn periodic_noises() -> Vec<(String, NodeKind, f64, Option<f64>)> {
             f64::from(period),
             None,
         ));
-        let fractal = |octaves| (basis, octaves, true, false, period);
-        let (b, o, n, r, p) = fractal(5);
-        kinds.push((
-            format!("fbm {name}"),
-            NodeKind::Fbm(Fbm {
-                basis: b,
-                octaves: o,
-                normalize: n,
-                rotate: r,
-                period: p,
-            }),
-            f64::from(period),
-            None,
-        ));
-        let (b, o, n, r, p) = fractal(4);
+        // A fractal kind of this basis and period, normalised, unrotated.
+        macro_rules! fractal {
+            ($kind:ident, $octaves:expr) => {
+                NodeKind::$kind($kind {
+                    basis,
+                    octaves: $octaves,
+                    normalize: true,
+                    rotate: false,
+                    period,
+                })
+            };
+        }
+        let span = f64::from(period);
+        kinds.push((format!("fbm {name}"), fractal!(Fbm, 5), span, None));
         kinds.push((
             format!("turbulence {name}, lacunarity 1.9"),
-            NodeKind::Turbulence(Turbulence {
-                basis: b,
-                octaves: o,
-                normalize: n,
-                rotate: r,
-                period: p,
-            }),
-            2.0 * f64::from(period),
+            fractal!(Turbulence, 4),
+            2.0 * span,
             Some(1.9),
         ));
         kinds.push((
             format!("fractal sum {name}"),
-            NodeKind::FractalSum(FractalSum {
-                basis: b,
-                octaves: o,
-                normalize: n,
-                rotate: r,
-                period: p,
-            }),
-            f64::from(period),
+            fractal!(FractalSum, 4),
+            span,
             None,
         ));
     }
