@@ -272,24 +272,17 @@ pub fn bake(
     let total = tiles_per_pass * settings.maps.len() as u64;
     let edges = match (&surface, &settings.surface) {
         (Surface::Plane(flat, rect), BakeSurface::Tile(_)) => {
-            Some(check_tile(gpu, flat, *rect, settings)?)
+            let (size, time) = (settings.size, settings.time);
+            let edges = tile::TileEdges::check(gpu, flat, *rect, size, time, &settings.maps)?;
+            let failing = edges.failing(&settings.maps);
+            if !failing.is_empty() {
+                return Err(BakeError::NotTileable(failing));
+            }
+            Some(edges)
         }
         _ => None,
     };
-    let seams_of = |map: Map| {
-        let edges = edges.as_ref()?;
-        edges
-            .iter()
-            .find(|(channels, _)| *channels == map.channels())
-            .map(|(_, e)| e.seams)
-    };
-    let beyond = edges.as_ref().and_then(|edges| {
-        let heights = |row: &[[f32; 4]]| row.iter().map(|p| p[0]).collect::<Vec<f32>>();
-        edges
-            .iter()
-            .find(|(channels, _)| *channels == Map::Height.channels())
-            .map(|(_, e)| (heights(&e.above), heights(&e.below)))
-    });
+    let beyond = edges.as_ref().and_then(tile::TileEdges::heights_beyond);
     let paths: Vec<_> = (settings.maps.iter())
         .map(|map| map_path(stem, *map, settings.format))
         .collect();
@@ -353,41 +346,10 @@ pub fn bake(
             path,
             size,
             format: settings.format,
-            seams: seams_of(*map),
+            seams: edges.as_ref().and_then(|edges| edges.seams(*map)),
         })
         .collect();
     Ok(written)
-}
-
-/// The edge checks of a tile bake, one per group of material outputs its maps are made
-/// from; refuses the bake, before anything is written, when a map's seams are past the
-/// tolerance.
-fn check_tile(
-    gpu: &GpuContext,
-    flat: &FlatRenderer,
-    rect: FlatRect,
-    settings: &BakeSettings,
-) -> Result<Vec<(crate::render::FlatChannels, tile::EdgeCheck)>, BakeError> {
-    let mut checks: Vec<(crate::render::FlatChannels, tile::EdgeCheck)> = Vec::new();
-    for map in &settings.maps {
-        let channels = map.channels();
-        if !checks.iter().any(|(done, _)| *done == channels) {
-            let check = tile::check_edges(gpu, flat, rect, settings.size, settings.time, channels)?;
-            checks.push((channels, check));
-        }
-    }
-    let seams: Vec<(Map, tile::Seams)> = (settings.maps.iter())
-        .filter_map(|map| {
-            let (_, check) = checks.iter().find(|(c, _)| *c == map.channels())?;
-            Some((*map, check.seams))
-        })
-        .collect();
-    let failing = tile::failing(&seams);
-    if failing.is_empty() {
-        Ok(checks)
-    } else {
-        Err(BakeError::NotTileable(failing))
-    }
 }
 
 /// Bytes of each band buffer a plane bake renders into.

@@ -44,16 +44,75 @@ pub fn seam_text(seam: f32) -> String {
 pub const SEAM_TOLERANCE: f32 = 1.0e-3;
 
 /// What a tile check found for one group of material outputs.
-pub struct EdgeCheck {
-    pub seams: Seams,
+struct EdgeCheck {
+    seams: Seams,
     /// The outputs of the rows just above the top edge and just below the bottom edge.
-    pub above: Vec<[f32; 4]>,
-    pub below: Vec<[f32; 4]>,
+    above: Vec<[f32; 4]>,
+    below: Vec<[f32; 4]>,
+}
+
+/// The edge checks of a tile bake: one per group of material outputs its maps are made
+/// from.
+pub struct TileEdges(Vec<(FlatChannels, EdgeCheck)>);
+
+impl TileEdges {
+    /// Checks the edges of a size×size bake of `maps` over `rect`, each group of
+    /// material outputs once.
+    pub fn check(
+        gpu: &GpuContext,
+        flat: &FlatRenderer,
+        rect: FlatRect,
+        size: u32,
+        time: f32,
+        maps: &[Map],
+    ) -> Result<TileEdges, RenderError> {
+        let mut checks: Vec<(FlatChannels, EdgeCheck)> = Vec::new();
+        for map in maps {
+            let channels = map.channels();
+            if !checks.iter().any(|(done, _)| *done == channels) {
+                checks.push((
+                    channels,
+                    check_edges(gpu, flat, rect, size, time, channels)?,
+                ));
+            }
+        }
+        Ok(TileEdges(checks))
+    }
+
+    /// The check of the outputs `map` is made from, if it was checked.
+    fn of(&self, map: Map) -> Option<&EdgeCheck> {
+        let channels = map.channels();
+        self.0
+            .iter()
+            .find(|(c, _)| *c == channels)
+            .map(|(_, check)| check)
+    }
+
+    /// How far `map`'s opposite edges are from continuing each other.
+    pub fn seams(&self, map: Map) -> Option<Seams> {
+        self.of(map).map(|check| check.seams)
+    }
+
+    /// Each of `maps` whose seams are past [`SEAM_TOLERANCE`], with them.
+    pub fn failing(&self, maps: &[Map]) -> Vec<(Map, Seams)> {
+        (maps.iter())
+            .filter_map(|&map| Some((map, self.seams(map)?)))
+            .filter(|(_, seams)| seams.worst() > SEAM_TOLERANCE)
+            .collect()
+    }
+
+    /// The heights of the rows just above and just below the tile, for its normal map
+    /// ([`super::Converter::tiling`]), when the height was checked.
+    pub fn heights_beyond(&self) -> Option<(Vec<f32>, Vec<f32>)> {
+        let heights = |row: &[[f32; 4]]| row.iter().map(|p| p[0]).collect();
+        let check = self.of(Map::Height)?;
+        Some((heights(&check.above), heights(&check.below)))
+    }
 }
 
 /// Renders `channels` along the four edges of a size×size bake of `rect` and just
 /// beyond them, and measures the seams.
-pub fn check_edges(
+fn check_edges(
     gpu: &GpuContext,
     flat: &FlatRenderer,
     rect: FlatRect,
@@ -91,15 +150,6 @@ fn largest_difference(a: &[[f32; 4]], b: &[[f32; 4]]) -> f32 {
             if d.is_nan() { f32::INFINITY } else { d }
         })
         .fold(0.0, f32::max)
-}
-
-/// The maps that do not tile: each map whose seams are past [`SEAM_TOLERANCE`], with them.
-pub fn failing(seams: &[(Map, Seams)]) -> Vec<(Map, Seams)> {
-    seams
-        .iter()
-        .copied()
-        .filter(|(_, seams)| seams.worst() > SEAM_TOLERANCE)
-        .collect()
 }
 
 #[cfg(test)]
