@@ -257,12 +257,7 @@ fn live_code(graph: &Graph, generation: u64) -> (LiveMaterialCode, Vec<[f32; 4]>
     let mut live = LiveMaterial::in_storage();
     live.update(graph);
     let module = &live.compiled.as_ref().expect("compiles").module;
-    let code = LiveMaterialCode {
-        generation,
-        wgsl: module.source.as_str().into(),
-        slots: module.params.len(),
-        uses: module.uses,
-    };
+    let code = LiveMaterialCode::new(generation, live.compiled.as_ref().expect("it compiles"));
     (code, live.params(graph))
 }
 

@@ -9,6 +9,7 @@ struct VeneerFlatView {
     size: f32,            // the whole image's width and height in pixels
     time: f32,
     channels: u32,        // which outputs (render_channels.wgsl)
+    domain_uv: u32,       // 1: uv is the pixel's place in the rectangle (multi-pass materials); 0: uv 0
 }
 
 @group(0) @binding(0) var<uniform> veneer_flat_view: VeneerFlatView;
@@ -24,7 +25,8 @@ fn veneer_flat_fragment(@builtin(position) pixel: vec4f) -> @location(0) vec4u {
     let view = veneer_flat_view;
     let t = (pixel.xy + view.pixel_offset) / view.size;
     let position = vec3f(view.rect.x + (view.rect.z - view.rect.x) * t.x, view.plane_y, view.rect.y + (view.rect.w - view.rect.y) * t.y);
-    let surface = VeneerSurface(position, vec3f(0.0, 1.0, 0.0), vec2f(0.0), vec4f(0.0), view.time);
+    let uv = select(vec2f(0.0), t, view.domain_uv == 1u);
+    let surface = VeneerSurface(position, vec3f(0.0, 1.0, 0.0), uv, vec4f(0.0), view.time);
     let material = veneer_material(surface);
     // The plane's tangent frame: x along +x, y up the image (-z), z the normal (+y).
     let frame = mat3x3f(vec3f(1.0, 0.0, 0.0), vec3f(0.0, 0.0, -1.0), vec3f(0.0, 1.0, 0.0));

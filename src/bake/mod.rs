@@ -235,11 +235,12 @@ pub fn bake(
                 (rect.z1 - rect.z0) / f64::from(size),
             );
             (
-                Surface::Plane(FlatRenderer::new(gpu, &module.source)?, rect),
+                Surface::Plane(FlatRenderer::for_compiled(gpu, compiled)?, rect),
                 spacing,
             )
         }
         BakeSurface::MeshUv(name) => {
+            crate::render::flat_passes_only(compiled, "a bake over a mesh's UV layout")?;
             // A mesh without a UV layout gets an atlas, after its fields are solved on the
             // connected mesh.
             let mesh = crate::render::mesh_with_fields(preview, name, &module.uses, |_, _| {})?

@@ -4,6 +4,7 @@ use super::{Failure, in_file, load_graph, write_output};
 use clap::{Args, ValueEnum};
 use std::path::{Path, PathBuf};
 use veneer::codegen::export::{Target, export_compiled};
+use veneer::codegen::manifest::export_passes;
 use veneer::codegen::{CompileOptions, ParamMode, compile, describe_parameters};
 use veneer::fsutil::{Naming, OutputPlan, write_together};
 
@@ -83,6 +84,9 @@ pub fn run(args: CompileArgs) -> Result<(), Failure> {
     if args.describe {
         return write_output(args.output.as_ref(), description.as_bytes());
     }
+    if !compiled.passes.is_empty() {
+        return write_passes(&args, &compiled);
+    }
     let bytes =
         export_compiled(&compiled, args.target).map_err(|error| in_file(&args.graph, error))?;
     match args.output.as_deref().and_then(super::output_file) {
@@ -94,6 +98,52 @@ pub fn run(args: CompileArgs) -> Result<(), Failure> {
         ),
         _ => write_output(args.output.as_ref(), &bytes),
     }
+}
+
+/// Writes a multi-pass material's modules and manifest together beside the output file
+/// (which names the material's module): a half-written export is never left.
+fn write_passes(args: &CompileArgs, compiled: &veneer::codegen::Compiled) -> Result<(), Failure> {
+    let output = match args.output.as_deref().and_then(super::output_file) {
+        Some(path) if !veneer::fsutil::is_stream(path) && !super::names_folder(path) => path,
+        _ => {
+            return Err(Failure::new(format!(
+                "{}: the material renders {} passes, exported as a module each and a manifest: give `-o FILE` (the material's module; the others go beside it)",
+                args.graph.display(),
+                compiled.passes.passes.len()
+            )));
+        }
+    };
+    let stem = output.file_stem().unwrap_or_default().to_string_lossy();
+    let files =
+        export_passes(compiled, args.target, &stem).map_err(|error| in_file(&args.graph, error))?;
+    let paths: Vec<PathBuf> = (files.iter())
+        .map(|file| output.with_file_name(&file.name))
+        .collect();
+    let description = describe_parameters(compiled);
+    let described = args.describes_beside().then(|| description_path(output));
+    let mut writes: Vec<(&Path, Naming, &[u8])> = (paths.iter().zip(&files))
+        .enumerate()
+        .map(|(k, (path, file))| {
+            let naming = if k == 0 {
+                Naming::Given
+            } else {
+                Naming::Implied
+            };
+            (path.as_path(), naming, file.bytes.as_slice())
+        })
+        .collect();
+    if let Some(path) = &described {
+        writes.push((path.as_path(), Naming::Implied, description.as_bytes()));
+    }
+    write_together(writes).map_err(|(path, error)| {
+        Failure::new(format!("{}: cannot write: {error}", path.display()))
+    })?;
+    super::output::note(format_args!(
+        "wrote {} and {} passes with their manifest {}",
+        output.display(),
+        compiled.passes.passes.len(),
+        paths.last().expect("the manifest").display()
+    ))
 }
 
 /// Writes the shader and its parameters' description together: neither is left

@@ -31,6 +31,9 @@ pub struct Emitter<'a> {
     pub detail: Detail,
     /// Parameter slots (slot modes), in order.
     pub params: Vec<ParamSlot>,
+    /// The slots before this one belong to earlier modules of the same material (its
+    /// passes): they share one numbering, so one buffer of values serves every module.
+    pub first_slot: usize,
     /// Library items the bodies call, each once, in the order first called.
     pub roots: Vec<String>,
     called: FxHashSet<String>,
@@ -41,6 +44,9 @@ pub struct Emitter<'a> {
     parameter_index: FxHashMap<&'a str, usize>,
     /// Group functions by group name.
     pub calls: BTreeMap<String, GroupCall>,
+    /// What each wired sampled input reads, by node and pin index: the arguments
+    /// `texture, edge` of its buffer (multi-pass materials).
+    pub sampled: FxHashMap<(NodeId, usize), String>,
 }
 
 impl<'a> Emitter<'a> {
@@ -55,6 +61,7 @@ impl<'a> Emitter<'a> {
             mode,
             detail,
             params: Vec::new(),
+            first_slot: 0,
             roots: Vec::new(),
             called: FxHashSet::default(),
             parameters,
@@ -66,6 +73,7 @@ impl<'a> Emitter<'a> {
                 .map(|(k, p)| (p.name.as_str(), k))
                 .collect(),
             calls: BTreeMap::new(),
+            sampled: FxHashMap::default(),
         }
     }
 
@@ -152,8 +160,10 @@ impl<'a> Emitter<'a> {
                 .zip(&checked.signature.inputs)
                 .zip(&from)
                 .zip(&bound)
-                .map(|(((source, pin), from), bound)| match bound {
+                .enumerate()
+                .map(|(k, (((source, pin), from), bound))| match bound {
                     Some(expression) => expression.clone(),
+                    None if pin.sampled => self.sampled[&(node.id, k)].clone(),
                     None => {
                         let slots = self.mode.has_slots().then_some(&mut self.params);
                         input_expression(source, pin, node.id, *from, slots)

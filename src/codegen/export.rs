@@ -93,6 +93,9 @@ pub enum ExportError {
 pub const FRAGMENT_ENTRY: &str = "veneer_fragment";
 const ENTRY_SOURCE: &str = include_str!("../../shaders/export_entry.wgsl");
 
+/// The most buffers one exported module binds in GLSL 450 (bindings 2 and up).
+const MAX_BUFFER_BINDINGS: u8 = 64;
+
 /// The graph as a shader for `target`, parameters baked or in a uniform block: text for
 /// the text languages, bytes for SPIR-V.
 pub fn export(graph: &Graph, target: Target, params: ParamMode) -> Result<Vec<u8>, ExportError> {
@@ -100,25 +103,39 @@ pub fn export(graph: &Graph, target: Target, params: ParamMode) -> Result<Vec<u8
     export_compiled(&compiled, target)
 }
 
-/// [`export`] of a graph compiled already.
+/// [`export`] of a graph compiled already (its material module alone: a multi-pass
+/// material's passes export through [`super::manifest::export_passes`]).
 pub fn export_compiled(compiled: &Compiled, target: Target) -> Result<Vec<u8>, ExportError> {
     let module = &compiled.module;
     if target == Target::Wgsl {
         return Ok(module.source.clone().into_bytes());
     }
+    translate(
+        &format!("{}\n{ENTRY_SOURCE}", module.source),
+        target,
+        FRAGMENT_ENTRY,
+    )
+}
+
+/// A validated WGSL module with entry points (`fragment` the one to export) in
+/// `target`'s language.
+pub(super) fn translate(
+    source: &str,
+    target: Target,
+    fragment: &str,
+) -> Result<Vec<u8>, ExportError> {
     let fail = |message: String| ExportError::Backend { target, message };
-    let source = format!("{}\n{ENTRY_SOURCE}", module.source);
-    validate(&source).map_err(|error| fail(error.to_string()))?;
-    let naga_module = naga::front::wgsl::parse_str(&source)
-        .map_err(|error| fail(error.emit_to_string(&source)))?;
+    validate(source).map_err(|error| fail(error.to_string()))?;
+    let naga_module =
+        naga::front::wgsl::parse_str(source).map_err(|error| fail(error.emit_to_string(source)))?;
     let info = naga::valid::Validator::new(
         naga::valid::ValidationFlags::all(),
         naga::valid::Capabilities::default(),
     )
     .validate(&naga_module)
-    .map_err(|error| fail(error.emit_to_string(&source)))?;
+    .map_err(|error| fail(error.emit_to_string(source)))?;
     match target {
-        Target::Wgsl => unreachable!("handled above"),
+        Target::Wgsl => Ok(source.as_bytes().to_vec()),
         Target::Glsl | Target::GlslEs => {
             let version = if target == Target::Glsl {
                 naga::back::glsl::Version::Desktop(450)
@@ -128,11 +145,14 @@ pub fn export_compiled(compiled: &Compiled, target: Target) -> Result<Vec<u8>, E
                     is_webgl: false,
                 }
             };
-            // Explicit block bindings where the version has them (450): the frame block at
-            // 0, the parameter block at 1. ES 3.00 binds blocks by name instead.
+            // Explicit bindings where the version has them (450): the frame block at 0,
+            // the parameter block at 1, a multi-pass material's buffers (group 2) from 2
+            // on. ES 3.00 binds them by name instead.
             let binding = |group, binding| naga::ResourceBinding { group, binding };
+            let buffers = (0..MAX_BUFFER_BINDINGS).map(|k| (binding(2, u32::from(k)), 2 + k));
             let binding_map = [(binding(0, 0), 0u8), (binding(1, 0), 1u8)]
                 .into_iter()
+                .chain(buffers)
                 .collect();
             let options = naga::back::glsl::Options {
                 version,
@@ -142,7 +162,7 @@ pub fn export_compiled(compiled: &Compiled, target: Target) -> Result<Vec<u8>, E
             };
             let pipeline = naga::back::glsl::PipelineOptions {
                 shader_stage: naga::ShaderStage::Fragment,
-                entry_point: FRAGMENT_ENTRY.to_string(),
+                entry_point: fragment.to_string(),
                 multiview: None,
             };
             let mut text = String::new();
@@ -156,7 +176,15 @@ pub fn export_compiled(compiled: &Compiled, target: Target) -> Result<Vec<u8>, E
             )
             .map_err(|e| fail(e.to_string()))?;
             writer.write().map_err(|e| fail(e.to_string()))?;
-            if target == Target::Glsl {
+            // naga's GLSL front end reads no combined image samplers (a multi-pass
+            // material's buffers): glslangValidator checks those in the tests.
+            let binds_textures = (naga_module.global_variables.iter()).any(|(_, variable)| {
+                matches!(
+                    naga_module.types[variable.ty].inner,
+                    naga::TypeInner::Image { .. }
+                )
+            });
+            if target == Target::Glsl && !binds_textures {
                 check_glsl(&text).map_err(fail)?;
             }
             Ok(text.into_bytes())

@@ -42,14 +42,23 @@ struct Plan {
 }
 
 /// The module of `graph` with a function per group it uses, or `None` where the
-/// graph has no group node, the module has parameter slots, or a level does not check
+/// graph has no group node or has an image node, the module has parameter
+/// slots, or a level does not check
 /// on its own (the flattened module is then the one).
 pub(super) fn compile(
     graph: &Graph,
     flat: &CheckedGraph,
     options: &CompileOptions,
 ) -> Option<Result<WgslModule, CompileError>> {
-    if options.params.has_slots() || !graph.nodes.iter().any(|n| group::group_name(n).is_some()) {
+    // A graph with an image node compiles inlined: a group function cannot read
+    // buffers, and a group's unused pins may hold cuts the flat graph prunes.
+    let samples = (graph.groups.values().flat_map(|group| &group.nodes))
+        .chain(&graph.nodes)
+        .any(|node| node.kind.samples());
+    if options.params.has_slots()
+        || samples
+        || !graph.nodes.iter().any(|n| group::group_name(n).is_some())
+    {
         return None;
     }
     let interfaces = group::interfaces(&graph.groups).ok()?;
@@ -97,7 +106,12 @@ pub(super) fn compile(
         functions.push_str(&function_text(plan, &mut emitter, &interfaces[&plan.name]));
     }
     let (blocks, _) = emitter.body(&top, &flat.bindings, &BTreeMap::new());
-    Some(assemble(flat, emitter, &functions, &blocks, uses))
+    let around = super::Around {
+        functions: &functions,
+        buffers: "",
+        entry: super::parts::Entry::MATERIAL,
+    };
+    Some(assemble(flat, emitter, around, &blocks, uses))
 }
 
 /// A call with nothing in it, left where a plan's call was moved out.

@@ -5,7 +5,7 @@ use std::collections::BTreeSet;
 use std::sync::OnceLock;
 
 /// The library sources, one family per file.
-const SOURCES: [(&str, &str); 17] = [
+const SOURCES: [(&str, &str); 18] = [
     ("hash", include_str!("../../shaders/hash.wgsl")),
     ("value", include_str!("../../shaders/value.wgsl")),
     ("gradient", include_str!("../../shaders/gradient.wgsl")),
@@ -32,6 +32,7 @@ const SOURCES: [(&str, &str); 17] = [
     ),
     ("colour", include_str!("../../shaders/colour.wgsl")),
     ("map_range", include_str!("../../shaders/map_range.wgsl")),
+    ("buffers", include_str!("../../shaders/buffers.wgsl")),
 ];
 
 /// The contract structs every exported module starts with.

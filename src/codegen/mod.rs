@@ -9,8 +9,10 @@ mod body;
 pub mod export;
 mod functions;
 pub mod library;
+pub mod manifest;
 mod naming;
 mod parts;
+pub mod passes;
 mod validate;
 
 pub use crate::nodes::emit::{Detail, float_literal, value_literal};
@@ -97,8 +99,12 @@ pub struct WgslModule {
     pub library: Vec<String>,
     /// The validated naga module.
     pub module: naga::Module,
-    /// Parameter slots (uniform mode only; empty when baked).
+    /// Parameter slots (uniform mode only; empty when baked). A multi-pass material's
+    /// modules share one numbering: each holds the slots of the modules before it too,
+    /// and the material's (the last) holds every slot.
     pub params: Vec<ParamSlot>,
+    /// Whether the module declares a parameter block at group 1 (and so reads it).
+    pub binds_params: bool,
     /// The members of `VeneerParameters`, one per exposed parameter in the order of
     /// the checked graph's `parameters` (named mode only).
     pub members: Vec<crate::graph::parameters::Member>,
@@ -264,6 +270,9 @@ pub struct Compiled {
     pub preview: Preview,
     /// The options the module was compiled with.
     pub options: CompileOptions,
+    /// The passes that render the buffers the module reads, in order (none for a
+    /// graph without sampled inputs).
+    pub passes: passes::Passes,
 }
 
 impl Compiled {
@@ -283,15 +292,19 @@ impl Compiled {
 pub fn compile(graph: &Graph, options: &CompileOptions) -> Result<Compiled, CompileError> {
     counts::checked();
     let checked = graph::check(graph).map_err(CompileError::Check)?;
-    let module = match functions::compile(graph, &checked, options) {
-        Some(module) => module?,
-        None => compile_checked(&checked, options)?,
+    let (module, passes) = match passes::plan(&checked, options)? {
+        Some(planned) => planned,
+        None => match functions::compile(graph, &checked, options) {
+            Some(module) => (module?, passes::Passes::default()),
+            None => (single_pass(&checked, options)?, passes::Passes::default()),
+        },
     };
     Ok(Compiled {
         checked,
         module,
         preview: graph.preview.clone(),
         options: *options,
+        passes,
     })
 }
 
@@ -499,11 +512,20 @@ fn named_block(graph: &CheckedGraph, members: &[crate::graph::parameters::Member
 
 /// Compiles a graph checked by [`graph::check`] to a validated WGSL module, for callers
 /// that have the checked graph already (`veneer check` lints it meanwhile). Groups are
-/// inlined: every node's code sits in `veneer_material`.
+/// inlined: every node's code sits in `veneer_material`. A multi-pass graph's passes
+/// are planned and validated too; its material's module is the one returned.
 pub fn compile_checked(
     graph: &CheckedGraph,
     options: &CompileOptions,
 ) -> Result<WgslModule, CompileError> {
+    match passes::plan(graph, options)? {
+        Some((module, _)) => Ok(module),
+        None => single_pass(graph, options),
+    }
+}
+
+/// The module of a checked graph without sampled inputs, groups inlined.
+fn single_pass(graph: &CheckedGraph, options: &CompileOptions) -> Result<WgslModule, CompileError> {
     counts::emitted();
     let uses = SurfaceUse::of(graph);
     let members = if options.params == ParamMode::Named {
@@ -518,22 +540,39 @@ pub fn compile_checked(
         &members,
     );
     let (blocks, _) = emitter.body(graph, &graph.bindings, &Default::default());
-    assemble(graph, emitter, "", &blocks, uses)
+    let around = Around {
+        functions: "",
+        buffers: "",
+        entry: parts::Entry::MATERIAL,
+    };
+    assemble(graph, emitter, around, &blocks, uses)
+}
+
+/// What a module holds around its body: group functions, the buffers it reads, and the
+/// function the body becomes.
+struct Around<'a> {
+    /// The group functions the body calls.
+    functions: &'a str,
+    /// The declarations of the buffers the body reads (multi-pass materials).
+    buffers: &'a str,
+    entry: parts::Entry,
 }
 
 /// The module around the material's `blocks`: the header, the contract structs, the
-/// parameter block, the library items the bodies called, the group `functions` and
-/// `veneer_material`, validated. `graph` (flattened) names the nodes in errors.
+/// parameter block, the buffers read, the library items the bodies called, the group
+/// functions and the entry function, validated. `graph` (flattened) names the nodes in
+/// errors.
 fn assemble(
     graph: &CheckedGraph,
     emitter: body::Emitter,
-    functions: &str,
+    around: Around,
     blocks: &[Block],
     uses: SurfaceUse,
 ) -> Result<WgslModule, CompileError> {
     let mode = emitter.mode;
     let members = emitter.members.to_vec();
     let params = emitter.params;
+    let declares_slots = params.len() > emitter.first_slot;
     let items = library::closure(emitter.roots.iter().map(String::as_str));
     let mut source = String::new();
     let title = if graph.name.is_empty() {
@@ -545,7 +584,10 @@ fn assemble(
         "// Material {title}, generated by Veneer {}.\n",
         env!("CARGO_PKG_VERSION")
     ));
-    source.push_str("// Entry point: veneer_material(s: VeneerSurface) -> VeneerMaterial.\n\n");
+    source.push_str(&format!(
+        "// Entry point: {}(s: VeneerSurface) -> {}.\n\n",
+        around.entry.name, around.entry.returns
+    ));
     for line in library::SURFACE
         .lines()
         .filter(|line| !line.starts_with("//!"))
@@ -554,12 +596,13 @@ fn assemble(
         source.push_str(line);
         source.push('\n');
     }
-    if !params.is_empty() {
+    if declares_slots {
         source.push_str(&params_block(graph, &params, mode));
     }
     if !members.is_empty() {
         source.push_str(&named_block(graph, &members));
     }
+    source.push_str(around.buffers);
     let mut family = "";
     for item in &items {
         if item.family != family {
@@ -569,8 +612,8 @@ fn assemble(
         source.push('\n');
         source.push_str(&item.text);
     }
-    source.push_str(functions);
-    let node_spans = parts::write_material(&mut source, blocks);
+    source.push_str(around.functions);
+    let node_spans = parts::write_entry(&mut source, blocks, around.entry);
 
     let library = items.into_iter().map(|item| item.name).collect();
     let mut module = WgslModule {
@@ -578,6 +621,7 @@ fn assemble(
         node_spans,
         library,
         module: naga::Module::default(),
+        binds_params: declares_slots || !members.is_empty(),
         params,
         members,
         uses,

@@ -22,12 +22,43 @@ pub struct Block {
     pub reads: Vec<usize>,
 }
 
-/// Appends the material's function(s) for `body` (in dependency order, the material
-/// node last) to `source`; returns where each node's code landed.
-pub fn write_material(source: &mut String, body: &[Block]) -> Vec<(Range<usize>, NodeId)> {
+/// The function a module's body becomes: its name and what it returns.
+#[derive(Clone, Copy)]
+pub struct Entry {
+    pub name: &'static str,
+    pub returns: &'static str,
+}
+
+impl Entry {
+    /// `veneer_material(s) -> VeneerMaterial`: a material's (or its last pass's) entry.
+    pub const MATERIAL: Entry = Entry {
+        name: "veneer_material",
+        returns: "VeneerMaterial",
+    };
+    /// `veneer_pass(s) -> vec4f`: a pass rendering one value into a buffer.
+    pub const PASS: Entry = Entry {
+        name: "veneer_pass",
+        returns: "vec4f",
+    };
+}
+
+/// Appends the function(s) `entry` for `body` (in dependency order, the block that
+/// returns last) to `source`; returns where each node's code landed.
+pub fn write_entry(
+    source: &mut String,
+    body: &[Block],
+    entry: Entry,
+) -> Vec<(Range<usize>, NodeId)> {
+    let Entry {
+        name: function,
+        returns: function_returns,
+    } = entry;
     let mut spans = Vec::with_capacity(body.len());
     if body.len() <= PART_NODES {
-        source.push_str("\n// ---- the material graph\n\nfn veneer_material(s: VeneerSurface) -> VeneerMaterial {\n");
+        let _ = write!(
+            source,
+            "\n// ---- the material graph\n\nfn {function}(s: VeneerSurface) -> {function_returns} {{\n"
+        );
         write_blocks(source, body, &mut spans);
         source.push_str("}\n");
         return spans;
@@ -68,7 +99,7 @@ pub fn write_material(source: &mut String, body: &[Block]) -> Vec<(Range<usize>,
         let last = number == parts.len();
         let outputs = bound(&handed_on[part]);
         let returns = if last {
-            " -> VeneerMaterial".to_string()
+            format!(" -> {function_returns}")
         } else if outputs.is_empty() {
             String::new()
         } else {
@@ -80,11 +111,8 @@ pub fn write_material(source: &mut String, body: &[Block]) -> Vec<(Range<usize>,
             format!(" -> veneer_part_{number}")
         };
         let inputs = bound(&reads[part]);
-        let _ = write!(
-            source,
-            "\nfn veneer_material_part_{number}(s: VeneerSurface"
-        );
-        let mut call = format!("veneer_material_part_{number}(s");
+        let _ = write!(source, "\nfn {function}_part_{number}(s: VeneerSurface");
+        let mut call = format!("{function}_part_{number}(s");
         for (b, name, ty) in &inputs {
             let _ = write!(source, ", {name}: {ty}");
             let _ = write!(call, ", veneer_values_{}.{name}", part_of(*b) + 1);
@@ -106,7 +134,10 @@ pub fn write_material(source: &mut String, body: &[Block]) -> Vec<(Range<usize>,
             (false, true) => writeln!(calls, "    {call});"),
         };
     }
-    source.push_str("\nfn veneer_material(s: VeneerSurface) -> VeneerMaterial {\n");
+    let _ = writeln!(
+        source,
+        "\nfn {function}(s: VeneerSurface) -> {function_returns} {{"
+    );
     source.push_str(&calls);
     source.push_str("}\n");
     spans

@@ -2,11 +2,15 @@
 //! evaluated at one point in f32 (like the GPU) or f64 (the reference). Each node kind's
 //! formulas are in its definition (`nodes/`).
 
+mod passes;
+
 pub use crate::nodes::cpu::Surface;
+pub use crate::nodes::formulas::buffers::Image;
 pub use crate::nodes::formulas::real::Real;
+pub use passes::Buffers;
 
 use crate::graph::check::{CheckedGraph, CheckedNode, InputSource};
-use crate::graph::{CheckError, Graph, NodeKind};
+use crate::graph::{CheckError, Graph};
 use crate::nodes::cpu::Eval;
 use crate::nodes::formulas::real::V3;
 use std::collections::BTreeMap;
@@ -78,26 +82,60 @@ impl Evaluator {
         Evaluator { graph, index }
     }
 
-    /// The material at one point, in precision `R`.
+    /// The material at one point, in precision `R` (a graph without sampled inputs).
     pub fn eval<R: Real>(&self, surface: &Surface<R>) -> Material<R> {
-        let mut values: Vec<Vec<V3<R>>> = Vec::with_capacity(self.graph.order.len());
-        for checked in &self.graph.order {
-            let inputs: Vec<V3<R>> = checked
-                .inputs
-                .iter()
-                .map(|source| match source {
-                    InputSource::Wire { node, output, .. } => values[self.index[node]][*output],
-                    InputSource::Const(value) => value.components().map(R::c),
-                    InputSource::Position => surface.position,
-                })
-                .collect();
-            let io = Eval::new(&checked.signature.inputs, &inputs, surface);
-            if checked.node.kind == NodeKind::Material {
-                return Material::from_inputs(&io);
-            }
-            values.push(checked.node.kind.eval(&io));
+        self.eval_reading(surface, &Buffers::default())
+    }
+
+    /// The material at one point, its sampled inputs reading `buffers` (the passes
+    /// rendered by [`Evaluator::render_passes`]).
+    pub fn eval_reading<R: Real>(&self, surface: &Surface<R>, buffers: &Buffers) -> Material<R> {
+        let material = self.graph.order.len() - 1;
+        let values = self.values(surface, buffers, 0..material);
+        let checked = &self.graph.order[material];
+        let inputs = self.inputs(checked, &values, surface);
+        Material::from_inputs(&Eval::new(&checked.signature.inputs, &inputs, surface))
+    }
+
+    /// The outputs of the nodes at `positions` (ascending, in the checked order; the
+    /// others stay empty), at one point.
+    fn values<R: Real>(
+        &self,
+        surface: &Surface<R>,
+        buffers: &Buffers,
+        positions: impl IntoIterator<Item = usize>,
+    ) -> Vec<Vec<V3<R>>> {
+        let mut values: Vec<Vec<V3<R>>> = vec![Vec::new(); self.graph.order.len()];
+        for at in positions {
+            let checked = &self.graph.order[at];
+            let inputs = self.inputs(checked, &values, surface);
+            let images = buffers.of(checked);
+            let io = Eval::new(&checked.signature.inputs, &inputs, surface).with_images(&images);
+            values[at] = checked.node.kind.eval(&io);
         }
-        unreachable!("a checked graph ends with its material node")
+        values
+    }
+
+    /// The input values of `checked`, its wires reading `values`.
+    fn inputs<R: Real>(
+        &self,
+        checked: &CheckedNode,
+        values: &[Vec<V3<R>>],
+        surface: &Surface<R>,
+    ) -> Vec<V3<R>> {
+        checked
+            .inputs
+            .iter()
+            .map(|source| match source {
+                // A sampled input's upstream is in another pass: the node reads its
+                // buffer instead.
+                InputSource::Wire { node, output, .. } => (values[self.index[node]].get(*output))
+                    .copied()
+                    .unwrap_or([R::c(0.0); 3]),
+                InputSource::Const(value) => value.components().map(R::c),
+                InputSource::Position => surface.position,
+            })
+            .collect()
     }
 }
 

@@ -82,6 +82,36 @@ impl CheckedGraph {
         self.index.get(id)
     }
 
+    /// The nodes at positions `keep` (ascending) of the order, as a graph of their own
+    /// (one pass of a multi-pass material): wires from nodes left out stay, naming
+    /// nodes the subset does not hold.
+    pub fn subset(&self, keep: &[usize]) -> CheckedGraph {
+        let order: Vec<CheckedNode> = keep.iter().map(|&k| self.order[k].clone()).collect();
+        let max_id = order.iter().map(|checked| checked.node.id).max();
+        let mut index = IdIndex::new(order.len(), max_id);
+        for (position, checked) in order.iter().enumerate() {
+            index.insert_first(checked.node.id, position);
+        }
+        CheckedGraph {
+            order,
+            index,
+            ..self.clone_settings()
+        }
+    }
+
+    /// The graph's settings and parameters without its nodes.
+    fn clone_settings(&self) -> CheckedGraph {
+        CheckedGraph {
+            name: self.name.clone(),
+            alpha: self.alpha,
+            shading: self.shading,
+            order: Vec::new(),
+            parameters: self.parameters.clone(),
+            bindings: self.bindings.clone(),
+            index: IdIndex::new(0, None),
+        }
+    }
+
     /// The material output node.
     pub fn material(&self) -> &CheckedNode {
         self.order
@@ -364,6 +394,16 @@ impl<'g> Checker<'g> {
             });
             let source = if let Some(from) = from {
                 from
+            } else if pin.sampled {
+                // A buffer is rendered from a wire's upstream: a constant has none.
+                self.error(
+                    Some(node),
+                    format!(
+                        "input '{}' ({}) is read as a buffer and must be connected",
+                        pin.name, pin.ty
+                    ),
+                );
+                InputSource::Const(Value::Float(0.0).convert(pin.ty))
             } else if let Some(value) = node.inputs.get(pin.name) {
                 InputSource::Const(value.convert(pin.ty))
             } else {

@@ -183,6 +183,7 @@ impl Interface {
                     ty: input.ty,
                     default: PinDefault::Const(input.default.convert(input.ty)),
                     range: input.pin_range(),
+                    sampled: false,
                 }
             })
             .collect();

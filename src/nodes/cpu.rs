@@ -1,6 +1,7 @@
 //! The interface through which a node kind evaluates on the CPU: its inputs by pin
 //! name, as three lanes in precision `R`, and the surface point.
 
+use super::formulas::buffers::Image;
 use super::formulas::real::{Real, V3};
 use super::pins::InputPin;
 
@@ -33,6 +34,8 @@ impl<R: Real> Surface<R> {
 pub struct Eval<'a, R> {
     pins: &'a [InputPin],
     inputs: &'a [V3<R>],
+    /// The buffer of each sampled input, by pin (empty when the node has none).
+    images: &'a [Option<&'a Image>],
     /// The point being shaded.
     pub surface: &'a Surface<R>,
 }
@@ -43,8 +46,29 @@ impl<'a, R: Real> Eval<'a, R> {
         Eval {
             pins,
             inputs,
+            images: &[],
             surface,
         }
+    }
+
+    /// The same node reading `images` for its sampled inputs (one entry per pin).
+    pub fn with_images(self, images: &'a [Option<&'a Image>]) -> Self {
+        Eval { images, ..self }
+    }
+
+    /// The buffer of sampled input pin `pin`. The evaluator renders every sampled
+    /// input's buffer before it evaluates the node: a missing one is a bug.
+    pub fn image(&self, pin: &str) -> &'a Image {
+        self.images
+            .get(super::pins::pin_index(self.pins, pin))
+            .copied()
+            .flatten()
+            .unwrap_or_else(|| panic!("sampled input '{pin}' evaluated without its buffer"))
+    }
+
+    /// The point's domain coordinate (its uv), where buffers are read.
+    pub fn domain(&self) -> [f64; 2] {
+        self.surface.uv.map(R::to_f64)
     }
 
     /// The value of input pin `pin`. A name the kind does not have is a bug in its

@@ -102,6 +102,7 @@ pub mod emit;
 mod file_form;
 pub mod formulas;
 pub mod interval;
+pub mod passes;
 pub mod pins;
 pub mod ranges;
 pub mod settings;
@@ -119,6 +120,7 @@ mod math;
 mod noise;
 mod output;
 mod patterns;
+mod sampled;
 mod vectors;
 
 pub use cellular::Worley;
@@ -131,12 +133,14 @@ pub use inputs::{Constant, Field};
 pub use mapping::{Clamp, MapRange, MapRangeMode, Mix, Step, Switch};
 pub use math::{Math, Unary};
 pub use noise::{Noise, NoiseBump};
+pub use sampled::{Blur, Buffer, HeightToNormal, NormalConvention, RadiusUnit, Warp};
 pub use vectors::{Combine, Dot, Length, Normalize, Split};
 
 use cpu::Eval;
 use emit::Emit;
 use formulas::real::{Real, V3};
 use interval::Lanes;
+use passes::{BufferSpec, Stage};
 use pins::Signature;
 use ranges::Ranges;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
@@ -154,13 +158,14 @@ pub enum Category {
     Field,
     Math,
     Colour,
+    Image,
     Output,
     Group,
 }
 
 impl Category {
     /// Every category, in menu order.
-    pub const ALL: [Category; 11] = [
+    pub const ALL: [Category; 12] = [
         Category::Input,
         Category::Coordinates,
         Category::Noise,
@@ -170,6 +175,7 @@ impl Category {
         Category::Field,
         Category::Math,
         Category::Colour,
+        Category::Image,
         Category::Output,
         Category::Group,
     ];
@@ -186,6 +192,7 @@ impl Category {
             Category::Field => "Distance field",
             Category::Math => "Math",
             Category::Colour => "Colour",
+            Category::Image => "Image",
             Category::Output => "Output",
             Category::Group => "Groups",
         }
@@ -219,6 +226,18 @@ pub trait Definition {
     /// setting names it better (a Math node's operation).
     fn shown_title(&self) -> String {
         self.title().to_string()
+    }
+    /// The texel-space passes the node runs over its sampled input's buffer before it
+    /// reads it, built from its inputs' constants (`constant(pin)`, `None` when the pin
+    /// is wired); an error names what must be constant. None for most kinds.
+    fn stages(&self, constant: &dyn Fn(&str) -> Option<f64>) -> Result<Vec<Stage>, String> {
+        let _ = constant;
+        Ok(Vec::new())
+    }
+    /// How the buffer of the node's sampled input is stored, when the node sets it (a
+    /// Buffer node); sampled inputs wired to this node's output read the same buffer.
+    fn buffer(&self) -> Option<BufferSpec> {
+        None
     }
     /// A picture of the settings that the editor draws in the node's body and its
     /// inspector (the colour ramp's gradient); none by default.
@@ -402,7 +421,7 @@ macro_rules! registry {
     };
 }
 
-registry!(@gather [] [] inputs coordinates noise fractal cellular patterns fields math mapping vectors colour output group);
+registry!(@gather [] [] inputs coordinates noise fractal cellular patterns fields math mapping vectors colour sampled output group);
 
 impl NodeKind {
     /// A short human-readable name (used for default labels and messages).
@@ -423,6 +442,12 @@ impl NodeKind {
     /// The lattice basis the node samples, if any.
     pub fn basis(&self) -> Option<Basis> {
         self.definition().basis()
+    }
+
+    /// Whether the node reads an input as a buffer (at other points than the one
+    /// shaded): a graph using it renders passes.
+    pub fn samples(&self) -> bool {
+        self.signature().inputs.iter().any(|pin| pin.sampled)
     }
 }
 

@@ -67,6 +67,9 @@ pub struct InputPin {
     pub ty: ValueType,
     pub default: PinDefault,
     pub range: PinRange,
+    /// Whether the node reads its upstream at other points than the one being shaded:
+    /// the compiler renders the upstream into a buffer (a pass) and the node samples it.
+    pub sampled: bool,
 }
 
 impl InputPin {
@@ -78,6 +81,23 @@ impl InputPin {
                 soft_max,
                 ..self.range
             },
+            ..self
+        }
+    }
+
+    /// The same pin read as a buffer (see [`InputPin::sampled`]); it must be wired.
+    pub const fn sampled(self) -> InputPin {
+        InputPin {
+            sampled: true,
+            default: PinDefault::Required,
+            ..self
+        }
+    }
+
+    /// The same pin stopped at `min` in the inspector, offered within its soft span.
+    pub const fn at_least(self, min: f64) -> InputPin {
+        InputPin {
+            range: PinRange { min, ..self.range },
             ..self
         }
     }
@@ -218,6 +238,7 @@ pub const fn input(name: &'static str, ty: ValueType, default: PinDefault) -> In
         ty,
         default,
         range: PinRange::ANY,
+        sampled: false,
     }
 }
 /// An output pin.

@@ -1,8 +1,13 @@
 //! The flat render: a material's outputs over a rectangle of the plane y = Y.
 
+use super::params::ParamBlock;
+use super::passes::PassRenderer;
 use super::tiles::{FORMAT, TileDraw, clear_pass, render_bands, render_tiled};
 use super::timing::time_pass;
 use super::{GpuContext, RenderError, shader_source};
+use crate::codegen::Compiled;
+use crate::codegen::passes::Passes;
+use std::sync::{Arc, Mutex};
 
 /// The part of the plane y = `y` that the image covers: x from `x0` to `x1` left to
 /// right, z from `z0` to `z1` top to bottom.
@@ -70,7 +75,10 @@ struct FlatViewUniform {
     size: f32,
     time: f32,
     channels: u32,
-    padding: [f32; 2],
+    /// 1 when the surface uv is the pixel's place in the rectangle (the domain
+    /// coordinate of a multi-pass material), 0 for the contract's uv 0.
+    domain_uv: u32,
+    padding: f32,
 }
 
 const ENTRY_POINTS: &str = concat!(
@@ -84,9 +92,85 @@ pub struct FlatRenderer {
     pipeline: wgpu::RenderPipeline,
     uniform: wgpu::Buffer,
     bind_group: wgpu::BindGroup,
+    /// The passes of a multi-pass material, rendered before the material.
+    passes: Option<PassRenderer>,
+    /// The parameter values of a material compiled with slots, and their bind group at
+    /// group 1 of the material's pipeline (when its module reads them).
+    params: Option<(Arc<ParamBlock>, Option<wgpu::BindGroup>)>,
+    /// The material's buffers, bound at group 2 (multi-pass materials).
+    buffers: Mutex<Option<wgpu::BindGroup>>,
 }
 
 impl FlatRenderer {
+    /// Builds the pipelines of a compiled material and of its passes, if it has any.
+    pub fn for_compiled(
+        gpu: &GpuContext,
+        compiled: &Compiled,
+    ) -> Result<FlatRenderer, RenderError> {
+        let module = &compiled.module;
+        let passes = (!compiled.passes.is_empty()).then_some(&compiled.passes);
+        FlatRenderer::with_passes(
+            gpu,
+            &module.source,
+            module.params.len(),
+            module.binds_params,
+            passes,
+        )
+    }
+
+    /// Builds the pipelines of a material module with `slots` parameter slots (read by
+    /// the module itself when `binds_params`; set with [`FlatRenderer::write_params`])
+    /// and of its passes.
+    pub fn with_passes(
+        gpu: &GpuContext,
+        material_wgsl: &str,
+        slots: usize,
+        binds_params: bool,
+        passes: Option<&Passes>,
+    ) -> Result<FlatRenderer, RenderError> {
+        let mut renderer = FlatRenderer::new(gpu, material_wgsl)?;
+        let block = ParamBlock::new(gpu, slots).map(Arc::new);
+        if let Some(passes) = passes {
+            renderer.passes = Some(PassRenderer::new(gpu, passes, block.as_ref())?);
+        }
+        renderer.params = block.map(|block| {
+            let group = binds_params.then(|| block.bind_group(gpu, &renderer.pipeline));
+            (block, group)
+        });
+        Ok(renderer)
+    }
+
+    /// Sets the values of the parameter slots (a material compiled with slots); the
+    /// passes render again at the next render when they changed.
+    pub fn write_params(&self, gpu: &GpuContext, values: &[[f32; 4]]) {
+        if let Some((block, _)) = &self.params
+            && block.write(gpu, values)
+            && let Some(passes) = &self.passes
+        {
+            passes.invalidate();
+        }
+    }
+
+    /// Renders the passes for an output of size² pixels over `rect` (when the material
+    /// has passes and they are not rendered for these already) and binds their buffers.
+    fn prepare(
+        &self,
+        gpu: &GpuContext,
+        rect: FlatRect,
+        size: u32,
+        time: f32,
+    ) -> Result<(), RenderError> {
+        rect.validate().map_err(RenderError::Invalid)?;
+        let Some(passes) = &self.passes else {
+            return Ok(());
+        };
+        passes.render(gpu, rect, size, time)?;
+        let reads = passes.reads();
+        let group = (!reads.is_empty()).then(|| passes.bind_group(gpu, &self.pipeline, reads));
+        *self.buffers.lock().expect("flat buffers") = group;
+        Ok(())
+    }
+
     /// Builds the pipeline for a material module (the output of `veneer compile`).
     pub fn new(gpu: &GpuContext, material_wgsl: &str) -> Result<FlatRenderer, RenderError> {
         let module = gpu.shader("flat render", &shader_source(material_wgsl, ENTRY_POINTS))?;
@@ -112,6 +196,9 @@ impl FlatRenderer {
             pipeline,
             uniform,
             bind_group,
+            passes: None,
+            params: None,
+            buffers: Mutex::new(None),
         })
     }
 
@@ -138,7 +225,7 @@ impl FlatRenderer {
         channels: FlatChannels,
         progress: impl FnMut(u32, u32),
     ) -> Result<Vec<[f32; 4]>, RenderError> {
-        rect.validate().map_err(RenderError::Invalid)?;
+        self.prepare(gpu, rect, size, time)?;
         let draw = self.tile_draw(gpu, rect, size, time, channels);
         render_tiled(gpu, size, draw, progress)
     }
@@ -178,7 +265,7 @@ impl FlatRenderer {
         progress: impl FnMut(u32, u32),
         band: impl FnMut(u32, Vec<[f32; 4]>) -> Result<Vec<[f32; 4]>, RenderError>,
     ) -> Result<(), RenderError> {
-        rect.validate().map_err(RenderError::Invalid)?;
+        self.prepare(gpu, rect, size, time)?;
         let draw = self.tile_draw(gpu, rect, size, time, channels);
         render_bands(gpu, size, band_rows, draw, progress, band)
     }
@@ -193,6 +280,7 @@ impl FlatRenderer {
         size: u32,
         time: f32,
     ) -> Result<std::time::Duration, RenderError> {
+        self.prepare(gpu, rect, size, time)?;
         time_pass(gpu, size, |encoder, writes| {
             self.write_view(gpu, rect, size, time, FlatChannels::AlbedoAlpha, [0.0; 2]);
             let target = gpu
@@ -220,7 +308,7 @@ impl FlatRenderer {
         origin: (i64, i64),
         extent: (u32, u32),
     ) -> Result<Vec<[f32; 4]>, RenderError> {
-        rect.validate().map_err(RenderError::Invalid)?;
+        self.prepare(gpu, rect, size, time)?;
         let mut pixels = vec![[0.0f32; 4]; extent.0 as usize * extent.1 as usize];
         let tile = super::tile_size(gpu);
         for (at, part) in super::tiles::tile_grid(extent, (tile, tile)) {
@@ -271,7 +359,8 @@ impl FlatRenderer {
             size: size as f32,
             time,
             channels: channels as u32,
-            padding: [0.0; 2],
+            domain_uv: u32::from(self.passes.is_some()),
+            padding: 0.0,
         };
         gpu.queue
             .write_buffer(&self.uniform, 0, bytemuck::bytes_of(&view));
@@ -280,6 +369,12 @@ impl FlatRenderer {
     fn draw(&self, pass: &mut wgpu::RenderPass<'_>) {
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, &self.bind_group, &[]);
+        if let Some((_, Some(params))) = &self.params {
+            pass.set_bind_group(1, params, &[]);
+        }
+        if let Some(buffers) = self.buffers.lock().expect("flat buffers").as_ref() {
+            pass.set_bind_group(2, buffers, &[]);
+        }
         pass.draw(0..3, 0..1);
     }
 }

@@ -112,6 +112,19 @@ pub fn baked_parameters(compiled: &Compiled) -> Result<(), RenderError> {
     }
 }
 
+/// Refuses a multi-pass material for `what` (a mesh view, a UV bake): its buffers are
+/// rendered over the flat domain only, until passes over a mesh's UV layout exist.
+pub fn flat_passes_only(compiled: &Compiled, what: &str) -> Result<(), RenderError> {
+    match compiled.passes.passes.first() {
+        None => Ok(()),
+        Some(pass) => Err(RenderError::Invalid(format!(
+            "the material reads buffers ({} passes, the first rendering {}), which render over the flat domain only: use a flat view (`--flat`, a tile or plane bake) instead of {what}",
+            compiled.passes.passes.len(),
+            pass.label
+        ))),
+    }
+}
+
 /// Renders a compiled material as `view` at size×size pixels and time `time`, with the
 /// detail it was compiled with (snapshots and the CPU reference expect every octave).
 pub fn render_material(
@@ -176,7 +189,7 @@ pub fn render_material_with(
     baked_parameters(compiled)?;
     let module = &compiled.module;
     let flat = |rect: FlatRect| -> Result<Rendered, RenderError> {
-        let pixels = FlatRenderer::new(gpu, &module.source)?.render(gpu, rect, size, time)?;
+        let pixels = FlatRenderer::for_compiled(gpu, compiled)?.render(gpu, rect, size, time)?;
         if let Some(why) = super::non_finite("albedo", &pixels, size as usize, 0) {
             return Err(RenderError::Invalid(why));
         }
@@ -195,6 +208,7 @@ pub fn render_material_with(
         View::Flat(rect) => flat(*rect),
         View::PreviewFlat => flat(preview_rect(preview)),
         View::Mesh(name) => {
+            flat_passes_only(compiled, "a mesh view")?;
             let name = name.as_deref().unwrap_or(&preview.mesh);
             let mut mesh = mesh_with_fields(preview, name, &module.uses, |_, _| {})?;
             let mut mesh_view = MeshView::for_preview(preview);

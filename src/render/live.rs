@@ -7,8 +7,9 @@
 use super::draft_scale::DraftScale;
 use super::mesh_view::{MeshPipeline, MeshTarget, MeshView};
 use super::readback::read_texture;
-use super::{EnvironmentMaps, GpuContext, GpuMesh, RenderError};
-use crate::codegen::SurfaceUse;
+use super::{EnvironmentMaps, FlatChannels, FlatRenderer, GpuContext, GpuMesh, RenderError};
+use crate::codegen::passes::Passes;
+use crate::codegen::{Compiled, SurfaceUse};
 use crate::mesh::Mesh;
 use std::sync::Arc;
 use std::time::Instant;
@@ -45,6 +46,28 @@ pub struct LiveMaterialCode {
     pub slots: usize,
     /// What of the surface it uses (height, bump, fields).
     pub uses: SurfaceUse,
+    /// Whether the module reads its parameter block (a multi-pass material's slots may
+    /// all be its passes').
+    pub binds_params: bool,
+    /// The passes of a multi-pass material, which is drawn flat (the unit tile) rather
+    /// than on the mesh.
+    pub passes: Option<Arc<Passes>>,
+}
+
+impl LiveMaterialCode {
+    /// The code of `compiled` (a material compiled with parameter slots) as generation
+    /// `generation`.
+    pub fn new(generation: u64, compiled: &Compiled) -> LiveMaterialCode {
+        let module = &compiled.module;
+        LiveMaterialCode {
+            generation,
+            wgsl: Arc::from(module.source.as_str()),
+            slots: module.params.len(),
+            uses: module.uses,
+            binds_params: module.binds_params,
+            passes: (!compiled.passes.is_empty()).then(|| Arc::new(compiled.passes.clone())),
+        }
+    }
 }
 
 impl PartialEq for LiveMaterialCode {
@@ -61,6 +84,8 @@ pub struct LiveRenderer {
     /// The newest material's generation and its pipelines by quality (draft, full),
     /// each built when first needed.
     pipelines: Option<(u64, [Option<MeshPipeline>; 2])>,
+    /// The newest multi-pass material's generation and its flat renderer.
+    flat: Option<(u64, FlatRenderer)>,
     mesh: Option<(String, GpuMesh)>,
     target: Option<(Quality, MeshTarget)>,
     /// How coarse the next draft is, from the last drafts' drawing times.
@@ -87,10 +112,10 @@ impl LiveRenderer {
         size: (u32, u32),
         quality: Quality,
     ) -> Result<((u32, u32), Vec<u8>), RenderError> {
-        let (width, height) = match quality {
-            Quality::Draft => self.draft_scale.scaled(size),
-            Quality::Full => (size.0.max(1), size.1.max(1)),
-        };
+        if let Some(passes) = &material.passes {
+            return self.render_tile(gpu, material, passes, params, view.time, size, quality);
+        }
+        let (width, height) = self.image_size(size, quality);
         self.prepare(gpu, material, quality)?;
         if let Some((_, built)) = &mut self.pipelines
             && let Some(pipeline) = &mut built[quality as usize]
@@ -139,6 +164,63 @@ impl LiveRenderer {
             self.draft_scale.after_draft(started.elapsed());
         }
         Ok(((width, height), pixels))
+    }
+
+    /// The size of an image of `size` pixels drawn at `quality`.
+    fn image_size(&self, size: (u32, u32), quality: Quality) -> (u32, u32) {
+        match quality {
+            Quality::Draft => self.draft_scale.scaled(size),
+            Quality::Full => (size.0.max(1), size.1.max(1)),
+        }
+    }
+
+    /// Draws a multi-pass material flat: its albedo over the unit tile, centred in the
+    /// image, the tile's neighbours around it (where the buffers wrap, they repeat it).
+    /// Its passes render again only when the material or its parameter values change.
+    #[allow(clippy::too_many_arguments)]
+    fn render_tile(
+        &mut self,
+        gpu: &GpuContext,
+        material: &LiveMaterialCode,
+        passes: &Passes,
+        params: &[[f32; 4]],
+        time: f32,
+        size: (u32, u32),
+        quality: Quality,
+    ) -> Result<((u32, u32), Vec<u8>), RenderError> {
+        let (width, height) = self.image_size(size, quality);
+        if (self.flat.as_ref()).is_none_or(|(generation, _)| *generation != material.generation) {
+            let flat = FlatRenderer::with_passes(
+                gpu,
+                &material.wgsl,
+                material.slots,
+                material.binds_params,
+                Some(passes),
+            )?;
+            self.flat = Some((material.generation, flat));
+            self.materials_built += 1;
+        }
+        let (_, flat) = self.flat.as_ref().expect("built above");
+        flat.write_params(gpu, params);
+        let started = Instant::now();
+        let side = width.min(height);
+        let origin = (
+            -i64::from((width - side) / 2),
+            -i64::from((height - side) / 2),
+        );
+        let tile = crate::bake::UNIT_TILE;
+        let channels = FlatChannels::AlbedoAlpha;
+        let pixels =
+            flat.render_region(gpu, tile, side, time, channels, origin, (width, height))?;
+        gpu.take_errors()?;
+        if quality == Quality::Draft {
+            self.draft_scale.after_draft(started.elapsed());
+        }
+        let rgb = super::albedo_to_rgb8(&pixels);
+        let rgba = (rgb.chunks_exact(3))
+            .flat_map(|pixel| [pixel[0], pixel[1], pixel[2], 255])
+            .collect();
+        Ok(((width, height), rgba))
     }
 
     /// Builds the pipeline `material` needs at `quality` unless it is built already.

@@ -10,6 +10,8 @@ mod image;
 mod live;
 mod mesh_render;
 mod mesh_view;
+mod params;
+mod passes;
 mod readback;
 mod tessellation;
 mod thumbnails;
@@ -26,8 +28,8 @@ pub use environment::{
 pub use flat::{FlatChannels, FlatRect, FlatRenderer, albedo_to_rgb8, flat_points, non_finite};
 pub use gpu_mesh::GpuMesh;
 pub use image::{
-    Image, MeshLook, Rendered, View, baked_parameters, mesh_with_fields, preview_rect,
-    render_material, render_material_with,
+    Image, MeshLook, Rendered, View, baked_parameters, flat_passes_only, mesh_with_fields,
+    preview_rect, render_material, render_material_with,
 };
 pub use live::{LiveMaterialCode, LiveRenderer, Quality};
 pub use mesh_render::MeshRenderer;
@@ -35,6 +37,7 @@ pub use mesh_view::{
     Backdrop, COLOR_FORMAT, DEFAULT_KEY_LIGHT, MeshPipeline, MeshTarget, MeshView, Projection,
     Relief,
 };
+pub use passes::PassRenderer;
 pub use readback::read_texture;
 pub use tessellation::{Tessellated, tessellate};
 pub use thumbnails::{AtlasLayout, ThumbnailRenderer};

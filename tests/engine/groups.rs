@@ -3,7 +3,7 @@
 //! command, the named uniform export read by a wgpu program, and sharded batches.
 
 use crate::properties::random_graph;
-use crate::support::{cpu_flat_rgb8, flat_rgb8, root, run_veneer, temp_dir, veneer};
+use crate::support::{compiled_rgb8, cpu_flat_rgb8, flat_rgb8, root, run_veneer, temp_dir, veneer};
 use proptest::prelude::*;
 use std::collections::BTreeSet;
 use veneer::codegen::{CompileOptions, ParamMode, compile};
@@ -115,7 +115,7 @@ proptest! {
         prop_assume!(part.is_some());
         let (grouped, _) = part.expect("assumed");
         let compiled = compile(&grouped, &Default::default()).expect("compiles");
-        prop_assert_eq!(flat_rgb8(compiled.source(), RECT, 16), flat_rgb8(original.source(), RECT, 16));
+        prop_assert_eq!(compiled_rgb8(&compiled, RECT, 16), compiled_rgb8(&original, RECT, 16));
     }
 }
 

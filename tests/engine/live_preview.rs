@@ -23,12 +23,7 @@ fn live_preview(graph: &Graph) -> Vec<u8> {
         "the graph's {} parameters fit a uniform block",
         module.params.len()
     );
-    let code = LiveMaterialCode {
-        generation: 1,
-        wgsl: module.source.as_str().into(),
-        slots: module.params.len(),
-        uses: module.uses,
-    };
+    let code = LiveMaterialCode::new(1, live.compiled.as_ref().expect("it compiles"));
     let mesh = veneer::mesh::primitive(&graph.preview.mesh).expect("the preview mesh");
     let view = MeshView::for_preview(&graph.preview);
     let sky = gpu.sky().expect("the default environment");
@@ -66,4 +61,67 @@ fn the_preview_of_a_two_thousand_node_chain_matches_its_render() {
         save("render.png", &rendered.pixels);
         panic!("the preview differs from the render ({compared:?}); both in {dir:?}");
     }
+}
+
+/// The RGB of an RGBA8 image.
+fn rgb(rgba: &[u8]) -> Vec<u8> {
+    rgba.chunks_exact(4)
+        .flat_map(|pixel| [pixel[0], pixel[1], pixel[2]])
+        .collect()
+}
+
+#[test]
+fn a_multi_pass_material_previews_as_its_tile_and_a_value_edit_renders_its_passes_again() {
+    let gpu = gpu();
+    let path = crate::support::root("graphs/texture/blurred_noise.ron");
+    let graph = veneer::graph::load(&path).expect("loads");
+    let mut live = LiveMaterial::in_storage();
+    live.update(&graph);
+    let code = LiveMaterialCode::new(1, live.compiled.as_ref().expect("it compiles"));
+    assert!(code.passes.is_some(), "the material renders passes");
+    let mesh = veneer::mesh::primitive("plane").expect("a plane");
+    let view = MeshView::for_preview(&graph.preview);
+    let sky = gpu.sky().expect("the default environment");
+    let mut renderer = LiveRenderer::default();
+    let preview = |params: Vec<[f32; 4]>, renderer: &mut LiveRenderer| {
+        let (size, pixels) = renderer
+            .render(
+                gpu,
+                &code,
+                &params,
+                "plane",
+                &mesh,
+                &view,
+                &sky,
+                (SIZE, SIZE),
+                Quality::Full,
+            )
+            .expect("the preview draws");
+        assert_eq!(size, (SIZE, SIZE));
+        rgb(&pixels)
+    };
+    let rendered = |graph: &Graph| {
+        let baked = compile(graph, &CompileOptions::default()).expect("it compiles");
+        let tile = View::Flat(veneer::bake::UNIT_TILE);
+        render_material(gpu, &baked, &tile, SIZE, 0.0)
+            .expect("it renders")
+            .pixels
+    };
+    let first = preview(live.params(&graph), &mut renderer);
+    assert!(difference(&first, &rendered(&graph), 3, 1).passes());
+
+    // A value upstream of the blur: the same code, new parameter values, the passes
+    // rendered again by the same renderer.
+    let mut edited = graph.clone();
+    let grain = edited
+        .nodes
+        .iter()
+        .find(|n| n.label == "grain")
+        .expect("the noise")
+        .id;
+    edited.set_input(grain, "gain", veneer::graph::Value::Float(0.8));
+    assert!(!live.update(&edited), "a value edit does not recompile");
+    let second = preview(live.params(&edited), &mut renderer);
+    assert_ne!(first, second);
+    assert!(difference(&second, &rendered(&edited), 3, 1).passes());
 }

@@ -34,6 +34,7 @@ mod live_preview;
 mod meshes;
 mod node_kinds;
 mod parameter_export;
+mod passes;
 mod presets;
 mod properties;
 mod relief;

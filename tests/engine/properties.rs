@@ -3,7 +3,7 @@
 //! a panic); saving is byte-stable; and with the PCG hash the CPU evaluator agrees with
 //! the GPU flat render.
 
-use crate::support::{cpu_flat_rgb8, difference, flat_rgb8};
+use crate::support::{compiled_rgb8, cpu_flat_rgb8, difference};
 use proptest::prelude::*;
 use veneer::codegen::{CompileError, compile};
 use veneer::graph::{Basis, Graph, NodeKind, PinDefault, ValueType};
@@ -87,7 +87,7 @@ proptest! {
         let graph = random_graph(&kinds, &choices, false);
         let Ok(compiled) = compile(&graph, &Default::default()) else { return Ok(()) };
         let rect = FlatRect { x0: -2.0, z0: -1.5, x1: 3.0, z1: 2.5, y: 0.3 };
-        let diff = difference(&cpu_flat_rgb8(&graph, rect, 24), &flat_rgb8(compiled.source(), rect, 24), 3, 2);
+        let diff = difference(&cpu_flat_rgb8(&graph, rect, 24), &compiled_rgb8(&compiled, rect, 24), 3, 2);
         // Floors, fracts and steps can flip on the last bit: allow a few such pixels.
         prop_assert!(diff.share_outside <= 0.02, "{diff}\n{}", veneer::graph::to_ron(&graph));
     }

@@ -67,15 +67,28 @@ pub fn flat_rgb8(material_wgsl: &str, rect: FlatRect, size: u32) -> Vec<u8> {
     veneer::render::albedo_to_rgb8(&pixels)
 }
 
+/// The contract's flat render of a compiled material, its passes first if it has any.
+pub fn compiled_rgb8(compiled: &veneer::codegen::Compiled, rect: FlatRect, size: u32) -> Vec<u8> {
+    let renderer = FlatRenderer::for_compiled(gpu(), compiled).expect("the flat pipelines build");
+    let pixels = renderer
+        .render(gpu(), rect, size, 0.0)
+        .expect("the flat render runs");
+    veneer::render::albedo_to_rgb8(&pixels)
+}
+
 /// The CPU evaluator's (f32) version of the flat render: the same sample positions,
-/// computed with the same f32 arithmetic as shaders/render_flat.wgsl.
+/// computed with the same f32 arithmetic as shaders/render_flat.wgsl (a multi-pass
+/// material's buffers rendered first, as the GPU does).
 pub fn cpu_flat_rgb8(graph: &veneer::graph::Graph, rect: FlatRect, size: u32) -> Vec<u8> {
+    let passes = veneer::codegen::compile(graph, &Default::default())
+        .map(|compiled| compiled.passes)
+        .unwrap_or_default();
     let evaluator = veneer::eval::Evaluator::new(graph).expect("graph checks");
-    veneer::render::flat_points(rect, size)
+    evaluator
+        .flat::<f32>(&passes, rect, size, 0.0)
         .into_iter()
-        .flat_map(|point| {
-            evaluator
-                .eval(&veneer::eval::Surface::<f32>::at(point))
+        .flat_map(|material| {
+            material
                 .albedo
                 .map(|v| (255.0 * v.clamp(0.0, 1.0)).round() as u8)
         })

@@ -75,6 +75,7 @@ fn boundary_node(side: Boundary, definition: &GroupDef) -> Node {
             ty,
             default: PinDefault::Required,
             range: PinRange::ANY,
+            sampled: false,
         })
         .collect();
     let outputs: Vec<OutputPin> = definition
@@ -290,6 +291,7 @@ fn add_output(
         ty: source.ty,
         default: PinDefault::Required,
         range: PinRange::ANY,
+        sampled: false,
     };
     pins.inputs.insert(at, pin);
     snarl.connect(

@@ -4,6 +4,7 @@
 use crate::app::preview::live::LiveMaterial;
 use crate::app::preview::state::MaterialFrame;
 use crate::graph::Graph;
+use crate::render::LiveMaterialCode;
 use std::sync::Arc;
 
 /// Set in the generations of field-view materials, so that the preview never mistakes
@@ -14,7 +15,7 @@ pub(in crate::app) const FIELD_VIEW_GENERATIONS: u64 = 1 << 48;
 /// it changes) and the parameter values (worked out again only when the graph changes).
 #[derive(Default)]
 pub(in crate::app) struct FrameCache {
-    code: Option<(u64, Arc<str>)>,
+    code: Option<LiveMaterialCode>,
     /// The values, for the code generation and graph revision they were worked out for.
     params: Option<(ParamsKey, Arc<[[f32; 4]]>)>,
 }
@@ -24,7 +25,7 @@ impl FrameCache {
     pub fn has_code_of(&self, generation: u64) -> bool {
         self.code
             .as_ref()
-            .is_some_and(|(had, _)| *had == generation)
+            .is_some_and(|code| code.generation == generation)
     }
 }
 
@@ -39,13 +40,9 @@ pub(in crate::app) fn material_frame(
     graph: &Graph,
     revision: u64,
 ) -> Option<MaterialFrame> {
-    let module = &live.compiled.as_ref()?.module;
-    if cache
-        .code
-        .as_ref()
-        .is_none_or(|(generation, _)| *generation != live.generation)
-    {
-        cache.code = Some((live.generation, Arc::from(module.source.as_str())));
+    let compiled = live.compiled.as_ref()?;
+    if (cache.code.as_ref()).is_none_or(|code| code.generation != live.generation) {
+        cache.code = Some(LiveMaterialCode::new(live.generation, compiled));
     }
     let key = (live.generation, revision);
     // While a big graph compiles, the values stay those of the code shown (the slots of
@@ -58,15 +55,10 @@ pub(in crate::app) fn material_frame(
     if stale && !shown_code {
         cache.params = Some((key, live.params(graph).into()));
     }
-    let wgsl = cache.code.as_ref().map(|(_, code)| code.clone())?;
+    let code = cache.code.clone()?;
     let params = cache.params.as_ref().map(|(_, params)| params.clone())?;
     Some(MaterialFrame {
-        code: crate::render::LiveMaterialCode {
-            generation: live.generation,
-            wgsl,
-            slots: module.params.len(),
-            uses: module.uses,
-        },
+        code,
         params,
         tessellation: None,
     })

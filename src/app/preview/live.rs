@@ -78,7 +78,8 @@ fn add_line(entry: &mut String, line: &str) {
 type Structure = (Graph, bool);
 
 /// What decides the generated code: nodes with their kinds and settings, and the wires.
-/// Labels, positions, constant values (inside groups too), frames, preview settings and
+/// Labels, positions, constant values (inside groups too) except image nodes' (which may
+/// be baked into their passes, as a blur's radius is), frames, preview settings and
 /// library links are left out: they never need a recompile.
 pub(in crate::app) fn structure(graph: &Graph) -> Graph {
     let mut skeleton = graph.clone();
@@ -91,7 +92,9 @@ pub(in crate::app) fn structure(graph: &Graph) -> Graph {
         for node in &mut group.nodes {
             node.label.clear();
             node.position = (0.0, 0.0);
-            node.inputs.clear();
+            if !node.kind.samples() {
+                node.inputs.clear();
+            }
         }
     }
     for node in &mut skeleton.nodes {
@@ -107,7 +110,7 @@ pub(in crate::app) fn structure(graph: &Graph) -> Graph {
                     true
                 })
             });
-        } else {
+        } else if !node.kind.samples() {
             node.inputs.clear();
         }
     }
@@ -261,7 +264,9 @@ impl LiveMaterial {
                 // Nodes the output does not reach are pruned: the code may well be
                 // unchanged. What the pipeline does with it (alpha mode, relief) may not.
                 if self.compiled.as_ref().is_none_or(|old| {
-                    old.source() != compiled.source() || old.uses() != compiled.uses()
+                    old.source() != compiled.source()
+                        || old.uses() != compiled.uses()
+                        || !old.passes.same_code(&compiled.passes)
                 }) {
                     self.generation += 1;
                 }

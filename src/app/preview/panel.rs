@@ -180,7 +180,9 @@ impl VeneerApp {
     /// material whose graph asks for tessellation (the graph checked once a revision).
     fn tessellation_input(&mut self, frame: &MaterialFrame) -> Option<TessellationInput> {
         let settings = self.session.document.graph.preview.tessellation?;
-        if !frame.code.uses.displacement || self.preview.state.flat {
+        // A multi-pass material is drawn flat, and its image nodes evaluate only over
+        // buffers.
+        if !frame.code.uses.displacement || self.preview.state.flat || frame.code.passes.is_some() {
             return None;
         }
         let revision = self.session.revision.number;

@@ -45,8 +45,9 @@ pub(in crate::app) struct Revision {
 
 impl Revision {
     /// Takes in `changes` of one edit to `graph`: a new revision, compiled again when
-    /// the code may change (a structure or setting, or a constant of the material node,
-    /// which decides what its pipeline does).
+    /// the code may change (a structure or setting, a constant of the material node,
+    /// which decides what its pipeline does, or of an image node, which its passes may
+    /// hold).
     pub fn changed(&mut self, changes: &[Change], graph: &Graph) {
         if changes.is_empty() {
             return;
@@ -62,6 +63,9 @@ impl Revision {
                     node,
                     ..
                 } if is_material(graph, *node) => Recompile::Compare,
+                Change::Value { level, node, .. } if samples(graph, level, *node) => {
+                    Recompile::Compare
+                }
                 Change::Value { .. } | Change::Layout => Recompile::No,
             };
             needed_now = needed_now.max(needed);
@@ -103,6 +107,18 @@ fn is_material(graph: &Graph, id: NodeId) -> bool {
     graph
         .node(id)
         .is_some_and(|node| node.kind == NodeKind::Material)
+}
+
+/// Whether node `id` of `level` reads an input as a buffer (an image node).
+fn samples(graph: &Graph, level: &Level, id: NodeId) -> bool {
+    let nodes = match level {
+        Level::Top => &graph.nodes,
+        Level::Group(name) => match graph.groups.get(name) {
+            Some(group) => &group.nodes,
+            None => return false,
+        },
+    };
+    (nodes.iter()).any(|node| node.id == id && node.kind.samples())
 }
 
 impl VeneerApp {

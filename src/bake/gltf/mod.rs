@@ -101,6 +101,7 @@ pub fn export_gltf(
     mut progress: impl FnMut(u64, u64) -> bool,
 ) -> Result<Vec<PathBuf>, BakeError> {
     crate::render::baked_parameters(compiled)?;
+    crate::render::flat_passes_only(compiled, "a glTF export (baked over the mesh's UV layout)")?;
     let packaging = packaging(path);
     super::output_folder(path)?;
     let (module, preview) = (&compiled.module, &compiled.preview);

@@ -270,6 +270,7 @@ fn boundary_node(definition: &GroupDef) -> Node {
         ty: output.ty,
         default: PinDefault::Required,
         range: PinRange::ANY,
+        sampled: false,
     });
     let outputs = definition.inputs.iter().map(|input| OutputPin {
         name: intern(&input.name),

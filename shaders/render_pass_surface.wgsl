@@ -1,0 +1,26 @@
+//! Entry points of a material's surface passes over the flat domain: `veneer_pass` at
+//! every texel centre of its buffer, the texel's place in the rectangle as the surface
+//! uv (the domain coordinate) and its position computed as `render_flat.wgsl` does.
+
+struct VeneerPassView {
+    rect: vec4f,  // x0, z0, x1, z1
+    size: vec2f,  // the buffer's width and height in texels
+    plane_y: f32,
+    time: f32,
+}
+
+@group(0) @binding(0) var<uniform> veneer_pass_view: VeneerPassView;
+
+@vertex
+fn veneer_pass_vertex(@builtin(vertex_index) index: u32) -> @builtin(position) vec4f {
+    let corner = vec2f(f32((index << 1u) & 2u), f32(index & 2u));
+    return vec4f(corner * 2.0 - 1.0, 0.0, 1.0);
+}
+
+@fragment
+fn veneer_pass_fragment(@builtin(position) pixel: vec4f) -> @location(0) vec4f {
+    let view = veneer_pass_view;
+    let t = pixel.xy / view.size;
+    let position = vec3f(view.rect.x + (view.rect.z - view.rect.x) * t.x, view.plane_y, view.rect.y + (view.rect.w - view.rect.y) * t.y);
+    return veneer_pass(VeneerSurface(position, vec3f(0.0, 1.0, 0.0), t, vec4f(0.0), view.time));
+}

@@ -1,0 +1,193 @@
+//! The export of a multi-pass material: the material's module, one module per pass, and
+//! a JSON manifest that tells an engine how to run them (passes in order, each buffer's
+//! size, format and edge mode, and which buffer sits at each binding of group 2).
+//!
+//! WGSL modules are exported as the contract has them (the engine supplies its entry
+//! points: `veneer_pass(s: VeneerSurface) -> vec4f` for a surface pass,
+//! `veneer_stage(texel: vec2i) -> vec4f` for a stage); the other languages carry the
+//! entry points Veneer renders the passes with (`shaders/render_pass_surface.wgsl`,
+//! `shaders/render_pass_stage.wgsl`), fragment `veneer_pass_fragment`.
+
+use super::Compiled;
+use super::export::{ExportError, Target, export_compiled, translate};
+use super::passes::{Pass, PassKind};
+use crate::nodes::passes::{BufferFormat, EdgeMode, Resolution};
+use serde::Serialize;
+
+const SURFACE_ENTRY_POINTS: &str = include_str!("../../shaders/render_pass_surface.wgsl");
+const STAGE_ENTRY_POINTS: &str = include_str!("../../shaders/render_pass_stage.wgsl");
+
+/// The fragment entry point of an exported pass (outside WGSL).
+pub const PASS_FRAGMENT_ENTRY: &str = "veneer_pass_fragment";
+
+/// One file of an export: its name (in the export's folder) and bytes.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ExportFile {
+    pub name: String,
+    pub bytes: Vec<u8>,
+}
+
+/// The manifest's name for export stem `stem`.
+pub fn manifest_name(stem: &str) -> String {
+    format!("{stem}.passes.json")
+}
+
+/// A multi-pass material exported for `target` under names from `stem`: the material's
+/// module (`<stem>.<ext>`), pass `i`'s module (`<stem>.pass<i>.<ext>`) in order, and the
+/// manifest (`<stem>.passes.json`) last. Every module is validated as a single-pass
+/// export is.
+pub fn export_passes(
+    compiled: &Compiled,
+    target: Target,
+    stem: &str,
+) -> Result<Vec<ExportFile>, ExportError> {
+    let extension = target.extension();
+    let material_file = format!("{stem}.{extension}");
+    let mut files = vec![ExportFile {
+        name: material_file.clone(),
+        bytes: export_compiled(compiled, target)?,
+    }];
+    let mut passes = Vec::with_capacity(compiled.passes.passes.len());
+    for (index, pass) in compiled.passes.passes.iter().enumerate() {
+        let name = format!("{stem}.pass{index}.{extension}");
+        files.push(ExportFile {
+            name: name.clone(),
+            bytes: export_pass(pass, target)?,
+        });
+        passes.push(PassEntry::new(index, pass, name, target));
+    }
+    let manifest = Manifest {
+        veneer: env!("CARGO_PKG_VERSION"),
+        target: target.name(),
+        material: ModuleEntry {
+            file: material_file,
+            entry: if target == Target::Wgsl {
+                "veneer_material"
+            } else {
+                super::export::FRAGMENT_ENTRY
+            },
+            reads: bindings(&compiled.passes.reads),
+        },
+        passes,
+    };
+    let mut text = serde_json::to_string_pretty(&manifest).expect("a manifest serialises");
+    text.push('\n');
+    files.push(ExportFile {
+        name: manifest_name(stem),
+        bytes: text.into_bytes(),
+    });
+    Ok(files)
+}
+
+/// Pass `pass`'s module for `target`.
+fn export_pass(pass: &Pass, target: Target) -> Result<Vec<u8>, ExportError> {
+    let source = &pass.module().source;
+    if target == Target::Wgsl {
+        return Ok(source.clone().into_bytes());
+    }
+    let entry_points = match pass.kind {
+        PassKind::Surface { .. } => SURFACE_ENTRY_POINTS,
+        PassKind::Stage { .. } => STAGE_ENTRY_POINTS,
+    };
+    translate(
+        &format!("{source}\n{entry_points}"),
+        target,
+        PASS_FRAGMENT_ENTRY,
+    )
+}
+
+/// What the manifest says of an export.
+#[derive(Serialize)]
+struct Manifest {
+    /// The Veneer version that wrote it.
+    veneer: &'static str,
+    target: &'static str,
+    material: ModuleEntry,
+    /// In the order they run: pass `i` renders buffer `i`.
+    passes: Vec<PassEntry>,
+}
+
+/// A module, its entry point and the buffers it binds.
+#[derive(Serialize)]
+struct ModuleEntry {
+    file: String,
+    entry: &'static str,
+    /// Group 2: which buffer sits at each binding.
+    reads: Vec<Binding>,
+}
+
+/// A buffer at a binding of group 2.
+#[derive(Serialize)]
+struct Binding {
+    binding: usize,
+    buffer: usize,
+}
+
+/// One pass of the manifest.
+#[derive(Serialize)]
+struct PassEntry {
+    /// The buffer it renders (its place in the order).
+    buffer: usize,
+    label: String,
+    /// `surface` (the material's nodes at every texel centre of the domain) or `stage`
+    /// (a texel-space pass over the buffer it reads, the same size).
+    kind: &'static str,
+    #[serde(flatten)]
+    module: ModuleEntry,
+    /// The buffer's side against the output's: `inherit`, `double`, `half`, `absolute`.
+    resolution: &'static str,
+    /// The side in texels, for `absolute`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    texels: Option<u32>,
+    /// The WebGPU texture format.
+    format: &'static str,
+    /// What reads past the buffer's edges see (the modules apply it themselves, with
+    /// `textureLoad`: no sampler is bound).
+    edge: &'static str,
+}
+
+impl PassEntry {
+    fn new(buffer: usize, pass: &Pass, file: String, target: Target) -> PassEntry {
+        let (kind, entry) = match (&pass.kind, target) {
+            (PassKind::Surface { .. }, Target::Wgsl) => ("surface", "veneer_pass"),
+            (PassKind::Stage { .. }, Target::Wgsl) => ("stage", "veneer_stage"),
+            (PassKind::Surface { .. }, _) => ("surface", PASS_FRAGMENT_ENTRY),
+            (PassKind::Stage { .. }, _) => ("stage", PASS_FRAGMENT_ENTRY),
+        };
+        let spec = pass.spec;
+        PassEntry {
+            buffer,
+            label: pass.label.clone(),
+            kind,
+            module: ModuleEntry {
+                file,
+                entry,
+                reads: bindings(&pass.reads()),
+            },
+            resolution: match spec.resolution {
+                Resolution::Inherit => "inherit",
+                Resolution::Double => "double",
+                Resolution::Half => "half",
+                Resolution::Absolute => "absolute",
+            },
+            texels: (spec.resolution == Resolution::Absolute).then_some(spec.size),
+            format: match spec.format {
+                BufferFormat::Unorm8 => "rgba8unorm",
+                BufferFormat::Float16 => "rgba16float",
+                BufferFormat::Float32 => "rgba32float",
+            },
+            edge: match spec.edge {
+                EdgeMode::Wrap => "wrap",
+                EdgeMode::Clamp => "clamp",
+                EdgeMode::Mirror => "mirror",
+            },
+        }
+    }
+}
+
+/// `reads` as bindings: binding `k` holds buffer `reads[k]`.
+fn bindings(reads: &[usize]) -> Vec<Binding> {
+    (reads.iter().enumerate())
+        .map(|(binding, &buffer)| Binding { binding, buffer })
+        .collect()
+}

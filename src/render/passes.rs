@@ -1,0 +1,259 @@
+//! The GPU side of a multi-pass material over a flat domain: a pipeline per pass, and
+//! the buffers they render, in order, for one rectangle, output size and time (kept
+//! until one of those changes).
+
+use super::params::ParamBlock;
+use super::{FlatRect, GpuContext, RenderError, shader_source};
+use crate::codegen::passes::{PassKind, Passes};
+use crate::nodes::passes::BufferFormat;
+use std::sync::{Arc, Mutex};
+
+const SURFACE_ENTRY_POINTS: &str = include_str!("../../shaders/render_pass_surface.wgsl");
+const STAGE_ENTRY_POINTS: &str = include_str!("../../shaders/render_pass_stage.wgsl");
+
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct PassViewUniform {
+    rect: [f32; 4],
+    size: [f32; 2],
+    plane_y: f32,
+    time: f32,
+}
+
+/// The texture format a buffer of `format` renders into.
+fn texture_format(format: BufferFormat) -> wgpu::TextureFormat {
+    match format {
+        BufferFormat::Unorm8 => wgpu::TextureFormat::Rgba8Unorm,
+        BufferFormat::Float16 => wgpu::TextureFormat::Rgba16Float,
+        BufferFormat::Float32 => wgpu::TextureFormat::Rgba32Float,
+    }
+}
+
+/// What the buffers were last rendered for: rectangle, output size and time.
+type RenderedFor = ([u32; 5], u32, u32);
+
+/// A material's passes, built once, rendered whenever the domain changes.
+pub struct PassRenderer {
+    passes: Passes,
+    pipelines: Vec<wgpu::RenderPipeline>,
+    /// The parameter block at group 1 of each pass that reads it.
+    params: Vec<Option<wgpu::BindGroup>>,
+    view: wgpu::Buffer,
+    /// The buffers, pass by pass, and what they were rendered for.
+    rendered: Mutex<Option<(RenderedFor, Vec<wgpu::Texture>)>>,
+}
+
+impl PassRenderer {
+    /// Builds a pipeline per pass of `passes`, those that read parameter slots reading
+    /// them from `params`.
+    pub fn new(
+        gpu: &GpuContext,
+        passes: &Passes,
+        params: Option<&Arc<ParamBlock>>,
+    ) -> Result<PassRenderer, RenderError> {
+        let mut pipelines = Vec::with_capacity(passes.passes.len());
+        for pass in &passes.passes {
+            let entry_points = match pass.kind {
+                PassKind::Surface { .. } => SURFACE_ENTRY_POINTS,
+                PassKind::Stage { .. } => STAGE_ENTRY_POINTS,
+            };
+            let source = shader_source(&pass.module().source, entry_points);
+            let module = gpu.shader(&pass.label, &source)?;
+            let format = texture_format(pass.spec.format);
+            pipelines.push(
+                gpu.checked(&format!("pipeline of pass '{}'", pass.label), || {
+                    super::fullscreen_pipeline(
+                        &gpu.device,
+                        &pass.label,
+                        &module,
+                        ("veneer_pass_vertex", "veneer_pass_fragment"),
+                        format,
+                    )
+                })?,
+            );
+        }
+        let params = (passes.passes.iter().zip(&pipelines))
+            .map(|(pass, pipeline)| {
+                let block = params.filter(|_| pass.module().binds_params)?;
+                Some(block.bind_group(gpu, pipeline))
+            })
+            .collect();
+        let view = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("pass view"),
+            size: std::mem::size_of::<PassViewUniform>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        Ok(PassRenderer {
+            passes: passes.clone(),
+            pipelines,
+            params,
+            view,
+            rendered: Mutex::new(None),
+        })
+    }
+
+    /// The buffers' texture bytes for an output of `size` pixels: what the passes hold
+    /// on the GPU at once.
+    pub fn buffer_bytes(&self, size: u32) -> u64 {
+        self.passes
+            .passes
+            .iter()
+            .map(|pass| {
+                let side = u64::from(pass.spec.texels(size));
+                side * side * pass.spec.format.texel_bytes()
+            })
+            .sum()
+    }
+
+    /// Forgets the buffers rendered (the parameter values changed): the next render
+    /// renders every pass again.
+    pub fn invalidate(&self) {
+        *self.rendered.lock().expect("pass buffers") = None;
+    }
+
+    /// The buffers the material's module reads, binding `k` holding entry `k`.
+    pub fn reads(&self) -> &[usize] {
+        &self.passes.reads
+    }
+
+    /// The bind group of `reads` (buffers of the last render) for group 2 of `pipeline`.
+    pub fn bind_group(
+        &self,
+        gpu: &GpuContext,
+        pipeline: &wgpu::RenderPipeline,
+        reads: &[usize],
+    ) -> wgpu::BindGroup {
+        let rendered = self.rendered.lock().expect("pass buffers");
+        let (_, textures) = rendered.as_ref().expect("the passes rendered first");
+        bind_buffers(gpu, pipeline, textures, reads)
+    }
+
+    /// Renders every pass for an output of size² pixels over `rect` at `time`, unless
+    /// its buffers are already for these.
+    pub fn render(
+        &self,
+        gpu: &GpuContext,
+        rect: FlatRect,
+        size: u32,
+        time: f32,
+    ) -> Result<(), RenderError> {
+        let key: RenderedFor = (
+            [rect.x0, rect.z0, rect.x1, rect.z1, rect.y].map(|v| (v as f32).to_bits()),
+            size,
+            time.to_bits(),
+        );
+        let mut rendered = self.rendered.lock().expect("pass buffers");
+        if rendered.as_ref().is_some_and(|(at, _)| *at == key) {
+            return Ok(());
+        }
+        let limit = gpu.device.limits().max_texture_dimension_2d;
+        let mut textures: Vec<wgpu::Texture> = Vec::with_capacity(self.pipelines.len());
+        let passes = self
+            .passes
+            .passes
+            .iter()
+            .zip(&self.pipelines)
+            .zip(&self.params);
+        for ((pass, pipeline), params) in passes {
+            let side = pass.spec.texels(size);
+            if side > limit {
+                return Err(RenderError::Invalid(format!(
+                    "the buffer of pass '{}' would be {side}² texels, past this adapter's largest texture ({limit}²)",
+                    pass.label
+                )));
+            }
+            let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
+                label: Some(&pass.label),
+                size: wgpu::Extent3d {
+                    width: side,
+                    height: side,
+                    depth_or_array_layers: 1,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format: texture_format(pass.spec.format),
+                usage: wgpu::TextureUsages::RENDER_ATTACHMENT
+                    | wgpu::TextureUsages::TEXTURE_BINDING
+                    | wgpu::TextureUsages::COPY_SRC,
+                view_formats: &[],
+            });
+            let mut groups = Vec::new();
+            if let PassKind::Surface { .. } = pass.kind {
+                let view = PassViewUniform {
+                    rect: [rect.x0, rect.z0, rect.x1, rect.z1].map(|v| v as f32),
+                    size: [side as f32; 2],
+                    plane_y: rect.y as f32,
+                    time,
+                };
+                gpu.queue
+                    .write_buffer(&self.view, 0, bytemuck::bytes_of(&view));
+                groups.push((
+                    0,
+                    gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                        label: Some("pass view"),
+                        layout: &pipeline.get_bind_group_layout(0),
+                        entries: &[wgpu::BindGroupEntry {
+                            binding: 0,
+                            resource: self.view.as_entire_binding(),
+                        }],
+                    }),
+                ));
+            }
+            if let Some(params) = params {
+                groups.push((1, params.clone()));
+            }
+            let reads = pass.reads();
+            if !reads.is_empty() {
+                groups.push((2, bind_buffers(gpu, pipeline, &textures, &reads)));
+            }
+            let mut encoder = gpu
+                .device
+                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                    label: Some(&pass.label),
+                });
+            {
+                let target = texture.create_view(&Default::default());
+                let mut render =
+                    super::tiles::clear_pass(&mut encoder, &target, wgpu::Color::TRANSPARENT, None);
+                render.set_pipeline(pipeline);
+                for (index, group) in &groups {
+                    render.set_bind_group(*index, group, &[]);
+                }
+                render.draw(0..3, 0..1);
+            }
+            // One submission per pass: the view uniform is rewritten for the next.
+            gpu.queue.submit([encoder.finish()]);
+            textures.push(texture);
+        }
+        *rendered = Some((key, textures));
+        Ok(())
+    }
+}
+
+/// A bind group of `textures[reads[k]]` at binding k of group 2 of `pipeline`.
+fn bind_buffers(
+    gpu: &GpuContext,
+    pipeline: &wgpu::RenderPipeline,
+    textures: &[wgpu::Texture],
+    reads: &[usize],
+) -> wgpu::BindGroup {
+    let views: Vec<wgpu::TextureView> = reads
+        .iter()
+        .map(|&buffer| textures[buffer].create_view(&Default::default()))
+        .collect();
+    let entries: Vec<wgpu::BindGroupEntry> = views
+        .iter()
+        .enumerate()
+        .map(|(binding, view)| wgpu::BindGroupEntry {
+            binding: binding as u32,
+            resource: wgpu::BindingResource::TextureView(view),
+        })
+        .collect();
+    gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("pass buffers"),
+        layout: &pipeline.get_bind_group_layout(2),
+        entries: &entries,
+    })
+}

@@ -1,0 +1,510 @@
+//! Multi-pass materials: every image node's GPU passes against its CPU image reference,
+//! how the compiler cuts a graph into passes (one buffer per cut, only reachable cuts),
+//! the checks on sampled inputs, extremes, and tiles baked through the passes.
+
+use crate::support::{gpu, run_veneer, temp_dir};
+use veneer::bake::tile::SEAM_TOLERANCE;
+use veneer::bake::{BakeSettings, BakeSurface, Format, Map, NormalConvention, bake};
+use veneer::codegen::{CompileError, Compiled, compile};
+use veneer::eval::Evaluator;
+use veneer::graph::{Basis, Graph, NodeId, NodeKind, Value, ValueType};
+use veneer::nodes::passes::BufferFormat;
+use veneer::nodes::{Blur, Combine, HeightToNormal, Noise, RadiusUnit, Split, Warp};
+use veneer::render::{FlatRect, FlatRenderer};
+
+/// The node labelled `label`.
+fn by_label(graph: &Graph, label: &str) -> NodeId {
+    let node = graph.nodes.iter().find(|node| node.label == label);
+    node.unwrap_or_else(|| panic!("no node '{label}'")).id
+}
+
+/// The unit tile, where periodic noises repeat.
+const TILE: FlatRect = FlatRect {
+    x0: 0.0,
+    z0: 0.0,
+    x1: 1.0,
+    z1: 1.0,
+    y: 0.0,
+};
+
+/// A periodic noise of `basis` over the unit tile (4 cells), fed by the position.
+fn tile_noise(graph: &mut Graph, label: &str, basis: Basis) -> NodeId {
+    let position = graph.add(&format!("{label} position"), NodeKind::Position);
+    let noise = graph.add(label, NodeKind::Noise(Noise { basis, period: 4 }));
+    graph.set_input(noise, "scale", Value::Float(4.0));
+    graph.connect(position, "position", noise, "p");
+    noise
+}
+
+/// A value of type `ty` varying over the tile, each lane differently: two periodic
+/// noises combined (a float is the first alone).
+fn tile_source(graph: &mut Graph, ty: ValueType) -> (NodeId, &'static str) {
+    let a = tile_noise(graph, "a", Basis::Gradient);
+    if ty == ValueType::Float {
+        return (a, "value");
+    }
+    let b = tile_noise(graph, "b", Basis::ValuePcg);
+    let combine = graph.add("source", NodeKind::Combine(Combine { ty }));
+    graph.connect(a, "value", combine, "x");
+    graph.connect(b, "value", combine, "y");
+    if ty.width() == 3 {
+        graph.connect(a, "value", combine, "z");
+    }
+    (combine, "v")
+}
+
+/// A material showing output `output` (of type `ty`) of `node` as its albedo.
+fn show(graph: &mut Graph, node: NodeId, output: &str, ty: ValueType) {
+    let material = graph.add("material", NodeKind::Material);
+    if ty == ValueType::Vec2 {
+        let split = graph.add("lanes", NodeKind::Split(Split { ty }));
+        let colour = graph.add(
+            "colour",
+            NodeKind::Combine(Combine {
+                ty: ValueType::Color,
+            }),
+        );
+        graph.connect(node, output, split, "v");
+        graph.connect(split, "x", colour, "x");
+        graph.connect(split, "y", colour, "y");
+        graph.connect(colour, "v", material, "albedo");
+    } else {
+        graph.connect(node, output, material, "albedo");
+    }
+}
+
+/// A graph of `kind` reading a varying source through its sampled input, its other
+/// inputs wired to noises where they take a vector, shown as the albedo.
+fn image_graph(kind: &NodeKind) -> Graph {
+    let mut graph = Graph::default();
+    let signature = kind.signature();
+    let node = graph.add("under test", kind.clone());
+    for pin in &signature.inputs {
+        if pin.sampled {
+            let (source, output) = tile_source(&mut graph, pin.ty);
+            graph.connect(source, output, node, pin.name);
+        } else if pin.ty == ValueType::Vec2 {
+            let (source, output) = tile_source(&mut graph, ValueType::Vec2);
+            graph.connect(source, output, node, pin.name);
+        }
+    }
+    let out = &signature.outputs[0];
+    show(&mut graph, node, out.name, out.ty);
+    graph
+}
+
+/// The largest difference between the GPU's flat render of `compiled` (albedo) and the
+/// CPU reference's (f64 from the same f32 positions), over a size² image of `rect`.
+fn gpu_against_cpu(compiled: &Compiled, rect: FlatRect, size: u32) -> f64 {
+    let gpu_pixels = FlatRenderer::for_compiled(gpu(), compiled)
+        .expect("the passes' pipelines build")
+        .render(gpu(), rect, size, 0.0)
+        .expect("the passes render");
+    let evaluator = Evaluator::from_checked(compiled.checked.clone());
+    let cpu_pixels = evaluator.flat::<f64>(&compiled.passes, rect, size, 0.0);
+    gpu_pixels
+        .iter()
+        .zip(&cpu_pixels)
+        .flat_map(|(gpu, cpu)| (0..3).map(move |k| (f64::from(gpu[k]) - cpu.albedo[k]).abs()))
+        .fold(0.0, f64::max)
+}
+
+/// The tolerance of an image node's GPU output against its CPU reference: f32 against
+/// f64 arithmetic, plus one step of an 8-bit or half-float buffer where a value lies on
+/// a rounding boundary (the GPU rounds its f32, the CPU its f64).
+fn tolerance(compiled: &Compiled) -> f64 {
+    let step = |format| match format {
+        BufferFormat::Unorm8 => 1.0 / 255.0,
+        BufferFormat::Float16 => 1.0 / 1024.0,
+        BufferFormat::Float32 => 0.0,
+    };
+    let coarsest = (compiled.passes.passes.iter())
+        .map(|pass| step(pass.spec.format))
+        .fold(0.0, f64::max);
+    // Bicubic weights sum past 1 in places: allow a step and a quarter.
+    1e-4 + 1.25 * coarsest
+}
+
+#[test]
+fn every_image_node_matches_its_cpu_reference() {
+    let mut failures = Vec::new();
+    let image_kinds: Vec<NodeKind> = NodeKind::examples()
+        .into_iter()
+        .filter(NodeKind::samples)
+        .collect();
+    assert!(image_kinds.len() >= 4, "the registry lists the image nodes");
+    for kind in image_kinds {
+        let graph = image_graph(&kind);
+        let compiled = compile(&graph, &Default::default())
+            .unwrap_or_else(|e| panic!("{kind:?}: {e}\n{}", veneer::graph::to_ron(&graph)));
+        assert!(!compiled.passes.is_empty(), "{kind:?} renders passes");
+        let (worst, allowed) = (gpu_against_cpu(&compiled, TILE, 48), tolerance(&compiled));
+        if worst > allowed {
+            failures.push(format!(
+                "{kind:?}: differs by {worst:.2e} (allowed {allowed:.1e})"
+            ));
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// A noise read by a blur and by a height-to-normal node, the blur's result as the
+/// albedo and the normal as the material's normal.
+fn blurred_and_normal(radius: f64) -> Graph {
+    let mut graph = Graph::default();
+    let noise = tile_noise(&mut graph, "grain", Basis::Gradient);
+    let blur = graph.add(
+        "soft",
+        NodeKind::Blur(Blur {
+            ty: ValueType::Float,
+            unit: RadiusUnit::Texels,
+        }),
+    );
+    graph.set_input(blur, "radius", Value::Float(radius));
+    graph.connect(noise, "value", blur, "image");
+    let normal = graph.add(
+        "relief",
+        NodeKind::HeightToNormal(HeightToNormal {
+            convention: veneer::nodes::NormalConvention::OpenGl,
+        }),
+    );
+    graph.connect(noise, "value", normal, "height");
+    let material = graph.add("material", NodeKind::Material);
+    graph.connect(blur, "result", material, "albedo");
+    graph.connect(blur, "result", material, "height");
+    graph.connect(normal, "normal", material, "normal");
+    graph
+}
+
+#[test]
+fn readers_of_one_cut_share_its_buffer_and_unreachable_cuts_render_nothing() {
+    let graph = blurred_and_normal(6.0);
+    let compiled = compile(&graph, &Default::default()).expect("compiles");
+    let labels: Vec<&str> = (compiled.passes.passes.iter())
+        .map(|pass| pass.label.as_str())
+        .collect();
+    // The noise once (read by both), then the blur's two axes over it.
+    assert_eq!(labels.len(), 3, "{labels:?}");
+    assert!(labels[0].contains("'grain'"), "{labels:?}");
+    assert!(
+        labels[1].contains("x axis") && labels[2].contains("y axis"),
+        "{labels:?}"
+    );
+    assert_eq!(
+        compiled.passes.reads,
+        [2, 0],
+        "the material reads the blur and the noise"
+    );
+
+    // A blur nobody reads adds no pass; a blur of the blur adds its cut and two axes.
+    let mut more = graph.clone();
+    let (soft, material) = (by_label(&more, "soft"), by_label(&more, "material"));
+    let dangling = more.add("unread", more.node(soft).expect("the blur").kind.clone());
+    more.connect(soft, "result", dangling, "image");
+    assert_eq!(
+        compile(&more, &Default::default())
+            .expect("compiles")
+            .passes
+            .passes
+            .len(),
+        3
+    );
+    more.connect(dangling, "result", material, "albedo");
+    let chained = compile(&more, &Default::default()).expect("compiles");
+    assert_eq!(chained.passes.passes.len(), 6);
+    // Every pass reads only buffers rendered before it.
+    for (index, pass) in chained.passes.passes.iter().enumerate() {
+        assert!(
+            pass.reads().iter().all(|&read| read < index),
+            "{}",
+            pass.label
+        );
+    }
+    let worst = gpu_against_cpu(&chained, TILE, 32);
+    assert!(worst <= 1e-4, "a blur of a blur differs by {worst:.2e}");
+
+    // The same graph's output rendered twice gives the same bytes.
+    let renderer = FlatRenderer::for_compiled(gpu(), &chained).expect("pipelines");
+    let first = renderer.render(gpu(), TILE, 32, 0.0).expect("renders");
+    let fresh = FlatRenderer::for_compiled(gpu(), &chained).expect("pipelines");
+    assert_eq!(first, fresh.render(gpu(), TILE, 32, 0.0).expect("renders"));
+}
+
+#[test]
+fn sampled_inputs_need_a_wire_and_a_blur_a_constant_finite_radius() {
+    let check_error = |graph: &Graph| match compile(graph, &Default::default()) {
+        Err(CompileError::Check(errors)) => errors
+            .iter()
+            .map(|e| format!("{}: {}", e.node_name.clone().unwrap_or_default(), e.message))
+            .collect::<Vec<_>>()
+            .join("\n"),
+        other => panic!(
+            "expected a check error, got {:?}",
+            other.map(|c| c.passes.passes.len())
+        ),
+    };
+    let mut wired_radius = blurred_and_normal(4.0);
+    let (soft, grain) = (
+        by_label(&wired_radius, "soft"),
+        by_label(&wired_radius, "grain"),
+    );
+    wired_radius.connect(grain, "value", soft, "radius");
+    let message = check_error(&wired_radius);
+    assert!(
+        message.contains("'soft'") && message.contains("radius must be a constant"),
+        "{message}"
+    );
+    for radius in [f64::NAN, -1.0] {
+        let message = check_error(&blurred_and_normal(radius));
+        assert!(
+            message.contains("'soft'") && message.contains("radius"),
+            "{message}"
+        );
+    }
+    let mut unwired = blurred_and_normal(4.0);
+    (unwired.wires).retain(|wire| !(wire.to.node == soft && wire.to.pin == "image"));
+    unwired.set_input(soft, "image", Value::Float(0.5));
+    let message = check_error(&unwired);
+    assert!(
+        message.contains("'soft'") && message.contains("read as a buffer and must be connected"),
+        "{message}"
+    );
+}
+
+#[test]
+fn image_nodes_stay_finite_at_extremes() {
+    // A radius past the limit blurs at the limit; a rectangle far from the origin.
+    let compiled = compile(&blurred_and_normal(1e9), &Default::default()).expect("compiles");
+    let far = FlatRect {
+        x0: 1e7,
+        z0: -1e7,
+        x1: 1e7 + 1.0,
+        z1: -1e7 + 1.0,
+        y: 3e6,
+    };
+    for rect in [TILE, far] {
+        let pixels = FlatRenderer::for_compiled(gpu(), &compiled)
+            .expect("pipelines")
+            .render(gpu(), rect, 16, 0.0)
+            .expect("renders");
+        assert!(pixels.iter().flatten().all(|v| v.is_finite()), "{rect:?}");
+    }
+    // A warp moved by 1e30 of a vector reads the buffer somewhere, finitely.
+    let warp = NodeKind::Warp(Warp {
+        ty: ValueType::Float,
+    });
+    let mut graph = image_graph(&warp);
+    let node = by_label(&graph, "under test");
+    graph.set_input(node, "amount", Value::Float(1e30));
+    let compiled = compile(&graph, &Default::default()).expect("compiles");
+    let worst = gpu_against_cpu(&compiled, TILE, 16);
+    assert!(worst.is_finite(), "a huge warp gives {worst}");
+}
+
+#[test]
+fn a_blurred_periodic_noise_bakes_a_seamless_tile() {
+    let dir = temp_dir("passes-tile");
+    let settings = BakeSettings {
+        surface: BakeSurface::Tile(None),
+        size: 64,
+        maps: vec![Map::Albedo, Map::Normal, Map::Height],
+        format: Format::Png8,
+        normal: NormalConvention::OpenGl,
+        time: 0.0,
+    };
+    let compiled = compile(&blurred_and_normal(12.0), &Default::default()).expect("compiles");
+    let maps = bake(gpu(), &compiled, &settings, &dir.join("blurred"), |_, _| {
+        true
+    })
+    .expect("the tile bakes through its passes");
+    for map in &maps {
+        let seams = map.seams.expect("a tile reports its seams");
+        assert!(seams.worst() <= SEAM_TOLERANCE, "{:?}: {seams:?}", map.map);
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn views_over_a_mesh_refuse_a_multi_pass_material_and_write_nothing() {
+    let dir = temp_dir("passes-mesh");
+    let graph_path = dir.join("blurred.ron");
+    std::fs::write(&graph_path, veneer::graph::to_ron(&blurred_and_normal(4.0))).expect("writes");
+    let image = dir.join("mesh.png");
+    let output = run_veneer(&[
+        "render",
+        graph_path.to_str().expect("utf-8"),
+        "-o",
+        image.to_str().expect("utf-8"),
+        "--size",
+        "32",
+    ]);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(!output.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("flat domain") && stderr.contains("--flat"),
+        "{stderr}"
+    );
+    assert!(!image.exists());
+    // The flat render of the same file works, and is the library's.
+    let output = run_veneer(&[
+        "render",
+        graph_path.to_str().expect("utf-8"),
+        "-o",
+        image.to_str().expect("utf-8"),
+        "--size",
+        "32",
+        "--flat",
+        "0,0,1,1,0",
+    ]);
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let written = image::open(&image).expect("a PNG").to_rgb8().into_raw();
+    let compiled = compile(&blurred_and_normal(4.0), &Default::default()).expect("compiles");
+    assert_eq!(written, crate::support::compiled_rgb8(&compiled, TILE, 32));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Runs an independent validator over an exported file.
+fn validate_with(tool: &str, file: &std::path::Path) {
+    let output = std::process::Command::new(tool)
+        .arg(file)
+        .output()
+        .unwrap_or_else(|e| panic!("{tool} is needed (`.ci/run` installs it): {e}"));
+    assert!(
+        output.status.success(),
+        "{tool} rejects {}:\n{}",
+        file.display(),
+        String::from_utf8_lossy(&output.stdout)
+    );
+}
+
+#[test]
+fn a_multi_pass_material_exports_a_module_per_pass_and_a_manifest_for_every_target() {
+    use veneer::codegen::ParamMode;
+    use veneer::codegen::export::Target;
+    use veneer::codegen::manifest::export_passes;
+    let dir = temp_dir("passes-export");
+    let graph = blurred_and_normal(5.0);
+    for params in [ParamMode::Baked, ParamMode::Uniform] {
+        let options = veneer::codegen::CompileOptions::with_params(params);
+        let compiled = compile(&graph, &options).expect("compiles");
+        for (target, name, _) in Target::ALL {
+            let files = export_passes(&compiled, target, "blurred")
+                .unwrap_or_else(|e| panic!("{name} {params:?}: {e}"));
+            // The material, a module per pass, the manifest.
+            assert_eq!(files.len(), compiled.passes.passes.len() + 2, "{name}");
+            for file in &files[..files.len() - 1] {
+                let path = dir.join(format!("{params:?}-{}", file.name));
+                std::fs::write(&path, &file.bytes).expect("written");
+                match target {
+                    Target::Glsl | Target::GlslEs => validate_with("glslangValidator", &path),
+                    Target::Spirv => validate_with("spirv-val", &path),
+                    Target::Wgsl | Target::Hlsl | Target::Msl => {}
+                }
+            }
+            let manifest: serde_json::Value =
+                serde_json::from_slice(&files.last().expect("a manifest").bytes).expect("JSON");
+            assert_eq!(manifest["target"], name);
+            assert_eq!(manifest["material"]["file"], files[0].name);
+            let passes = manifest["passes"].as_array().expect("passes");
+            for (index, pass) in passes.iter().enumerate() {
+                assert_eq!(pass["buffer"], index);
+                assert_eq!(pass["file"], files[index + 1].name);
+                assert_eq!(pass["edge"], "wrap");
+                for read in pass["reads"].as_array().expect("reads") {
+                    assert!(read["buffer"].as_u64().expect("a buffer") < index as u64);
+                }
+            }
+            assert_eq!(passes[0]["kind"], "surface");
+            assert_eq!(passes[1]["kind"], "stage");
+            assert_eq!(passes[0]["format"], "rgba32float");
+        }
+    }
+
+    // The command line writes them together beside the file it is given, and refuses
+    // to put several modules on stdout.
+    let graph_path = dir.join("blurred.ron");
+    std::fs::write(&graph_path, veneer::graph::to_ron(&graph)).expect("writes");
+    let graph_arg = graph_path.to_str().expect("utf-8");
+    let output = run_veneer(&["compile", graph_arg]);
+    assert!(!output.status.success());
+    assert!(String::from_utf8_lossy(&output.stderr).contains("give `-o FILE`"));
+    let out = dir.join("out").join("soft.frag");
+    std::fs::create_dir_all(out.parent().expect("a folder")).expect("folder");
+    let output = run_veneer(&[
+        "compile",
+        graph_arg,
+        "--target",
+        "glsl",
+        "-o",
+        out.to_str().expect("utf-8"),
+    ]);
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let mut written: Vec<String> = std::fs::read_dir(dir.join("out"))
+        .expect("listed")
+        .map(|entry| {
+            entry
+                .expect("entry")
+                .file_name()
+                .to_string_lossy()
+                .into_owned()
+        })
+        .collect();
+    written.sort();
+    assert_eq!(
+        written,
+        [
+            "soft.frag",
+            "soft.pass0.frag",
+            "soft.pass1.frag",
+            "soft.pass2.frag",
+            "soft.passes.json"
+        ]
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn the_shipped_texture_graphs_bake_seamless_tiles_that_match_their_cpu_reference() {
+    let dir = temp_dir("passes-shipped");
+    let folder = crate::support::root("graphs/texture");
+    let mut paths: Vec<_> = std::fs::read_dir(&folder)
+        .expect("graphs/texture/ exists")
+        .map(|entry| entry.expect("an entry").path())
+        .collect();
+    paths.sort();
+    assert!(!paths.is_empty());
+    let settings = BakeSettings {
+        surface: BakeSurface::Tile(None),
+        size: 64,
+        maps: vec![Map::Albedo, Map::Normal],
+        format: Format::Png8,
+        normal: NormalConvention::OpenGl,
+        time: 0.0,
+    };
+    for path in paths {
+        let graph = veneer::graph::load(&path).expect("loads");
+        let compiled = compile(&graph, &Default::default()).expect("compiles");
+        assert!(!compiled.passes.is_empty(), "{}", path.display());
+        let maps = bake(gpu(), &compiled, &settings, &dir.join("map"), |_, _| true)
+            .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        for map in &maps {
+            let seams = map.seams.expect("a tile reports its seams");
+            assert!(
+                seams.worst() <= SEAM_TOLERANCE,
+                "{}: {seams:?}",
+                path.display()
+            );
+        }
+        let worst = gpu_against_cpu(&compiled, TILE, 32);
+        assert!(worst <= 1e-4, "{}: differs by {worst:.2e}", path.display());
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
