@@ -10,12 +10,9 @@
 
 use super::Compiled;
 use super::export::{ExportError, Target, export_compiled, translate};
-use super::passes::{Pass, PassKind};
+use super::passes::{Pass, PassKind, STAGE_ENTRY_POINTS, SURFACE_ENTRY_POINTS};
 use crate::nodes::passes::{BufferFormat, EdgeMode, Resolution};
 use serde::Serialize;
-
-const SURFACE_ENTRY_POINTS: &str = include_str!("../../shaders/render_pass_surface.wgsl");
-const STAGE_ENTRY_POINTS: &str = include_str!("../../shaders/render_pass_stage.wgsl");
 
 /// The fragment entry point of an exported pass (outside WGSL).
 pub const PASS_FRAGMENT_ENTRY: &str = "veneer_pass_fragment";

@@ -20,6 +20,20 @@ use rustc_hash::FxHashMap;
 use std::collections::{BTreeMap, BTreeSet};
 use std::sync::Arc;
 
+/// The entry points a surface pass is rendered with (after its module): the full-screen
+/// vertex and `veneer_pass_fragment`, which evaluates `veneer_pass` at a texel centre.
+pub const SURFACE_ENTRY_POINTS: &str = concat!(
+    include_str!("../../shaders/render_pass_vertex.wgsl"),
+    include_str!("../../shaders/render_pass_surface.wgsl")
+);
+
+/// The entry points a stage pass is rendered with: the full-screen vertex and
+/// `veneer_pass_fragment`, which evaluates `veneer_stage` at a texel.
+pub const STAGE_ENTRY_POINTS: &str = concat!(
+    include_str!("../../shaders/render_pass_vertex.wgsl"),
+    include_str!("../../shaders/render_pass_stage.wgsl")
+);
+
 /// The passes of a material, in the order they run: pass `i` renders buffer `i`.
 #[derive(Clone, Debug, Default)]
 pub struct Passes {

@@ -4,12 +4,9 @@
 
 use super::params::ParamBlock;
 use super::{FlatRect, GpuContext, RenderError, shader_source};
-use crate::codegen::passes::{PassKind, Passes};
+use crate::codegen::passes::{PassKind, Passes, STAGE_ENTRY_POINTS, SURFACE_ENTRY_POINTS};
 use crate::nodes::passes::BufferFormat;
 use std::sync::{Arc, Mutex};
-
-const SURFACE_ENTRY_POINTS: &str = include_str!("../../shaders/render_pass_surface.wgsl");
-const STAGE_ENTRY_POINTS: &str = include_str!("../../shaders/render_pass_stage.wgsl");
 
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]

@@ -330,14 +330,13 @@ fn views_over_a_mesh_refuse_a_multi_pass_material_and_write_nothing() {
     let graph_path = dir.join("blurred.ron");
     std::fs::write(&graph_path, veneer::graph::to_ron(&blurred_and_normal(4.0))).expect("writes");
     let image = dir.join("mesh.png");
-    let output = run_veneer(&[
-        "render",
-        graph_path.to_str().expect("utf-8"),
-        "-o",
-        image.to_str().expect("utf-8"),
-        "--size",
-        "32",
-    ]);
+    let render = |extra: &[&str]| {
+        let (graph, image) = (graph_path.to_str(), image.to_str());
+        let mut args = vec!["render", graph.expect("utf-8"), "-o", image.expect("utf-8")];
+        args.extend(["--size", "32"].iter().chain(extra));
+        run_veneer(&args)
+    };
+    let output = render(&[]);
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert!(!output.status.success(), "{stderr}");
     assert!(
@@ -346,16 +345,7 @@ fn views_over_a_mesh_refuse_a_multi_pass_material_and_write_nothing() {
     );
     assert!(!image.exists());
     // The flat render of the same file works, and is the library's.
-    let output = run_veneer(&[
-        "render",
-        graph_path.to_str().expect("utf-8"),
-        "-o",
-        image.to_str().expect("utf-8"),
-        "--size",
-        "32",
-        "--flat",
-        "0,0,1,1,0",
-    ]);
+    let output = render(&["--flat", "0,0,1,1,0"]);
     assert!(
         output.status.success(),
         "{}",
