@@ -5,7 +5,7 @@ use std::collections::BTreeSet;
 use std::sync::OnceLock;
 
 /// The library sources, one family per file.
-const SOURCES: [(&str, &str); 18] = [
+const SOURCES: [(&str, &str); 20] = [
     ("hash", include_str!("../../shaders/hash.wgsl")),
     ("value", include_str!("../../shaders/value.wgsl")),
     ("gradient", include_str!("../../shaders/gradient.wgsl")),
@@ -33,6 +33,8 @@ const SOURCES: [(&str, &str); 18] = [
     ("colour", include_str!("../../shaders/colour.wgsl")),
     ("map_range", include_str!("../../shaders/map_range.wgsl")),
     ("buffers", include_str!("../../shaders/buffers.wgsl")),
+    ("image_ops", include_str!("../../shaders/image_ops.wgsl")),
+    ("jump_flood", include_str!("../../shaders/jump_flood.wgsl")),
 ];
 
 /// The contract structs every exported module starts with.

@@ -68,6 +68,10 @@ pub struct Pass {
     pub label: String,
     /// How its buffer is stored.
     pub spec: BufferSpec,
+    /// The parameter slots its module reads: a range of the material's one numbering,
+    /// empty for a stage or baked parameters. What it renders changes only with them and
+    /// with the buffers it reads.
+    pub slots: std::ops::Range<usize>,
     pub kind: PassKind,
 }
 
@@ -297,7 +301,9 @@ impl Planner<'_> {
         }
         let (node, output, spec) = key;
         let (nodes, reads) = self.part(node)?;
+        let first_slot = self.slots.len();
         let module = self.module(&nodes, &reads, Some((node, output)))?;
+        let slots = first_slot..self.slots.len();
         let checked = &self.graph.order[node];
         let label = format!(
             "{} → {}",
@@ -306,6 +312,7 @@ impl Planner<'_> {
         self.passes.push(Pass {
             label,
             spec,
+            slots,
             kind: PassKind::Surface {
                 module,
                 node,
@@ -364,6 +371,7 @@ impl Planner<'_> {
         self.passes.push(Pass {
             label,
             spec,
+            slots: 0..0,
             kind: PassKind::Stage {
                 source,
                 module,

@@ -111,9 +111,11 @@ pub mod value;
 mod cellular;
 mod colour;
 mod coordinates;
+mod distance;
 mod fields;
 mod fractal;
 mod group;
+mod image_ops;
 mod inputs;
 mod mapping;
 mod math;
@@ -126,9 +128,13 @@ mod vectors;
 pub use cellular::Worley;
 pub use colour::{Blend, BlendMode, ColorRamp};
 pub use coordinates::DomainWarp;
+pub use distance::{Bevel, BevelProfile, Distance, Measure};
 pub use fields::Layers;
 pub use fractal::{Fbm, FractalSum, Turbulence};
 pub use group::Group;
+pub use image_ops::{
+    Curvature, DirectionalBlur, EdgeDetect, HeightOcclusion, MakeTileable, SlopeBlur, Transform2D,
+};
 pub use inputs::{Constant, Field};
 pub use mapping::{Clamp, MapRange, MapRangeMode, Mix, Step, Switch};
 pub use math::{Math, Unary};
@@ -421,7 +427,7 @@ macro_rules! registry {
     };
 }
 
-registry!(@gather [] [] inputs coordinates noise fractal cellular patterns fields math mapping vectors colour sampled output group);
+registry!(@gather [] [] inputs coordinates noise fractal cellular patterns fields math mapping vectors colour sampled image_ops distance output group);
 
 impl NodeKind {
     /// A short human-readable name (used for default labels and messages).

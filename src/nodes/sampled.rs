@@ -42,8 +42,10 @@ macro_rules! image_node {
     };
 }
 
+pub(super) use image_node;
+
 /// The lanes of a buffer texel as a value of type `ty` (a float in all three lanes).
-fn typed<R: Real>(texel: [f64; 4], ty: ValueType) -> V3<R> {
+pub(super) fn typed<R: Real>(texel: [f64; 4], ty: ValueType) -> V3<R> {
     match ty {
         ValueType::Float => [texel[0]; 3].map(R::c),
         ValueType::Vec2 => [texel[0], texel[1], 0.0].map(R::c),
@@ -52,7 +54,7 @@ fn typed<R: Real>(texel: [f64; 4], ty: ValueType) -> V3<R> {
 }
 
 /// The WGSL swizzle taking a value of type `ty` from a buffer's `vec4f`.
-fn swizzle(ty: ValueType) -> &'static str {
+pub(super) fn swizzle(ty: ValueType) -> &'static str {
     ["x", "xy", "xyz"][ty.width() - 1]
 }
 

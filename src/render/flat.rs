@@ -141,14 +141,18 @@ impl FlatRenderer {
     }
 
     /// Sets the values of the parameter slots (a material compiled with slots); the
-    /// passes render again at the next render when they changed.
+    /// passes that read a changed slot render again at the next render.
     pub fn write_params(&self, gpu: &GpuContext, values: &[[f32; 4]]) {
-        if let Some((block, _)) = &self.params
-            && block.write(gpu, values)
-            && let Some(passes) = &self.passes
-        {
-            passes.invalidate();
+        if let Some((block, _)) = &self.params {
+            block.write(gpu, values);
         }
+    }
+
+    /// How many passes have rendered so far (0 for a single-pass material).
+    pub fn passes_rendered(&self) -> u64 {
+        self.passes
+            .as_ref()
+            .map_or(0, PassRenderer::passes_rendered)
     }
 
     /// Renders the passes for an output of size² pixels over `rect` (when the material

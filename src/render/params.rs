@@ -28,17 +28,20 @@ impl ParamBlock {
         })
     }
 
-    /// Writes `values` (as many as fit); returns whether they differ from the last.
-    pub fn write(&self, gpu: &GpuContext, values: &[[f32; 4]]) -> bool {
+    /// Writes `values` (as many as fit), unless they are those last written.
+    pub fn write(&self, gpu: &GpuContext, values: &[[f32; 4]]) {
         let fits = &values[..values.len().min((self.buffer.size() / 16) as usize)];
         let mut written = self.written.lock().expect("parameter values");
-        if written.as_slice() == fits {
-            return false;
+        if written.as_slice() != fits {
+            gpu.queue
+                .write_buffer(&self.buffer, 0, bytemuck::cast_slice(fits));
+            *written = fits.to_vec();
         }
-        gpu.queue
-            .write_buffer(&self.buffer, 0, bytemuck::cast_slice(fits));
-        *written = fits.to_vec();
-        true
+    }
+
+    /// The values last written.
+    pub fn values(&self) -> Vec<[f32; 4]> {
+        self.written.lock().expect("parameter values").clone()
     }
 
     /// The bind group of the block for group 1 of `pipeline`.

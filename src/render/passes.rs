@@ -1,11 +1,13 @@
 //! The GPU side of a multi-pass material over a flat domain: a pipeline per pass, and
-//! the buffers they render, in order, for one rectangle, output size and time (kept
-//! until one of those changes).
+//! the buffers they render, in order, for one rectangle, output size and time. The
+//! buffers are kept: a pass renders again only when the domain changes, a parameter
+//! slot it reads changes, or a buffer it reads rendered again.
 
 use super::params::ParamBlock;
 use super::{FlatRect, GpuContext, RenderError, shader_source};
 use crate::codegen::passes::{PassKind, Passes, STAGE_ENTRY_POINTS, SURFACE_ENTRY_POINTS};
 use crate::nodes::passes::BufferFormat;
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
 
 #[repr(C)]
@@ -29,15 +31,25 @@ fn texture_format(format: BufferFormat) -> wgpu::TextureFormat {
 /// What the buffers were last rendered for: rectangle, output size and time.
 type RenderedFor = ([u32; 5], u32, u32);
 
-/// A material's passes, built once, rendered whenever the domain changes.
+/// The buffers as last rendered: for what domain, and with which values of its
+/// parameter slots each pass.
+struct Rendered {
+    domain: RenderedFor,
+    textures: Vec<wgpu::Texture>,
+    values: Vec<Vec<[f32; 4]>>,
+}
+
+/// A material's passes, built once, each rendered again only when what it reads changes.
 pub struct PassRenderer {
     passes: Passes,
     pipelines: Vec<wgpu::RenderPipeline>,
-    /// The parameter block at group 1 of each pass that reads it.
+    /// The parameter values, and their bind group at group 1 of each pass that reads them.
+    block: Option<Arc<ParamBlock>>,
     params: Vec<Option<wgpu::BindGroup>>,
     view: wgpu::Buffer,
-    /// The buffers, pass by pass, and what they were rendered for.
-    rendered: Mutex<Option<(RenderedFor, Vec<wgpu::Texture>)>>,
+    rendered: Mutex<Option<Rendered>>,
+    /// Passes rendered so far (for tests and reports).
+    renders: AtomicU64,
 }
 
 impl PassRenderer {
@@ -69,7 +81,7 @@ impl PassRenderer {
                 })?,
             );
         }
-        let params = (passes.passes.iter().zip(&pipelines))
+        let groups = (passes.passes.iter().zip(&pipelines))
             .map(|(pass, pipeline)| {
                 let block = params.filter(|_| pass.module().binds_params)?;
                 Some(block.bind_group(gpu, pipeline))
@@ -84,9 +96,11 @@ impl PassRenderer {
         Ok(PassRenderer {
             passes: passes.clone(),
             pipelines,
-            params,
+            block: params.cloned(),
+            params: groups,
             view,
             rendered: Mutex::new(None),
+            renders: AtomicU64::new(0),
         })
     }
 
@@ -103,10 +117,10 @@ impl PassRenderer {
             .sum()
     }
 
-    /// Forgets the buffers rendered (the parameter values changed): the next render
-    /// renders every pass again.
-    pub fn invalidate(&self) {
-        *self.rendered.lock().expect("pass buffers") = None;
+    /// How many passes have rendered so far: a parameter edit renders again only the
+    /// passes that read the slots it changed and those downstream of them.
+    pub fn passes_rendered(&self) -> u64 {
+        self.renders.load(Ordering::Relaxed)
     }
 
     /// The buffers the material's module reads, binding `k` holding entry `k`.
@@ -122,12 +136,13 @@ impl PassRenderer {
         reads: &[usize],
     ) -> wgpu::BindGroup {
         let rendered = self.rendered.lock().expect("pass buffers");
-        let (_, textures) = rendered.as_ref().expect("the passes rendered first");
-        bind_buffers(gpu, pipeline, textures, reads)
+        let rendered = rendered.as_ref().expect("the passes rendered first");
+        bind_buffers(gpu, pipeline, &rendered.textures, reads)
     }
 
-    /// Renders every pass for an output of size² pixels over `rect` at `time`, unless
-    /// its buffers are already for these.
+    /// Renders the passes for an output of size² pixels over `rect` at `time` and the
+    /// parameter values last written: every pass when the domain changed, otherwise
+    /// only those whose slots changed and those reading a buffer rendered again.
     pub fn render(
         &self,
         gpu: &GpuContext,
@@ -135,24 +150,50 @@ impl PassRenderer {
         size: u32,
         time: f32,
     ) -> Result<(), RenderError> {
-        let key: RenderedFor = (
+        let domain: RenderedFor = (
             [rect.x0, rect.z0, rect.x1, rect.z1, rect.y].map(|v| (v as f32).to_bits()),
             size,
             time.to_bits(),
         );
+        let values = self
+            .block
+            .as_ref()
+            .map(|block| block.values())
+            .unwrap_or_default();
         let mut rendered = self.rendered.lock().expect("pass buffers");
-        if rendered.as_ref().is_some_and(|(at, _)| *at == key) {
-            return Ok(());
+        let mut state = match rendered.take() {
+            Some(state) if state.domain == domain => state,
+            _ => Rendered {
+                domain,
+                textures: self.textures(gpu, size)?,
+                values: Vec::new(),
+            },
+        };
+        let fresh_domain = state.values.is_empty();
+        let mut again = vec![false; self.passes.passes.len()];
+        for (index, pass) in self.passes.passes.iter().enumerate() {
+            let own = values.get(pass.slots.clone()).unwrap_or_default();
+            let reads = pass.reads();
+            again[index] =
+                fresh_domain || state.values[index] != own || reads.iter().any(|&read| again[read]);
+            if !again[index] {
+                continue;
+            }
+            self.draw(gpu, index, rect, time, &state.textures)?;
+            match state.values.get_mut(index) {
+                Some(seen) => *seen = own.to_vec(),
+                None => state.values.push(own.to_vec()),
+            }
         }
+        *rendered = Some(state);
+        Ok(())
+    }
+
+    /// One texture per pass, for an output of `size` pixels.
+    fn textures(&self, gpu: &GpuContext, size: u32) -> Result<Vec<wgpu::Texture>, RenderError> {
         let limit = gpu.device.limits().max_texture_dimension_2d;
-        let mut textures: Vec<wgpu::Texture> = Vec::with_capacity(self.pipelines.len());
-        let passes = self
-            .passes
-            .passes
-            .iter()
-            .zip(&self.pipelines)
-            .zip(&self.params);
-        for ((pass, pipeline), params) in passes {
+        let mut textures = Vec::with_capacity(self.passes.passes.len());
+        for pass in &self.passes.passes {
             let side = pass.spec.texels(size);
             if side > limit {
                 return Err(RenderError::Invalid(format!(
@@ -160,7 +201,7 @@ impl PassRenderer {
                     pass.label
                 )));
             }
-            let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
+            textures.push(gpu.device.create_texture(&wgpu::TextureDescriptor {
                 label: Some(&pass.label),
                 size: wgpu::Extent3d {
                     width: side,
@@ -175,57 +216,70 @@ impl PassRenderer {
                     | wgpu::TextureUsages::TEXTURE_BINDING
                     | wgpu::TextureUsages::COPY_SRC,
                 view_formats: &[],
-            });
-            let mut groups = Vec::new();
-            if let PassKind::Surface { .. } = pass.kind {
-                let view = PassViewUniform {
-                    rect: [rect.x0, rect.z0, rect.x1, rect.z1].map(|v| v as f32),
-                    size: [side as f32; 2],
-                    plane_y: rect.y as f32,
-                    time,
-                };
-                gpu.queue
-                    .write_buffer(&self.view, 0, bytemuck::bytes_of(&view));
-                groups.push((
-                    0,
-                    gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-                        label: Some("pass view"),
-                        layout: &pipeline.get_bind_group_layout(0),
-                        entries: &[wgpu::BindGroupEntry {
-                            binding: 0,
-                            resource: self.view.as_entire_binding(),
-                        }],
-                    }),
-                ));
-            }
-            if let Some(params) = params {
-                groups.push((1, params.clone()));
-            }
-            let reads = pass.reads();
-            if !reads.is_empty() {
-                groups.push((2, bind_buffers(gpu, pipeline, &textures, &reads)));
-            }
-            let mut encoder = gpu
-                .device
-                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                    label: Some(&pass.label),
-                });
-            {
-                let target = texture.create_view(&Default::default());
-                let mut render =
-                    super::tiles::clear_pass(&mut encoder, &target, wgpu::Color::TRANSPARENT, None);
-                render.set_pipeline(pipeline);
-                for (index, group) in &groups {
-                    render.set_bind_group(*index, group, &[]);
-                }
-                render.draw(0..3, 0..1);
-            }
-            // One submission per pass: the view uniform is rewritten for the next.
-            gpu.queue.submit([encoder.finish()]);
-            textures.push(texture);
+            }));
         }
-        *rendered = Some((key, textures));
-        Ok(())
+        Ok(textures)
+    }
+
+    /// Renders pass `index` into its texture, reading the textures before it.
+    fn draw(
+        &self,
+        gpu: &GpuContext,
+        index: usize,
+        rect: FlatRect,
+        time: f32,
+        textures: &[wgpu::Texture],
+    ) -> Result<(), RenderError> {
+        let (pass, pipeline) = (&self.passes.passes[index], &self.pipelines[index]);
+        let texture = &textures[index];
+        let mut groups = Vec::new();
+        if let PassKind::Surface { .. } = pass.kind {
+            let view = PassViewUniform {
+                rect: [rect.x0, rect.z0, rect.x1, rect.z1].map(|v| v as f32),
+                size: [texture.width() as f32, texture.height() as f32],
+                plane_y: rect.y as f32,
+                time,
+            };
+            gpu.queue
+                .write_buffer(&self.view, 0, bytemuck::bytes_of(&view));
+            groups.push((
+                0,
+                gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some("pass view"),
+                    layout: &pipeline.get_bind_group_layout(0),
+                    entries: &[wgpu::BindGroupEntry {
+                        binding: 0,
+                        resource: self.view.as_entire_binding(),
+                    }],
+                }),
+            ));
+        }
+        if let Some(params) = &self.params[index] {
+            groups.push((1, params.clone()));
+        }
+        let reads = pass.reads();
+        if !reads.is_empty() {
+            groups.push((2, bind_buffers(gpu, pipeline, textures, &reads)));
+        }
+        let mut encoder = gpu
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some(&pass.label),
+            });
+        {
+            let target = texture.create_view(&Default::default());
+            let mut render =
+                super::tiles::clear_pass(&mut encoder, &target, wgpu::Color::TRANSPARENT, None);
+            render.set_pipeline(pipeline);
+            for (index, group) in &groups {
+                render.set_bind_group(*index, group, &[]);
+            }
+            render.draw(0..3, 0..1);
+        }
+        // One submission per pass: the view uniform is rewritten for the next.
+        gpu.queue.submit([encoder.finish()]);
+        self.renders.fetch_add(1, Ordering::Relaxed);
+        gpu.take_errors()
     }
 }
 

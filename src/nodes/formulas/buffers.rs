@@ -37,9 +37,11 @@ impl Image {
     }
 
     /// The place of domain coordinate `uv` among the texel centres (as
-    /// `veneer_buffer_place`).
+    /// `veneer_buffer_place`), scaled to texels in f32 as the GPU scales it: the
+    /// fractions that weigh neighbouring texels are then the GPU's, which matters where
+    /// a node's output is steep in them (a round bevel at its foot).
     fn place(&self, uv: [f64; 2]) -> [f64; 2] {
-        let size = [f64::from(self.width), f64::from(self.height)];
+        let size = [self.width as f32, self.height as f32];
         [0, 1].map(|k| {
             let u = uv[k];
             let near = match self.edge {
@@ -47,7 +49,7 @@ impl Image {
                 EdgeMode::Clamp => u.clamp(-1.0, 2.0),
                 EdgeMode::Mirror => u - 2.0 * (u * 0.5).floor(),
             };
-            near * size[k] - 0.5
+            f64::from(near as f32 * size[k] - 0.5)
         })
     }
 

@@ -5,6 +5,8 @@ pub mod buffers;
 pub mod colour;
 pub mod fields;
 pub mod gabor;
+pub mod image_ops;
+pub mod jump_flood;
 #[cfg(test)]
 mod library_items;
 pub mod noise;
