@@ -91,7 +91,12 @@ impl Evaluator {
     /// rendered by [`Evaluator::render_passes`]).
     pub fn eval_reading<R: Real>(&self, surface: &Surface<R>, buffers: &Buffers) -> Material<R> {
         let material = self.graph.order.len() - 1;
-        let values = self.values(surface, buffers, 0..material);
+        let values = if buffers.material_nodes.is_empty() {
+            self.values(surface, buffers, 0..material)
+        } else {
+            let part = buffers.material_nodes.iter().copied();
+            self.values(surface, buffers, part.filter(|&at| at != material))
+        };
         let checked = &self.graph.order[material];
         let inputs = self.inputs(checked, &values, surface);
         Material::from_inputs(&Eval::new(&checked.signature.inputs, &inputs, surface))

@@ -17,6 +17,9 @@ pub struct Buffers {
     /// Pass `i`'s buffer.
     pub images: Vec<Image>,
     sampled: BTreeMap<(NodeId, usize), usize>,
+    /// The positions of the nodes the material's module holds (the material's part:
+    /// a Buffer node read only through sampled inputs is in none).
+    pub(super) material_nodes: Vec<usize>,
 }
 
 impl Buffers {
@@ -41,6 +44,7 @@ impl Evaluator {
         let mut buffers = Buffers {
             images: Vec::with_capacity(passes.passes.len()),
             sampled: passes.sampled.clone(),
+            material_nodes: passes.nodes.clone(),
         };
         for pass in &passes.passes {
             let side = pass.spec.texels(size);

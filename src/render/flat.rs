@@ -99,6 +99,8 @@ pub struct FlatRenderer {
     params: Option<(Arc<ParamBlock>, Option<wgpu::BindGroup>)>,
     /// The material's buffers, bound at group 2 (multi-pass materials).
     buffers: Mutex<Option<wgpu::BindGroup>>,
+    /// The output size the passes render for, whatever the image's (`None`: the image's).
+    pass_size: Option<u32>,
 }
 
 impl FlatRenderer {
@@ -148,6 +150,22 @@ impl FlatRenderer {
         }
     }
 
+    /// Renders the passes for an output of `size` pixels whatever the size of the
+    /// image asked for (`None`: the image's), so that pictures of any size show the
+    /// same buffers.
+    pub fn set_pass_size(&mut self, size: Option<u32>) {
+        self.pass_size = size;
+    }
+
+    /// The bytes of textures the passes hold at once for an output of `size` pixels (0
+    /// for a single-pass material).
+    pub fn pass_bytes(&self, size: u32) -> u64 {
+        let size = self.pass_size.unwrap_or(size);
+        self.passes
+            .as_ref()
+            .map_or(0, |passes| passes.buffer_bytes(size))
+    }
+
     /// How many passes have rendered so far (0 for a single-pass material).
     pub fn passes_rendered(&self) -> u64 {
         self.passes
@@ -168,7 +186,7 @@ impl FlatRenderer {
         let Some(passes) = &self.passes else {
             return Ok(());
         };
-        passes.render(gpu, rect, size, time)?;
+        passes.render(gpu, rect, self.pass_size.unwrap_or(size), time)?;
         let reads = passes.reads();
         let group = (!reads.is_empty()).then(|| passes.bind_group(gpu, &self.pipeline, reads));
         *self.buffers.lock().expect("flat buffers") = group;
@@ -203,6 +221,7 @@ impl FlatRenderer {
             passes: None,
             params: None,
             buffers: Mutex::new(None),
+            pass_size: None,
         })
     }
 

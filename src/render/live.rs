@@ -14,6 +14,11 @@ use crate::mesh::Mesh;
 use std::sync::Arc;
 use std::time::Instant;
 
+/// The output size the preview renders a multi-pass material's passes for, whatever the
+/// size of its picture: the preview and the node thumbnails show the same buffers, those
+/// of a bake of this size.
+pub const PREVIEW_PASS_SIZE: u32 = 512;
+
 /// How finely a live frame is drawn.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Quality {
@@ -176,7 +181,8 @@ impl LiveRenderer {
 
     /// Draws a multi-pass material flat: its albedo over the unit tile, centred in the
     /// image, the tile's neighbours around it (where the buffers wrap, they repeat it).
-    /// Its passes render again only when the material or its parameter values change.
+    /// Its passes render for [`PREVIEW_PASS_SIZE`], again only when the material or the
+    /// parameter values they read change.
     #[allow(clippy::too_many_arguments)]
     fn render_tile(
         &mut self,
@@ -190,13 +196,14 @@ impl LiveRenderer {
     ) -> Result<((u32, u32), Vec<u8>), RenderError> {
         let (width, height) = self.image_size(size, quality);
         if (self.flat.as_ref()).is_none_or(|(generation, _)| *generation != material.generation) {
-            let flat = FlatRenderer::with_passes(
+            let mut flat = FlatRenderer::with_passes(
                 gpu,
                 &material.wgsl,
                 material.slots,
                 material.binds_params,
                 Some(passes),
             )?;
+            flat.set_pass_size(Some(PREVIEW_PASS_SIZE));
             self.flat = Some((material.generation, flat));
             self.materials_built += 1;
         }

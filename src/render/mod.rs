@@ -31,7 +31,7 @@ pub use image::{
     Image, MeshLook, Rendered, View, baked_parameters, flat_passes_only, mesh_with_fields,
     preview_rect, render_material, render_material_with,
 };
-pub use live::{LiveMaterialCode, LiveRenderer, Quality};
+pub use live::{LiveMaterialCode, LiveRenderer, PREVIEW_PASS_SIZE, Quality};
 pub use mesh_render::MeshRenderer;
 pub use mesh_view::{
     Backdrop, COLOR_FORMAT, DEFAULT_KEY_LIGHT, MeshPipeline, MeshTarget, MeshView, Projection,

@@ -1,7 +1,9 @@
 //! The GPU side of a multi-pass material over a flat domain: a pipeline per pass, and
 //! the buffers they render, in order, for one rectangle, output size and time. The
 //! buffers are kept: a pass renders again only when the domain changes, a parameter
-//! slot it reads changes, or a buffer it reads rendered again.
+//! slot it reads changes, or a buffer it reads rendered again. A buffer read only by the
+//! stage after it (the inside of a jump flood's chain of steps) lives in one of two
+//! scratch textures that the chain's steps take turns with.
 
 use super::params::ParamBlock;
 use super::{FlatRect, GpuContext, RenderError, shader_source};
@@ -31,10 +33,14 @@ fn texture_format(format: BufferFormat) -> wgpu::TextureFormat {
 /// What the buffers were last rendered for: rectangle, output size and time.
 type RenderedFor = ([u32; 5], u32, u32);
 
+/// The most bytes of textures a material's passes may hold at once.
+pub const MAX_PASS_BYTES: u64 = 4 << 30;
+
 /// The buffers as last rendered: for what domain, and with which values of its
 /// parameter slots each pass.
 struct Rendered {
     domain: RenderedFor,
+    /// One texture per storage slot (see [`PassRenderer::storage`]).
     textures: Vec<wgpu::Texture>,
     values: Vec<Vec<[f32; 4]>>,
 }
@@ -47,6 +53,11 @@ pub struct PassRenderer {
     block: Option<Arc<ParamBlock>>,
     params: Vec<Option<wgpu::BindGroup>>,
     view: wgpu::Buffer,
+    /// The texture each pass renders into: its own, or a scratch texture shared by the
+    /// buffers only the next stage reads.
+    storage: Vec<usize>,
+    /// The pass whose buffer settings each texture takes.
+    slot_specs: Vec<usize>,
     rendered: Mutex<Option<Rendered>>,
     /// Passes rendered so far (for tests and reports).
     renders: AtomicU64,
@@ -93,7 +104,10 @@ impl PassRenderer {
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
+        let (storage, slot_specs) = storage(passes);
         Ok(PassRenderer {
+            storage,
+            slot_specs,
             passes: passes.clone(),
             pipelines,
             block: params.cloned(),
@@ -105,14 +119,13 @@ impl PassRenderer {
     }
 
     /// The buffers' texture bytes for an output of `size` pixels: what the passes hold
-    /// on the GPU at once.
+    /// on the GPU at once (scratch textures counted once).
     pub fn buffer_bytes(&self, size: u32) -> u64 {
-        self.passes
-            .passes
-            .iter()
-            .map(|pass| {
-                let side = u64::from(pass.spec.texels(size));
-                side * side * pass.spec.format.texel_bytes()
+        (self.slot_specs.iter())
+            .map(|&pass| {
+                let spec = &self.passes.passes[pass].spec;
+                let side = u64::from(spec.texels(size));
+                side * side * spec.format.texel_bytes()
             })
             .sum()
     }
@@ -137,7 +150,7 @@ impl PassRenderer {
     ) -> wgpu::BindGroup {
         let rendered = self.rendered.lock().expect("pass buffers");
         let rendered = rendered.as_ref().expect("the passes rendered first");
-        bind_buffers(gpu, pipeline, &rendered.textures, reads)
+        bind_buffers(gpu, pipeline, &self.textures_of(&rendered.textures, reads))
     }
 
     /// Renders the passes for an output of size² pixels over `rect` at `time` and the
@@ -189,11 +202,24 @@ impl PassRenderer {
         Ok(())
     }
 
-    /// One texture per pass, for an output of `size` pixels.
+    /// One texture per storage slot, for an output of `size` pixels.
     fn textures(&self, gpu: &GpuContext, size: u32) -> Result<Vec<wgpu::Texture>, RenderError> {
+        let bytes = self.buffer_bytes(size);
+        if bytes > MAX_PASS_BYTES {
+            return Err(RenderError::TooLarge {
+                size,
+                bytes,
+                why: format!(
+                    "its {} passes' buffers would take more than the {} a material's passes may hold",
+                    self.passes.passes.len(),
+                    crate::fsutil::gibibytes(MAX_PASS_BYTES)
+                ),
+            });
+        }
         let limit = gpu.device.limits().max_texture_dimension_2d;
-        let mut textures = Vec::with_capacity(self.passes.passes.len());
-        for pass in &self.passes.passes {
+        let mut textures = Vec::with_capacity(self.slot_specs.len());
+        for &index in &self.slot_specs {
+            let pass = &self.passes.passes[index];
             let side = pass.spec.texels(size);
             if side > limit {
                 return Err(RenderError::Invalid(format!(
@@ -221,6 +247,18 @@ impl PassRenderer {
         Ok(textures)
     }
 
+    /// The textures holding the buffers of passes `reads`, in order.
+    fn textures_of<'t>(
+        &self,
+        textures: &'t [wgpu::Texture],
+        reads: &[usize],
+    ) -> Vec<&'t wgpu::Texture> {
+        reads
+            .iter()
+            .map(|&pass| &textures[self.storage[pass]])
+            .collect()
+    }
+
     /// Renders pass `index` into its texture, reading the textures before it.
     fn draw(
         &self,
@@ -231,7 +269,7 @@ impl PassRenderer {
         textures: &[wgpu::Texture],
     ) -> Result<(), RenderError> {
         let (pass, pipeline) = (&self.passes.passes[index], &self.pipelines[index]);
-        let texture = &textures[index];
+        let texture = &textures[self.storage[index]];
         let mut groups = Vec::new();
         if let PassKind::Surface { .. } = pass.kind {
             let view = PassViewUniform {
@@ -259,7 +297,10 @@ impl PassRenderer {
         }
         let reads = pass.reads();
         if !reads.is_empty() {
-            groups.push((2, bind_buffers(gpu, pipeline, textures, &reads)));
+            groups.push((
+                2,
+                bind_buffers(gpu, pipeline, &self.textures_of(textures, &reads)),
+            ));
         }
         let mut encoder = gpu
             .device
@@ -283,16 +324,14 @@ impl PassRenderer {
     }
 }
 
-/// A bind group of `textures[reads[k]]` at binding k of group 2 of `pipeline`.
+/// A bind group of `textures[k]` at binding k of group 2 of `pipeline`.
 fn bind_buffers(
     gpu: &GpuContext,
     pipeline: &wgpu::RenderPipeline,
-    textures: &[wgpu::Texture],
-    reads: &[usize],
+    textures: &[&wgpu::Texture],
 ) -> wgpu::BindGroup {
-    let views: Vec<wgpu::TextureView> = reads
-        .iter()
-        .map(|&buffer| textures[buffer].create_view(&Default::default()))
+    let views: Vec<wgpu::TextureView> = (textures.iter())
+        .map(|texture| texture.create_view(&Default::default()))
         .collect();
     let entries: Vec<wgpu::BindGroupEntry> = views
         .iter()
@@ -307,4 +346,51 @@ fn bind_buffers(
         layout: &pipeline.get_bind_group_layout(2),
         entries: &entries,
     })
+}
+
+/// The texture each pass renders into, and for each texture the pass whose settings it
+/// takes. A buffer read by nothing but the stage right after it is scratch: such
+/// buffers of the same settings take turns with two textures (a chain's step k writes
+/// one while reading the other); every other buffer has a texture of its own.
+fn storage(passes: &Passes) -> (Vec<usize>, Vec<usize>) {
+    let count = passes.passes.len();
+    let mut readers = vec![0usize; count];
+    for read in passes
+        .passes
+        .iter()
+        .flat_map(|pass| pass.reads())
+        .chain(passes.reads.iter().copied())
+    {
+        readers[read] += 1;
+    }
+    let scratch = |index: usize| {
+        readers[index] == 1
+            && (passes.passes.get(index + 1)).is_some_and(|next| {
+                matches!(next.kind, PassKind::Stage { .. }) && next.reads() == [index]
+            })
+    };
+    let mut storage = Vec::with_capacity(count);
+    let mut slot_specs: Vec<usize> = Vec::new();
+    // Per buffer settings: the two scratch textures and whose turn it is.
+    let mut turns: Vec<(crate::nodes::passes::BufferSpec, [usize; 2], usize)> = Vec::new();
+    for (index, pass) in passes.passes.iter().enumerate() {
+        if !scratch(index) {
+            storage.push(slot_specs.len());
+            slot_specs.push(index);
+            continue;
+        }
+        let at = match turns.iter().position(|(spec, _, _)| *spec == pass.spec) {
+            Some(at) => at,
+            None => {
+                let pair = [slot_specs.len(), slot_specs.len() + 1];
+                slot_specs.extend([index, index]);
+                turns.push((pass.spec, pair, 0));
+                turns.len() - 1
+            }
+        };
+        let (_, pair, turn) = &mut turns[at];
+        storage.push(pair[*turn]);
+        *turn = 1 - *turn;
+    }
+    (storage, slot_specs)
 }

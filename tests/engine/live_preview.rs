@@ -7,7 +7,10 @@ use crate::support::{difference, gpu, temp_dir};
 use veneer::app::{LiveMaterial, UNIFORM_SLOTS};
 use veneer::codegen::{CompileOptions, compile};
 use veneer::graph::Graph;
-use veneer::render::{LiveMaterialCode, LiveRenderer, MeshView, Quality, View, render_material};
+use veneer::render::{
+    FlatRenderer, LiveMaterialCode, LiveRenderer, MeshView, PREVIEW_PASS_SIZE, Quality, View,
+    albedo_to_rgb8, render_material,
+};
 
 /// The preview's side in pixels: enough for the lattice of the sphere's triangles.
 const SIZE: u32 = 256;
@@ -100,12 +103,13 @@ fn a_multi_pass_material_previews_as_its_tile_and_a_value_edit_renders_its_passe
         assert_eq!(size, (SIZE, SIZE));
         rgb(&pixels)
     };
+    // The flat render of the tile, its passes at the preview's resolution.
     let rendered = |graph: &Graph| {
         let baked = compile(graph, &CompileOptions::default()).expect("it compiles");
-        let tile = View::Flat(veneer::bake::UNIT_TILE);
-        render_material(gpu, &baked, &tile, SIZE, 0.0)
-            .expect("it renders")
-            .pixels
+        let mut flat = FlatRenderer::for_compiled(gpu, &baked).expect("pipelines");
+        flat.set_pass_size(Some(PREVIEW_PASS_SIZE));
+        let tile = veneer::bake::UNIT_TILE;
+        albedo_to_rgb8(&flat.render(gpu, tile, SIZE, 0.0).expect("it renders"))
     };
     let first = preview(live.params(&graph), &mut renderer);
     assert!(difference(&first, &rendered(&graph), 3, 1).passes());

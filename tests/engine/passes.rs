@@ -522,6 +522,14 @@ fn the_shipped_texture_graphs_bake_seamless_tiles_that_match_their_cpu_reference
         }
         let worst = gpu_against_cpu(&compiled, TILE, 32);
         assert!(worst <= 1e-4, "{}: differs by {worst:.2e}", path.display());
+        // Buffers only the next step reads share two scratch textures.
+        let flat = FlatRenderer::for_compiled(gpu(), &compiled).expect("pipelines");
+        let own_textures = flat.pass_bytes(64) / (64 * 64 * 16);
+        assert!(
+            own_textures <= 6,
+            "{}: {own_textures} textures",
+            path.display()
+        );
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
@@ -536,7 +544,7 @@ fn a_value_edit_renders_again_only_the_passes_it_reaches() {
     // The noise, then the blur's two axes over it.
     assert_eq!(compiled.passes.passes.len(), 3);
     let renderer = FlatRenderer::for_compiled(gpu(), &compiled).expect("pipelines");
-    let mut render = |graph: &Graph| {
+    let render = |graph: &Graph| {
         renderer.write_params(gpu(), &param_values(graph, &compiled.module.params));
         let pixels = renderer.render(gpu(), TILE, 32, 0.0).expect("renders");
         (renderer.passes_rendered(), pixels)
@@ -568,4 +576,46 @@ fn a_value_edit_renders_again_only_the_passes_it_reaches() {
         .flat_map(|(a, b)| (0..3).map(move |k| (a[k] - b[k]).abs()))
         .fold(0.0f32, f32::max);
     assert!(worst < 1e-5, "the edited preview differs by {worst}");
+}
+
+#[test]
+fn a_buffer_node_sets_the_buffer_that_the_image_nodes_it_feeds_read() {
+    use veneer::nodes::passes::{EdgeMode, Filter, Resolution};
+    let mut graph = Graph::default();
+    let noise = tile_noise(&mut graph, "grain", Basis::Gradient);
+    let buffer = graph.add(
+        "coarse",
+        NodeKind::Buffer(veneer::nodes::Buffer {
+            ty: ValueType::Float,
+            resolution: Resolution::Half,
+            size: 512,
+            format: BufferFormat::Unorm8,
+            edge: EdgeMode::Mirror,
+            filter: Filter::Bilinear,
+        }),
+    );
+    graph.connect(noise, "value", buffer, "value");
+    let blur = graph.add(
+        "soft",
+        NodeKind::Blur(Blur {
+            ty: ValueType::Float,
+            unit: RadiusUnit::Texels,
+        }),
+    );
+    graph.connect(buffer, "value", blur, "image");
+    show(&mut graph, blur, "result", ValueType::Float);
+    let compiled = compile(&graph, &Default::default()).expect("compiles");
+    // The noise rendered once at the Buffer node's settings, then the blur's two axes.
+    let passes = &compiled.passes.passes;
+    assert_eq!(passes.len(), 3);
+    assert_eq!(passes[0].spec.resolution, Resolution::Half);
+    assert_eq!(passes[0].spec.format, BufferFormat::Unorm8);
+    assert!(
+        passes[1..]
+            .iter()
+            .all(|pass| pass.spec.edge == EdgeMode::Mirror)
+    );
+    assert_eq!(passes[0].spec.texels(48), 24);
+    let worst = gpu_against_cpu(&compiled, TILE, 48);
+    assert!(worst <= tolerance(&compiled), "differs by {worst:.2e}");
 }

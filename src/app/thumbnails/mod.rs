@@ -237,8 +237,8 @@ impl Thumbnails {
             self.left_out.structure = stamp.structure;
             self.left_out.broken.clear();
         }
-        // A node that fails to compile is left out (with what reads it) and the rest
-        // compiled again; each round leaves out at least one more node.
+        // A node that fails to compile, or reads a buffer, is left out (with what reads
+        // it) and the rest compiled again; each round leaves out at least one more node.
         let atlas = loop {
             let (pins, upstream) = self.wanted(graph, &candidates);
             let Some(atlas) = atlas_graph_reading(graph, &pins, upstream) else {
@@ -250,7 +250,12 @@ impl Thumbnails {
                 // Tiles are drawn once the code for them is in.
                 return;
             }
-            let failed: Vec<NodeId> = self.atlas.errors.keys().flatten().copied().collect();
+            let mut failed: Vec<NodeId> = self.atlas.errors.keys().flatten().copied().collect();
+            // Image nodes read buffers, which the atlas does not render: they are left
+            // out like nodes that fail, with what reads them.
+            if let Some(compiled) = &self.atlas.compiled {
+                failed.extend(compiled.passes.sampled.keys().map(|(node, _)| *node));
+            }
             if failed.is_empty()
                 || failed
                     .iter()
@@ -263,7 +268,7 @@ impl Thumbnails {
         let Some(compiled) = &self.atlas.compiled else {
             return;
         };
-        if !self.atlas.errors.is_empty() {
+        if !self.atlas.errors.is_empty() || !compiled.passes.is_empty() {
             return;
         }
         self.tiles.lay_out(atlas.pins);
