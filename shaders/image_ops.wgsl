@@ -119,3 +119,19 @@ fn veneer_make_tileable(t: texture_2d<f32>, edge: u32, uv: vec2f, width: f32) ->
     let buv = veneer_buffer_bilinear(t, edge, moved - floor(moved));
     return mix(mix(a, bu, fade.x), mix(bv, buv, fade.x), fade.y);
 }
+
+// `t` read at `uv` moved `amount` × `intensity` domain units along `angle` degrees from
+// +u (a directional warp: wire a mask or noise to `intensity`).
+fn veneer_directional_warp_uv(uv: vec2f, intensity: f32, angle: f32, amount: f32) -> vec2f {
+    let radians = angle * 0.017453292;
+    let reach = clamp(amount * intensity, -1.0e6, 1.0e6);
+    return uv + reach * vec2f(cos(radians), sin(radians));
+}
+
+// `t` read at `uv` moved downhill along the slope of the first lane of `s`, `amount` ×
+// slope domain units (at most a quarter tile each way): a warp by a gradient.
+fn veneer_slope_warp(t: texture_2d<f32>, t_edge: u32, s: texture_2d<f32>, s_edge: u32, uv: vec2f, amount: f32) -> vec4f {
+    let slope = veneer_buffer_gradient(s, s_edge, uv);
+    let reach = clamp(-amount * slope, vec2f(-0.25), vec2f(0.25));
+    return veneer_buffer_bilinear(t, t_edge, uv + reach);
+}

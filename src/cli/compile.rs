@@ -4,7 +4,7 @@ use super::{Failure, in_file, load_graph, write_output};
 use clap::{Args, ValueEnum};
 use std::path::{Path, PathBuf};
 use veneer::codegen::export::{Target, export_compiled};
-use veneer::codegen::manifest::export_passes;
+use veneer::codegen::manifest::export_beside;
 use veneer::codegen::{CompileOptions, ParamMode, compile, describe_parameters};
 use veneer::fsutil::{Naming, OutputPlan, write_together};
 
@@ -113,24 +113,12 @@ fn write_passes(args: &CompileArgs, compiled: &veneer::codegen::Compiled) -> Res
             )));
         }
     };
-    let stem = output.file_stem().unwrap_or_default().to_string_lossy();
-    let files =
-        export_passes(compiled, args.target, &stem).map_err(|error| in_file(&args.graph, error))?;
-    let paths: Vec<PathBuf> = (files.iter())
-        .map(|file| output.with_file_name(&file.name))
-        .collect();
+    let files = export_beside(compiled, args.target, output)
+        .map_err(|error| in_file(&args.graph, error))?;
     let description = describe_parameters(compiled);
     let described = args.describes_beside().then(|| description_path(output));
-    let mut writes: Vec<(&Path, Naming, &[u8])> = (paths.iter().zip(&files))
-        .enumerate()
-        .map(|(k, (path, file))| {
-            let naming = if k == 0 {
-                Naming::Given
-            } else {
-                Naming::Implied
-            };
-            (path.as_path(), naming, file.bytes.as_slice())
-        })
+    let mut writes: Vec<(&Path, Naming, &[u8])> = (files.iter())
+        .map(|(path, naming, bytes)| (path.as_path(), *naming, bytes.as_slice()))
         .collect();
     if let Some(path) = &described {
         writes.push((path.as_path(), Naming::Implied, description.as_bytes()));
@@ -142,7 +130,7 @@ fn write_passes(args: &CompileArgs, compiled: &veneer::codegen::Compiled) -> Res
         "wrote {} and {} passes with their manifest {}",
         output.display(),
         compiled.passes.passes.len(),
-        paths.last().expect("the manifest").display()
+        files.last().expect("the manifest").0.display()
     ))
 }
 

@@ -11,8 +11,10 @@
 use super::Compiled;
 use super::export::{ExportError, Target, export_compiled, translate};
 use super::passes::{Pass, PassKind, STAGE_ENTRY_POINTS, SURFACE_ENTRY_POINTS};
+use crate::fsutil::Naming;
 use crate::nodes::passes::{BufferFormat, EdgeMode, Resolution};
 use serde::Serialize;
+use std::path::{Path, PathBuf};
 
 /// The fragment entry point of an exported pass (outside WGSL).
 pub const PASS_FRAGMENT_ENTRY: &str = "veneer_pass_fragment";
@@ -74,6 +76,28 @@ pub fn export_passes(
         bytes: text.into_bytes(),
     });
     Ok(files)
+}
+
+/// [`export_passes`] for a material module written to `path`: each file's path (the
+/// others beside it, named from its stem), how it is named (the material's as given,
+/// the rest by Veneer) and its bytes.
+pub fn export_beside(
+    compiled: &Compiled,
+    target: Target,
+    path: &Path,
+) -> Result<Vec<(PathBuf, Naming, Vec<u8>)>, ExportError> {
+    let stem = path.file_stem().unwrap_or_default().to_string_lossy();
+    let files = export_passes(compiled, target, &stem)?;
+    Ok((files.into_iter().enumerate())
+        .map(|(index, file)| {
+            let naming = if index == 0 {
+                Naming::Given
+            } else {
+                Naming::Implied
+            };
+            (path.with_file_name(&file.name), naming, file.bytes)
+        })
+        .collect())
 }
 
 /// Pass `pass`'s module for `target`.

@@ -1,10 +1,11 @@
 //! Image operations: nodes that read a buffer around the point (see `sampled.rs` for
-//! how buffers come to be): directional and slope blur, edges, curvature and ambient
-//! occlusion from a height, 2D transforms of a buffer and making a buffer tileable.
+//! how buffers come to be): directional and slope blur, directional and slope warp,
+//! edges, curvature and ambient occlusion from a height, 2D transforms of a buffer and
+//! making a buffer tileable.
 
 use super::cpu::Eval;
 use super::emit::Emit;
-use super::formulas::image_ops::transform_2d_uv;
+use super::formulas::image_ops::{directional_warp_uv, transform_2d_uv};
 use super::formulas::real::{Real, V3};
 use super::interval::{Interval, Lanes, splat};
 use super::passes::Filter;
@@ -21,7 +22,8 @@ macro_rules! kinds {
         $registry!(@gather
             [$($units)* (EdgeDetect, image_ops) (Curvature, image_ops)]
             [$($configured)* (DirectionalBlur, image_ops) (SlopeBlur, image_ops)
-                (HeightOcclusion, image_ops) (Transform2D, image_ops) (MakeTileable, image_ops)]
+                (HeightOcclusion, image_ops) (Transform2D, image_ops) (MakeTileable, image_ops)
+                (DirectionalWarp, image_ops) (SlopeWarp, image_ops)]
             $($rest)*);
     };
 }
@@ -182,7 +184,7 @@ impl Definition for SlopeBlur {
             vec![
                 input("image", self.ty, f(0.0)).sampled(),
                 input("slope", FLOAT, f(0.0)).sampled(),
-                input("intensity", FLOAT, f(0.02)).soft(-0.1, 0.1),
+                input("intensity", FLOAT, f(0.005)).soft(-0.02, 0.02),
             ],
             vec![output("result", self.ty)],
         )
@@ -655,3 +657,119 @@ super::math::typed_settings!(
     TYPES,
     menu[("Make tileable", ValueType::Color)]
 );
+
+/// A buffer read moved along a direction by a value: `amount` × `intensity` domain
+/// units at `angle` degrees from +u (wire a mask or a noise to `intensity`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "arbitrary", derive(arbitrary::Arbitrary))]
+pub struct DirectionalWarp {
+    pub ty: ValueType,
+}
+
+impl Definition for DirectionalWarp {
+    image_node!();
+    fn title(&self) -> &'static str {
+        "Directional warp"
+    }
+    fn keywords(&self) -> &'static [&'static str] {
+        &["offset", "shift", "displace along", "smear"]
+    }
+    fn signature(&self) -> Signature {
+        Signature::new(
+            vec![
+                input("image", self.ty, f(0.0)).sampled(),
+                input("intensity", FLOAT, f(0.0)).soft(0.0, 1.0),
+                input("angle", FLOAT, f(0.0)).soft(0.0, 360.0),
+                input("amount", FLOAT, f(0.05)).soft(0.0, 0.5),
+            ],
+            vec![output("result", self.ty)],
+        )
+    }
+    fn check(&self) -> Option<String> {
+        None
+    }
+    fn emit(&self, io: &mut Emit) {
+        let at = format!(
+            "veneer_directional_warp_uv(s.uv, {}, {}, {})",
+            io.input("intensity"),
+            io.input("angle"),
+            io.input("amount")
+        );
+        let read = format!("veneer_buffer_bilinear({}, {at})", io.input("image"));
+        io.single(format!("{read}.{}", swizzle(self.ty)));
+        io.uses("veneer_buffer_bilinear");
+        io.uses("veneer_directional_warp_uv");
+    }
+    fn ranges(&self, io: &mut Ranges) -> Vec<Lanes> {
+        vec![io.input("image")]
+    }
+}
+
+impl Evaluate for DirectionalWarp {
+    fn eval<R: Real>(&self, io: &Eval<R>) -> Vec<V3<R>> {
+        let intensity = io.float("intensity").to_f64();
+        let (angle, amount) = (io.float("angle").to_f64(), io.float("amount").to_f64());
+        let at = directional_warp_uv(io.domain(), intensity, angle, amount);
+        vec![typed(io.image("image").bilinear(at), self.ty)]
+    }
+}
+
+super::math::typed_settings!(
+    DirectionalWarp,
+    TYPES,
+    menu[("Directional warp", ValueType::Color)]
+);
+
+/// A buffer read moved downhill along the slope of a second buffer, `amount` × slope
+/// domain units: a warp by a gradient (the image flows off the slope's ridges).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "arbitrary", derive(arbitrary::Arbitrary))]
+pub struct SlopeWarp {
+    pub ty: ValueType,
+}
+
+impl Definition for SlopeWarp {
+    image_node!();
+    fn title(&self) -> &'static str {
+        "Slope warp"
+    }
+    fn keywords(&self) -> &'static [&'static str] {
+        &["gradient warp", "warp by slope", "flow", "displace"]
+    }
+    fn signature(&self) -> Signature {
+        Signature::new(
+            vec![
+                input("image", self.ty, f(0.0)).sampled(),
+                input("slope", FLOAT, f(0.0)).sampled(),
+                input("amount", FLOAT, f(0.002)).soft(-0.01, 0.01),
+            ],
+            vec![output("result", self.ty)],
+        )
+    }
+    fn check(&self) -> Option<String> {
+        None
+    }
+    fn emit(&self, io: &mut Emit) {
+        let call = format!(
+            "veneer_slope_warp({}, {}, s.uv, {})",
+            io.input("image"),
+            io.input("slope"),
+            io.input("amount")
+        );
+        io.single(format!("{call}.{}", swizzle(self.ty)));
+        io.uses("veneer_slope_warp");
+    }
+    fn ranges(&self, io: &mut Ranges) -> Vec<Lanes> {
+        vec![io.input("image")]
+    }
+}
+
+impl Evaluate for SlopeWarp {
+    fn eval<R: Real>(&self, io: &Eval<R>) -> Vec<V3<R>> {
+        let amount = io.float("amount").to_f64();
+        let (image, slope) = (io.image("image"), io.image("slope"));
+        vec![typed(image.slope_warp(slope, io.domain(), amount), self.ty)]
+    }
+}
+
+super::math::typed_settings!(SlopeWarp, TYPES, menu[("Slope warp", ValueType::Color)]);

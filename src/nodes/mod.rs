@@ -133,7 +133,8 @@ pub use fields::Layers;
 pub use fractal::{Fbm, FractalSum, Turbulence};
 pub use group::Group;
 pub use image_ops::{
-    Curvature, DirectionalBlur, EdgeDetect, HeightOcclusion, MakeTileable, SlopeBlur, Transform2D,
+    Curvature, DirectionalBlur, DirectionalWarp, EdgeDetect, HeightOcclusion, MakeTileable,
+    SlopeBlur, SlopeWarp, Transform2D,
 };
 pub use inputs::{Constant, Field};
 pub use mapping::{Clamp, MapRange, MapRangeMode, Mix, Step, Switch};

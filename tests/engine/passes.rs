@@ -74,8 +74,8 @@ fn show(graph: &mut Graph, node: NodeId, output: &str, ty: ValueType) {
 }
 
 /// A graph of `kind` reading a varying source through each sampled input, its other
-/// inputs wired to noises where they take a vector that is 0 by default (a warp's
-/// vector, an offset), shown as the albedo.
+/// inputs wired to noises where they are 0 by default (a warp's vector or intensity, an
+/// offset, an angle), shown as the albedo.
 fn image_graph(kind: &NodeKind) -> Graph {
     let mut graph = Graph::default();
     let signature = kind.signature();
@@ -84,10 +84,10 @@ fn image_graph(kind: &NodeKind) -> Graph {
         if pin.sampled {
             let (source, output) = tile_source(&mut graph, pin.ty);
             graph.connect(source, output, node, pin.name);
-        } else if pin.ty == ValueType::Vec2
-            && pin.default == PinDefault::Const(Value::Vec2(0.0, 0.0))
+        } else if pin.default == PinDefault::Const(Value::Vec2(0.0, 0.0))
+            || pin.default == PinDefault::Const(Value::Float(0.0))
         {
-            let (source, output) = tile_source(&mut graph, ValueType::Vec2);
+            let (source, output) = tile_source(&mut graph, pin.ty);
             graph.connect(source, output, node, pin.name);
         }
     }

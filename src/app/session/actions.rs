@@ -256,13 +256,26 @@ impl VeneerApp {
     }
 }
 
-/// Writes `graph` as a shader for `target` to `path`.
+/// Writes `graph` as a shader for `target` to `path`: a multi-pass material as its
+/// module there and, beside it, a module per pass and the manifest, all together.
 fn export_shader(
     graph: &Graph,
     path: &Path,
     target: Target,
     params: ParamMode,
 ) -> Result<(), String> {
-    let bytes = crate::codegen::export::export(graph, target, params).map_err(|e| e.to_string())?;
-    crate::fsutil::write_atomic(path, &bytes).map_err(|e| format!("{}: {e}", path.display()))
+    let options = CompileOptions::with_params(params);
+    let compiled = crate::codegen::compile(graph, &options).map_err(|e| e.to_string())?;
+    if compiled.passes.is_empty() {
+        let bytes = crate::codegen::export::export_compiled(&compiled, target)
+            .map_err(|e| e.to_string())?;
+        return crate::fsutil::write_atomic(path, &bytes)
+            .map_err(|e| format!("{}: {e}", path.display()));
+    }
+    let files = crate::codegen::manifest::export_beside(&compiled, target, path)
+        .map_err(|e| e.to_string())?;
+    let writes =
+        (files.iter()).map(|(path, naming, bytes)| (path.as_path(), *naming, bytes.as_slice()));
+    crate::fsutil::write_together(writes)
+        .map_err(|(path, error)| format!("{}: {error}", path.display()))
 }

@@ -72,6 +72,14 @@ impl Image {
         self.line_blur([uv[0] + reach[0], uv[1] + reach[1]], reach, samples)
     }
 
+    /// This image read moved downhill along the slope of `slope` (as
+    /// `veneer_slope_warp`).
+    pub fn slope_warp(&self, slope: &Image, uv: [f64; 2], amount: f64) -> [f64; 4] {
+        let gradient = slope.gradient(uv);
+        let reach = gradient.map(|g| (-amount * g).clamp(-0.25, 0.25));
+        self.bilinear([uv[0] + reach[0], uv[1] + reach[1]])
+    }
+
     /// The clamped Sobel gradient length of the first lane (as `veneer_edge_detect`).
     pub fn edge_detect(&self, uv: [f64; 2], width: f64, strength: f64) -> f64 {
         let d = [
@@ -138,6 +146,14 @@ impl Image {
         let buv = self.bilinear(moved);
         mix(mix(a, bu, fade[0]), mix(bv, buv, fade[0]), fade[1])
     }
+}
+
+/// The domain coordinate a directional warp reads at (as
+/// `veneer_directional_warp_uv`).
+pub fn directional_warp_uv(uv: [f64; 2], intensity: f64, angle: f64, amount: f64) -> [f64; 2] {
+    let radians = angle * 0.017453292;
+    let reach = (amount * intensity).clamp(-1e6, 1e6);
+    [uv[0] + reach * radians.cos(), uv[1] + reach * radians.sin()]
 }
 
 /// The domain coordinate a 2D transform reads at for `uv` (as
