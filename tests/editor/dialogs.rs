@@ -774,3 +774,30 @@ fn a_metallic_roughness_graph_is_lit_by_an_environment_file_chosen_in_the_lighti
     key(&mut harness, egui::Key::Escape);
     assert!(shows(&harness, "red_wall.hdr"));
 }
+
+#[test]
+fn exporting_a_multi_pass_shader_writes_a_module_per_pass_and_the_manifest() {
+    let dir = scratch("dialog-passes");
+    let graph =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("graphs/texture/blurred_noise.ron");
+    let mut harness = editor(&dir, Some(graph));
+    from_file_menu(&mut harness, "Export shader");
+    type_text(
+        &mut harness,
+        &dir.join("blurred.wgsl").display().to_string(),
+    );
+    key(&mut harness, egui::Key::Enter);
+    assert!(!dialog_up(&harness, "Export shader"));
+    let manifest = std::fs::read_to_string(dir.join("blurred.passes.json"))
+        .expect("the manifest is written beside the shader");
+    let manifest: serde_json::Value = serde_json::from_str(&manifest).expect("JSON");
+    let passes = manifest["passes"].as_array().expect("passes");
+    assert_eq!(passes.len(), 3);
+    for pass in passes {
+        let file = pass["file"].as_str().expect("a file name");
+        let module = std::fs::read_to_string(dir.join(file)).expect("each pass is written");
+        assert!(module.contains("fn veneer_pass(") || module.contains("fn veneer_stage("));
+    }
+    let material = std::fs::read_to_string(dir.join("blurred.wgsl")).expect("the material");
+    assert!(material.contains("@group(2) @binding(0) var veneer_buffer_"));
+}
