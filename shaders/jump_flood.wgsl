@@ -4,14 +4,40 @@
 //! texel's seed into a distance in domain units. Across the wrap when the buffer wraps.
 //! A texel's state is (seed x, seed y, 1 when it has one, 1).
 
-// The seed state of `texel`: its own place when its mask value (first lane) is on the
-// seeded side (above 0.5; below it when `inside` is 1, which measures inside the mask).
+// The seed state of `texel`: where its mask (first lane) crosses 0.5 nearby when the
+// texel is on the seeded side (above 0.5; below it when `inside` is 1, which measures
+// inside the mask). The crossing is found by the mask's slope, per axis the steeper of
+// the two one-sided differences (`veneer_jfa_steeper`): half a texel out on a hard edge, sub-texel exact on a
+// smooth one (a blurred or antialiased mask), so distances follow the edge, not its
+// staircase of texels. Within one texel of the texel's centre.
 fn veneer_jfa_seed(t: texture_2d<f32>, edge: u32, texel: vec2i, inside: u32) -> vec4f {
-    let on = veneer_buffer_texel(t, edge, texel).x > 0.5;
-    if on != (inside == 1u) {
-        return vec4f(vec2f(texel), 1.0, 1.0);
+    let m = veneer_buffer_texel(t, edge, texel).x;
+    if (m > 0.5) == (inside == 1u) {
+        return vec4f(0.0, 0.0, 0.0, 1.0);
     }
-    return vec4f(0.0, 0.0, 0.0, 1.0);
+    let x = vec2f(veneer_buffer_texel(t, edge, texel - vec2i(1, 0)).x, veneer_buffer_texel(t, edge, texel + vec2i(1, 0)).x);
+    let y = vec2f(veneer_buffer_texel(t, edge, texel - vec2i(0, 1)).x, veneer_buffer_texel(t, edge, texel + vec2i(0, 1)).x);
+    let slope = vec2f(veneer_jfa_steeper(m - x.x, x.y - m), veneer_jfa_steeper(m - y.x, y.y - m));
+    let squared = dot(slope, slope);
+    var offset = vec2f(0.0);
+    if squared > 1.0e-12 {
+        offset = (0.5 - m) * slope / squared;
+        let length = sqrt(dot(offset, offset));
+        if length > 1.0 {
+            offset /= length;
+        }
+    }
+    return vec4f(vec2f(texel) + offset, 1.0, 1.0);
+}
+
+// Of the differences into and out of a texel along an axis, the one of larger magnitude
+// (the first on a tie); none at a peak or a valley, where the mask crosses 0.5 on both
+// sides (a line one texel wide).
+fn veneer_jfa_steeper(a: f32, b: f32) -> f32 {
+    if a * b < 0.0 {
+        return 0.0;
+    }
+    return select(a, b, abs(b) > abs(a));
 }
 
 // From texel `texel` to place `seed` in texels, the shorter way across the wrap when

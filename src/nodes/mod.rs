@@ -113,6 +113,7 @@ mod colour;
 mod coordinates;
 mod distance;
 mod fields;
+mod flood_fill;
 mod fractal;
 mod group;
 mod image_ops;
@@ -130,6 +131,7 @@ pub use colour::{Blend, BlendMode, ColorRamp};
 pub use coordinates::DomainWarp;
 pub use distance::{Bevel, BevelProfile, Distance, Measure};
 pub use fields::Layers;
+pub use flood_fill::FloodFill;
 pub use fractal::{Fbm, FractalSum, Turbulence};
 pub use group::Group;
 pub use image_ops::{
@@ -428,7 +430,7 @@ macro_rules! registry {
     };
 }
 
-registry!(@gather [] [] inputs coordinates noise fractal cellular patterns fields math mapping vectors colour sampled image_ops distance output group);
+registry!(@gather [] [] inputs coordinates noise fractal cellular patterns fields math mapping vectors colour sampled image_ops distance flood_fill output group);
 
 impl NodeKind {
     /// A short human-readable name (used for default labels and messages).

@@ -14,6 +14,7 @@ mod errors;
 mod export;
 mod extreme_cases;
 mod extreme_settings;
+mod flood_fill;
 mod fuzz_regressions;
 mod geodesic;
 mod geodesic_files;

@@ -5,6 +5,7 @@
 use crate::support::{gpu, run_veneer, temp_dir};
 use veneer::bake::tile::SEAM_TOLERANCE;
 use veneer::bake::{BakeSettings, BakeSurface, Format, Map, NormalConvention, bake};
+use veneer::codegen::passes::PassKind;
 use veneer::codegen::{CompileError, Compiled, compile};
 use veneer::eval::Evaluator;
 use veneer::graph::{Basis, Graph, NodeId, NodeKind, PinDefault, Value, ValueType};
@@ -19,7 +20,7 @@ fn by_label(graph: &Graph, label: &str) -> NodeId {
 }
 
 /// The unit tile, where periodic noises repeat.
-const TILE: FlatRect = FlatRect {
+pub(crate) const TILE: FlatRect = FlatRect {
     x0: 0.0,
     z0: 0.0,
     x1: 1.0,
@@ -54,7 +55,7 @@ fn tile_source(graph: &mut Graph, ty: ValueType) -> (NodeId, &'static str) {
 }
 
 /// A material showing output `output` (of type `ty`) of `node` as its albedo.
-fn show(graph: &mut Graph, node: NodeId, output: &str, ty: ValueType) {
+pub(crate) fn show(graph: &mut Graph, node: NodeId, output: &str, ty: ValueType) {
     let material = graph.add("material", NodeKind::Material);
     if ty == ValueType::Vec2 {
         let split = graph.add("lanes", NodeKind::Split(Split { ty }));
@@ -76,7 +77,7 @@ fn show(graph: &mut Graph, node: NodeId, output: &str, ty: ValueType) {
 /// A graph of `kind` reading a varying source through each sampled input, its other
 /// inputs wired to noises where they are 0 by default (a warp's vector or intensity, an
 /// offset, an angle), shown as the albedo.
-fn image_graph(kind: &NodeKind) -> Graph {
+pub(crate) fn image_graph(kind: &NodeKind) -> Graph {
     let mut graph = Graph::default();
     let signature = kind.signature();
     let node = graph.add("under test", kind.clone());
@@ -99,7 +100,7 @@ fn image_graph(kind: &NodeKind) -> Graph {
 /// Per pixel, the largest difference between the GPU's flat render of `compiled`
 /// (albedo) and the CPU reference's (f64 from the same f32 positions), over a size²
 /// image of `rect`.
-fn pixel_differences(compiled: &Compiled, rect: FlatRect, size: u32) -> Vec<f64> {
+pub(crate) fn pixel_differences(compiled: &Compiled, rect: FlatRect, size: u32) -> Vec<f64> {
     let gpu_pixels = FlatRenderer::for_compiled(gpu(), compiled)
         .expect("the passes' pipelines build")
         .render(gpu(), rect, size, 0.0)
@@ -129,7 +130,7 @@ const THRESHOLDED: [&str; 2] = ["Distance", "Bevel"];
 /// The tolerance of an image node's GPU output against its CPU reference: f32 against
 /// f64 arithmetic, plus one step of an 8-bit or half-float buffer where a value lies on
 /// a rounding boundary (the GPU rounds its f32, the CPU its f64).
-fn tolerance(compiled: &Compiled) -> f64 {
+pub(crate) fn tolerance(compiled: &Compiled) -> f64 {
     let step = |format| match format {
         BufferFormat::Unorm8 => 1.0 / 255.0,
         BufferFormat::Float16 => 1.0 / 1024.0,
@@ -148,6 +149,10 @@ fn every_image_node_matches_its_cpu_reference() {
     let image_kinds: Vec<NodeKind> = NodeKind::examples()
         .into_iter()
         .filter(NodeKind::samples)
+        // Flood fill compares in `flood_fill.rs` over masks with no texel at the
+        // threshold: here one texel of noise within f32 rounding of 0.5 joins or splits
+        // whole cells, whose random values then differ.
+        .filter(|kind| kind.name() != "FloodFill")
         .collect();
     assert!(image_kinds.len() >= 4, "the registry lists the image nodes");
     for kind in image_kinds {
@@ -522,11 +527,15 @@ fn the_shipped_texture_graphs_bake_seamless_tiles_that_match_their_cpu_reference
         }
         let worst = gpu_against_cpu(&compiled, TILE, 32);
         assert!(worst <= 1e-4, "{}: differs by {worst:.2e}", path.display());
-        // Buffers only the next step reads share two scratch textures.
+        // Buffers only the next step reads share two scratch textures: a texture of its
+        // own per cut and per node result after stages, not one per stage.
         let flat = FlatRenderer::for_compiled(gpu(), &compiled).expect("pipelines");
         let own_textures = flat.pass_bytes(64) / (64 * 64 * 16);
+        let surfaces = (compiled.passes.passes.iter())
+            .filter(|pass| matches!(pass.kind, PassKind::Surface { .. }))
+            .count() as u64;
         assert!(
-            own_textures <= 6,
+            own_textures <= 2 * surfaces + 2,
             "{}: {own_textures} textures",
             path.display()
         );

@@ -40,7 +40,7 @@ impl Image {
     /// `veneer_buffer_place`), scaled to texels in f32 as the GPU scales it: the
     /// fractions that weigh neighbouring texels are then the GPU's, which matters where
     /// a node's output is steep in them (a round bevel at its foot).
-    fn place(&self, uv: [f64; 2]) -> [f64; 2] {
+    pub(crate) fn place(&self, uv: [f64; 2]) -> [f64; 2] {
         let size = [self.width as f32, self.height as f32];
         [0, 1].map(|k| {
             let u = uv[k];

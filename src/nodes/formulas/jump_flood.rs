@@ -8,14 +8,39 @@ use crate::nodes::passes::EdgeMode;
 /// ([`crate::nodes::passes::MAX_BUFFER_SIZE`], 2¹³) to one texel, then two more of one.
 pub const JFA_STEPS: u32 = 15;
 
-/// The seed state of `texel` (as `veneer_jfa_seed`).
+/// The seed state of `texel` (as `veneer_jfa_seed`): where the mask crosses 0.5 near an
+/// on-side texel, by the mask's steeper one-sided slopes, within one texel. Computed in
+/// f32 as the GPU computes it: the seed's place decides which seed is nearest.
 pub fn jfa_seed(image: &Image, texel: [i64; 2], inside: bool) -> [f64; 4] {
-    let on = image.texel(texel[0], texel[1])[0] > 0.5;
-    if on != inside {
-        [texel[0] as f64, texel[1] as f64, 1.0, 1.0]
-    } else {
-        [0.0, 0.0, 0.0, 1.0]
+    let at = |dx: i64, dy: i64| image.texel(texel[0] + dx, texel[1] + dy)[0] as f32;
+    let m = at(0, 0);
+    if (m > 0.5) == inside {
+        return [0.0, 0.0, 0.0, 1.0];
     }
+    let steeper = |a: f32, b: f32| match () {
+        _ if a * b < 0.0 => 0.0,
+        _ if b.abs() > a.abs() => b,
+        _ => a,
+    };
+    let slope = [
+        steeper(m - at(-1, 0), at(1, 0) - m),
+        steeper(m - at(0, -1), at(0, 1) - m),
+    ];
+    let squared = slope[0] * slope[0] + slope[1] * slope[1];
+    let mut offset = [0.0_f32; 2];
+    if squared > 1e-12 {
+        offset = slope.map(|s| (0.5 - m) * s / squared);
+        let length = (offset[0] * offset[0] + offset[1] * offset[1]).sqrt();
+        if length > 1.0 {
+            offset = offset.map(|o| o / length);
+        }
+    }
+    [
+        texel[0] as f64 + f64::from(offset[0]),
+        texel[1] as f64 + f64::from(offset[1]),
+        1.0,
+        1.0,
+    ]
 }
 
 /// From `texel` to `seed`, the shorter way across the wrap (as `veneer_jfa_delta`).
@@ -133,9 +158,10 @@ mod tests {
             .collect();
         let inside = transform(&mask, n, EdgeMode::Clamp, true);
         assert_eq!(inside.texels[0][0], 0.0);
+        // The edge lies between texels: half a texel from the first one inside.
         let edge = inside.texels[(4 * n + 6) as usize][0];
         let middle = inside.texels[(7 * n + 7) as usize][0];
-        assert!((f64::from(edge) - 1.0 / 16.0).abs() < 1e-6 && middle > edge);
+        assert!((f64::from(edge) - 0.5 / 16.0).abs() < 1e-6 && middle > edge);
         assert_eq!(bevel(0.0, 0.1, 2), 0.0);
         assert_eq!(bevel(1.0, 0.1, 1), 1.0);
     }

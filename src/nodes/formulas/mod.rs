@@ -4,6 +4,7 @@
 pub mod buffers;
 pub mod colour;
 pub mod fields;
+pub mod flood_fill;
 pub mod gabor;
 pub mod image_ops;
 pub mod jump_flood;
