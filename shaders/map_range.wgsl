@@ -1,4 +1,4 @@
-//! Map Range (Blender's node): x carried from [from_min, from_max] to [to_min, to_max]
+//! Map Range (Blender's node) and Substance's histogram scan. Map Range: x carried from [from_min, from_max] to [to_min, to_max]
 //! linearly, in steps, or through smoothstep or smootherstep. Clamping the result to the
 //! target range is the `clamp_result` argument of the linear and stepped modes (Blender's
 //! Clamp option); the smooth modes stay in the target range by construction. An empty
@@ -45,4 +45,13 @@ fn veneer_map_range_smooth(x: f32, from_min: f32, from_max: f32, to_min: f32, to
 fn veneer_map_range_smoother(x: f32, from_min: f32, from_max: f32, to_min: f32, to_max: f32) -> f32 {
     let t = clamp(veneer_map_range_factor(x, from_min, from_max), 0.0, 1.0);
     return veneer_map_range_to(t * t * t * (t * (t * 6.0 - 15.0) + 10.0), to_min, to_max, false);
+}
+
+// Substance's histogram scan: a ramp from 0 to 1 that is 1 - contrast wide (at least
+// 1e-6: a hard threshold at full contrast) sweeps the input's [0, 1] as `position` goes
+// from 0 (all black) to 1 (all white); at position 0.5 and contrast 0 the value stays.
+fn veneer_histogram_scan(value: f32, position: f32, contrast: f32) -> f32 {
+    let width = max(1.0 - clamp(contrast, 0.0, 1.0), 1.0e-6);
+    let low = mix(1.0, -width, clamp(position, 0.0, 1.0));
+    return clamp((value - low) / width, 0.0, 1.0);
 }

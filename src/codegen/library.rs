@@ -5,7 +5,7 @@ use std::collections::BTreeSet;
 use std::sync::OnceLock;
 
 /// The library sources, one family per file.
-const SOURCES: [(&str, &str); 21] = [
+const SOURCES: [(&str, &str); 22] = [
     ("hash", include_str!("../../shaders/hash.wgsl")),
     ("value", include_str!("../../shaders/value.wgsl")),
     ("gradient", include_str!("../../shaders/gradient.wgsl")),
@@ -36,6 +36,7 @@ const SOURCES: [(&str, &str); 21] = [
     ("image_ops", include_str!("../../shaders/image_ops.wgsl")),
     ("jump_flood", include_str!("../../shaders/jump_flood.wgsl")),
     ("flood_fill", include_str!("../../shaders/flood_fill.wgsl")),
+    ("reduce", include_str!("../../shaders/reduce.wgsl")),
 ];
 
 /// The contract structs every exported module starts with.

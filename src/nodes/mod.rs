@@ -118,6 +118,7 @@ mod fractal;
 mod group;
 mod image_ops;
 mod inputs;
+mod levels;
 mod mapping;
 mod math;
 mod noise;
@@ -139,6 +140,7 @@ pub use image_ops::{
     SlopeBlur, SlopeWarp, Transform2D,
 };
 pub use inputs::{Constant, Field};
+pub use levels::{AutoLevels, HistogramScan};
 pub use mapping::{Clamp, MapRange, MapRangeMode, Mix, Step, Switch};
 pub use math::{Math, Unary};
 pub use noise::{Noise, NoiseBump};
@@ -430,7 +432,7 @@ macro_rules! registry {
     };
 }
 
-registry!(@gather [] [] inputs coordinates noise fractal cellular patterns fields math mapping vectors colour sampled image_ops distance flood_fill output group);
+registry!(@gather [] [] inputs coordinates noise fractal cellular patterns fields math mapping vectors colour sampled image_ops distance flood_fill levels output group);
 
 impl NodeKind {
     /// A short human-readable name (used for default labels and messages).

@@ -628,3 +628,32 @@ fn a_buffer_node_sets_the_buffer_that_the_image_nodes_it_feeds_read() {
     let worst = gpu_against_cpu(&compiled, TILE, 48);
     assert!(worst <= tolerance(&compiled), "differs by {worst:.2e}");
 }
+
+#[test]
+fn auto_levels_stretches_a_noise_to_fill_zero_to_one_and_reports_its_totals() {
+    for output in ["result", "min", "max", "mean"] {
+        let mut graph = Graph::default();
+        let (source, pin) = tile_source(&mut graph, ValueType::Float);
+        let levels = graph.add("levels", NodeKind::AutoLevels);
+        graph.connect(source, pin, levels, "image");
+        show(&mut graph, levels, output, ValueType::Float);
+        let compiled = compile(&graph, &Default::default()).expect("compiles");
+        let worst = gpu_against_cpu(&compiled, TILE, 48);
+        assert!(worst <= 1e-4, "{output}: differs by {worst:.2e}");
+        if output == "result" {
+            // The buffer's texel centres are the picture's pixel centres: its lowest
+            // and highest texels show as 0 and 1.
+            let pixels = FlatRenderer::for_compiled(gpu(), &compiled)
+                .expect("pipelines")
+                .render(gpu(), TILE, 48, 0.0)
+                .expect("renders");
+            let values: Vec<f32> = pixels.iter().map(|pixel| pixel[0]).collect();
+            let low = values.iter().copied().fold(f32::MAX, f32::min);
+            let high = values.iter().copied().fold(f32::MIN, f32::max);
+            assert!(
+                low.abs() < 1e-6 && (high - 1.0).abs() < 1e-6,
+                "{low} to {high}"
+            );
+        }
+    }
+}

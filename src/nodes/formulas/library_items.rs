@@ -55,7 +55,7 @@ fn new_items() -> Vec<(String, &'static str)> {
 #[test]
 fn every_new_item_is_found_in_its_own_family_and_validates_alone() {
     let items = new_items();
-    assert_eq!(items.len(), 3 + 5 + 1 + 12 + 2 + 14 + 6);
+    assert_eq!(items.len(), 3 + 5 + 1 + 12 + 2 + 14 + 7);
     for (name, family) in items {
         let item = instance(&name).unwrap_or_else(|| panic!("no library item {name}"));
         assert_eq!(
@@ -310,6 +310,18 @@ fn cases() -> Vec<Case> {
                     ranges::map_range_smooth(p[0], -2.0, 3.0, 1.0, 5.0),
                     ranges::map_range_smoother(p[2], 3.0, -2.0, 1.0, 5.0),
                     0.0,
+                ]
+            },
+            1.0e-5,
+        ),
+        case(
+            &["veneer_histogram_scan"],
+            "vec3f(veneer_histogram_scan(p.x * 0.3, p.z * 0.2, 0.6), veneer_histogram_scan(p.z * 0.3, 0.5, 0.0), veneer_histogram_scan(p.x, 0.7, 1.0))",
+            |p, _, _| {
+                [
+                    ranges::histogram_scan(p[0] * 0.3, p[2] * 0.2, 0.6),
+                    ranges::histogram_scan(p[2] * 0.3, 0.5, 0.0),
+                    ranges::histogram_scan(p[0], 0.7, 1.0),
                 ]
             },
             1.0e-5,

@@ -14,5 +14,6 @@ pub mod noise;
 pub mod octaves;
 pub mod ranges;
 pub mod real;
+pub mod reduce;
 pub mod shapes;
 pub mod worley_edge;

@@ -1,4 +1,4 @@
-//! Map Range, formula for formula as in shaders/map_range.wgsl.
+//! Map Range and the histogram scan, formula for formula as in shaders/map_range.wgsl.
 
 // The node kind that uses these arrives through the node registry.
 
@@ -197,4 +197,12 @@ mod tests {
             }
         }
     }
+}
+
+/// `veneer_histogram_scan`: a ramp 1 − contrast wide sweeping [0, 1] as `position` goes
+/// from 0 (all black) to 1 (all white).
+pub fn histogram_scan<R: Real>(value: R, position: R, contrast: R) -> R {
+    let width = (R::c(1.0) - contrast.clamp(R::c(0.0), R::c(1.0))).max(R::c(1e-6));
+    let low = R::mix(R::c(1.0), -width, position.clamp(R::c(0.0), R::c(1.0)));
+    ((value - low) / width).clamp(R::c(0.0), R::c(1.0))
 }
