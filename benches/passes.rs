@@ -1,7 +1,8 @@
 //! Multi-pass materials, in the same run: the Gaussian blur at radius 64 against radius
 //! 8 at 2048² (separable: its cost grows with the radius, not its square), and the worn
-//! bricks' 2048² albedo bake against rendering its passes alone and against its passes
-//! with the material drawn and read back (the bake's overhead on top of its buffers).
+//! bricks' and the cobblestones' 2048² albedo bakes against rendering their passes alone
+//! and against their passes with the material drawn and read back (the bake's overhead
+//! on top of its buffers).
 //! Every iteration renders the passes again (a new time).
 
 use criterion::{Criterion, criterion_group, criterion_main};
@@ -13,10 +14,23 @@ use veneer::nodes::{Blur, Noise, RadiusUnit};
 use veneer::render::{FlatChannels, FlatRenderer, GpuContext};
 
 const SIZE: u32 = 2048;
-const BRICKS: &str = concat!(
-    env!("CARGO_MANIFEST_DIR"),
-    "/graphs/texture/worn_bricks.ron"
-);
+/// The texture graphs measured: each one's bake against its passes alone.
+const TEXTURES: [(&str, &str); 2] = [
+    (
+        "worn bricks",
+        concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/graphs/texture/worn_bricks.ron"
+        ),
+    ),
+    (
+        "cobblestones",
+        concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/graphs/texture/cobblestones.ron"
+        ),
+    ),
+];
 
 /// A periodic noise blurred by `radius` texels, as the albedo.
 fn blurred(radius: f64) -> Compiled {
@@ -77,45 +91,47 @@ fn passes(c: &mut Criterion) {
             |b| b.iter(|| passes_alone(&gpu, &flat, &time)),
         );
     }
-    let graph = veneer::graph::load(std::path::Path::new(BRICKS)).expect("worn bricks");
-    let bricks = compile(&graph, &Default::default()).expect("worn bricks compiles");
-    let flat = FlatRenderer::for_compiled(&gpu, &bricks).expect("pipelines");
-    group.bench_function(
-        format!(
-            "worn bricks: its {} passes alone (baseline)",
-            bricks.passes.passes.len()
-        ),
-        |b| b.iter(|| passes_alone(&gpu, &flat, &time)),
-    );
-    group.bench_function(
-        "worn bricks: its passes and the material at every pixel, read back",
-        |b| {
-            b.iter(|| {
-                time.set(time.get() + 1.0);
-                flat.render(&gpu, UNIT_TILE, SIZE, time.get())
-                    .expect("renders")
-            })
-        },
-    );
     let dir = std::env::temp_dir().join(format!("veneer-bench-passes-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("a scratch folder");
-    group.bench_function(
-        "worn bricks: the albedo map baked as a tile, PNG written",
-        |b| {
-            b.iter(|| {
-                time.set(time.get() + 1.0);
-                let settings = BakeSettings {
-                    surface: BakeSurface::Tile(None),
-                    size: SIZE,
-                    maps: vec![Map::Albedo],
-                    format: Format::Png8,
-                    normal: NormalConvention::OpenGl,
-                    time: time.get(),
-                };
-                bake(&gpu, &bricks, &settings, &dir.join("bricks"), |_, _| true).expect("bakes")
-            })
-        },
-    );
+    for (name, path) in TEXTURES {
+        let graph = veneer::graph::load(std::path::Path::new(path)).expect("the graph loads");
+        let compiled = compile(&graph, &Default::default()).expect("the graph compiles");
+        let flat = FlatRenderer::for_compiled(&gpu, &compiled).expect("pipelines");
+        group.bench_function(
+            format!(
+                "{name}: its {} passes alone (baseline)",
+                compiled.passes.passes.len()
+            ),
+            |b| b.iter(|| passes_alone(&gpu, &flat, &time)),
+        );
+        group.bench_function(
+            format!("{name}: its passes and the material at every pixel, read back"),
+            |b| {
+                b.iter(|| {
+                    time.set(time.get() + 1.0);
+                    flat.render(&gpu, UNIT_TILE, SIZE, time.get())
+                        .expect("renders")
+                })
+            },
+        );
+        group.bench_function(
+            format!("{name}: the albedo map baked as a tile, PNG written"),
+            |b| {
+                b.iter(|| {
+                    time.set(time.get() + 1.0);
+                    let settings = BakeSettings {
+                        surface: BakeSurface::Tile(None),
+                        size: SIZE,
+                        maps: vec![Map::Albedo],
+                        format: Format::Png8,
+                        normal: NormalConvention::OpenGl,
+                        time: time.get(),
+                    };
+                    bake(&gpu, &compiled, &settings, &dir.join("map"), |_, _| true).expect("bakes")
+                })
+            },
+        );
+    }
     group.finish();
     let _ = std::fs::remove_dir_all(&dir);
 }

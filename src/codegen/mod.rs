@@ -103,7 +103,7 @@ pub struct WgslModule {
     /// modules share one numbering: each holds the slots of the modules before it too,
     /// and the material's (the last) holds every slot.
     pub params: Vec<ParamSlot>,
-    /// Whether the module declares a parameter block at group 1 (and so reads it).
+    /// Whether the module reads a parameter block at group 1 (a renderer binds it).
     pub binds_params: bool,
     /// The members of `VeneerParameters`, one per exposed parameter in the order of
     /// the checked graph's `parameters` (named mode only).
@@ -616,12 +616,15 @@ fn assemble(
     let node_spans = parts::write_entry(&mut source, blocks, around.entry);
 
     let library = items.into_iter().map(|item| item.name).collect();
+    // A module may hold slots it never reads (a blur's radius, baked into its stages):
+    // a pipeline's layout then has no parameter binding, so the module binds none.
+    let reads_params = source.contains("veneer_params.");
     let mut module = WgslModule {
         source,
         node_spans,
         library,
         module: naga::Module::default(),
-        binds_params: declares_slots || !members.is_empty(),
+        binds_params: (declares_slots || !members.is_empty()) && reads_params,
         params,
         members,
         uses,

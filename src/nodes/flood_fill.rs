@@ -27,7 +27,7 @@ macro_rules! kinds {
 pub(super) use kinds;
 
 /// The rounds a fill may run: each lets a cell's box turn one more corner of the cell.
-const ROUNDS: std::ops::RangeInclusive<u32> = 1..=8;
+const ROUNDS: std::ops::RangeInclusive<u32> = 1..=16;
 
 /// The outputs, in pin order (also the fields of `veneer_flood_fill_result`).
 const OUTPUTS: [&str; 5] = ["value", "colour", "uv", "gradient", "centre"];
@@ -36,8 +36,8 @@ const OUTPUTS: [&str; 5] = ["value", "colour", "uv", "gradient", "centre"];
 /// its buffer wraps) and gives each a random value and colour, the point's place in
 /// the cell's bounding box, a ramp across the box in a random direction, and the box's
 /// centre. The labelling runs `rounds` rounds of row and column scans: one finds every
-/// rectangle, three the cells of a Voronoi diagram, more winding shapes (a cell whose
-/// box is not yet complete shows as several).
+/// rectangle, four the cells of a Voronoi diagram, more slender slanted or winding
+/// shapes (a cell whose box is not yet complete shows as several).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[cfg_attr(feature = "arbitrary", derive(arbitrary::Arbitrary))]
 pub struct FloodFill {
@@ -46,7 +46,7 @@ pub struct FloodFill {
 
 impl Default for FloodFill {
     fn default() -> Self {
-        FloodFill { rounds: 3 }
+        FloodFill { rounds: 4 }
     }
 }
 

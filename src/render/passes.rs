@@ -80,6 +80,20 @@ impl PassRenderer {
             let source = shader_source(&pass.module().source, entry_points);
             let module = gpu.shader(&pass.label, &source)?;
             let format = texture_format(pass.spec.format);
+            let usages = gpu
+                .adapter
+                .get_texture_format_features(format)
+                .allowed_usages;
+            if !usages.contains(wgpu::TextureUsages::RENDER_ATTACHMENT) {
+                return Err(RenderError::Gpu(format!(
+                    "pass '{}': this adapter, {}, cannot render into {format:?} textures, \
+                     which the material's passes need; use a Vulkan, Metal or DirectX 12 \
+                     adapter (without a GPU on Linux: Mesa's lavapipe, package \
+                     mesa-vulkan-drivers)",
+                    pass.label,
+                    gpu.adapter_description()
+                )));
+            }
             pipelines.push(
                 gpu.checked(&format!("pipeline of pass '{}'", pass.label), || {
                     super::fullscreen_pipeline(

@@ -15,9 +15,9 @@ use veneer::render::{
 /// The preview's side in pixels: enough for the lattice of the sphere's triangles.
 const SIZE: u32 = 256;
 
-/// `graph` drawn as the editor's preview thread draws it at rest, RGBA8.
+/// `graph` (with more parameters than a uniform block holds) drawn as the editor's
+/// preview thread draws it at rest, RGBA8.
 fn live_preview(graph: &Graph) -> Vec<u8> {
-    let gpu = gpu();
     let mut live = LiveMaterial::in_storage();
     live.update(graph);
     let module = &live.compiled.as_ref().expect("it compiles").module;
@@ -26,24 +26,30 @@ fn live_preview(graph: &Graph) -> Vec<u8> {
         "the graph's {} parameters fit a uniform block",
         module.params.len()
     );
+    preview(graph).expect("the preview draws")
+}
+
+/// `graph` drawn by the editor's live renderer on its preview mesh, RGBA8.
+fn preview(graph: &Graph) -> Result<Vec<u8>, veneer::render::RenderError> {
+    let gpu = gpu();
+    let mut live = LiveMaterial::in_storage();
+    live.update(graph);
     let code = LiveMaterialCode::new(1, live.compiled.as_ref().expect("it compiles"));
     let mesh = veneer::mesh::primitive(&graph.preview.mesh).expect("the preview mesh");
     let view = MeshView::for_preview(&graph.preview);
     let sky = gpu.sky().expect("the default environment");
-    let (_, pixels) = LiveRenderer::default()
-        .render(
-            gpu,
-            &code,
-            &live.params(graph),
-            "mesh",
-            &mesh,
-            &view,
-            &sky,
-            (SIZE, SIZE),
-            Quality::Full,
-        )
-        .expect("the preview draws");
-    pixels
+    let (_, pixels) = LiveRenderer::default().render(
+        gpu,
+        &code,
+        &live.params(graph),
+        "mesh",
+        &mesh,
+        &view,
+        &sky,
+        (SIZE, SIZE),
+        Quality::Full,
+    )?;
+    Ok(pixels)
 }
 
 #[test]
@@ -128,4 +134,14 @@ fn a_multi_pass_material_previews_as_its_tile_and_a_value_edit_renders_its_passe
     let second = preview(live.params(&edited), &mut renderer);
     assert_ne!(first, second);
     assert!(difference(&second, &rendered(&edited), 3, 1).passes());
+}
+
+#[test]
+fn every_shipped_texture_graph_previews_in_the_editor() {
+    for path in crate::support::texture_graphs() {
+        let graph = veneer::graph::load(&path).expect("loads");
+        if let Err(error) = preview(&graph) {
+            panic!("{}: {error}", path.display());
+        }
+    }
 }

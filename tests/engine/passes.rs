@@ -496,12 +496,7 @@ fn a_multi_pass_material_exports_a_module_per_pass_and_a_manifest_for_every_targ
 #[test]
 fn the_shipped_texture_graphs_bake_seamless_tiles_that_match_their_cpu_reference() {
     let dir = temp_dir("passes-shipped");
-    let folder = crate::support::root("graphs/texture");
-    let mut paths: Vec<_> = std::fs::read_dir(&folder)
-        .expect("graphs/texture/ exists")
-        .map(|entry| entry.expect("an entry").path())
-        .collect();
-    paths.sort();
+    let paths = crate::support::texture_graphs();
     assert!(!paths.is_empty());
     let settings = BakeSettings {
         surface: BakeSurface::Tile(None),

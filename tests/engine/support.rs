@@ -17,8 +17,18 @@ pub fn root(relative: &str) -> PathBuf {
 
 /// Every preset graph in `graphs/`, sorted by name.
 pub fn presets() -> Vec<PathBuf> {
-    let mut paths: Vec<PathBuf> = std::fs::read_dir(root("graphs"))
-        .expect("graphs/ exists")
+    graphs_in("graphs")
+}
+
+/// Every texture graph (a material with passes) in `graphs/texture/`, sorted by name.
+pub fn texture_graphs() -> Vec<PathBuf> {
+    graphs_in("graphs/texture")
+}
+
+/// The graph files in `folder` (relative to the repository), sorted by name.
+fn graphs_in(folder: &str) -> Vec<PathBuf> {
+    let mut paths: Vec<PathBuf> = std::fs::read_dir(root(folder))
+        .unwrap_or_else(|e| panic!("{folder}: {e}"))
         .map(|entry| entry.expect("readable entry").path())
         .filter(|path| path.extension().is_some_and(|ext| ext == "ron"))
         .collect();

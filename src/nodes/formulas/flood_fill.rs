@@ -11,7 +11,7 @@
 //! +½ at the run's end), so the flags ride in the offsets' fractions and a state stays
 //! four lanes. Each round (a row scan, then a column scan) lets a box turn one more
 //! corner of its cell: rectangles need one round, the pixelated cells of a Voronoi
-//! diagram three, winding cells more.
+//! diagram three or four, slender slanted or winding cells more.
 //! Across the wrap when the buffer wraps; a cell that reaches all the way round an axis
 //! spans the whole tile along it.
 
