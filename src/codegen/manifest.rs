@@ -165,6 +165,10 @@ struct PassEntry {
     /// What reads past the buffer's edges see (the modules apply it themselves, with
     /// `textureLoad`: no sampler is bound).
     edge: &'static str,
+    /// A stage only: on a buffer at most this many texels a side it leaves every texel
+    /// as it was, and copying its source does the same work.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    unchanged_up_to: Option<u32>,
 }
 
 impl PassEntry {
@@ -201,6 +205,12 @@ impl PassEntry {
                 EdgeMode::Wrap => "wrap",
                 EdgeMode::Clamp => "clamp",
                 EdgeMode::Mirror => "mirror",
+            },
+            unchanged_up_to: match &pass.kind {
+                PassKind::Stage { stage, .. } if stage.unchanged_up_to > 0 => {
+                    Some(stage.unchanged_up_to)
+                }
+                _ => None,
             },
         }
     }

@@ -35,6 +35,7 @@ fn flood_stages(inside: bool) -> Vec<Stage> {
         label: "distance seeds".into(),
         wgsl: format!("veneer_jfa_seed(SOURCE, texel, {}u)", u32::from(inside)),
         library: vec!["veneer_jfa_seed"],
+        unchanged_up_to: 0,
         cpu: Box::new(move |image, texel| jfa_seed(image, texel, inside)),
     }];
     for k in 0..JFA_STEPS {
@@ -42,6 +43,7 @@ fn flood_stages(inside: bool) -> Vec<Stage> {
             label: format!("jump flood step {}", k + 1),
             wgsl: format!("veneer_jfa_step(SOURCE, texel, {k}u)"),
             library: vec!["veneer_jfa_step"],
+            unchanged_up_to: 0,
             cpu: Box::new(move |image, texel| jfa_step(image, texel, k)),
         });
     }
@@ -52,6 +54,7 @@ fn flood_stages(inside: bool) -> Vec<Stage> {
             super::emit::float_literal(FAR)
         ),
         library: vec!["veneer_jfa_distance"],
+        unchanged_up_to: 0,
         cpu: Box::new(|image, texel| jfa_distance(image, texel, FAR)),
     });
     stages

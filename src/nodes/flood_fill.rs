@@ -8,7 +8,7 @@ use super::emit::Emit;
 use super::formulas::flood_fill::{FILL_STEPS, fill_cell, fill_seed, fill_step};
 use super::formulas::real::{Real, V3};
 use super::interval::{Interval, Lanes, splat};
-use super::passes::Stage;
+use super::passes::{Stage, doubling_step_reach};
 use super::pins::{COLOR, FLOAT, Signature, VEC2, f, input, output};
 use super::ranges::Ranges;
 use super::sampled::image_node;
@@ -57,6 +57,7 @@ fn label_stages(rounds: u32) -> Vec<Stage> {
         label: "flood fill seeds".into(),
         wgsl: "veneer_fill_seed(SOURCE, texel)".into(),
         library: vec!["veneer_fill_seed"],
+        unchanged_up_to: 0,
         cpu: Box::new(fill_seed),
     }];
     for round in 1..=rounds {
@@ -66,6 +67,7 @@ fn label_stages(rounds: u32) -> Vec<Stage> {
                     label: format!("flood fill round {round}, {name}, step {}", k + 1),
                     wgsl: format!("veneer_fill_step(SOURCE, texel, {axis}u, {k}u)"),
                     library: vec!["veneer_fill_step"],
+                    unchanged_up_to: doubling_step_reach(k),
                     cpu: Box::new(move |image, texel| fill_step(image, texel, axis, k)),
                 });
             }

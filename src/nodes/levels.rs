@@ -9,7 +9,7 @@ use super::formulas::real::splat as splat_lanes;
 use super::formulas::real::{Real, V3};
 use super::formulas::reduce::{REDUCE_STEPS, reduce_seed, reduce_step, reduced};
 use super::interval::{Interval, Lanes, splat};
-use super::passes::Stage;
+use super::passes::{Stage, doubling_step_reach};
 use super::pins::{FLOAT, REQUIRED, Signature, f, input, output};
 use super::ranges::Ranges;
 use super::sampled::image_node;
@@ -37,6 +37,7 @@ fn reduce_stages() -> Vec<Stage> {
         label: "reduction seeds".into(),
         wgsl: "veneer_reduce_seed(SOURCE, texel)".into(),
         library: vec!["veneer_reduce_seed"],
+        unchanged_up_to: 0,
         cpu: Box::new(reduce_seed),
     }];
     for (axis, name) in ["rows", "columns"].into_iter().enumerate() {
@@ -45,6 +46,7 @@ fn reduce_stages() -> Vec<Stage> {
                 label: format!("reduction, {name}, step {}", k + 1),
                 wgsl: format!("veneer_reduce_step(SOURCE, texel, {axis}u, {k}u)"),
                 library: vec!["veneer_reduce_step"],
+                unchanged_up_to: doubling_step_reach(k),
                 cpu: Box::new(move |image, texel| reduce_step(image, texel, axis, k)),
             });
         }

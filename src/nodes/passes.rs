@@ -139,6 +139,13 @@ impl BufferSpec {
     }
 }
 
+/// The side up to which step `k` of a doubling scan (windows of 2ᵏ texels: the flood
+/// fill's, the reduction's) changes nothing: step 0 starts the scan, step k > 0 reaches
+/// 2ᵏ texels, past every texel of a buffer of that side.
+pub fn doubling_step_reach(k: u32) -> u32 {
+    if k == 0 { 0 } else { 1 << k }
+}
+
 /// One texel-space pass a node runs over its sampled input's buffer: every texel of a
 /// new buffer (of the same size and edge mode, in f32) computed from the previous one.
 pub struct Stage {
@@ -151,6 +158,10 @@ pub struct Stage {
     pub wgsl: String,
     /// The library items the expression calls.
     pub library: Vec<&'static str>,
+    /// On a buffer at most this many texels a side the stage leaves every texel as it
+    /// was (a scan step longer than the buffer), so a renderer may copy its source
+    /// instead of running it; 0 when it always computes.
+    pub unchanged_up_to: u32,
     /// The same on the CPU: the texel's value from the previous image.
     pub cpu: Box<dyn Fn(&Image, [i64; 2]) -> [f64; 4] + Send + Sync>,
 }

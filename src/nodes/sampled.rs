@@ -302,6 +302,7 @@ impl Definition for Blur {
                     super::emit::float_literal(MAX_BLUR_RADIUS)
                 ),
                 library: vec!["veneer_blur_axis"],
+                unchanged_up_to: 0,
                 cpu: Box::new(move |image: &Image, texel| {
                     let side = if axis[0] == 1 {
                         image.width

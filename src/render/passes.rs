@@ -254,7 +254,8 @@ impl PassRenderer {
                 format: texture_format(pass.spec.format),
                 usage: wgpu::TextureUsages::RENDER_ATTACHMENT
                     | wgpu::TextureUsages::TEXTURE_BINDING
-                    | wgpu::TextureUsages::COPY_SRC,
+                    | wgpu::TextureUsages::COPY_SRC
+                    | wgpu::TextureUsages::COPY_DST,
                 view_formats: &[],
             }));
         }
@@ -284,6 +285,25 @@ impl PassRenderer {
     ) -> Result<(), RenderError> {
         let (pass, pipeline) = (&self.passes.passes[index], &self.pipelines[index]);
         let texture = &textures[self.storage[index]];
+        if let PassKind::Stage { source, stage, .. } = &pass.kind
+            && texture.width() <= stage.unchanged_up_to
+        {
+            // The stage would leave every texel as it is: copy its source.
+            let source = &textures[self.storage[*source]];
+            let mut encoder = gpu
+                .device
+                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                    label: Some(&pass.label),
+                });
+            encoder.copy_texture_to_texture(
+                source.as_image_copy(),
+                texture.as_image_copy(),
+                texture.size(),
+            );
+            gpu.queue.submit([encoder.finish()]);
+            self.renders.fetch_add(1, Ordering::Relaxed);
+            return gpu.take_errors();
+        }
         let mut groups = Vec::new();
         if let PassKind::Surface { .. } = pass.kind {
             let view = PassViewUniform {
