@@ -4,6 +4,7 @@
 #[cfg(feature = "gui")]
 pub mod app;
 pub mod bake;
+pub mod bitmaps;
 pub mod codegen;
 pub mod eval;
 pub mod fsutil;

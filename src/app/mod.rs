@@ -452,7 +452,8 @@ impl VeneerApp {
         if let Some(group) = self.canvas.scope.current() {
             let id = self.canvas.snarl[node].id;
             let warning = self.preview.live.warnings.of_level(Some(group)).get(&id);
-            inspector::node::show(ui, &mut self.canvas.snarl, node, None, warning);
+            let request = inspector::node::show(ui, &mut self.canvas.snarl, node, None, warning);
+            self.choose_file(node, request);
             return;
         }
         self.node_thumbnail(ui, node);
@@ -461,7 +462,56 @@ impl VeneerApp {
             self.preview.live.errors.get(&Some(id)),
             self.preview.live.warnings.top.get(&id),
         );
-        inspector::node::show(ui, &mut self.canvas.snarl, node, error, warning);
+        let request = inspector::node::show(ui, &mut self.canvas.snarl, node, error, warning);
+        self.choose_file(node, request);
+    }
+
+    /// Opens the file browser for a node's file setting, when the inspector asked.
+    fn choose_file(
+        &mut self,
+        node: egui_snarl::NodeId,
+        request: Option<inspector::node::FileRequest>,
+    ) {
+        let Some(request) = request else {
+            return;
+        };
+        let folder = self.session.document.graph.folder.path();
+        let current = folder.join(&request.current);
+        self.chrome.browser.open(
+            chrome::file_browser::Purpose::Pick {
+                title: "Choose an image",
+                kind: "Images",
+                extensions: request.extensions,
+            },
+            &current.to_string_lossy(),
+        );
+        self.chrome.choosing_file_for = Some(node);
+    }
+
+    /// Shows the file browser a node's file setting opened; stores the chosen file in
+    /// the setting, relative to the graph's folder.
+    fn file_setting_browser(&mut self, ctx: &egui::Context) {
+        let Some(node) = self.chrome.choosing_file_for else {
+            return;
+        };
+        let chrome::file_browser::Browsed::Picked(path) = self.chrome.browser.update(ctx) else {
+            if !self.chrome.browser.is_open() {
+                self.chrome.choosing_file_for = None;
+            }
+            return;
+        };
+        self.chrome.choosing_file_for = None;
+        let folder = self.session.document.graph.folder.path().to_path_buf();
+        let relative = crate::bitmaps::relative_to(&folder, &path);
+        let Some(mut edited) = self.canvas.snarl.get_node(node).cloned() else {
+            return;
+        };
+        for setting in edited.kind.settings() {
+            if let crate::nodes::settings::Setting::File { value, .. } = setting {
+                *value = relative.to_string_lossy().into_owned();
+            }
+        }
+        self.canvas.snarl[node] = edited;
     }
 
     fn handle_close(&mut self, ctx: &egui::Context) {
@@ -521,6 +571,7 @@ impl eframe::App for VeneerApp {
             }
             self.chrome.dialog = self.chrome.dialog.take().or(still_open);
         }
+        self.file_setting_browser(&ctx);
         self.poll_export();
         // After the dialogs too, so that what their buttons did (save, open) shows now.
         self.after_edits(&ctx);

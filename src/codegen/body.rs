@@ -47,6 +47,8 @@ pub struct Emitter<'a> {
     /// What each wired sampled input reads, by node and pin index: the arguments
     /// `texture, edge` of its buffer (multi-pass materials).
     pub sampled: FxHashMap<(NodeId, usize), String>,
+    /// The arguments `texture, edge` of the bitmap each Image node reads.
+    pub sources: FxHashMap<NodeId, String>,
 }
 
 impl<'a> Emitter<'a> {
@@ -74,6 +76,7 @@ impl<'a> Emitter<'a> {
                 .collect(),
             calls: BTreeMap::new(),
             sampled: FxHashMap::default(),
+            sources: FxHashMap::default(),
         }
     }
 
@@ -184,7 +187,8 @@ impl<'a> Emitter<'a> {
                         &checked.signature.outputs,
                         &name,
                         self.detail,
-                    );
+                    )
+                    .with_source(self.sources.get(&node.id).map(String::as_str));
                     kind.definition().emit(&mut io);
                     io.finish()
                 }

@@ -48,12 +48,18 @@ pub fn export_passes(
     }];
     let mut passes = Vec::with_capacity(compiled.passes.passes.len());
     for (index, pass) in compiled.passes.passes.iter().enumerate() {
-        let name = format!("{stem}.pass{index}.{extension}");
-        files.push(ExportFile {
-            name: name.clone(),
-            bytes: export_pass(pass, target)?,
-        });
-        passes.push(PassEntry::new(index, pass, name, target));
+        let module = match export_pass(pass, target)? {
+            Some(bytes) => {
+                let name = format!("{stem}.pass{index}.{extension}");
+                files.push(ExportFile {
+                    name: name.clone(),
+                    bytes,
+                });
+                Some(name)
+            }
+            None => None,
+        };
+        passes.push(PassEntry::new(index, pass, module, target));
     }
     let manifest = Manifest {
         veneer: env!("CARGO_PKG_VERSION"),
@@ -100,21 +106,25 @@ pub fn export_beside(
         .collect())
 }
 
-/// Pass `pass`'s module for `target`.
-fn export_pass(pass: &Pass, target: Target) -> Result<Vec<u8>, ExportError> {
-    let source = &pass.module().source;
+/// Pass `pass`'s module for `target` (none for an uploaded bitmap).
+fn export_pass(pass: &Pass, target: Target) -> Result<Option<Vec<u8>>, ExportError> {
+    let Some(module) = pass.module() else {
+        return Ok(None);
+    };
+    let source = &module.source;
     if target == Target::Wgsl {
-        return Ok(source.clone().into_bytes());
+        return Ok(Some(source.clone().into_bytes()));
     }
     let entry_points = match pass.kind {
-        PassKind::Surface { .. } => SURFACE_ENTRY_POINTS,
         PassKind::Stage { .. } => STAGE_ENTRY_POINTS,
+        _ => SURFACE_ENTRY_POINTS,
     };
     translate(
         &format!("{source}\n{entry_points}"),
         target,
         PASS_FRAGMENT_ENTRY,
     )
+    .map(Some)
 }
 
 /// What the manifest says of an export.
@@ -150,11 +160,15 @@ struct PassEntry {
     /// The buffer it renders (its place in the order).
     buffer: usize,
     label: String,
-    /// `surface` (the material's nodes at every texel centre of the domain) or `stage`
-    /// (a texel-space pass over the buffer it reads, the same size).
+    /// `surface` (the material's nodes at every texel centre of the domain), `stage`
+    /// (a texel-space pass over the buffer it reads, the same size) or `bitmap` (an
+    /// image file's pixels, uploaded: no module).
     kind: &'static str,
-    #[serde(flatten)]
-    module: ModuleEntry,
+    #[serde(flatten, skip_serializing_if = "Option::is_none")]
+    module: Option<ModuleEntry>,
+    /// A bitmap only: the file and how its numbers become the buffer's.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    bitmap: Option<BitmapEntry>,
     /// The buffer's side against the output's: `inherit`, `double`, `half`, `absolute`.
     resolution: &'static str,
     /// The side in texels, for `absolute`.
@@ -171,23 +185,45 @@ struct PassEntry {
     unchanged_up_to: Option<u32>,
 }
 
+/// The file of a bitmap pass.
+#[derive(Serialize)]
+struct BitmapEntry {
+    /// The path as the graph names it, relative to the graph file's folder.
+    file: String,
+    width: u32,
+    height: u32,
+    /// Whether the colour lanes are decoded from sRGB (`srgb`) or taken as they are
+    /// (`linear`); alpha is always taken as it is.
+    decode: &'static str,
+}
+
 impl PassEntry {
-    fn new(buffer: usize, pass: &Pass, file: String, target: Target) -> PassEntry {
+    fn new(buffer: usize, pass: &Pass, file: Option<String>, target: Target) -> PassEntry {
         let (kind, entry) = match (&pass.kind, target) {
             (PassKind::Surface { .. }, Target::Wgsl) => ("surface", "veneer_pass"),
             (PassKind::Stage { .. }, Target::Wgsl) => ("stage", "veneer_stage"),
             (PassKind::Surface { .. }, _) => ("surface", PASS_FRAGMENT_ENTRY),
             (PassKind::Stage { .. }, _) => ("stage", PASS_FRAGMENT_ENTRY),
+            (PassKind::Bitmap { .. }, _) => ("bitmap", ""),
         };
         let spec = pass.spec;
         PassEntry {
             buffer,
             label: pass.label.clone(),
             kind,
-            module: ModuleEntry {
+            module: file.map(|file| ModuleEntry {
                 file,
                 entry,
                 reads: bindings(&pass.reads()),
+            }),
+            bitmap: match &pass.kind {
+                PassKind::Bitmap { path, bitmap } => Some(BitmapEntry {
+                    file: path.clone(),
+                    width: bitmap.width,
+                    height: bitmap.height,
+                    decode: if bitmap.from_srgb { "srgb" } else { "linear" },
+                }),
+                _ => None,
             },
             resolution: match spec.resolution {
                 Resolution::Inherit => "inherit",

@@ -13,6 +13,7 @@ use super::parts::{Block, Entry};
 use super::{
     Around, CompileError, CompileOptions, ParamSlot, SurfaceUse, WgslModule, assemble, counts,
 };
+use crate::bitmaps::Bitmap;
 use crate::graph::check::{CheckError, CheckedGraph, InputSource};
 use crate::graph::{NodeId, ValueType};
 use crate::nodes::passes::{BufferFormat, BufferSpec, Stage};
@@ -44,6 +45,8 @@ pub struct Passes {
     pub nodes: Vec<usize>,
     /// The buffer each wired sampled input reads, by node and pin index.
     pub sampled: BTreeMap<(NodeId, usize), usize>,
+    /// The buffer each Image node reads (its file's pixels), by node.
+    pub sources: BTreeMap<NodeId, usize>,
 }
 
 impl Passes {
@@ -57,7 +60,7 @@ impl Passes {
     pub fn same_code(&self, other: &Passes) -> bool {
         self.passes.len() == other.passes.len()
             && (self.passes.iter().zip(&other.passes))
-                .all(|(a, b)| a.spec == b.spec && a.module().source == b.module().source)
+                .all(|(a, b)| a.spec == b.spec && a.same_work(b))
     }
 }
 
@@ -97,13 +100,21 @@ pub enum PassKind {
         module: WgslModule,
         stage: Arc<Stage>,
     },
+    /// A bitmap file's pixels, uploaded as they are (the buffer has the bitmap's size,
+    /// whatever the output's): no module runs.
+    Bitmap {
+        /// The file as the graph names it, relative to the graph's folder.
+        path: String,
+        bitmap: Arc<Bitmap>,
+    },
 }
 
 impl Pass {
-    /// The pass's WGSL module.
-    pub fn module(&self) -> &WgslModule {
+    /// The pass's WGSL module (none for an uploaded bitmap).
+    pub fn module(&self) -> Option<&WgslModule> {
         match &self.kind {
-            PassKind::Surface { module, .. } | PassKind::Stage { module, .. } => module,
+            PassKind::Surface { module, .. } | PassKind::Stage { module, .. } => Some(module),
+            PassKind::Bitmap { .. } => None,
         }
     }
 
@@ -112,6 +123,29 @@ impl Pass {
         match &self.kind {
             PassKind::Surface { reads, .. } => reads.clone(),
             PassKind::Stage { source, .. } => vec![*source],
+            PassKind::Bitmap { .. } => Vec::new(),
+        }
+    }
+
+    /// The buffer's side when the output is `output` texels square: its spec's, or a
+    /// bitmap's own width and height.
+    pub fn extent(&self, output: u32) -> (u32, u32) {
+        match &self.kind {
+            PassKind::Bitmap { bitmap, .. } => (bitmap.width, bitmap.height),
+            _ => {
+                let side = self.spec.texels(output);
+                (side, side)
+            }
+        }
+    }
+
+    /// Whether `other` computes the same texels: the same module, or the same bitmap.
+    fn same_work(&self, other: &Pass) -> bool {
+        match (&self.kind, &other.kind) {
+            (PassKind::Bitmap { bitmap: a, .. }, PassKind::Bitmap { bitmap: b, .. }) => {
+                Arc::ptr_eq(a, b)
+            }
+            _ => (self.module().zip(other.module())).is_some_and(|(a, b)| a.source == b.source),
         }
     }
 }
@@ -153,6 +187,10 @@ struct Planner<'g> {
     /// The parameter slots of the modules so far (one numbering for all).
     slots: Vec<ParamSlot>,
     sampled: BTreeMap<(NodeId, usize), usize>,
+    /// The buffer of each Image node, and of each bitmap already uploaded (one upload
+    /// per file and edge mode, however many nodes read it).
+    sources: BTreeMap<NodeId, usize>,
+    uploads: Vec<(Arc<Bitmap>, crate::nodes::passes::EdgeMode, usize)>,
 }
 
 /// The module and passes of a graph with sampled inputs; `None` for a graph without.
@@ -168,7 +206,7 @@ pub(super) fn plan(
             .zip(&checked.inputs)
             .any(|(pin, source)| pin.sampled && matches!(source, InputSource::Wire { .. }))
     });
-    if !cuts_anything {
+    if !cuts_anything && graph.bitmaps.is_empty() {
         return Ok(None);
     }
     let mut planner = Planner {
@@ -179,6 +217,8 @@ pub(super) fn plan(
         staged: BTreeMap::new(),
         slots: Vec::new(),
         sampled: BTreeMap::new(),
+        sources: BTreeMap::new(),
+        uploads: Vec::new(),
     };
     let material = graph.order.len() - 1;
     let (nodes, reads) = planner.part(material)?;
@@ -190,6 +230,7 @@ pub(super) fn plan(
             reads,
             nodes,
             sampled: planner.sampled,
+            sources: planner.sources,
         },
     )))
 }
@@ -225,6 +266,13 @@ impl Planner<'_> {
             }
         }
         let mut reads = Vec::new();
+        for &at in &keep {
+            if let Some(buffer) = self.upload(at)
+                && !reads.contains(&buffer)
+            {
+                reads.push(buffer);
+            }
+        }
         // Earlier nodes' cuts first, so that buffers number in dependency order.
         cuts.sort_unstable();
         for (at, k) in cuts {
@@ -234,6 +282,40 @@ impl Planner<'_> {
             }
         }
         Ok((keep.into_iter().collect(), reads))
+    }
+
+    /// The buffer holding the bitmap the node at `at` reads (uploaded on first use);
+    /// `None` for a node that reads none.
+    fn upload(&mut self, at: usize) -> Option<usize> {
+        let checked = &self.graph.order[at];
+        let bitmap = self.graph.bitmaps.get(&checked.node.id)?;
+        let source = checked.node.kind.definition().bitmap()?;
+        let known = (self.uploads.iter())
+            .find(|(seen, edge, _)| Arc::ptr_eq(seen, bitmap) && *edge == source.edge);
+        let buffer = match known {
+            Some(&(_, _, buffer)) => buffer,
+            None => {
+                self.passes.push(Pass {
+                    label: format!("{} → file '{}'", checked.node, source.path),
+                    spec: BufferSpec {
+                        resolution: crate::nodes::passes::Resolution::Absolute,
+                        size: bitmap.width.max(bitmap.height),
+                        format: BufferFormat::Float32,
+                        edge: source.edge,
+                    },
+                    slots: 0..0,
+                    kind: PassKind::Bitmap {
+                        path: source.path.to_string(),
+                        bitmap: bitmap.clone(),
+                    },
+                });
+                let buffer = self.passes.len() - 1;
+                self.uploads.push((bitmap.clone(), source.edge, buffer));
+                buffer
+            }
+        };
+        self.sources.insert(checked.node.id, buffer);
+        Some(buffer)
     }
 
     /// The buffer sampled input `k` of the node at `at` reads: its cut's buffer, run
@@ -406,11 +488,15 @@ impl Planner<'_> {
             &self.graph.parameters,
             &members,
         );
-        for (&(node, pin), &buffer) in &self.sampled {
+        let arguments = |buffer: usize| {
             let edge = self.passes[buffer].spec.edge.wgsl();
-            emitter
-                .sampled
-                .insert((node, pin), format!("{}, {edge}", buffer_name(buffer)));
+            format!("{}, {edge}", buffer_name(buffer))
+        };
+        for (&(node, pin), &buffer) in &self.sampled {
+            emitter.sampled.insert((node, pin), arguments(buffer));
+        }
+        for (&node, &buffer) in &self.sources {
+            emitter.sources.insert(node, arguments(buffer));
         }
         emitter.params = self.slots.clone();
         emitter.first_slot = self.slots.len();

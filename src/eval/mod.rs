@@ -115,7 +115,9 @@ impl Evaluator {
             let checked = &self.graph.order[at];
             let inputs = self.inputs(checked, &values, surface);
             let images = buffers.of(checked);
-            let io = Eval::new(&checked.signature.inputs, &inputs, surface).with_images(&images);
+            let io = Eval::new(&checked.signature.inputs, &inputs, surface)
+                .with_images(&images)
+                .with_source(buffers.source_of(checked));
             values[at] = checked.node.kind.eval(&io);
         }
         values

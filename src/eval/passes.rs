@@ -17,6 +17,8 @@ pub struct Buffers {
     /// Pass `i`'s buffer.
     pub images: Vec<Image>,
     sampled: BTreeMap<(NodeId, usize), usize>,
+    /// The image each Image node reads.
+    sources: BTreeMap<NodeId, usize>,
     /// The positions of the nodes the material's module holds (the material's part:
     /// a Buffer node read only through sampled inputs is in none).
     pub(super) material_nodes: Vec<usize>,
@@ -35,6 +37,12 @@ impl Buffers {
             })
             .collect()
     }
+
+    /// The image of the bitmap `checked` reads (an Image node).
+    pub(super) fn source_of(&self, checked: &CheckedNode) -> Option<&Image> {
+        let buffer = self.sources.get(&checked.node.id)?;
+        Some(&self.images[*buffer])
+    }
 }
 
 impl Evaluator {
@@ -44,6 +52,7 @@ impl Evaluator {
         let mut buffers = Buffers {
             images: Vec::with_capacity(passes.passes.len()),
             sampled: passes.sampled.clone(),
+            sources: passes.sources.clone(),
             material_nodes: passes.nodes.clone(),
         };
         for pass in &passes.passes {
@@ -87,6 +96,12 @@ impl Evaluator {
                 PassKind::Stage { source, stage, .. } => {
                     buffers.images[*source].map_texels(|image, texel| (stage.cpu)(image, texel))
                 }
+                PassKind::Bitmap { bitmap, .. } => Image {
+                    width: bitmap.width,
+                    height: bitmap.height,
+                    edge: pass.spec.edge,
+                    texels: bitmap.texels.clone(),
+                },
             };
             buffers.images.push(image);
         }

@@ -3,7 +3,10 @@
 use super::ids::IdIndex;
 use super::{Graph, MAX_PATH_CHARS, MAX_TEXT_CHARS, Node, NodeId, Wire, clip};
 use super::{NodeKind, PinDefault, Signature, Value, ValueType};
+use crate::bitmaps::Bitmap;
+use std::collections::BTreeMap;
 use std::fmt;
+use std::sync::Arc;
 
 /// One problem found in a graph, attached to the node it concerns when there is one.
 #[derive(Clone, Debug, PartialEq)]
@@ -72,6 +75,8 @@ pub struct CheckedGraph {
     pub parameters: Vec<super::parameters::Exposed>,
     /// Which inputs of the flattened nodes hold which exposed parameter's value.
     pub bindings: super::group::Bindings,
+    /// The bitmap each Image node reads, decoded from its file.
+    pub bitmaps: BTreeMap<NodeId, Arc<Bitmap>>,
     /// The position of each node in `order`.
     index: IdIndex,
 }
@@ -108,6 +113,7 @@ impl CheckedGraph {
             order: Vec::new(),
             parameters: self.parameters.clone(),
             bindings: self.bindings.clone(),
+            bitmaps: self.bitmaps.clone(),
             index: IdIndex::new(0, None),
         }
     }
@@ -557,6 +563,7 @@ fn check_towards(graph: &Graph, sinks: Option<&[NodeId]>) -> Result<CheckedGraph
             }
         }
     }
+    let bitmaps = read_bitmaps(graph, &order)?;
     Ok(CheckedGraph {
         name: graph.name.clone(),
         alpha: graph.alpha,
@@ -564,8 +571,45 @@ fn check_towards(graph: &Graph, sinks: Option<&[NodeId]>) -> Result<CheckedGraph
         order,
         parameters: Vec::new(),
         bindings: Default::default(),
+        bitmaps,
         index,
     })
+}
+
+/// The bitmaps the Image nodes of `order` read, from files relative to the graph's
+/// folder; a file that cannot be used is an error naming the node and the file.
+fn read_bitmaps(
+    graph: &Graph,
+    order: &[CheckedNode],
+) -> Result<BTreeMap<NodeId, Arc<Bitmap>>, Vec<CheckError>> {
+    let mut bitmaps = BTreeMap::new();
+    let mut errors = Vec::new();
+    for checked in order {
+        let Some(source) = checked.node.kind.definition().bitmap() else {
+            continue;
+        };
+        let linear = graph.shading == super::Shading::MetallicRoughness;
+        match crate::bitmaps::load(
+            graph.folder.path(),
+            source.path,
+            source.colour_space,
+            linear,
+        ) {
+            Ok(bitmap) => {
+                bitmaps.insert(checked.node.id, bitmap);
+            }
+            Err(message) => errors.push(CheckError {
+                node: Some(checked.node.id),
+                node_name: Some(checked.node.to_string()),
+                message,
+            }),
+        }
+    }
+    if errors.is_empty() {
+        Ok(bitmaps)
+    } else {
+        Err(errors)
+    }
 }
 
 /// The nodes of a cycle (the search stack from where it closes) as `'a' -> 'b' -> …`,

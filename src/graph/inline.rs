@@ -69,6 +69,7 @@ pub fn flatten_traced(
         groups: BTreeMap::new(),
         parameters: graph.parameters.clone(),
         presets: graph.presets.clone(),
+        folder: graph.folder.clone(),
     };
     Ok((Cow::Owned(flat), bindings))
 }

@@ -103,6 +103,7 @@ pub fn load(path: &Path) -> Result<Graph, LoadError> {
         path: Some(path.to_path_buf()),
         ..err
     })?;
+    graph.folder = super::Folder::of_file(path);
     // A linked group whose library file cannot be used keeps the graph's copy: said on
     // stderr, naming the file, whatever command loads the graph.
     for warning in super::library::refresh(&mut graph) {

@@ -37,6 +37,7 @@ pub use presets::{PRESETS, preset};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::fmt;
+use std::path::{Path, PathBuf};
 
 /// The most characters of a node label, graph name, frame title or pin name: a label
 /// names variables in generated WGSL and every text appears in messages, so a longer one
@@ -344,6 +345,37 @@ pub struct Graph {
         deserialize_with = "presets_file"
     )]
     pub presets: BTreeMap<String, BTreeMap<String, Value>>,
+    /// The folder of the file the graph was read from or saved to, which Image nodes'
+    /// paths are relative to; not stored in the file.
+    #[serde(skip)]
+    pub folder: Folder,
+}
+
+/// Where a graph's file is (see [`Graph::folder`]): the current folder for a graph not
+/// from a file. Not part of what a graph is: two graphs of the same content are equal
+/// wherever their files are.
+#[derive(Clone, Debug, Default)]
+pub struct Folder(pub Option<PathBuf>);
+
+impl Folder {
+    /// The folder (`.` when none is known).
+    pub fn path(&self) -> &Path {
+        self.0.as_deref().unwrap_or(Path::new("."))
+    }
+
+    /// The folder of `file` (a graph file's path).
+    pub fn of_file(file: &Path) -> Folder {
+        Folder(Some(match file.parent() {
+            Some(parent) if !parent.as_os_str().is_empty() => parent.to_path_buf(),
+            _ => PathBuf::from("."),
+        }))
+    }
+}
+
+impl PartialEq for Folder {
+    fn eq(&self, _: &Folder) -> bool {
+        true
+    }
 }
 
 /// How a material's alpha shows where it is below 1 (glTF's `alphaMode`, Blender's
@@ -431,11 +463,39 @@ impl Default for Graph {
             groups: BTreeMap::new(),
             parameters: Vec::new(),
             presets: BTreeMap::new(),
+            folder: Folder::default(),
         }
     }
 }
 
 impl Graph {
+    /// Makes `folder` the graph's folder, rewriting the relative paths of its file
+    /// settings (Image nodes, also inside groups) so that they name the same files from
+    /// there: what saving a graph into another folder does.
+    pub fn move_to(&mut self, folder: Folder) {
+        let from = self.folder.path().to_path_buf();
+        let to = folder.path().to_path_buf();
+        let nodes = (self.nodes.iter_mut()).chain(
+            self.groups
+                .values_mut()
+                .flat_map(|group| group.nodes.iter_mut()),
+        );
+        for node in nodes {
+            for setting in node.kind.settings() {
+                if let crate::nodes::settings::Setting::File { value, .. } = setting
+                    && !value.trim().is_empty()
+                    && Path::new(value.as_str()).is_relative()
+                {
+                    let file = from.join(value.as_str());
+                    *value = crate::bitmaps::relative_to(&to, &file)
+                        .to_string_lossy()
+                        .into_owned();
+                }
+            }
+        }
+        self.folder = folder;
+    }
+
     /// The graph's Material node (the first, should a graph that does not check have
     /// several).
     pub fn material(&self) -> Option<&Node> {

@@ -65,6 +65,7 @@ impl Graph {
             groups: self.groups.clone(),
             presets: presets.collect(),
             parameters,
+            folder: self.folder.clone(),
         }
     }
 }

@@ -23,6 +23,13 @@ pub fn run(graph: &CheckedGraph, positions: Lanes) -> Vec<Lint> {
             })
             .collect();
         let mut io = Ranges::new(&checked.signature.inputs, &inputs, positions);
+        if let Some(bitmap) = graph.bitmaps.get(&checked.node.id) {
+            io = io.with_bitmap(
+                bitmap
+                    .lanes
+                    .map(|[lo, hi]| Interval::new(lo.into(), hi.into())),
+            );
+        }
         let outputs = checked.node.kind.definition().ranges(&mut io);
         lints.extend(io.finish().into_iter().map(|message| Lint {
             node: checked.node.id,

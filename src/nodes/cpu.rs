@@ -36,6 +36,8 @@ pub struct Eval<'a, R> {
     inputs: &'a [V3<R>],
     /// The buffer of each sampled input, by pin (empty when the node has none).
     images: &'a [Option<&'a Image>],
+    /// The bitmap the node reads (an Image node).
+    source: Option<&'a Image>,
     /// The point being shaded.
     pub surface: &'a Surface<R>,
 }
@@ -47,6 +49,7 @@ impl<'a, R: Real> Eval<'a, R> {
             pins,
             inputs,
             images: &[],
+            source: None,
             surface,
         }
     }
@@ -64,6 +67,18 @@ impl<'a, R: Real> Eval<'a, R> {
             .copied()
             .flatten()
             .unwrap_or_else(|| panic!("sampled input '{pin}' evaluated without its buffer"))
+    }
+
+    /// The same node reading bitmap `source` (an Image node).
+    pub fn with_source(self, source: Option<&'a Image>) -> Self {
+        Eval { source, ..self }
+    }
+
+    /// The bitmap the node reads. The evaluator uploads every Image node's file before
+    /// it evaluates the node: a missing one is a bug.
+    pub fn source(&self) -> &'a Image {
+        self.source
+            .expect("a node reading a bitmap is evaluated with its image")
     }
 
     /// The point's domain coordinate (its uv), where buffers are read.

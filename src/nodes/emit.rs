@@ -85,6 +85,8 @@ pub struct Emit<'a> {
     inputs: &'a [String],
     outputs: &'a [OutputPin],
     name: &'a str,
+    /// The arguments (`texture, edge`) of the bitmap the node reads (an Image node).
+    source: Option<&'a str>,
     /// How much detail fractal nodes compute.
     pub detail: Detail,
     code: NodeCode,
@@ -104,9 +106,25 @@ impl<'a> Emit<'a> {
             inputs,
             outputs,
             name,
+            source: None,
             detail,
             code: NodeCode::default(),
         }
+    }
+
+    /// The same node reading the bitmap at `arguments` (`texture, edge`).
+    pub fn with_source(self, arguments: Option<&'a str>) -> Emit<'a> {
+        Emit {
+            source: arguments,
+            ..self
+        }
+    }
+
+    /// The arguments (`texture, edge`) of the bitmap the node reads. The compiler uploads
+    /// every Image node's file before it emits the node: a missing one is a bug.
+    pub fn source(&self) -> &'a str {
+        self.source
+            .expect("a node reading a bitmap is emitted with its buffer")
     }
 
     /// The expression of input pin `pin`. A name the kind does not have is a bug in its

@@ -108,6 +108,7 @@ pub mod ranges;
 pub mod settings;
 pub mod value;
 
+mod bitmap;
 mod cellular;
 mod colour;
 mod coordinates;
@@ -127,6 +128,7 @@ mod patterns;
 mod sampled;
 mod vectors;
 
+pub use bitmap::{BitmapSource, ImageFile, LUMINANCE};
 pub use cellular::Worley;
 pub use colour::{Blend, BlendMode, ColorRamp};
 pub use coordinates::DomainWarp;
@@ -248,6 +250,11 @@ pub trait Definition {
     /// How the buffer of the node's sampled input is stored, when the node sets it (a
     /// Buffer node); sampled inputs wired to this node's output read the same buffer.
     fn buffer(&self) -> Option<BufferSpec> {
+        None
+    }
+    /// The bitmap file the node reads, when it reads one (an Image node): the compiler
+    /// uploads it into a buffer the node samples.
+    fn bitmap(&self) -> Option<BitmapSource<'_>> {
         None
     }
     /// A picture of the settings that the editor draws in the node's body and its
@@ -432,7 +439,7 @@ macro_rules! registry {
     };
 }
 
-registry!(@gather [] [] inputs coordinates noise fractal cellular patterns fields math mapping vectors colour sampled image_ops distance flood_fill levels output group);
+registry!(@gather [] [] inputs coordinates noise fractal cellular patterns fields math mapping vectors colour sampled bitmap image_ops distance flood_fill levels output group);
 
 impl NodeKind {
     /// A short human-readable name (used for default labels and messages).
@@ -456,9 +463,10 @@ impl NodeKind {
     }
 
     /// Whether the node reads an input as a buffer (at other points than the one
-    /// shaded): a graph using it renders passes.
+    /// shaded) or reads a bitmap file: a graph using it renders passes.
     pub fn samples(&self) -> bool {
         self.signature().inputs.iter().any(|pin| pin.sampled)
+            || self.definition().bitmap().is_some()
     }
 }
 

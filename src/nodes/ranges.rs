@@ -21,6 +21,8 @@ pub struct Ranges<'a> {
     inputs: &'a [Lanes],
     /// The range of surface positions.
     pub positions: Lanes,
+    /// The range of each lane of the bitmap the node reads (an Image node), when known.
+    bitmap: Option<[Interval; 4]>,
     warnings: Vec<String>,
 }
 
@@ -31,8 +33,22 @@ impl<'a> Ranges<'a> {
             pins,
             inputs,
             positions,
+            bitmap: None,
             warnings: Vec::new(),
         }
+    }
+
+    /// The same node reading a bitmap whose lanes span `lanes`.
+    pub fn with_bitmap(self, lanes: [Interval; 4]) -> Ranges<'a> {
+        Ranges {
+            bitmap: Some(lanes),
+            ..self
+        }
+    }
+
+    /// The range of each lane of the bitmap the node reads, when the lint knows it.
+    pub fn bitmap(&self) -> Option<[Interval; 4]> {
+        self.bitmap
     }
 
     /// The range of input pin `pin`. A name the kind does not have is a bug in its

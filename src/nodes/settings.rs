@@ -227,6 +227,13 @@ pub enum Setting<'a> {
         value: &'a mut u32,
         range: std::ops::RangeInclusive<u32>,
     },
+    /// A file's path, relative to the graph's folder, chosen in a file dialog or typed.
+    File {
+        label: &'static str,
+        value: &'a mut String,
+        /// The extensions the dialog offers (lower case, without the dot).
+        extensions: &'static [&'static str],
+    },
     /// On or off.
     Toggle {
         label: &'static str,

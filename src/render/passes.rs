@@ -48,7 +48,8 @@ struct Rendered {
 /// A material's passes, built once, each rendered again only when what it reads changes.
 pub struct PassRenderer {
     passes: Passes,
-    pipelines: Vec<wgpu::RenderPipeline>,
+    /// The pipeline of each pass (none for an uploaded bitmap).
+    pipelines: Vec<Option<wgpu::RenderPipeline>>,
     /// The parameter values, and their bind group at group 1 of each pass that reads them.
     block: Option<Arc<ParamBlock>>,
     params: Vec<Option<wgpu::BindGroup>>,
@@ -76,8 +77,14 @@ impl PassRenderer {
             let entry_points = match pass.kind {
                 PassKind::Surface { .. } => SURFACE_ENTRY_POINTS,
                 PassKind::Stage { .. } => STAGE_ENTRY_POINTS,
+                PassKind::Bitmap { .. } => {
+                    // Uploaded, not rendered.
+                    pipelines.push(None);
+                    continue;
+                }
             };
-            let source = shader_source(&pass.module().source, entry_points);
+            let module = pass.module().expect("a rendered pass has a module");
+            let source = shader_source(&module.source, entry_points);
             let module = gpu.shader(&pass.label, &source)?;
             let format = texture_format(pass.spec.format);
             let usages = gpu
@@ -94,8 +101,9 @@ impl PassRenderer {
                     gpu.adapter_description()
                 )));
             }
-            pipelines.push(
-                gpu.checked(&format!("pipeline of pass '{}'", pass.label), || {
+            pipelines.push(Some(gpu.checked(
+                &format!("pipeline of pass '{}'", pass.label),
+                || {
                     super::fullscreen_pipeline(
                         &gpu.device,
                         &pass.label,
@@ -103,13 +111,13 @@ impl PassRenderer {
                         ("veneer_pass_vertex", "veneer_pass_fragment"),
                         format,
                     )
-                })?,
-            );
+                },
+            )?));
         }
         let groups = (passes.passes.iter().zip(&pipelines))
             .map(|(pass, pipeline)| {
-                let block = params.filter(|_| pass.module().binds_params)?;
-                Some(block.bind_group(gpu, pipeline))
+                let block = params.filter(|_| pass.module().is_some_and(|m| m.binds_params))?;
+                Some(block.bind_group(gpu, pipeline.as_ref()?))
             })
             .collect();
         let view = gpu.device.create_buffer(&wgpu::BufferDescriptor {
@@ -137,9 +145,9 @@ impl PassRenderer {
     pub fn buffer_bytes(&self, size: u32) -> u64 {
         (self.slot_specs.iter())
             .map(|&pass| {
-                let spec = &self.passes.passes[pass].spec;
-                let side = u64::from(spec.texels(size));
-                side * side * spec.format.texel_bytes()
+                let pass = &self.passes.passes[pass];
+                let (width, height) = pass.extent(size);
+                u64::from(width) * u64::from(height) * pass.spec.format.texel_bytes()
             })
             .sum()
     }
@@ -234,18 +242,18 @@ impl PassRenderer {
         let mut textures = Vec::with_capacity(self.slot_specs.len());
         for &index in &self.slot_specs {
             let pass = &self.passes.passes[index];
-            let side = pass.spec.texels(size);
-            if side > limit {
+            let (width, height) = pass.extent(size);
+            if width.max(height) > limit {
                 return Err(RenderError::Invalid(format!(
-                    "the buffer of pass '{}' would be {side}² texels, past this adapter's largest texture ({limit}²)",
+                    "the buffer of pass '{}' would be {width}×{height} texels, past this adapter's largest texture ({limit}²)",
                     pass.label
                 )));
             }
             textures.push(gpu.device.create_texture(&wgpu::TextureDescriptor {
                 label: Some(&pass.label),
                 size: wgpu::Extent3d {
-                    width: side,
-                    height: side,
+                    width,
+                    height,
                     depth_or_array_layers: 1,
                 },
                 mip_level_count: 1,
@@ -283,8 +291,25 @@ impl PassRenderer {
         time: f32,
         textures: &[wgpu::Texture],
     ) -> Result<(), RenderError> {
-        let (pass, pipeline) = (&self.passes.passes[index], &self.pipelines[index]);
+        let pass = &self.passes.passes[index];
         let texture = &textures[self.storage[index]];
+        if let PassKind::Bitmap { bitmap, .. } = &pass.kind {
+            gpu.queue.write_texture(
+                texture.as_image_copy(),
+                bytemuck::cast_slice(&bitmap.texels),
+                wgpu::TexelCopyBufferLayout {
+                    offset: 0,
+                    bytes_per_row: Some(bitmap.width * 16),
+                    rows_per_image: Some(bitmap.height),
+                },
+                texture.size(),
+            );
+            self.renders.fetch_add(1, Ordering::Relaxed);
+            return gpu.take_errors();
+        }
+        let pipeline = self.pipelines[index]
+            .as_ref()
+            .expect("a rendered pass has a pipeline");
         if let PassKind::Stage { source, stage, .. } = &pass.kind
             && texture.width() <= stage.unchanged_up_to
         {

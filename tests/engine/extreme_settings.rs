@@ -94,7 +94,8 @@ fn setting_extremes(kind: &NodeKind, index: usize) -> Vec<SetTo> {
                 [position, color]
             })
             .collect(),
-        Setting::Choice { .. } | Setting::Toggle { .. } => Vec::new(),
+        // Files: tests/engine/bitmaps.rs and the CLI contract suite.
+        Setting::Choice { .. } | Setting::Toggle { .. } | Setting::File { .. } => Vec::new(),
     }
 }
 

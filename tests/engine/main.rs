@@ -4,6 +4,7 @@
 mod bake;
 mod batch;
 mod big_graphs;
+mod bitmaps;
 mod cli;
 mod cli_contract;
 mod compile_once;

@@ -225,7 +225,8 @@ fn the_registry_lists_every_kind_with_every_part() {
             .map(|pin| pin.sampled.then_some(&image))
             .collect();
         let io = veneer::nodes::cpu::Eval::new(&node.signature.inputs, &inputs, &surface)
-            .with_images(&images);
+            .with_images(&images)
+            .with_source(definition.bitmap().map(|_| &image));
         assert_eq!(
             kind.eval(&io).len(),
             signature.outputs.len(),

@@ -525,7 +525,15 @@ fn the_shipped_texture_graphs_bake_seamless_tiles_that_match_their_cpu_reference
         // Buffers only the next step reads share two scratch textures: a texture of its
         // own per cut and per node result after stages, not one per stage.
         let flat = FlatRenderer::for_compiled(gpu(), &compiled).expect("pipelines");
-        let own_textures = flat.pass_bytes(64) / (64 * 64 * 16);
+        // (Uploaded files take their own size.)
+        let bitmap_bytes: u64 = (compiled.passes.passes.iter())
+            .filter(|pass| matches!(pass.kind, PassKind::Bitmap { .. }))
+            .map(|pass| {
+                let (width, height) = pass.extent(64);
+                u64::from(width) * u64::from(height) * 16
+            })
+            .sum();
+        let own_textures = (flat.pass_bytes(64) - bitmap_bytes) / (64 * 64 * 16);
         let surfaces = (compiled.passes.passes.iter())
             .filter(|pass| matches!(pass.kind, PassKind::Surface { .. }))
             .count() as u64;

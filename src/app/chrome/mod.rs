@@ -14,6 +14,8 @@ pub(in crate::app) struct Chrome {
     pub dialog: Option<dialogs::Dialog>,
     /// The file browser a path dialog opened.
     pub browser: file_browser::Browser,
+    /// The node whose file setting the open file browser chooses for.
+    pub choosing_file_for: Option<egui_snarl::NodeId>,
     /// Whether the status bar shows the frame rate (View → Frame rate).
     pub show_frame_rate: bool,
     /// Where the main thread's time went in the last frame.

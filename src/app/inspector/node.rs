@@ -21,8 +21,19 @@ fn combo(ui: &mut Ui, label: &str, names: &[String], selected: &mut usize) -> bo
     *selected != before
 }
 
-/// Editors for the structural settings the node's kind lists.
-fn settings(ui: &mut Ui, node: &mut Node) {
+/// A file the user asked to choose in the file browser for a node's file setting.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FileRequest {
+    /// What the browser offers (lower-case extensions).
+    pub extensions: &'static [&'static str],
+    /// The path the setting holds now, relative to the graph's folder.
+    pub current: String,
+}
+
+/// Editors for the structural settings the node's kind lists; a file setting's
+/// *Choose…* button asks for the file browser.
+fn settings(ui: &mut Ui, node: &mut Node) -> Option<FileRequest> {
+    let mut request = None;
     for setting in node.kind.settings() {
         match setting {
             Setting::Choice { label, mut value } => {
@@ -41,12 +52,36 @@ fn settings(ui: &mut Ui, node: &mut Node) {
             Setting::Toggle { label, value } => {
                 ui.checkbox(value, label);
             }
+            Setting::File {
+                label,
+                value,
+                extensions,
+            } => {
+                ui.horizontal(|ui| {
+                    ui.label(label);
+                    let choose = ui
+                        .button("Choose…")
+                        .on_hover_text("choose the file in the file browser");
+                    if choose.clicked() {
+                        request = Some(FileRequest {
+                            extensions,
+                            current: value.clone(),
+                        });
+                    }
+                });
+                ui.add(
+                    egui::TextEdit::singleline(value)
+                        .hint_text("path relative to the graph's folder")
+                        .desired_width(f32::INFINITY),
+                );
+            }
             Setting::Ramp {
                 stops,
                 interpolation,
             } => ramp_editor(ui, stops, interpolation),
         }
     }
+    request
 }
 
 fn ramp_editor(ui: &mut Ui, stops: &mut Vec<RampStop>, interpolation: &mut RampInterpolation) {
@@ -171,17 +206,17 @@ fn readers_of(
     reached
 }
 
-/// Shows the inspector for node `id` of `snarl`.
+/// Shows the inspector for node `id` of `snarl`; a file the user asked to choose.
 pub fn show(
     ui: &mut Ui,
     snarl: &mut Snarl<Node>,
     id: egui_snarl::NodeId,
     error: Option<&String>,
     warning: Option<&String>,
-) {
+) -> Option<FileRequest> {
     // Edited as a copy, put back when changed: the view's journal then lists it.
     let Some(mut node) = snarl.get_node(id).cloned() else {
-        return;
+        return None;
     };
     ui.horizontal(|ui| {
         ui.label(RichText::new(node.kind.title()).strong());
@@ -200,7 +235,7 @@ pub fn show(
             format!("⚠ {warning}"),
         );
     }
-    settings(ui, &mut node);
+    let request = settings(ui, &mut node);
     let inputs = node.kind.signature().inputs;
     if node != snarl[id] {
         snarl[id] = node;
@@ -250,4 +285,5 @@ pub fn show(
             }
         });
     }
+    request
 }

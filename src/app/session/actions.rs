@@ -20,7 +20,15 @@ impl VeneerApp {
                 Ok(None)
             }
             Action::SaveAs(path, then) => {
+                let before = self.session.document.graph.clone();
                 let saved = self.session.document.save_as(&path).map(|()| {
+                    // Saved into another folder, its file paths were rewritten: the view
+                    // shows them as they are now.
+                    if self.session.document.graph.nodes != before.nodes
+                        || self.session.document.graph.groups != before.groups
+                    {
+                        self.rebuild_snarl();
+                    }
                     self.remember(&path);
                     self.session.saved();
                     Some(format!("saved {}", path.display()))

@@ -66,8 +66,12 @@ impl Document {
 
     /// Writes the graph to `path` (atomically) and makes that its file.
     pub fn save_as(&mut self, path: &Path) -> Result<(), String> {
-        crate::graph::save(&self.graph, path)
+        let folder = crate::graph::Folder::of_file(path);
+        let mut moved = self.graph.clone();
+        moved.move_to(folder);
+        crate::graph::save(&moved, path)
             .map_err(|error| format!("{}: cannot save: {error}", path.display()))?;
+        self.graph = moved;
         self.saved = Some(self.graph.clone());
         self.path = Some(path.to_path_buf());
         Ok(())
