@@ -10,6 +10,7 @@ use super::interval::{Interval, Lanes};
 use super::passes::{EdgeMode, Filter};
 use super::pins::{COLOR, FLOAT, Signature, output};
 use super::ranges::Ranges;
+use super::sampled::image_node;
 use super::settings::{Basis, Setting, choice};
 use super::{Catalogue, Category, Configure, Definition, Evaluate};
 use crate::bitmaps::{ColourSpace, MAX_TEXEL_VALUE};
@@ -52,15 +53,7 @@ impl Definition for ImageFile {
     fn title(&self) -> &'static str {
         "Image"
     }
-    fn category(&self) -> Category {
-        Category::Image
-    }
-    fn reads_surface(&self) -> bool {
-        true
-    }
-    fn basis(&self) -> Option<Basis> {
-        None
-    }
+    image_node!();
     fn keywords(&self) -> &'static [&'static str] {
         &[
             "bitmap", "photo", "picture", "texture", "file", "png", "jpeg", "exr", "hdr", "mask",

@@ -218,3 +218,84 @@ fn the_export_menu_writes_a_validated_shader_for_the_chosen_language() {
         "SPIR-V magic number"
     );
 }
+
+#[test]
+fn an_image_node_takes_a_typed_path_and_keeps_its_file_when_saved_elsewhere() {
+    let dir = scratch("image file");
+    std::fs::create_dir_all(dir.join("graphs")).unwrap();
+    image::RgbaImage::from_pixel(8, 8, image::Rgba([200, 120, 40, 255]))
+        .save(dir.join("pic.png"))
+        .unwrap();
+    let mut graph = veneer::graph::Graph::default();
+    let photo = graph.add(
+        "photo",
+        veneer::graph::NodeKind::ImageFile(veneer::nodes::ImageFile::default()),
+    );
+    let material = graph.add("material", veneer::graph::NodeKind::Material);
+    graph.connect(photo, "colour", material, "albedo");
+    let file = dir.join("graphs/photo.ron");
+    veneer::graph::save(&graph, &file).unwrap();
+    let mut harness = editor(&dir, Some(file));
+    select_node(&mut harness, "photo");
+    assert!(
+        shows(&harness, "no file chosen"),
+        "the empty path is a check error"
+    );
+    // The file field is the empty text field (the label field holds "photo"); the
+    // check's message comes and goes above it as the path is typed.
+    harness
+        .query_by(|node| {
+            node.role() == egui::accesskit::Role::TextInput && node.value().as_deref() == Some("")
+        })
+        .expect("the file field")
+        .focus();
+    harness.run();
+    for character in "../pic.png".chars() {
+        harness
+            .get_by(|node| {
+                node.role() == egui::accesskit::Role::TextInput
+                    && node.value().is_some_and(|value| value != "photo")
+            })
+            .type_text(&character.to_string());
+        harness.run();
+    }
+    let path_of = |harness: &egui_kittest::Harness<'static, veneer::app::VeneerApp>| match &harness
+        .state()
+        .document()
+        .graph
+        .nodes[0]
+        .kind
+    {
+        veneer::graph::NodeKind::ImageFile(image) => image.path.clone(),
+        other => panic!("{other:?}"),
+    };
+    assert_eq!(
+        path_of(&harness),
+        "../pic.png",
+        "every character reached the field"
+    );
+    harness.run_steps(8);
+    assert!(!shows(&harness, "no file chosen") && !shows(&harness, "cannot be read"));
+    // Saved into a folder two levels down, the path names the same file from there.
+    let moved = dir.join("elsewhere/deeper/photo.ron");
+    std::fs::create_dir_all(moved.parent().unwrap()).unwrap();
+    harness.get_by_label("File").click_accesskit();
+    harness.run();
+    harness.get_by_label_contains("Save as").click_accesskit();
+    harness.run();
+    // The dialog's field holds the graph's path, selected: typing replaces it.
+    harness
+        .get_by(|node| {
+            node.role() == egui::accesskit::Role::TextInput
+                && node
+                    .value()
+                    .is_some_and(|value| value.ends_with("photo.ron"))
+        })
+        .type_text(&moved.display().to_string());
+    harness.run();
+    harness.get_by_label("Save").click();
+    harness.run();
+    assert_eq!(path_of(&harness), "../../pic.png");
+    let saved = veneer::graph::load(&moved).expect("the saved graph loads");
+    veneer::graph::check(&saved).expect("its image is found from the new folder");
+}

@@ -69,8 +69,11 @@ fn settings(ui: &mut Ui, node: &mut Node) -> Option<FileRequest> {
                         });
                     }
                 });
+                // A stable id: the check's message above it comes and goes as the
+                // path is typed, and must not take the focus away.
                 ui.add(
                     egui::TextEdit::singleline(value)
+                        .id(ui.make_persistent_id(("file setting", label)))
                         .hint_text("path relative to the graph's folder")
                         .desired_width(f32::INFINITY),
                 );
