@@ -55,6 +55,13 @@ impl Passes {
         self.passes.is_empty()
     }
 
+    /// Whether every pass uploads a file (the material reads Image nodes and no sampled
+    /// input): its buffers do not depend on the domain, so it draws on meshes at their
+    /// UVs as well as flat.
+    pub fn uploads_only(&self) -> bool {
+        (self.passes.iter()).all(|pass| matches!(pass.kind, PassKind::Bitmap { .. }))
+    }
+
     /// Whether `other` runs the same code over the same buffers (a renderer built for
     /// one serves the other).
     pub fn same_code(&self, other: &Passes) -> bool {

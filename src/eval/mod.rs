@@ -63,6 +63,8 @@ pub struct Evaluator {
     graph: CheckedGraph,
     /// Position in `graph.order` of every node id.
     index: BTreeMap<crate::graph::NodeId, usize>,
+    /// The files the graph's Image nodes read, which need no pass rendered first.
+    bitmaps: Buffers,
 }
 
 impl Evaluator {
@@ -79,12 +81,18 @@ impl Evaluator {
             .enumerate()
             .map(|(i, c)| (c.node.id, i))
             .collect();
-        Evaluator { graph, index }
+        let bitmaps = Buffers::bitmaps_of(&graph);
+        Evaluator {
+            graph,
+            index,
+            bitmaps,
+        }
     }
 
-    /// The material at one point, in precision `R` (a graph without sampled inputs).
+    /// The material at one point, in precision `R` (a graph without sampled inputs; its
+    /// Image nodes read their files).
     pub fn eval<R: Real>(&self, surface: &Surface<R>) -> Material<R> {
-        self.eval_reading(surface, &Buffers::default())
+        self.eval_reading(surface, &self.bitmaps)
     }
 
     /// The material at one point, its sampled inputs reading `buffers` (the passes

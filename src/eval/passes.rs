@@ -25,6 +25,25 @@ pub struct Buffers {
 }
 
 impl Buffers {
+    /// The files `graph`'s Image nodes read, each as its node's image: all a graph
+    /// without sampled inputs needs (its bitmaps do not depend on the domain).
+    pub(super) fn bitmaps_of(graph: &crate::graph::CheckedGraph) -> Buffers {
+        let mut buffers = Buffers::default();
+        for checked in &graph.order {
+            let (Some(bitmap), Some(source)) = (
+                graph.bitmaps.get(&checked.node.id),
+                checked.node.kind.definition().bitmap(),
+            ) else {
+                continue;
+            };
+            buffers
+                .sources
+                .insert(checked.node.id, buffers.images.len());
+            buffers.images.push(Image::of_bitmap(bitmap, source.edge));
+        }
+        buffers
+    }
+
     /// The image each input pin of `checked` reads (`None` for pins not sampled).
     pub(super) fn of(&self, checked: &CheckedNode) -> Vec<Option<&Image>> {
         if self.sampled.is_empty() {
@@ -96,12 +115,7 @@ impl Evaluator {
                 PassKind::Stage { source, stage, .. } => {
                     buffers.images[*source].map_texels(|image, texel| (stage.cpu)(image, texel))
                 }
-                PassKind::Bitmap { bitmap, .. } => Image {
-                    width: bitmap.width,
-                    height: bitmap.height,
-                    edge: pass.spec.edge,
-                    texels: bitmap.texels.clone(),
-                },
+                PassKind::Bitmap { bitmap, .. } => Image::of_bitmap(bitmap, pass.spec.edge),
             };
             buffers.images.push(image);
         }

@@ -208,7 +208,15 @@ pub fn render_material_with(
         View::Flat(rect) => flat(*rect),
         View::PreviewFlat => flat(preview_rect(preview)),
         View::Mesh(name) => {
-            flat_passes_only(compiled, "a mesh view")?;
+            // A material that only reads files draws on the mesh at its UVs.
+            let uploads = if compiled.passes.is_empty() {
+                None
+            } else if compiled.passes.uploads_only() {
+                Some(super::PassRenderer::uploaded(gpu, &compiled.passes)?)
+            } else {
+                flat_passes_only(compiled, "a mesh view")?;
+                None
+            };
             let name = name.as_deref().unwrap_or(&preview.mesh);
             let mut mesh = mesh_with_fields(preview, name, &module.uses, |_, _| {})?;
             let mut mesh_view = MeshView::for_preview(preview);
@@ -237,13 +245,16 @@ pub fn render_material_with(
                 }
                 _ => None,
             };
-            let renderer = MeshRenderer::lit(
+            let mut renderer = MeshRenderer::lit(
                 gpu,
                 &module.source,
                 module.uses,
                 relief,
                 look.environment.as_deref(),
             )?;
+            if let Some(uploads) = &uploads {
+                renderer.bind_uploads(gpu, uploads);
+            }
             let pixels = renderer.render(gpu, &mesh, &mesh_view, size)?;
             Ok(Rendered {
                 image: Image {

@@ -55,7 +55,7 @@ pub struct LiveMaterialCode {
     /// all be its passes').
     pub binds_params: bool,
     /// The passes of a multi-pass material, which is drawn flat (the unit tile) rather
-    /// than on the mesh.
+    /// than on the mesh — unless they only upload files ([`Passes::uploads_only`]).
     pub passes: Option<Arc<Passes>>,
 }
 
@@ -91,6 +91,8 @@ pub struct LiveRenderer {
     pipelines: Option<(u64, [Option<MeshPipeline>; 2])>,
     /// The newest multi-pass material's generation and its flat renderer.
     flat: Option<(u64, FlatRenderer)>,
+    /// The newest material's generation and its uploaded files, when it only reads files.
+    uploads: Option<(u64, super::PassRenderer)>,
     mesh: Option<(String, GpuMesh)>,
     target: Option<(Quality, MeshTarget)>,
     /// How coarse the next draft is, from the last drafts' drawing times.
@@ -117,7 +119,9 @@ impl LiveRenderer {
         size: (u32, u32),
         quality: Quality,
     ) -> Result<((u32, u32), Vec<u8>), RenderError> {
-        if let Some(passes) = &material.passes {
+        if let Some(passes) = &material.passes
+            && !passes.uploads_only()
+        {
             return self.render_tile(gpu, material, passes, params, view.time, size, quality);
         }
         let (width, height) = self.image_size(size, quality);
@@ -247,13 +251,26 @@ impl LiveRenderer {
         let (_, built) = self.pipelines.as_mut().expect("set above");
         if built[quality as usize].is_none() {
             let fresh = built.iter().all(Option::is_none);
-            built[quality as usize] = Some(MeshPipeline::with_samples(
+            let mut pipeline = MeshPipeline::with_samples(
                 &gpu.device,
                 &material.wgsl,
                 material.slots,
                 material.uses,
                 quality.samples(),
-            )?);
+            )?;
+            if let Some(passes) = &material.passes {
+                // A material that only reads files: upload them once per material.
+                if (self.uploads.as_ref())
+                    .is_none_or(|(generation, _)| *generation != material.generation)
+                {
+                    let uploaded = super::PassRenderer::uploaded(gpu, passes)?;
+                    self.uploads = Some((material.generation, uploaded));
+                }
+                let (_, uploads) = self.uploads.as_ref().expect("uploaded above");
+                pipeline
+                    .bind_buffers(|pipeline| uploads.bind_group(gpu, pipeline, uploads.reads()));
+            }
+            built[quality as usize] = Some(pipeline);
             if fresh {
                 self.materials_built += 1;
             }

@@ -63,6 +63,13 @@ impl MeshRenderer {
         Ok(MeshRenderer { pipeline })
     }
 
+    /// Binds the files a material reads (a material whose passes only upload Image
+    /// files, uploaded by `passes`).
+    pub fn bind_uploads(&mut self, gpu: &GpuContext, passes: &super::PassRenderer) {
+        self.pipeline
+            .bind_buffers(|pipeline| passes.bind_group(gpu, pipeline, passes.reads()));
+    }
+
     /// Renders `mesh` into a size×size RGBA8 image (rows from the top), tile by tile
     /// past the device's tile size.
     pub fn render(

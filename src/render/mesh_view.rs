@@ -335,6 +335,8 @@ struct MeshPass {
     /// (made by [`MeshPipeline::set_environment`]; until then `None`).
     view_group: Option<wgpu::BindGroup>,
     params_group: Option<wgpu::BindGroup>,
+    /// The buffers the material reads at group 2 (uploaded Image files), once bound.
+    buffers_group: Option<wgpu::BindGroup>,
     /// Whether it blends, drawing the triangles back to front.
     blended: bool,
 }
@@ -475,6 +477,7 @@ impl MeshPipeline {
                             }],
                         })
                     }),
+                    buffers_group: None,
                     pipeline,
                     blended: kind.blended,
                 }
@@ -492,6 +495,15 @@ impl MeshPipeline {
             view,
             params,
         })
+    }
+
+    /// Binds the buffers a material reads at group 2 (its uploaded Image files), from
+    /// `group`: their bind group for a pipeline's layout. Only for a material module that
+    /// reads buffers.
+    pub fn bind_buffers(&mut self, group: impl Fn(&wgpu::RenderPipeline) -> wgpu::BindGroup) {
+        for pass in &mut self.passes {
+            pass.buffers_group = Some(group(&pass.pipeline));
+        }
     }
 
     /// Whether the pipeline's shading samples an environment: metallic-roughness
@@ -644,6 +656,9 @@ impl MeshPipeline {
             pass.set_bind_group(0, view_group, &[]);
             if let Some(group) = &draw.params_group {
                 pass.set_bind_group(1, group, &[]);
+            }
+            if let Some(group) = &draw.buffers_group {
+                pass.set_bind_group(2, group, &[]);
             }
             if draw.blended {
                 mesh.draw_back_to_front(&mut pass);

@@ -140,6 +140,15 @@ impl PassRenderer {
         })
     }
 
+    /// The passes of a material that only uploads files ([`Passes::uploads_only`]),
+    /// uploaded: ready to bind wherever the material is drawn, on a mesh too.
+    pub fn uploaded(gpu: &GpuContext, passes: &Passes) -> Result<PassRenderer, RenderError> {
+        let renderer = PassRenderer::new(gpu, passes, None)?;
+        // Uploads take their files' sizes whatever the domain and output.
+        renderer.render(gpu, crate::bake::UNIT_TILE, 1, 0.0)?;
+        Ok(renderer)
+    }
+
     /// The buffers' texture bytes for an output of `size` pixels: what the passes hold
     /// on the GPU at once (scratch textures counted once).
     pub fn buffer_bytes(&self, size: u32) -> u64 {

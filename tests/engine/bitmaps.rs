@@ -311,3 +311,51 @@ fn an_exported_image_material_lists_its_file_in_the_manifest() {
         assert_eq!(manifest["material"]["reads"][0]["buffer"], 0);
     }
 }
+
+#[test]
+fn a_material_that_only_reads_files_draws_on_meshes_like_its_colour_would() {
+    // A file of one colour, and the same colour as a constant: on a mesh (at its UVs)
+    // the two draw the same picture; the CPU evaluator reads the file too.
+    let dir = temp_dir("bitmap-mesh");
+    image::RgbaImage::from_pixel(5, 3, image::Rgba([200, 120, 40, 255]))
+        .save(dir.join("flat.png"))
+        .unwrap();
+    let from_file = image_graph(
+        &dir,
+        ImageFile {
+            path: "flat.png".into(),
+            ..ImageFile::default()
+        },
+        "colour",
+        ValueType::Color,
+    );
+    let mut constant = Graph::default();
+    let colour = constant.add(
+        "colour",
+        NodeKind::Constant(veneer::nodes::Constant {
+            ty: ValueType::Color,
+        }),
+    );
+    constant.set_input(
+        colour,
+        "value",
+        veneer::graph::Value::Color(200.0 / 255.0, 120.0 / 255.0, 40.0 / 255.0),
+    );
+    show(&mut constant, colour, "value", ValueType::Color);
+    let file_compiled = compile(&from_file, &Default::default()).unwrap();
+    assert!(file_compiled.passes.uploads_only());
+    let constant_compiled = compile(&constant, &Default::default()).unwrap();
+    for mesh in ["sphere", "torus"] {
+        let view = veneer::render::View::Mesh(Some(mesh.into()));
+        let drawn = |compiled| {
+            veneer::render::render_material(gpu(), compiled, &view, 96, 0.0)
+                .unwrap_or_else(|e| panic!("{mesh}: {e}"))
+        };
+        assert_eq!(drawn(&file_compiled), drawn(&constant_compiled), "{mesh}");
+    }
+    let evaluator = veneer::eval::Evaluator::from_checked(file_compiled.checked.clone());
+    let albedo = evaluator
+        .eval(&veneer::eval::Surface::<f64>::at([0.3, 0.1, 0.2]))
+        .albedo;
+    assert!((albedo[0] - 200.0 / 255.0).abs() < 1e-6, "{albedo:?}");
+}

@@ -181,8 +181,9 @@ impl VeneerApp {
     fn tessellation_input(&mut self, frame: &MaterialFrame) -> Option<TessellationInput> {
         let settings = self.session.document.graph.preview.tessellation?;
         // A multi-pass material is drawn flat, and its image nodes evaluate only over
-        // buffers.
-        if !frame.code.uses.displacement || self.preview.state.flat || frame.code.passes.is_some() {
+        // buffers (one that only reads files draws on the mesh: the CPU reads them too).
+        let flat_passes = (frame.code.passes.as_ref()).is_some_and(|passes| !passes.uploads_only());
+        if !frame.code.uses.displacement || self.preview.state.flat || flat_passes {
             return None;
         }
         let revision = self.session.revision.number;

@@ -29,6 +29,16 @@ pub fn edge_index(i: i64, n: i64, edge: EdgeMode) -> i64 {
 }
 
 impl Image {
+    /// A file's pixels read past its edges by `edge`.
+    pub fn of_bitmap(bitmap: &crate::bitmaps::Bitmap, edge: EdgeMode) -> Image {
+        Image {
+            width: bitmap.width,
+            height: bitmap.height,
+            edge,
+            texels: bitmap.texels.clone(),
+        }
+    }
+
     /// Texel (x, y), beyond the edges by the image's edge mode.
     pub fn texel(&self, x: i64, y: i64) -> [f64; 4] {
         let x = edge_index(x, i64::from(self.width), self.edge);
