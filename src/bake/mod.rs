@@ -240,18 +240,20 @@ pub fn bake(
             )
         }
         BakeSurface::MeshUv(name) => {
-            crate::render::flat_passes_only(compiled, "a bake over a mesh's UV layout")?;
+            let uploads =
+                crate::render::mesh_uploads(gpu, compiled, "a bake over a mesh's UV layout")?;
             // A mesh without a UV layout gets an atlas, after its fields are solved on the
             // connected mesh.
             let mesh = crate::render::mesh_with_fields(preview, name, &module.uses, |_, _| {})?
                 .with_uv_layout(size);
             // The UV square is taken to span the preview square: normals are approximate.
             let texel = 2.0 * preview.size / f64::from(size);
+            let mut renderer = UvRenderer::new(gpu, &module.source)?;
+            if let Some(uploads) = &uploads {
+                renderer.bind_uploads(gpu, uploads);
+            }
             (
-                Surface::Uv(
-                    UvRenderer::new(gpu, &module.source)?,
-                    GpuMesh::new(&gpu.device, &mesh),
-                ),
+                Surface::Uv(renderer, GpuMesh::new(&gpu.device, &mesh)),
                 (texel, texel),
             )
         }

@@ -125,6 +125,24 @@ pub fn flat_passes_only(compiled: &Compiled, what: &str) -> Result<(), RenderErr
     }
 }
 
+/// The buffers a material reads when it is drawn over a mesh: none for a single-pass
+/// material; its files, uploaded, for one that only reads Image files (they do not
+/// depend on the domain, so it draws at the mesh's UVs); any other multi-pass material
+/// is refused for `what` ([`flat_passes_only`]).
+pub fn mesh_uploads(
+    gpu: &GpuContext,
+    compiled: &Compiled,
+    what: &str,
+) -> Result<Option<super::PassRenderer>, RenderError> {
+    if compiled.passes.is_empty() {
+        Ok(None)
+    } else if compiled.passes.uploads_only() {
+        super::PassRenderer::uploaded(gpu, &compiled.passes).map(Some)
+    } else {
+        flat_passes_only(compiled, what).map(|()| None)
+    }
+}
+
 /// Renders a compiled material as `view` at size×size pixels and time `time`, with the
 /// detail it was compiled with (snapshots and the CPU reference expect every octave).
 pub fn render_material(
@@ -208,15 +226,7 @@ pub fn render_material_with(
         View::Flat(rect) => flat(*rect),
         View::PreviewFlat => flat(preview_rect(preview)),
         View::Mesh(name) => {
-            // A material that only reads files draws on the mesh at its UVs.
-            let uploads = if compiled.passes.is_empty() {
-                None
-            } else if compiled.passes.uploads_only() {
-                Some(super::PassRenderer::uploaded(gpu, &compiled.passes)?)
-            } else {
-                flat_passes_only(compiled, "a mesh view")?;
-                None
-            };
+            let uploads = mesh_uploads(gpu, compiled, "a mesh view")?;
             let name = name.as_deref().unwrap_or(&preview.mesh);
             let mut mesh = mesh_with_fields(preview, name, &module.uses, |_, _| {})?;
             let mut mesh_view = MeshView::for_preview(preview);

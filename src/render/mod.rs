@@ -28,8 +28,8 @@ pub use environment::{
 pub use flat::{FlatChannels, FlatRect, FlatRenderer, albedo_to_rgb8, flat_points, non_finite};
 pub use gpu_mesh::GpuMesh;
 pub use image::{
-    Image, MeshLook, Rendered, View, baked_parameters, flat_passes_only, mesh_with_fields,
-    preview_rect, render_material, render_material_with,
+    Image, MeshLook, Rendered, View, baked_parameters, flat_passes_only, mesh_uploads,
+    mesh_with_fields, preview_rect, render_material, render_material_with,
 };
 pub use live::{LiveMaterialCode, LiveRenderer, PREVIEW_PASS_SIZE, Quality};
 pub use mesh_render::MeshRenderer;

@@ -27,6 +27,8 @@ pub struct UvRenderer {
     pipeline: wgpu::RenderPipeline,
     uniform: wgpu::Buffer,
     bind_group: wgpu::BindGroup,
+    /// The files the material reads at group 2 (see [`UvRenderer::bind_uploads`]).
+    buffers: Option<wgpu::BindGroup>,
 }
 
 impl UvRenderer {
@@ -75,7 +77,14 @@ impl UvRenderer {
             pipeline,
             uniform,
             bind_group,
+            buffers: None,
         })
+    }
+
+    /// Binds the files a material reads (one that only reads Image files, uploaded by
+    /// `passes`; see [`super::mesh_uploads`]).
+    pub fn bind_uploads(&mut self, gpu: &GpuContext, passes: &super::PassRenderer) {
+        self.buffers = Some(passes.bind_group(gpu, &self.pipeline, passes.reads()));
     }
 
     /// Renders `channels` over the UV layout of `mesh` (placed in texture space at
@@ -112,6 +121,9 @@ impl UvRenderer {
         let draw = |pass: &mut wgpu::RenderPass<'_>| {
             pass.set_pipeline(&self.pipeline);
             pass.set_bind_group(0, &self.bind_group, &[]);
+            if let Some(buffers) = &self.buffers {
+                pass.set_bind_group(2, buffers, &[]);
+            }
             mesh.draw(pass);
         };
         let tiles_draw = TileDraw {

@@ -353,6 +353,50 @@ fn a_material_that_only_reads_files_draws_on_meshes_like_its_colour_would() {
         };
         assert_eq!(drawn(&file_compiled), drawn(&constant_compiled), "{mesh}");
     }
+    // Baked over the sphere's UV layout (the CLI's `bake --mesh`) the maps are the same
+    // bytes too, and a glTF export bakes it.
+    let out = dir.join("maps");
+    std::fs::create_dir_all(&out).unwrap();
+    for (name, graph) in [("file", &from_file), ("constant", &constant)] {
+        let file = dir.join(format!("{name}.ron"));
+        veneer::graph::save(graph, &file).unwrap();
+        for extra in [
+            vec![
+                "--mesh",
+                "sphere",
+                "--maps",
+                "albedo",
+                "-o",
+                out.to_str().unwrap(),
+            ],
+            vec![
+                "--gltf",
+                dir.join(format!("{name}.glb"))
+                    .to_str()
+                    .unwrap()
+                    .to_string()
+                    .leak(),
+            ],
+        ] {
+            let mut args = vec!["bake", file.to_str().unwrap(), "--size", "64"];
+            args.extend(extra);
+            let baked = run_veneer(&args);
+            assert!(
+                baked.status.success(),
+                "{}",
+                String::from_utf8_lossy(&baked.stderr)
+            );
+        }
+    }
+    let read = |name: &str| std::fs::read(dir.join(name)).unwrap();
+    assert_eq!(
+        read("maps/file_albedo.png"),
+        read("maps/constant_albedo.png")
+    );
+    assert!(
+        read("file.glb").starts_with(b"glTF"),
+        "the glTF export bakes it"
+    );
     let evaluator = veneer::eval::Evaluator::from_checked(file_compiled.checked.clone());
     let albedo = evaluator
         .eval(&veneer::eval::Surface::<f64>::at([0.3, 0.1, 0.2]))

@@ -101,7 +101,11 @@ pub fn export_gltf(
     mut progress: impl FnMut(u64, u64) -> bool,
 ) -> Result<Vec<PathBuf>, BakeError> {
     crate::render::baked_parameters(compiled)?;
-    crate::render::flat_passes_only(compiled, "a glTF export (baked over the mesh's UV layout)")?;
+    let uploads = crate::render::mesh_uploads(
+        gpu,
+        compiled,
+        "a glTF export (baked over the mesh's UV layout)",
+    )?;
     let packaging = packaging(path);
     super::output_folder(path)?;
     let (module, preview) = (&compiled.module, &compiled.preview);
@@ -121,7 +125,10 @@ pub fn export_gltf(
     if wants_normal {
         passes.push(FlatChannels::HeightBump);
     }
-    let renderer = UvRenderer::new(gpu, &module.source)?;
+    let mut renderer = UvRenderer::new(gpu, &module.source)?;
+    if let Some(uploads) = &uploads {
+        renderer.bind_uploads(gpu, uploads);
+    }
     let gpu_mesh = GpuMesh::new(&gpu.device, &mesh);
     let center = preview.center;
     let placement = (
