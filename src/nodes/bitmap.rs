@@ -80,10 +80,7 @@ impl Definition for ImageFile {
         })
     }
     fn emit(&self, io: &mut Emit) {
-        let function = match self.filter {
-            Filter::Bilinear => "veneer_buffer_bilinear",
-            Filter::Bicubic => "veneer_buffer_bicubic",
-        };
+        let function = self.filter.wgsl();
         io.bind("vec4f", format!("{function}({}, s.uv)", io.source()));
         io.uses(function);
         let name = io.name();
@@ -100,14 +97,7 @@ impl Definition for ImageFile {
         let lanes = io
             .bitmap()
             .unwrap_or([any; 4])
-            .map(|lane| match self.filter {
-                Filter::Bilinear => lane,
-                // Catmull-Rom overshoots by at most an eighth of a step each way.
-                Filter::Bicubic => {
-                    let reach = 0.125 * (lane.hi - lane.lo);
-                    Interval::new(lane.lo - reach, lane.hi + reach)
-                }
-            });
+            .map(|lane| self.filter.range(lane));
         let weighted = |end: fn(&Interval) -> f64| -> f64 {
             (lanes.iter().zip(LUMINANCE))
                 .map(|(lane, weight)| weight * end(lane))
@@ -127,11 +117,7 @@ impl Definition for ImageFile {
 
 impl Evaluate for ImageFile {
     fn eval<R: Real>(&self, io: &Eval<R>) -> Vec<V3<R>> {
-        let image = io.source();
-        let texel = match self.filter {
-            Filter::Bilinear => image.bilinear(io.domain()),
-            Filter::Bicubic => image.bicubic(io.domain()),
-        };
+        let texel = self.filter.read(io.source(), io.domain());
         let colour = [texel[0], texel[1], texel[2]];
         let value: f64 = (colour.iter().zip(LUMINANCE))
             .map(|(lane, weight)| lane * weight)

@@ -516,10 +516,7 @@ impl Definition for Transform2D {
         None
     }
     fn emit(&self, io: &mut Emit) {
-        let function = match self.filter {
-            Filter::Bilinear => "veneer_buffer_bilinear",
-            Filter::Bicubic => "veneer_buffer_bicubic",
-        };
+        let function = self.filter.wgsl();
         let at = format!(
             "veneer_transform_2d_uv(s.uv, {}, {}, {})",
             io.input("offset"),
@@ -535,15 +532,7 @@ impl Definition for Transform2D {
         io.uses("veneer_transform_2d_uv");
     }
     fn ranges(&self, io: &mut Ranges) -> Vec<Lanes> {
-        let lanes = io.input("image");
-        match self.filter {
-            Filter::Bilinear => vec![lanes],
-            // Catmull-Rom overshoots by at most an eighth of a step each way.
-            Filter::Bicubic => vec![lanes.map(|lane| {
-                let reach = 0.125 * (lane.hi - lane.lo);
-                Interval::new(lane.lo - reach, lane.hi + reach)
-            })],
-        }
+        vec![io.input("image").map(|lane| self.filter.range(lane))]
     }
 }
 
@@ -562,11 +551,7 @@ impl Evaluate for Transform2D {
             angle,
             [scale[0], scale[1]],
         );
-        let image = io.image("image");
-        let texel = match self.filter {
-            Filter::Bilinear => image.bilinear(at),
-            Filter::Bicubic => image.bicubic(at),
-        };
+        let texel = self.filter.read(io.image("image"), at);
         vec![typed(texel, self.ty)]
     }
 }

@@ -3,6 +3,7 @@
 //! its buffer before it reads it (a separable blur's first axis, a jump flood's steps).
 
 use super::formulas::buffers::Image;
+use super::interval::Interval;
 use serde::{Deserialize, Serialize};
 
 /// What a buffer read beyond its edges sees.
@@ -110,6 +111,35 @@ pub enum Filter {
 impl Filter {
     /// Every filter, in menu order.
     pub const ALL: [Filter; 2] = [Filter::Bilinear, Filter::Bicubic];
+
+    /// The library function reading a buffer this way (`veneer_buffer_bilinear(t, edge,
+    /// uv)`, `veneer_buffer_bicubic(…)`).
+    pub fn wgsl(self) -> &'static str {
+        match self {
+            Filter::Bilinear => "veneer_buffer_bilinear",
+            Filter::Bicubic => "veneer_buffer_bicubic",
+        }
+    }
+
+    /// `image` read at domain coordinate `uv` this way (the CPU twin of [`Filter::wgsl`]).
+    pub fn read(self, image: &Image, uv: [f64; 2]) -> [f64; 4] {
+        match self {
+            Filter::Bilinear => image.bilinear(uv),
+            Filter::Bicubic => image.bicubic(uv),
+        }
+    }
+
+    /// The range of what this filter reads from texels within `lane`: Catmull-Rom
+    /// overshoots by at most an eighth of the span each way.
+    pub fn range(self, lane: Interval) -> Interval {
+        match self {
+            Filter::Bilinear => lane,
+            Filter::Bicubic => {
+                let reach = 0.125 * (lane.hi - lane.lo);
+                Interval::new(lane.lo - reach, lane.hi + reach)
+            }
+        }
+    }
 }
 
 /// The largest side a buffer may have, in texels (the resource limit every adapter

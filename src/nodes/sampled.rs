@@ -60,10 +60,7 @@ pub(super) fn swizzle(ty: ValueType) -> &'static str {
 
 /// Reads the buffer of `pin` at the point, by `filter`, as the node's one output.
 fn read_buffer(io: &mut Emit, pin: &str, filter: Filter, offset: Option<String>) {
-    let function = match filter {
-        Filter::Bilinear => "veneer_buffer_bilinear",
-        Filter::Bicubic => "veneer_buffer_bicubic",
-    };
+    let function = filter.wgsl();
     let uv = offset.map_or("s.uv".to_string(), |offset| format!("s.uv + {offset}"));
     let ty = io.pins()[super::pins::pin_index(io.pins(), pin)].ty;
     io.single(format!(
@@ -126,14 +123,7 @@ impl Definition for Buffer {
     }
     fn ranges(&self, io: &mut Ranges) -> Vec<Lanes> {
         let lanes = io.input("value").map(|lane| {
-            let lane = match self.filter {
-                Filter::Bilinear => lane,
-                // Catmull-Rom overshoots by at most an eighth of a step each way.
-                Filter::Bicubic => {
-                    let reach = 0.125 * (lane.hi - lane.lo);
-                    Interval::new(lane.lo - reach, lane.hi + reach)
-                }
-            };
+            let lane = self.filter.range(lane);
             match self.format {
                 BufferFormat::Unorm8 => lane.clamp(0.0, 1.0),
                 BufferFormat::Float16 | BufferFormat::Float32 => lane,
@@ -153,11 +143,7 @@ impl Definition for Buffer {
 
 impl Evaluate for Buffer {
     fn eval<R: Real>(&self, io: &Eval<R>) -> Vec<V3<R>> {
-        let image = io.image("value");
-        let texel = match self.filter {
-            Filter::Bilinear => image.bilinear(io.domain()),
-            Filter::Bicubic => image.bicubic(io.domain()),
-        };
+        let texel = self.filter.read(io.image("value"), io.domain());
         vec![typed(texel, self.ty)]
     }
 }
