@@ -224,6 +224,7 @@ pub fn bake(
     let wanted = std::cell::Cell::new(true);
     let (module, preview) = (&compiled.module, &compiled.preview);
     let size = settings.size;
+    let placement = crate::render::texture_placement(preview);
     let (surface, spacing) = match &settings.surface {
         BakeSurface::Plane(rect) | BakeSurface::Tile(rect) => {
             let rect = match settings.surface {
@@ -240,8 +241,6 @@ pub fn bake(
             )
         }
         BakeSurface::MeshUv(name) => {
-            let uploads =
-                crate::render::mesh_uploads(gpu, compiled, "a bake over a mesh's UV layout")?;
             // A mesh without a UV layout gets an atlas, after its fields are solved on the
             // connected mesh.
             let mesh = crate::render::mesh_with_fields(preview, name, &module.uses, |_, _| {})?
@@ -249,20 +248,21 @@ pub fn bake(
             // The UV square is taken to span the preview square: normals are approximate.
             let texel = 2.0 * preview.size / f64::from(size);
             let mut renderer = UvRenderer::new(gpu, &module.source)?;
-            if let Some(uploads) = &uploads {
-                renderer.bind_uploads(gpu, uploads);
+            let gpu_mesh = GpuMesh::new(&gpu.device, &mesh);
+            let passes = crate::render::mesh_passes(
+                gpu,
+                compiled,
+                &gpu_mesh,
+                placement,
+                size,
+                settings.time,
+            )?;
+            if let Some(passes) = &passes {
+                renderer.bind_passes(gpu, passes);
             }
-            (
-                Surface::Uv(renderer, GpuMesh::new(&gpu.device, &mesh)),
-                (texel, texel),
-            )
+            (Surface::Uv(renderer, gpu_mesh), (texel, texel))
         }
     };
-    let center = preview.center;
-    let placement = (
-        [center.0 as f32, center.1 as f32, center.2 as f32],
-        preview.size as f32,
-    );
     let tile = crate::render::tile_size(gpu);
     let band_rows = band_rows(size, tile);
     if let Surface::Plane(..) = surface {

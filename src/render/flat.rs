@@ -186,7 +186,12 @@ impl FlatRenderer {
         let Some(passes) = &self.passes else {
             return Ok(());
         };
-        passes.render(gpu, rect, self.pass_size.unwrap_or(size), time)?;
+        passes.render(
+            gpu,
+            super::PassDomain::Flat(rect),
+            self.pass_size.unwrap_or(size),
+            time,
+        )?;
         let reads = passes.reads();
         let group = (!reads.is_empty()).then(|| passes.bind_group(gpu, &self.pipeline, reads));
         *self.buffers.lock().expect("flat buffers") = group;

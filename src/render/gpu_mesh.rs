@@ -37,6 +37,9 @@ struct DepthOrder {
 /// A mesh uploaded to the GPU.
 pub struct GpuMesh {
     parts: Vec<Part>,
+    /// Tells this upload from every other (what was rendered over its UV layout is kept
+    /// for as long as the id is the same).
+    id: u64,
 }
 
 impl GpuMesh {
@@ -170,7 +173,16 @@ impl GpuMesh {
                 }),
             })
             .collect();
-        GpuMesh { parts }
+        static UPLOADS: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+        GpuMesh {
+            parts,
+            id: UPLOADS.fetch_add(1, std::sync::atomic::Ordering::Relaxed),
+        }
+    }
+
+    /// A number no other upload in this process has.
+    pub fn id(&self) -> u64 {
+        self.id
     }
 }
 

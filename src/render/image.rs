@@ -81,6 +81,16 @@ pub fn preview_rect(preview: &Preview) -> FlatRect {
     }
 }
 
+/// Where a graph's preview places its mesh in texture space: the centre and size of
+/// the square it covers.
+pub fn texture_placement(preview: &Preview) -> ([f32; 3], f32) {
+    let center = preview.center;
+    (
+        [center.0 as f32, center.1 as f32, center.2 as f32],
+        preview.size as f32,
+    )
+}
+
 /// The preview mesh `name` carrying the distance fields of `preview` that the material
 /// uses (none are solved when it reads none).
 pub fn mesh_with_fields(
@@ -112,35 +122,24 @@ pub fn baked_parameters(compiled: &Compiled) -> Result<(), RenderError> {
     }
 }
 
-/// Refuses a multi-pass material for `what` (a mesh view, a UV bake): its buffers are
-/// rendered over the flat domain only, until passes over a mesh's UV layout exist.
-pub fn flat_passes_only(compiled: &Compiled, what: &str) -> Result<(), RenderError> {
-    match compiled.passes.passes.first() {
-        None => Ok(()),
-        Some(pass) => Err(RenderError::Invalid(format!(
-            "the material reads buffers ({} passes, the first rendering {}), which render over the flat domain only: use a flat view (`--flat`, a tile or plane bake) instead of {what}",
-            compiled.passes.passes.len(),
-            pass.label
-        ))),
-    }
-}
-
-/// The buffers a material reads when it is drawn over a mesh: none for a single-pass
-/// material; its files, uploaded, for one that only reads Image files (they do not
-/// depend on the domain, so it draws at the mesh's UVs); any other multi-pass material
-/// is refused for `what` ([`flat_passes_only`]).
-pub fn mesh_uploads(
+/// The passes of a material drawn over `mesh` (`None` for a single-pass material),
+/// rendered for an output of `size` texels at `time`: their buffers span the mesh's UV
+/// layout, its points placed in texture space at `placement` (centre and size), so
+/// that the material reads them at the mesh's UVs. Files are uploaded as they are.
+pub fn mesh_passes(
     gpu: &GpuContext,
     compiled: &Compiled,
-    what: &str,
+    mesh: &super::GpuMesh,
+    placement: ([f32; 3], f32),
+    size: u32,
+    time: f32,
 ) -> Result<Option<super::PassRenderer>, RenderError> {
     if compiled.passes.is_empty() {
-        Ok(None)
-    } else if compiled.passes.uploads_only() {
-        super::PassRenderer::uploaded(gpu, &compiled.passes).map(Some)
-    } else {
-        flat_passes_only(compiled, what).map(|()| None)
+        return Ok(None);
     }
+    let passes = super::PassRenderer::new(gpu, &compiled.passes, None)?;
+    passes.render(gpu, super::PassDomain::Mesh { mesh, placement }, size, time)?;
+    Ok(Some(passes))
 }
 
 /// Renders a compiled material as `view` at size×size pixels and time `time`, with the
@@ -226,9 +225,14 @@ pub fn render_material_with(
         View::Flat(rect) => flat(*rect),
         View::PreviewFlat => flat(preview_rect(preview)),
         View::Mesh(name) => {
-            let uploads = mesh_uploads(gpu, compiled, "a mesh view")?;
             let name = name.as_deref().unwrap_or(&preview.mesh);
             let mut mesh = mesh_with_fields(preview, name, &module.uses, |_, _| {})?;
+            // The CPU evaluator that refines the mesh reads files but renders no passes.
+            let rendered_passes = !compiled.passes.uploads_only();
+            if rendered_passes {
+                // Buffers over the surface need a layout giving each point its own texels.
+                mesh = mesh.with_own_texels(size);
+            }
             let mut mesh_view = MeshView::for_preview(preview);
             mesh_view.time = time;
             mesh_view.tone_map = look.tone_map;
@@ -237,7 +241,11 @@ pub fn render_material_with(
             mesh_view.key_light = look.key_light;
             mesh_view.backdrop = look.backdrop;
             let tessellated = match preview.tessellation {
-                Some(settings) if module.uses.displacement && relief == Relief::Displaced => {
+                Some(settings)
+                    if module.uses.displacement
+                        && relief == Relief::Displaced
+                        && !rendered_passes =>
+                {
                     let before = mesh.triangle_count();
                     let refined = tessellate(
                         &compiled.checked,
@@ -262,8 +270,13 @@ pub fn render_material_with(
                 relief,
                 look.environment.as_deref(),
             )?;
-            if let Some(uploads) = &uploads {
-                renderer.bind_uploads(gpu, uploads);
+            if !compiled.passes.is_empty() {
+                let uploaded = super::GpuMesh::new(&gpu.device, &mesh);
+                let placement = (mesh_view.center, mesh_view.size);
+                if let Some(passes) = mesh_passes(gpu, compiled, &uploaded, placement, size, time)?
+                {
+                    renderer.bind_passes(gpu, &passes);
+                }
             }
             let pixels = renderer.render(gpu, &mesh, &mesh_view, size)?;
             Ok(Rendered {

@@ -6,8 +6,12 @@
 
 use super::draft_scale::DraftScale;
 use super::mesh_view::{MeshPipeline, MeshTarget, MeshView};
+use super::params::ParamBlock;
 use super::readback::read_texture;
-use super::{EnvironmentMaps, FlatChannels, FlatRenderer, GpuContext, GpuMesh, RenderError};
+use super::{
+    EnvironmentMaps, FlatChannels, FlatRenderer, GpuContext, GpuMesh, PassDomain, PassRenderer,
+    RenderError,
+};
 use crate::codegen::passes::Passes;
 use crate::codegen::{Compiled, SurfaceUse};
 use crate::mesh::Mesh;
@@ -54,8 +58,9 @@ pub struct LiveMaterialCode {
     /// Whether the module reads its parameter block (a multi-pass material's slots may
     /// all be its passes').
     pub binds_params: bool,
-    /// The passes of a multi-pass material, which is drawn flat (the unit tile) rather
-    /// than on the mesh — unless they only upload files ([`Passes::uploads_only`]).
+    /// The passes of a multi-pass material: over the mesh's UV layout when it is drawn
+    /// on a mesh; in the flat view, over the unit tile, which it shows with its
+    /// neighbours.
     pub passes: Option<Arc<Passes>>,
 }
 
@@ -91,8 +96,9 @@ pub struct LiveRenderer {
     pipelines: Option<(u64, [Option<MeshPipeline>; 2])>,
     /// The newest multi-pass material's generation and its flat renderer.
     flat: Option<(u64, FlatRenderer)>,
-    /// The newest material's generation and its uploaded files, when it only reads files.
-    uploads: Option<(u64, super::PassRenderer)>,
+    /// The newest multi-pass material's generation and its passes over the mesh's UV
+    /// layout, with the parameter values they read.
+    passes: Option<(u64, PassRenderer, Option<Arc<ParamBlock>>)>,
     mesh: Option<(String, GpuMesh)>,
     target: Option<(Quality, MeshTarget)>,
     /// How coarse the next draft is, from the last drafts' drawing times.
@@ -120,6 +126,7 @@ impl LiveRenderer {
         quality: Quality,
     ) -> Result<((u32, u32), Vec<u8>), RenderError> {
         if let Some(passes) = &material.passes
+            && view.unlit
             && !passes.uploads_only()
         {
             return self.render_tile(gpu, material, passes, params, view.time, size, quality);
@@ -132,18 +139,29 @@ impl LiveRenderer {
             pipeline.set_environment(&gpu.device, environment);
         }
         let blends = self.pipeline(quality).is_some_and(MeshPipeline::blends);
+        // Buffers over the surface need a layout giving each point its own texels.
+        let own_texels = (material.passes.as_ref()).is_some_and(|passes| !passes.uploads_only());
+        let mesh_key = format!("{mesh_key}{}", if own_texels { "#own-texels" } else { "" });
         if self
             .mesh
             .as_ref()
-            .is_none_or(|(key, uploaded)| key != mesh_key || (blends && !uploaded.sorts()))
+            .is_none_or(|(key, uploaded)| *key != mesh_key || (blends && !uploaded.sorts()))
         {
+            let laid_out;
+            let mesh = if own_texels && !mesh.has_own_texels() {
+                laid_out = mesh.with_uv_atlas(PREVIEW_PASS_SIZE);
+                &laid_out
+            } else {
+                mesh
+            };
             let uploaded = if blends {
                 GpuMesh::with_depth_order(&gpu.device, mesh)
             } else {
                 GpuMesh::new(&gpu.device, mesh)
             };
-            self.mesh = Some((mesh_key.to_string(), uploaded));
+            self.mesh = Some((mesh_key, uploaded));
         }
+        self.render_passes(gpu, material, params, view, quality)?;
         // The draw alone is timed for the draft scale (not building a pipeline).
         let started = Instant::now();
         let fits = self
@@ -173,6 +191,45 @@ impl LiveRenderer {
             self.draft_scale.after_draft(started.elapsed());
         }
         Ok(((width, height), pixels))
+    }
+
+    /// Renders a multi-pass material's passes over the UV layout of the uploaded mesh
+    /// for [`PREVIEW_PASS_SIZE`] (again only when the mesh, its placement, the time or
+    /// the parameter values they read change) and binds their buffers to the pipeline
+    /// of `quality`.
+    fn render_passes(
+        &mut self,
+        gpu: &GpuContext,
+        material: &LiveMaterialCode,
+        params: &[[f32; 4]],
+        view: &MeshView,
+        quality: Quality,
+    ) -> Result<(), RenderError> {
+        let Some(passes) = &material.passes else {
+            return Ok(());
+        };
+        if (self.passes.as_ref()).is_none_or(|(generation, ..)| *generation != material.generation)
+        {
+            let block = ParamBlock::new(gpu, material.slots).map(Arc::new);
+            let renderer = PassRenderer::new(gpu, passes, block.as_ref())?;
+            self.passes = Some((material.generation, renderer, block));
+        }
+        let (_, renderer, block) = self.passes.as_ref().expect("made above");
+        if let Some(block) = block {
+            block.write(gpu, params);
+        }
+        let (_, mesh) = self.mesh.as_ref().expect("uploaded before the passes");
+        let domain = PassDomain::Mesh {
+            mesh,
+            placement: (view.center, view.size),
+        };
+        renderer.render(gpu, domain, PREVIEW_PASS_SIZE, view.time)?;
+        if let Some((_, built)) = &mut self.pipelines
+            && let Some(pipeline) = &mut built[quality as usize]
+        {
+            pipeline.bind_buffers(|pipeline| renderer.bind_group(gpu, pipeline, renderer.reads()));
+        }
+        Ok(())
     }
 
     /// The size of an image of `size` pixels drawn at `quality`.
@@ -251,25 +308,13 @@ impl LiveRenderer {
         let (_, built) = self.pipelines.as_mut().expect("set above");
         if built[quality as usize].is_none() {
             let fresh = built.iter().all(Option::is_none);
-            let mut pipeline = MeshPipeline::with_samples(
+            let pipeline = MeshPipeline::with_samples(
                 &gpu.device,
                 &material.wgsl,
                 material.slots,
                 material.uses,
                 quality.samples(),
             )?;
-            if let Some(passes) = &material.passes {
-                // A material that only reads files: upload them once per material.
-                if (self.uploads.as_ref())
-                    .is_none_or(|(generation, _)| *generation != material.generation)
-                {
-                    let uploaded = super::PassRenderer::uploaded(gpu, passes)?;
-                    self.uploads = Some((material.generation, uploaded));
-                }
-                let (_, uploads) = self.uploads.as_ref().expect("uploaded above");
-                pipeline
-                    .bind_buffers(|pipeline| uploads.bind_group(gpu, pipeline, uploads.reads()));
-            }
             built[quality as usize] = Some(pipeline);
             if fresh {
                 self.materials_built += 1;

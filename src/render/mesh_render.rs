@@ -63,9 +63,8 @@ impl MeshRenderer {
         Ok(MeshRenderer { pipeline })
     }
 
-    /// Binds the files a material reads (a material whose passes only upload Image
-    /// files, uploaded by `passes`).
-    pub fn bind_uploads(&mut self, gpu: &GpuContext, passes: &super::PassRenderer) {
+    /// Binds the buffers a multi-pass material reads, as `passes` last rendered them.
+    pub fn bind_passes(&mut self, gpu: &GpuContext, passes: &super::PassRenderer) {
         self.pipeline
             .bind_buffers(|pipeline| passes.bind_group(gpu, pipeline, passes.reads()));
     }

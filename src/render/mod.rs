@@ -7,6 +7,7 @@ mod environment;
 mod flat;
 mod gpu_mesh;
 mod image;
+mod islands;
 mod live;
 mod mesh_render;
 mod mesh_view;
@@ -28,8 +29,8 @@ pub use environment::{
 pub use flat::{FlatChannels, FlatRect, FlatRenderer, albedo_to_rgb8, flat_points, non_finite};
 pub use gpu_mesh::GpuMesh;
 pub use image::{
-    Image, MeshLook, Rendered, View, baked_parameters, flat_passes_only, mesh_uploads,
-    mesh_with_fields, preview_rect, render_material, render_material_with,
+    Image, MeshLook, Rendered, View, baked_parameters, mesh_passes, mesh_with_fields, preview_rect,
+    render_material, render_material_with, texture_placement,
 };
 pub use live::{LiveMaterialCode, LiveRenderer, PREVIEW_PASS_SIZE, Quality};
 pub use mesh_render::MeshRenderer;
@@ -37,7 +38,7 @@ pub use mesh_view::{
     Backdrop, COLOR_FORMAT, DEFAULT_KEY_LIGHT, MeshPipeline, MeshTarget, MeshView, Projection,
     Relief,
 };
-pub use passes::PassRenderer;
+pub use passes::{PassDomain, PassRenderer};
 pub use readback::read_texture;
 pub use tessellation::{Tessellated, tessellate};
 pub use thumbnails::{AtlasLayout, ThumbnailRenderer};
@@ -60,6 +61,38 @@ pub fn fullscreen_pipeline(
     entry_points: (&str, &str),
     format: wgpu::TextureFormat,
 ) -> wgpu::RenderPipeline {
+    target_pipeline(device, label, module, entry_points, format, &[])
+}
+
+/// A pipeline drawing meshes ([`GpuMesh::layout`]) at their texture coordinates (no
+/// depth) with the given entry points of `module` into a single target of `format`.
+pub fn uv_layout_pipeline(
+    device: &wgpu::Device,
+    label: &str,
+    module: &wgpu::ShaderModule,
+    entry_points: (&str, &str),
+    format: wgpu::TextureFormat,
+) -> wgpu::RenderPipeline {
+    target_pipeline(
+        device,
+        label,
+        module,
+        entry_points,
+        format,
+        &[Some(GpuMesh::layout())],
+    )
+}
+
+/// A pipeline without depth or blending drawing `buffers` with the given entry points of
+/// `module` into a single target of `format`.
+fn target_pipeline(
+    device: &wgpu::Device,
+    label: &str,
+    module: &wgpu::ShaderModule,
+    entry_points: (&str, &str),
+    format: wgpu::TextureFormat,
+    buffers: &[Option<wgpu::VertexBufferLayout<'_>>],
+) -> wgpu::RenderPipeline {
     device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
         label: Some(label),
         layout: None,
@@ -67,7 +100,7 @@ pub fn fullscreen_pipeline(
             module,
             entry_point: Some(entry_points.0),
             compilation_options: Default::default(),
-            buffers: &[],
+            buffers,
         },
         primitive: wgpu::PrimitiveState::default(),
         depth_stencil: None,

@@ -1,16 +1,66 @@
-//! The GPU side of a multi-pass material over a flat domain: a pipeline per pass, and
-//! the buffers they render, in order, for one rectangle, output size and time. The
-//! buffers are kept: a pass renders again only when the domain changes, a parameter
-//! slot it reads changes, or a buffer it reads rendered again. A buffer read only by the
+//! The GPU side of a multi-pass material: a pipeline per pass, and the buffers they
+//! render, in order, for one domain (a rectangle of the plane, or a mesh's UV layout),
+//! output size and time. The buffers are kept: a pass renders again only when the
+//! domain changes, a parameter slot it reads changes, or a buffer it reads rendered
+//! again. A buffer read only by the
 //! stage after it (the inside of a jump flood's chain of steps) lives in one of two
 //! scratch textures that the chain's steps take turns with.
 
+use super::islands::Islands;
 use super::params::ParamBlock;
-use super::{FlatRect, GpuContext, RenderError, shader_source};
+use super::{FlatRect, GpuContext, GpuMesh, RenderError, shader_source};
 use crate::codegen::passes::{PassKind, Passes, STAGE_ENTRY_POINTS, SURFACE_ENTRY_POINTS};
 use crate::nodes::passes::BufferFormat;
 use std::sync::atomic::{AtomicU64, Ordering};
-use std::sync::{Arc, Mutex};
+use std::sync::{Arc, Mutex, OnceLock};
+
+/// The entry points a surface pass is rendered with over a mesh's UV layout.
+const MESH_SURFACE_ENTRY_POINTS: &str = include_str!("../../shaders/render_pass_mesh.wgsl");
+
+/// Where a material's surface passes evaluate the graph.
+#[derive(Clone, Copy)]
+pub enum PassDomain<'m> {
+    /// A rectangle of the plane y = `rect.y` (flat views, plane and tile bakes): a
+    /// texel's place in the rectangle is its domain coordinate.
+    Flat(FlatRect),
+    /// A mesh's UV layout, its points placed in texture space at `placement` (centre and
+    /// size, as mesh views place them): the mesh's uv is the domain coordinate. Texels
+    /// no triangle covers take the value of the nearest covered texel.
+    Mesh {
+        mesh: &'m GpuMesh,
+        placement: ([f32; 3], f32),
+    },
+}
+
+impl PassDomain<'_> {
+    /// What the buffers rendered over this domain depend on.
+    fn key(&self) -> DomainKey {
+        match self {
+            PassDomain::Flat(rect) => DomainKey::Flat(
+                [rect.x0, rect.z0, rect.x1, rect.z1, rect.y].map(|v| (v as f32).to_bits()),
+            ),
+            PassDomain::Mesh { mesh, placement } => DomainKey::Mesh(
+                mesh.id(),
+                [placement.0[0], placement.0[1], placement.0[2], placement.1].map(f32::to_bits),
+            ),
+        }
+    }
+}
+
+/// A domain as the kept buffers remember it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum DomainKey {
+    Flat([u32; 5]),
+    Mesh(u64, [u32; 4]),
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct PassMeshViewUniform {
+    placement: [f32; 4],
+    time: f32,
+    padding: [f32; 3],
+}
 
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
@@ -30,8 +80,8 @@ fn texture_format(format: BufferFormat) -> wgpu::TextureFormat {
     }
 }
 
-/// What the buffers were last rendered for: rectangle, output size and time.
-type RenderedFor = ([u32; 5], u32, u32);
+/// What the buffers were last rendered for: domain, output size and time.
+type RenderedFor = (DomainKey, u32, u32);
 
 /// The most bytes of textures a material's passes may hold at once.
 pub const MAX_PASS_BYTES: u64 = 4 << 30;
@@ -43,6 +93,8 @@ struct Rendered {
     /// One texture per storage slot (see [`PassRenderer::storage`]).
     textures: Vec<wgpu::Texture>,
     values: Vec<Vec<[f32; 4]>>,
+    /// Over a mesh: the nearest covered texel of each buffer size met so far.
+    nearest: Vec<((u32, u32), wgpu::Texture)>,
 }
 
 /// A material's passes, built once, each rendered again only when what it reads changes.
@@ -50,10 +102,14 @@ pub struct PassRenderer {
     passes: Passes,
     /// The pipeline of each pass (none for an uploaded bitmap).
     pipelines: Vec<Option<wgpu::RenderPipeline>>,
-    /// The parameter values, and their bind group at group 1 of each pass that reads them.
+    /// The pipeline of each surface pass over a mesh's UV layout, built when first
+    /// needed, and what fills the texels between the layout's islands.
+    mesh_pipelines: Vec<OnceLock<wgpu::RenderPipeline>>,
+    islands: OnceLock<Islands>,
+    /// The parameter values the passes that read them bind at group 1.
     block: Option<Arc<ParamBlock>>,
-    params: Vec<Option<wgpu::BindGroup>>,
     view: wgpu::Buffer,
+    mesh_view: wgpu::Buffer,
     /// The texture each pass renders into: its own, or a scratch texture shared by the
     /// buffers only the next stage reads.
     storage: Vec<usize>,
@@ -114,39 +170,31 @@ impl PassRenderer {
                 },
             )?));
         }
-        let groups = (passes.passes.iter().zip(&pipelines))
-            .map(|(pass, pipeline)| {
-                let block = params.filter(|_| pass.module().is_some_and(|m| m.binds_params))?;
-                Some(block.bind_group(gpu, pipeline.as_ref()?))
+        let uniform = |label, size| {
+            gpu.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
             })
-            .collect();
-        let view = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("pass view"),
-            size: std::mem::size_of::<PassViewUniform>() as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
+        };
         let (storage, slot_specs) = storage(passes);
         Ok(PassRenderer {
             storage,
             slot_specs,
             passes: passes.clone(),
             pipelines,
+            mesh_pipelines: passes.passes.iter().map(|_| OnceLock::new()).collect(),
+            islands: OnceLock::new(),
             block: params.cloned(),
-            params: groups,
-            view,
+            view: uniform("pass view", std::mem::size_of::<PassViewUniform>() as u64),
+            mesh_view: uniform(
+                "pass mesh view",
+                std::mem::size_of::<PassMeshViewUniform>() as u64,
+            ),
             rendered: Mutex::new(None),
             renders: AtomicU64::new(0),
         })
-    }
-
-    /// The passes of a material that only uploads files ([`Passes::uploads_only`]),
-    /// uploaded: ready to bind wherever the material is drawn, on a mesh too.
-    pub fn uploaded(gpu: &GpuContext, passes: &Passes) -> Result<PassRenderer, RenderError> {
-        let renderer = PassRenderer::new(gpu, passes, None)?;
-        // Uploads take their files' sizes whatever the domain and output.
-        renderer.render(gpu, crate::bake::UNIT_TILE, 1, 0.0)?;
-        Ok(renderer)
     }
 
     /// The buffers' texture bytes for an output of `size` pixels: what the passes hold
@@ -184,21 +232,17 @@ impl PassRenderer {
         bind_buffers(gpu, pipeline, &self.textures_of(&rendered.textures, reads))
     }
 
-    /// Renders the passes for an output of size² pixels over `rect` at `time` and the
+    /// Renders the passes for an output of size² pixels over `domain` at `time` and the
     /// parameter values last written: every pass when the domain changed, otherwise
     /// only those whose slots changed and those reading a buffer rendered again.
     pub fn render(
         &self,
         gpu: &GpuContext,
-        rect: FlatRect,
+        domain: PassDomain<'_>,
         size: u32,
         time: f32,
     ) -> Result<(), RenderError> {
-        let domain: RenderedFor = (
-            [rect.x0, rect.z0, rect.x1, rect.z1, rect.y].map(|v| (v as f32).to_bits()),
-            size,
-            time.to_bits(),
-        );
+        let key: RenderedFor = (domain.key(), size, time.to_bits());
         let values = self
             .block
             .as_ref()
@@ -206,11 +250,12 @@ impl PassRenderer {
             .unwrap_or_default();
         let mut rendered = self.rendered.lock().expect("pass buffers");
         let mut state = match rendered.take() {
-            Some(state) if state.domain == domain => state,
+            Some(state) if state.domain == key => state,
             _ => Rendered {
-                domain,
+                domain: key,
                 textures: self.textures(gpu, size)?,
                 values: Vec::new(),
+                nearest: Vec::new(),
             },
         };
         let fresh_domain = state.values.is_empty();
@@ -223,7 +268,7 @@ impl PassRenderer {
             if !again[index] {
                 continue;
             }
-            self.draw(gpu, index, rect, time, &state.textures)?;
+            self.draw(gpu, index, domain, time, &mut state)?;
             match state.values.get_mut(index) {
                 Some(seen) => *seen = own.to_vec(),
                 None => state.values.push(own.to_vec()),
@@ -291,16 +336,20 @@ impl PassRenderer {
             .collect()
     }
 
-    /// Renders pass `index` into its texture, reading the textures before it.
+    /// Renders pass `index` into its texture over `domain`, reading the textures before
+    /// it.
     fn draw(
         &self,
         gpu: &GpuContext,
         index: usize,
-        rect: FlatRect,
+        domain: PassDomain<'_>,
         time: f32,
-        textures: &[wgpu::Texture],
+        state: &mut Rendered,
     ) -> Result<(), RenderError> {
         let pass = &self.passes.passes[index];
+        let Rendered {
+            textures, nearest, ..
+        } = state;
         let texture = &textures[self.storage[index]];
         if let PassKind::Bitmap { bitmap, .. } = &pass.kind {
             gpu.queue.write_texture(
@@ -316,9 +365,6 @@ impl PassRenderer {
             self.renders.fetch_add(1, Ordering::Relaxed);
             return gpu.take_errors();
         }
-        let pipeline = self.pipelines[index]
-            .as_ref()
-            .expect("a rendered pass has a pipeline");
         if let PassKind::Stage { source, stage, .. } = &pass.kind
             && texture.width() <= stage.unchanged_up_to
         {
@@ -338,16 +384,19 @@ impl PassRenderer {
             self.renders.fetch_add(1, Ordering::Relaxed);
             return gpu.take_errors();
         }
+        // A surface pass over a mesh draws the mesh's triangles into a scratch texture,
+        // which the island fill then copies into the buffer.
+        let over_mesh = match (&pass.kind, domain) {
+            (PassKind::Surface { .. }, PassDomain::Mesh { mesh, .. }) => Some(mesh),
+            _ => None,
+        };
+        let pipeline = match over_mesh {
+            Some(_) => self.mesh_pipeline(gpu, index)?,
+            None => (self.pipelines[index].as_ref()).expect("a rendered pass has a pipeline"),
+        };
         let mut groups = Vec::new();
         if let PassKind::Surface { .. } = pass.kind {
-            let view = PassViewUniform {
-                rect: [rect.x0, rect.z0, rect.x1, rect.z1].map(|v| v as f32),
-                size: [texture.width() as f32, texture.height() as f32],
-                plane_y: rect.y as f32,
-                time,
-            };
-            gpu.queue
-                .write_buffer(&self.view, 0, bytemuck::bytes_of(&view));
+            let view = self.write_view(gpu, domain, texture, time);
             groups.push((
                 0,
                 gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -355,13 +404,15 @@ impl PassRenderer {
                     layout: &pipeline.get_bind_group_layout(0),
                     entries: &[wgpu::BindGroupEntry {
                         binding: 0,
-                        resource: self.view.as_entire_binding(),
+                        resource: view.as_entire_binding(),
                     }],
                 }),
             ));
         }
-        if let Some(params) = &self.params[index] {
-            groups.push((1, params.clone()));
+        if let Some(block) = (self.block.as_ref())
+            .filter(|_| pass.module().is_some_and(|module| module.binds_params))
+        {
+            groups.push((1, block.bind_group(gpu, pipeline)));
         }
         let reads = pass.reads();
         if !reads.is_empty() {
@@ -370,26 +421,124 @@ impl PassRenderer {
                 bind_buffers(gpu, pipeline, &self.textures_of(textures, &reads)),
             ));
         }
+        let scratch = over_mesh.map(|_| {
+            gpu.device.create_texture(&wgpu::TextureDescriptor {
+                label: Some(&pass.label),
+                size: texture.size(),
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format: texture.format(),
+                usage: wgpu::TextureUsages::RENDER_ATTACHMENT
+                    | wgpu::TextureUsages::TEXTURE_BINDING,
+                view_formats: &[],
+            })
+        });
         let mut encoder = gpu
             .device
             .create_command_encoder(&wgpu::CommandEncoderDescriptor {
                 label: Some(&pass.label),
             });
         {
-            let target = texture.create_view(&Default::default());
+            let target = (scratch.as_ref().unwrap_or(texture)).create_view(&Default::default());
             let mut render =
                 super::tiles::clear_pass(&mut encoder, &target, wgpu::Color::TRANSPARENT, None);
             render.set_pipeline(pipeline);
             for (index, group) in &groups {
                 render.set_bind_group(*index, group, &[]);
             }
-            render.draw(0..3, 0..1);
+            match over_mesh {
+                Some(mesh) => mesh.draw(&mut render),
+                None => render.draw(0..3, 0..1),
+            }
         }
         // One submission per pass: the view uniform is rewritten for the next.
         gpu.queue.submit([encoder.finish()]);
+        if let (Some(mesh), Some(scratch)) = (over_mesh, &scratch) {
+            let islands = built(&self.islands, || Islands::new(gpu))?;
+            let extent = (texture.width(), texture.height());
+            let at = match nearest.iter().position(|(size, _)| *size == extent) {
+                Some(at) => at,
+                None => {
+                    nearest.push((extent, islands.nearest(gpu, mesh, extent)?));
+                    nearest.len() - 1
+                }
+            };
+            islands.fill(gpu, &nearest[at].1, scratch, texture)?;
+        }
         self.renders.fetch_add(1, Ordering::Relaxed);
         gpu.take_errors()
     }
+
+    /// Writes the view of a surface pass over `domain` into `target` at `time`; returns
+    /// the uniform buffer holding it.
+    fn write_view(
+        &self,
+        gpu: &GpuContext,
+        domain: PassDomain<'_>,
+        target: &wgpu::Texture,
+        time: f32,
+    ) -> &wgpu::Buffer {
+        match domain {
+            PassDomain::Flat(rect) => {
+                let view = PassViewUniform {
+                    rect: [rect.x0, rect.z0, rect.x1, rect.z1].map(|v| v as f32),
+                    size: [target.width() as f32, target.height() as f32],
+                    plane_y: rect.y as f32,
+                    time,
+                };
+                gpu.queue
+                    .write_buffer(&self.view, 0, bytemuck::bytes_of(&view));
+                &self.view
+            }
+            PassDomain::Mesh { placement, .. } => {
+                let view = PassMeshViewUniform {
+                    placement: [placement.0[0], placement.0[1], placement.0[2], placement.1],
+                    time,
+                    padding: [0.0; 3],
+                };
+                gpu.queue
+                    .write_buffer(&self.mesh_view, 0, bytemuck::bytes_of(&view));
+                &self.mesh_view
+            }
+        }
+    }
+
+    /// The pipeline of surface pass `index` over a mesh's UV layout, built when first
+    /// asked for.
+    fn mesh_pipeline(
+        &self,
+        gpu: &GpuContext,
+        index: usize,
+    ) -> Result<&wgpu::RenderPipeline, RenderError> {
+        built(&self.mesh_pipelines[index], || {
+            let pass = &self.passes.passes[index];
+            let module = pass.module().expect("a surface pass has a module");
+            let source = shader_source(&module.source, MESH_SURFACE_ENTRY_POINTS);
+            let module = gpu.shader(&pass.label, &source)?;
+            gpu.checked(&format!("mesh pipeline of pass '{}'", pass.label), || {
+                super::uv_layout_pipeline(
+                    &gpu.device,
+                    &pass.label,
+                    &module,
+                    ("veneer_pass_mesh_vertex", "veneer_pass_mesh_fragment"),
+                    texture_format(pass.spec.format),
+                )
+            })
+        })
+    }
+}
+
+/// What `cell` holds, built by `build` when it holds nothing yet.
+fn built<T>(
+    cell: &OnceLock<T>,
+    build: impl FnOnce() -> Result<T, RenderError>,
+) -> Result<&T, RenderError> {
+    if let Some(value) = cell.get() {
+        return Ok(value);
+    }
+    let value = build()?;
+    Ok(cell.get_or_init(|| value))
 }
 
 /// A bind group of `textures[k]` at binding k of group 2 of `pipeline`.

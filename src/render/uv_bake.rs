@@ -42,28 +42,13 @@ impl UvRenderer {
             mapped_at_creation: false,
         });
         let pipeline = gpu.checked("uv bake pipeline", || {
-            gpu.device
-                .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                    label: Some("uv bake"),
-                    layout: None,
-                    vertex: wgpu::VertexState {
-                        module: &module,
-                        entry_point: Some("veneer_uv_vertex"),
-                        compilation_options: Default::default(),
-                        buffers: &[Some(GpuMesh::layout())],
-                    },
-                    primitive: wgpu::PrimitiveState::default(),
-                    depth_stencil: None,
-                    multisample: wgpu::MultisampleState::default(),
-                    fragment: Some(wgpu::FragmentState {
-                        module: &module,
-                        entry_point: Some("veneer_uv_fragment"),
-                        compilation_options: Default::default(),
-                        targets: &[Some(FORMAT.into())],
-                    }),
-                    multiview_mask: None,
-                    cache: None,
-                })
+            super::uv_layout_pipeline(
+                &gpu.device,
+                "uv bake",
+                &module,
+                ("veneer_uv_vertex", "veneer_uv_fragment"),
+                FORMAT,
+            )
         })?;
         let bind_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("uv view"),
@@ -81,9 +66,9 @@ impl UvRenderer {
         })
     }
 
-    /// Binds the files a material reads (one that only reads Image files, uploaded by
-    /// `passes`; see [`super::mesh_uploads`]).
-    pub fn bind_uploads(&mut self, gpu: &GpuContext, passes: &super::PassRenderer) {
+    /// Binds the buffers a multi-pass material reads, as `passes` last rendered them
+    /// (over the mesh's UV layout: see [`super::mesh_passes`]).
+    pub fn bind_passes(&mut self, gpu: &GpuContext, passes: &super::PassRenderer) {
         self.buffers = Some(passes.bind_group(gpu, &self.pipeline, passes.reads()));
     }
 

@@ -80,7 +80,7 @@ fn rgb(rgba: &[u8]) -> Vec<u8> {
 }
 
 #[test]
-fn a_multi_pass_material_previews_as_its_tile_and_a_value_edit_renders_its_passes_again() {
+fn a_multi_pass_material_previews_flat_as_its_tile_and_a_value_edit_renders_its_passes_again() {
     let gpu = gpu();
     let path = crate::support::root("graphs/texture/blurred_noise.ron");
     let graph = veneer::graph::load(&path).expect("loads");
@@ -89,7 +89,9 @@ fn a_multi_pass_material_previews_as_its_tile_and_a_value_edit_renders_its_passe
     let code = LiveMaterialCode::new(1, live.compiled.as_ref().expect("it compiles"));
     assert!(code.passes.is_some(), "the material renders passes");
     let mesh = veneer::mesh::primitive("plane").expect("a plane");
-    let view = MeshView::for_preview(&graph.preview);
+    // The flat view (unlit) shows a multi-pass material's tile.
+    let mut view = MeshView::for_preview(&graph.preview);
+    view.unlit = true;
     let sky = gpu.sky().expect("the default environment");
     let mut renderer = LiveRenderer::default();
     let preview = |params: Vec<[f32; 4]>, renderer: &mut LiveRenderer| {

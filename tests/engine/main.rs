@@ -33,6 +33,7 @@ mod layout;
 mod limits;
 mod lint;
 mod live_preview;
+mod mesh_passes;
 mod meshes;
 mod node_kinds;
 mod parameter_export;

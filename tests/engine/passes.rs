@@ -356,39 +356,6 @@ fn a_blurred_periodic_noise_bakes_a_seamless_tile() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-#[test]
-fn views_over_a_mesh_refuse_a_multi_pass_material_and_write_nothing() {
-    let dir = temp_dir("passes-mesh");
-    let graph_path = dir.join("blurred.ron");
-    std::fs::write(&graph_path, veneer::graph::to_ron(&blurred_and_normal(4.0))).expect("writes");
-    let image = dir.join("mesh.png");
-    let render = |extra: &[&str]| {
-        let (graph, image) = (graph_path.to_str(), image.to_str());
-        let mut args = vec!["render", graph.expect("utf-8"), "-o", image.expect("utf-8")];
-        args.extend(["--size", "32"].iter().chain(extra));
-        run_veneer(&args)
-    };
-    let output = render(&[]);
-    let stderr = String::from_utf8_lossy(&output.stderr);
-    assert!(!output.status.success(), "{stderr}");
-    assert!(
-        stderr.contains("flat domain") && stderr.contains("--flat"),
-        "{stderr}"
-    );
-    assert!(!image.exists());
-    // The flat render of the same file works, and is the library's.
-    let output = render(&["--flat", "0,0,1,1,0"]);
-    assert!(
-        output.status.success(),
-        "{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
-    let written = image::open(&image).expect("a PNG").to_rgb8().into_raw();
-    let compiled = compile(&blurred_and_normal(4.0), &Default::default()).expect("compiles");
-    assert_eq!(written, crate::support::compiled_rgb8(&compiled, TILE, 32));
-    let _ = std::fs::remove_dir_all(&dir);
-}
-
 /// Runs an independent validator over an exported file.
 fn validate_with(tool: &str, file: &std::path::Path) {
     let output = std::process::Command::new(tool)

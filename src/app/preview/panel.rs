@@ -180,10 +180,11 @@ impl VeneerApp {
     /// material whose graph asks for tessellation (the graph checked once a revision).
     fn tessellation_input(&mut self, frame: &MaterialFrame) -> Option<TessellationInput> {
         let settings = self.session.document.graph.preview.tessellation?;
-        // A multi-pass material is drawn flat, and its image nodes evaluate only over
-        // buffers (one that only reads files draws on the mesh: the CPU reads them too).
-        let flat_passes = (frame.code.passes.as_ref()).is_some_and(|passes| !passes.uploads_only());
-        if !frame.code.uses.displacement || self.preview.state.flat || flat_passes {
+        // The CPU evaluator that refines the mesh reads files but renders no passes: a
+        // material with rendered passes is drawn on the mesh as it is.
+        let rendered_passes =
+            (frame.code.passes.as_ref()).is_some_and(|passes| !passes.uploads_only());
+        if !frame.code.uses.displacement || self.preview.state.flat || rendered_passes {
             return None;
         }
         let revision = self.session.revision.number;

@@ -101,20 +101,16 @@ pub fn export_gltf(
     mut progress: impl FnMut(u64, u64) -> bool,
 ) -> Result<Vec<PathBuf>, BakeError> {
     crate::render::baked_parameters(compiled)?;
-    let uploads = crate::render::mesh_uploads(
-        gpu,
-        compiled,
-        "a glTF export (baked over the mesh's UV layout)",
-    )?;
     let packaging = packaging(path);
     super::output_folder(path)?;
     let (module, preview) = (&compiled.module, &compiled.preview);
     let uses = module.uses;
     let name = settings.mesh.as_deref().unwrap_or(&preview.mesh);
-    // A mesh without a UV layout gets an atlas, after its fields are solved on the
-    // connected mesh.
+    // A mesh whose UV layout does not give each point texels of its own (none, one
+    // past the unit square, overlapping faces) gets an atlas, after its fields are
+    // solved on the connected mesh: the document carries the mesh with its maps.
     let mesh = crate::render::mesh_with_fields(preview, name, &uses, |_, _| {})?
-        .with_uv_layout(settings.size);
+        .with_own_texels(settings.size);
     let shading = compiled.checked.shading;
     let wants_normal = uses.perturbs_normal();
     let mut passes = vec![
@@ -126,16 +122,14 @@ pub fn export_gltf(
         passes.push(FlatChannels::HeightBump);
     }
     let mut renderer = UvRenderer::new(gpu, &module.source)?;
-    if let Some(uploads) = &uploads {
-        renderer.bind_uploads(gpu, uploads);
-    }
     let gpu_mesh = GpuMesh::new(&gpu.device, &mesh);
-    let center = preview.center;
-    let placement = (
-        [center.0 as f32, center.1 as f32, center.2 as f32],
-        preview.size as f32,
-    );
+    let placement = crate::render::texture_placement(preview);
     let size = settings.size;
+    let buffers =
+        crate::render::mesh_passes(gpu, compiled, &gpu_mesh, placement, size, settings.time)?;
+    if let Some(buffers) = &buffers {
+        renderer.bind_passes(gpu, buffers);
+    }
     let per_pass = u64::from(size.div_ceil(crate::render::tile_size(gpu))).pow(2);
     let total = per_pass * passes.len() as u64;
     let mut rendered = Vec::new();

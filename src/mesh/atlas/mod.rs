@@ -14,6 +14,7 @@ mod charts;
 mod geometry;
 mod grid;
 mod merge;
+mod overlap;
 mod pack;
 mod seed;
 mod settle;
