@@ -16,8 +16,8 @@ use std::collections::{BTreeMap, HashSet, VecDeque};
 /// parameter name.
 pub type Bindings = BTreeMap<(NodeId, String), String>;
 
-/// The graph with every group instance inlined, recursively: the graph every stage
-/// checks, evaluates and emits. Top-level nodes keep their ids; inlined nodes get fresh
+/// The graph with every group instance inlined, recursively, and every Graph bake node
+/// expanded (see `graph_bakes`): the graph every stage checks, evaluates and emits. Top-level nodes keep their ids; inlined nodes get fresh
 /// ones and their [`Origin`]. A graph without group nodes is returned as it is.
 pub fn flatten(graph: &Graph) -> Result<Cow<'_, Graph>, Vec<CheckError>> {
     Ok(flatten_traced(graph, BTreeMap::new())?.0)
@@ -26,6 +26,20 @@ pub fn flatten(graph: &Graph) -> Result<Cow<'_, Graph>, Vec<CheckError>> {
 /// [`flatten`], following the constants of `bindings` (top-level inputs named by
 /// exposed parameters) to every flat input they end up in.
 pub fn flatten_traced(
+    graph: &Graph,
+    bindings: Bindings,
+) -> Result<(Cow<'_, Graph>, Bindings), Vec<CheckError>> {
+    let (flat, bindings) = inline_groups(graph, bindings)?;
+    if !super::graph_bakes::has_bakes(&flat) {
+        return Ok((flat, bindings));
+    }
+    // The nodes a bake brings in are flat already.
+    let expanded = super::graph_bakes::expand(&flat)?;
+    Ok((Cow::Owned(expanded), bindings))
+}
+
+/// [`flatten_traced`] but for Graph bake nodes, which it leaves as they are.
+fn inline_groups(
     graph: &Graph,
     mut bindings: Bindings,
 ) -> Result<(Cow<'_, Graph>, Bindings), Vec<CheckError>> {

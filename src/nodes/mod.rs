@@ -116,6 +116,7 @@ mod distance;
 mod fields;
 mod flood_fill;
 mod fractal;
+mod graph_bake;
 mod group;
 mod image_ops;
 mod inputs;
@@ -136,6 +137,7 @@ pub use distance::{Bevel, BevelProfile, Distance, Measure};
 pub use fields::Layers;
 pub use flood_fill::FloodFill;
 pub use fractal::{Fbm, FractalSum, Turbulence};
+pub use graph_bake::{BakedMap, GraphBake};
 pub use group::Group;
 pub use image_ops::{
     Curvature, DirectionalBlur, DirectionalWarp, EdgeDetect, HeightOcclusion, MakeTileable,
@@ -439,7 +441,7 @@ macro_rules! registry {
     };
 }
 
-registry!(@gather [] [] inputs coordinates noise fractal cellular patterns fields math mapping vectors colour sampled bitmap image_ops distance flood_fill levels output group);
+registry!(@gather [] [] inputs coordinates noise fractal cellular patterns fields math mapping vectors colour sampled bitmap graph_bake image_ops distance flood_fill levels output group);
 
 impl NodeKind {
     /// A short human-readable name (used for default labels and messages).

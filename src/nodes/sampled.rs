@@ -150,19 +150,40 @@ impl Evaluate for Buffer {
 
 impl Configure for Buffer {
     fn settings(&mut self) -> Vec<Setting<'_>> {
-        vec![
-            choice("type", &mut self.ty, &TYPES),
-            choice("resolution", &mut self.resolution, &Resolution::ALL),
-            Setting::Count {
-                label: "size (absolute)",
-                value: &mut self.size,
-                range: 1..=4096,
-            },
-            choice("format", &mut self.format, &BufferFormat::ALL),
-            choice("edges", &mut self.edge, &EdgeMode::ALL),
-            choice("filter", &mut self.filter, &Filter::ALL),
-        ]
+        let Buffer {
+            ty,
+            resolution,
+            size,
+            format,
+            edge,
+            filter,
+        } = self;
+        let mut settings = vec![choice("type", ty, &TYPES)];
+        settings.extend(buffer_settings(resolution, size, format, edge, filter));
+        settings
     }
+}
+
+/// The settings of a buffer: its resolution (and size when absolute), format, edge mode
+/// and filter, for every node that makes one.
+pub(super) fn buffer_settings<'a>(
+    resolution: &'a mut Resolution,
+    size: &'a mut u32,
+    format: &'a mut BufferFormat,
+    edge: &'a mut EdgeMode,
+    filter: &'a mut Filter,
+) -> Vec<Setting<'a>> {
+    vec![
+        choice("resolution", resolution, &Resolution::ALL),
+        Setting::Count {
+            label: "size (absolute)",
+            value: size,
+            range: 1..=4096,
+        },
+        choice("format", format, &BufferFormat::ALL),
+        choice("edges", edge, &EdgeMode::ALL),
+        choice("filter", filter, &Filter::ALL),
+    ]
 }
 
 impl Catalogue for Buffer {

@@ -20,6 +20,7 @@ mod fuzz_regressions;
 mod geodesic;
 mod geodesic_files;
 mod gltf;
+mod graph_bakes;
 mod graph_files;
 mod groups;
 mod hostile_cli;
