@@ -118,7 +118,10 @@ fn unusable_graph_files_are_check_errors_naming_the_node_and_the_file() {
             "ping.ron",
             "bakes itself: 'ping.ron' › 'pong.ron' › 'ping.ron'",
         ),
-        ("bare.ron", "does not check: the graph has no Material output node"),
+        (
+            "bare.ron",
+            "does not check: the graph has no Material output node",
+        ),
         ("", "no graph file chosen"),
     ] {
         let graph = baking(&dir, file, BakedMap::Albedo);
