@@ -125,11 +125,10 @@ impl LiveRenderer {
         size: (u32, u32),
         quality: Quality,
     ) -> Result<((u32, u32), Vec<u8>), RenderError> {
-        if let Some(passes) = &material.passes
-            && view.unlit
-            && !passes.uploads_only()
-        {
-            return self.render_tile(gpu, material, passes, params, view.time, size, quality);
+        let rendered_passes = (material.passes.as_ref()).is_some_and(|p| !p.uploads_only());
+        if view.unlit && (rendered_passes || view.repeat_tile) {
+            let repeats = if view.repeat_tile { 3 } else { 1 };
+            return self.render_tile(gpu, material, params, view.time, size, quality, repeats);
         }
         let (width, height) = self.image_size(size, quality);
         self.prepare(gpu, material, quality)?;
@@ -240,20 +239,23 @@ impl LiveRenderer {
         }
     }
 
-    /// Draws a multi-pass material flat: its albedo over the unit tile, centred in the
-    /// image, the tile's neighbours around it (where the buffers wrap, they repeat it).
-    /// Its passes render for [`PREVIEW_PASS_SIZE`], again only when the material or the
-    /// parameter values they read change.
+    /// Draws a material flat: its albedo over the unit tile. With one repeat, the tile
+    /// is centred in the image and the material's neighbours around it (where its
+    /// buffers wrap, they repeat it); with `repeats` of them, copies of the tile as
+    /// drawn lie side by side, that many across the image's shorter side and centred,
+    /// as a bake of the tile repeats (so seams show). A multi-pass material's passes
+    /// render for [`PREVIEW_PASS_SIZE`], again only when the material or the parameter
+    /// values they read change.
     #[allow(clippy::too_many_arguments)]
     fn render_tile(
         &mut self,
         gpu: &GpuContext,
         material: &LiveMaterialCode,
-        passes: &Passes,
         params: &[[f32; 4]],
         time: f32,
         size: (u32, u32),
         quality: Quality,
+        repeats: u32,
     ) -> Result<((u32, u32), Vec<u8>), RenderError> {
         let (width, height) = self.image_size(size, quality);
         if (self.flat.as_ref()).is_none_or(|(generation, _)| *generation != material.generation) {
@@ -262,7 +264,7 @@ impl LiveRenderer {
                 &material.wgsl,
                 material.slots,
                 material.binds_params,
-                Some(passes),
+                material.passes.as_deref(),
             )?;
             flat.set_pass_size(Some(PREVIEW_PASS_SIZE));
             self.flat = Some((material.generation, flat));
@@ -271,24 +273,41 @@ impl LiveRenderer {
         let (_, flat) = self.flat.as_ref().expect("built above");
         flat.write_params(gpu, params);
         let started = Instant::now();
-        let side = width.min(height);
-        let origin = (
-            -i64::from((width - side) / 2),
-            -i64::from((height - side) / 2),
+        let side = (width.min(height) / repeats).max(1);
+        // Where the tile's top-left corner lies in the image.
+        let corner = (
+            i64::from(width) / 2 - i64::from(side) * i64::from(repeats) / 2,
+            i64::from(height) / 2 - i64::from(side) * i64::from(repeats) / 2,
         );
         let tile = crate::bake::UNIT_TILE;
         let channels = FlatChannels::AlbedoAlpha;
-        let pixels =
-            flat.render_region(gpu, tile, side, time, channels, origin, (width, height))?;
+        let rgba = |pixels: &[[f32; 4]]| -> Vec<[u8; 4]> {
+            let rgb = super::albedo_to_rgb8(pixels);
+            (rgb.chunks_exact(3))
+                .map(|pixel| [pixel[0], pixel[1], pixel[2], 255])
+                .collect()
+        };
+        let pixels = if repeats == 1 {
+            let origin = (-corner.0, -corner.1);
+            let drawn =
+                flat.render_region(gpu, tile, side, time, channels, origin, (width, height))?;
+            rgba(&drawn)
+        } else {
+            let drawn =
+                flat.render_region(gpu, tile, side, time, channels, (0, 0), (side, side))?;
+            let drawn = rgba(&drawn);
+            let side = i64::from(side);
+            let at = |offset: i64, corner: i64| (offset - corner).rem_euclid(side) as usize;
+            (0..i64::from(height))
+                .flat_map(|y| (0..i64::from(width)).map(move |x| (x, y)))
+                .map(|(x, y)| drawn[at(y, corner.1) * side as usize + at(x, corner.0)])
+                .collect()
+        };
         gpu.take_errors()?;
         if quality == Quality::Draft {
             self.draft_scale.after_draft(started.elapsed());
         }
-        let rgb = super::albedo_to_rgb8(&pixels);
-        let rgba = (rgb.chunks_exact(3))
-            .flat_map(|pixel| [pixel[0], pixel[1], pixel[2], 255])
-            .collect();
-        Ok(((width, height), rgba))
+        Ok(((width, height), pixels.into_flattened()))
     }
 
     /// Builds the pipeline `material` needs at `quality` unless it is built already.

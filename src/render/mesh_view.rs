@@ -43,6 +43,10 @@ pub struct MeshView {
     pub time: f32,
     /// Show the albedo only, without lighting.
     pub unlit: bool,
+    /// With `unlit` (the editor's flat view): show the unit tile as a bake of it
+    /// repeats, copies side by side with three across the image's shorter side, so
+    /// seams show.
+    pub repeat_tile: bool,
     /// How metallic-roughness materials map scene light to the display (Blinn-Phong
     /// materials show the seeds' lighting as it is).
     pub tone_map: ToneMap,
@@ -95,6 +99,7 @@ impl MeshView {
             size: preview.size as f32,
             time: 0.0,
             unlit: false,
+            repeat_tile: false,
             tone_map: ToneMap::default(),
             exposure: 0.0,
             key_light: DEFAULT_KEY_LIGHT,

@@ -147,3 +147,63 @@ fn every_shipped_texture_graph_previews_in_the_editor() {
         }
     }
 }
+
+#[test]
+fn the_flat_views_three_by_three_tile_repeats_one_drawn_tile() {
+    // A single-pass graph (the wood preset, whose field does not repeat by itself):
+    // drawn 3×3, each copy is the tile drawn once, side by side, seams and all.
+    let gpu = gpu();
+    let graph = veneer::graph::load(&crate::support::root("graphs/wood.ron")).expect("loads");
+    let mut live = LiveMaterial::in_storage();
+    live.update(&graph);
+    let code = LiveMaterialCode::new(1, live.compiled.as_ref().expect("it compiles"));
+    let mesh = veneer::mesh::primitive("plane").expect("a plane");
+    let mut view = MeshView::for_preview(&graph.preview);
+    view.unlit = true;
+    view.repeat_tile = true;
+    let sky = gpu.sky().expect("the default environment");
+    let (width, height) = (200u32, 150u32);
+    let ((w, h), pixels) = LiveRenderer::default()
+        .render(
+            gpu,
+            &code,
+            &live.params(&graph),
+            "plane",
+            &mesh,
+            &view,
+            &sky,
+            (width, height),
+            Quality::Full,
+        )
+        .expect("the preview draws");
+    assert_eq!((w, h), (width, height));
+    let side = (height / 3) as usize;
+    let at = |x: usize, y: usize| &pixels[(y * width as usize + x) * 4..][..4];
+    let mut differs = false;
+    for y in 0..height as usize - side {
+        for x in 0..width as usize - side {
+            assert_eq!(at(x, y), at(x + side, y), "({x}, {y}) across");
+            assert_eq!(at(x, y), at(x, y + side), "({x}, {y}) down");
+            differs |= at(x, y) != at(x + 1, y);
+        }
+    }
+    assert!(differs, "the tile is not one colour");
+    // The tile as the flat render draws it, its top-left corner where the 3×3 block
+    // starts (centred).
+    let baked = compile(&graph, &CompileOptions::default()).expect("it compiles");
+    let tile = albedo_to_rgb8(
+        &FlatRenderer::for_compiled(gpu, &baked)
+            .expect("pipelines")
+            .render(gpu, veneer::bake::UNIT_TILE, side as u32, 0.0)
+            .expect("it renders"),
+    );
+    let corner = (
+        width as usize / 2 - 3 * side / 2,
+        height as usize / 2 - 3 * side / 2,
+    );
+    let shown: Vec<u8> = (0..side)
+        .flat_map(|y| (0..side).map(move |x| (x, y)))
+        .flat_map(|(x, y)| at(corner.0 + x, corner.1 + y)[..3].to_vec())
+        .collect();
+    assert!(difference(&shown, &tile, 3, 1).passes());
+}

@@ -72,6 +72,10 @@ impl VeneerApp {
                     }
                 });
             ui.checkbox(&mut self.preview.state.flat, "flat albedo");
+            if self.preview.state.flat {
+                ui.checkbox(&mut self.preview.state.repeat_tile, "3×3 tile")
+                    .on_hover_text("the unit tile repeated as a bake of it tiles: seams show");
+            }
             ui.checkbox(&mut self.preview.live.full_detail, "every octave")
                 .on_hover_text("off: noise leaves out octaves finer than a pixel (less aliasing, faster far away)");
             ui.label("background");

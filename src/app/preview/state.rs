@@ -61,6 +61,8 @@ pub struct PreviewState {
     pub environment: EnvironmentChoice,
     /// Show the albedo flat from above instead of lit on the mesh.
     pub flat: bool,
+    /// In the flat view: show the unit tile 3×3 times, as a bake of it repeats.
+    pub repeat_tile: bool,
     pub playing: bool,
     /// The cameras of the meshes (and of the flat view) not shown now.
     cameras: BTreeMap<String, Camera>,
@@ -83,6 +85,7 @@ impl PreviewState {
             view: MeshView::for_preview(preview),
             environment: EnvironmentChoice::default(),
             flat: false,
+            repeat_tile: false,
             playing: false,
             cameras: BTreeMap::new(),
             camera_of: preview.mesh.clone(),
@@ -203,6 +206,7 @@ impl PreviewState {
                 extent: self.view.distance / 3.6,
             };
             view.unlit = true;
+            view.repeat_tile = self.repeat_tile;
         }
         view
     }
