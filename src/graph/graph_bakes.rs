@@ -127,8 +127,7 @@ fn map_of(graph: &Graph, bake: &GraphBake) -> Result<Map, String> {
                 .inputs
                 .iter()
                 .find(|input| input.name == pin)?
-                .default
-                .clone();
+                .default;
             match default {
                 PinDefault::Const(value) => Some(value),
                 PinDefault::Position | PinDefault::Required => None,

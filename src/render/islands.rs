@@ -29,12 +29,13 @@ impl Islands {
         );
         let module = gpu.shader("uv islands", source)?;
         let seeds = gpu.checked("uv island seeds pipeline", || {
-            super::uv_layout_pipeline(
+            super::target_pipeline(
                 &gpu.device,
                 "uv island seeds",
                 &module,
                 ("veneer_island_seed_vertex", "veneer_island_seed_fragment"),
                 NEAREST_FORMAT,
+                &[Some(GpuMesh::layout())],
             )
         })?;
         let jump = gpu.checked("uv island jump pipeline", || {
@@ -63,21 +64,10 @@ impl Islands {
         (width, height): (u32, u32),
     ) -> Result<wgpu::Texture, RenderError> {
         let texture = || {
-            gpu.device.create_texture(&wgpu::TextureDescriptor {
-                label: Some("nearest uv island texel"),
-                size: wgpu::Extent3d {
-                    width,
-                    height,
-                    depth_or_array_layers: 1,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: NEAREST_FORMAT,
-                usage: wgpu::TextureUsages::RENDER_ATTACHMENT
-                    | wgpu::TextureUsages::TEXTURE_BINDING,
-                view_formats: &[],
-            })
+            let usage =
+                wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING;
+            let label = "nearest uv island texel";
+            super::plain_texture(&gpu.device, label, (width, height), NEAREST_FORMAT, usage)
         };
         let mut textures = [texture(), texture()];
         let none = wgpu::Color {

@@ -47,6 +47,30 @@ pub use timing::PassTimer;
 pub use tone_map::ToneMap;
 pub use uv_bake::UvRenderer;
 
+/// A single-level, single-sample 2D texture of `size` texels.
+pub fn plain_texture(
+    device: &wgpu::Device,
+    label: &str,
+    (width, height): (u32, u32),
+    format: wgpu::TextureFormat,
+    usage: wgpu::TextureUsages,
+) -> wgpu::Texture {
+    device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(label),
+        size: wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage,
+        view_formats: &[],
+    })
+}
+
 /// WGSL of a material module combined with a renderer's entry points.
 fn shader_source(material_wgsl: &str, entry_points: &str) -> String {
     format!("{material_wgsl}\n{entry_points}")
@@ -64,28 +88,10 @@ pub fn fullscreen_pipeline(
     target_pipeline(device, label, module, entry_points, format, &[])
 }
 
-/// A pipeline drawing meshes ([`GpuMesh::layout`]) at their texture coordinates (no
-/// depth) with the given entry points of `module` into a single target of `format`.
-pub fn uv_layout_pipeline(
-    device: &wgpu::Device,
-    label: &str,
-    module: &wgpu::ShaderModule,
-    entry_points: (&str, &str),
-    format: wgpu::TextureFormat,
-) -> wgpu::RenderPipeline {
-    target_pipeline(
-        device,
-        label,
-        module,
-        entry_points,
-        format,
-        &[Some(GpuMesh::layout())],
-    )
-}
-
-/// A pipeline without depth or blending drawing `buffers` with the given entry points of
-/// `module` into a single target of `format`.
-fn target_pipeline(
+/// A pipeline without depth or blending drawing `buffers` (`[Some(GpuMesh::layout())]`
+/// for meshes, drawn at their texture coordinates by UV-layout renders) with the given
+/// entry points of `module` into a single target of `format`.
+pub fn target_pipeline(
     device: &wgpu::Device,
     label: &str,
     module: &wgpu::ShaderModule,

@@ -303,23 +303,16 @@ impl PassRenderer {
                     pass.label
                 )));
             }
-            textures.push(gpu.device.create_texture(&wgpu::TextureDescriptor {
-                label: Some(&pass.label),
-                size: wgpu::Extent3d {
-                    width,
-                    height,
-                    depth_or_array_layers: 1,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: texture_format(pass.spec.format),
-                usage: wgpu::TextureUsages::RENDER_ATTACHMENT
+            textures.push(super::plain_texture(
+                &gpu.device,
+                &pass.label,
+                (width, height),
+                texture_format(pass.spec.format),
+                wgpu::TextureUsages::RENDER_ATTACHMENT
                     | wgpu::TextureUsages::TEXTURE_BINDING
                     | wgpu::TextureUsages::COPY_SRC
                     | wgpu::TextureUsages::COPY_DST,
-                view_formats: &[],
-            }));
+            ));
         }
         Ok(textures)
     }
@@ -422,17 +415,13 @@ impl PassRenderer {
             ));
         }
         let scratch = over_mesh.map(|_| {
-            gpu.device.create_texture(&wgpu::TextureDescriptor {
-                label: Some(&pass.label),
-                size: texture.size(),
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: texture.format(),
-                usage: wgpu::TextureUsages::RENDER_ATTACHMENT
-                    | wgpu::TextureUsages::TEXTURE_BINDING,
-                view_formats: &[],
-            })
+            super::plain_texture(
+                &gpu.device,
+                &pass.label,
+                (texture.width(), texture.height()),
+                texture.format(),
+                wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
+            )
         });
         let mut encoder = gpu
             .device
@@ -517,12 +506,13 @@ impl PassRenderer {
             let source = shader_source(&module.source, MESH_SURFACE_ENTRY_POINTS);
             let module = gpu.shader(&pass.label, &source)?;
             gpu.checked(&format!("mesh pipeline of pass '{}'", pass.label), || {
-                super::uv_layout_pipeline(
+                super::target_pipeline(
                     &gpu.device,
                     &pass.label,
                     &module,
                     ("veneer_pass_mesh_vertex", "veneer_pass_mesh_fragment"),
                     texture_format(pass.spec.format),
+                    &[Some(GpuMesh::layout())],
                 )
             })
         })

@@ -42,12 +42,13 @@ impl UvRenderer {
             mapped_at_creation: false,
         });
         let pipeline = gpu.checked("uv bake pipeline", || {
-            super::uv_layout_pipeline(
+            super::target_pipeline(
                 &gpu.device,
                 "uv bake",
                 &module,
                 ("veneer_uv_vertex", "veneer_uv_fragment"),
                 FORMAT,
+                &[Some(GpuMesh::layout())],
             )
         })?;
         let bind_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
