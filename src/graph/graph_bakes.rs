@@ -3,7 +3,8 @@
 //! its file paths rebased onto this graph's folder, its own groups and bakes expanded
 //! — and becomes the Buffer node they feed (same id, label and wires), so the compiler
 //! renders the map into a buffer over this material's domain like any other cut. A map
-//! the file leaves unwired becomes a Constant of the Material input's value.
+//! the file leaves unwired becomes a Constant of the Material input's value; a bake the
+//! material does not read, a Constant of the input's default (its file is not read).
 
 use super::check::CheckError;
 use super::{Graph, Node, NodeId, NodeKind, PinRef, Value, Wire};
@@ -37,10 +38,21 @@ pub fn expand(graph: &Graph) -> Result<Graph, Vec<CheckError>> {
         .unwrap_or(0)
         + 1;
     let mut errors = Vec::new();
+    // Like an Image node's file, a bake's is read only when the material reads it (a
+    // graph without a Material node fails its check anyway).
+    let material = graph
+        .nodes
+        .iter()
+        .find(|node| node.kind == NodeKind::Material);
+    let read = material.map(|material| upstream_of(graph, material.id));
     for node in &graph.nodes {
         let NodeKind::GraphBake(bake) = &node.kind else {
             continue;
         };
+        if read.as_ref().is_some_and(|read| !read.contains(&node.id)) {
+            Map::constant(default_of(bake.map.pin())).join(&mut expanded, node, bake, &mut next_id);
+            continue;
+        }
         match map_of(graph, bake) {
             Ok(map) => map.join(&mut expanded, node, bake, &mut next_id),
             Err(message) => errors.push(CheckError {
@@ -67,6 +79,15 @@ struct Map {
 }
 
 impl Map {
+    /// A map holding `value` everywhere.
+    fn constant(value: Value) -> Map {
+        Map {
+            nodes: Vec::new(),
+            wires: Vec::new(),
+            source: Err(value),
+        }
+    }
+
     /// Adds the map's nodes to `graph` under fresh ids from `next_id`, and turns `node`
     /// (the bake) into the Buffer they feed, or the Constant of the map's value.
     fn join(self, graph: &mut Graph, node: &Node, bake: &GraphBake, next_id: &mut u32) {
@@ -105,6 +126,18 @@ impl Map {
     }
 }
 
+/// The Material node's default for input `pin`.
+fn default_of(pin: &str) -> Value {
+    let signature = NodeKind::Material.definition().signature();
+    let input = signature.inputs.iter().find(|input| input.name == pin);
+    match input.expect("a Material input").default {
+        PinDefault::Const(value) => value,
+        PinDefault::Position | PinDefault::Required => {
+            unreachable!("every Material input has a constant default")
+        }
+    }
+}
+
 /// The map `bake` takes from its file, read relative to `graph`'s folder.
 fn map_of(graph: &Graph, bake: &GraphBake) -> Result<Map, String> {
     let shown = &bake.path;
@@ -121,24 +154,8 @@ fn map_of(graph: &Graph, bake: &GraphBake) -> Result<Map, String> {
     let pin = bake.map.pin();
     let wired = (inner.wires.iter()).find(|wire| wire.to.node == material.id && wire.to.pin == pin);
     let Some(wire) = wired else {
-        let value = material.inputs.get(pin).cloned().or_else(|| {
-            let signature = NodeKind::Material.definition().signature();
-            let default = signature
-                .inputs
-                .iter()
-                .find(|input| input.name == pin)?
-                .default;
-            match default {
-                PinDefault::Const(value) => Some(value),
-                PinDefault::Position | PinDefault::Required => None,
-            }
-        });
-        let value = value.expect("every Material input has a constant default");
-        return Ok(Map {
-            nodes: Vec::new(),
-            wires: Vec::new(),
-            source: Err(value),
-        });
+        let value = material.inputs.get(pin).cloned();
+        return Ok(Map::constant(value.unwrap_or_else(|| default_of(pin))));
     };
     let upstream = upstream_of(&inner, wire.from.node);
     Ok(Map {

@@ -152,3 +152,17 @@ fn unusable_graph_files_are_check_errors_naming_the_node_and_the_file() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn a_bake_the_material_does_not_read_is_not_read() {
+    // Like an Image node's file: a bake left unwired (just added, its file not chosen
+    // yet) does not stop the material.
+    let dir = folder_with_noise("graph-bake-unread");
+    let mut graph = baking(&dir, "sub/noise.ron", BakedMap::Albedo);
+    graph.add("new bake", NodeKind::GraphBake(GraphBake::default()));
+    let compiled = compile(&graph, &Default::default()).expect("the material compiles");
+    let file = veneer::graph::load(&dir.join("sub/noise.ron")).expect("loads");
+    let own = compile(&file, &Default::default()).expect("compiles");
+    assert_eq!(compiled.passes.passes.len(), own.passes.passes.len() + 1);
+    let _ = std::fs::remove_dir_all(&dir);
+}

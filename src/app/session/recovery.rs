@@ -107,6 +107,11 @@ pub fn read(path: &Path) -> Option<Recovery> {
     let mut recovery: Recovery = ron::from_str(&read_ron(path)?).ok()?;
     // Group nodes' pins are not stored: they come from the groups.
     crate::graph::group::resolve(&mut recovery.graph);
+    // The folder is not stored either: the graph's file paths are relative to its
+    // original file's.
+    if let Some(original) = &recovery.original {
+        recovery.graph.folder = crate::graph::Folder::of_file(original);
+    }
     recovery.file = path.to_path_buf();
     recovery.saved = std::fs::metadata(path).and_then(|m| m.modified()).ok();
     Some(recovery)
@@ -457,6 +462,19 @@ fn read_ron(path: &Path) -> Option<String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_recovered_graph_reads_its_files_from_its_original_folder() {
+        let dir =
+            std::env::temp_dir().join(format!("veneer-recovery-folder-{}", std::process::id()));
+        let file = dir.join("recovery.ron");
+        let graph = Graph::default();
+        let original = Some(PathBuf::from("/projects/walls/brick.ron"));
+        autosave(&file, &Recovery::written_now(original, &graph), None).expect("writes");
+        let recovered = read(&file).expect("reads");
+        assert_eq!(recovered.graph.folder.path(), Path::new("/projects/walls"));
+        let _ = std::fs::remove_dir_all(&dir);
+    }
 
     #[test]
     fn window_files_name_their_process() {
