@@ -139,7 +139,7 @@ impl LiveRenderer {
         }
         let blends = self.pipeline(quality).is_some_and(MeshPipeline::blends);
         // Buffers over the surface need a layout giving each point its own texels.
-        let own_texels = (material.passes.as_ref()).is_some_and(|passes| !passes.uploads_only());
+        let own_texels = rendered_passes;
         let mesh_key = format!("{mesh_key}{}", if own_texels { "#own-texels" } else { "" });
         if self
             .mesh

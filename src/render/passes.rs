@@ -80,17 +80,16 @@ fn texture_format(format: BufferFormat) -> wgpu::TextureFormat {
     }
 }
 
-/// What the buffers were last rendered for: domain, output size and time.
-type RenderedFor = (DomainKey, u32, u32);
-
 /// The most bytes of textures a material's passes may hold at once.
 pub const MAX_PASS_BYTES: u64 = 4 << 30;
 
-/// The buffers as last rendered: for what domain, and with which values of its
-/// parameter slots each pass.
+/// The buffers as last rendered: for what domain, time and output size, and with which
+/// values of its parameter slots each pass.
 struct Rendered {
-    domain: RenderedFor,
-    /// One texture per storage slot (see [`PassRenderer::storage`]).
+    domain: DomainKey,
+    time: u32,
+    size: u32,
+    /// One texture per storage slot (see [`PassRenderer::storage`]), for `size`.
     textures: Vec<wgpu::Texture>,
     values: Vec<Vec<[f32; 4]>>,
     /// Over a mesh: the nearest covered texel of each buffer size met so far.
@@ -242,29 +241,42 @@ impl PassRenderer {
         size: u32,
         time: f32,
     ) -> Result<(), RenderError> {
-        let key: RenderedFor = (domain.key(), size, time.to_bits());
+        let (key, time_bits) = (domain.key(), time.to_bits());
         let values = self
             .block
             .as_ref()
             .map(|block| block.values())
             .unwrap_or_default();
         let mut rendered = self.rendered.lock().expect("pass buffers");
+        // The textures are kept while the output size is: a new domain or time renders
+        // the passes that evaluate the domain again (and those reading them), never the
+        // uploads.
         let mut state = match rendered.take() {
-            Some(state) if state.domain == key => state,
+            Some(state) if state.size == size => state,
             _ => Rendered {
                 domain: key,
+                time: time_bits,
+                size,
                 textures: self.textures(gpu, size)?,
                 values: Vec::new(),
                 nearest: Vec::new(),
             },
         };
-        let fresh_domain = state.values.is_empty();
+        if state.domain != key {
+            state.nearest.clear();
+        }
+        let moved = (state.domain, state.time) != (key, time_bits);
+        (state.domain, state.time) = (key, time_bits);
+        let fresh = state.values.is_empty();
         let mut again = vec![false; self.passes.passes.len()];
         for (index, pass) in self.passes.passes.iter().enumerate() {
             let own = values.get(pass.slots.clone()).unwrap_or_default();
             let reads = pass.reads();
-            again[index] =
-                fresh_domain || state.values[index] != own || reads.iter().any(|&read| again[read]);
+            let evaluates_domain = matches!(pass.kind, PassKind::Surface { .. });
+            again[index] = fresh
+                || (moved && evaluates_domain)
+                || state.values[index] != own
+                || reads.iter().any(|&read| again[read]);
             if !again[index] {
                 continue;
             }

@@ -403,3 +403,38 @@ fn a_material_that_only_reads_files_draws_on_meshes_like_its_colour_would() {
         .albedo;
     assert!((albedo[0] - 200.0 / 255.0).abs() < 1e-6, "{albedo:?}");
 }
+
+#[test]
+fn a_new_time_renders_the_passes_again_but_not_the_uploads() {
+    // A file blurred: at a new time the blur's surface pass and its two axes render
+    // again; the file, which no time changes, is not uploaded again.
+    let mut graph = Graph::default();
+    let photo = graph.add(
+        "photo",
+        NodeKind::ImageFile(ImageFile {
+            path: "hand_mask.png".into(),
+            ..ImageFile::default()
+        }),
+    );
+    let blur = graph.add(
+        "soft",
+        NodeKind::Blur(veneer::nodes::Blur {
+            ty: ValueType::Float,
+            unit: veneer::nodes::RadiusUnit::Texels,
+        }),
+    );
+    graph.connect(photo, "value", blur, "image");
+    show(&mut graph, blur, "result", ValueType::Float);
+    graph.folder = veneer::graph::Folder(Some(crate::support::root("tests/data")));
+    let compiled = compile(&graph, &Default::default()).expect("compiles");
+    let uploads = (compiled.passes.passes.iter())
+        .filter(|pass| matches!(pass.kind, veneer::codegen::passes::PassKind::Bitmap { .. }))
+        .count() as u64;
+    assert_eq!(uploads, 1);
+    let flat = FlatRenderer::for_compiled(gpu(), &compiled).expect("pipelines");
+    flat.render(gpu(), TILE, 16, 0.0).expect("renders");
+    let all = flat.passes_rendered();
+    assert_eq!(all, compiled.passes.passes.len() as u64);
+    flat.render(gpu(), TILE, 16, 1.0).expect("renders");
+    assert_eq!(flat.passes_rendered() - all, all - uploads);
+}
