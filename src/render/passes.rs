@@ -1,9 +1,9 @@
 //! The GPU side of a multi-pass material: a pipeline per pass, and the buffers they
 //! render, in order, for one domain (a rectangle of the plane, or a mesh's UV layout),
-//! output size and time. The buffers are kept: a pass renders again only when the
-//! domain changes, a parameter slot it reads changes, or a buffer it reads rendered
-//! again. A buffer read only by the
-//! stage after it (the inside of a jump flood's chain of steps) lives in one of two
+//! output size and time. The buffers are kept while the output size is: a pass renders
+//! again only when it evaluates the domain and the domain or time changed, a parameter
+//! slot it reads changes, or a buffer it reads rendered again (files are uploaded once).
+//! A buffer read only by the stage after it (the inside of a jump flood's chain of steps) lives in one of two
 //! scratch textures that the chain's steps take turns with.
 
 use super::islands::Islands;
