@@ -46,7 +46,7 @@ fn wood_thumbnails(c: &mut Criterion) {
     let layout = AtlasLayout::for_tiles(tiles.len(), 8, TILE_PIXELS);
     let rect = placement(&graph);
     let mut renderer =
-        ThumbnailRenderer::new(&gpu, &module.source, module.params.len()).expect("pipeline");
+        ThumbnailRenderer::new(&gpu, &module.source, module.params.len(), None).expect("pipeline");
     let baked = veneer::codegen::compile(&graph, &Default::default()).expect("wood compiles");
     let flat = FlatRenderer::new(&gpu, baked.source()).expect("flat pipeline");
 
@@ -62,14 +62,14 @@ fn wood_thumbnails(c: &mut Criterion) {
     group.bench_function("refresh every tile", |b| {
         b.iter(|| {
             renderer
-                .render(&gpu, layout, rect, 0.0, &tiles)
+                .render(&gpu, layout, (rect, 0.0), &[], &tiles)
                 .expect("renders")
         })
     });
     group.bench_function("refresh after a value edit (3 tiles)", |b| {
         b.iter(|| {
             renderer
-                .render(&gpu, layout, rect, 0.0, &reached)
+                .render(&gpu, layout, (rect, 0.0), &[], &reached)
                 .expect("renders")
         })
     });

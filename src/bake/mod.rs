@@ -5,6 +5,7 @@
 //! encoded on other threads, so over a plane an EXR bake holds two bands at any size (a
 //! PNG bake also its 8- or 16-bit samples). UV bakes hold the whole map, to pad its islands.
 
+pub mod bitmap_seams;
 mod encode;
 mod exr_rle;
 mod gltf;
@@ -131,6 +132,13 @@ pub enum BakeError {
         tile::SEAM_TOLERANCE
     )]
     NotTileable(Vec<(Map, tile::Seams)>),
+    /// Buffers that wrap (so every map reads them across the tile's edges as if they
+    /// went on) but do not repeat over the tile: their seam lies inside the maps.
+    #[error(
+        "the maps do not tile: {}; the buffers wrap across the tile's edges, so their seams are inside every map. Give every noise upstream of them a period (in cells) that its scale spans a whole number of times over the tile; nothing was baked",
+        .0.iter().map(|seam| format!("the buffer of {} differs by up to {} left/right and {} top/bottom from itself a tile on", seam.pass, tile::seam_text(seam.left_right), tile::seam_text(seam.top_bottom))).collect::<Vec<_>>().join(", ")
+    )]
+    BuffersNotTileable(Vec<crate::render::WrapSeam>),
     /// Whoever asked for the export took it back; nothing was written.
     #[error("cancelled; nothing was written")]
     Cancelled,
@@ -280,6 +288,13 @@ pub fn bake(
             let failing = edges.failing(&settings.maps);
             if !failing.is_empty() {
                 return Err(BakeError::NotTileable(failing));
+            }
+            let buffers = flat.wrap_seams(gpu, *rect, time)?;
+            let failing: Vec<_> = (buffers.into_iter())
+                .filter(|seam| seam.left_right.max(seam.top_bottom) > tile::SEAM_TOLERANCE)
+                .collect();
+            if !failing.is_empty() {
+                return Err(BakeError::BuffersNotTileable(failing));
             }
             Some(edges)
         }

@@ -3,6 +3,7 @@
 //! linear data), checked against the limits, and kept in a small cache so that the
 //! editor's checks and renders after each edit do not decode the same file again.
 
+mod edges;
 mod path;
 
 pub use path::{relative_to, resolve};

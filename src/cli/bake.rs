@@ -197,6 +197,16 @@ pub fn run(args: BakeArgs) -> Result<(), Failure> {
             (path, stem, compiled)
         })
         .collect();
+    if let veneer::bake::BakeSurface::Tile(_) = settings.surface {
+        for (path, _, compiled) in &compiled {
+            for seamed in compiled
+                .iter()
+                .flat_map(veneer::bake::bitmap_seams::seamed_bitmaps)
+            {
+                note(format!("warning: {}: {seamed}", path.display()))?;
+            }
+        }
+    }
     let gpu = GpuContext::new()?;
     let bars = MultiProgress::new();
     let style = ProgressStyle::with_template("{prefix:>16} [{bar:40}] {pos}/{len} tiles {elapsed}")

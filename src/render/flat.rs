@@ -166,6 +166,21 @@ impl FlatRenderer {
             .map_or(0, |passes| passes.buffer_bytes(size))
     }
 
+    /// The seams of the wrapped surface passes last rendered over `rect` at `time` (by
+    /// a render of `rect`; see [`PassRenderer::wrap_seams`]): none for a single-pass
+    /// material.
+    pub fn wrap_seams(
+        &self,
+        gpu: &GpuContext,
+        rect: FlatRect,
+        time: f32,
+    ) -> Result<Vec<super::WrapSeam>, RenderError> {
+        match &self.passes {
+            Some(passes) => passes.wrap_seams(gpu, rect, time),
+            None => Ok(Vec::new()),
+        }
+    }
+
     /// How many passes have rendered so far (0 for a single-pass material).
     pub fn passes_rendered(&self) -> u64 {
         self.passes

@@ -38,6 +38,7 @@ pub use mesh_view::{
     Backdrop, COLOR_FORMAT, DEFAULT_KEY_LIGHT, MeshPipeline, MeshTarget, MeshView, Projection,
     Relief,
 };
+pub use passes::seams::WrapSeam;
 pub use passes::{PassDomain, PassRenderer};
 pub use readback::read_texture;
 pub use tessellation::{Tessellated, tessellate};

@@ -6,6 +6,8 @@
 //! A buffer read only by the stage after it (the inside of a jump flood's chain of steps) lives in one of two
 //! scratch textures that the chain's steps take turns with.
 
+pub mod seams;
+
 use super::islands::Islands;
 use super::params::ParamBlock;
 use super::{FlatRect, GpuContext, GpuMesh, RenderError, shader_source};
@@ -399,33 +401,7 @@ impl PassRenderer {
             Some(_) => self.mesh_pipeline(gpu, index)?,
             None => (self.pipelines[index].as_ref()).expect("a rendered pass has a pipeline"),
         };
-        let mut groups = Vec::new();
-        if let PassKind::Surface { .. } = pass.kind {
-            let view = self.write_view(gpu, domain, texture, time);
-            groups.push((
-                0,
-                gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-                    label: Some("pass view"),
-                    layout: &pipeline.get_bind_group_layout(0),
-                    entries: &[wgpu::BindGroupEntry {
-                        binding: 0,
-                        resource: view.as_entire_binding(),
-                    }],
-                }),
-            ));
-        }
-        if let Some(block) = (self.block.as_ref())
-            .filter(|_| pass.module().is_some_and(|module| module.binds_params))
-        {
-            groups.push((1, block.bind_group(gpu, pipeline)));
-        }
-        let reads = pass.reads();
-        if !reads.is_empty() {
-            groups.push((
-                2,
-                bind_buffers(gpu, pipeline, &self.textures_of(textures, &reads)),
-            ));
-        }
+        let groups = self.bind_groups(gpu, index, pipeline, (domain, time), texture, textures);
         let scratch = over_mesh.map(|_| {
             super::plain_texture(
                 &gpu.device,
@@ -469,6 +445,50 @@ impl PassRenderer {
         }
         self.renders.fetch_add(1, Ordering::Relaxed);
         gpu.take_errors()
+    }
+
+    /// The bind groups pass `index` draws into `target` with through `pipeline`: the
+    /// view of `domain` at a time (a surface pass; written into the view uniform, so
+    /// the draw is submitted before the next view is written), the parameter block, and
+    /// the buffers it reads among `textures`.
+    fn bind_groups(
+        &self,
+        gpu: &GpuContext,
+        index: usize,
+        pipeline: &wgpu::RenderPipeline,
+        (domain, time): (PassDomain<'_>, f32),
+        target: &wgpu::Texture,
+        textures: &[wgpu::Texture],
+    ) -> Vec<(u32, wgpu::BindGroup)> {
+        let pass = &self.passes.passes[index];
+        let mut groups = Vec::new();
+        if let PassKind::Surface { .. } = pass.kind {
+            let view = self.write_view(gpu, domain, target, time);
+            groups.push((
+                0,
+                gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some("pass view"),
+                    layout: &pipeline.get_bind_group_layout(0),
+                    entries: &[wgpu::BindGroupEntry {
+                        binding: 0,
+                        resource: view.as_entire_binding(),
+                    }],
+                }),
+            ));
+        }
+        if let Some(block) = (self.block.as_ref())
+            .filter(|_| pass.module().is_some_and(|module| module.binds_params))
+        {
+            groups.push((1, block.bind_group(gpu, pipeline)));
+        }
+        let reads = pass.reads();
+        if !reads.is_empty() {
+            groups.push((
+                2,
+                bind_buffers(gpu, pipeline, &self.textures_of(textures, &reads)),
+            ));
+        }
+        groups
     }
 
     /// Writes the view of a surface pass over `domain` into `target` at `time`; returns

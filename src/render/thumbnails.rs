@@ -3,9 +3,15 @@
 //! parameter block (the editor's atlas graph uses it to pick which node the tile shows),
 //! so a parameter edit rewrites buffers and never rebuilds the pipeline, and only the
 //! tiles asked for are drawn (viewport and scissor per tile); the others keep their pixels.
+//! A module that reads buffers has its passes rendered first, over the rectangle the
+//! tiles sample at the preview's pass size, and again only where a parameter they read
+//! changed (see [`PassRenderer`]); every tile reads the same buffers.
 
+use super::params::ParamBlock;
 use super::readback::Readback;
-use super::{FlatRect, GpuContext, RenderError, shader_source};
+use super::{FlatRect, GpuContext, PassDomain, PassRenderer, RenderError, shader_source};
+use crate::codegen::passes::Passes;
+use std::sync::Arc;
 
 /// The atlas texture's format: 8-bit RGBA, written without colour-space conversion.
 const ATLAS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
@@ -65,14 +71,18 @@ pub struct ThumbnailRenderer {
     /// Parameter slots of the module (one `vec4f` each).
     slots: usize,
     atlas: Option<(AtlasLayout, wgpu::Texture, Readback)>,
+    /// The module's passes and the parameter block they read, when it reads buffers.
+    passes: Option<(PassRenderer, Option<Arc<ParamBlock>>)>,
 }
 
 impl ThumbnailRenderer {
-    /// Builds the pipeline for a uniform-mode material module with `slots` parameters.
+    /// Builds the pipeline for a uniform-mode material module with `slots` parameters,
+    /// and those of its `passes` when it reads buffers.
     pub fn new(
         gpu: &GpuContext,
         material_wgsl: &str,
         slots: usize,
+        passes: Option<&Passes>,
     ) -> Result<ThumbnailRenderer, RenderError> {
         let source = shader_source(material_wgsl, ENTRY_POINTS);
         let module = gpu.shader("node thumbnails", &source)?;
@@ -100,27 +110,47 @@ impl ThumbnailRenderer {
                 resource: view_buffer.as_entire_binding(),
             }],
         });
+        let passes = match passes {
+            Some(passes) => {
+                let block = ParamBlock::new(gpu, slots).map(Arc::new);
+                Some((PassRenderer::new(gpu, passes, block.as_ref())?, block))
+            }
+            None => None,
+        };
         Ok(ThumbnailRenderer {
             pipeline,
             view_buffer,
             view_group,
             slots,
             atlas: None,
+            passes,
         })
     }
 
     /// Draws `tiles` (tile index and that tile's parameter values, `slots` of them) into
     /// the atlas of `layout`, sampling `rect` at `time`, and returns the whole atlas as
     /// RGBA8 rows from the top-left. Tiles not drawn keep what they last showed (an
-    /// atlas of a new layout starts black).
+    /// atlas of a new layout starts black). The passes, if any, render first with the
+    /// values `shared` (what every tile's values hold in the slots the passes read).
     pub fn render(
         &mut self,
         gpu: &GpuContext,
         layout: AtlasLayout,
-        rect: FlatRect,
-        time: f32,
+        (rect, time): (FlatRect, f32),
+        shared: &[[f32; 4]],
         tiles: &[(usize, Vec<[f32; 4]>)],
     ) -> Result<Vec<u8>, RenderError> {
+        let buffers = match &self.passes {
+            Some((passes, block)) => {
+                if let Some(block) = block {
+                    block.write(gpu, shared);
+                }
+                passes.render(gpu, PassDomain::Flat(rect), super::PREVIEW_PASS_SIZE, time)?;
+                let reads = passes.reads();
+                (!reads.is_empty()).then(|| passes.bind_group(gpu, &self.pipeline, reads))
+            }
+            None => None,
+        };
         let size = layout.size();
         if self.atlas.as_ref().is_none_or(|(old, ..)| *old != layout) {
             let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
@@ -200,6 +230,9 @@ impl ThumbnailRenderer {
             });
             pass.set_pipeline(&self.pipeline);
             pass.set_bind_group(0, &self.view_group, &[]);
+            if let Some(buffers) = &buffers {
+                pass.set_bind_group(2, buffers, &[]);
+            }
             for ((index, _), group) in tiles.iter().zip(&groups) {
                 let (x, y) = layout.origin(*index);
                 let tile = layout.tile;

@@ -3,7 +3,7 @@
 //! parameter edit redraws only the tiles it reaches, without recompiling.
 
 use crate::support::{
-    editor, flat_wood_editor, press, retype_drag_value, scratch, screen, select_node,
+    editor, flat_wood_editor, press, retype_drag_value, scratch, screen, select_node, window_image,
 };
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
@@ -422,4 +422,84 @@ fn inside_a_group_each_node_shows_its_output_in_the_groups_first_instance() {
     harness.run_steps(4);
     assert!(harness.state().group_path().is_empty());
     tile_of(&mut harness, "wood");
+}
+
+#[test]
+fn nodes_reading_buffers_show_them_over_the_unit_tile_as_the_flat_view_draws_them() {
+    let source =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("graphs/texture/blurred_noise.ron");
+    let graph = veneer::graph::load(&source).unwrap();
+    let mut harness = open("thumbnail-buffers", &graph);
+    // The blur, what reads it, and the height's normal (a stage over the noise's buffer).
+    for title in ["soft", "tint", "relief"] {
+        tile_of(&mut harness, title);
+    }
+    // The material's albedo is the tint: its tile is the material drawn flat over the
+    // unit tile, with its passes rendered at the preview's pass size.
+    let tint = tile_of(&mut harness, "tint");
+    let gpu = veneer::render::GpuContext::new().unwrap();
+    let compiled = veneer::codegen::compile(&graph, &Default::default()).unwrap();
+    let mut flat = veneer::render::FlatRenderer::for_compiled(&gpu, &compiled).unwrap();
+    flat.set_pass_size(Some(veneer::render::PREVIEW_PASS_SIZE));
+    let drawn = flat
+        .render(&gpu, veneer::bake::UNIT_TILE, TILE_PIXELS, 0.0)
+        .unwrap();
+    let worst = tint
+        .iter()
+        .zip(&drawn)
+        .flat_map(|(got, want)| {
+            (0..3).map(move |k| got[k].abs_diff((255.0 * want[k].clamp(0.0, 1.0)).round() as u8))
+        })
+        .max();
+    assert_eq!(tint.len(), drawn.len());
+    assert!(worst <= Some(2), "off by {worst:?} from the flat render");
+}
+
+#[test]
+fn a_texture_graph_shows_its_unit_tile_beside_the_mesh_and_a_single_pass_one_does_not() {
+    let source =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("graphs/texture/blurred_noise.ron");
+    let mut harness = editor(&scratch("tile-beside"), Some(source));
+    let started = std::time::Instant::now();
+    // The tile is drawn once the main preview is: wait for its picture under the label.
+    loop {
+        harness.step();
+        let strip = harness.query_by_label("unit tile").map(|label| {
+            let scale = harness.ctx.pixels_per_point();
+            let rect = label.rect();
+            (
+                rect.left() * scale,
+                (rect.top() - 24.0) * scale,
+                16.0 * scale,
+            )
+        });
+        if let Some((x, y, side)) = strip {
+            let image = window_image(&mut harness);
+            let lightness: Vec<u32> = (0..side as u32)
+                .flat_map(|dy| (0..side as u32).map(move |dx| (x as u32 + dx, y as u32 + dy)))
+                .map(|(x, y)| {
+                    image.get_pixel(x, y).0[..3]
+                        .iter()
+                        .map(|&c| u32::from(c))
+                        .sum()
+                })
+                .collect();
+            let spread = lightness.iter().max().unwrap() - lightness.iter().min().unwrap();
+            // The blurred noise's ramp runs dark to light brown: no flat background.
+            if spread > 30 {
+                break;
+            }
+        }
+        assert!(
+            started.elapsed() < std::time::Duration::from_secs(120),
+            "no tile beside the mesh"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
+    let mut wood = editor(&scratch("tile-beside-wood"), None);
+    settle(&mut wood);
+    assert!(
+        wood.query_by_label("unit tile").is_none(),
+        "wood has no passes"
+    );
 }

@@ -1,7 +1,8 @@
 //! Every preset loads, checks, compiles to its golden WGSL, saves byte-identically, and
-//! renders (flat and on its mesh) like its snapshot, through `veneer::snapshot`.
+//! renders (flat and on its mesh) like its snapshot, through `veneer::snapshot`; the
+//! texture graphs (materials with passes) render like theirs.
 
-use crate::support::{flat_rgb8, presets, root, snapshot_folder, stem, updating};
+use crate::support::{flat_rgb8, presets, root, snapshot_folder, stem, texture_graphs, updating};
 use veneer::render::{FlatRect, View};
 use veneer::snapshot::{Settings, assert_matches};
 
@@ -45,13 +46,13 @@ fn presets_save_byte_identically() {
     }
 }
 
-#[test]
-fn presets_render_like_their_snapshots_flat_and_on_their_mesh() {
-    let folder = snapshot_folder();
-    for path in presets() {
-        let name = stem(&path);
+/// Each of `graphs` renders like its snapshots in `folder`: on its mesh (`NAME.png`)
+/// and flat (`flat/NAME.png`).
+fn assert_snapshots(graphs: &[std::path::PathBuf], folder: &std::path::Path) {
+    for path in graphs {
+        let name = stem(path);
         assert_matches(
-            &path,
+            path,
             folder.join(format!("{name}.png")),
             &Settings::default(),
         );
@@ -59,8 +60,18 @@ fn presets_render_like_their_snapshots_flat_and_on_their_mesh() {
             view: View::PreviewFlat,
             ..Settings::default()
         };
-        assert_matches(&path, folder.join(format!("flat/{name}.png")), &flat);
+        assert_matches(path, folder.join(format!("flat/{name}.png")), &flat);
     }
+}
+
+#[test]
+fn presets_render_like_their_snapshots_flat_and_on_their_mesh() {
+    assert_snapshots(&presets(), &snapshot_folder());
+}
+
+#[test]
+fn texture_graphs_render_like_their_snapshots_flat_and_on_their_mesh() {
+    assert_snapshots(&texture_graphs(), &snapshot_folder().join("texture"));
 }
 
 #[test]

@@ -418,3 +418,134 @@ fn a_domain_warp_and_a_noise_bump_with_periods_tile_too() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The blurred-noise preset with its noise's period set to `period` cells (0: none).
+fn blurred_noise_with_period(period: u32) -> Graph {
+    let mut graph = veneer::graph::load(&crate::support::root("graphs/texture/blurred_noise.ron"))
+        .expect("the preset loads");
+    for node in &mut graph.nodes {
+        if let NodeKind::Fbm(fbm) = &mut node.kind {
+            fbm.period = period;
+        }
+    }
+    graph
+}
+
+#[test]
+fn a_wrapped_buffer_that_does_not_repeat_is_refused_naming_its_pass() {
+    let dir = temp_dir("tile-buffer-seam");
+    let settings = tile_settings(BakeSurface::Tile(None), 128, vec![Map::Albedo, Map::Normal]);
+    // The material itself reads only wrapped buffers: past the tile's edges it reads
+    // them from the opposite side, so only the buffer's own check sees the seam.
+    match bake(
+        gpu(),
+        &compiled(&blurred_noise_with_period(0)),
+        &settings,
+        &dir.join("a"),
+        |_, _| true,
+    ) {
+        Err(error @ BakeError::BuffersNotTileable(_)) => {
+            let BakeError::BuffersNotTileable(seams) = &error else {
+                unreachable!()
+            };
+            assert_eq!(seams.len(), 1, "{seams:?}");
+            assert!(seams[0].pass.contains("'grain'"), "{}", seams[0].pass);
+            assert!(
+                seams[0].left_right > 0.01 && seams[0].top_bottom > 0.01,
+                "{seams:?}"
+            );
+            assert!(error.to_string().contains("nothing was baked"), "{error}");
+        }
+        other => panic!(
+            "a noise without a period, blurred: {:?}",
+            other.map(|m| m.len())
+        ),
+    }
+    assert_eq!(
+        std::fs::read_dir(&dir).unwrap().count(),
+        0,
+        "nothing written"
+    );
+    let maps = bake(
+        gpu(),
+        &compiled(&blurred_noise_with_period(6)),
+        &settings,
+        &dir.join("b"),
+        |_, _| true,
+    )
+    .expect("with its period the preset tiles");
+    assert_eq!(maps.len(), 2);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_photo_read_as_it_is_is_named_by_a_tile_bake_and_make_tileable_clears_it() {
+    use veneer::bake::bitmap_seams::{EDGE_RATIO_TOLERANCE, seamed_bitmaps};
+    let source = crate::support::root("graphs/texture/gravel.ron");
+    let gravel = veneer::graph::load(&source).expect("the preset loads");
+    assert_eq!(
+        seamed_bitmaps(&compiled(&gravel)),
+        [],
+        "through Make tileable"
+    );
+    // The same graph with the photo wired where Make tileable's result was.
+    let mut raw = gravel.clone();
+    let photo = raw
+        .nodes
+        .iter()
+        .find(|n| matches!(n.kind, NodeKind::ImageFile(_)))
+        .unwrap()
+        .id;
+    let seamless = raw
+        .nodes
+        .iter()
+        .find(|n| matches!(n.kind, NodeKind::MakeTileable(_)))
+        .unwrap()
+        .id;
+    for wire in &mut raw.wires {
+        if wire.from.node == seamless {
+            wire.from = veneer::graph::PinRef::new(photo, "value");
+        }
+    }
+    let seamed = seamed_bitmaps(&compiled(&raw));
+    assert_eq!(seamed.len(), 1, "{seamed:?}");
+    assert!(seamed[0].path.ends_with("gravel.jpg"));
+    assert!(
+        seamed[0].ratios.iter().all(|&r| r > EDGE_RATIO_TOLERANCE),
+        "{seamed:?}"
+    );
+    // The command line warns before it bakes (the graph beside a copy of the photo).
+    let dir = temp_dir("tile-raw-photo");
+    std::fs::copy(
+        crate::support::root("assets/photos/gravel.jpg"),
+        dir.join("gravel.jpg"),
+    )
+    .unwrap();
+    for node in &mut raw.nodes {
+        if let NodeKind::ImageFile(image) = &mut node.kind {
+            image.path = "gravel.jpg".into();
+        }
+    }
+    let path = dir.join("raw.ron");
+    veneer::graph::save(&raw, &path).unwrap();
+    let output = run_veneer(&[
+        "bake",
+        path.to_str().unwrap(),
+        "--tile",
+        "--size",
+        "64",
+        "--maps",
+        "albedo",
+        "-o",
+        dir.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(output.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("warning:")
+            && stderr.contains("gravel.jpg")
+            && stderr.contains("Make tileable"),
+        "{stderr}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

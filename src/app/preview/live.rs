@@ -157,6 +157,14 @@ pub(in crate::app) fn slot_values(
 }
 
 impl LiveMaterial {
+    /// Whether the last material that compiled renders passes over its domain (not
+    /// only uploads): a texture graph, drawn flat over the unit tile (see
+    /// [`crate::render::LiveRenderer`]), as its thumbnails are too.
+    pub fn renders_passes(&self) -> bool {
+        (self.compiled.as_ref())
+            .is_some_and(|compiled| !compiled.passes.is_empty() && !compiled.passes.uploads_only())
+    }
+
     /// A live material that moves its parameters to a storage buffer when they pass
     /// what a uniform block holds, so that graphs of any size compile for the preview
     /// ([`ParamMode::Storage`]).

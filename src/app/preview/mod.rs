@@ -28,10 +28,10 @@ pub(in crate::app) struct Preview {
     /// The pictures of the preview and of the selected node, drawn on another thread.
     pub previews: state::Previews,
     /// The material handed to each preview slot (main, node), kept between frames.
-    pub frames: [FrameCache; 2],
-    /// The selected node's output as a graph of its own, for the graph revision and
-    /// node it was made for.
-    pub probe: Option<((u64, crate::graph::NodeId), Option<Graph>)>,
+    pub frames: [FrameCache; worker::Slot::ALL.len()],
+    /// The selected node's output as a graph of its own, for the graph revision, node
+    /// and square (the unit tile or not) it was made for.
+    pub probe: Option<((u64, crate::graph::NodeId, bool), Option<Graph>)>,
     /// The preview mesh's distance fields: solving, picking sources, viewing.
     pub fields: fields::FieldState,
     /// The field view's material (a colour scale with isolines of one field).

@@ -13,15 +13,23 @@ impl VeneerApp {
         if !self.preview.previews.available() {
             return;
         }
-        let key = (self.session.revision.number, self.canvas.snarl[node].id);
+        let unit_tile = self.preview.live.renders_passes();
+        let key = (
+            self.session.revision.number,
+            self.canvas.snarl[node].id,
+            unit_tile,
+        );
         if self
             .preview
             .probe
             .as_ref()
             .is_none_or(|(seen, _)| *seen != key)
         {
-            let probe = probe::probe_graph(&self.session.document.graph, key.1);
-            if let Some(probe) = &probe {
+            let mut probe = probe::probe_graph(&self.session.document.graph, key.1);
+            if let Some(probe) = &mut probe {
+                if unit_tile {
+                    probe::over_the_unit_tile(probe);
+                }
                 self.preview.thumbnail.update(probe);
             }
             self.preview.probe = Some((key, probe));
@@ -41,11 +49,40 @@ impl VeneerApp {
                 ui,
                 &self.preview.state,
                 &mut self.preview.previews,
-                material,
+                (Slot::Node, material),
                 size,
             );
-            ui.weak("this node's output,\nflat over the preview square");
+            ui.weak(if unit_tile {
+                "this node's output,\nflat over the unit tile"
+            } else {
+                "this node's output,\nflat over the preview square"
+            });
         });
+    }
+
+    /// A texture graph's material flat over the unit tile, `side` points square, drawn
+    /// again when no pointer button is held (a drag redraws the mesh's drafts alone).
+    fn tile_beside_the_mesh(&mut self, ui: &mut Ui, side: f32) {
+        let dragging = ui.input(|input| input.pointer.any_down());
+        let material = (!dragging)
+            .then(|| {
+                material_frame(
+                    &self.preview.live,
+                    &mut self.preview.frames[Slot::Tile as usize],
+                    &self.session.document.graph,
+                    self.session.revision.number,
+                )
+            })
+            .flatten();
+        state::thumbnail(
+            ui,
+            &self.preview.state,
+            &mut self.preview.previews,
+            (Slot::Tile, material),
+            egui::vec2(side, side),
+        )
+        .on_hover_text("the unit tile, flat (the 3×3 tile view: flat albedo)");
+        ui.weak("unit tile");
     }
 
     pub(in crate::app) fn preview_panel(&mut self, ui: &mut Ui) {
@@ -111,15 +148,35 @@ impl VeneerApp {
             }),
         };
         if self.preview.previews.available() {
-            let response = state::show(
-                ui,
-                &mut self.preview.state,
-                &mut self.preview.previews,
-                material,
-                egui::vec2(width, width.min(ui.available_height() * 0.55)),
-            );
-            self.pick_source(&response);
-            self.fields_warning(ui, response.rect);
+            let height = width.min(ui.available_height() * 0.55);
+            // A texture graph on a mesh: its unit tile beside it.
+            let tile = self.preview.live.renders_passes()
+                && !self.preview.state.flat
+                && self.preview.fields.view.is_none();
+            let side = if tile {
+                (height * 0.5).min(width * 0.3)
+            } else {
+                0.0
+            };
+            ui.horizontal_top(|ui| {
+                let mesh_width = if tile {
+                    width - side - ui.spacing().item_spacing.x
+                } else {
+                    width
+                };
+                let response = state::show(
+                    ui,
+                    &mut self.preview.state,
+                    &mut self.preview.previews,
+                    material,
+                    egui::vec2(mesh_width, height),
+                );
+                self.pick_source(&response);
+                self.fields_warning(ui, response.rect);
+                if tile {
+                    ui.vertical(|ui| self.tile_beside_the_mesh(ui, side));
+                }
+            });
         } else {
             ui.label("(no GPU: preview unavailable)");
         }

@@ -24,6 +24,13 @@ pub fn probe_graph(graph: &Graph, node: NodeId) -> Option<Graph> {
     Some(probe)
 }
 
+/// Places `probe`'s preview square on the unit tile (x and z from 0 to 1), where a
+/// texture graph's flat view and thumbnails show it.
+pub fn over_the_unit_tile(probe: &mut Graph) {
+    probe.preview.center = (0.5, 0.0, 0.5);
+    probe.preview.size = 0.5;
+}
+
 /// The part of `graph` made of `keep` (the nodes some outputs read) and its `material`
 /// node (see [`Graph::part`]): what a thumbnail needs, however big the graph is.
 fn part_with(graph: &Graph, mut keep: FxHashSet<NodeId>, material: NodeId) -> Graph {

@@ -237,10 +237,10 @@ struct Shown {
     materials_built: u64,
 }
 
-/// Both previews, drawn by one thread with its own device.
+/// The previews (see [`Slot`]), drawn by one thread with its own device.
 pub struct Previews {
     worker: Option<Worker>,
-    shown: [Shown; 2],
+    shown: [Shown; Slot::ALL.len()],
     next_id: u64,
 }
 
@@ -388,12 +388,14 @@ pub fn show(
     response
 }
 
-/// Shows a node's thumbnail: the flat view of `state`'s placement, not interactive.
+/// Shows a flat picture in `slot` (a node's thumbnail, or the tile beside the mesh): the
+/// flat view of `state`'s placement, not interactive. Without a `material` it shows
+/// what it last drew.
 pub fn thumbnail(
     ui: &mut Ui,
     state: &PreviewState,
     previews: &mut Previews,
-    material: Option<MaterialFrame>,
+    (slot, material): (Slot, Option<MaterialFrame>),
     size: egui::Vec2,
 ) -> egui::Response {
     let mut flat = PreviewState::for_graph(&Preview::default());
@@ -403,14 +405,7 @@ pub fn thumbnail(
     flat.view.target = [0.0; 3];
     let (rect, response) = ui.allocate_exact_size(size, Sense::hover());
     let request = material.map(|material| request(ui, &flat, material, rect));
-    draw(
-        ui,
-        previews,
-        Slot::Node,
-        request,
-        rect,
-        flat.view.background,
-    );
+    draw(ui, previews, slot, request, rect, flat.view.background);
     response
 }
 

@@ -21,6 +21,13 @@ pub enum Slot {
     Main = 0,
     /// The selected node's output, flat.
     Node = 1,
+    /// A texture graph's material over the unit tile, flat, beside the mesh.
+    Tile = 2,
+}
+
+impl Slot {
+    /// Every slot, in the order waiting requests are drawn.
+    pub const ALL: [Slot; 3] = [Slot::Main, Slot::Node, Slot::Tile];
 }
 
 /// The mesh a preview draws.
@@ -109,7 +116,7 @@ pub struct Drawn {
 /// Requests waiting, one per slot, and whether the UI has gone.
 #[derive(Default)]
 struct Mailbox {
-    waiting: [Option<(u64, Request)>; 2],
+    waiting: [Option<(u64, Request)>; Slot::ALL.len()],
     closed: bool,
 }
 
@@ -171,8 +178,8 @@ enum Task {
 
 fn run(mailbox: &(Mutex<Mailbox>, Condvar), drawn: &Sender<Drawn>, wake: impl Fn()) {
     let gpu = GpuContext::new().map_err(|error| error.to_string());
-    let mut renderers = [LiveRenderer::default(), LiveRenderer::default()];
-    let mut primitives: [Option<(String, Arc<Mesh>)>; 2] = [None, None];
+    let mut renderers: [LiveRenderer; Slot::ALL.len()] = Default::default();
+    let mut primitives: [Option<(String, Arc<Mesh>)>; Slot::ALL.len()] = Default::default();
     let mut refined = Refinements::default();
     let mut lit: Option<(EnvironmentChoice, Arc<EnvironmentMaps>)> = None;
     let mut idle: Option<(Slot, LiveMaterialCode)> = None;
@@ -227,7 +234,7 @@ fn next_task(
         if waiting.closed {
             return None;
         }
-        for slot in [Slot::Main, Slot::Node] {
+        for slot in Slot::ALL {
             if let Some((id, request)) = waiting.waiting[slot as usize].take() {
                 return Some(Task::Draw(slot, id, request));
             }

@@ -241,6 +241,12 @@ impl VeneerApp {
             crate::codegen::compile(&self.session.document.graph, &CompileOptions::default())
                 .map_err(|error| error.to_string())?;
         settings.time = self.preview.state.view.time;
+        let seamed = match settings.surface {
+            crate::bake::BakeSurface::Tile(_) => {
+                crate::bake::bitmap_seams::seamed_bitmaps(&compiled)
+            }
+            _ => Vec::new(),
+        };
         let stems = [stem.as_path()];
         crate::bake::check_outputs(&stems, &settings).map_err(|error| error.to_string())?;
         self.start_export(ctx, &stem.clone(), move |report| {
@@ -259,7 +265,11 @@ impl VeneerApp {
                 let worst = crate::bake::tile::seam_text(worst);
                 format!("; they tile (opposite edges differ by up to {worst})")
             });
-            Ok(format!("exported {}{tiles}", names.join(", ")))
+            let warnings: String = seamed
+                .iter()
+                .map(|seamed| format!("; but {seamed}"))
+                .collect();
+            Ok(format!("exported {}{tiles}{warnings}", names.join(", ")))
         })
     }
 }

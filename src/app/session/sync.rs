@@ -203,6 +203,7 @@ impl VeneerApp {
         let stamp = crate::app::thumbnails::Stamp {
             revision,
             structure: self.session.revision.structure,
+            unit_tile: self.preview.live.renders_passes(),
         };
         self.thumbnails
             .update(ctx, graph, stamp, hovered, time, view);

@@ -83,11 +83,14 @@ struct LeftOut {
 }
 
 /// Where the edited graph stands: its revision, bumped on every change, and its
-/// structure's, bumped when a change may change the code (the app's `Revision`).
+/// structure's, bumped when a change may change the code (the app's `Revision`); and
+/// whether its material renders passes (see [`LiveMaterial::renders_passes`]): then the
+/// tiles show the unit tile rather than the preview square.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Stamp {
     pub revision: u64,
     pub structure: u64,
+    pub unit_tile: bool,
 }
 
 /// What the tiles depend on besides the drawing thread: the graph's revision, the
@@ -96,6 +99,7 @@ pub struct Stamp {
 struct Seen {
     revision: u64,
     time: u32,
+    unit_tile: bool,
     pins: Vec<PinRef>,
 }
 
@@ -226,6 +230,7 @@ impl Thumbnails {
         let seen = Seen {
             revision: stamp.revision,
             time: time.to_bits(),
+            unit_tile: stamp.unit_tile,
             pins: self.candidates(graph, hovered, on_screen),
         };
         if !received && !compiled && self.seen.as_ref() == Some(&seen) {
@@ -237,8 +242,8 @@ impl Thumbnails {
             self.left_out.structure = stamp.structure;
             self.left_out.broken.clear();
         }
-        // A node that fails to compile, or reads a buffer, is left out (with what reads
-        // it) and the rest compiled again; each round leaves out at least one more node.
+        // A node that fails to compile is left out (with what reads it) and the rest
+        // compiled again; each round leaves out at least one more node.
         let atlas = loop {
             let (pins, upstream) = self.wanted(graph, &candidates);
             let Some(atlas) = atlas_graph_reading(graph, &pins, upstream) else {
@@ -250,12 +255,7 @@ impl Thumbnails {
                 // Tiles are drawn once the code for them is in.
                 return;
             }
-            let mut failed: Vec<NodeId> = self.atlas.errors.keys().flatten().copied().collect();
-            // Image nodes read buffers, which the atlas does not render: they are left
-            // out like nodes that fail, with what reads them.
-            if let Some(compiled) = &self.atlas.compiled {
-                failed.extend(compiled.passes.sampled.keys().map(|(node, _)| *node));
-            }
+            let failed: Vec<NodeId> = self.atlas.errors.keys().flatten().copied().collect();
             if failed.is_empty()
                 || failed
                     .iter()
@@ -268,7 +268,7 @@ impl Thumbnails {
         let Some(compiled) = &self.atlas.compiled else {
             return;
         };
-        if !self.atlas.errors.is_empty() || !compiled.passes.is_empty() {
+        if !self.atlas.errors.is_empty() {
             return;
         }
         self.tiles.lay_out(atlas.pins);
@@ -279,7 +279,11 @@ impl Thumbnails {
         }
         // (The atlas holds everything upstream of its pins, wires included.)
         let upstream = crate::app::thumbnails::keys::upstream_hashes(&atlas.graph, time);
-        let rect = placement(graph);
+        let rect = if stamp.unit_tile {
+            crate::bake::UNIT_TILE
+        } else {
+            placement(graph)
+        };
         let slots = &compiled.module.params;
         let values = crate::app::preview::live::slot_values(&atlas.graph, slots);
         let generation = self.atlas.generation;
@@ -298,13 +302,16 @@ impl Thumbnails {
             .drawing
             .worker
             .get_or_insert_with(|| Worker::start(move || wake.request_repaint()));
+        let passes = &compiled.passes;
         worker.send(Job {
             generation: self.atlas.generation,
             wgsl: Arc::from(compiled.source()),
             slots: slots.len(),
+            passes: (!passes.is_empty()).then(|| Arc::new(passes.clone())),
             layout: self.tiles.layout(),
             rect,
             time,
+            shared: tile_params(&values, slots, &self.selectors, usize::MAX),
             tiles,
         });
         self.drawing.in_flight = true;
@@ -374,7 +381,7 @@ impl Thumbnails {
 
 /// The parameter values that make the atlas module show tile `index`: `values` (the
 /// atlas graph's, see [`crate::codegen::param_values`]) with every selector's factor 0 but tile
-/// `index`'s, which is 1.
+/// `index`'s, which is 1 (an index past the last tile: every selector 0).
 pub fn tile_params(
     values: &[[f32; 4]],
     slots: &[crate::codegen::ParamSlot],
@@ -396,8 +403,9 @@ pub fn tile_params(
     tile
 }
 
-/// The square every tile samples: the preview's placement (centre ± size in x and z,
-/// at the centre's y), as the inspector's thumbnail shows it.
+/// The square the tiles sample in a graph without rendered passes (with them, the unit
+/// tile: see [`Stamp::unit_tile`]): the preview's placement (centre ± size in x
+/// and z, at the centre's y), as the inspector's thumbnail shows it.
 pub fn placement(graph: &Graph) -> FlatRect {
     let (x, y, z) = graph.preview.center;
     let size = graph.preview.size;

@@ -3,6 +3,7 @@
 //! pipeline build nor the draw and readback ever wait on the UI thread.
 
 use crate::app::preview::drawing_thread::DrawingThread;
+use crate::codegen::passes::Passes;
 use crate::render::{AtlasLayout, FlatRect, GpuContext, ThumbnailRenderer};
 use std::sync::Arc;
 use std::sync::mpsc::{Receiver, Sender, TryRecvError, channel};
@@ -15,10 +16,15 @@ pub struct Job {
     pub wgsl: Arc<str>,
     /// Its parameter slots.
     pub slots: usize,
+    /// Its passes, when it reads buffers (they change with `wgsl`).
+    pub passes: Option<Arc<Passes>>,
     pub layout: AtlasLayout,
-    /// The square of the plane every tile samples.
+    /// The square of the plane every tile samples (and the passes render over).
     pub rect: FlatRect,
     pub time: f32,
+    /// The atlas graph's parameter values, every selector's factor 0: what the passes
+    /// read.
+    pub shared: Vec<[f32; 4]>,
     /// Tile index and that tile's parameter values.
     pub tiles: Vec<(usize, Vec<[f32; 4]>)>,
 }
@@ -101,12 +107,18 @@ fn draw(
     job: &Job,
 ) -> Result<Vec<u8>, String> {
     if renderer.as_ref().map(|(generation, _)| *generation) != Some(job.generation) {
-        let built = ThumbnailRenderer::new(gpu, &job.wgsl, job.slots);
+        let built = ThumbnailRenderer::new(gpu, &job.wgsl, job.slots, job.passes.as_deref());
         *renderer = Some((job.generation, built.map_err(|error| error.to_string())?));
     }
     let (_, renderer) = renderer.as_mut().expect("built above");
     renderer
-        .render(gpu, job.layout, job.rect, job.time, &job.tiles)
+        .render(
+            gpu,
+            job.layout,
+            (job.rect, job.time),
+            &job.shared,
+            &job.tiles,
+        )
         .map_err(|error| error.to_string())
 }
 
