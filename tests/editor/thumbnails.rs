@@ -424,11 +424,14 @@ fn inside_a_group_each_node_shows_its_output_in_the_groups_first_instance() {
     tile_of(&mut harness, "wood");
 }
 
+/// The shipped texture graph with the fewest passes: a noise, its blur and its normal.
+fn blurred_noise() -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("graphs/texture/blurred_noise.ron")
+}
+
 #[test]
 fn nodes_reading_buffers_show_them_over_the_unit_tile_as_the_flat_view_draws_them() {
-    let source =
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("graphs/texture/blurred_noise.ron");
-    let graph = veneer::graph::load(&source).unwrap();
+    let graph = veneer::graph::load(&blurred_noise()).unwrap();
     let mut harness = open("thumbnail-buffers", &graph);
     // The blur, what reads it, and the height's normal (a stage over the noise's buffer).
     for title in ["soft", "tint", "relief"] {
@@ -457,9 +460,7 @@ fn nodes_reading_buffers_show_them_over_the_unit_tile_as_the_flat_view_draws_the
 
 #[test]
 fn a_texture_graph_shows_its_unit_tile_beside_the_mesh_and_a_single_pass_one_does_not() {
-    let source =
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("graphs/texture/blurred_noise.ron");
-    let mut harness = editor(&scratch("tile-beside"), Some(source));
+    let mut harness = editor(&scratch("tile-beside"), Some(blurred_noise()));
     let started = std::time::Instant::now();
     // The tile is drawn once the main preview is: wait for its picture under the label.
     loop {
@@ -501,5 +502,54 @@ fn a_texture_graph_shows_its_unit_tile_beside_the_mesh_and_a_single_pass_one_doe
     assert!(
         wood.query_by_label("unit tile").is_none(),
         "wood has no passes"
+    );
+}
+
+#[test]
+fn a_texture_graphs_tiles_wait_for_a_drag_to_end_and_then_follow_it() {
+    let graph = veneer::graph::load(&blurred_noise()).unwrap();
+    let mut harness = open("thumbnail-drag", &graph);
+    select_node(&mut harness, "grain");
+    harness.run();
+    let drawn = harness.state().thumbnails().tiles_drawn;
+    let revision = harness.state().document().graph.clone();
+    // Drag the noise's scale on its node (the inspector's field is below the window's
+    // edge; the canvas's comes last, in graph coordinates) and hold the button.
+    let field = harness.get_all_by_value("6.00").last().unwrap().rect();
+    let from = harness.state().graph_to_screen() * field.center();
+    let press = |pos, pressed| egui::Event::PointerButton {
+        pos,
+        button: egui::PointerButton::Primary,
+        pressed,
+        modifiers: Default::default(),
+    };
+    harness.event(egui::Event::PointerMoved(from));
+    harness.run_steps(2);
+    harness.event(press(from, true));
+    harness.run_steps(2);
+    let to = from + egui::vec2(40.0, 0.0);
+    for step in 1..=8 {
+        harness.event(egui::Event::PointerMoved(
+            from + (to - from) * (step as f32 / 8.0),
+        ));
+        harness.run_steps(1);
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
+    harness.run_steps(4);
+    assert_ne!(
+        harness.state().document().graph,
+        revision,
+        "the drag changed the scale"
+    );
+    assert_eq!(
+        harness.state().thumbnails().tiles_drawn,
+        drawn,
+        "no tile drawn while the button is held"
+    );
+    harness.event(press(to, false));
+    settle(&mut harness);
+    assert!(
+        harness.state().thumbnails().tiles_drawn > drawn,
+        "the tiles the drag reached are drawn once it ends"
     );
 }

@@ -204,6 +204,7 @@ impl VeneerApp {
             revision,
             structure: self.session.revision.structure,
             unit_tile: self.preview.live.renders_passes(),
+            held,
         };
         self.thumbnails
             .update(ctx, graph, stamp, hovered, time, view);

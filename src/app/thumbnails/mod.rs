@@ -85,12 +85,15 @@ struct LeftOut {
 /// Where the edited graph stands: its revision, bumped on every change, and its
 /// structure's, bumped when a change may change the code (the app's `Revision`); and
 /// whether its material renders passes (see [`LiveMaterial::renders_passes`]): then the
-/// tiles show the unit tile rather than the preview square.
+/// tiles show the unit tile rather than the preview square; and whether a pointer
+/// button is held (a drag), when the tiles of an atlas with rendered passes wait, so that
+/// the preview's drafts have the cores.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Stamp {
     pub revision: u64,
     pub structure: u64,
     pub unit_tile: bool,
+    pub held: bool,
 }
 
 /// What the tiles depend on besides the drawing thread: the graph's revision, the
@@ -100,6 +103,7 @@ struct Seen {
     revision: u64,
     time: u32,
     unit_tile: bool,
+    held: bool,
     pins: Vec<PinRef>,
 }
 
@@ -231,6 +235,7 @@ impl Thumbnails {
             revision: stamp.revision,
             time: time.to_bits(),
             unit_tile: stamp.unit_tile,
+            held: stamp.held,
             pins: self.candidates(graph, hovered, on_screen),
         };
         if !received && !compiled && self.seen.as_ref() == Some(&seen) {
@@ -271,6 +276,11 @@ impl Thumbnails {
         if !self.atlas.errors.is_empty() {
             return;
         }
+        let passes = &compiled.passes;
+        if stamp.held && !passes.is_empty() && !passes.uploads_only() {
+            // Drawn when the drag ends (`Seen::held` changes then).
+            return;
+        }
         self.tiles.lay_out(atlas.pins);
         self.selectors = atlas.selectors;
         if self.drawing.in_flight {
@@ -302,7 +312,6 @@ impl Thumbnails {
             .drawing
             .worker
             .get_or_insert_with(|| Worker::start(move || wake.request_repaint()));
-        let passes = &compiled.passes;
         worker.send(Job {
             generation: self.atlas.generation,
             wgsl: Arc::from(compiled.source()),
