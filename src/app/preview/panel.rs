@@ -109,10 +109,14 @@ impl VeneerApp {
                     }
                 });
             ui.checkbox(&mut self.preview.state.flat, "flat albedo");
-            if self.preview.state.flat {
-                ui.checkbox(&mut self.preview.state.repeat_tile, "3×3 tile")
-                    .on_hover_text("the unit tile repeated as a bake of it tiles: seams show");
-            }
+            // Always there (greyed out unless flat), so the row keeps its width.
+            let flat = self.preview.state.flat;
+            ui.add_enabled(
+                flat,
+                egui::Checkbox::new(&mut self.preview.state.repeat_tile, "3×3 tile"),
+            )
+            .on_hover_text("the unit tile repeated as a bake of it tiles: seams show")
+            .on_disabled_hover_text("with flat albedo: the unit tile repeated, seams show");
             ui.checkbox(&mut self.preview.live.full_detail, "every octave")
                 .on_hover_text("off: noise leaves out octaves finer than a pixel (less aliasing, faster far away)");
             ui.label("background");

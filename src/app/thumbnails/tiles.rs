@@ -21,6 +21,18 @@ pub struct Tiles {
     texture: Option<egui::TextureHandle>,
     /// The atlas as last read back (RGBA8 rows).
     pixels: Vec<u8>,
+    /// The tiles as they were before the pins or layout last changed: shown for pins
+    /// whose new tile is not drawn yet (a texture graph's atlas takes seconds to
+    /// render its passes again), until every new tile is.
+    stale: Option<Stale>,
+}
+
+/// Tiles of an earlier layout, kept on screen while the new ones are drawn.
+struct Stale {
+    pins: Vec<PinRef>,
+    ready: Vec<bool>,
+    layout: AtlasLayout,
+    texture: egui::TextureHandle,
 }
 
 impl Default for Tiles {
@@ -32,6 +44,7 @@ impl Default for Tiles {
             ready: Vec::new(),
             texture: None,
             pixels: Vec::new(),
+            stale: None,
         }
     }
 }
@@ -50,6 +63,7 @@ impl Tiles {
     /// No tiles at all.
     pub fn clear(&mut self) {
         self.pins.clear();
+        self.stale = None;
     }
 
     /// Gives `pins` the tiles; when they or their layout change, every tile is to be
@@ -57,6 +71,14 @@ impl Tiles {
     pub fn lay_out(&mut self, pins: Vec<PinRef>) {
         let layout = AtlasLayout::for_tiles(pins.len(), ATLAS_COLUMNS, TILE_PIXELS);
         if pins != self.pins || layout != self.layout {
+            if let Some(texture) = self.texture.take() {
+                self.stale = Some(Stale {
+                    pins: std::mem::take(&mut self.pins),
+                    ready: std::mem::take(&mut self.ready),
+                    layout: self.layout,
+                    texture,
+                });
+            }
             self.sent = vec![None; pins.len()];
             self.ready = vec![false; pins.len()];
             self.pins = pins;
@@ -115,6 +137,9 @@ impl Tiles {
                 *ready = true;
             }
         }
+        if self.all_ready() {
+            self.stale = None;
+        }
         self.pixels = pixels;
     }
 
@@ -124,16 +149,15 @@ impl Tiles {
         self.ready.get(index).copied()?.then_some(index)
     }
 
-    /// The texture and the part of it showing `pin`, once drawn.
+    /// The texture and the part of it showing `pin`, once drawn (until then, its tile
+    /// of the layout before, if it had one).
     pub fn tile(&self, pin: &PinRef) -> Option<(egui::TextureId, egui::Rect)> {
-        let index = self.drawn(pin)?;
-        let texture = self.texture.as_ref()?;
-        let (width, height) = self.layout.size();
-        let (x, y) = self.layout.origin(index);
-        let tile = TILE_PIXELS as f32;
-        let min = egui::pos2(x as f32 / width as f32, y as f32 / height as f32);
-        let size = egui::vec2(tile / width as f32, tile / height as f32);
-        Some((texture.id(), egui::Rect::from_min_size(min, size)))
+        if let (Some(index), Some(texture)) = (self.drawn(pin), &self.texture) {
+            return Some((texture.id(), part(self.layout, index)));
+        }
+        let stale = self.stale.as_ref()?;
+        let index = stale.pins.iter().position(|p| p == pin)?;
+        (stale.ready.get(index).copied()?).then(|| (stale.texture.id(), part(stale.layout, index)))
     }
 
     /// The RGBA8 pixels of `pin`'s tile, rows from the top, once drawn.
@@ -150,5 +174,69 @@ impl Tiles {
             }
         }
         Some(tile)
+    }
+}
+
+/// The part of an atlas of `layout` (in texture coordinates) that tile `index` fills.
+fn part(layout: AtlasLayout, index: usize) -> egui::Rect {
+    let (width, height) = layout.size();
+    let (x, y) = layout.origin(index);
+    let tile = TILE_PIXELS as f32;
+    let min = egui::pos2(x as f32 / width as f32, y as f32 / height as f32);
+    let size = egui::vec2(tile / width as f32, tile / height as f32);
+    egui::Rect::from_min_size(min, size)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::graph::NodeId;
+
+    fn pin(node: u32) -> PinRef {
+        PinRef::new(NodeId(node), "value")
+    }
+
+    /// Hands `tiles` the whole atlas drawn, every tile grey.
+    fn draw_all(tiles: &mut Tiles, ctx: &egui::Context) {
+        let layout = tiles.layout();
+        let (width, height) = layout.size();
+        let drawn: Vec<usize> = (0..tiles.pins().len()).collect();
+        tiles.take_changed(|_| 1);
+        tiles.take_in(
+            ctx,
+            layout,
+            &drawn,
+            vec![128; (width * height * 4) as usize],
+        );
+    }
+
+    #[test]
+    fn a_new_layout_shows_the_old_tiles_until_every_new_one_is_drawn() {
+        let ctx = egui::Context::default();
+        let mut tiles = Tiles::default();
+        tiles.lay_out(vec![pin(1), pin(2)]);
+        draw_all(&mut tiles, &ctx);
+        let (old, _) = tiles.tile(&pin(2)).expect("drawn");
+        // A node added: every tile is to be drawn again, in a new texture.
+        tiles.lay_out(vec![pin(1), pin(2), pin(3)]);
+        assert!(!tiles.all_ready());
+        let (shown, part) = tiles.tile(&pin(2)).expect("the old tile meanwhile");
+        assert_eq!(shown, old);
+        assert_eq!(
+            part,
+            super::part(AtlasLayout::for_tiles(2, ATLAS_COLUMNS, TILE_PIXELS), 1)
+        );
+        assert!(
+            tiles.tile(&pin(3)).is_none(),
+            "a new pin has nothing to show yet"
+        );
+        assert!(
+            tiles.tile_pixels(&pin(2)).is_none(),
+            "pixels are the new layout's only"
+        );
+        draw_all(&mut tiles, &ctx);
+        let (now, _) = tiles.tile(&pin(2)).expect("drawn again");
+        assert_ne!(now, old, "the new texture");
+        assert!(tiles.stale.is_none(), "the old tiles are let go");
     }
 }
