@@ -256,7 +256,6 @@ fn preview_draws(c: &mut Criterion) {
 fn live_code(graph: &Graph, generation: u64) -> (LiveMaterialCode, Vec<[f32; 4]>) {
     let mut live = LiveMaterial::in_storage();
     live.update(graph);
-    let module = &live.compiled.as_ref().expect("compiles").module;
     let code = LiveMaterialCode::new(generation, live.compiled.as_ref().expect("it compiles"));
     (code, live.params(graph))
 }
