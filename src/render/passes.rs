@@ -447,10 +447,10 @@ impl PassRenderer {
         gpu.take_errors()
     }
 
-    /// The bind groups pass `index` draws into `target` with through `pipeline`: the
-    /// view of `domain` at a time (a surface pass; written into the view uniform, so
-    /// the draw is submitted before the next view is written), the parameter block, and
-    /// the buffers it reads among `textures`.
+    /// The bind groups pass `index` draws with through `pipeline`: the view of `domain`
+    /// at a time over a buffer the size of `target` (a surface pass; written into the
+    /// view uniform, so the draw is submitted before the next view is written), the
+    /// parameter block, and the buffers it reads among `textures`.
     fn bind_groups(
         &self,
         gpu: &GpuContext,

@@ -2,8 +2,9 @@
 //! read across the tile's edges as if it went on, so a tile check of the material alone
 //! (which evaluates the material past the edges) cannot see a pass that does not repeat
 //! (a noise without a period, blurred). Each such pass is drawn again one domain width to
-//! the right and one domain height further, only along its first column and row, and
-//! compared with the same column and row drawn over the domain itself.
+//! the right and one domain height further, only along its first column and row (into a
+//! texture a texel wide and one a texel high), and compared with the same column and row
+//! drawn over the domain itself.
 
 use super::{PassDomain, PassRenderer, texture_format};
 use crate::codegen::passes::PassKind;
@@ -67,7 +68,8 @@ impl PassRenderer {
     }
 
     /// Surface pass `index` drawn over `rect` at `time`, only along its buffer's first
-    /// column and first row, reading the buffers in `textures`.
+    /// column and first row (into textures one texel wide and one texel high, the view
+    /// keeping the buffer's size), reading the buffers in `textures`.
     fn strips(
         &self,
         gpu: &GpuContext,
@@ -80,43 +82,47 @@ impl PassRenderer {
         let buffer = &textures[self.storage[index]];
         let (width, height) = (buffer.width(), buffer.height());
         let format = texture_format(pass.spec.format);
-        let target = crate::render::plain_texture(
-            &gpu.device,
-            &pass.label,
-            (width, height),
-            format,
-            wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-        );
+        let strip = |extent| {
+            crate::render::plain_texture(
+                &gpu.device,
+                &pass.label,
+                extent,
+                format,
+                wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+            )
+        };
+        let (column, row) = (strip((1, height)), strip((width, 1)));
         let pipeline = (self.pipelines[index].as_ref()).expect("a surface pass has a pipeline");
         let domain = (PassDomain::Flat(rect), time);
-        let groups = self.bind_groups(gpu, index, pipeline, domain, &target, textures);
+        // The view spans the whole buffer: the strips' texels are its first column and row.
+        let groups = self.bind_groups(gpu, index, pipeline, domain, buffer, textures);
         let texel = pass.spec.format.texel_bytes() as u32;
-        let column = Readback::new(gpu, (1, height), texel);
-        let row = Readback::new(gpu, (width, 1), texel);
+        let readbacks = [
+            Readback::new(gpu, (1, height), texel),
+            Readback::new(gpu, (width, 1), texel),
+        ];
         let mut encoder = gpu
             .device
             .create_command_encoder(&wgpu::CommandEncoderDescriptor {
                 label: Some(&pass.label),
             });
-        {
-            let view = target.create_view(&Default::default());
-            let mut render = crate::render::tiles::clear_pass(
-                &mut encoder,
-                &view,
-                wgpu::Color::TRANSPARENT,
-                None,
-            );
-            render.set_pipeline(pipeline);
-            for (index, group) in &groups {
-                render.set_bind_group(*index, group, &[]);
-            }
-            for (w, h) in [(1, height), (width, 1)] {
-                render.set_scissor_rect(0, 0, w, h);
+        for (target, readback) in [&column, &row].into_iter().zip(&readbacks) {
+            {
+                let view = target.create_view(&Default::default());
+                let mut render = crate::render::tiles::clear_pass(
+                    &mut encoder,
+                    &view,
+                    wgpu::Color::TRANSPARENT,
+                    None,
+                );
+                render.set_pipeline(pipeline);
+                for (index, group) in &groups {
+                    render.set_bind_group(*index, group, &[]);
+                }
                 render.draw(0..3, 0..1);
             }
+            readback.record_copy(&mut encoder, target, (target.width(), target.height()));
         }
-        column.record_copy(&mut encoder, &target, (1, height));
-        row.record_copy(&mut encoder, &target, (width, 1));
         let submission = gpu.queue.submit([encoder.finish()]);
         let decode = |readback: &Readback, extent| {
             let mut texels = Vec::new();
@@ -128,8 +134,8 @@ impl PassRenderer {
                 .map(|()| texels)
         };
         Ok(Strips {
-            column: decode(&column, (1, height))?,
-            row: decode(&row, (width, 1))?,
+            column: decode(&readbacks[0], (1, height))?,
+            row: decode(&readbacks[1], (width, 1))?,
         })
     }
 }
