@@ -28,32 +28,31 @@ pub struct SeamedBitmap {
 /// *Make tileable*, in pass order.
 pub fn seamed_bitmaps(compiled: &Compiled) -> Vec<SeamedBitmap> {
     let passes = &compiled.passes;
-    // The bitmap pass whose seam each buffer carries, if one does.
+    // The bitmap pass whose seam each buffer carries, if one does, and each seamed
+    // bitmap's ratios.
     let mut carries: Vec<Option<usize>> = Vec::with_capacity(passes.passes.len());
+    let mut seamed = std::collections::BTreeMap::new();
     for (index, pass) in passes.passes.iter().enumerate() {
         let carried = match &pass.kind {
-            PassKind::Bitmap { bitmap, .. } => {
+            PassKind::Bitmap { path, bitmap } if pass.spec.edge == EdgeMode::Wrap => {
                 let ratios = bitmap.edge_ratios();
-                let seamed = pass.spec.edge == EdgeMode::Wrap
-                    && ratios.iter().any(|&ratio| ratio > EDGE_RATIO_TOLERANCE);
-                seamed.then_some(index)
+                let over = ratios.iter().any(|&ratio| ratio > EDGE_RATIO_TOLERANCE);
+                if over {
+                    let path = path.clone();
+                    seamed.insert(index, SeamedBitmap { path, ratios });
+                }
+                over.then_some(index)
             }
+            PassKind::Bitmap { .. } => None,
             PassKind::Stage { source, .. } => carries[*source],
             PassKind::Surface { nodes, .. } => read_as_is(compiled, nodes, &carries).next(),
         };
         carries.push(carried);
     }
-    let mut reached: Vec<usize> = read_as_is(compiled, &passes.nodes, &carries).collect();
-    reached.sort_unstable();
-    reached.dedup();
+    let reached: std::collections::BTreeSet<usize> =
+        read_as_is(compiled, &passes.nodes, &carries).collect();
     (reached.into_iter())
-        .filter_map(|index| match &passes.passes[index].kind {
-            PassKind::Bitmap { path, bitmap } => Some(SeamedBitmap {
-                path: path.clone(),
-                ratios: bitmap.edge_ratios(),
-            }),
-            _ => None,
-        })
+        .filter_map(|index| seamed.remove(&index))
         .collect()
 }
 

@@ -326,9 +326,7 @@ impl FlatRenderer {
         self.prepare(gpu, rect, size, time)?;
         time_pass(gpu, size, |encoder, writes| {
             self.write_view(gpu, rect, size, time, FlatChannels::AlbedoAlpha, [0.0; 2]);
-            let target = gpu
-                .device
-                .create_texture(&super::tiles::target_descriptor(size, size))
+            let target = super::tiles::target_texture(&gpu.device, (size, size))
                 .create_view(&Default::default());
             let mut pass = clear_pass(encoder, &target, wgpu::Color::TRANSPARENT, writes);
             self.draw(&mut pass);
@@ -360,9 +358,7 @@ impl FlatRenderer {
                 (origin.1 + i64::from(at.1)) as f32,
             ];
             self.write_view(gpu, rect, size, time, channels, offset);
-            let texture = gpu
-                .device
-                .create_texture(&super::tiles::target_descriptor(part.0, part.1));
+            let texture = super::tiles::target_texture(&gpu.device, part);
             let mut encoder = gpu
                 .device
                 .create_command_encoder(&wgpu::CommandEncoderDescriptor {

@@ -153,20 +153,13 @@ impl ThumbnailRenderer {
         };
         let size = layout.size();
         if self.atlas.as_ref().is_none_or(|(old, ..)| *old != layout) {
-            let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
-                label: Some("thumbnail atlas"),
-                size: wgpu::Extent3d {
-                    width: size.0,
-                    height: size.1,
-                    depth_or_array_layers: 1,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: ATLAS_FORMAT,
-                usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-                view_formats: &[],
-            });
+            let texture = super::plain_texture(
+                &gpu.device,
+                "thumbnail atlas",
+                size,
+                ATLAS_FORMAT,
+                wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+            );
             self.atlas = Some((layout, texture, Readback::new(gpu, size, 4)));
         }
         let (_, texture, readback) = self.atlas.as_ref().expect("made above");

@@ -88,7 +88,7 @@ where
     let width = tile_size(gpu).min(size);
     let height = band_rows.clamp(1, width).min(size);
     let slots: [_; 2] = std::array::from_fn(|_| {
-        let texture = gpu.device.create_texture(&target_descriptor(width, height));
+        let texture = target_texture(&gpu.device, (width, height));
         (
             texture.create_view(&Default::default()),
             texture,
@@ -275,21 +275,14 @@ fn available_memory() -> Option<u64> {
 }
 
 /// A render target of `width`×`height` in [`FORMAT`] that can be read back.
-pub fn target_descriptor(width: u32, height: u32) -> wgpu::TextureDescriptor<'static> {
-    wgpu::TextureDescriptor {
-        label: Some("tile"),
-        size: wgpu::Extent3d {
-            width,
-            height,
-            depth_or_array_layers: 1,
-        },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format: FORMAT,
-        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-        view_formats: &[],
-    }
+pub fn target_texture(device: &wgpu::Device, (width, height): (u32, u32)) -> wgpu::Texture {
+    super::plain_texture(
+        device,
+        "tile",
+        (width, height),
+        FORMAT,
+        wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+    )
 }
 
 /// A render pass into `target`, cleared to `clear` and stored, with `timestamps` written

@@ -241,15 +241,16 @@ impl VeneerApp {
             crate::codegen::compile(&self.session.document.graph, &CompileOptions::default())
                 .map_err(|error| error.to_string())?;
         settings.time = self.preview.state.view.time;
-        let seamed = match settings.surface {
-            crate::bake::BakeSurface::Tile(_) => {
-                crate::bake::bitmap_seams::seamed_bitmaps(&compiled)
-            }
-            _ => Vec::new(),
-        };
         let stems = [stem.as_path()];
         crate::bake::check_outputs(&stems, &settings).map_err(|error| error.to_string())?;
         self.start_export(ctx, &stem.clone(), move |report| {
+            // (Measuring a photo's edges reads all its texels: on the export's thread.)
+            let seamed = match settings.surface {
+                crate::bake::BakeSurface::Tile(_) => {
+                    crate::bake::bitmap_seams::seamed_bitmaps(&compiled)
+                }
+                _ => Vec::new(),
+            };
             let written = crate::bake::bake(&gpu, &compiled, &settings, &stem, report)
                 .map_err(|error| error.to_string())?;
             let names: Vec<String> = written

@@ -320,7 +320,7 @@ impl Thumbnails {
             layout: self.tiles.layout(),
             rect,
             time,
-            shared: tile_params(&values, slots, &self.selectors, usize::MAX),
+            shared: values.clone(),
             tiles,
         });
         self.drawing.in_flight = true;
@@ -390,7 +390,7 @@ impl Thumbnails {
 
 /// The parameter values that make the atlas module show tile `index`: `values` (the
 /// atlas graph's, see [`crate::codegen::param_values`]) with every selector's factor 0 but tile
-/// `index`'s, which is 1 (an index past the last tile: every selector 0).
+/// `index`'s, which is 1.
 pub fn tile_params(
     values: &[[f32; 4]],
     slots: &[crate::codegen::ParamSlot],

@@ -22,8 +22,8 @@ pub struct Job {
     /// The square of the plane every tile samples (and the passes render over).
     pub rect: FlatRect,
     pub time: f32,
-    /// The atlas graph's parameter values, every selector's factor 0: what the passes
-    /// read.
+    /// The atlas graph's parameter values: what the passes read (the selectors, read
+    /// by the final stage alone, change only per tile).
     pub shared: Vec<[f32; 4]>,
     /// Tile index and that tile's parameter values.
     pub tiles: Vec<(usize, Vec<[f32; 4]>)>,
