@@ -12,6 +12,7 @@ pub mod geodesic;
 pub mod graph;
 pub mod lint;
 pub mod mesh;
+pub mod mesh_fields;
 pub mod messages;
 pub mod nodes;
 pub mod render;

@@ -9,6 +9,7 @@ use crate::graph::group::Bindings;
 use crate::graph::parameters::{Exposed, Member};
 use crate::graph::{NodeId, NodeKind};
 use crate::nodes::emit::{self, Detail, Emit};
+use crate::nodes::mesh_field::MeshLanes;
 use naming::Namer;
 use rustc_hash::{FxHashMap, FxHashSet};
 use std::collections::BTreeMap;
@@ -49,6 +50,8 @@ pub struct Emitter<'a> {
     pub sampled: FxHashMap<(NodeId, usize), String>,
     /// The arguments `texture, edge` of the bitmap each Image node reads.
     pub sources: FxHashMap<NodeId, String>,
+    /// Which mesh field each lane of `VeneerSurface.mesh_fields` holds.
+    pub mesh_lanes: MeshLanes,
 }
 
 impl<'a> Emitter<'a> {
@@ -77,6 +80,7 @@ impl<'a> Emitter<'a> {
             calls: BTreeMap::new(),
             sampled: FxHashMap::default(),
             sources: FxHashMap::default(),
+            mesh_lanes: MeshLanes::default(),
         }
     }
 
@@ -188,7 +192,8 @@ impl<'a> Emitter<'a> {
                         &name,
                         self.detail,
                     )
-                    .with_source(self.sources.get(&node.id).map(String::as_str));
+                    .with_source(self.sources.get(&node.id).map(String::as_str))
+                    .with_mesh_lanes(self.mesh_lanes);
                     kind.definition().emit(&mut io);
                     io.finish()
                 }

@@ -96,6 +96,7 @@ pub(super) fn compile(
         &flat.parameters,
         &members,
     );
+    emitter.mesh_lanes = uses.mesh_fields;
     for plan in &mut plans {
         let call = std::mem::replace(&mut plan.call, placeholder_call());
         emitter.calls.insert(plan.name.clone(), call);

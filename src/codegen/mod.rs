@@ -131,6 +131,9 @@ pub enum AlphaUse {
 pub struct SurfaceUse {
     /// Which of the four distance fields some node reads.
     pub fields: [bool; 4],
+    /// Which mesh field each lane of `VeneerSurface.mesh_fields` holds (every field the
+    /// whole material reads, its passes' nodes included), so renderers compute those.
+    pub mesh_fields: crate::nodes::mesh_field::MeshLanes,
     /// Whether the height output can be non-zero (the mesh is displaced).
     pub displacement: bool,
     /// Whether the bump output can be non-zero (the shading normal is perturbed).
@@ -142,6 +145,14 @@ pub struct SurfaceUse {
     pub normal: bool,
     /// The lighting model (the graph's setting).
     pub shading: graph::Shading,
+}
+
+/// The lanes of the mesh fields the nodes of `graph` read.
+pub fn mesh_lanes(graph: &CheckedGraph) -> crate::nodes::mesh_field::MeshLanes {
+    use crate::nodes::mesh_field;
+    mesh_field::lanes(&mesh_field::fields_read(
+        graph.order.iter().map(|checked| &checked.node.kind),
+    ))
 }
 
 impl SurfaceUse {
@@ -168,6 +179,7 @@ impl SurfaceUse {
                 uses.fields[field.slot as usize % 4] = true;
             }
         }
+        uses.mesh_fields = mesh_lanes(graph);
         let material = graph.material();
         // A wired input can take any value.
         let shows = |pin: &str| match material.input(pin) {
@@ -539,6 +551,7 @@ fn single_pass(graph: &CheckedGraph, options: &CompileOptions) -> Result<WgslMod
         &graph.parameters,
         &members,
     );
+    emitter.mesh_lanes = uses.mesh_fields;
     let (blocks, _) = emitter.body(graph, &graph.bindings, &Default::default());
     let around = Around {
         functions: "",

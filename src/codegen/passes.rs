@@ -480,8 +480,13 @@ impl Planner<'_> {
     ) -> Result<WgslModule, CompileError> {
         counts::emitted();
         let part = self.graph.subset(nodes);
+        // Every module reads the mesh fields in the lanes of the whole material.
+        let mesh_fields = super::mesh_lanes(self.graph);
         let uses = match target {
-            None => SurfaceUse::of(&part),
+            None => SurfaceUse {
+                mesh_fields,
+                ..SurfaceUse::of(&part)
+            },
             Some(_) => SurfaceUse::default(),
         };
         let members = if self.options.params == super::ParamMode::Named {
@@ -495,6 +500,7 @@ impl Planner<'_> {
             &self.graph.parameters,
             &members,
         );
+        emitter.mesh_lanes = mesh_fields;
         let arguments = |buffer: usize| {
             let edge = self.passes[buffer].spec.edge.wgsl();
             format!("{}, {edge}", buffer_name(buffer))

@@ -13,6 +13,7 @@ use crate::graph::check::{CheckedGraph, CheckedNode, InputSource};
 use crate::graph::{CheckError, Graph};
 use crate::nodes::cpu::Eval;
 use crate::nodes::formulas::real::V3;
+use crate::nodes::mesh_field::MeshLanes;
 use std::collections::BTreeMap;
 
 /// What a material returns (the CPU side of `VeneerMaterial`).
@@ -65,6 +66,9 @@ pub struct Evaluator {
     index: BTreeMap<crate::graph::NodeId, usize>,
     /// The files the graph's Image nodes read, which need no pass rendered first.
     bitmaps: Buffers,
+    /// Which mesh field each lane of the surface's `mesh_fields` holds (as the compiled
+    /// material assigns them).
+    mesh_lanes: MeshLanes,
 }
 
 impl Evaluator {
@@ -83,6 +87,7 @@ impl Evaluator {
             .collect();
         let bitmaps = Buffers::bitmaps_of(&graph);
         Evaluator {
+            mesh_lanes: crate::codegen::mesh_lanes(&graph),
             graph,
             index,
             bitmaps,
@@ -125,7 +130,8 @@ impl Evaluator {
             let images = buffers.of(checked);
             let io = Eval::new(&checked.signature.inputs, &inputs, surface)
                 .with_images(&images)
-                .with_source(buffers.source_of(checked));
+                .with_source(buffers.source_of(checked))
+                .with_mesh_lanes(self.mesh_lanes);
             values[at] = checked.node.kind.eval(&io);
         }
         values

@@ -101,31 +101,8 @@ impl HeatSolver {
             setup.flips = triangulation.flip_to_delaunay();
         }
         let n = triangulation.vertex_count;
-        let corners: Vec<Corner> = (0..triangulation.faces.len())
-            .map(|f| Corner {
-                layout: triangulation.layout(f),
-                cotans: [1, 2, 0].map(|k| triangulation.cotan_across(f, k).unwrap_or(0.0)),
-                lengths: triangulation.lengths[f],
-                area: triangulation.area(f),
-            })
-            .collect();
-        let mut mass = vec![0.0; n];
-        let mut laplacian = Vec::with_capacity(triangulation.faces.len() * 6);
-        for (face, corner) in triangulation.faces.iter().zip(&corners) {
-            if corner.area <= 0.0 {
-                continue;
-            }
-            for k in 0..3 {
-                mass[face[k] as usize] += corner.area / 3.0;
-                let weight = 0.5 * corner.cotans[(k + 2) % 3];
-                let (a, b) = (face[k] as usize, face[(k + 1) % 3] as usize);
-                laplacian.extend([
-                    (a, a, weight),
-                    (b, b, weight),
-                    (a.max(b), a.min(b), -weight),
-                ]);
-            }
-        }
+        let corners = corners(&triangulation);
+        let (laplacian, mass) = operators(n, &triangulation.faces, &corners);
         let dead: Vec<bool> = mass.iter().map(|&m| m <= 0.0).collect();
         let h = triangulation.mean_edge_length();
         setup.time_step = options.time_factor * h * h;
@@ -302,6 +279,70 @@ impl HeatSolver {
             }
         }
     }
+}
+
+/// The per-triangle quantities of every triangle of `triangulation`.
+fn corners(triangulation: &Triangulation) -> Vec<Corner> {
+    (0..triangulation.faces.len())
+        .map(|f| Corner {
+            layout: triangulation.layout(f),
+            cotans: [1, 2, 0].map(|k| triangulation.cotan_across(f, k).unwrap_or(0.0)),
+            lengths: triangulation.lengths[f],
+            area: triangulation.area(f),
+        })
+        .collect()
+}
+
+/// A quantity given as amounts per vertex (`integrated`: a density already integrated
+/// over each vertex's share of the surface), spread by heat diffusion for `time` and
+/// read back as a density: one backward-Euler step, `(M + time·L) u = integrated`,
+/// stable however stiff, a smoothing whose kernel is a Gaussian of the geodesic distance
+/// with variance `2·time`. Vertices with no area around them read 0. Give it an
+/// intrinsic Delaunay triangulation ([`Triangulation::flip_to_delaunay`]) so every
+/// weight is non-negative and the system can be factored.
+pub fn diffuse_integrated(
+    triangulation: &Triangulation,
+    integrated: &[f64],
+    time: f64,
+) -> Result<Vec<f64>, HeatError> {
+    let n = triangulation.vertex_count;
+    let (laplacian, mass) = operators(n, &triangulation.faces, &corners(triangulation));
+    let dead: Vec<bool> = mass.iter().map(|&m| m <= 0.0).collect();
+    let system = factor("diffusion", n, combine(&laplacian, time, &mass, 1.0, &dead))?;
+    let mut density: Vec<f64> = integrated
+        .iter()
+        .zip(&dead)
+        .map(|(&amount, &d)| if d { 0.0 } else { amount })
+        .collect();
+    solve(&system, &mut density);
+    Ok(density)
+}
+
+/// The cotangent Laplacian `L` (lower triangle, repeated positions add up) and the
+/// lumped mass `M` (a third of each triangle's area at each of its corners).
+fn operators(
+    n: usize,
+    faces: &[[u32; 3]],
+    corners: &[Corner],
+) -> (Vec<(usize, usize, f64)>, Vec<f64>) {
+    let mut mass = vec![0.0; n];
+    let mut laplacian = Vec::with_capacity(faces.len() * 9);
+    for (face, corner) in faces.iter().zip(corners) {
+        if corner.area <= 0.0 {
+            continue;
+        }
+        for k in 0..3 {
+            mass[face[k] as usize] += corner.area / 3.0;
+            let weight = 0.5 * corner.cotans[(k + 2) % 3];
+            let (a, b) = (face[k] as usize, face[(k + 1) % 3] as usize);
+            laplacian.extend([
+                (a, a, weight),
+                (b, b, weight),
+                (a.max(b), a.min(b), -weight),
+            ]);
+        }
+    }
+    (laplacian, mass)
 }
 
 /// `a·L + b·M` as lower-triangle triplets, with 1 on the diagonal of dead vertices.

@@ -22,8 +22,8 @@ pub use dijkstra::edge_distances;
 pub use exact::exact_distances;
 pub use fallback::{Fallback, heat_solver};
 pub use file_order::WeldedMesh;
-pub use heat::{HeatError, HeatSetup, HeatSolver};
-pub use triangulation::{NO_TWIN, Triangulation};
+pub use heat::{HeatError, HeatSetup, HeatSolver, diffuse_integrated};
+pub use triangulation::{NO_TWIN, Triangulation, split};
 
 use crate::mesh::Mesh;
 use std::time::{Duration, Instant};

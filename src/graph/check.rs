@@ -175,6 +175,30 @@ impl<'g> Checker<'g> {
         });
     }
 
+    /// Refuses a material that reads more distinct mesh fields than a mesh carries,
+    /// naming the first node past the limit and the fields read.
+    fn check_mesh_fields(&mut self, order: &[CheckedNode]) {
+        use crate::nodes::mesh_field::{MESH_LANES, fields_read};
+        let read = fields_read(order.iter().map(|checked| &checked.node.kind));
+        let Some(beyond) = read.get(MESH_LANES) else {
+            return;
+        };
+        let node = order.iter().find_map(|checked| match &checked.node.kind {
+            NodeKind::MeshField(field) if field.key() == *beyond => Some(&checked.node),
+            _ => None,
+        });
+        let names: Vec<String> = read.iter().map(|field| field.to_string()).collect();
+        self.error(
+            node,
+            format!(
+                "the material reads {} different mesh fields ({}); a mesh carries at most \
+                 {MESH_LANES}: read the same field (kind and settings) from several nodes",
+                read.len(),
+                names.join(", ")
+            ),
+        );
+    }
+
     /// Refuses texts longer than [`MAX_TEXT_CHARS`] (a mesh path: [`MAX_PATH_CHARS`]),
     /// which would otherwise be copied into shader code and messages.
     fn check_text(&mut self) {
@@ -546,6 +570,9 @@ fn check_towards(graph: &Graph, sinks: Option<&[NodeId]>) -> Result<CheckedGraph
             inputs,
             used_outputs,
         });
+    }
+    if sinks.is_none() {
+        checker.check_mesh_fields(&order);
     }
     if !checker.errors.is_empty() {
         return Err(checker.errors);

@@ -2,6 +2,7 @@
 
 mod analysis;
 mod atlas;
+mod bvh;
 mod file_vertices;
 mod gltf_buffers;
 mod gltf_scene;
@@ -15,6 +16,7 @@ mod tangents;
 
 pub use analysis::{MeshReport, analyse, vertex_components, weld};
 pub use atlas::ATLAS_GAP_TEXELS;
+pub use bvh::{Bvh, Hit};
 pub use file_vertices::FileVertices;
 pub use implicit::{double_torus, polygonize};
 pub use load::{EXTENSIONS, MeshError, from_bytes, load, vertex_normals};
@@ -74,6 +76,10 @@ pub struct Mesh {
     /// Per-vertex distance fields for `VeneerSurface.fields`, normalised to [0, 1];
     /// empty until computed (the shader then reads 0).
     pub fields: Vec<[f32; 4]>,
+    /// Per-vertex mesh fields for `VeneerSurface.mesh_fields`, in the lanes the compiled
+    /// material assigns them ([`crate::codegen::SurfaceUse::mesh_fields`]); empty until
+    /// computed (the shader then reads 0).
+    pub mesh_fields: Vec<[f32; 4]>,
     /// Where each vertex came from in the mesh file, when the loader split or reordered
     /// the file's vertices; `None` when the vertices are the file's, one for one.
     pub file_vertices: Option<FileVertices>,

@@ -3,6 +3,7 @@
 
 use super::formulas::buffers::Image;
 use super::formulas::real::{Real, V3};
+use super::mesh_field::MeshLanes;
 use super::pins::InputPin;
 
 /// The inputs of a material at one point (the CPU side of `VeneerSurface`).
@@ -13,6 +14,8 @@ pub struct Surface<R> {
     pub uv: [R; 2],
     pub fields: [R; 4],
     pub time: R,
+    /// The mesh fields in the lanes the compiled material assigns them.
+    pub mesh_fields: [R; 4],
 }
 
 impl<R: Real> Surface<R> {
@@ -25,6 +28,7 @@ impl<R: Real> Surface<R> {
             uv: [zero; 2],
             fields: [zero; 4],
             time: zero,
+            mesh_fields: [zero; 4],
         }
     }
 }
@@ -38,6 +42,8 @@ pub struct Eval<'a, R> {
     images: &'a [Option<&'a Image>],
     /// The bitmap the node reads (an Image node).
     source: Option<&'a Image>,
+    /// Which mesh field each lane of the surface's `mesh_fields` holds.
+    mesh_lanes: MeshLanes,
     /// The point being shaded.
     pub surface: &'a Surface<R>,
 }
@@ -50,8 +56,22 @@ impl<'a, R: Real> Eval<'a, R> {
             inputs,
             images: &[],
             source: None,
+            mesh_lanes: MeshLanes::default(),
             surface,
         }
+    }
+
+    /// The same node in a material whose mesh fields sit in `lanes`.
+    pub fn with_mesh_lanes(self, lanes: MeshLanes) -> Self {
+        Eval {
+            mesh_lanes: lanes,
+            ..self
+        }
+    }
+
+    /// Which mesh field each lane of the surface's `mesh_fields` holds.
+    pub fn mesh_lanes(&self) -> MeshLanes {
+        self.mesh_lanes
     }
 
     /// The same node reading `images` for its sampled inputs (one entry per pin).

@@ -2,6 +2,7 @@
 //! by pin name, the identifier reserved for the node, and what it adds to
 //! `veneer_material` and the library.
 
+use super::mesh_field::MeshLanes;
 use super::pins::{InputPin, OutputPin};
 use super::value::{Value, ValueType};
 
@@ -89,6 +90,8 @@ pub struct Emit<'a> {
     source: Option<&'a str>,
     /// How much detail fractal nodes compute.
     pub detail: Detail,
+    /// Which mesh field each lane of `VeneerSurface.mesh_fields` holds.
+    mesh_lanes: MeshLanes,
     code: NodeCode,
 }
 
@@ -108,8 +111,22 @@ impl<'a> Emit<'a> {
             name,
             source: None,
             detail,
+            mesh_lanes: MeshLanes::default(),
             code: NodeCode::default(),
         }
+    }
+
+    /// The same node in a module whose mesh fields sit in `lanes`.
+    pub fn with_mesh_lanes(self, lanes: MeshLanes) -> Emit<'a> {
+        Emit {
+            mesh_lanes: lanes,
+            ..self
+        }
+    }
+
+    /// Which mesh field each lane of `VeneerSurface.mesh_fields` holds.
+    pub fn mesh_lanes(&self) -> MeshLanes {
+        self.mesh_lanes
     }
 
     /// The same node reading the bitmap at `arguments` (`texture, edge`).

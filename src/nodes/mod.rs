@@ -123,6 +123,7 @@ mod inputs;
 mod levels;
 mod mapping;
 mod math;
+pub mod mesh_field;
 mod noise;
 mod output;
 mod patterns;
@@ -441,7 +442,7 @@ macro_rules! registry {
     };
 }
 
-registry!(@gather [] [] inputs coordinates noise fractal cellular patterns fields math mapping vectors colour sampled bitmap graph_bake image_ops distance flood_fill levels output group);
+registry!(@gather [] [] inputs coordinates noise fractal cellular patterns fields mesh_field math mapping vectors colour sampled bitmap graph_bake image_ops distance flood_fill levels output group);
 
 impl NodeKind {
     /// A short human-readable name (used for default labels and messages).

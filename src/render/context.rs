@@ -43,6 +43,13 @@ pub enum RenderError {
         #[source]
         error: crate::geodesic::FieldError,
     },
+    /// The mesh fields of the mesh `mesh` could not be computed.
+    #[error("{mesh}: {error}")]
+    MeshFields {
+        mesh: String,
+        #[source]
+        error: crate::mesh_fields::MeshFieldError,
+    },
     /// The image could not be encoded.
     #[error("cannot encode PNG: {0}")]
     Encode(#[source] image::ImageError),

@@ -91,19 +91,25 @@ pub fn texture_placement(preview: &Preview) -> ([f32; 3], f32) {
     )
 }
 
-/// The preview mesh `name` carrying the distance fields of `preview` that the material
-/// uses (none are solved when it reads none).
+/// The preview mesh `name` carrying the distance fields of `preview` and the mesh
+/// fields that the material uses (none are computed when it reads none); progress
+/// counts the distance fields' vertices, then the mesh fields'.
 pub fn mesh_with_fields(
     preview: &Preview,
     name: &str,
     uses: &SurfaceUse,
-    progress: impl FnMut(usize, usize),
+    mut progress: impl FnMut(usize, usize),
 ) -> Result<crate::mesh::Mesh, RenderError> {
     let mut mesh = crate::mesh::preview_mesh(name)?;
     // A field the robust heat method solved in place of the plain one is as good: the
     // render has no use for the notes saying so (the editor shows them).
-    crate::geodesic::attach_fields(&mut mesh, &preview.fields, uses.fields, progress).map_err(
-        |error| RenderError::Fields {
+    crate::geodesic::attach_fields(&mut mesh, &preview.fields, uses.fields, &mut progress)
+        .map_err(|error| RenderError::Fields {
+            mesh: name.to_string(),
+            error,
+        })?;
+    crate::mesh_fields::attach_mesh_fields(&mut mesh, &uses.mesh_fields, progress).map_err(
+        |error| RenderError::MeshFields {
             mesh: name.to_string(),
             error,
         },

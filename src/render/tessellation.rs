@@ -39,6 +39,7 @@ pub fn tessellate(
             uv: point.uv,
             fields: point.fields,
             time: view.time,
+            mesh_fields: point.mesh_fields,
         };
         evaluator.eval::<f32>(&surface).height / size
     };

@@ -5,6 +5,7 @@
 use crate::geodesic::{HeatOptions, Method};
 use crate::graph::{FieldSource, Graph, NodeKind, RampInterpolation, RampStop, Value};
 use crate::mesh::Mesh;
+use crate::mesh_fields::MeshLanes;
 use crate::nodes::{ColorRamp, Field, Mix};
 use egui::Ui;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -40,14 +41,16 @@ struct Job {
 }
 
 impl FieldState {
-    /// Starts a solve when the mesh, the sources or the fields in use changed, and picks
-    /// up a finished one. `base` gives the preview mesh (only called when a solve starts).
+    /// Starts a solve when the mesh, the sources, the distance fields in use or the mesh
+    /// fields the material reads changed, and picks up a finished one. `base` gives the
+    /// preview mesh (only called when a solve starts). Mesh fields come from
+    /// [`crate::mesh_fields`]'s cache when this mesh had them computed before.
     pub fn update(
         &mut self,
         mesh_name: &str,
         base: impl FnOnce() -> Option<Arc<Mesh>>,
         fields: &[FieldSource],
-        used: [bool; 4],
+        (used, mesh_lanes): ([bool; 4], MeshLanes),
     ) {
         if let Some(job) = &self.job
             && let Ok(result) = job.result.try_recv()
@@ -63,7 +66,7 @@ impl FieldState {
                 Err(error) => self.error = Some(error),
             }
         }
-        if !used.iter().any(|&u| u) {
+        if !used.iter().any(|&u| u) && mesh_lanes.iter().all(Option::is_none) {
             *self = FieldState {
                 picking: self.picking,
                 view: self.view,
@@ -71,7 +74,7 @@ impl FieldState {
             };
             return;
         }
-        let key = format!("{mesh_name}|{fields:?}|{used:?}");
+        let key = format!("{mesh_name}|{fields:?}|{used:?}|{mesh_lanes:?}");
         if self.attempted.as_ref() == Some(&key) {
             return;
         }
@@ -83,15 +86,18 @@ impl FieldState {
         let (sender, result) = mpsc::channel();
         let (fields, progress) = (fields.to_vec(), (done.clone(), total.clone()));
         std::thread::spawn(move || {
-            let solved = crate::geodesic::attach_fields(&mut mesh, &fields, used, |d, t| {
+            let report = |d: usize, t: usize| {
                 progress.0.store(d, Ordering::Relaxed);
                 progress.1.store(t.max(1), Ordering::Relaxed);
-            });
-            let _ = sender.send(
-                solved
-                    .map(|notes| (mesh, notes))
-                    .map_err(|error| error.to_string()),
-            );
+            };
+            let solved = crate::geodesic::attach_fields(&mut mesh, &fields, used, report)
+                .map_err(|error| error.to_string())
+                .and_then(|notes| {
+                    crate::mesh_fields::attach_mesh_fields(&mut mesh, &mesh_lanes, report)
+                        .map(|()| notes)
+                        .map_err(|error| error.to_string())
+                });
+            let _ = sender.send(solved.map(|notes| (mesh, notes)));
         });
         self.error = None;
         self.job = Some(Job {

@@ -460,13 +460,14 @@ impl VeneerApp {
     /// Keeps the preview mesh's fields in step with the graph (solving in the background)
     /// and hands the solved mesh to the preview.
     pub(in crate::app) fn solve_fields(&mut self) {
-        let mut used = self
+        let uses = self
             .preview
             .live
             .compiled
             .as_ref()
-            .map(|c| c.uses().fields)
+            .map(|c| c.uses())
             .unwrap_or_default();
+        let mut used = uses.fields;
         if let Some(slot) = self.preview.fields.view {
             used[slot.min(3)] = true;
         }
@@ -476,7 +477,7 @@ impl VeneerApp {
             &name,
             || preview.plain_mesh(),
             &self.session.document.graph.preview.fields,
-            used,
+            (used, uses.mesh_fields),
         );
         let mesh_prefix = format!("{name}|");
         self.preview.state.prepared = self

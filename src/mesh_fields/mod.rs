@@ -1,0 +1,274 @@
+//! Mesh fields: what a surface knows about itself, per vertex, for materials to read
+//! (a Mesh field node) and for bakes — how convex it is, how occluded, how thick. Each
+//! is computed once per mesh and setting, from the mesh as loaded: curvatures over the
+//! welded mesh (seams do not cut them), ray-cast fields from every vertex with its own
+//! normal (hard edges keep their faces' normals). Distances and radii are set in
+//! percent of the mesh's bounding radius, so a field means the same on any mesh scale.
+
+mod cache;
+mod curvature;
+mod occlusion;
+mod rays;
+mod scene;
+mod thickness;
+
+pub use curvature::{Curvatures, convexity, curvatures, integrated_mean_curvature};
+pub use occlusion::{Estimate, Sampling, occlusion, occlusion_at};
+pub use scene::{Scene, bounding_sphere};
+pub use thickness::{CONE_HALF_ANGLE, thickness};
+
+use crate::geodesic::{HeatError, welded_for_distances};
+use crate::mesh::Mesh;
+use serde::{Deserialize, Serialize};
+use std::ops::RangeInclusive;
+
+/// The most mesh fields a material reads: the lanes of `VeneerSurface.mesh_fields`.
+pub const MESH_LANES: usize = 4;
+
+/// Which mesh field each lane of `VeneerSurface.mesh_fields` holds.
+pub type MeshLanes = [Option<MeshField>; MESH_LANES];
+
+/// Computes the fields of `lanes` over `mesh` into `mesh.mesh_fields` (left empty when
+/// no lane is used, so the shader reads 0), with progress as `(done, total)` vertices
+/// over every field.
+pub fn attach_mesh_fields(
+    mesh: &mut Mesh,
+    lanes: &MeshLanes,
+    mut progress: impl FnMut(usize, usize),
+) -> Result<(), MeshFieldError> {
+    mesh.mesh_fields.clear();
+    let used: Vec<(usize, MeshField)> = lanes
+        .iter()
+        .enumerate()
+        .filter_map(|(lane, field)| field.map(|field| (lane, field)))
+        .collect();
+    if used.is_empty() {
+        return Ok(());
+    }
+    let count = mesh.positions.len();
+    let total = count * used.len();
+    let mut attached = vec![[0.0f32; MESH_LANES]; count];
+    for (done, &(lane, field)) in used.iter().enumerate() {
+        let values = cache::cached(field, mesh, |d, _| progress(done * count + d, total))?;
+        for (vertex, &value) in attached.iter_mut().zip(values.iter()) {
+            vertex[lane] = value;
+        }
+        progress((done + 1) * count, total);
+    }
+    mesh.mesh_fields = attached;
+    Ok(())
+}
+
+/// What a mesh field measures.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[cfg_attr(feature = "arbitrary", derive(arbitrary::Arbitrary))]
+pub enum MeshFieldKind {
+    /// How convex the surface is at the field's radius, −1 (creases) to 1 (edges).
+    Convexity,
+    /// Mean curvature in 1/mesh units (1/r on a sphere of radius r), unsmoothed.
+    MeanCurvature,
+    /// Gaussian curvature in 1/mesh units² (negative at saddles), unsmoothed.
+    GaussianCurvature,
+    /// Ambient occlusion: the open share of the hemisphere, 0 enclosed to 1 open.
+    Occlusion,
+    /// Thickness along the inward normal as a share of the field's distance, 0 to 1.
+    Thickness,
+}
+
+impl MeshFieldKind {
+    /// Every kind, in menu order.
+    pub const ALL: [MeshFieldKind; 5] = [
+        MeshFieldKind::Convexity,
+        MeshFieldKind::MeanCurvature,
+        MeshFieldKind::GaussianCurvature,
+        MeshFieldKind::Occlusion,
+        MeshFieldKind::Thickness,
+    ];
+
+    /// The kind as menus and messages name it.
+    pub fn name(self) -> &'static str {
+        match self {
+            MeshFieldKind::Convexity => "convexity",
+            MeshFieldKind::MeanCurvature => "mean curvature",
+            MeshFieldKind::GaussianCurvature => "Gaussian curvature",
+            MeshFieldKind::Occlusion => "ambient occlusion",
+            MeshFieldKind::Thickness => "thickness",
+        }
+    }
+
+    /// Whether the kind casts rays (and so has a sample count and a distance).
+    pub fn casts_rays(self) -> bool {
+        matches!(self, MeshFieldKind::Occlusion | MeshFieldKind::Thickness)
+    }
+}
+
+/// A mesh field with its settings: what a Mesh field node asks for, and the unit the
+/// renderers compute and cache. Settings the kind does not use are ignored ([`key`]
+/// clears them).
+///
+/// [`key`]: MeshField::key
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[cfg_attr(feature = "arbitrary", derive(arbitrary::Arbitrary))]
+pub struct MeshField {
+    pub kind: MeshFieldKind,
+    /// Convexity's radius, in percent of the mesh's bounding radius.
+    #[serde(default = "MeshField::default_radius")]
+    pub radius: u32,
+    /// Rays per vertex (occlusion and thickness): the accuracy knob.
+    #[serde(default = "MeshField::default_samples")]
+    pub samples: u32,
+    /// How far rays look (occlusion and thickness), in percent of the bounding radius.
+    #[serde(default = "MeshField::default_distance")]
+    pub distance: u32,
+}
+
+impl std::fmt::Display for MeshField {
+    /// The kind and the settings it uses: `convexity (radius 5%)`,
+    /// `ambient occlusion (64 rays, 50%)`.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.kind.name())?;
+        match self.kind {
+            MeshFieldKind::Convexity => write!(f, " (radius {}%)", self.radius),
+            kind if kind.casts_rays() => {
+                write!(f, " ({} rays, {}%)", self.samples, self.distance)
+            }
+            _ => Ok(()),
+        }
+    }
+}
+
+/// A mesh field that cannot be computed: settings out of range, or a mesh whose
+/// smoothing system cannot be factored.
+#[derive(Debug, thiserror::Error)]
+pub enum MeshFieldError {
+    #[error("{kind}: {setting} {value} is outside {min} to {max}")]
+    Setting {
+        kind: &'static str,
+        setting: &'static str,
+        value: u32,
+        min: u32,
+        max: u32,
+    },
+    #[error("convexity: {0}")]
+    Heat(#[from] HeatError),
+}
+
+impl MeshField {
+    /// Radii accepted, in percent of the bounding radius.
+    pub const RADII: RangeInclusive<u32> = 1..=100;
+    /// Sample counts accepted.
+    pub const SAMPLES: RangeInclusive<u32> = 1..=4096;
+    /// Distances accepted, in percent of the bounding radius (400 spans any mesh).
+    pub const DISTANCES: RangeInclusive<u32> = 1..=400;
+
+    fn default_radius() -> u32 {
+        5
+    }
+
+    fn default_samples() -> u32 {
+        64
+    }
+
+    fn default_distance() -> u32 {
+        50
+    }
+
+    /// A field of `kind` with the default settings.
+    pub fn new(kind: MeshFieldKind) -> MeshField {
+        MeshField {
+            kind,
+            radius: MeshField::default_radius(),
+            samples: MeshField::default_samples(),
+            distance: MeshField::default_distance(),
+        }
+    }
+
+    /// The field with the settings its kind ignores set to their defaults, so that two
+    /// nodes asking for the same thing share one computed field.
+    pub fn key(self) -> MeshField {
+        let defaults = MeshField::new(self.kind);
+        MeshField {
+            radius: match self.kind {
+                MeshFieldKind::Convexity => self.radius,
+                _ => defaults.radius,
+            },
+            samples: match self.kind.casts_rays() {
+                true => self.samples,
+                false => defaults.samples,
+            },
+            distance: match self.kind.casts_rays() {
+                true => self.distance,
+                false => defaults.distance,
+            },
+            ..self
+        }
+    }
+
+    /// Refuses settings outside their limits, naming the limits.
+    pub fn validate(&self) -> Result<(), MeshFieldError> {
+        let check = |setting, value: u32, range: RangeInclusive<u32>| match range.contains(&value) {
+            true => Ok(()),
+            false => Err(MeshFieldError::Setting {
+                kind: self.kind.name(),
+                setting,
+                value,
+                min: *range.start(),
+                max: *range.end(),
+            }),
+        };
+        if self.kind == MeshFieldKind::Convexity {
+            check("radius", self.radius, MeshField::RADII)?;
+        }
+        if self.kind.casts_rays() {
+            check("samples", self.samples, MeshField::SAMPLES)?;
+            check("distance", self.distance, MeshField::DISTANCES)?;
+        }
+        Ok(())
+    }
+
+    /// The field at every vertex of `mesh` (as loaded), with progress as `(done, total)`.
+    pub fn compute(
+        &self,
+        mesh: &Mesh,
+        progress: impl FnMut(usize, usize),
+    ) -> Result<Vec<f32>, MeshFieldError> {
+        self.validate()?;
+        let percent = |value: u32| value as f32 / 100.0;
+        match self.kind {
+            MeshFieldKind::Occlusion => {
+                let sampling = Sampling {
+                    samples: self.samples,
+                    distance: percent(self.distance),
+                    tolerance: None,
+                };
+                Ok(occlusion(&Scene::new(mesh), sampling, progress)
+                    .into_iter()
+                    .map(|estimate| estimate.open)
+                    .collect())
+            }
+            MeshFieldKind::Thickness => {
+                let distance = percent(self.distance);
+                let scene = Scene::new(mesh);
+                Ok(thickness(&scene, self.samples, distance, progress)
+                    .into_iter()
+                    .map(|t| t / distance)
+                    .collect())
+            }
+            kind => {
+                let (welded, of_vertex) = welded_for_distances(mesh);
+                let per_welded = match kind {
+                    MeshFieldKind::Convexity => {
+                        let radius = f64::from(percent(self.radius)) * bounding_sphere(mesh).1;
+                        convexity(&welded, radius)?
+                    }
+                    MeshFieldKind::MeanCurvature => curvatures(&welded).mean,
+                    _ => curvatures(&welded).gaussian,
+                };
+                Ok(of_vertex
+                    .iter()
+                    .map(|&w| per_welded[w as usize] as f32)
+                    .collect())
+            }
+        }
+    }
+}

@@ -1,0 +1,145 @@
+//! What the ray-cast mesh fields share: the mesh moved into a unit frame (centred, its
+//! bounding sphere of radius 1, so huge or tiny coordinates cast rays as well as unit
+//! ones), a hierarchy over its triangles, and a loop over the vertices on every core
+//! that reports progress.
+
+use crate::mesh::{Bvh, Mesh};
+use glam::{DVec3, Vec3A};
+use rayon::prelude::*;
+
+/// How far a ray's origin is lifted off the surface, as a share of the mean length of
+/// the edges at its vertex: enough that the triangles around the vertex, tilted a
+/// little by a scan's noise or a coarse polygonisation, do not occlude it (the bias
+/// other bakers leave to the user), small enough that a real crease still does.
+const LIFT: f32 = 0.05;
+
+/// The least lift, in units of the bounding radius (a vertex in no triangle).
+const LEAST_LIFT: f32 = 1.0e-5;
+
+/// Vertices per step of the loop (progress is reported between steps).
+const STEP: usize = 4096;
+
+/// A mesh ready for rays.
+pub struct Scene {
+    bvh: Bvh,
+    positions: Vec<Vec3A>,
+    normals: Vec<Vec3A>,
+    /// How far rays from each vertex start off the surface.
+    lifts: Vec<f32>,
+}
+
+/// A vertex as a ray-cast field sees it.
+#[derive(Clone, Copy, Debug)]
+pub struct Vertex {
+    /// Its index in the mesh.
+    pub index: u32,
+    /// Its position in the unit frame.
+    pub position: Vec3A,
+    /// Its unit normal (the mesh's own, so hard edges keep their faces' normals).
+    pub normal: Vec3A,
+    /// How far its rays start off the surface.
+    pub lift: f32,
+}
+
+impl Vertex {
+    /// Where a ray leaving the surface on the `side` of the normal (+1 out, −1 in)
+    /// starts.
+    pub fn origin(&self, side: f32) -> [f32; 3] {
+        (self.position + self.normal * (side * self.lift)).into()
+    }
+}
+
+/// The centre and radius of the sphere `fitted_to_unit_sphere` maps to the unit one.
+pub fn bounding_sphere(mesh: &Mesh) -> (DVec3, f64) {
+    let point = |p: &[f32; 3]| DVec3::from(p.map(f64::from));
+    let (min, max) = mesh.positions.iter().fold(
+        (DVec3::splat(f64::MAX), DVec3::splat(f64::MIN)),
+        |(lo, hi), p| (lo.min(point(p)), hi.max(point(p))),
+    );
+    let centre = (min + max) * 0.5;
+    let radius = mesh
+        .positions
+        .iter()
+        .map(|p| (point(p) - centre).length())
+        .fold(0.0f64, f64::max);
+    (centre, radius)
+}
+
+/// The lift of every vertex: [`LIFT`] times the mean length of its edges.
+fn lifts(positions: &[[f32; 3]], indices: &[u32]) -> Vec<f32> {
+    let mut sums = vec![(0.0f32, 0u32); positions.len()];
+    for triangle in indices.chunks_exact(3) {
+        for k in 0..3 {
+            let (a, b) = (triangle[k] as usize, triangle[(k + 1) % 3] as usize);
+            let length = Vec3A::from(positions[a]).distance(Vec3A::from(positions[b]));
+            if length.is_finite() {
+                for end in [a, b] {
+                    sums[end].0 += length;
+                    sums[end].1 += 1;
+                }
+            }
+        }
+    }
+    sums.into_iter()
+        .map(|(total, count)| (LIFT * total / count.max(1) as f32).max(LEAST_LIFT))
+        .collect()
+}
+
+impl Scene {
+    /// `mesh` in its unit frame, with its hierarchy built.
+    pub fn new(mesh: &Mesh) -> Scene {
+        let (centre, radius) = bounding_sphere(mesh);
+        let scale = if radius > 0.0 { 1.0 / radius } else { 1.0 };
+        let unit: Vec<[f32; 3]> = mesh
+            .positions
+            .iter()
+            .map(|p| {
+                ((DVec3::from(p.map(f64::from)) - centre) * scale)
+                    .as_vec3()
+                    .to_array()
+            })
+            .collect();
+        let bvh = Bvh::new(&unit, &mesh.indices);
+        let normals = (0..unit.len())
+            .map(|v| {
+                let normal = mesh.normals.get(v).copied().unwrap_or([0.0, 1.0, 0.0]);
+                Vec3A::from(normal).normalize_or(Vec3A::Y)
+            })
+            .collect();
+        Scene {
+            bvh,
+            lifts: lifts(&unit, &mesh.indices),
+            positions: unit.into_iter().map(Vec3A::from).collect(),
+            normals,
+        }
+    }
+
+    /// The hierarchy, in the unit frame.
+    pub fn bvh(&self) -> &Bvh {
+        &self.bvh
+    }
+
+    /// `measure` of every vertex, worked out on every core, in vertex order; progress
+    /// as `(vertices done, vertices)`.
+    pub fn per_vertex<T: Send>(
+        &self,
+        measure: impl Fn(Vertex) -> T + Sync,
+        mut progress: impl FnMut(usize, usize),
+    ) -> Vec<T> {
+        let count = self.positions.len();
+        let mut values = Vec::with_capacity(count);
+        for start in (0..count).step_by(STEP) {
+            let end = (start + STEP).min(count);
+            values.par_extend((start..end).into_par_iter().map(|v| {
+                measure(Vertex {
+                    index: v as u32,
+                    position: self.positions[v],
+                    normal: self.normals[v],
+                    lift: self.lifts[v],
+                })
+            }));
+            progress(end, count);
+        }
+        values
+    }
+}
