@@ -7,6 +7,7 @@ mod compile;
 mod fmt;
 mod geodesic;
 mod mesh;
+mod mesh_field;
 mod output;
 mod parameters;
 mod render;
@@ -47,6 +48,8 @@ enum Command {
     Check(check::CheckArgs),
     /// Geodesic distances from source vertices to every vertex of a mesh, as CSV.
     Geodesic(geodesic::GeodesicArgs),
+    /// A mesh field (curvature, ambient occlusion, thickness) at every vertex of a mesh, as CSV.
+    MeshField(mesh_field::MeshFieldArgs),
     /// Report a mesh's vertices, triangles and defects (degenerate, boundary, non-manifold, components).
     Mesh(mesh::MeshArgs),
     /// Rewrite graph files in canonical form (sorted, deterministic bytes).
@@ -77,6 +80,7 @@ impl Command {
             Command::Bake(args) => args.plan(plan, job),
             Command::Compile(args) => args.plan(plan, job),
             Command::Geodesic(args) => args.plan(plan, job),
+            Command::MeshField(args) => args.plan(plan, job),
             Command::Mesh(args) => args.plan(plan, job),
             Command::Snapshot(args) => args.plan(plan, job),
             Command::Report(args) => args.plan(plan, job.unwrap_or("report")),
@@ -215,6 +219,7 @@ pub fn execute(cli: Cli) -> Result<(), Failure> {
         Some(Command::Fmt(args)) => fmt::run(args),
         Some(Command::Mesh(args)) => mesh::run(args),
         Some(Command::Geodesic(args)) => geodesic::run(args),
+        Some(Command::MeshField(args)) => mesh_field::run(args),
         Some(Command::Snapshot(args)) => snapshot::run(args),
         Some(Command::Report(args)) => report::run(args),
         Some(Command::Batch(args)) => batch::run(args),

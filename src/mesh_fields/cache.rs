@@ -54,3 +54,31 @@ fn lock() -> std::sync::MutexGuard<'static, Vec<Entry>> {
         .lock()
         .unwrap_or_else(|poisoned| poisoned.into_inner())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh_fields::MeshFieldKind;
+
+    #[test]
+    fn the_same_content_and_settings_are_computed_once() {
+        let torus = crate::mesh::primitive("torus:10").unwrap();
+        let field = MeshField::new(MeshFieldKind::Thickness);
+        let first = cached(field, &torus, |_, _| {}).unwrap();
+        let mut computed = false;
+        let again = cached(field, &torus, |_, _| computed = true).unwrap();
+        assert!(Arc::ptr_eq(&first, &again) && !computed);
+        // Ignored settings change nothing; another mesh is computed anew.
+        let same = MeshField { radius: 9, ..field };
+        assert!(Arc::ptr_eq(
+            &first,
+            &cached(same, &torus, |_, _| {}).unwrap()
+        ));
+        let mut moved = torus.clone();
+        moved.positions[0][0] += 0.01;
+        assert!(!Arc::ptr_eq(
+            &first,
+            &cached(field, &moved, |_, _| {}).unwrap()
+        ));
+    }
+}

@@ -226,6 +226,16 @@ impl MeshField {
         Ok(())
     }
 
+    /// How occlusion rays are cast for these settings, stopping at `tolerance` when
+    /// given (see [`Sampling::tolerance`]).
+    pub fn sampling(&self, tolerance: Option<f32>) -> Sampling {
+        Sampling {
+            samples: self.samples,
+            distance: self.distance as f32 / 100.0,
+            tolerance,
+        }
+    }
+
     /// The field at every vertex of `mesh` (as loaded), with progress as `(done, total)`.
     pub fn compute(
         &self,
@@ -236,12 +246,7 @@ impl MeshField {
         let percent = |value: u32| value as f32 / 100.0;
         match self.kind {
             MeshFieldKind::Occlusion => {
-                let sampling = Sampling {
-                    samples: self.samples,
-                    distance: percent(self.distance),
-                    tolerance: None,
-                };
-                Ok(occlusion(&Scene::new(mesh), sampling, progress)
+                Ok(occlusion(&Scene::new(mesh), self.sampling(None), progress)
                     .into_iter()
                     .map(|estimate| estimate.open)
                     .collect())
@@ -270,5 +275,68 @@ impl MeshField {
                     .collect())
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::primitive;
+
+    /// A scan's worst: an open sheet, a fin on three triangles of one edge (non-manifold),
+    /// a separate closed piece, a triangle with no area, a vertex no triangle uses and one
+    /// far away.
+    fn dirty() -> Mesh {
+        let mut mesh = primitive("plane:4").unwrap();
+        let sheet = mesh.positions.len() as u32;
+        let fin = [[0.0, 0.5, 0.0], [0.0, -0.5, 0.1], [0.2, 0.4, 0.3]];
+        for p in fin {
+            mesh.push_vertex(p, [1.0, 0.0, 0.0], [0.0; 2]);
+        }
+        mesh.indices
+            .extend([0, 1, sheet, 1, 0, sheet + 1, 0, 1, sheet + 2]);
+        let ball = primitive("sphere:8").unwrap();
+        let offset = mesh.positions.len() as u32;
+        for ((p, n), uv) in ball.positions.iter().zip(&ball.normals).zip(&ball.uvs) {
+            mesh.push_vertex(p.map(|c| c * 0.2 + 3.0), *n, *uv);
+        }
+        mesh.indices.extend(ball.indices.iter().map(|i| i + offset));
+        let flat = mesh.push_vertex([9.0, 9.0, 9.0], [0.0, 1.0, 0.0], [0.0; 2]);
+        mesh.indices.extend([flat, flat, 2]);
+        mesh.push_vertex([1.0e4, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0; 2]);
+        mesh
+    }
+
+    #[test]
+    fn every_kind_is_finite_on_a_dirty_mesh_and_refuses_settings_out_of_range() {
+        let mesh = dirty();
+        for kind in MeshFieldKind::ALL {
+            let values = MeshField::new(kind).compute(&mesh, |_, _| {}).unwrap();
+            assert_eq!(values.len(), mesh.positions.len());
+            assert!(values.iter().all(|v| v.is_finite()), "{kind:?}: {values:?}");
+        }
+        let out_of_range = MeshField {
+            radius: 0,
+            ..MeshField::new(MeshFieldKind::Convexity)
+        };
+        let error = out_of_range.compute(&mesh, |_, _| {}).unwrap_err();
+        assert_eq!(error.to_string(), "convexity: radius 0 is outside 1 to 100");
+    }
+
+    #[test]
+    fn fields_attach_in_their_lanes_and_nothing_is_attached_when_no_lane_is_used() {
+        let mut mesh = primitive("torus:12").unwrap();
+        let lanes: MeshLanes = [
+            None,
+            Some(MeshField::new(MeshFieldKind::Occlusion)),
+            None,
+            Some(MeshField::new(MeshFieldKind::Convexity)),
+        ];
+        attach_mesh_fields(&mut mesh, &lanes, |_, _| {}).unwrap();
+        assert_eq!(mesh.mesh_fields.len(), mesh.positions.len());
+        assert!(mesh.mesh_fields.iter().all(|f| f[0] == 0.0 && f[2] == 0.0));
+        assert!(mesh.mesh_fields.iter().any(|f| f[1] < 1.0 && f[3] != 0.0));
+        attach_mesh_fields(&mut mesh, &[None; MESH_LANES], |_, _| {}).unwrap();
+        assert!(mesh.mesh_fields.is_empty());
     }
 }

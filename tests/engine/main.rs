@@ -34,6 +34,7 @@ mod layout;
 mod limits;
 mod lint;
 mod live_preview;
+mod mesh_fields;
 mod mesh_passes;
 mod meshes;
 mod node_kinds;

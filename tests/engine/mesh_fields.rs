@@ -1,0 +1,194 @@
+//! Mesh fields in materials: a Mesh field node's values reach the surface in a UV bake,
+//! nodes asking for the same field share one lane whatever their order, more fields
+//! than lanes and settings out of range are refused by name, exports add the mesh
+//! fields' input only where a material reads one, and `veneer mesh-field` writes one
+//! line per file vertex.
+
+use crate::support::{gpu, root, run_veneer, temp_dir};
+use veneer::bake::{BakeSettings, BakeSurface, Format, Map, NormalConvention, bake};
+use veneer::graph::{Graph, NodeKind, Value, ValueType};
+use veneer::mesh_fields::{MeshField, MeshFieldKind};
+use veneer::nodes::Mix;
+
+/// A material whose albedo is `field` in grey (0 black, 1 white), previewed on `mesh`.
+fn grey_of(fields: &[MeshField], mesh: &str) -> Graph {
+    let mut graph = Graph::default();
+    graph.preview.mesh = mesh.to_string();
+    let material = graph.add("material", NodeKind::Material);
+    let mut previous = None;
+    for (k, field) in fields.iter().enumerate() {
+        let node = graph.add(&format!("field {k}"), NodeKind::MeshField(*field));
+        let grey = graph.add(
+            &format!("grey {k}"),
+            NodeKind::Mix(Mix {
+                ty: ValueType::Color,
+            }),
+        );
+        graph.set_input(grey, "a", Value::Color(0.0, 0.0, 0.0));
+        graph.set_input(grey, "b", Value::Color(1.0, 1.0, 1.0));
+        graph.connect(node, "value", grey, "factor");
+        if let Some(before) = previous {
+            graph.connect(before, "result", grey, "a");
+        }
+        previous = Some(grey);
+    }
+    if let Some(last) = previous {
+        graph.connect(last, "result", material, "albedo");
+    }
+    graph
+}
+
+fn occlusion(distance: u32) -> MeshField {
+    MeshField {
+        distance,
+        ..MeshField::new(MeshFieldKind::Occlusion)
+    }
+}
+
+#[test]
+fn occlusion_reaches_the_surface_dark_inside_a_torus_ring_and_light_outside() {
+    let graph = grey_of(&[occlusion(100)], "torus");
+    let compiled = veneer::codegen::compile(&graph, &Default::default()).expect("compiles");
+    assert_eq!(compiled.module.uses.mesh_fields[0], Some(occlusion(100)));
+    let dir = temp_dir("mesh-field-bake");
+    let settings = BakeSettings {
+        surface: BakeSurface::MeshUv("torus".into()),
+        size: 128,
+        maps: vec![Map::Albedo],
+        format: Format::Png8,
+        normal: NormalConvention::OpenGl,
+        time: 0.0,
+    };
+    let maps = bake(gpu(), &compiled, &settings, &dir.join("torus"), |_, _| true).expect("bakes");
+    let image = image::open(&maps[0].path).expect("a PNG").to_luma8();
+    // The torus's layout runs round the tube down the image: its outer equator at the top
+    // and bottom rows, the inner one (facing the hole) across the middle.
+    let row = |y: u32| {
+        (0..128)
+            .map(|x| f64::from(image.get_pixel(x, y).0[0]))
+            .sum::<f64>()
+            / 128.0
+    };
+    let (outer, inner) = (row(2), row(64));
+    assert!(
+        inner < outer - 40.0,
+        "inside the ring {inner:.0}, outside {outer:.0}: occlusion did not reach the bake"
+    );
+}
+
+#[test]
+fn nodes_asking_for_one_field_share_its_lane_and_lanes_do_not_follow_node_order() {
+    let convexity = MeshField::new(MeshFieldKind::Convexity);
+    let thickness = MeshField::new(MeshFieldKind::Thickness);
+    // A convexity node's ray settings are ignored: it is the same field.
+    let convexity_again = MeshField {
+        samples: 7,
+        ..convexity
+    };
+    let forwards = grey_of(
+        &[occlusion(50), convexity, thickness, convexity_again],
+        "sphere",
+    );
+    let backwards = grey_of(
+        &[thickness, convexity_again, convexity, occlusion(50)],
+        "sphere",
+    );
+    let lanes = |graph: &Graph| {
+        veneer::codegen::compile(graph, &Default::default())
+            .expect("compiles")
+            .module
+    };
+    let (forwards, backwards) = (lanes(&forwards), lanes(&backwards));
+    assert_eq!(forwards.uses.mesh_fields, backwards.uses.mesh_fields);
+    assert_eq!(forwards.uses.mesh_fields.iter().flatten().count(), 3);
+    for lane in ["x", "y", "z"] {
+        assert!(forwards.source.contains(&format!("s.mesh_fields.{lane}")));
+    }
+    assert!(!forwards.source.contains("s.mesh_fields.w"));
+}
+
+#[test]
+fn five_fields_and_settings_out_of_range_are_refused_by_name() {
+    let dir = temp_dir("mesh-field-check");
+    let five: Vec<MeshField> = [10, 20, 30, 40, 50].map(occlusion).to_vec();
+    let path = dir.join("five.ron");
+    veneer::graph::save(&grey_of(&five, "sphere"), &path).expect("saved");
+    let output = run_veneer(&["check", path.to_str().unwrap()]);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(!output.status.success());
+    assert!(
+        stderr.contains("field 4") && stderr.contains("5 different mesh fields"),
+        "{stderr}"
+    );
+    let too_many_rays = MeshField {
+        samples: 5000,
+        ..occlusion(50)
+    };
+    let path = dir.join("rays.ron");
+    veneer::graph::save(&grey_of(&[too_many_rays], "sphere"), &path).expect("saved");
+    let output = run_veneer(&["check", path.to_str().unwrap()]);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(!output.status.success());
+    assert!(
+        stderr.contains("field 0") && stderr.contains("samples 5000 is outside 1 to 4096"),
+        "{stderr}"
+    );
+}
+
+#[test]
+fn exports_take_mesh_fields_in_only_where_the_material_reads_them() {
+    let glsl = |graph: &Graph| {
+        let bytes = veneer::codegen::export::export(
+            graph,
+            veneer::codegen::export::Target::Glsl,
+            veneer::codegen::ParamMode::Baked,
+        )
+        .expect("exports");
+        String::from_utf8(bytes).expect("text")
+    };
+    let reading = glsl(&grey_of(&[occlusion(50)], "sphere"));
+    let wood = glsl(&veneer::graph::load(&root("graphs/wood.ron")).expect("preset"));
+    assert!(reading.contains("location = 4"), "{reading}");
+    assert!(!wood.contains("location = 4"));
+}
+
+#[test]
+fn the_cli_writes_a_field_line_per_file_vertex() {
+    let dir = temp_dir("mesh-field-cli");
+    let csv = dir.join("mean.csv");
+    let output = run_veneer(&[
+        "mesh-field",
+        "sphere:32",
+        "--kind",
+        "mean-curvature",
+        "-o",
+        csv.to_str().unwrap(),
+    ]);
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let text = std::fs::read_to_string(&csv).expect("written");
+    let values: Vec<f64> = text
+        .lines()
+        .map(|line| line.parse().expect("a number"))
+        .collect();
+    let sphere = veneer::mesh::primitive("sphere:32").expect("primitive");
+    assert_eq!(values.len(), sphere.file_vertex_count());
+    // The unit sphere's mean curvature is 1 (the seam's copies read it too).
+    assert!(values.iter().all(|h| (h - 1.0).abs() < 0.01), "{values:?}");
+    let refused = run_veneer(&[
+        "mesh-field",
+        "sphere",
+        "--kind",
+        "convexity",
+        "--radius",
+        "0",
+        "-o",
+        dir.join("none.csv").to_str().unwrap(),
+    ]);
+    assert!(!refused.status.success());
+    assert!(String::from_utf8_lossy(&refused.stderr).contains("radius 0 is outside 1 to 100"));
+    assert!(!dir.join("none.csv").exists());
+}
