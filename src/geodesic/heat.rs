@@ -293,29 +293,29 @@ fn corners(triangulation: &Triangulation) -> Vec<Corner> {
         .collect()
 }
 
-/// A quantity given as amounts per vertex (`integrated`: a density already integrated
-/// over each vertex's share of the surface), spread by heat diffusion for `time` and
-/// read back as a density: one backward-Euler step, `(M + time·L) u = integrated`,
-/// stable however stiff, a smoothing whose kernel is a Gaussian of the geodesic distance
-/// with variance `2·time`. Vertices with no area around them read 0. Give it an
-/// intrinsic Delaunay triangulation ([`Triangulation::flip_to_delaunay`]) so every
-/// weight is non-negative and the system can be factored.
-pub fn diffuse_integrated(
+/// A quantity spread over the surface by heat diffusion for `time` and read back as a
+/// density at the vertices of `triangulation`: one backward-Euler step,
+/// `(M + time·L) u = b`, stable however stiff, a smoothing whose kernel is a Gaussian of
+/// the geodesic distance with variance `2·time`. `amount(v, m)` gives `b` at vertex `v`
+/// whose lumped area is `m`: a density `d` there gives `d·m`, a quantity already
+/// integrated over the vertex's share of the surface gives itself. Vertices with no area
+/// around them read 0. Give it an intrinsic Delaunay triangulation
+/// ([`Triangulation::flip_to_delaunay`]) so every weight is non-negative and the system
+/// can be factored.
+pub fn diffuse(
     triangulation: &Triangulation,
-    integrated: &[f64],
     time: f64,
+    amount: impl Fn(usize, f64) -> f64,
 ) -> Result<Vec<f64>, HeatError> {
     let n = triangulation.vertex_count;
     let (laplacian, mass) = operators(n, &triangulation.faces, &corners(triangulation));
     let dead: Vec<bool> = mass.iter().map(|&m| m <= 0.0).collect();
     let system = factor("diffusion", n, combine(&laplacian, time, &mass, 1.0, &dead))?;
-    let mut density: Vec<f64> = integrated
-        .iter()
-        .zip(&dead)
-        .map(|(&amount, &d)| if d { 0.0 } else { amount })
+    let mut smoothed: Vec<f64> = (0..n)
+        .map(|v| if dead[v] { 0.0 } else { amount(v, mass[v]) })
         .collect();
-    solve(&system, &mut density);
-    Ok(density)
+    solve(&system, &mut smoothed);
+    Ok(smoothed)
 }
 
 /// The cotangent Laplacian `L` (lower triangle, repeated positions add up) and the

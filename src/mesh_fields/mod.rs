@@ -12,7 +12,7 @@ mod rays;
 mod scene;
 mod thickness;
 
-pub use curvature::{Curvatures, convexity, curvatures, integrated_mean_curvature};
+pub use curvature::{Curvatures, MeanCurvature, convexity, curvatures, sturdy_mean_curvature};
 pub use occlusion::{Estimate, Sampling, occlusion, occlusion_at};
 pub use scene::{Scene, bounding_sphere};
 pub use thickness::{CONE_HALF_ANGLE, thickness};

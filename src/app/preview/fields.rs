@@ -1,12 +1,14 @@
-//! GeoTextures in the editor: the preview mesh's distance fields solved in the
-//! background (with a progress bar), their sources picked by clicking the mesh, and a
-//! field view (a colour scale with isolines) in place of the material.
+//! GeoTextures and mesh fields in the editor: the preview mesh's distance fields and the
+//! mesh fields the material reads computed in the background (with a progress bar),
+//! distance fields' sources picked by clicking the mesh, and a field view (a colour
+//! scale with isolines) in place of the material.
 
 use crate::geodesic::{HeatOptions, Method};
 use crate::graph::{FieldSource, Graph, NodeKind, RampInterpolation, RampStop, Value};
 use crate::mesh::Mesh;
 use crate::mesh_fields::MeshLanes;
-use crate::nodes::{ColorRamp, Field, Mix};
+use crate::mesh_fields::{MeshField, MeshFieldKind};
+use crate::nodes::{ColorRamp, Field, MapRange, MapRangeMode, Mix};
 use egui::Ui;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, mpsc};
@@ -29,7 +31,16 @@ pub struct FieldState {
     /// The field whose sources clicks on the preview add or remove.
     pub picking: Option<usize>,
     /// Show this field as a colour scale with isolines instead of the material.
-    pub view: Option<usize>,
+    pub view: Option<FieldView>,
+}
+
+/// A field the preview can show in place of the material.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum FieldView {
+    /// Distance field `slot` of the graph's preview.
+    Distance(usize),
+    /// A mesh field the material reads.
+    Mesh(MeshField),
 }
 
 /// A solve running on another thread.
@@ -116,16 +127,48 @@ impl FieldState {
     }
 }
 
-/// A material showing field `slot` as a colour scale (red near the sources, blue far)
-/// with isolines every 0.05 (seed 003, figure 5.2).
-pub fn field_view_graph(slot: u8) -> Graph {
+/// The range a mesh field's colour scale spans.
+fn shown_range(field: &MeshField) -> (f64, f64) {
+    match field.kind {
+        MeshFieldKind::Convexity => (-1.0, 1.0),
+        MeshFieldKind::Occlusion | MeshFieldKind::Thickness => (0.0, 1.0),
+        // A preview mesh is fitted to the unit sphere: its own curvature is 1 (and 1²).
+        MeshFieldKind::MeanCurvature | MeshFieldKind::GaussianCurvature => (-5.0, 5.0),
+    }
+}
+
+/// A material showing `view` as a colour scale (red near a distance field's sources or
+/// at a mesh field's low end, blue far or high) with isolines every 0.05 of the scale
+/// (seed 003, figure 5.2).
+pub fn field_view_graph(view: FieldView) -> Graph {
     let mut graph = Graph::default();
-    let field = graph.add(
-        "field",
-        NodeKind::Field(Field {
-            slot: u32::from(slot),
-        }),
-    );
+    let field = match view {
+        FieldView::Distance(slot) => graph.add(
+            "field",
+            NodeKind::Field(Field {
+                slot: slot.min(3) as u32,
+            }),
+        ),
+        FieldView::Mesh(mesh_field) => {
+            let read = graph.add("mesh field", NodeKind::MeshField(mesh_field));
+            let (low, high) = shown_range(&mesh_field);
+            let scale = graph.add(
+                "to the scale",
+                NodeKind::MapRange(MapRange {
+                    mode: MapRangeMode::Linear,
+                    clamp: true,
+                }),
+            );
+            graph.set_input(scale, "from_min", Value::Float(low));
+            graph.set_input(scale, "from_max", Value::Float(high));
+            graph.connect(read, "value", scale, "x");
+            scale
+        }
+    };
+    let output = match view {
+        FieldView::Distance(_) => "distance",
+        FieldView::Mesh(_) => "result",
+    };
     let stops = [
         (0.0, (0.85, 0.1, 0.1)),
         (0.25, (0.95, 0.75, 0.1)),
@@ -154,12 +197,24 @@ pub fn field_view_graph(slot: u8) -> Graph {
     );
     graph.set_input(inked, "b", Value::Color(0.02, 0.02, 0.02));
     let material = graph.add("material", NodeKind::Material);
-    graph.connect(field, "distance", scale, "factor");
-    graph.connect(field, "distance", lines, "value");
+    graph.connect(field, output, scale, "factor");
+    graph.connect(field, output, lines, "value");
     graph.connect(scale, "color", inked, "a");
     graph.connect(lines, "line", inked, "factor");
     graph.connect(inked, "result", material, "albedo");
     graph
+}
+
+/// The toggle showing `view` in place of the material.
+fn view_toggle(ui: &mut Ui, state: &mut FieldState, view: FieldView) {
+    let mut viewing = state.view == Some(view);
+    if ui
+        .toggle_value(&mut viewing, "view")
+        .on_hover_text("show the field as colours and isolines")
+        .changed()
+    {
+        state.view = viewing.then_some(view);
+    }
 }
 
 /// Adds `vertex` to the sources of `field`, or removes it when it is one already.
@@ -191,9 +246,15 @@ const METHODS: [(&str, Method); 4] = [
     ("dijkstra", Method::Dijkstra),
 ];
 
-/// The fields section under the preview: per field its sources, method, picking and
-/// view toggles; adding and removing fields.
-pub fn fields_panel(ui: &mut Ui, fields: &mut Vec<FieldSource>, state: &mut FieldState) {
+/// The fields section under the preview: per distance field its sources, method,
+/// picking and view toggles, adding and removing them; then the mesh fields the material
+/// reads (`mesh_lanes`), each with a view toggle.
+pub fn fields_panel(
+    ui: &mut Ui,
+    fields: &mut Vec<FieldSource>,
+    state: &mut FieldState,
+    mesh_lanes: &MeshLanes,
+) {
     ui.horizontal(|ui| {
         ui.label("Distance fields");
         if fields.len() < 4 && ui.small_button("+ field").clicked() {
@@ -235,14 +296,7 @@ pub fn fields_panel(ui: &mut Ui, fields: &mut Vec<FieldSource>, state: &mut Fiel
             {
                 state.picking = picking.then_some(slot);
             }
-            let mut viewing = state.view == Some(slot);
-            if ui
-                .toggle_value(&mut viewing, "view")
-                .on_hover_text("show the field as colours and isolines")
-                .changed()
-            {
-                state.view = viewing.then_some(slot);
-            }
+            view_toggle(ui, state, FieldView::Distance(slot));
             if ui.small_button("clear").clicked() {
                 field.sources.clear();
             }
@@ -258,6 +312,21 @@ pub fn fields_panel(ui: &mut Ui, fields: &mut Vec<FieldSource>, state: &mut Fiel
     if let Some(slot) = remove {
         fields.remove(slot);
         state.picking = None;
+        state.view = None;
+    }
+    let read: Vec<MeshField> = mesh_lanes.iter().flatten().copied().collect();
+    if !read.is_empty() {
+        ui.label("Mesh fields the material reads");
+        for field in read {
+            ui.horizontal(|ui| {
+                ui.label(field.to_string());
+                view_toggle(ui, state, FieldView::Mesh(field));
+            });
+        }
+    }
+    if let Some(FieldView::Mesh(field)) = state.view
+        && !mesh_lanes.contains(&Some(field))
+    {
         state.view = None;
     }
     if let Some(error) = &state.error {

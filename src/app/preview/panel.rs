@@ -126,8 +126,8 @@ impl VeneerApp {
         self.solve_fields();
         let material = match (self.preview.previews.available(), self.preview.fields.view) {
             (false, _) => None,
-            (true, Some(slot)) => {
-                let graph = fields::field_view_graph(slot as u8);
+            (true, Some(view)) => {
+                let graph = fields::field_view_graph(view);
                 self.preview.field_view.update(&graph);
                 material_frame(
                     &self.preview.field_view,
@@ -233,7 +233,14 @@ impl VeneerApp {
         self.surface_settings(ui);
         self.lighting_settings(ui);
         let mut shown_fields = self.session.document.graph.preview.fields.clone();
-        fields::fields_panel(ui, &mut shown_fields, &mut self.preview.fields);
+        let mesh_lanes = self
+            .preview
+            .live
+            .compiled
+            .as_ref()
+            .map(|compiled| compiled.uses().mesh_fields)
+            .unwrap_or_default();
+        fields::fields_panel(ui, &mut shown_fields, &mut self.preview.fields, &mesh_lanes);
         self.set_preview(|preview| preview.fields = shown_fields);
         self.preview.state.tick(std::time::Instant::now());
         if self.preview.state.playing {
@@ -468,16 +475,22 @@ impl VeneerApp {
             .map(|c| c.uses())
             .unwrap_or_default();
         let mut used = uses.fields;
-        if let Some(slot) = self.preview.fields.view {
-            used[slot.min(3)] = true;
-        }
+        // A field view is its own material: the mesh carries what it reads.
+        let mesh_lanes = match self.preview.fields.view {
+            Some(fields::FieldView::Distance(slot)) => {
+                used[slot.min(3)] = true;
+                uses.mesh_fields
+            }
+            Some(fields::FieldView::Mesh(field)) => [Some(field.key()), None, None, None],
+            None => uses.mesh_fields,
+        };
         let name = self.preview.state.mesh.clone();
         let preview = &self.preview.state;
         self.preview.fields.update(
             &name,
             || preview.plain_mesh(),
             &self.session.document.graph.preview.fields,
-            (used, uses.mesh_fields),
+            (used, mesh_lanes),
         );
         let mesh_prefix = format!("{name}|");
         self.preview.state.prepared = self
