@@ -21,6 +21,10 @@ enum KindName {
     Occlusion,
     /// Thickness along the inward normal, mesh units.
     Thickness,
+    /// The normal's y: −1 facing down to 1 facing up.
+    Up,
+    /// Height between the mesh's lowest and highest points, 0 to 1.
+    Height,
 }
 
 impl KindName {
@@ -31,6 +35,8 @@ impl KindName {
             KindName::GaussianCurvature => MeshFieldKind::GaussianCurvature,
             KindName::Occlusion => MeshFieldKind::Occlusion,
             KindName::Thickness => MeshFieldKind::Thickness,
+            KindName::Up => MeshFieldKind::Up,
+            KindName::Height => MeshFieldKind::Height,
         }
     }
 }

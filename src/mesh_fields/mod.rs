@@ -73,16 +73,23 @@ pub enum MeshFieldKind {
     Occlusion,
     /// Thickness along the inward normal as a share of the field's distance, 0 to 1.
     Thickness,
+    /// How much the surface faces up (+y): the normal's y, −1 facing down to 1 up. Read
+    /// from the shaded point's own normal, so it needs no lane.
+    Up,
+    /// Height within the mesh's bounds, 0 at its lowest point to 1 at its highest.
+    Height,
 }
 
 impl MeshFieldKind {
     /// Every kind, in menu order.
-    pub const ALL: [MeshFieldKind; 5] = [
+    pub const ALL: [MeshFieldKind; 7] = [
         MeshFieldKind::Convexity,
         MeshFieldKind::MeanCurvature,
         MeshFieldKind::GaussianCurvature,
         MeshFieldKind::Occlusion,
         MeshFieldKind::Thickness,
+        MeshFieldKind::Up,
+        MeshFieldKind::Height,
     ];
 
     /// The kind as menus and messages name it.
@@ -93,7 +100,26 @@ impl MeshFieldKind {
             MeshFieldKind::GaussianCurvature => "Gaussian curvature",
             MeshFieldKind::Occlusion => "ambient occlusion",
             MeshFieldKind::Thickness => "thickness",
+            MeshFieldKind::Up => "facing up",
+            MeshFieldKind::Height => "height in bounds",
         }
+    }
+
+    /// The values the kind takes; `None` for the curvatures, which are unbounded.
+    pub fn range(self) -> Option<(f64, f64)> {
+        match self {
+            MeshFieldKind::Convexity | MeshFieldKind::Up => Some((-1.0, 1.0)),
+            MeshFieldKind::Occlusion | MeshFieldKind::Thickness | MeshFieldKind::Height => {
+                Some((0.0, 1.0))
+            }
+            MeshFieldKind::MeanCurvature | MeshFieldKind::GaussianCurvature => None,
+        }
+    }
+
+    /// Whether the kind is stored per vertex in a lane of `VeneerSurface.mesh_fields`
+    /// (all but [`MeshFieldKind::Up`], which the shaded point's normal gives).
+    pub fn needs_lane(self) -> bool {
+        self != MeshFieldKind::Up
     }
 
     /// Whether the kind casts rays (and so has a sample count and a distance).
@@ -120,6 +146,20 @@ pub struct MeshField {
     /// How far rays look (occlusion and thickness), in percent of the bounding radius.
     #[serde(default = "MeshField::default_distance")]
     pub distance: u32,
+}
+
+/// Each vertex's height between the mesh's lowest and highest points, 0 to 1 (0 for a
+/// mesh with no height).
+fn heights_in_bounds(mesh: &Mesh) -> Vec<f32> {
+    let heights = || mesh.positions.iter().map(|p| f64::from(p[1]));
+    let (low, high) = heights().fold((f64::MAX, f64::MIN), |(lo, hi), y| (lo.min(y), hi.max(y)));
+    let span = high - low;
+    heights()
+        .map(|y| match span > 0.0 && span.is_finite() {
+            true => ((y - low) / span) as f32,
+            false => 0.0,
+        })
+        .collect()
 }
 
 impl std::fmt::Display for MeshField {
@@ -259,6 +299,8 @@ impl MeshField {
                     .map(|t| t / distance)
                     .collect())
             }
+            MeshFieldKind::Up => Ok(mesh.normals.iter().map(|n| n[1]).collect()),
+            MeshFieldKind::Height => Ok(heights_in_bounds(mesh)),
             kind => {
                 let (welded, of_vertex) = welded_for_distances(mesh);
                 let per_welded = match kind {
@@ -321,6 +363,22 @@ mod tests {
         };
         let error = out_of_range.compute(&mesh, |_, _| {}).unwrap_err();
         assert_eq!(error.to_string(), "convexity: radius 0 is outside 1 to 100");
+    }
+
+    #[test]
+    fn facing_up_and_height_run_from_the_bottom_to_the_top_of_a_sphere() {
+        let sphere = primitive("sphere").unwrap();
+        let up = MeshField::new(MeshFieldKind::Up)
+            .compute(&sphere, |_, _| {})
+            .unwrap();
+        let height = MeshField::new(MeshFieldKind::Height)
+            .compute(&sphere, |_, _| {})
+            .unwrap();
+        for (v, p) in sphere.positions.iter().enumerate() {
+            assert!((up[v] - p[1]).abs() < 1e-5);
+            assert!((height[v] - (p[1] + 1.0) / 2.0).abs() < 1e-5);
+        }
+        assert!(!MeshFieldKind::Up.needs_lane() && MeshFieldKind::Height.needs_lane());
     }
 
     #[test]

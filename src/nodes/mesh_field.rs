@@ -31,7 +31,7 @@ pub fn fields_read<'a>(kinds: impl IntoIterator<Item = &'a NodeKind>) -> Vec<Mes
     let read: std::collections::BTreeSet<MeshField> = kinds
         .into_iter()
         .filter_map(|kind| match kind {
-            NodeKind::MeshField(field) => Some(field.key()),
+            NodeKind::MeshField(field) if field.kind.needs_lane() => Some(field.key()),
             _ => None,
         })
         .collect();
@@ -86,27 +86,29 @@ impl Definition for MeshField {
         self.validate().err().map(|error| error.to_string())
     }
     fn emit(&self, io: &mut Emit) {
-        let value = match lane_of(&io.mesh_lanes(), self) {
-            Some(lane) => format!("s.mesh_fields.{}", ["x", "y", "z", "w"][lane]),
-            None => "0.0".to_string(),
+        let value = match (self.kind, lane_of(&io.mesh_lanes(), self)) {
+            (MeshFieldKind::Up, _) => "s.normal.y".to_string(),
+            (_, Some(lane)) => format!("s.mesh_fields.{}", ["x", "y", "z", "w"][lane]),
+            (_, None) => "0.0".to_string(),
         };
         io.outputs(vec![value]);
     }
     fn ranges(&self, _: &mut Ranges) -> Vec<Lanes> {
-        vec![interval::splat(match self.kind {
-            MeshFieldKind::Convexity => Interval::new(-1.0, 1.0),
-            MeshFieldKind::Occlusion | MeshFieldKind::Thickness => Interval::UNIT,
-            MeshFieldKind::MeanCurvature | MeshFieldKind::GaussianCurvature => {
-                Interval::new(f64::NEG_INFINITY, f64::INFINITY)
-            }
-        })]
+        let (low, high) = self
+            .kind
+            .range()
+            .unwrap_or((f64::NEG_INFINITY, f64::INFINITY));
+        vec![interval::splat(Interval::new(low, high))]
     }
 }
 
 impl Evaluate for MeshField {
     fn eval<R: Real>(&self, io: &Eval<R>) -> Vec<V3<R>> {
-        let value =
-            lane_of(&io.mesh_lanes(), self).map_or(R::c(0.0), |lane| io.surface.mesh_fields[lane]);
+        let value = match (self.kind, lane_of(&io.mesh_lanes(), self)) {
+            (MeshFieldKind::Up, _) => io.surface.normal[1],
+            (_, Some(lane)) => io.surface.mesh_fields[lane],
+            (_, None) => R::c(0.0),
+        };
         vec![splat(value)]
     }
 }

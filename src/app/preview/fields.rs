@@ -6,8 +6,8 @@
 use crate::geodesic::{HeatOptions, Method};
 use crate::graph::{FieldSource, Graph, NodeKind, RampInterpolation, RampStop, Value};
 use crate::mesh::Mesh;
+use crate::mesh_fields::MeshField;
 use crate::mesh_fields::MeshLanes;
-use crate::mesh_fields::{MeshField, MeshFieldKind};
 use crate::nodes::{ColorRamp, Field, MapRange, MapRangeMode, Mix};
 use egui::Ui;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -127,14 +127,10 @@ impl FieldState {
     }
 }
 
-/// The range a mesh field's colour scale spans.
+/// The range a mesh field's colour scale spans: its own, or for the unbounded
+/// curvatures ±5 (a preview mesh is fitted to the unit sphere, whose curvature is 1).
 fn shown_range(field: &MeshField) -> (f64, f64) {
-    match field.kind {
-        MeshFieldKind::Convexity => (-1.0, 1.0),
-        MeshFieldKind::Occlusion | MeshFieldKind::Thickness => (0.0, 1.0),
-        // A preview mesh is fitted to the unit sphere: its own curvature is 1 (and 1²).
-        MeshFieldKind::MeanCurvature | MeshFieldKind::GaussianCurvature => (-5.0, 5.0),
-    }
+    field.kind.range().unwrap_or((-5.0, 5.0))
 }
 
 /// A material showing `view` as a colour scale (red near a distance field's sources or
