@@ -7,7 +7,6 @@ struct VeneerFragmentInput {
     @location(1) normal: vec3f,    // unit object-space normal
     @location(2) uv: vec2f,
     @location(3) fields: vec4f,    // distance fields, 0 when unused
-    @location(4) mesh_fields: vec4f, // mesh fields in the manifest's lanes, 0 when unused
 }
 
 struct VeneerFrame {
@@ -18,7 +17,7 @@ struct VeneerFrame {
 
 @fragment
 fn veneer_fragment(input: VeneerFragmentInput) -> @location(0) vec4f {
-    let surface = VeneerSurface(input.position, input.normal, input.uv, input.fields, veneer_frame.time, input.mesh_fields);
+    let surface = VeneerSurface(input.position, input.normal, input.uv, input.fields, veneer_frame.time);
     let material = veneer_material(surface);
     let emitted = clamp(material.emission * material.emission_strength, vec3f(-1.0e38), vec3f(1.0e38));
     return vec4f(clamp(material.albedo + emitted, vec3f(-3.0e38), vec3f(3.0e38)), material.alpha);

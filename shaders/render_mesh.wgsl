@@ -26,7 +26,6 @@ struct VeneerVertexOut {
     @location(1) normal: vec3f,
     @location(2) uv: vec2f,
     @location(3) fields: vec4f,
-    @location(4) mesh_fields: vec4f,
 }
 
 struct VeneerVertexIn {
@@ -34,7 +33,6 @@ struct VeneerVertexIn {
     @location(1) normal: vec3f,
     @location(2) uv: vec2f,
     @location(3) fields: vec4f,  // distance fields, 0 where none was computed
-    @location(4) mesh_fields: vec4f, // mesh fields, 0 where none was computed
 }
 
 // The vertex at `position` (mesh space, moved or not) with the rest of `input`.
@@ -45,7 +43,6 @@ fn veneer_vertex_at(input: VeneerVertexIn, position: vec3f) -> VeneerVertexOut {
     out.normal = input.normal;
     out.uv = input.uv;
     out.fields = input.fields;
-    out.mesh_fields = input.mesh_fields;
     return out;
 }
 
@@ -77,7 +74,7 @@ fn veneer_texture_position(position: vec3f) -> vec3f {
 fn veneer_mesh_fragment(input: VeneerVertexOut, @builtin(front_facing) front: bool) -> @location(0) vec4f {
     let view = veneer_mesh_view;
     let normal = normalize(input.normal);
-    let surface = VeneerSurface(veneer_texture_position(input.position), normal, input.uv, input.fields, view.time, input.mesh_fields);
+    let surface = VeneerSurface(veneer_texture_position(input.position), normal, input.uv, input.fields, view.time);
     let material = veneer_material(surface);
     // VENEER_HEIGHT (set by the pipeline): the material's height can be non-zero.
     var relief = vec3f(0.0);

@@ -5,7 +5,7 @@
 @vertex
 fn veneer_mesh_vertex_displaced(input: VeneerVertexIn) -> VeneerVertexOut {
     let normal = normalize(input.normal);
-    let surface = VeneerSurface(veneer_texture_position(input.position), normal, input.uv, input.fields, veneer_mesh_view.time, input.mesh_fields);
+    let surface = VeneerSurface(veneer_texture_position(input.position), normal, input.uv, input.fields, veneer_mesh_view.time);
     let height = veneer_material(surface).height;
     return veneer_vertex_at(input, input.position + normal * height / max(veneer_mesh_view.placement.w, 1.0e-6));
 }

@@ -16,7 +16,6 @@ struct VeneerPassMeshOut {
     @location(1) normal: vec3f,
     @location(2) uv: vec2f,
     @location(3) fields: vec4f,
-    @location(4) mesh_fields: vec4f,
 }
 
 @vertex
@@ -25,7 +24,6 @@ fn veneer_pass_mesh_vertex(
     @location(1) normal: vec3f,
     @location(2) uv: vec2f,
     @location(3) fields: vec4f,
-    @location(4) mesh_fields: vec4f,
 ) -> VeneerPassMeshOut {
     var out: VeneerPassMeshOut;
     out.clip = vec4f(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0, 0.0, 1.0);
@@ -33,7 +31,6 @@ fn veneer_pass_mesh_vertex(
     out.normal = normal;
     out.uv = uv;
     out.fields = fields;
-    out.mesh_fields = mesh_fields;
     return out;
 }
 
@@ -41,6 +38,6 @@ fn veneer_pass_mesh_vertex(
 fn veneer_pass_mesh_fragment(input: VeneerPassMeshOut) -> @location(0) vec4f {
     let view = veneer_pass_mesh_view;
     let position = input.position * view.placement.w + view.placement.xyz;
-    let surface = VeneerSurface(position, normalize(input.normal), input.uv, input.fields, view.time, input.mesh_fields);
+    let surface = VeneerSurface(position, normalize(input.normal), input.uv, input.fields, view.time);
     return veneer_pass(surface);
 }

@@ -18,7 +18,6 @@ struct VeneerUvOut {
     @location(1) normal: vec3f,
     @location(2) uv: vec2f,
     @location(3) fields: vec4f,
-    @location(4) mesh_fields: vec4f,
 }
 
 @vertex
@@ -27,7 +26,6 @@ fn veneer_uv_vertex(
     @location(1) normal: vec3f,
     @location(2) uv: vec2f,
     @location(3) fields: vec4f,
-    @location(4) mesh_fields: vec4f,
 ) -> VeneerUvOut {
     let view = veneer_uv_view;
     let texel = (uv * view.size - view.tile.xy) / view.tile.zw;
@@ -37,7 +35,6 @@ fn veneer_uv_vertex(
     out.normal = normal;
     out.uv = uv;
     out.fields = fields;
-    out.mesh_fields = mesh_fields;
     return out;
 }
 
@@ -48,6 +45,6 @@ fn veneer_uv_fragment(input: VeneerUvOut) -> @location(0) vec4u {
     let normal = normalize(input.normal);
     // Screen space is UV space here, so the frame's derivatives are the layout's own.
     let frame = veneer_tangent_frame(input.position, normal, input.uv);
-    let material = veneer_material(VeneerSurface(position, normal, input.uv, input.fields, view.time, input.mesh_fields));
+    let material = veneer_material(VeneerSurface(position, normal, input.uv, input.fields, view.time));
     return veneer_bake_channels(material, view.channels, frame);
 }

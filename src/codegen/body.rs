@@ -50,7 +50,7 @@ pub struct Emitter<'a> {
     pub sampled: FxHashMap<(NodeId, usize), String>,
     /// The arguments `texture, edge` of the bitmap each Image node reads.
     pub sources: FxHashMap<NodeId, String>,
-    /// Which mesh field each lane of `VeneerSurface.mesh_fields` holds.
+    /// Which mesh field each lane of `VeneerSurface.fields` holds.
     pub mesh_lanes: MeshLanes,
 }
 

@@ -111,24 +111,10 @@ pub fn export_compiled(compiled: &Compiled, target: Target) -> Result<Vec<u8>, E
         return Ok(module.source.clone().into_bytes());
     }
     translate(
-        &format!("{}\n{}", module.source, entry_source(&module.uses)),
+        &format!("{}\n{ENTRY_SOURCE}", module.source),
         target,
         FRAGMENT_ENTRY,
     )
-}
-
-/// The fragment entry for a material that reads `uses`: the mesh fields' input
-/// (location 4) only when it reads mesh fields, so exports of every other material keep
-/// the interface they had.
-fn entry_source(uses: &super::SurfaceUse) -> String {
-    if uses.mesh_fields.iter().any(Option::is_some) {
-        return ENTRY_SOURCE.to_string();
-    }
-    ENTRY_SOURCE
-        .lines()
-        .filter(|line| !line.contains("@location(4) mesh_fields"))
-        .map(|line| line.replace("input.mesh_fields", "vec4f(0.0)") + "\n")
-        .collect()
 }
 
 /// A validated WGSL module with entry points (`fragment` the one to export) in

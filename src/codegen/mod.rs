@@ -131,8 +131,9 @@ pub enum AlphaUse {
 pub struct SurfaceUse {
     /// Which of the four distance fields some node reads.
     pub fields: [bool; 4],
-    /// Which mesh field each lane of `VeneerSurface.mesh_fields` holds (every field the
-    /// whole material reads, its passes' nodes included), so renderers compute those.
+    /// Which mesh field each lane of `VeneerSurface.fields` holds, in the lanes the
+    /// distance fields leave free (every mesh field the whole material reads, its
+    /// passes' nodes included), so renderers compute those.
     pub mesh_fields: crate::nodes::mesh_field::MeshLanes,
     /// Whether the height output can be non-zero (the mesh is displaced).
     pub displacement: bool,
@@ -147,12 +148,24 @@ pub struct SurfaceUse {
     pub shading: graph::Shading,
 }
 
-/// The lanes of the mesh fields the nodes of `graph` read.
+/// The lanes of `VeneerSurface.fields` holding the mesh fields the nodes of `graph`
+/// read: those its distance fields leave free.
 pub fn mesh_lanes(graph: &CheckedGraph) -> crate::nodes::mesh_field::MeshLanes {
     use crate::nodes::mesh_field;
-    mesh_field::lanes(&mesh_field::fields_read(
-        graph.order.iter().map(|checked| &checked.node.kind),
-    ))
+    let kinds = || graph.order.iter().map(|checked| &checked.node.kind);
+    mesh_field::lanes(&mesh_field::fields_read(kinds()), distance_slots(kinds()))
+}
+
+/// Which of the four slots of `VeneerSurface.fields` the Distance field nodes among
+/// `kinds` read.
+pub fn distance_slots<'a>(kinds: impl IntoIterator<Item = &'a NodeKind>) -> [bool; 4] {
+    let mut slots = [false; 4];
+    for kind in kinds {
+        if let NodeKind::Field(field) = kind {
+            slots[field.slot as usize % 4] = true;
+        }
+    }
+    slots
 }
 
 impl SurfaceUse {
@@ -173,12 +186,10 @@ impl SurfaceUse {
     }
 
     fn of(graph: &CheckedGraph) -> SurfaceUse {
-        let mut uses = SurfaceUse::default();
-        for checked in &graph.order {
-            if let NodeKind::Field(field) = &checked.node.kind {
-                uses.fields[field.slot as usize % 4] = true;
-            }
-        }
+        let mut uses = SurfaceUse {
+            fields: distance_slots(graph.order.iter().map(|checked| &checked.node.kind)),
+            ..SurfaceUse::default()
+        };
         uses.mesh_fields = mesh_lanes(graph);
         let material = graph.material();
         // A wired input can take any value.
@@ -598,9 +609,18 @@ fn assemble(
         env!("CARGO_PKG_VERSION")
     ));
     source.push_str(&format!(
-        "// Entry point: {}(s: VeneerSurface) -> {}.\n\n",
+        "// Entry point: {}(s: VeneerSurface) -> {}.\n",
         around.entry.name, around.entry.returns
     ));
+    for (lane, field) in uses.mesh_fields.iter().enumerate() {
+        if let Some(field) = field {
+            source.push_str(&format!(
+                "// VeneerSurface.fields.{} carries a mesh field, not a distance field: {field}.\n",
+                ["x", "y", "z", "w"][lane]
+            ));
+        }
+    }
+    source.push('\n');
     for line in library::SURFACE
         .lines()
         .filter(|line| !line.starts_with("//!"))

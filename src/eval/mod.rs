@@ -66,7 +66,7 @@ pub struct Evaluator {
     index: BTreeMap<crate::graph::NodeId, usize>,
     /// The files the graph's Image nodes read, which need no pass rendered first.
     bitmaps: Buffers,
-    /// Which mesh field each lane of the surface's `mesh_fields` holds (as the compiled
+    /// Which mesh field each lane of the surface's `fields` holds (as the compiled
     /// material assigns them).
     mesh_lanes: MeshLanes,
 }

@@ -175,12 +175,19 @@ impl<'g> Checker<'g> {
         });
     }
 
-    /// Refuses a material that reads more distinct mesh fields than a mesh carries,
-    /// naming the first node past the limit and the fields read.
+    /// Refuses a material that reads more distinct mesh fields than the lanes of
+    /// `VeneerSurface.fields` its distance fields leave free, naming the first node past
+    /// the limit and the fields read.
     fn check_mesh_fields(&mut self, order: &[CheckedNode]) {
         use crate::nodes::mesh_field::{MESH_LANES, fields_read};
-        let read = fields_read(order.iter().map(|checked| &checked.node.kind));
-        let Some(beyond) = read.get(MESH_LANES) else {
+        let kinds = || order.iter().map(|checked| &checked.node.kind);
+        let read = fields_read(kinds());
+        let distances = crate::codegen::distance_slots(kinds())
+            .iter()
+            .filter(|&&taken| taken)
+            .count();
+        let free = MESH_LANES - distances;
+        let Some(beyond) = read.get(free) else {
             return;
         };
         let node = order.iter().find_map(|checked| match &checked.node.kind {
@@ -191,8 +198,9 @@ impl<'g> Checker<'g> {
         self.error(
             node,
             format!(
-                "the material reads {} different mesh fields ({}); a mesh carries at most \
-                 {MESH_LANES}: read the same field (kind and settings) from several nodes",
+                "the material reads {} different mesh fields ({}), and its distance fields \
+                 leave {free} of a mesh's {MESH_LANES} field lanes free: read the same field \
+                 (kind and settings) from several nodes",
                 read.len(),
                 names.join(", ")
             ),

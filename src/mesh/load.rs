@@ -108,8 +108,8 @@ fn finish(soup: Soup) -> Result<Mesh, String> {
         normals,
         uvs,
         indices: soup.indices,
+        fields: Vec::new(),
         file_vertices: soup.file_vertices,
-        ..Mesh::default()
     })
 }
 

@@ -73,13 +73,11 @@ pub struct Mesh {
     pub uvs: Vec<[f32; 2]>,
     /// Three vertex indices per triangle, counter-clockwise seen from outside.
     pub indices: Vec<u32>,
-    /// Per-vertex distance fields for `VeneerSurface.fields`, normalised to [0, 1];
-    /// empty until computed (the shader then reads 0).
+    /// Per-vertex fields for `VeneerSurface.fields`: distance fields normalised to
+    /// [0, 1] in their slots, mesh fields in the lanes the compiled material assigns
+    /// them ([`crate::codegen::SurfaceUse::mesh_fields`]); empty until computed (the
+    /// shader then reads 0).
     pub fields: Vec<[f32; 4]>,
-    /// Per-vertex mesh fields for `VeneerSurface.mesh_fields`, in the lanes the compiled
-    /// material assigns them ([`crate::codegen::SurfaceUse::mesh_fields`]); empty until
-    /// computed (the shader then reads 0).
-    pub mesh_fields: Vec<[f32; 4]>,
     /// Where each vertex came from in the mesh file, when the loader split or reordered
     /// the file's vertices; `None` when the vertices are the file's, one for one.
     pub file_vertices: Option<FileVertices>,

@@ -22,7 +22,6 @@ pub struct SurfacePoint {
     pub normal: [f32; 3],
     pub uv: [f32; 2],
     pub fields: [f32; 4],
-    pub mesh_fields: [f32; 4],
 }
 
 /// How far to refine.
@@ -98,27 +97,28 @@ pub fn refine_for_displacement(
     height: &(dyn Fn(&SurfacePoint) -> f32 + Sync),
     pixels_per_unit: &(dyn Fn(Vec3) -> f32 + Sync),
 ) -> Refined {
-    // Both kinds of field are carried for every vertex while refining (0 where the mesh
-    // has none) and dropped at the end where it had none.
-    let every_vertex = |values: &[[f32; 4]]| match values.len() == mesh.positions.len() {
-        true => values.to_vec(),
-        false => vec![[0.0; 4]; mesh.positions.len()],
-    };
+    let has_fields = mesh.fields.len() == mesh.positions.len();
     let mut out = Mesh {
         positions: mesh.positions.clone(),
         normals: mesh.normals.clone(),
         uvs: mesh.uvs.clone(),
         indices: mesh.indices.clone(),
-        fields: every_vertex(&mesh.fields),
-        mesh_fields: every_vertex(&mesh.mesh_fields),
+        fields: if has_fields {
+            mesh.fields.clone()
+        } else {
+            Vec::new()
+        },
         file_vertices: None,
     };
     let point = |m: &Mesh, v: u32| SurfacePoint {
         position: m.positions[v as usize],
         normal: m.normals[v as usize],
         uv: m.uvs[v as usize],
-        fields: m.fields[v as usize],
-        mesh_fields: m.mesh_fields[v as usize],
+        fields: if has_fields {
+            m.fields[v as usize]
+        } else {
+            [0.0; 4]
+        },
     };
     let mut heights: Vec<f32> = (0..out.positions.len() as u32)
         .into_par_iter()
@@ -198,8 +198,9 @@ pub fn refine_for_displacement(
             match verdict {
                 Some((mid, mid_height)) => {
                     let index = out.push_vertex(mid.position, mid.normal, mid.uv);
-                    out.fields.push(mid.fields);
-                    out.mesh_fields.push(mid.mesh_fields);
+                    if has_fields {
+                        out.fields.push(mid.fields);
+                    }
                     heights.push(mid_height);
                     midpoints.insert(edge, index);
                 }
@@ -210,12 +211,6 @@ pub fn refine_for_displacement(
         }
         out.indices = split_triangles(&out, &midpoints);
         levels += 1;
-    }
-    if mesh.fields.is_empty() {
-        out.fields.clear();
-    }
-    if mesh.mesh_fields.is_empty() {
-        out.mesh_fields.clear();
     }
     Refined {
         mesh: out,
@@ -262,7 +257,6 @@ fn interpolate(ends: [SurfacePoint; 2], t: f32) -> SurfacePoint {
         normal: normal.normalize_or(Vec3::from(a.normal)).to_array(),
         uv: [0, 1].map(|k| mix(a.uv[k], b.uv[k])),
         fields: [0, 1, 2, 3].map(|k| mix(a.fields[k], b.fields[k])),
-        mesh_fields: [0, 1, 2, 3].map(|k| mix(a.mesh_fields[k], b.mesh_fields[k])),
     }
 }
 
@@ -334,7 +328,6 @@ fn barycentric(corners: [SurfacePoint; 3], weights: [f32; 3]) -> SurfacePoint {
             .to_array(),
         uv: [0, 1].map(|i| sum(&|p, i| p.uv[i], i)),
         fields: [0, 1, 2, 3].map(|i| sum(&|p, i| p.fields[i], i)),
-        mesh_fields: [0, 1, 2, 3].map(|i| sum(&|p, i| p.mesh_fields[i], i)),
     }
 }
 
@@ -481,7 +474,6 @@ mod tests {
                     normal: refined.mesh.normals[v as usize],
                     uv: [0.0; 2],
                     fields: [0.0; 4],
-                    mesh_fields: [0.0; 4],
                 });
                 let heights = ends.map(|p| bump(&p));
                 assert!(split_edge(ends, heights, 0.5, &bump, &|_| 500.0).is_none());

@@ -22,21 +22,22 @@ use crate::mesh::Mesh;
 use serde::{Deserialize, Serialize};
 use std::ops::RangeInclusive;
 
-/// The most mesh fields a material reads: the lanes of `VeneerSurface.mesh_fields`.
+/// The lanes of `VeneerSurface.fields`, which distance fields and mesh fields share.
 pub const MESH_LANES: usize = 4;
 
-/// Which mesh field each lane of `VeneerSurface.mesh_fields` holds.
+/// Which mesh field each lane of `VeneerSurface.fields` holds (`None`: a distance
+/// field's, or unused).
 pub type MeshLanes = [Option<MeshField>; MESH_LANES];
 
-/// Computes the fields of `lanes` over `mesh` into `mesh.mesh_fields` (left empty when
-/// no lane is used, so the shader reads 0), with progress as `(done, total)` vertices
-/// over every field.
+/// Computes the fields of `lanes` over `mesh` into those lanes of `mesh.fields`
+/// (created, zero, when the mesh has no distance fields; left as they are when no lane
+/// is used), with progress as `(done, total)` vertices over every field. Distance
+/// fields go in first ([`crate::geodesic::attach_fields`] replaces `mesh.fields`).
 pub fn attach_mesh_fields(
     mesh: &mut Mesh,
     lanes: &MeshLanes,
     mut progress: impl FnMut(usize, usize),
 ) -> Result<(), MeshFieldError> {
-    mesh.mesh_fields.clear();
     let used: Vec<(usize, MeshField)> = lanes
         .iter()
         .enumerate()
@@ -47,7 +48,8 @@ pub fn attach_mesh_fields(
     }
     let count = mesh.positions.len();
     let total = count * used.len();
-    let mut attached = vec![[0.0f32; MESH_LANES]; count];
+    let mut attached = std::mem::take(&mut mesh.fields);
+    attached.resize(count, [0.0; MESH_LANES]);
     for (done, &(lane, field)) in used.iter().enumerate() {
         let values = cache::cached(field, mesh, |d, _| progress(done * count + d, total))?;
         for (vertex, &value) in attached.iter_mut().zip(values.iter()) {
@@ -55,7 +57,7 @@ pub fn attach_mesh_fields(
         }
         progress((done + 1) * count, total);
     }
-    mesh.mesh_fields = attached;
+    mesh.fields = attached;
     Ok(())
 }
 
@@ -116,7 +118,7 @@ impl MeshFieldKind {
         }
     }
 
-    /// Whether the kind is stored per vertex in a lane of `VeneerSurface.mesh_fields`
+    /// Whether the kind is stored per vertex in a lane of `VeneerSurface.fields`
     /// (all but [`MeshFieldKind::Up`], which the shaded point's normal gives).
     pub fn needs_lane(self) -> bool {
         self != MeshFieldKind::Up
@@ -390,11 +392,15 @@ mod tests {
             None,
             Some(MeshField::new(MeshFieldKind::Convexity)),
         ];
+        mesh.fields = vec![[0.5, 7.0, 0.5, 7.0]; mesh.positions.len()];
         attach_mesh_fields(&mut mesh, &lanes, |_, _| {}).unwrap();
-        assert_eq!(mesh.mesh_fields.len(), mesh.positions.len());
-        assert!(mesh.mesh_fields.iter().all(|f| f[0] == 0.0 && f[2] == 0.0));
-        assert!(mesh.mesh_fields.iter().any(|f| f[1] < 1.0 && f[3] != 0.0));
+        assert_eq!(mesh.fields.len(), mesh.positions.len());
+        // The distance fields' lanes are kept.
+        assert!(mesh.fields.iter().all(|f| f[0] == 0.5 && f[2] == 0.5));
+        assert!(mesh.fields.iter().any(|f| f[1] < 1.0 && f[3] != 0.0));
+        assert!(mesh.fields.iter().all(|f| f[1] <= 1.0 && f[3] != 7.0));
+        mesh.fields.clear();
         attach_mesh_fields(&mut mesh, &[None; MESH_LANES], |_, _| {}).unwrap();
-        assert!(mesh.mesh_fields.is_empty());
+        assert!(mesh.fields.is_empty());
     }
 }

@@ -14,8 +14,6 @@ pub struct Surface<R> {
     pub uv: [R; 2],
     pub fields: [R; 4],
     pub time: R,
-    /// The mesh fields in the lanes the compiled material assigns them.
-    pub mesh_fields: [R; 4],
 }
 
 impl<R: Real> Surface<R> {
@@ -28,7 +26,6 @@ impl<R: Real> Surface<R> {
             uv: [zero; 2],
             fields: [zero; 4],
             time: zero,
-            mesh_fields: [zero; 4],
         }
     }
 }
@@ -42,7 +39,7 @@ pub struct Eval<'a, R> {
     images: &'a [Option<&'a Image>],
     /// The bitmap the node reads (an Image node).
     source: Option<&'a Image>,
-    /// Which mesh field each lane of the surface's `mesh_fields` holds.
+    /// Which mesh field each lane of the surface's `fields` holds.
     mesh_lanes: MeshLanes,
     /// The point being shaded.
     pub surface: &'a Surface<R>,
@@ -69,7 +66,7 @@ impl<'a, R: Real> Eval<'a, R> {
         }
     }
 
-    /// Which mesh field each lane of the surface's `mesh_fields` holds.
+    /// Which mesh field each lane of the surface's `fields` holds.
     pub fn mesh_lanes(&self) -> MeshLanes {
         self.mesh_lanes
     }

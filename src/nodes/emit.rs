@@ -90,7 +90,7 @@ pub struct Emit<'a> {
     source: Option<&'a str>,
     /// How much detail fractal nodes compute.
     pub detail: Detail,
-    /// Which mesh field each lane of `VeneerSurface.mesh_fields` holds.
+    /// Which mesh field each lane of `VeneerSurface.fields` holds.
     mesh_lanes: MeshLanes,
     code: NodeCode,
 }
@@ -124,7 +124,7 @@ impl<'a> Emit<'a> {
         }
     }
 
-    /// Which mesh field each lane of `VeneerSurface.mesh_fields` holds.
+    /// Which mesh field each lane of `VeneerSurface.fields` holds.
     pub fn mesh_lanes(&self) -> MeshLanes {
         self.mesh_lanes
     }

@@ -1,7 +1,8 @@
 //! The Mesh field node: what the mesh knows about itself at the shaded point (how
 //! convex, how occluded, how thick), computed per mesh by [`crate::mesh_fields`] and read
-//! from a lane of `VeneerSurface.mesh_fields`. The lanes are the module's: every distinct
-//! field the material reads gets one, in the order of their settings.
+//! from a lane of `VeneerSurface.fields`. The lanes are the module's: every distinct
+//! mesh field the material reads gets one of the lanes its distance fields leave free,
+//! in the order of their settings.
 
 use super::cpu::Eval;
 use super::emit::Emit;
@@ -38,9 +39,15 @@ pub fn fields_read<'a>(kinds: impl IntoIterator<Item = &'a NodeKind>) -> Vec<Mes
     read.into_iter().collect()
 }
 
-/// The lanes of the first [`MESH_LANES`] fields of `read` (the check refuses more).
-pub fn lanes(read: &[MeshField]) -> MeshLanes {
-    std::array::from_fn(|lane| read.get(lane).copied())
+/// The lanes of `VeneerSurface.fields` the fields of `read` go in: the lanes distance
+/// fields do not `take`, in order (the check refuses more fields than free lanes).
+pub fn lanes(read: &[MeshField], taken: [bool; MESH_LANES]) -> MeshLanes {
+    let mut lanes = MeshLanes::default();
+    let free = (0..MESH_LANES).filter(|&lane| !taken[lane]);
+    for (lane, field) in free.zip(read) {
+        lanes[lane] = Some(*field);
+    }
+    lanes
 }
 
 /// The lane holding `field` in `lanes`.
@@ -88,7 +95,7 @@ impl Definition for MeshField {
     fn emit(&self, io: &mut Emit) {
         let value = match (self.kind, lane_of(&io.mesh_lanes(), self)) {
             (MeshFieldKind::Up, _) => "s.normal.y".to_string(),
-            (_, Some(lane)) => format!("s.mesh_fields.{}", ["x", "y", "z", "w"][lane]),
+            (_, Some(lane)) => format!("s.fields.{}", ["x", "y", "z", "w"][lane]),
             (_, None) => "0.0".to_string(),
         };
         io.outputs(vec![value]);
@@ -106,7 +113,7 @@ impl Evaluate for MeshField {
     fn eval<R: Real>(&self, io: &Eval<R>) -> Vec<V3<R>> {
         let value = match (self.kind, lane_of(&io.mesh_lanes(), self)) {
             (MeshFieldKind::Up, _) => io.surface.normal[1],
-            (_, Some(lane)) => io.surface.mesh_fields[lane],
+            (_, Some(lane)) => io.surface.fields[lane],
             (_, None) => R::c(0.0),
         };
         vec![splat(value)]

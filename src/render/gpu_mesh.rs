@@ -12,7 +12,6 @@ struct Vertex {
     normal: [f32; 3],
     uv: [f32; 2],
     fields: [f32; 4],
-    mesh_fields: [f32; 4],
 }
 
 const VERTEX_BYTES: u64 = std::mem::size_of::<Vertex>() as u64;
@@ -44,12 +43,12 @@ pub struct GpuMesh {
 }
 
 impl GpuMesh {
-    const ATTRIBUTES: [wgpu::VertexAttribute; 5] = wgpu::vertex_attr_array![
-        0 => Float32x3, 1 => Float32x3, 2 => Float32x2, 3 => Float32x4, 4 => Float32x4
+    const ATTRIBUTES: [wgpu::VertexAttribute; 4] = wgpu::vertex_attr_array![
+        0 => Float32x3, 1 => Float32x3, 2 => Float32x2, 3 => Float32x4
     ];
 
     /// The vertex layout of every mesh pipeline: position (location 0), normal (1), uv
-    /// (2), distance fields (3), mesh fields (4).
+    /// (2), distance fields (3).
     pub fn layout() -> wgpu::VertexBufferLayout<'static> {
         wgpu::VertexBufferLayout {
             array_stride: VERTEX_BYTES,
@@ -194,7 +193,6 @@ fn vertex(mesh: &Mesh, index: usize) -> Vertex {
         normal: mesh.normals[index],
         uv: mesh.uvs[index],
         fields: mesh.fields.get(index).copied().unwrap_or([0.0; 4]),
-        mesh_fields: mesh.mesh_fields.get(index).copied().unwrap_or([0.0; 4]),
     }
 }
 

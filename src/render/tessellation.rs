@@ -39,7 +39,6 @@ pub fn tessellate(
             uv: point.uv,
             fields: point.fields,
             time: view.time,
-            mesh_fields: point.mesh_fields,
         };
         evaluator.eval::<f32>(&surface).height / size
     };

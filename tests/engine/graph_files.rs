@@ -217,7 +217,7 @@ fn every_preset_module_defines_exactly_the_contract_and_prefixes_the_rest() {
         );
         assert_eq!(
             struct_fields(&module, "VeneerSurface"),
-            ["position", "normal", "uv", "fields", "time", "mesh_fields"]
+            ["position", "normal", "uv", "fields", "time"]
         );
         let material = struct_fields(&module, "VeneerMaterial");
         assert_eq!(

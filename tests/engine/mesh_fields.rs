@@ -1,8 +1,8 @@
 //! Mesh fields in materials: a Mesh field node's values reach the surface in a UV bake,
-//! nodes asking for the same field share one lane whatever their order, more fields
-//! than lanes and settings out of range are refused by name, exports add the mesh
-//! fields' input only where a material reads one, and `veneer mesh-field` writes one
-//! line per file vertex.
+//! nodes asking for the same field share one lane whatever their order, distance fields
+//! keep their slots and mesh fields take the free lanes, more fields than lanes and
+//! settings out of range are refused by name, and `veneer mesh-field` writes one line
+//! per file vertex.
 
 use crate::support::{gpu, root, run_veneer, temp_dir};
 use veneer::bake::{BakeSettings, BakeSurface, Format, Map, NormalConvention, bake};
@@ -102,9 +102,9 @@ fn nodes_asking_for_one_field_share_its_lane_and_lanes_do_not_follow_node_order(
     assert_eq!(forwards.uses.mesh_fields, backwards.uses.mesh_fields);
     assert_eq!(forwards.uses.mesh_fields.iter().flatten().count(), 3);
     for lane in ["x", "y", "z"] {
-        assert!(forwards.source.contains(&format!("s.mesh_fields.{lane}")));
+        assert!(forwards.source.contains(&format!("s.fields.{lane}")));
     }
-    assert!(!forwards.source.contains("s.mesh_fields.w"));
+    assert!(!forwards.source.contains("s.fields.w"));
 }
 
 #[test]
@@ -136,20 +136,57 @@ fn five_fields_and_settings_out_of_range_are_refused_by_name() {
 }
 
 #[test]
-fn exports_take_mesh_fields_in_only_where_the_material_reads_them() {
-    let glsl = |graph: &Graph| {
-        let bytes = veneer::codegen::export::export(
-            graph,
-            veneer::codegen::export::Target::Glsl,
-            veneer::codegen::ParamMode::Baked,
-        )
-        .expect("exports");
-        String::from_utf8(bytes).expect("text")
-    };
-    let reading = glsl(&grey_of(&[occlusion(50)], "sphere"));
-    let wood = glsl(&veneer::graph::load(&root("graphs/wood.ron")).expect("preset"));
-    assert!(reading.contains("location = 4"), "{reading}");
-    assert!(!wood.contains("location = 4"));
+fn distance_fields_keep_their_slots_and_mesh_fields_take_the_lanes_left() {
+    let mut graph = grey_of(&[occlusion(50), occlusion(60)], "genus2");
+    let distance = graph.add(
+        "distance",
+        NodeKind::Field(veneer::nodes::Field { slot: 0 }),
+    );
+    let material = graph
+        .nodes
+        .iter()
+        .find(|n| n.kind == NodeKind::Material)
+        .unwrap()
+        .id;
+    graph.connect(distance, "distance", material, "alpha");
+    graph.preview.fields = vec![veneer::graph::FieldSource {
+        sources: vec![0],
+        method: veneer::graph::Method::Dijkstra,
+    }];
+    let module = veneer::codegen::compile(&graph, &Default::default())
+        .expect("compiles")
+        .module;
+    assert_eq!(module.uses.fields, [true, false, false, false]);
+    assert_eq!(
+        module.uses.mesh_fields,
+        [None, Some(occlusion(50)), Some(occlusion(60)), None]
+    );
+    // Both kinds of field reach the mesh, each in its lane.
+    let mesh = veneer::render::mesh_with_fields(&graph.preview, "genus2", &module.uses, |_, _| {})
+        .expect("fields");
+    assert!(mesh.fields.iter().any(|f| f[0] > 0.5) && mesh.fields.iter().all(|f| f[0] <= 1.0));
+    assert!(mesh.fields.iter().any(|f| f[1] < 1.0) && mesh.fields.iter().all(|f| f[3] == 0.0));
+    // Three more mesh fields do not fit beside the distance field.
+    let mut full = grey_of(&[10, 20, 30, 40].map(occlusion), "sphere");
+    let distance = full.add(
+        "distance",
+        NodeKind::Field(veneer::nodes::Field { slot: 2 }),
+    );
+    let material = full
+        .nodes
+        .iter()
+        .find(|n| n.kind == NodeKind::Material)
+        .unwrap()
+        .id;
+    full.connect(distance, "distance", material, "alpha");
+    let errors = veneer::graph::check(&full).expect_err("refused");
+    assert!(
+        errors[0]
+            .to_string()
+            .contains("leave 3 of a mesh's 4 field lanes free"),
+        "{}",
+        errors[0]
+    );
 }
 
 #[test]

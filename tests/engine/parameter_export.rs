@@ -14,7 +14,6 @@ struct VeneerVertexOutput {
     @location(1) normal: vec3f,
     @location(2) uv: vec2f,
     @location(3) fields: vec4f,
-    @location(4) mesh_fields: vec4f,
 }
 
 @vertex
@@ -26,7 +25,6 @@ fn test_vertex(@builtin(vertex_index) index: u32) -> VeneerVertexOutput {
     out.normal = vec3f(0.0, 1.0, 0.0);
     out.uv = uv;
     out.fields = vec4f(0.0);
-    out.mesh_fields = vec4f(0.0);
     return out;
 }
 "#;

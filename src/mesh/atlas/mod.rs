@@ -116,9 +116,6 @@ impl Mesh {
                     if let Some(field) = self.fields.get(v) {
                         split.fields.push(*field);
                     }
-                    if let Some(field) = self.mesh_fields.get(v) {
-                        split.mesh_fields.push(*field);
-                    }
                     file_vertex_of_copy.push(self.file_vertex(vertex));
                     split.push_vertex(self.positions[v], self.normals[v], uv(chart, vertex))
                 });

@@ -7,7 +7,6 @@ struct VeneerSurface {
     uv: vec2f,
     fields: vec4f,    // up to four distance fields, normalised to [0, 1]; 0 when unused
     time: f32,        // seconds
-    mesh_fields: vec4f, // up to four mesh fields (curvature, occlusion, thickness) in the lanes the manifest lists; 0 when unused
 }
 
 struct VeneerMaterial {
