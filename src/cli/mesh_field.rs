@@ -3,43 +3,10 @@
 
 use super::output::note;
 use super::{Failure, write_output};
-use clap::{Args, ValueEnum};
+use clap::Args;
 use std::path::PathBuf;
 use std::time::Instant;
 use veneer::mesh_fields::{MeshField, MeshFieldKind, Scene};
-
-/// What the field measures.
-#[derive(Clone, Copy, ValueEnum)]
-enum KindName {
-    /// How convex at --radius, −1 (creases) to 1 (edges).
-    Convexity,
-    /// Mean curvature, 1/r on a sphere of radius r (mesh units).
-    MeanCurvature,
-    /// Gaussian curvature, 1/r² on a sphere (mesh units).
-    GaussianCurvature,
-    /// Ambient occlusion: the open share of the hemisphere, 0 to 1.
-    Occlusion,
-    /// Thickness along the inward normal, mesh units.
-    Thickness,
-    /// The normal's y: −1 facing down to 1 facing up.
-    Up,
-    /// Height between the mesh's lowest and highest points, 0 to 1.
-    Height,
-}
-
-impl KindName {
-    fn kind(self) -> MeshFieldKind {
-        match self {
-            KindName::Convexity => MeshFieldKind::Convexity,
-            KindName::MeanCurvature => MeshFieldKind::MeanCurvature,
-            KindName::GaussianCurvature => MeshFieldKind::GaussianCurvature,
-            KindName::Occlusion => MeshFieldKind::Occlusion,
-            KindName::Thickness => MeshFieldKind::Thickness,
-            KindName::Up => MeshFieldKind::Up,
-            KindName::Height => MeshFieldKind::Height,
-        }
-    }
-}
 
 #[derive(Args)]
 pub struct MeshFieldArgs {
@@ -47,7 +14,7 @@ pub struct MeshFieldArgs {
     mesh: String,
     /// What the field measures.
     #[arg(long, value_enum)]
-    kind: KindName,
+    kind: MeshFieldKind,
     /// Convexity: the radius it is measured at, in percent of the mesh's bounding radius
     /// (1 to 100).
     #[arg(long, default_value_t = 5)]
@@ -77,7 +44,7 @@ impl MeshFieldArgs {
 
     fn field(&self) -> MeshField {
         MeshField {
-            kind: self.kind.kind(),
+            kind: self.kind,
             radius: self.radius,
             samples: self.samples,
             distance: self.distance,
@@ -164,9 +131,7 @@ fn in_file_order(mesh: &veneer::mesh::Mesh, values: &[f32], field: &MeshField) -
     let scale = match field.kind {
         // Thickness is a share of the distance, itself a share of the bounding radius:
         // the CSV gives mesh units.
-        MeshFieldKind::Thickness => {
-            veneer::mesh_fields::bounding_sphere(mesh).1 * f64::from(field.distance) / 100.0
-        }
+        MeshFieldKind::Thickness => mesh.bounding_sphere().1 * f64::from(field.distance) / 100.0,
         _ => 1.0,
     };
     mesh.vertices_of_file()

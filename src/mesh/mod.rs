@@ -130,6 +130,20 @@ impl Mesh {
     /// that coordinates anywhere in the f32 range (±3.4e38, or subnormal ones like 1e-40)
     /// fit without overflow or underflow.
     pub fn fitted_to_unit_sphere(mut self) -> Mesh {
+        let (center, radius) = self.bounding_sphere();
+        let scale = if radius > 0.0 { 1.0 / radius } else { 1.0 };
+        for p in &mut self.positions {
+            *p = ((glam::DVec3::from(p.map(f64::from)) - center) * scale)
+                .as_vec3()
+                .to_array();
+        }
+        self
+    }
+
+    /// The centre of the bounding box and the distance from it to the farthest vertex:
+    /// the sphere [`Mesh::fitted_to_unit_sphere`] maps to the unit one. In f64, so that
+    /// coordinates anywhere in the f32 range neither overflow nor underflow.
+    pub fn bounding_sphere(&self) -> (glam::DVec3, f64) {
         let point = |p: &[f32; 3]| glam::DVec3::from(p.map(f64::from));
         let (min, max) = self.positions.iter().fold(
             (glam::DVec3::splat(f64::MAX), glam::DVec3::splat(f64::MIN)),
@@ -141,11 +155,7 @@ impl Mesh {
             .iter()
             .map(|p| (point(p) - center).length())
             .fold(0.0f64, f64::max);
-        let scale = if radius > 0.0 { 1.0 / radius } else { 1.0 };
-        for p in &mut self.positions {
-            *p = ((point(p) - center) * scale).as_vec3().to_array();
-        }
-        self
+        (center, radius)
     }
 
     /// The enclosed volume (positive when triangles wind counter-clockwise seen from

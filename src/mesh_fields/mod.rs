@@ -14,7 +14,7 @@ mod thickness;
 
 pub use curvature::{Curvatures, MeanCurvature, convexity, curvatures, sturdy_mean_curvature};
 pub use occlusion::{Estimate, Sampling, occlusion, occlusion_at};
-pub use scene::{Scene, bounding_sphere};
+pub use scene::Scene;
 pub use thickness::{CONE_HALF_ANGLE, thickness};
 
 use crate::geodesic::{HeatError, welded_for_distances};
@@ -61,8 +61,20 @@ pub fn attach_mesh_fields(
     Ok(())
 }
 
-/// What a mesh field measures.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+/// What a mesh field measures (also `veneer mesh-field --kind`, in kebab case).
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    PartialEq,
+    Eq,
+    Hash,
+    PartialOrd,
+    Ord,
+    Serialize,
+    Deserialize,
+    clap::ValueEnum,
+)]
 #[cfg_attr(feature = "arbitrary", derive(arbitrary::Arbitrary))]
 pub enum MeshFieldKind {
     /// How convex the surface is at the field's radius, −1 (creases) to 1 (edges).
@@ -307,7 +319,7 @@ impl MeshField {
                 let (welded, of_vertex) = welded_for_distances(mesh);
                 let per_welded = match kind {
                     MeshFieldKind::Convexity => {
-                        let radius = f64::from(percent(self.radius)) * bounding_sphere(mesh).1;
+                        let radius = f64::from(percent(self.radius)) * mesh.bounding_sphere().1;
                         convexity(&welded, radius)?
                     }
                     MeshFieldKind::MeanCurvature => curvatures(&welded).mean,

@@ -117,7 +117,7 @@ mod tests {
         };
         // Scene::new moves the corner into the unit frame: place it there by hand.
         let scene = Scene::new(&mesh);
-        let (centre, radius) = super::super::scene::bounding_sphere(&mesh);
+        let (centre, radius) = mesh.bounding_sphere();
         let position = (glam::DVec3::ZERO - centre) / radius;
         let estimate = occlusion_at(
             &scene,

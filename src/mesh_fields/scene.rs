@@ -49,22 +49,6 @@ impl Vertex {
     }
 }
 
-/// The centre and radius of the sphere `fitted_to_unit_sphere` maps to the unit one.
-pub fn bounding_sphere(mesh: &Mesh) -> (DVec3, f64) {
-    let point = |p: &[f32; 3]| DVec3::from(p.map(f64::from));
-    let (min, max) = mesh.positions.iter().fold(
-        (DVec3::splat(f64::MAX), DVec3::splat(f64::MIN)),
-        |(lo, hi), p| (lo.min(point(p)), hi.max(point(p))),
-    );
-    let centre = (min + max) * 0.5;
-    let radius = mesh
-        .positions
-        .iter()
-        .map(|p| (point(p) - centre).length())
-        .fold(0.0f64, f64::max);
-    (centre, radius)
-}
-
 /// The lift of every vertex: [`LIFT`] times the mean length of its edges.
 fn lifts(positions: &[[f32; 3]], indices: &[u32]) -> Vec<f32> {
     let mut sums = vec![(0.0f32, 0u32); positions.len()];
@@ -88,7 +72,7 @@ fn lifts(positions: &[[f32; 3]], indices: &[u32]) -> Vec<f32> {
 impl Scene {
     /// `mesh` in its unit frame, with its hierarchy built.
     pub fn new(mesh: &Mesh) -> Scene {
-        let (centre, radius) = bounding_sphere(mesh);
+        let (centre, radius) = mesh.bounding_sphere();
         let scale = if radius > 0.0 { 1.0 / radius } else { 1.0 };
         let unit: Vec<[f32; 3]> = mesh
             .positions

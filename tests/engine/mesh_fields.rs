@@ -4,7 +4,7 @@
 //! settings out of range are refused by name, and `veneer mesh-field` writes one line
 //! per file vertex.
 
-use crate::support::{gpu, root, run_veneer, temp_dir};
+use crate::support::{gpu, run_veneer, temp_dir};
 use veneer::bake::{BakeSettings, BakeSurface, Format, Map, NormalConvention, bake};
 use veneer::graph::{Graph, NodeKind, Value, ValueType};
 use veneer::mesh_fields::{MeshField, MeshFieldKind};
