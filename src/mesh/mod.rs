@@ -22,7 +22,7 @@ pub use implicit::{double_torus, polygonize};
 pub use load::{EXTENSIONS, MeshError, from_bytes, load, vertex_normals};
 pub use pick::pick_vertex;
 pub use primitives::{
-    DETAIL_COST, MAX_DETAIL, MAX_GENUS2_DETAIL, PRIMITIVES, primitive, sphere, torus,
+    DETAIL_COST, MAX_DETAIL, MAX_GENUS2_DETAIL, PRIMITIVES, primitive, shell, sphere, torus,
 };
 pub use refine::{Refined, Refinement, SurfacePoint, refine_for_displacement};
 pub use tangents::{unit_normals, vertex_tangents};

@@ -62,6 +62,29 @@ pub fn sphere(segments: u32, rings: u32) -> Mesh {
     mesh
 }
 
+/// A hollow ball: the unit sphere facing out around a sphere of radius `inner` facing
+/// in, each of `segments` × `rings` quads — a wall of known thickness `1 − inner`.
+pub fn shell(inner: f32, segments: u32, rings: u32) -> Mesh {
+    let mut mesh = sphere(segments, rings);
+    let inside = sphere(segments, rings);
+    let offset = mesh.positions.len() as u32;
+    for ((p, n), uv) in inside
+        .positions
+        .iter()
+        .zip(&inside.normals)
+        .zip(&inside.uvs)
+    {
+        mesh.push_vertex(p.map(|c| c * inner), n.map(|c| -c), *uv);
+    }
+    mesh.indices.extend(
+        inside
+            .indices
+            .chunks_exact(3)
+            .flat_map(|t| [t[0] + offset, t[2] + offset, t[1] + offset]),
+    );
+    mesh
+}
+
 /// A torus about the y axis with `segments` steps round the axis and `sides` round the
 /// tube (the seam vertices repeat, as a UV-mapped file would).
 pub fn torus(major: f32, minor: f32, segments: u32, sides: u32) -> Mesh {

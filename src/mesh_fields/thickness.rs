@@ -44,32 +44,11 @@ pub fn thickness(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::mesh::{Mesh, sphere};
-
-    /// A hollow ball: the unit sphere outside, one of radius `inner` inside facing in.
-    fn shell(inner: f32) -> Mesh {
-        let mut mesh = sphere(128, 64);
-        let mut inside = sphere(128, 64);
-        let offset = mesh.positions.len() as u32;
-        for (p, n) in inside.positions.iter_mut().zip(&mut inside.normals) {
-            *p = p.map(|c| c * inner);
-            *n = n.map(|c| -c);
-        }
-        mesh.positions.extend(inside.positions);
-        mesh.normals.extend(inside.normals);
-        mesh.uvs.extend(inside.uvs);
-        mesh.indices.extend(
-            inside
-                .indices
-                .chunks_exact(3)
-                .flat_map(|t| [t[0] + offset, t[2] + offset, t[1] + offset]),
-        );
-        mesh
-    }
+    use crate::mesh::shell;
 
     #[test]
     fn a_shell_is_as_thick_as_its_wall() {
-        let mesh = shell(0.9);
+        let mesh = shell(0.9, 128, 64);
         let scene = Scene::new(&mesh);
         let outer = mesh.positions.len() / 2;
         let values = thickness(&scene, 256, 1.0, |_, _| {});

@@ -4,6 +4,7 @@
 mod geodesics;
 mod materials;
 mod measure;
+mod mesh_fields;
 mod plot;
 mod table;
 mod thesis;
@@ -56,12 +57,13 @@ pub fn steps(settings: &Settings) -> u64 {
     // precision cases (presets, noise and fBm of each basis, Worley) + hash rows + octave
     // kinds + detail materials + geodesic meshes + thesis models (field times, frames)
     let precision = crate::graph::PRESETS.len() + 2 * crate::graph::Basis::ALL.len() + 1;
-    precision as u64 + 6 + 2 + 3 + meshes + 2 * thesis::MODELS.len() as u64
+    // ... + mesh fields (occlusion, curvature, thickness)
+    precision as u64 + 6 + 2 + 3 + meshes + 2 * thesis::MODELS.len() as u64 + 3
 }
 
 /// The sections' slugs, in the order they are measured and appear: each gives its
 /// section's table, `<slug>.csv`, and plot, `<slug>.png`.
-const SLUGS: [&str; 7] = [
+const SLUGS: [&str; 8] = [
     "precision",
     "hashes",
     "octaves",
@@ -69,6 +71,7 @@ const SLUGS: [&str; 7] = [
     "detail",
     "distance_times",
     "frame_rates",
+    "mesh_fields",
 ];
 
 /// The report's own page, beside the tables and plots.
@@ -143,6 +146,7 @@ fn measure_and_write(
         materials::detail(&ctx)?,
         thesis::distance_times(&ctx)?,
         thesis::frame_rates(&ctx)?,
+        mesh_fields::mesh_fields(&ctx, settings.quick)?,
     ];
     let mut contents: Vec<Vec<u8>> = Vec::new();
     let mut markdown = format!(

@@ -48,6 +48,7 @@ fn a_quick_report_writes_every_section_and_the_thesis_tables_hold_finite_figures
         "detail",
         "distance_times",
         "frame_rates",
+        "mesh_fields",
     ] {
         assert!(
             markdown.contains(&format!("({section}.png)")),
@@ -66,6 +67,19 @@ fn a_quick_report_writes_every_section_and_the_thesis_tables_hold_finite_figures
     assert!(markdown.contains("GeForce 8600 GT"), "the thesis's GPU");
 
     let read = |name: &str| rows(&std::fs::read_to_string(dir.join(name)).expect(name));
+
+    // Mesh fields: more rays, less occlusion error; curvatures near their analytic values.
+    let fields = read("mesh_fields.csv");
+    let error = |field: &str, setting: &str| {
+        let row = fields
+            .iter()
+            .find(|row| row[0] == field && row[2].starts_with(setting))
+            .unwrap_or_else(|| panic!("{field}, {setting}: {fields:?}"));
+        finite(&row[3])
+    };
+    assert!(error("ambient occlusion", "4 rays") > error("ambient occlusion", "256 rays"));
+    assert!(error("mean curvature", "against") < 0.01);
+    assert!(error("thickness", "64 rays") < 0.05);
 
     // Table 5.1: a row per model, the mean and deviation of every method.
     let times = read("distance_times.csv");
