@@ -7,6 +7,7 @@
 
 mod cache;
 mod curvature;
+mod features;
 mod occlusion;
 mod rays;
 mod scene;
@@ -14,6 +15,7 @@ mod thickness;
 
 pub use curvature::{Curvatures, MeanCurvature, convexity, curvatures, sturdy_mean_curvature};
 pub use occlusion::{Estimate, Sampling, occlusion, occlusion_at};
+pub use features::{Feature, distance_to};
 pub use scene::Scene;
 pub use thickness::{CONE_HALF_ANGLE, thickness};
 
@@ -92,11 +94,18 @@ pub enum MeshFieldKind {
     Up,
     /// Height within the mesh's bounds, 0 at its lowest point to 1 at its highest.
     Height,
+    /// Distance along the surface to the nearest sharp edge (its triangles turn by more
+    /// than 30°) as a share of the field's distance: 0 on the edge, 1 at the distance.
+    SharpEdgeDistance,
+    /// Distance along the surface to the nearest UV seam, as a share of the distance.
+    SeamDistance,
+    /// Distance along the surface to the mesh's boundary, as a share of the distance.
+    BoundaryDistance,
 }
 
 impl MeshFieldKind {
     /// Every kind, in menu order.
-    pub const ALL: [MeshFieldKind; 7] = [
+    pub const ALL: [MeshFieldKind; 10] = [
         MeshFieldKind::Convexity,
         MeshFieldKind::MeanCurvature,
         MeshFieldKind::GaussianCurvature,
@@ -104,6 +113,9 @@ impl MeshFieldKind {
         MeshFieldKind::Thickness,
         MeshFieldKind::Up,
         MeshFieldKind::Height,
+        MeshFieldKind::SharpEdgeDistance,
+        MeshFieldKind::SeamDistance,
+        MeshFieldKind::BoundaryDistance,
     ];
 
     /// The kind as menus and messages name it.
@@ -116,16 +128,37 @@ impl MeshFieldKind {
             MeshFieldKind::Thickness => "thickness",
             MeshFieldKind::Up => "facing up",
             MeshFieldKind::Height => "height in bounds",
+            MeshFieldKind::SharpEdgeDistance => "distance to sharp edges",
+            MeshFieldKind::SeamDistance => "distance to UV seams",
+            MeshFieldKind::BoundaryDistance => "distance to the boundary",
         }
+    }
+
+    /// The feature a distance kind measures from.
+    fn feature(self) -> Option<Feature> {
+        match self {
+            MeshFieldKind::SharpEdgeDistance => Some(Feature::SharpEdge),
+            MeshFieldKind::SeamDistance => Some(Feature::Seam),
+            MeshFieldKind::BoundaryDistance => Some(Feature::Boundary),
+            _ => None,
+        }
+    }
+
+    /// Whether the kind has a distance setting (rays' reach, or a feature distance's).
+    pub fn has_distance(self) -> bool {
+        self.casts_rays() || self.feature().is_some()
     }
 
     /// The values the kind takes; `None` for the curvatures, which are unbounded.
     pub fn range(self) -> Option<(f64, f64)> {
         match self {
             MeshFieldKind::Convexity | MeshFieldKind::Up => Some((-1.0, 1.0)),
-            MeshFieldKind::Occlusion | MeshFieldKind::Thickness | MeshFieldKind::Height => {
-                Some((0.0, 1.0))
-            }
+            MeshFieldKind::Occlusion
+            | MeshFieldKind::Thickness
+            | MeshFieldKind::Height
+            | MeshFieldKind::SharpEdgeDistance
+            | MeshFieldKind::SeamDistance
+            | MeshFieldKind::BoundaryDistance => Some((0.0, 1.0)),
             MeshFieldKind::MeanCurvature | MeshFieldKind::GaussianCurvature => None,
         }
     }
@@ -157,7 +190,8 @@ pub struct MeshField {
     /// Rays per vertex (occlusion and thickness): the accuracy knob.
     #[serde(default = "MeshField::default_samples")]
     pub samples: u32,
-    /// How far rays look (occlusion and thickness), in percent of the bounding radius.
+    /// How far rays look (occlusion and thickness), or the distance a feature distance
+    /// reaches 1 at, in percent of the bounding radius.
     #[serde(default = "MeshField::default_distance")]
     pub distance: u32,
 }
@@ -186,6 +220,7 @@ impl std::fmt::Display for MeshField {
             kind if kind.casts_rays() => {
                 write!(f, " ({} rays, {}%)", self.samples, self.distance)
             }
+            kind if kind.has_distance() => write!(f, " ({}%)", self.distance),
             _ => Ok(()),
         }
     }
@@ -203,8 +238,11 @@ pub enum MeshFieldError {
         min: u32,
         max: u32,
     },
-    #[error("convexity: {0}")]
-    Heat(#[from] HeatError),
+    #[error("{kind}: {source}")]
+    Heat {
+        kind: &'static str,
+        source: HeatError,
+    },
 }
 
 impl MeshField {
@@ -250,7 +288,7 @@ impl MeshField {
                 true => self.samples,
                 false => defaults.samples,
             },
-            distance: match self.kind.casts_rays() {
+            distance: match self.kind.has_distance() {
                 true => self.distance,
                 false => defaults.distance,
             },
@@ -275,9 +313,19 @@ impl MeshField {
         }
         if self.kind.casts_rays() {
             check("samples", self.samples, MeshField::SAMPLES)?;
+        }
+        if self.kind.has_distance() {
             check("distance", self.distance, MeshField::DISTANCES)?;
         }
         Ok(())
+    }
+
+    /// A failed factorisation, in this field's words.
+    fn heat(&self, source: HeatError) -> MeshFieldError {
+        MeshFieldError::Heat {
+            kind: self.kind.name(),
+            source,
+        }
     }
 
     /// How occlusion rays are cast for these settings, stopping at `tolerance` when
@@ -315,12 +363,17 @@ impl MeshField {
             }
             MeshFieldKind::Up => Ok(mesh.normals.iter().map(|n| n[1]).collect()),
             MeshFieldKind::Height => Ok(heights_in_bounds(mesh)),
+            kind if kind.feature().is_some() => {
+                let reach = f64::from(percent(self.distance)) * mesh.bounding_sphere().1;
+                let feature = kind.feature().expect("a feature kind");
+                distance_to(mesh, feature, reach, progress).map_err(|source| self.heat(source))
+            }
             kind => {
                 let (welded, of_vertex) = welded_for_distances(mesh);
                 let per_welded = match kind {
                     MeshFieldKind::Convexity => {
                         let radius = f64::from(percent(self.radius)) * mesh.bounding_sphere().1;
-                        convexity(&welded, radius)?
+                        convexity(&welded, radius).map_err(|source| self.heat(source))?
                     }
                     MeshFieldKind::MeanCurvature => curvatures(&welded).mean,
                     _ => curvatures(&welded).gaussian,

@@ -137,6 +137,8 @@ impl Configure for MeshField {
                 value: &mut self.samples,
                 range: MeshField::SAMPLES,
             });
+        }
+        if kind.has_distance() {
             settings.push(Setting::Count {
                 label: "distance (% of the mesh)",
                 value: &mut self.distance,
