@@ -77,6 +77,8 @@ impl Definition for MeshField {
             "dirt",
             "thickness",
             "subsurface",
+            "seam",
+            "border",
             "mesh",
         ]
     }
