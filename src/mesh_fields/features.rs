@@ -80,7 +80,12 @@ pub fn distance_to(
     if sources.is_empty() || !(reach > 0.0) {
         return Ok(vec![1.0; mesh.positions.len()]);
     }
-    let solved = fields(&welded, &[sources], Method::Heat(Default::default()), progress)?;
+    let solved = fields(
+        &welded,
+        &[sources],
+        Method::Heat(Default::default()),
+        progress,
+    )?;
     let distances = &solved.fields[0];
     Ok(of_vertex
         .iter()

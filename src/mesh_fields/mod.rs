@@ -14,8 +14,8 @@ mod scene;
 mod thickness;
 
 pub use curvature::{Curvatures, MeanCurvature, convexity, curvatures, sturdy_mean_curvature};
-pub use occlusion::{Estimate, Sampling, occlusion, occlusion_at};
 pub use features::{Feature, distance_to};
+pub use occlusion::{Estimate, Sampling, occlusion, occlusion_at};
 pub use scene::Scene;
 pub use thickness::{CONE_HALF_ANGLE, thickness};
 
