@@ -51,6 +51,12 @@ struct Row<'a> {
     rays: Option<f64>,
 }
 
+/// Adds `row` to `table` and its time and mean error to `series`.
+fn record(table: &mut Table, series: &mut Series, row: Row) {
+    series.points.push((row.ms, row.errors.0));
+    table.push(row.cells());
+}
+
 impl Row<'_> {
     fn cells(self) -> Vec<String> {
         vec![
@@ -139,8 +145,9 @@ fn curvature_rows(ctx: &Context, detail: u32, table: &mut Table) -> Result<Serie
         welded_for_distances(&crate::mesh::primitive(&sphere_name).ok_or("primitive")?);
     let (curvatures, ms) = timed(ctx.repetitions, || mesh_fields::curvatures(&sphere));
     let errors = mean_and_largest(curvatures.mean.iter().map(|h| (h - 1.0).abs()));
-    series.points.push((ms, errors.0));
-    table.push(
+    record(
+        table,
+        &mut series,
         Row {
             field: "mean curvature",
             mesh: &sphere_name,
@@ -148,8 +155,7 @@ fn curvature_rows(ctx: &Context, detail: u32, table: &mut Table) -> Result<Serie
             errors,
             ms,
             rays: None,
-        }
-        .cells(),
+        },
     );
     let torus_name = format!("torus 0.7/0.3 {}×{}", 4 * detail, 2 * detail);
     let (torus, _) = welded_for_distances(&crate::mesh::torus(0.7, 0.3, 4 * detail, 2 * detail));
@@ -161,8 +167,9 @@ fn curvature_rows(ctx: &Context, detail: u32, table: &mut Table) -> Result<Serie
         let (k1, k2) = curvatures.principal(v);
         ((k1 - tube).abs() / tube).max((k2 - around).abs() / tube.max(around.abs()))
     }));
-    series.points.push((ms, errors.0));
-    table.push(
+    record(
+        table,
+        &mut series,
         Row {
             field: "principal curvatures",
             mesh: &torus_name,
@@ -170,16 +177,16 @@ fn curvature_rows(ctx: &Context, detail: u32, table: &mut Table) -> Result<Serie
             errors,
             ms,
             rays: None,
-        }
-        .cells(),
+        },
     );
     for radius in [0.05, 0.2, 0.5] {
         let (convexity, ms) = timed(ctx.repetitions, || {
             mesh_fields::convexity(&sphere, radius).map_err(|e| e.to_string())
         });
         let errors = mean_and_largest(convexity?.iter().map(|c| (c - radius).abs() / radius));
-        series.points.push((ms, errors.0));
-        table.push(
+        record(
+            table,
+            &mut series,
             Row {
                 field: "convexity",
                 mesh: &sphere_name,
@@ -187,8 +194,7 @@ fn curvature_rows(ctx: &Context, detail: u32, table: &mut Table) -> Result<Serie
                 errors,
                 ms,
                 rays: None,
-            }
-            .cells(),
+            },
         );
     }
     Ok(series)
@@ -213,8 +219,9 @@ fn thickness_rows(ctx: &Context, detail: u32, table: &mut Table) -> Result<Serie
             mesh_fields::thickness(&scene, rays, 1.0, |_, _| {})
         });
         let errors = mean_and_largest(values.iter().map(|&t| (f64::from(t) - wall).abs() / wall));
-        series.points.push((ms, errors.0));
-        table.push(
+        record(
+            table,
+            &mut series,
             Row {
                 field: "thickness",
                 mesh: &mesh,
@@ -222,8 +229,7 @@ fn thickness_rows(ctx: &Context, detail: u32, table: &mut Table) -> Result<Serie
                 errors,
                 ms,
                 rays: Some(f64::from(rays)),
-            }
-            .cells(),
+            },
         );
     }
     Ok(series)
