@@ -4,6 +4,7 @@
 use crate::app::preview::frame_cache::{FIELD_VIEW_GENERATIONS, material_frame};
 use crate::app::preview::{fields, probe, state};
 use crate::app::*;
+use crate::graph::NodeKind;
 use crate::graph::edit::{GraphEdit, GraphSetting};
 use crate::render::{Backdrop, ToneMap};
 
@@ -52,7 +53,13 @@ impl VeneerApp {
                 (Slot::Node, material),
                 size,
             );
-            ui.weak(if unit_tile {
+            let graph = &self.session.document.graph;
+            let reads_a_field = (graph.nodes.iter().find(|n| n.id == key.1))
+                .is_some_and(|n| matches!(n.kind, NodeKind::Field(_) | NodeKind::MeshField(_)));
+            ui.weak(if reads_a_field {
+                // A flat view has no mesh: its fields read 0.
+                "this node's output, flat,\nwhere a mesh's fields read 0:\nview the field on the mesh\nwith view under the preview"
+            } else if unit_tile {
                 "this node's output,\nflat over the unit tile"
             } else {
                 "this node's output,\nflat over the preview square"
