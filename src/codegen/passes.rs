@@ -198,6 +198,8 @@ struct Planner<'g> {
     /// per file and edge mode, however many nodes read it).
     sources: BTreeMap<NodeId, usize>,
     uploads: Vec<(Arc<Bitmap>, crate::nodes::passes::EdgeMode, usize)>,
+    /// The lanes of the whole material's mesh fields, which every module reads.
+    mesh_lanes: crate::nodes::mesh_field::MeshLanes,
 }
 
 /// The module and passes of a graph with sampled inputs; `None` for a graph without.
@@ -226,6 +228,7 @@ pub(super) fn plan(
         sampled: BTreeMap::new(),
         sources: BTreeMap::new(),
         uploads: Vec::new(),
+        mesh_lanes: super::mesh_lanes(graph),
     };
     let material = graph.order.len() - 1;
     let (nodes, reads) = planner.part(material)?;
@@ -480,11 +483,9 @@ impl Planner<'_> {
     ) -> Result<WgslModule, CompileError> {
         counts::emitted();
         let part = self.graph.subset(nodes);
-        // Every module reads the mesh fields in the lanes of the whole material.
-        let mesh_fields = super::mesh_lanes(self.graph);
         let uses = match target {
             None => SurfaceUse {
-                mesh_fields,
+                mesh_fields: self.mesh_lanes,
                 ..SurfaceUse::of(&part)
             },
             Some(_) => SurfaceUse::default(),
@@ -500,7 +501,7 @@ impl Planner<'_> {
             &self.graph.parameters,
             &members,
         );
-        emitter.mesh_lanes = mesh_fields;
+        emitter.mesh_lanes = self.mesh_lanes;
         let arguments = |buffer: usize| {
             let edge = self.passes[buffer].spec.edge.wgsl();
             format!("{}, {edge}", buffer_name(buffer))

@@ -107,9 +107,13 @@ fn cotan_parts(mesh: &Mesh) -> CotanParts {
 /// marching-cubes mesh's slivers make these pointwise values noisy, which is why
 /// [`convexity`] smooths a sturdier measure instead.
 pub fn curvatures(mesh: &Mesh) -> Curvatures {
-    let parts = cotan_parts(mesh);
     let boundary = Triangulation::from_mesh(mesh).boundary_vertices();
-    let n = mesh.positions.len();
+    curvatures_from(&cotan_parts(mesh), &boundary)
+}
+
+/// [`curvatures`] from the cotangent formulas' parts and the boundary vertices.
+fn curvatures_from(parts: &CotanParts, boundary: &[bool]) -> Curvatures {
+    let n = parts.area.len();
     let mut mean = vec![0.0; n];
     let mut gaussian = vec![0.0; n];
     for v in 0..n {
@@ -126,45 +130,69 @@ pub fn curvatures(mesh: &Mesh) -> Curvatures {
     Curvatures { mean, gaussian }
 }
 
+/// An edge shared by two triangles, and how they fold across it.
+pub(super) struct Fold {
+    pub tail: u32,
+    pub head: u32,
+    pub length: f64,
+    /// The angle the second triangle's normal turns from the first's about the edge,
+    /// positive where they fold away from their normals (a convex edge); 0 where either
+    /// triangle has no area.
+    pub turn: f64,
+}
+
+/// Every edge of `triangulation` (made from `mesh`) shared by exactly two consistently
+/// oriented triangles, each once, with its fold.
+pub(super) fn folds<'a>(
+    mesh: &'a Mesh,
+    triangulation: &'a Triangulation,
+) -> impl Iterator<Item = Fold> + 'a {
+    let position = |i: u32| DVec3::from(mesh.positions[i as usize].map(f64::from));
+    let normal = move |f: usize| {
+        let [a, b, c] = triangulation.faces[f].map(position);
+        (b - a).cross(c - a).normalize_or_zero()
+    };
+    (triangulation.twins.iter().enumerate())
+        .filter(|&(h, &twin)| twin != NO_TWIN && (twin as usize) > h)
+        .map(move |(h, &twin)| {
+            let (f, k) = split(h as u32);
+            let (tail, head) = (
+                triangulation.faces[f][k],
+                triangulation.faces[f][(k + 1) % 3],
+            );
+            let edge = position(head) - position(tail);
+            let (first, second) = (normal(f), normal(split(twin).0));
+            let turn = first
+                .cross(second)
+                .dot(edge.normalize_or_zero())
+                .atan2(first.dot(second));
+            Fold {
+                tail,
+                head,
+                length: edge.length(),
+                turn: finite_or_zero(turn),
+            }
+        })
+}
+
 /// The mean curvature of each vertex in the form smoothing wants it: a density (the
 /// cotangent formula's, [`curvatures`]) where the triangles at the vertex are well
 /// shaped, else an amount integrated over the vertex's share of the surface from the
 /// dihedral angles of its edges (a quarter of each edge's length times the angle its two
-/// triangles turn by, positive where they fold away from their normals). The dihedral
-/// measure depends on lengths and angles only, each bounded, so slivers and needles
-/// cannot blow it up as they do the cotangent formula, nor does it divide by their tiny
-/// areas. Boundary and non-manifold edges add nothing to it.
+/// triangles turn by, [`Fold::turn`]). The dihedral measure depends on lengths and
+/// angles only, each bounded, so slivers and needles cannot blow it up as they do the
+/// cotangent formula, nor does it divide by their tiny areas. Boundary and non-manifold
+/// edges add nothing to it.
 pub fn sturdy_mean_curvature(mesh: &Mesh) -> Vec<MeanCurvature> {
     let parts = cotan_parts(mesh);
-    let mean = curvatures(mesh).mean;
-    let position = |i: u32| DVec3::from(mesh.positions[i as usize].map(f64::from));
     let triangulation = Triangulation::from_mesh(mesh);
-    let face_normal = |f: usize| {
-        let [a, b, c] = triangulation.faces[f].map(position);
-        (b - a).cross(c - a).normalize_or_zero()
-    };
+    let mean = curvatures_from(&parts, &triangulation.boundary_vertices()).mean;
+    let poor = |v: u32| parts.poorly_shaped[v as usize];
     let mut dihedral = vec![0.0; mesh.positions.len()];
-    for (h, &twin) in triangulation.twins.iter().enumerate() {
-        if twin == NO_TWIN || (twin as usize) < h {
-            continue;
-        }
-        let (f, k) = split(h as u32);
-        let (tail, head) = (
-            triangulation.faces[f][k],
-            triangulation.faces[f][(k + 1) % 3],
-        );
-        if !(parts.poorly_shaped[tail as usize] || parts.poorly_shaped[head as usize]) {
-            continue;
-        }
-        let edge = position(head) - position(tail);
-        let (first, second) = (face_normal(f), face_normal(split(twin).0));
-        let turn = first
-            .cross(second)
-            .dot(edge.normalize_or_zero())
-            .atan2(first.dot(second));
-        let share = finite_or_zero(0.25 * edge.length() * turn);
-        dihedral[tail as usize] += share;
-        dihedral[head as usize] += share;
+    for fold in folds(mesh, &triangulation).filter(|fold| poor(fold.tail) || poor(fold.head)) {
+        let share = finite_or_zero(0.25 * fold.length * fold.turn);
+        dihedral[fold.tail as usize] += share;
+        dihedral[fold.head as usize] += share;
     }
     (0..mesh.positions.len())
         .map(|v| match parts.poorly_shaped[v] {

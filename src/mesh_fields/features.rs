@@ -3,13 +3,12 @@
 //! as a share of a reach: 0 on the feature, 1 at the reach and beyond (and where no
 //! feature is reachable, or the mesh has none).
 
-use crate::geodesic::{HeatError, Method, NO_TWIN, Triangulation, fields, split};
+use super::curvature::folds;
+use crate::geodesic::{HeatError, Method, Triangulation, fields};
 use crate::mesh::Mesh;
-use glam::DVec3;
 
-/// The dihedral angle past which an edge is sharp (30°, as a cosine of the turn between
-/// its two triangles' normals).
-const SHARP_COS: f64 = 0.866_025_403_784_438_6;
+/// The turn between its two triangles' normals past which an edge is sharp (30°).
+const SHARP_TURN: f64 = std::f64::consts::FRAC_PI_6;
 
 /// UVs closer than this are the same (a seam splits a vertex into copies whose UVs
 /// differ).
@@ -34,19 +33,10 @@ fn sources(mesh: &Mesh, welded: &Mesh, of_vertex: &[u32], feature: Feature) -> V
     match feature {
         Feature::Boundary => on = triangulation.boundary_vertices(),
         Feature::SharpEdge => {
-            let position = |i: u32| DVec3::from(welded.positions[i as usize].map(f64::from));
-            let normal = |f: usize| {
-                let [a, b, c] = triangulation.faces[f].map(position);
-                (b - a).cross(c - a).normalize_or_zero()
-            };
-            for (h, &twin) in triangulation.twins.iter().enumerate() {
-                if twin == NO_TWIN || (twin as usize) < h {
-                    continue;
-                }
-                let (f, k) = split(h as u32);
-                if normal(f).dot(normal(split(twin).0)) < SHARP_COS {
-                    on[triangulation.faces[f][k] as usize] = true;
-                    on[triangulation.faces[f][(k + 1) % 3] as usize] = true;
+            for fold in folds(welded, &triangulation) {
+                if fold.turn.abs() > SHARP_TURN {
+                    on[fold.tail as usize] = true;
+                    on[fold.head as usize] = true;
                 }
             }
         }
@@ -77,7 +67,7 @@ pub fn distance_to(
 ) -> Result<Vec<f32>, HeatError> {
     let (welded, of_vertex) = crate::geodesic::welded_for_distances(mesh);
     let sources = sources(mesh, &welded, &of_vertex, feature);
-    if sources.is_empty() || !(reach > 0.0) {
+    if sources.is_empty() || reach <= 0.0 || reach.is_nan() {
         return Ok(vec![1.0; mesh.positions.len()]);
     }
     let solved = fields(

@@ -6,8 +6,7 @@
 use crate::geodesic::{HeatOptions, Method};
 use crate::graph::{FieldSource, Graph, NodeKind, RampInterpolation, RampStop, Value};
 use crate::mesh::Mesh;
-use crate::mesh_fields::MeshField;
-use crate::mesh_fields::MeshLanes;
+use crate::mesh_fields::{MeshField, MeshLanes};
 use crate::nodes::{ColorRamp, Field, MapRange, MapRangeMode, Mix};
 use egui::Ui;
 use std::sync::atomic::{AtomicUsize, Ordering};

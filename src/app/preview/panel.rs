@@ -488,7 +488,9 @@ impl VeneerApp {
                 used[slot.min(3)] = true;
                 uses.mesh_fields
             }
-            Some(fields::FieldView::Mesh(field)) => [Some(field.key()), None, None, None],
+            Some(fields::FieldView::Mesh(field)) => {
+                crate::nodes::mesh_field::lanes(&[field.key()], [false; 4])
+            }
             None => uses.mesh_fields,
         };
         let name = self.preview.state.mesh.clone();
