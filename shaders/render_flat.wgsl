@@ -26,7 +26,7 @@ fn veneer_flat_fragment(@builtin(position) pixel: vec4f) -> @location(0) vec4u {
     let t = (pixel.xy + view.pixel_offset) / view.size;
     let position = vec3f(view.rect.x + (view.rect.z - view.rect.x) * t.x, view.plane_y, view.rect.y + (view.rect.w - view.rect.y) * t.y);
     let uv = select(vec2f(0.0), t, view.domain_uv == 1u);
-    let surface = VeneerSurface(position, vec3f(0.0, 1.0, 0.0), uv, vec4f(0.0), view.time);
+    let surface = VeneerSurface(position, vec3f(0.0, 1.0, 0.0), uv, VENEER_FLAT_FIELDS, view.time);
     let material = veneer_material(surface);
     // The plane's tangent frame: x along +x, y up the image (-z), z the normal (+y).
     let frame = mat3x3f(vec3f(1.0, 0.0, 0.0), vec3f(0.0, 0.0, -1.0), vec3f(0.0, 1.0, 0.0));

@@ -16,5 +16,5 @@ fn veneer_pass_fragment(@builtin(position) pixel: vec4f) -> @location(0) vec4f {
     let view = veneer_pass_view;
     let t = pixel.xy / view.size;
     let position = vec3f(view.rect.x + (view.rect.z - view.rect.x) * t.x, view.plane_y, view.rect.y + (view.rect.w - view.rect.y) * t.y);
-    return veneer_pass(VeneerSurface(position, vec3f(0.0, 1.0, 0.0), t, vec4f(0.0), view.time));
+    return veneer_pass(VeneerSurface(position, vec3f(0.0, 1.0, 0.0), t, VENEER_FLAT_FIELDS, view.time));
 }

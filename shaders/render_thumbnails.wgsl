@@ -25,7 +25,7 @@ fn veneer_thumbnail_fragment(@builtin(position) pixel: vec4f) -> @location(0) ve
     let view = veneer_thumbnail_view;
     let t = (pixel.xy - floor(pixel.xy / view.tile) * view.tile) / view.tile;
     let position = vec3f(view.rect.x + (view.rect.z - view.rect.x) * t.x, view.plane_y, view.rect.y + (view.rect.w - view.rect.y) * t.y);
-    let surface = VeneerSurface(position, vec3f(0.0, 1.0, 0.0), t, vec4f(0.0), view.time);
+    let surface = VeneerSurface(position, vec3f(0.0, 1.0, 0.0), t, VENEER_FLAT_FIELDS, view.time);
     let material = veneer_material(surface);
     return vec4f(clamp(material.albedo, vec3f(0.0), vec3f(1.0)), 1.0);
 }

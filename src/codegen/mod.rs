@@ -156,6 +156,17 @@ pub fn mesh_lanes(graph: &CheckedGraph) -> crate::nodes::mesh_field::MeshLanes {
     mesh_field::lanes(&mesh_field::fields_read(kinds()), distance_slots(kinds()))
 }
 
+/// The module's `VENEER_FLAT_FIELDS`: the `fields` flat views pass, as
+/// [`crate::nodes::mesh_field::flat_fields`] gives them for `lanes`.
+fn flat_fields_constant(lanes: &crate::nodes::mesh_field::MeshLanes) -> String {
+    let values = crate::nodes::mesh_field::flat_fields(lanes)
+        .map(|value| crate::nodes::emit::float_literal(f64::from(value)));
+    format!(
+        "\n// The fields flat views pass (no mesh): 0 for distance fields, an unbounded flat plane's value for mesh fields.\nconst VENEER_FLAT_FIELDS = vec4f({});\n",
+        values.join(", ")
+    )
+}
+
 /// Which of the four slots of `VeneerSurface.fields` the Distance field nodes among
 /// `kinds` read.
 pub fn distance_slots<'a>(kinds: impl IntoIterator<Item = &'a NodeKind>) -> [bool; 4] {
@@ -629,6 +640,7 @@ fn assemble(
         source.push_str(line);
         source.push('\n');
     }
+    source.push_str(&flat_fields_constant(&uses.mesh_fields));
     if declares_slots {
         source.push_str(&params_block(graph, &params, mode));
     }

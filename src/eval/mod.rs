@@ -94,6 +94,16 @@ impl Evaluator {
         }
     }
 
+    /// The surface of a flat view at `position` ([`Surface::at`]), its mesh-field lanes
+    /// holding what a flat plane gives (`VENEER_FLAT_FIELDS` of the compiled module).
+    pub fn flat_surface<R: Real>(&self, position: [f64; 3]) -> Surface<R> {
+        let flat = crate::nodes::mesh_field::flat_fields(&self.mesh_lanes);
+        Surface {
+            fields: flat.map(|value| R::c(f64::from(value))),
+            ..Surface::at(position)
+        }
+    }
+
     /// The material at one point, in precision `R` (a graph without sampled inputs; its
     /// Image nodes read their files).
     pub fn eval<R: Real>(&self, surface: &Surface<R>) -> Material<R> {

@@ -93,7 +93,7 @@ impl Evaluator {
                             let surface = Surface {
                                 uv: t,
                                 time: f64::from(time),
-                                ..Surface::<f64>::at(points[k])
+                                ..self.flat_surface(points[k])
                             };
                             let values = self.values(&surface, &buffers, nodes.iter().copied());
                             let value = values[*node][*output];
@@ -139,7 +139,7 @@ impl Evaluator {
         (0..points.len())
             .into_par_iter()
             .map(|k| {
-                let mut surface = Surface::<R>::at(points[k]);
+                let mut surface = self.flat_surface::<R>(points[k]);
                 surface.time = R::c(f64::from(time));
                 if domain_uv {
                     surface.uv = [k as u32 % size, k as u32 / size]

@@ -163,6 +163,25 @@ impl MeshFieldKind {
         }
     }
 
+    /// The value the kind takes on an unbounded flat plane, which is what flat views
+    /// (the flat render, thumbnails, passes over the flat domain) show: nothing bends,
+    /// nothing occludes, nothing lies behind within reach, no feature is near, and a
+    /// plane has no height in its bounds.
+    pub fn on_flat_plane(self) -> f32 {
+        match self {
+            MeshFieldKind::Convexity
+            | MeshFieldKind::MeanCurvature
+            | MeshFieldKind::GaussianCurvature
+            | MeshFieldKind::Height => 0.0,
+            MeshFieldKind::Occlusion
+            | MeshFieldKind::Thickness
+            | MeshFieldKind::Up
+            | MeshFieldKind::SharpEdgeDistance
+            | MeshFieldKind::SeamDistance
+            | MeshFieldKind::BoundaryDistance => 1.0,
+        }
+    }
+
     /// Whether the kind is stored per vertex in a lane of `VeneerSurface.fields`
     /// (all but [`MeshFieldKind::Up`], which the shaded point's normal gives).
     pub fn needs_lane(self) -> bool {
@@ -391,6 +410,26 @@ impl MeshField {
 mod tests {
     use super::*;
     use crate::mesh::primitive;
+
+    /// What flat views read is what each field computes on a flat plane, at its centre
+    /// (the one point of `plane` farther than the distance from its boundary).
+    #[test]
+    fn flat_views_read_what_a_flat_plane_computes() {
+        let plane = primitive("plane:8").unwrap();
+        let centre = (plane.positions.iter())
+            .position(|p| p[0].abs() < 1e-6 && p[2].abs() < 1e-6)
+            .expect("a vertex at the centre");
+        for kind in MeshFieldKind::ALL {
+            let values = MeshField::new(kind).compute(&plane, |_, _| {}).unwrap();
+            let value = values[centre];
+            assert!(
+                (value - kind.on_flat_plane()).abs() < 1e-3,
+                "{}: {value} at the plane's centre, flat views read {}",
+                kind.name(),
+                kind.on_flat_plane()
+            );
+        }
+    }
 
     /// A scan's worst: an open sheet, a fin on three triangles of one edge (non-manifold),
     /// a separate closed piece, a triangle with no area, a vertex no triangle uses and one

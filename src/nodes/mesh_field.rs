@@ -50,6 +50,13 @@ pub fn lanes(read: &[MeshField], taken: [bool; MESH_LANES]) -> MeshLanes {
     lanes
 }
 
+/// What a flat view (no mesh) passes in `VeneerSurface.fields`: each mesh field's value
+/// on an unbounded flat plane in its lane, 0 in the others (distance fields read 0 off a
+/// mesh).
+pub fn flat_fields(lanes: &MeshLanes) -> [f32; MESH_LANES] {
+    lanes.map(|lane| lane.map_or(0.0, |field| field.kind.on_flat_plane()))
+}
+
 /// The lane holding `field` in `lanes`.
 pub fn lane_of(lanes: &MeshLanes, field: &MeshField) -> Option<usize> {
     lanes.iter().position(|lane| *lane == Some(field.key()))

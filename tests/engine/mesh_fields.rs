@@ -4,11 +4,11 @@
 //! settings out of range are refused by name, and `veneer mesh-field` writes one line
 //! per file vertex.
 
-use crate::support::{gpu, run_veneer, temp_dir};
+use crate::support::{compiled_rgb8, cpu_flat_rgb8, gpu, run_veneer, temp_dir};
 use veneer::bake::{BakeSettings, BakeSurface, Format, Map, NormalConvention, bake};
 use veneer::graph::{Graph, NodeKind, Value, ValueType};
 use veneer::mesh_fields::{MeshField, MeshFieldKind};
-use veneer::nodes::Mix;
+use veneer::nodes::{Combine, Mix};
 
 /// A material whose albedo is `field` in grey (0 black, 1 white), previewed on `mesh`.
 fn grey_of(fields: &[MeshField], mesh: &str) -> Graph {
@@ -36,6 +36,61 @@ fn grey_of(fields: &[MeshField], mesh: &str) -> Graph {
         graph.connect(last, "result", material, "albedo");
     }
     graph
+}
+
+/// Flat views have no mesh: each mesh field reads what a flat plane gives (occlusion 1,
+/// convexity 0, thickness 1), on the GPU as on the CPU, and a distance field beside them
+/// reads 0.
+#[test]
+fn flat_views_read_a_flat_planes_mesh_fields() {
+    let mut graph = Graph::default();
+    let colour = graph.add(
+        "colour",
+        NodeKind::Combine(Combine {
+            ty: ValueType::Color,
+        }),
+    );
+    let kinds = [
+        MeshFieldKind::Occlusion,
+        MeshFieldKind::Convexity,
+        MeshFieldKind::Thickness,
+    ];
+    for (kind, pin) in kinds.into_iter().zip(["x", "y", "z"]) {
+        let node = graph.add(kind.name(), NodeKind::MeshField(MeshField::new(kind)));
+        graph.connect(node, "value", colour, pin);
+    }
+    let distance = graph.add(
+        "distance",
+        NodeKind::Field(veneer::nodes::Field { slot: 0 }),
+    );
+    let tint = graph.add(
+        "tint",
+        NodeKind::Mix(Mix {
+            ty: ValueType::Color,
+        }),
+    );
+    graph.connect(colour, "v", tint, "a");
+    graph.set_input(tint, "b", Value::Color(0.0, 0.0, 0.0));
+    graph.connect(distance, "distance", tint, "factor");
+    let material = graph.add("material", NodeKind::Material);
+    graph.connect(tint, "result", material, "albedo");
+    let compiled = veneer::codegen::compile(&graph, &Default::default()).expect("compiles");
+    let rect = veneer::render::FlatRect {
+        x0: -1.0,
+        z0: -1.0,
+        x1: 1.0,
+        z1: 1.0,
+        y: 0.0,
+    };
+    let gpu = compiled_rgb8(&compiled, rect, 8);
+    let cpu = cpu_flat_rgb8(&graph, rect, 8);
+    for pixels in [&gpu, &cpu] {
+        assert!(
+            pixels.chunks(3).all(|rgb| rgb == [255, 0, 255]),
+            "flat pixels {:?}, expected occlusion 1, convexity 0, thickness 1",
+            &pixels[..3]
+        );
+    }
 }
 
 fn occlusion(distance: u32) -> MeshField {

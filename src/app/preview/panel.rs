@@ -54,11 +54,12 @@ impl VeneerApp {
                 size,
             );
             let graph = &self.session.document.graph;
-            let reads_a_field = (graph.nodes.iter().find(|n| n.id == key.1))
-                .is_some_and(|n| matches!(n.kind, NodeKind::Field(_) | NodeKind::MeshField(_)));
-            ui.weak(if reads_a_field {
-                // A flat view has no mesh: its fields read 0.
-                "this node's output, flat,\nwhere a mesh's fields read 0:\nview the field on the mesh\nwith view under the preview"
+            let kind = (graph.nodes.iter().find(|n| n.id == key.1)).map(|n| &n.kind);
+            ui.weak(if matches!(kind, Some(NodeKind::Field(_))) {
+                // A flat view has no mesh: distance fields read 0.
+                "this node's output, flat,\nwhere distance fields read 0:\nview the field on the mesh\nwith view under the preview"
+            } else if matches!(kind, Some(NodeKind::MeshField(_))) {
+                "this node's output, flat,\nwhere it reads a flat plane's value:\nview the field on the mesh\nwith view under the preview"
             } else if unit_tile {
                 "this node's output,\nflat over the unit tile"
             } else {

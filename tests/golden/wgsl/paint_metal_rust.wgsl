@@ -24,6 +24,9 @@ struct VeneerMaterial {
     occlusion: f32,   // ambient occlusion, 1 unoccluded
 }
 
+// The fields flat views pass (no mesh): 0 for distance fields, an unbounded flat plane's value for mesh fields.
+const VENEER_FLAT_FIELDS = vec4f(0.0f, 0.0f, 0.0f, 0.0f);
+
 // ---- shaders/math.wgsl
 
 // `x` clamped to the finite range: a sum or product of finite values is finite or an

@@ -24,6 +24,9 @@ struct VeneerMaterial {
     occlusion: f32,   // ambient occlusion, 1 unoccluded
 }
 
+// The fields flat views pass (no mesh): 0 for distance fields, an unbounded flat plane's value for mesh fields.
+const VENEER_FLAT_FIELDS = vec4f(0.0f, 0.0f, 0.0f, 0.0f);
+
 // ---- shaders/map_range.wgsl
 
 // Where x lies from from_min (0) to from_max (1), unclamped; 0 when the range is empty.
