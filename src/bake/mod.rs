@@ -10,11 +10,15 @@ mod encode;
 mod exr_rle;
 mod gltf;
 mod maps;
+mod mesh_maps;
 mod pipeline;
 pub mod tile;
 
 pub use gltf::{GltfSettings, Packaging, export_gltf, gltf_files};
 pub use maps::{Converter, Map, NormalConvention, fill_uncovered};
+pub use mesh_maps::{
+    BakedMeshMap, MOST_POOLING, MeshMap, MeshMapSettings, bake_mesh_maps, mesh_map_path,
+};
 use pipeline::MapTarget;
 
 use crate::codegen::Compiled;
@@ -139,6 +143,9 @@ pub enum BakeError {
         .0.iter().map(|seam| format!("the buffer of {} differs by up to {} left/right and {} top/bottom from itself a tile on", seam.pass, tile::seam_text(seam.left_right), tile::seam_text(seam.top_bottom))).collect::<Vec<_>>().join(", ")
     )]
     BuffersNotTileable(Vec<crate::render::WrapSeam>),
+    /// A mesh map's settings are out of their limits, or its field cannot be computed.
+    #[error("{0}; nothing was baked")]
+    MeshField(String),
     /// Whoever asked for the export took it back; nothing was written.
     #[error("cancelled; nothing was written")]
     Cancelled,
@@ -161,11 +168,16 @@ pub const UNIT_TILE: FlatRect = FlatRect {
 
 /// The file a bake writes `map` to: `<stem>_<map>.<ext>`.
 pub fn map_path(stem: &Path, map: Map, format: Format) -> PathBuf {
+    named_path(stem, map.name(), format)
+}
+
+/// `<stem>_<name>.<ext>`.
+fn named_path(stem: &Path, name: &str, format: Format) -> PathBuf {
     let stem_name = stem
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
-    stem.with_file_name(format!("{stem_name}_{}.{}", map.name(), format.extension()))
+    stem.with_file_name(format!("{stem_name}_{name}.{}", format.extension()))
 }
 
 /// Checks, before anything renders, that every file the bakes of `stems` would write

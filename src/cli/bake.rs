@@ -8,8 +8,8 @@ use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
 use std::path::PathBuf;
 use veneer::bake::tile::seam_text;
 use veneer::bake::{
-    BakeSettings, BakeSurface, BakedMap, Format, GltfSettings, Map, NormalConvention, bake,
-    export_gltf, map_path,
+    BakeSettings, BakeSurface, BakedMap, Format, GltfSettings, Map, MeshMap, MeshMapSettings,
+    NormalConvention, bake, bake_mesh_maps, export_gltf, map_path, mesh_map_path,
 };
 use veneer::codegen::{CompileOptions, compile};
 use veneer::fsutil::{Naming, OutputPlan};
@@ -33,18 +33,27 @@ enum NormalArg {
     Dx,
 }
 
+/// A map `--maps` names: one of the material's, or one of the mesh's own.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum MapArg {
+    Material(Map),
+    Mesh(MeshMap),
+}
+
 #[derive(Args)]
 pub struct BakeArgs {
-    /// Graph files to bake (in parallel).
-    #[arg(required = true)]
+    /// Graph files to bake (in parallel); none when every map is a mesh map.
     graphs: Vec<PathBuf>,
     /// Width and height of every map in pixels (up to 8192 and beyond; rendered in tiles).
     #[arg(long, default_value_t = 1024)]
     size: u32,
-    /// Maps to write: albedo, alpha, height, normal, specular, roughness, metallic,
-    /// occlusion, emission, orm (occlusion, roughness, metallic in R, G, B).
+    /// Maps to write: the material's albedo, alpha, height, normal, specular, roughness,
+    /// metallic, occlusion, emission, orm (occlusion, roughness, metallic in R, G, B);
+    /// with --mesh, the mesh's own ao, curvature, thickness, position, world-normal
+    /// (per texel of its UV layout, no graph needed: without graphs they are named after
+    /// the mesh).
     #[arg(long, value_delimiter = ',', default_value = "albedo,normal,height", value_parser = parse_map)]
-    maps: Vec<Map>,
+    maps: Vec<MapArg>,
     /// File format of the maps.
     #[arg(long, value_enum, default_value = "png")]
     format: FormatArg,
@@ -68,6 +77,21 @@ pub struct BakeArgs {
     /// Time in seconds.
     #[arg(long, default_value_t = 0.0, value_parser = super::parse_time, allow_hyphen_values = true)]
     time: f32,
+    /// Mesh maps ao and thickness: rays per texel (1 to 4096), the accuracy knob.
+    #[arg(long, default_value_t = 8)]
+    samples: u32,
+    /// Mesh maps ao and thickness: how far rays look, in percent of the mesh's bounding
+    /// radius (1 to 400).
+    #[arg(long, default_value_t = 50)]
+    distance: u32,
+    /// Mesh map curvature: the radius convexity is measured at, in percent of the
+    /// bounding radius (1 to 100).
+    #[arg(long, default_value_t = 5)]
+    radius: u32,
+    /// Mesh maps ao and thickness: pool each texel's rays with those of its neighbours on
+    /// the same surface up to this many texels away (0 to 8; 0: each texel alone).
+    #[arg(long, default_value_t = 3)]
+    pool: u32,
     /// Folder for the maps (`<graph>_<map>.<ext>`); default: next to each graph.
     #[arg(short, long)]
     out_dir: Option<PathBuf>,
@@ -84,13 +108,15 @@ pub struct BakeArgs {
     parameters: super::parameters::ParameterArgs,
 }
 
-fn parse_map(text: &str) -> Result<Map, String> {
-    Map::ALL
-        .iter()
-        .copied()
-        .find(|map| map.name() == text.trim())
+fn parse_map(text: &str) -> Result<MapArg, String> {
+    let materials = Map::ALL.map(|map| (map.name(), MapArg::Material(map)));
+    let meshes = MeshMap::ALL.map(|map| (map.name(), MapArg::Mesh(map)));
+    let mut all = materials.iter().chain(&meshes);
+    all.clone()
+        .find(|(name, _)| *name == text.trim())
+        .map(|(_, map)| *map)
         .ok_or_else(|| {
-            let names: Vec<&str> = Map::ALL.iter().map(|m| m.name()).collect();
+            let names: Vec<&str> = all.by_ref().map(|(name, _)| *name).collect();
             format!(
                 "unknown map '{text}' (expected one of: {})",
                 names.join(", ")
@@ -109,6 +135,9 @@ impl BakeArgs {
             }
         }
         let Some(first) = self.graphs.first() else {
+            if let Some(mesh) = &self.mesh {
+                self.plan_mesh_maps(plan, job, mesh);
+            }
             return;
         };
         if let Some(out) = &self.gltf {
@@ -126,9 +155,74 @@ impl BakeArgs {
         let format = self.settings().format;
         for (graph, stem) in self.graphs.iter().zip(self.stems()) {
             let by = super::by(job, graph);
-            for &map in &self.maps {
+            for map in self.material_maps() {
                 plan.writes(map_path(&stem, map, format), Naming::Implied, &by);
             }
+            for map in self.mesh_maps() {
+                plan.writes(mesh_map_path(&stem, map, format), Naming::Implied, &by);
+            }
+        }
+    }
+
+    /// Plans a bake of mesh maps alone: the mesh read, its maps written.
+    fn plan_mesh_maps(&self, plan: &mut OutputPlan, job: Option<&str>, mesh: &str) {
+        let by = super::by(job, mesh);
+        super::plan_mesh(plan, mesh, &by);
+        let (stem, format) = (self.mesh_stem(mesh), self.settings().format);
+        for map in self.mesh_maps() {
+            plan.writes(mesh_map_path(&stem, map, format), Naming::Implied, &by);
+        }
+    }
+
+    /// The material maps `--maps` names, in its order.
+    fn material_maps(&self) -> Vec<Map> {
+        (self.maps.iter())
+            .filter_map(|map| match map {
+                MapArg::Material(map) => Some(*map),
+                MapArg::Mesh(_) => None,
+            })
+            .collect()
+    }
+
+    /// The mesh maps `--maps` names, in its order.
+    fn mesh_maps(&self) -> Vec<MeshMap> {
+        (self.maps.iter())
+            .filter_map(|map| match map {
+                MapArg::Mesh(map) => Some(*map),
+                MapArg::Material(_) => None,
+            })
+            .collect()
+    }
+
+    /// How the mesh maps are baked.
+    fn mesh_map_settings(&self) -> MeshMapSettings {
+        MeshMapSettings {
+            size: self.size,
+            format: self.settings().format,
+            samples: self.samples,
+            distance: self.distance,
+            radius: self.radius,
+            pooling: self.pool,
+        }
+    }
+
+    /// Where mesh maps baked without a graph go: `<mesh>_<map>.<ext>` in `--out-dir`, or
+    /// beside the mesh file (a primitive's in the current folder, `torus:96` as
+    /// `torus-96`).
+    fn mesh_stem(&self, mesh: &str) -> PathBuf {
+        let path = std::path::Path::new(mesh);
+        let name = match path.extension() {
+            Some(_) => path
+                .file_stem()
+                .unwrap_or_default()
+                .to_string_lossy()
+                .into_owned(),
+            None => mesh.replace(':', "-"),
+        };
+        match (&self.out_dir, path.extension()) {
+            (Some(dir), _) => dir.join(name),
+            (None, Some(_)) => path.with_file_name(name),
+            (None, None) => PathBuf::from(name),
         }
     }
 
@@ -141,7 +235,7 @@ impl BakeArgs {
                 None => BakeSurface::Plane(self.flat),
             },
             size: self.size,
-            maps: self.maps.clone(),
+            maps: self.material_maps(),
             format: match self.format {
                 FormatArg::Png => Format::Png8,
                 FormatArg::Png16 => Format::Png16,
@@ -170,17 +264,131 @@ pub fn run(args: BakeArgs) -> Result<(), Failure> {
     if let Some(out) = &args.gltf {
         return run_gltf(&args, out);
     }
-    let settings = args.settings();
-    if settings.size == 0 {
+    if args.size == 0 {
         return Err(Failure::new("--size must be at least 1"));
     }
-    let stems = args.stems();
+    let names = |maps: Vec<&'static str>| maps.join(", ");
+    let mesh_maps = args.mesh_maps();
+    if args.mesh.is_none() && !mesh_maps.is_empty() {
+        return Err(Failure::new(format!(
+            "the mesh maps ({}) are baked into a mesh's UV layout: give --mesh",
+            names(mesh_maps.iter().map(|map| map.name()).collect())
+        )));
+    }
+    if args.graphs.is_empty() && !args.material_maps().is_empty() {
+        return Err(Failure::new(format!(
+            "the material maps ({}) need a graph file; without one, --maps takes only mesh maps ({})",
+            names(args.material_maps().iter().map(|map| map.name()).collect()),
+            names(MeshMap::ALL.iter().map(|map| map.name()).collect())
+        )));
+    }
+    let stems = match (&args.mesh, args.graphs.is_empty()) {
+        (Some(mesh), true) => vec![args.mesh_stem(mesh)],
+        _ => args.stems(),
+    };
+    let (mut written, mut failures) = match args.material_maps().is_empty() {
+        true => (Vec::new(), Vec::new()),
+        false => bake_material_maps(&args, &stems)?,
+    };
+    let mut mesh_written = Vec::new();
+    if let (Some(mesh), false) = (&args.mesh, mesh_maps.is_empty()) {
+        match bake_mesh(&args, mesh, &mesh_maps, &stems) {
+            Ok(maps) => mesh_written = maps,
+            Err(Failure(message, _)) => failures.push(message),
+        }
+    }
+    if args.json {
+        let mut all: Vec<serde_json::Value> = Vec::new();
+        all.extend(
+            written
+                .drain(..)
+                .map(serde_json::to_value)
+                .collect::<Result<Vec<_>, _>>()?,
+        );
+        all.extend((mesh_written.iter().map(serde_json::to_value)).collect::<Result<Vec<_>, _>>()?);
+        out(serde_json::to_string_pretty(&all)?)?;
+    } else {
+        for map in &written {
+            let seams = map.seams.map_or(String::new(), |seams| {
+                format!(
+                    "; tiles: edges differ by up to {} left/right, {} top/bottom",
+                    seam_text(seams.left_right),
+                    seam_text(seams.top_bottom)
+                )
+            });
+            note(format!(
+                "wrote {} ({}×{}, {} bytes{seams})",
+                map.path.display(),
+                map.size,
+                map.size,
+                map.bytes
+            ))?;
+        }
+        for map in &mesh_written {
+            let rays = match map.rays_per_texel {
+                0 => String::new(),
+                rays => format!(", {rays} rays per texel pooled over ±{} texels", args.pool),
+            };
+            note(format!(
+                "wrote {} ({}×{}, {} bytes; {} texels covered{rays}, {:.2} s)",
+                map.path.display(),
+                map.size,
+                map.size,
+                map.bytes,
+                map.covered_texels,
+                map.seconds
+            ))?;
+        }
+    }
+    if failures.is_empty() {
+        Ok(())
+    } else {
+        Err(Failure::new(failures.join("\n")))
+    }
+}
+
+/// The mesh maps of `mesh` baked once and written for every stem, with a progress bar.
+fn bake_mesh(
+    args: &BakeArgs,
+    mesh: &str,
+    maps: &[MeshMap],
+    stems: &[PathBuf],
+) -> Result<Vec<veneer::bake::BakedMeshMap>, Failure> {
+    let settings = args.mesh_map_settings();
+    settings
+        .validate(maps)
+        .map_err(|error| Failure::new(error.to_string()))?;
+    let loaded = veneer::mesh::preview_mesh(mesh)
+        .map_err(|error| Failure::new(format!("{mesh}: {error}")))?
+        .with_uv_layout(settings.size);
+    let bar = ProgressBar::new(0).with_style(
+        ProgressStyle::with_template("{prefix:>16} [{bar:40}] {pos}/{len} texels {elapsed}")
+            .expect("valid template"),
+    );
+    bar.set_prefix("mesh maps");
+    let stem_refs: Vec<&std::path::Path> = stems.iter().map(PathBuf::as_path).collect();
+    let written = bake_mesh_maps(&loaded, maps, &settings, &stem_refs, |done, total| {
+        bar.set_length(total);
+        bar.set_position(done);
+    })
+    .map_err(|error| Failure::new(format!("{mesh}: {error}")));
+    bar.finish_and_clear();
+    written
+}
+
+/// The material maps of every graph, baked in parallel: what was written, and the
+/// failures of graphs that did not bake (the others bake on).
+fn bake_material_maps(
+    args: &BakeArgs,
+    stems: &[PathBuf],
+) -> Result<(Vec<BakedMap>, Vec<String>), Failure> {
+    let settings = args.settings();
     let stem_refs: Vec<&std::path::Path> = stems.iter().map(PathBuf::as_path).collect();
     veneer::bake::check_outputs(&stem_refs, &settings)?;
     let graphs = args
         .graphs
         .iter()
-        .zip(&stems)
+        .zip(stems)
         .map(|(path, stem)| {
             let mut graph = veneer::graph::load(path)?;
             args.parameters.apply(&mut graph, path)?;
@@ -254,31 +462,7 @@ pub fn run(args: BakeArgs) -> Result<(), Failure> {
             Err(Failure(message, _)) => failures.push(message),
         }
     }
-    if args.json {
-        out(serde_json::to_string_pretty(&written)?)?;
-    } else {
-        for map in &written {
-            let seams = map.seams.map_or(String::new(), |seams| {
-                format!(
-                    "; tiles: edges differ by up to {} left/right, {} top/bottom",
-                    seam_text(seams.left_right),
-                    seam_text(seams.top_bottom)
-                )
-            });
-            note(format!(
-                "wrote {} ({}×{}, {} bytes{seams})",
-                map.path.display(),
-                map.size,
-                map.size,
-                map.bytes
-            ))?;
-        }
-    }
-    if failures.is_empty() {
-        Ok(())
-    } else {
-        Err(Failure::new(failures.join("\n")))
-    }
+    Ok((written, failures))
 }
 
 /// `veneer bake GRAPH --gltf OUT`: one graph exported as a glTF model.

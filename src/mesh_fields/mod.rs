@@ -11,12 +11,15 @@ mod features;
 mod occlusion;
 mod rays;
 mod scene;
+mod texels;
 mod thickness;
 
+pub use cache::cached;
 pub use curvature::{Curvatures, MeanCurvature, convexity, curvatures, sturdy_mean_curvature};
 pub use features::{Feature, distance_to};
 pub use occlusion::{Estimate, Sampling, occlusion, occlusion_at};
 pub use scene::Scene;
+pub use texels::Texels;
 pub use thickness::{CONE_HALF_ANGLE, thickness};
 
 use crate::geodesic::{HeatError, welded_for_distances};

@@ -16,7 +16,7 @@ const LIFT: f32 = 0.05;
 /// The least lift, in units of the bounding radius (a vertex in no triangle).
 const LEAST_LIFT: f32 = 1.0e-5;
 
-/// Vertices per step of the loop (progress is reported between steps).
+/// Points per step of the loops (progress is reported between steps).
 const STEP: usize = 4096;
 
 /// A mesh ready for rays.
@@ -26,6 +26,9 @@ pub struct Scene {
     normals: Vec<Vec3A>,
     /// How far rays from each vertex start off the surface.
     lifts: Vec<f32>,
+    /// The unit frame: mesh points minus `centre`, times `scale`.
+    centre: DVec3,
+    scale: f64,
 }
 
 /// A vertex as a ray-cast field sees it.
@@ -47,6 +50,11 @@ impl Vertex {
     pub fn origin(&self, side: f32) -> [f32; 3] {
         (self.position + self.normal * (side * self.lift)).into()
     }
+}
+
+/// `point` moved by `-centre` and scaled by `scale`, computed in f64.
+fn unit_point(point: [f32; 3], centre: DVec3, scale: f64) -> glam::Vec3 {
+    ((DVec3::from(point.map(f64::from)) - centre) * scale).as_vec3()
 }
 
 /// The lift of every vertex: [`LIFT`] times the mean length of its edges.
@@ -77,11 +85,7 @@ impl Scene {
         let unit: Vec<[f32; 3]> = mesh
             .positions
             .iter()
-            .map(|p| {
-                ((DVec3::from(p.map(f64::from)) - centre) * scale)
-                    .as_vec3()
-                    .to_array()
-            })
+            .map(|&p| unit_point(p, centre, scale).to_array())
             .collect();
         let bvh = Bvh::new(&unit, &mesh.indices);
         let normals = (0..unit.len())
@@ -95,6 +99,8 @@ impl Scene {
             lifts: lifts(&unit, &mesh.indices),
             positions: unit.into_iter().map(Vec3A::from).collect(),
             normals,
+            centre,
+            scale,
         }
     }
 
@@ -103,27 +109,58 @@ impl Scene {
         &self.bvh
     }
 
+    /// `mesh`'s point `position` (mesh units) in the unit frame.
+    pub fn to_unit(&self, position: [f32; 3]) -> Vec3A {
+        unit_point(position, self.centre, self.scale).into()
+    }
+
+    /// The point at `weights` (barycentric, summing to 1) in the triangle of `corners`,
+    /// as a ray-cast field sees it: position, normal and lift interpolated; `index`
+    /// seeds its ray directions.
+    pub fn inside(&self, corners: [u32; 3], weights: [f32; 3], index: u32) -> Vertex {
+        let mix = |values: &[Vec3A]| {
+            (corners.iter().zip(weights))
+                .fold(Vec3A::ZERO, |sum, (&v, w)| sum + values[v as usize] * w)
+        };
+        let lift = (corners.iter().zip(weights)).map(|(&v, w)| self.lifts[v as usize] * w);
+        let normal = mix(&self.normals);
+        Vertex {
+            index,
+            position: mix(&self.positions),
+            normal: normal.normalize_or(self.normals[corners[0] as usize]),
+            lift: lift.sum::<f32>().max(LEAST_LIFT),
+        }
+    }
+
     /// `measure` of every vertex, worked out on every core, in vertex order; progress
     /// as `(vertices done, vertices)`.
     pub fn per_vertex<T: Send>(
         &self,
         measure: impl Fn(Vertex) -> T + Sync,
-        mut progress: impl FnMut(usize, usize),
+        progress: impl FnMut(usize, usize),
     ) -> Vec<T> {
-        let count = self.positions.len();
-        let mut values = Vec::with_capacity(count);
-        for start in (0..count).step_by(STEP) {
-            let end = (start + STEP).min(count);
-            values.par_extend((start..end).into_par_iter().map(|v| {
-                measure(Vertex {
-                    index: v as u32,
-                    position: self.positions[v],
-                    normal: self.normals[v],
-                    lift: self.lifts[v],
-                })
-            }));
-            progress(end, count);
-        }
-        values
+        let vertex = |v: usize| Vertex {
+            index: v as u32,
+            position: self.positions[v],
+            normal: self.normals[v],
+            lift: self.lifts[v],
+        };
+        in_steps(self.positions.len(), |v| measure(vertex(v)), progress)
     }
+}
+
+/// `measure` of `0..count`, worked out on every core, in order, a step at a time;
+/// progress as `(done, count)` after each step.
+pub fn in_steps<T: Send>(
+    count: usize,
+    measure: impl Fn(usize) -> T + Sync,
+    mut progress: impl FnMut(usize, usize),
+) -> Vec<T> {
+    let mut values = Vec::with_capacity(count);
+    for start in (0..count).step_by(STEP) {
+        let end = (start + STEP).min(count);
+        values.par_extend((start..end).into_par_iter().map(&measure));
+        progress(end, count);
+    }
+    values
 }

@@ -132,6 +132,67 @@ fn occlusion_rows(ctx: &Context, name: &str, table: &mut Table) -> Result<Vec<Se
     Ok(vec![fixed, adaptive])
 }
 
+/// The (rays per texel, pooling radius) texel bakes of occlusion are measured at.
+const TEXEL_VARIANTS: [(u32, u32); 8] = [
+    (4, 0),
+    (16, 0),
+    (64, 0),
+    (256, 0),
+    (4, 2),
+    (8, 2),
+    (16, 2),
+    (8, 3),
+];
+
+/// Occlusion baked per texel of `name`'s UV layout at `size`², with each variant's rays
+/// and pooling, against the reference's rays at every texel alone.
+fn texel_occlusion_rows(
+    repetitions: usize,
+    name: &str,
+    size: u32,
+    table: &mut Table,
+) -> Result<Series, String> {
+    let mesh = (crate::mesh::primitive(name).ok_or("primitive")?).with_uv_layout(size);
+    let scene = Scene::new(&mesh);
+    let texels = mesh_fields::Texels::new(&mesh, &scene, size);
+    let open = |samples| {
+        let sampling = Sampling {
+            samples,
+            distance: 0.5,
+            tolerance: None,
+        };
+        texels.occlusion(&scene, sampling, |_, _| {})
+    };
+    let reference = open(REFERENCE_RAYS);
+    let mut series = Series {
+        name: format!("occlusion per texel, {size}²"),
+        points: Vec::new(),
+        joined: false,
+    };
+    for (rays, pooling) in TEXEL_VARIANTS {
+        let (values, ms) = timed(repetitions.min(3), || texels.pooled(&open(rays), pooling));
+        let errors = mean_and_largest(
+            (values.iter().zip(&reference)).map(|(v, r)| f64::from((v - r).abs())),
+        );
+        record(
+            table,
+            &mut series,
+            Row {
+                field: "ambient occlusion per texel",
+                mesh: &format!("{name}, {size}² texels"),
+                setting: match pooling {
+                    0 => format!("{rays} rays alone"),
+                    _ => format!("{rays} rays pooled over ±{pooling} texels"),
+                },
+                errors,
+                ms,
+                rays: Some(f64::from(rays)),
+            },
+        );
+    }
+    Ok(series)
+}
+
 /// Mean curvature on a sphere, principal curvatures on a torus and convexity at three
 /// radii on a sphere, each against its analytic value (relative errors).
 fn curvature_rows(ctx: &Context, detail: u32, table: &mut Table) -> Result<Series, String> {
@@ -244,7 +305,7 @@ pub fn mesh_fields(ctx: &Context, quick: bool) -> Result<Section, String> {
         "mean error",
         "largest error",
         "ms",
-        "rays per vertex",
+        "rays per point",
     ]);
     let (occlusion_mesh, detail) = if quick {
         ("torus:24", 24)
@@ -253,6 +314,14 @@ pub fn mesh_fields(ctx: &Context, quick: bool) -> Result<Section, String> {
     };
     let mut series = occlusion_rows(ctx, occlusion_mesh, &mut table)?;
     (ctx.progress)();
+    let texel_size = if quick { 64 } else { 384 };
+    series.push(texel_occlusion_rows(
+        ctx.repetitions,
+        "genus2",
+        texel_size,
+        &mut table,
+    )?);
+    (ctx.progress)();
     series.push(curvature_rows(ctx, detail, &mut table)?);
     (ctx.progress)();
     series.push(thickness_rows(ctx, detail, &mut table)?);
@@ -260,7 +329,7 @@ pub fn mesh_fields(ctx: &Context, quick: bool) -> Result<Section, String> {
     Ok(Section {
         title: "Mesh fields: error against time".into(),
         text: format!(
-            "Ambient occlusion (rays up to half the bounding radius) against {REFERENCE_RAYS} rays per vertex, absolute errors, on all cores; adaptive sampling stops a vertex once its 95% interval is narrower than ±0.05, checked every 16 rays. Curvatures and convexity are relative errors against the analytic values (a unit sphere's mean curvature is 1; convexity at radius ρ reads ρ there); thickness is the relative error against a 0.1 wall, from both faces of a hollow ball. Occlusion and thickness times are medians of at most 3 runs, the others of {}; the plot puts every field on one scale.",
+            "Ambient occlusion (rays up to half the bounding radius) against {REFERENCE_RAYS} rays per vertex, absolute errors, on all cores; adaptive sampling stops a vertex once its 95% interval is narrower than ±0.05, checked every 16 rays. Occlusion per texel is a bake into genus2's atlas at {texel_size}² against {REFERENCE_RAYS} rays at every texel alone: few rays per texel, pooled with the neighbours on the same surface, against more rays and no pooling (its error includes the pooling's blur). Curvatures and convexity are relative errors against the analytic values (a unit sphere's mean curvature is 1; convexity at radius ρ reads ρ there); thickness is the relative error against a 0.1 wall, from both faces of a hollow ball. Occlusion and thickness times are medians of at most 3 runs, the others of {}; the plot puts every field on one scale.",
             ctx.repetitions
         ),
         table,

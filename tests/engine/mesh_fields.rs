@@ -284,3 +284,127 @@ fn the_cli_writes_a_field_line_per_file_vertex() {
     assert!(String::from_utf8_lossy(&refused.stderr).contains("radius 0 is outside 1 to 100"));
     assert!(!dir.join("none.csv").exists());
 }
+
+/// `veneer bake --mesh M --maps ao,…` bakes the mesh's own maps per texel of its UV
+/// layout with no graph: an open plane is unoccluded everywhere, faces up and has its
+/// position across the map; a torus is darker inside its ring than outside.
+#[test]
+fn mesh_maps_bake_per_texel_without_a_graph() {
+    let dir = temp_dir("mesh-maps");
+    let out = dir.to_str().unwrap();
+    let baked = run_veneer(&[
+        "bake",
+        "--mesh",
+        "plane",
+        "--maps",
+        "ao,position,world-normal,curvature",
+        "--size",
+        "32",
+        "--out-dir",
+        out,
+        "--json",
+    ]);
+    assert!(
+        baked.status.success(),
+        "{}",
+        String::from_utf8_lossy(&baked.stderr)
+    );
+    let listed: serde_json::Value = serde_json::from_slice(&baked.stdout).expect("JSON");
+    assert_eq!(listed.as_array().map(Vec::len), Some(4), "{listed}");
+    let map = |name: &str| {
+        image::open(dir.join(format!("plane_{name}.png")))
+            .expect("a PNG")
+            .to_rgb8()
+    };
+    assert!(map("ao").pixels().all(|p| p.0 == [255, 255, 255]));
+    assert!(map("world-normal").pixels().all(|p| p.0 == [128, 255, 128]));
+    assert!(map("curvature").pixels().all(|p| p.0 == [128, 128, 128]));
+    let position = map("position");
+    for (x, y, pixel) in position.enumerate_pixels() {
+        let across = |texel: u32| (255.0 * (texel as f32 + 0.5) / 32.0).round() as i32;
+        let [r, g, b] = pixel.0.map(i32::from);
+        assert!((r - across(x)).abs() <= 1 && g == 128 && (b - across(y)).abs() <= 1);
+    }
+
+    let torus = run_veneer(&[
+        "bake",
+        "--mesh",
+        "torus",
+        "--maps",
+        "ao",
+        "--size",
+        "64",
+        "--distance",
+        "100",
+        "--out-dir",
+        out,
+    ]);
+    assert!(
+        torus.status.success(),
+        "{}",
+        String::from_utf8_lossy(&torus.stderr)
+    );
+    let ao = image::open(dir.join("torus_ao.png"))
+        .expect("a PNG")
+        .to_luma8();
+    let row_mean = |y: u32| {
+        (0..64)
+            .map(|x| f64::from(ao.get_pixel(x, y).0[0]))
+            .sum::<f64>()
+            / 64.0
+    };
+    let (outside, inside) = (row_mean(0), row_mean(32));
+    assert!(
+        outside > 250.0 && inside < outside - 40.0,
+        "outside the ring {outside}, inside {inside}"
+    );
+}
+
+/// Mesh maps need a mesh, material maps a graph, and settings within their limits;
+/// a refused bake writes nothing.
+#[test]
+fn mesh_maps_refuse_what_they_cannot_bake() {
+    let dir = temp_dir("mesh-maps-refused");
+    let out = dir.to_str().unwrap();
+    for (args, expected) in [
+        (vec!["bake", "--maps", "ao"], "give --mesh"),
+        (
+            vec!["bake", "--mesh", "torus", "--maps", "ao,albedo"],
+            "need a graph file",
+        ),
+        (
+            vec![
+                "bake",
+                "--mesh",
+                "torus",
+                "--maps",
+                "ao",
+                "--samples",
+                "5000",
+            ],
+            "samples 5000 is outside 1 to 4096",
+        ),
+        (
+            vec![
+                "bake",
+                "--mesh",
+                "torus",
+                "--maps",
+                "thickness",
+                "--pool",
+                "9",
+            ],
+            "pooling 9 is outside 0 to 8",
+        ),
+    ] {
+        let mut args = args;
+        args.extend(["--out-dir", out]);
+        let refused = run_veneer(&args);
+        let stderr = String::from_utf8_lossy(&refused.stderr);
+        assert!(
+            !refused.status.success() && stderr.contains(expected),
+            "{args:?}: {stderr}"
+        );
+    }
+    assert_eq!(std::fs::read_dir(&dir).expect("folder").count(), 0);
+}
