@@ -57,7 +57,7 @@ fn export(compiled: &Compiled, path: &Path) -> Result<Vec<PathBuf>, BakeError> {
 fn every_preset_exports_to_a_valid_glb() {
     let dir = temp_dir("gltf-presets");
     let mut files = Vec::new();
-    let mut unwrapped = 0;
+    let (mut unwrapped, mut occluded) = (0, 0);
     for preset in presets() {
         let graph = veneer::graph::load(&preset).expect("loads");
         let written = export(
@@ -71,11 +71,31 @@ fn every_preset_exports_to_a_valid_glb() {
         {
             unwrapped += 1;
         }
+        // A material whose occlusion is wired (worn paint's, from ambient occlusion on
+        // the mesh) carries an occlusion texture.
+        let material = graph
+            .nodes
+            .iter()
+            .find(|n| n.kind == veneer::graph::NodeKind::Material);
+        let occludes = (graph.wires.iter())
+            .any(|wire| Some(wire.to.node) == material.map(|m| m.id) && wire.to.pin == "occlusion");
+        if occludes {
+            let glb = std::fs::read(&written[0]).expect("the GLB");
+            let length = u32::from_le_bytes(glb[12..16].try_into().unwrap()) as usize;
+            let json = String::from_utf8_lossy(&glb[20..20 + length]);
+            assert!(
+                json.contains("\"occlusionTexture\""),
+                "{}: {json}",
+                preset.display()
+            );
+            occluded += 1;
+        }
         files.extend(written);
     }
     assert_eq!(files.len(), presets().len());
     // The marching-tetrahedra genus2 has no texture coordinates: those got an atlas.
     assert!(unwrapped >= 6, "{unwrapped} presets on meshes without UVs");
+    assert!(occluded >= 1, "no preset wires its occlusion");
     validate(&files);
 }
 

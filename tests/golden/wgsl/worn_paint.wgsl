@@ -271,6 +271,6 @@ fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
         roughness, // roughness
         vec3f(0.0f, 0.0f, 1.0f), // normal
         1.0f, // emission_strength
-        1.0f, // occlusion
+        s.fields.y, // occlusion
     );
 }
