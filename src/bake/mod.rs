@@ -13,6 +13,7 @@ mod maps;
 mod mesh_maps;
 mod pipeline;
 pub mod tile;
+mod transfer;
 
 pub use gltf::{GltfSettings, Packaging, export_gltf, gltf_files};
 pub use maps::{Converter, Map, NormalConvention, fill_uncovered};
@@ -20,6 +21,7 @@ pub use mesh_maps::{
     BakedMeshMap, MOST_POOLING, MeshMap, MeshMapSettings, bake_mesh_maps, mesh_map_path,
 };
 use pipeline::MapTarget;
+pub use transfer::{CAGES, TransferMap, TransferSettings, Transferred, transfer};
 
 use crate::codegen::Compiled;
 use crate::render::{FlatRect, FlatRenderer, GpuContext, GpuMesh, RenderError, UvRenderer};

@@ -9,7 +9,8 @@ use std::path::PathBuf;
 use veneer::bake::tile::seam_text;
 use veneer::bake::{
     BakeSettings, BakeSurface, BakedMap, Format, GltfSettings, Map, MeshMap, MeshMapSettings,
-    NormalConvention, bake, bake_mesh_maps, export_gltf, map_path, mesh_map_path,
+    NormalConvention, TransferMap, TransferSettings, bake, bake_mesh_maps, export_gltf, map_path,
+    mesh_map_path, transfer,
 };
 use veneer::codegen::{CompileOptions, compile};
 use veneer::fsutil::{Naming, OutputPlan};
@@ -52,8 +53,9 @@ pub struct BakeArgs {
     /// with --mesh, the mesh's own ao, curvature, thickness, position, world-normal
     /// (per texel of its UV layout, no graph needed: without graphs they are named after
     /// the mesh).
-    #[arg(long, value_delimiter = ',', default_value = "albedo,normal,height", value_parser = parse_map)]
-    maps: Vec<MapArg>,
+    /// With --from, normal and height are the high mesh's, and the default.
+    #[arg(long, value_delimiter = ',', value_parser = parse_map)]
+    maps: Option<Vec<MapArg>>,
     /// File format of the maps.
     #[arg(long, value_enum, default_value = "png")]
     format: FormatArg,
@@ -77,6 +79,14 @@ pub struct BakeArgs {
     /// Time in seconds.
     #[arg(long, default_value_t = 0.0, value_parser = super::parse_time, allow_hyphen_values = true)]
     time: f32,
+    /// Bake the normal and height maps of this detailed mesh into --mesh's UV layout (high
+    /// to low): rays along the low mesh's normals from the cage inwards; no graph.
+    #[arg(long, value_name = "HIGH", requires = "mesh", conflicts_with_all = ["graphs", "flat", "tile", "gltf"])]
+    from: Option<String>,
+    /// With --from: how far outside and inside the low surface rays look for the high one,
+    /// in percent of the low mesh's bounding radius (1 to 100).
+    #[arg(long, default_value_t = 10)]
+    cage: u32,
     /// Mesh maps ao and thickness: rays per texel (1 to 4096), the accuracy knob.
     #[arg(long, default_value_t = 8)]
     samples: u32,
@@ -174,11 +184,21 @@ impl BakeArgs {
         }
     }
 
+    /// The maps asked for: `--maps`, else normal and height with `--from`, else albedo,
+    /// normal and height.
+    fn maps(&self) -> Vec<MapArg> {
+        let default = match self.from {
+            Some(_) => vec![Map::Normal, Map::Height],
+            None => vec![Map::Albedo, Map::Normal, Map::Height],
+        };
+        (self.maps.clone()).unwrap_or_else(|| default.into_iter().map(MapArg::Material).collect())
+    }
+
     /// The material maps `--maps` names, in its order.
     fn material_maps(&self) -> Vec<Map> {
-        (self.maps.iter())
+        (self.maps().into_iter())
             .filter_map(|map| match map {
-                MapArg::Material(map) => Some(*map),
+                MapArg::Material(map) => Some(map),
                 MapArg::Mesh(_) => None,
             })
             .collect()
@@ -186,9 +206,9 @@ impl BakeArgs {
 
     /// The mesh maps `--maps` names, in its order.
     fn mesh_maps(&self) -> Vec<MeshMap> {
-        (self.maps.iter())
+        (self.maps().into_iter())
             .filter_map(|map| match map {
-                MapArg::Mesh(map) => Some(*map),
+                MapArg::Mesh(map) => Some(map),
                 MapArg::Material(_) => None,
             })
             .collect()
@@ -266,6 +286,9 @@ pub fn run(args: BakeArgs) -> Result<(), Failure> {
     }
     if args.size == 0 {
         return Err(Failure::new("--size must be at least 1"));
+    }
+    if let (Some(low), Some(high)) = (&args.mesh, &args.from) {
+        return run_transfer(&args, low, high);
     }
     let names = |maps: Vec<&'static str>| maps.join(", ");
     let mesh_maps = args.mesh_maps();
@@ -345,6 +368,97 @@ pub fn run(args: BakeArgs) -> Result<(), Failure> {
     } else {
         Err(Failure::new(failures.join("\n")))
     }
+}
+
+/// `veneer bake --mesh LOW --from HIGH`: the high mesh's normal and height baked into
+/// the low mesh's layout, and any mesh maps of the low mesh beside them.
+fn run_transfer(args: &BakeArgs, low: &str, high: &str) -> Result<(), Failure> {
+    let mut transfers = Vec::new();
+    for map in args.maps() {
+        match map {
+            MapArg::Material(Map::Normal) => transfers.push(TransferMap::Normal),
+            MapArg::Material(Map::Height) => transfers.push(TransferMap::Height),
+            MapArg::Material(other) => {
+                return Err(Failure::new(format!(
+                    "--from bakes the high mesh's normal and height and the low mesh's own maps ({}); '{}' is a material's map and needs a graph",
+                    MeshMap::ALL.map(MeshMap::name).join(", "),
+                    other.name()
+                )));
+            }
+            MapArg::Mesh(_) => {}
+        }
+    }
+    let stem = args.mesh_stem(low);
+    let load = |name: &str| {
+        veneer::mesh::Mesh::named(name).map_err(|error| Failure::new(error.to_string()))
+    };
+    let settings = TransferSettings {
+        size: args.size,
+        format: args.settings().format,
+        cage: args.cage,
+        convention: args.settings().normal,
+    };
+    let low_mesh = load(low)?.with_uv_layout(args.size);
+    let high_mesh = load(high)?;
+    let bar = ProgressBar::new(0).with_style(
+        ProgressStyle::with_template("{prefix:>16} [{bar:40}] {pos}/{len} texels {elapsed}")
+            .expect("valid template"),
+    );
+    bar.set_prefix("high to low");
+    let transferred = transfer(
+        &low_mesh,
+        &high_mesh,
+        &transfers,
+        &settings,
+        &stem,
+        |done, total| {
+            bar.set_length(total as u64);
+            bar.set_position(done as u64);
+        },
+    )
+    .map_err(|error| Failure::new(format!("{high} onto {low}: {error}")));
+    bar.finish_and_clear();
+    let transferred = transferred?;
+    let mesh_maps = args.mesh_maps();
+    let mesh_written = match mesh_maps.is_empty() {
+        true => Vec::new(),
+        false => bake_mesh(args, low, &mesh_maps, &[stem])?,
+    };
+    if transferred.missed_texels > 0 {
+        note(format!(
+            "warning: {} of {} texels ({:.2}%) of {low} found no surface of {high} within the cage (±{:.4}); they read flat. Raise --cage if {high} lies farther off {low}",
+            transferred.missed_texels,
+            transferred.covered_texels,
+            100.0 * transferred.missed_share(),
+            transferred.cage
+        ))?;
+    }
+    if args.json {
+        return out(serde_json::to_string_pretty(&serde_json::json!({
+            "transfer": transferred,
+            "mesh_maps": mesh_written,
+        }))?);
+    }
+    for (map, path, bytes) in &transferred.maps {
+        note(format!(
+            "wrote {} ({}×{}, {bytes} bytes; {} from {high}, heights {:.4} to {:.4} within the cage ±{:.4})",
+            path.display(),
+            args.size,
+            args.size,
+            map.name(),
+            transferred.heights.0,
+            transferred.heights.1,
+            transferred.cage
+        ))?;
+    }
+    for map in &mesh_written {
+        note(format!(
+            "wrote {} ({} bytes)",
+            map.path.display(),
+            map.bytes
+        ))?;
+    }
+    Ok(())
 }
 
 /// The mesh maps of `mesh` baked once and written for every stem, with a progress bar.

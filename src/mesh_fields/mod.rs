@@ -18,7 +18,7 @@ pub use cache::cached;
 pub use curvature::{Curvatures, MeanCurvature, convexity, curvatures, sturdy_mean_curvature};
 pub use features::{Feature, distance_to};
 pub use occlusion::{Estimate, Sampling, occlusion, occlusion_at};
-pub use scene::Scene;
+pub use scene::{Frame, Scene};
 pub use texels::Texels;
 pub use thickness::{CONE_HALF_ANGLE, thickness};
 

@@ -26,9 +26,16 @@ pub struct Scene {
     normals: Vec<Vec3A>,
     /// How far rays from each vertex start off the surface.
     lifts: Vec<f32>,
-    /// The unit frame: mesh points minus `centre`, times `scale`.
-    centre: DVec3,
-    scale: f64,
+    /// Three vertex indices per triangle, as in the mesh.
+    indices: Vec<u32>,
+    frame: Frame,
+}
+
+/// A unit frame: mesh points minus `centre`, times `scale`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Frame {
+    pub centre: DVec3,
+    pub scale: f64,
 }
 
 /// A vertex as a ray-cast field sees it.
@@ -82,6 +89,13 @@ impl Scene {
     pub fn new(mesh: &Mesh) -> Scene {
         let (centre, radius) = mesh.bounding_sphere();
         let scale = if radius > 0.0 { 1.0 / radius } else { 1.0 };
+        Scene::in_frame(mesh, Frame { centre, scale })
+    }
+
+    /// `mesh` in the unit frame of another scene (so that two meshes meet as they do in
+    /// their files), with its hierarchy built.
+    pub fn in_frame(mesh: &Mesh, frame: Frame) -> Scene {
+        let Frame { centre, scale } = frame;
         let unit: Vec<[f32; 3]> = mesh
             .positions
             .iter()
@@ -99,8 +113,8 @@ impl Scene {
             lifts: lifts(&unit, &mesh.indices),
             positions: unit.into_iter().map(Vec3A::from).collect(),
             normals,
-            centre,
-            scale,
+            indices: mesh.indices.clone(),
+            frame,
         }
     }
 
@@ -109,9 +123,24 @@ impl Scene {
         &self.bvh
     }
 
+    /// The scene's unit frame.
+    pub fn frame(&self) -> Frame {
+        self.frame
+    }
+
+    /// The unit normal at `hit`, interpolated between its triangle's vertices.
+    pub fn normal_at(&self, hit: &crate::mesh::Hit) -> Vec3A {
+        let corners = &self.indices[3 * hit.triangle as usize..][..3];
+        let [b, c] = hit.barycentric;
+        let normal = self.normals[corners[0] as usize] * (1.0 - b - c)
+            + self.normals[corners[1] as usize] * b
+            + self.normals[corners[2] as usize] * c;
+        normal.normalize_or(self.normals[corners[0] as usize])
+    }
+
     /// `mesh`'s point `position` (mesh units) in the unit frame.
     pub fn to_unit(&self, position: [f32; 3]) -> Vec3A {
-        unit_point(position, self.centre, self.scale).into()
+        unit_point(position, self.frame.centre, self.frame.scale).into()
     }
 
     /// The point at `weights` (barycentric, summing to 1) in the triangle of `corners`,

@@ -127,11 +127,11 @@ impl Texels {
 
     /// `measure` at every covered texel's point, on every core; progress as
     /// `(texels done, texels)`.
-    pub fn cast(
+    pub fn cast<T: Send>(
         &self,
-        measure: impl Fn(Vertex) -> f32 + Sync,
+        measure: impl Fn(Vertex) -> T + Sync,
         progress: impl FnMut(usize, usize),
-    ) -> Vec<f32> {
+    ) -> Vec<T> {
         in_steps(self.points.len(), |k| measure(self.points[k]), progress)
     }
 

@@ -23,6 +23,7 @@ mod gltf;
 mod graph_bakes;
 mod graph_files;
 mod groups;
+mod high_to_low;
 mod hostile_cli;
 mod hostile_files;
 mod hostile_groups;
