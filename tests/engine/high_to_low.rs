@@ -99,3 +99,57 @@ fn misses_are_reported_as_a_share_and_a_total_miss_is_refused() {
     );
     assert_eq!(std::fs::read_dir(&out).expect("folder").count(), 0);
 }
+
+/// One shape at two densities: a 12-segment torus takes the heights of a 192-segment
+/// one, at every texel how far out of the coarse facet the true torus (radii 0.7 and
+/// 0.3) lies, and normals close to the coarse mesh's own (both are smooth).
+#[test]
+fn a_coarse_torus_takes_the_fine_ones_heights() {
+    use veneer::bake::{Format, NormalConvention, TransferMap, TransferSettings, transfer};
+    use veneer::mesh_fields::{Scene, Texels};
+    let dir = temp_dir("high-to-low-torus");
+    let low = veneer::mesh::primitive("torus:12").expect("primitive");
+    let high = veneer::mesh::primitive("torus:192").expect("primitive");
+    let settings = TransferSettings {
+        size: 64,
+        format: Format::Png16,
+        cage: 10,
+        convention: NormalConvention::OpenGl,
+    };
+    let maps = [TransferMap::Height, TransferMap::Normal];
+    let done = transfer(&low, &high, &maps, &settings, &dir.join("torus"), |_, _| {})
+        .expect("the torus bakes");
+    assert_eq!(done.missed_texels, 0);
+    let height = image::open(dir.join("torus_height.png"))
+        .expect("a PNG")
+        .to_luma16();
+    let normal = image::open(dir.join("torus_normal.png"))
+        .expect("a PNG")
+        .to_rgb16();
+    let scene = Scene::new(&low);
+    let texels = Texels::new(&low, &scene, 64);
+    let frame = scene.frame();
+    let mut largest = 0.0f64;
+    for (&texel, (point, _)) in texels.texels.iter().zip(texels.points()) {
+        let p = point.as_dvec3() / frame.scale + frame.centre;
+        let rho = (p.x * p.x + p.z * p.z).sqrt();
+        let expected = 0.3 - ((rho - 0.7).powi(2) + p.y * p.y).sqrt();
+        let (x, y) = (texel % 64, texel / 64);
+        let value = f64::from(height.get_pixel(x, y).0[0]) / 65535.0;
+        let baked = (value - 0.5) * 2.0 * done.cage;
+        largest = largest.max((baked - expected).abs());
+        let tilt = normal
+            .get_pixel(x, y)
+            .0
+            .map(|c| f64::from(c) / 65535.0 * 2.0 - 1.0);
+        assert!(tilt[2] > 0.99, "texel ({x}, {y}): normal {tilt:?}");
+    }
+    // The fine torus's own facets lie up to about 7·10⁻⁵ inside the true one; the
+    // heights themselves reach 0.018.
+    assert!(largest < 2.0e-4, "largest height error {largest}");
+    assert!(
+        done.heights.1 > 0.01,
+        "the coarse facets lie inside: {:?}",
+        done.heights
+    );
+}
