@@ -3,7 +3,7 @@
 use super::Graph;
 
 /// Every preset: its file stem and RON text.
-pub const PRESETS: [(&str, &str); 23] = [
+pub const PRESETS: [(&str, &str); 26] = [
     ("wood", include_str!("../../graphs/wood.ron")),
     ("marble", include_str!("../../graphs/marble.ron")),
     (
@@ -76,6 +76,10 @@ pub const PRESETS: [(&str, &str); 23] = [
         "thesis_brick",
         include_str!("../../graphs/thesis_brick.ron"),
     ),
+    // Materials that read what the mesh knows about itself.
+    ("worn_paint", include_str!("../../graphs/worn_paint.ron")),
+    ("mossy_stone", include_str!("../../graphs/mossy_stone.ron")),
+    ("wax_candle", include_str!("../../graphs/wax_candle.ron")),
 ];
 
 /// The embedded preset called `name`.

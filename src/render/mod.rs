@@ -74,7 +74,13 @@ pub fn plain_texture(
 
 /// WGSL of a material module combined with a renderer's entry points.
 fn shader_source(material_wgsl: &str, entry_points: &str) -> String {
-    format!("{material_wgsl}\n{entry_points}")
+    // A module written by hand, or exported before modules declared the fields flat
+    // views pass, passes 0 in every lane.
+    let flat_fields = match material_wgsl.contains("const VENEER_FLAT_FIELDS") {
+        true => "",
+        false => "const VENEER_FLAT_FIELDS = vec4f(0.0);\n",
+    };
+    format!("{material_wgsl}\n{flat_fields}{entry_points}")
 }
 
 /// A pipeline drawing one full-viewport triangle (no vertex buffers, no depth) with the

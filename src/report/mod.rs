@@ -57,8 +57,8 @@ pub fn steps(settings: &Settings) -> u64 {
     // precision cases (presets, noise and fBm of each basis, Worley) + hash rows + octave
     // kinds + detail materials + geodesic meshes + thesis models (field times, frames)
     let precision = crate::graph::PRESETS.len() + 2 * crate::graph::Basis::ALL.len() + 1;
-    // ... + mesh fields (occlusion, curvature, thickness)
-    precision as u64 + 6 + 2 + 3 + meshes + 2 * thesis::MODELS.len() as u64 + 3
+    // ... + mesh fields (occlusion per vertex and per texel, curvature, thickness)
+    precision as u64 + 6 + 2 + 3 + meshes + 2 * thesis::MODELS.len() as u64 + 4
 }
 
 /// The sections' slugs, in the order they are measured and appear: each gives its

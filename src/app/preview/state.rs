@@ -8,6 +8,7 @@ use crate::app::preview::worker::{
     EnvironmentChoice, MeshChoice, Request, Slot, TessellationInput, Worker,
 };
 use crate::graph::Preview;
+use crate::nodes::mesh_field::MeshLanes;
 use crate::render::{LiveMaterialCode, MeshView, Projection, Quality};
 use egui::{Sense, TextureHandle, TextureOptions, Ui};
 use std::collections::BTreeMap;
@@ -173,12 +174,23 @@ impl PreviewState {
         self.view.time = (self.view.time + dt) % 20.0;
     }
 
-    /// The mesh to draw: the solved one, the loaded file, or a primitive by name.
-    fn mesh_choice(&self) -> MeshChoice {
+    /// The mesh to draw: the solved one, the loaded file, or a primitive by name; flat,
+    /// the plane, its vertices carrying what a flat plane gives in the mesh-field
+    /// `lanes` of the material drawn.
+    fn mesh_choice(&self, lanes: &MeshLanes) -> MeshChoice {
         if self.flat {
+            let fields = crate::nodes::mesh_field::flat_fields(lanes);
+            if fields == [0.0; 4] {
+                return MeshChoice {
+                    key: "plane".into(),
+                    mesh: None,
+                };
+            }
+            let mut plane = crate::mesh::primitive("plane").expect("the plane exists");
+            plane.fields = vec![fields; plane.positions.len()];
             return MeshChoice {
-                key: "plane".into(),
-                mesh: None,
+                key: format!("plane with fields {fields:?}"),
+                mesh: Some(Arc::new(plane)),
             };
         }
         match (&self.prepared, &self.file) {
@@ -458,11 +470,12 @@ fn draft_note(pixels: f32, width: usize, took: std::time::Duration) -> String {
 fn request(ui: &Ui, state: &PreviewState, material: MaterialFrame, rect: egui::Rect) -> Request {
     let pixels = (rect.size() * ui.ctx().pixels_per_point()).round();
     let dragging = ui.input(|input| input.pointer.any_down());
+    let mesh = state.mesh_choice(&material.code.uses.mesh_fields);
     Request {
         material: material.code,
         params: material.params,
         tessellation: material.tessellation,
-        mesh: state.mesh_choice(),
+        mesh,
         view: state.frame_view(),
         environment: state.environment.clone(),
         size: (pixels.x.max(1.0) as u32, pixels.y.max(1.0) as u32),
