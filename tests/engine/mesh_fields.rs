@@ -408,3 +408,62 @@ fn mesh_maps_refuse_what_they_cannot_bake() {
     }
     assert_eq!(std::fs::read_dir(&dir).expect("folder").count(), 0);
 }
+
+/// A scan's worst as a file: an open sheet with two fins on its diagonal (an edge of
+/// four triangles), a triangle of no area, a vertex no triangle uses, and a separate
+/// tetrahedron a hundred thousand units off. Every mesh map bakes (the writer refuses a
+/// non-finite texel), and the mesh bakes from itself.
+#[test]
+fn mesh_maps_bake_on_a_dirty_mesh() {
+    let dir = temp_dir("mesh-maps-dirty");
+    let obj = dir.join("dirty.obj");
+    let far = 1.0e5;
+    let mut text = String::from(
+        "v 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nv 0.5 1 0.5\nv 0.5 -1 0.5\nv 2 0 0\nv 3 0 0\nv 4 0 0\nv 9 9 9\n",
+    );
+    for [x, y, z] in [
+        [1.0, 1.0, 1.0],
+        [-1.0, -1.0, 1.0],
+        [-1.0, 1.0, -1.0],
+        [1.0, -1.0, -1.0],
+    ] {
+        text += &format!("v {} {y} {z}\n", far + x);
+    }
+    text += "f 1 3 2\nf 1 4 3\nf 1 3 5\nf 1 3 6\nf 7 8 9\n";
+    text += "f 11 12 14\nf 11 13 12\nf 11 14 13\nf 12 13 14\n";
+    std::fs::write(&obj, text).expect("OBJ written");
+    let path = obj.to_str().unwrap();
+    let baked = run_veneer(&[
+        "bake",
+        "--mesh",
+        path,
+        "--maps",
+        "ao,curvature,thickness,position,world-normal",
+        "--size",
+        "64",
+    ]);
+    assert!(
+        baked.status.success(),
+        "{}",
+        String::from_utf8_lossy(&baked.stderr)
+    );
+    for map in ["ao", "curvature", "thickness", "position", "world-normal"] {
+        image::open(dir.join(format!("dirty_{map}.png"))).expect("a PNG");
+    }
+    let itself = run_veneer(&["bake", "--mesh", path, "--from", path, "--size", "64"]);
+    assert!(
+        itself.status.success(),
+        "{}",
+        String::from_utf8_lossy(&itself.stderr)
+    );
+    let height = image::open(dir.join("dirty_height.png"))
+        .expect("a PNG")
+        .to_luma8();
+    // On itself, every texel's ray meets its own surface: height 0 reads 0.5.
+    let level = |v: u8| (i32::from(v) - 128).abs();
+    let on_surface = height.pixels().filter(|p| level(p.0[0]) <= 1).count();
+    assert!(
+        on_surface * 2 > height.pixels().count(),
+        "{on_surface} texels on the surface"
+    );
+}
