@@ -12,6 +12,7 @@ mod gltf;
 mod maps;
 mod mesh_maps;
 mod pipeline;
+mod texel_fields;
 pub mod tile;
 mod transfer;
 
@@ -270,6 +271,10 @@ pub fn bake(
             // The UV square is taken to span the preview square: normals are approximate.
             let texel = 2.0 * preview.size / f64::from(size);
             let mut renderer = UvRenderer::new(gpu, &module.source)?;
+            if let Some(fields) = texel_fields::texel_fields(&mesh, &module.uses.mesh_fields, size)
+            {
+                renderer.set_texel_fields(gpu, &fields);
+            }
             let gpu_mesh = GpuMesh::new(&gpu.device, &mesh);
             let passes = crate::render::mesh_passes(
                 gpu,

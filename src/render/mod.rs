@@ -46,7 +46,7 @@ pub use thumbnails::{AtlasLayout, ThumbnailRenderer};
 pub use tiles::{ensure_memory, tile_size};
 pub use timing::PassTimer;
 pub use tone_map::ToneMap;
-pub use uv_bake::UvRenderer;
+pub use uv_bake::{TexelFields, UvRenderer};
 
 /// A single-level, single-sample 2D texture of `size` texels.
 pub fn plain_texture(

@@ -13,7 +13,8 @@ struct UvViewUniform {
     size: f32,
     time: f32,
     channels: u32,
-    padding: u32,
+    /// Bit k: lane k of the fields comes from the texel fields.
+    texel_lanes: u32,
 }
 
 const ENTRY_POINTS: &str = concat!(
@@ -22,11 +23,25 @@ const ENTRY_POINTS: &str = concat!(
     include_str!("../../shaders/render_uv.wgsl")
 );
 
+/// Mesh fields per texel of a UV layout, which a UV render reads in place of the
+/// vertices' interpolated values in some lanes.
+pub struct TexelFields {
+    /// The width and height of `texels`; a render of another size reads them nearest.
+    pub size: u32,
+    /// Every texel's four lanes, rows from the top; every texel a triangle may cover
+    /// holds a finite value.
+    pub texels: Vec<[f32; 4]>,
+    /// Which lanes the texels hold.
+    pub lanes: [bool; 4],
+}
+
 /// A pipeline that renders one material over meshes' UV layouts.
 pub struct UvRenderer {
     pipeline: wgpu::RenderPipeline,
     uniform: wgpu::Buffer,
     bind_group: wgpu::BindGroup,
+    /// The lanes the bound texel fields hold, as bits.
+    texel_lanes: u32,
     /// The files the material reads at group 2 (see [`UvRenderer::bind_uploads`]).
     buffers: Option<wgpu::BindGroup>,
 }
@@ -51,20 +66,27 @@ impl UvRenderer {
                 &[Some(GpuMesh::layout())],
             )
         })?;
-        let bind_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("uv view"),
-            layout: &pipeline.get_bind_group_layout(0),
-            entries: &[wgpu::BindGroupEntry {
-                binding: 0,
-                resource: uniform.as_entire_binding(),
-            }],
-        });
+        let none = TexelFields {
+            size: 1,
+            texels: vec![[0.0; 4]],
+            lanes: [false; 4],
+        };
+        let bind_group = view_group(gpu, &pipeline, &uniform, &none);
         Ok(UvRenderer {
             pipeline,
             uniform,
             bind_group,
+            texel_lanes: 0,
             buffers: None,
         })
+    }
+
+    /// Reads the lanes of `fields` from its texels from now on.
+    pub fn set_texel_fields(&mut self, gpu: &GpuContext, fields: &TexelFields) {
+        self.bind_group = view_group(gpu, &self.pipeline, &self.uniform, fields);
+        self.texel_lanes = (fields.lanes.iter().enumerate())
+            .filter(|(_, on)| **on)
+            .fold(0, |bits, (lane, _)| bits | 1 << lane);
     }
 
     /// Binds the buffers a multi-pass material reads, as `passes` last rendered them
@@ -99,7 +121,7 @@ impl UvRenderer {
                 size: texels as f32,
                 time,
                 channels: channels as u32,
-                padding: 0,
+                texel_lanes: self.texel_lanes,
             };
             gpu.queue
                 .write_buffer(&self.uniform, 0, bytemuck::bytes_of(&view));
@@ -120,4 +142,45 @@ impl UvRenderer {
         };
         render_tiled(gpu, texels, tiles_draw, progress)
     }
+}
+
+/// The view's bind group: the uniform and `fields` uploaded as a float texture.
+fn view_group(
+    gpu: &GpuContext,
+    pipeline: &wgpu::RenderPipeline,
+    uniform: &wgpu::Buffer,
+    fields: &TexelFields,
+) -> wgpu::BindGroup {
+    let texture = super::plain_texture(
+        &gpu.device,
+        "texel fields",
+        (fields.size, fields.size),
+        wgpu::TextureFormat::Rgba32Float,
+        wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+    );
+    gpu.queue.write_texture(
+        texture.as_image_copy(),
+        bytemuck::cast_slice(&fields.texels),
+        wgpu::TexelCopyBufferLayout {
+            offset: 0,
+            bytes_per_row: Some(fields.size * 16),
+            rows_per_image: Some(fields.size),
+        },
+        texture.size(),
+    );
+    let view = texture.create_view(&Default::default());
+    gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("uv view"),
+        layout: &pipeline.get_bind_group_layout(0),
+        entries: &[
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: uniform.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: wgpu::BindingResource::TextureView(&view),
+            },
+        ],
+    })
 }

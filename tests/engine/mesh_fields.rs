@@ -131,6 +131,60 @@ fn occlusion_reaches_the_surface_dark_inside_a_torus_ring_and_light_outside() {
     );
 }
 
+/// A material bake reads its ray-cast fields per texel, not between vertices: a graph
+/// whose albedo is its occlusion bakes, texel for texel, what the `ao` mesh map of the
+/// same mesh gives with the node's rays per vertex an eighth as many per texel.
+#[test]
+fn material_bakes_cast_occlusion_per_texel_as_the_ao_map_does() {
+    let graph = grey_of(&[occlusion(100)], "torus:12");
+    let compiled = veneer::codegen::compile(&graph, &Default::default()).expect("compiles");
+    let dir = temp_dir("mesh-field-texels");
+    let settings = BakeSettings {
+        surface: BakeSurface::MeshUv("torus:12".into()),
+        size: 96,
+        maps: vec![Map::Albedo],
+        format: Format::Png8,
+        normal: NormalConvention::OpenGl,
+        time: 0.0,
+    };
+    let maps = bake(gpu(), &compiled, &settings, &dir.join("grey"), |_, _| true).expect("bakes");
+    let albedo = image::open(&maps[0].path).expect("a PNG").to_luma8();
+    let mesh = veneer::mesh::preview_mesh("torus:12")
+        .expect("primitive")
+        .with_uv_layout(96);
+    let ao_settings = veneer::bake::MeshMapSettings {
+        size: 96,
+        format: Format::Png8,
+        samples: 8,
+        distance: 100,
+        radius: 5,
+        pooling: 3,
+    };
+    let stem = dir.join("torus");
+    veneer::bake::bake_mesh_maps(
+        &mesh,
+        &[veneer::bake::MeshMap::Ao],
+        &ao_settings,
+        &[&stem],
+        |_, _| {},
+    )
+    .expect("the ao map bakes");
+    let ao = image::open(dir.join("torus_ao.png"))
+        .expect("a PNG")
+        .to_luma8();
+    let close = (albedo.pixels().zip(ao.pixels()))
+        .filter(|(a, b)| (i32::from(a.0[0]) - i32::from(b.0[0])).abs() <= 2)
+        .count();
+    assert!(
+        close * 100 >= 98 * albedo.pixels().count(),
+        "{close} of {} texels agree",
+        albedo.pixels().count()
+    );
+    // A 12-segment torus's vertices are far apart: interpolating them would not agree.
+    let darkest = |image: &image::GrayImage| image.pixels().map(|p| p.0[0]).min().unwrap_or(0);
+    assert!(darkest(&ao) < 200, "the inside of the ring is occluded");
+}
+
 #[test]
 fn nodes_asking_for_one_field_share_its_lane_and_lanes_do_not_follow_node_order() {
     let convexity = MeshField::new(MeshFieldKind::Convexity);

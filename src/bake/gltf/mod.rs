@@ -122,6 +122,10 @@ pub fn export_gltf(
         passes.push(FlatChannels::HeightBump);
     }
     let mut renderer = UvRenderer::new(gpu, &module.source)?;
+    if let Some(fields) = super::texel_fields::texel_fields(&mesh, &uses.mesh_fields, settings.size)
+    {
+        renderer.set_texel_fields(gpu, &fields);
+    }
     let gpu_mesh = GpuMesh::new(&gpu.device, &mesh);
     let placement = crate::render::texture_placement(preview);
     let size = settings.size;
