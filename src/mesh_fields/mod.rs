@@ -97,6 +97,10 @@ pub enum MeshFieldKind {
     Up,
     /// Height within the mesh's bounds, 0 at its lowest point to 1 at its highest.
     Height,
+    /// Position along x within the mesh's bounds, 0 at its lowest x to 1 at its highest.
+    Width,
+    /// Position along z within the mesh's bounds, 0 at its lowest z to 1 at its highest.
+    Depth,
     /// Distance along the surface to the nearest sharp edge (its triangles turn by more
     /// than 30°) as a share of the field's distance: 0 on the edge, 1 at the distance.
     SharpEdgeDistance,
@@ -108,14 +112,16 @@ pub enum MeshFieldKind {
 
 impl MeshFieldKind {
     /// Every kind, in menu order.
-    pub const ALL: [MeshFieldKind; 10] = [
+    pub const ALL: [MeshFieldKind; 12] = [
         MeshFieldKind::Convexity,
         MeshFieldKind::MeanCurvature,
         MeshFieldKind::GaussianCurvature,
         MeshFieldKind::Occlusion,
         MeshFieldKind::Thickness,
         MeshFieldKind::Up,
+        MeshFieldKind::Width,
         MeshFieldKind::Height,
+        MeshFieldKind::Depth,
         MeshFieldKind::SharpEdgeDistance,
         MeshFieldKind::SeamDistance,
         MeshFieldKind::BoundaryDistance,
@@ -131,6 +137,8 @@ impl MeshFieldKind {
             MeshFieldKind::Thickness => "thickness",
             MeshFieldKind::Up => "facing up",
             MeshFieldKind::Height => "height in bounds",
+            MeshFieldKind::Width => "x in bounds",
+            MeshFieldKind::Depth => "z in bounds",
             MeshFieldKind::SharpEdgeDistance => "distance to sharp edges",
             MeshFieldKind::SeamDistance => "distance to UV seams",
             MeshFieldKind::BoundaryDistance => "distance to the boundary",
@@ -159,6 +167,8 @@ impl MeshFieldKind {
             MeshFieldKind::Occlusion
             | MeshFieldKind::Thickness
             | MeshFieldKind::Height
+            | MeshFieldKind::Width
+            | MeshFieldKind::Depth
             | MeshFieldKind::SharpEdgeDistance
             | MeshFieldKind::SeamDistance
             | MeshFieldKind::BoundaryDistance => Some((0.0, 1.0)),
@@ -176,6 +186,8 @@ impl MeshFieldKind {
             | MeshFieldKind::MeanCurvature
             | MeshFieldKind::GaussianCurvature
             | MeshFieldKind::Height => 0.0,
+            // Across the plane, measured where the view is centred.
+            MeshFieldKind::Width | MeshFieldKind::Depth => 0.5,
             MeshFieldKind::Occlusion
             | MeshFieldKind::Thickness
             | MeshFieldKind::Up
@@ -218,15 +230,15 @@ pub struct MeshField {
     pub distance: u32,
 }
 
-/// Each vertex's height between the mesh's lowest and highest points, 0 to 1 (0 for a
-/// mesh with no height).
-fn heights_in_bounds(mesh: &Mesh) -> Vec<f32> {
-    let heights = || mesh.positions.iter().map(|p| f64::from(p[1]));
-    let (low, high) = heights().fold((f64::MAX, f64::MIN), |(lo, hi), y| (lo.min(y), hi.max(y)));
+/// Each vertex's coordinate `axis` between the mesh's lowest and highest along it, 0 to
+/// 1 (0 for a mesh with no extent along it).
+fn in_bounds(mesh: &Mesh, axis: usize) -> Vec<f32> {
+    let along = || mesh.positions.iter().map(|p| f64::from(p[axis]));
+    let (low, high) = along().fold((f64::MAX, f64::MIN), |(lo, hi), c| (lo.min(c), hi.max(c)));
     let span = high - low;
-    heights()
-        .map(|y| match span > 0.0 && span.is_finite() {
-            true => ((y - low) / span) as f32,
+    along()
+        .map(|c| match span > 0.0 && span.is_finite() {
+            true => ((c - low) / span) as f32,
             false => 0.0,
         })
         .collect()
@@ -384,7 +396,9 @@ impl MeshField {
                     .collect())
             }
             MeshFieldKind::Up => Ok(mesh.normals.iter().map(|n| n[1]).collect()),
-            MeshFieldKind::Height => Ok(heights_in_bounds(mesh)),
+            MeshFieldKind::Width => Ok(in_bounds(mesh, 0)),
+            MeshFieldKind::Height => Ok(in_bounds(mesh, 1)),
+            MeshFieldKind::Depth => Ok(in_bounds(mesh, 2)),
             kind if kind.feature().is_some() => {
                 let reach = f64::from(percent(self.distance)) * mesh.bounding_sphere().1;
                 let feature = kind.feature().expect("a feature kind");
@@ -475,17 +489,23 @@ mod tests {
     }
 
     #[test]
-    fn facing_up_and_height_run_from_the_bottom_to_the_top_of_a_sphere() {
+    fn facing_up_and_position_in_bounds_run_across_a_sphere() {
         let sphere = primitive("sphere").unwrap();
         let up = MeshField::new(MeshFieldKind::Up)
             .compute(&sphere, |_, _| {})
             .unwrap();
-        let height = MeshField::new(MeshFieldKind::Height)
-            .compute(&sphere, |_, _| {})
-            .unwrap();
+        let in_bounds = |kind| MeshField::new(kind).compute(&sphere, |_, _| {}).unwrap();
+        let position = [
+            MeshFieldKind::Width,
+            MeshFieldKind::Height,
+            MeshFieldKind::Depth,
+        ]
+        .map(in_bounds);
         for (v, p) in sphere.positions.iter().enumerate() {
             assert!((up[v] - p[1]).abs() < 1e-5);
-            assert!((height[v] - (p[1] + 1.0) / 2.0).abs() < 1e-5);
+            for axis in 0..3 {
+                assert!((position[axis][v] - (p[axis] + 1.0) / 2.0).abs() < 1e-5);
+            }
         }
         assert!(!MeshFieldKind::Up.needs_lane() && MeshFieldKind::Height.needs_lane());
     }

@@ -87,6 +87,8 @@ impl Definition for MeshField {
             "seam",
             "border",
             "mesh",
+            "position",
+            "bounds",
         ]
     }
     fn signature(&self) -> Signature {
