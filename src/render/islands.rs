@@ -106,20 +106,13 @@ impl Islands {
                     usage: wgpu::BufferUsages::UNIFORM,
                 });
             let read = textures[0].create_view(&Default::default());
-            let group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("uv island step"),
-                layout: &layout,
-                entries: &[
-                    wgpu::BindGroupEntry {
-                        binding: 0,
-                        resource: uniform.as_entire_binding(),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 1,
-                        resource: wgpu::BindingResource::TextureView(&read),
-                    },
-                ],
-            });
+            let group = super::uniform_and_texture_group(
+                &gpu.device,
+                "uv island step",
+                &layout,
+                &uniform,
+                &read,
+            );
             let target = textures[1].create_view(&Default::default());
             let mut pass = super::tiles::clear_pass(&mut encoder, &target, none, None);
             pass.set_pipeline(&self.jump);

@@ -72,6 +72,30 @@ pub fn plain_texture(
     })
 }
 
+/// A bind group of `layout` holding `uniform` at binding 0 and `texture` at binding 1.
+fn uniform_and_texture_group(
+    device: &wgpu::Device,
+    label: &str,
+    layout: &wgpu::BindGroupLayout,
+    uniform: &wgpu::Buffer,
+    texture: &wgpu::TextureView,
+) -> wgpu::BindGroup {
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some(label),
+        layout,
+        entries: &[
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: uniform.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: wgpu::BindingResource::TextureView(texture),
+            },
+        ],
+    })
+}
+
 /// WGSL of a material module combined with a renderer's entry points.
 fn shader_source(material_wgsl: &str, entry_points: &str) -> String {
     // A module written by hand, or exported before modules declared the fields flat

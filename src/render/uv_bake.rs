@@ -169,18 +169,6 @@ fn view_group(
         texture.size(),
     );
     let view = texture.create_view(&Default::default());
-    gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some("uv view"),
-        layout: &pipeline.get_bind_group_layout(0),
-        entries: &[
-            wgpu::BindGroupEntry {
-                binding: 0,
-                resource: uniform.as_entire_binding(),
-            },
-            wgpu::BindGroupEntry {
-                binding: 1,
-                resource: wgpu::BindingResource::TextureView(&view),
-            },
-        ],
-    })
+    let layout = pipeline.get_bind_group_layout(0);
+    super::uniform_and_texture_group(&gpu.device, "uv view", &layout, uniform, &view)
 }
