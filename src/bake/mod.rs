@@ -248,6 +248,10 @@ pub fn bake(
     let (module, preview) = (&compiled.module, &compiled.preview);
     let size = settings.size;
     let placement = crate::render::texture_placement(preview);
+    let tile = crate::render::tile_size(gpu);
+    // Progress before the maps' tiles: casting a UV bake's texel fields counts as a
+    // map's worth of tiles.
+    let mut lead = 0u64;
     let (surface, spacing) = match &settings.surface {
         BakeSurface::Plane(rect) | BakeSurface::Tile(rect) => {
             let rect = match settings.surface {
@@ -271,9 +275,18 @@ pub fn bake(
             // The UV square is taken to span the preview square: normals are approximate.
             let texel = 2.0 * preview.size / f64::from(size);
             let mut renderer = UvRenderer::new(gpu, &module.source)?;
-            if let Some(fields) = texel_fields::texel_fields(&mesh, &module.uses.mesh_fields, size)
-            {
+            let per_map = u64::from(size.div_ceil(tile)).pow(2);
+            let all = per_map * (settings.maps.len() as u64 + 1);
+            let lanes = &module.uses.mesh_fields;
+            let cast = texel_fields::texel_fields(&mesh, lanes, size, |done, texels| {
+                wanted.set(progress(per_map * done as u64 / texels.max(1) as u64, all));
+            });
+            if !wanted.get() {
+                return Err(BakeError::Cancelled);
+            }
+            if let Some(fields) = cast {
                 renderer.set_texel_fields(gpu, &fields);
+                lead = per_map;
             }
             let gpu_mesh = GpuMesh::new(&gpu.device, &mesh);
             let passes = crate::render::mesh_passes(
@@ -290,7 +303,6 @@ pub fn bake(
             (Surface::Uv(renderer, gpu_mesh), (texel, texel))
         }
     };
-    let tile = crate::render::tile_size(gpu);
     let band_rows = band_rows(size, tile);
     if let Surface::Plane(..) = surface {
         check_memory(size, band_rows, settings.format)?;
@@ -299,7 +311,7 @@ pub fn bake(
         Surface::Plane(..) => u64::from(size.div_ceil(tile)) * u64::from(size.div_ceil(band_rows)),
         Surface::Uv(..) => u64::from(size.div_ceil(tile)).pow(2),
     };
-    let total = tiles_per_pass * settings.maps.len() as u64;
+    let total = lead + tiles_per_pass * settings.maps.len() as u64;
     let edges = match (&surface, &settings.surface) {
         (Surface::Plane(flat, rect), BakeSurface::Tile(_)) => {
             let (size, time) = (settings.size, settings.time);
@@ -338,7 +350,7 @@ pub fn bake(
     let overlap = settings.format == Format::Exr;
     let baked = pipeline::bake_maps(&targets, overlap, |index, sink| {
         let channels = targets[index].map.channels();
-        let base = index as u64 * tiles_per_pass;
+        let base = lead + index as u64 * tiles_per_pass;
         let report = |done: u32, _| wanted.set(progress(base + u64::from(done), total));
         let sink = &mut |first_row, band| {
             if !wanted.get() {

@@ -22,8 +22,14 @@ const RAYS_PER_TEXEL_DIVISOR: u32 = 8;
 
 /// The ray-cast fields among `lanes` cast from every texel of `mesh`'s UV layout (the
 /// layout a `size`² bake renders), at no more than [`MOST_TEXEL_FIELDS`] a side, padded
-/// as the maps are; `None` when the material reads none.
-pub fn texel_fields(mesh: &Mesh, lanes: &MeshLanes, size: u32) -> Option<TexelFields> {
+/// as the maps are; `None` when the material reads none. Progress is `(texels done,
+/// texels)` over every field cast.
+pub fn texel_fields(
+    mesh: &Mesh,
+    lanes: &MeshLanes,
+    size: u32,
+    mut progress: impl FnMut(usize, usize),
+) -> Option<TexelFields> {
     let cast: Vec<(usize, crate::mesh_fields::MeshField)> = (lanes.iter().enumerate())
         .filter_map(|(lane, field)| field.filter(|f| f.kind.casts_rays()).map(|f| (lane, f)))
         .collect();
@@ -35,7 +41,9 @@ pub fn texel_fields(mesh: &Mesh, lanes: &MeshLanes, size: u32) -> Option<TexelFi
     let texels = Texels::new(mesh, &scene, side);
     let mut values = vec![[0.0f32; 4]; texels.texels.len()];
     let mut held = [false; 4];
-    for (lane, field) in cast {
+    let (count, fields) = (texels.texels.len(), cast.len());
+    for (index, (lane, field)) in cast.into_iter().enumerate() {
+        let report = |done: usize, _| progress(index * count + done, fields * count);
         let rays = (field.samples / RAYS_PER_TEXEL_DIVISOR).max(1);
         let distance = field.distance as f32 / 100.0;
         let measured = match field.kind {
@@ -45,9 +53,9 @@ pub fn texel_fields(mesh: &Mesh, lanes: &MeshLanes, size: u32) -> Option<TexelFi
                     distance,
                     tolerance: None,
                 };
-                texels.occlusion(&scene, sampling, |_, _| {})
+                texels.occlusion(&scene, sampling, report)
             }
-            _ => texels.thickness(&scene, rays, distance, |_, _| {}),
+            _ => texels.thickness(&scene, rays, distance, report),
         };
         for (value, pooled) in values.iter_mut().zip(texels.pooled(&measured, POOLING)) {
             value[lane] = pooled;

@@ -147,7 +147,23 @@ fn material_bakes_cast_occlusion_per_texel_as_the_ao_map_does() {
         normal: NormalConvention::OpenGl,
         time: 0.0,
     };
-    let maps = bake(gpu(), &compiled, &settings, &dir.join("grey"), |_, _| true).expect("bakes");
+    let mut reports = Vec::new();
+    let maps = bake(
+        gpu(),
+        &compiled,
+        &settings,
+        &dir.join("grey"),
+        |done, total| {
+            reports.push((done, total));
+            true
+        },
+    )
+    .expect("bakes");
+    // Casting the texel fields shows progress before the map's tiles, on one bar.
+    let total = reports.last().map(|r| r.1).unwrap_or(0);
+    assert!(reports.iter().all(|r| r.1 == total) && reports.last() == Some(&(total, total)));
+    assert!(reports.windows(2).all(|pair| pair[0].0 <= pair[1].0));
+    assert!(reports.len() > 2, "{reports:?}");
     let albedo = image::open(&maps[0].path).expect("a PNG").to_luma8();
     let mesh = veneer::mesh::preview_mesh("torus:12")
         .expect("primitive")

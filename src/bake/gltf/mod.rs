@@ -121,28 +121,34 @@ pub fn export_gltf(
     if wants_normal {
         passes.push(FlatChannels::HeightBump);
     }
+    let size = settings.size;
+    let per_pass = u64::from(size.div_ceil(crate::render::tile_size(gpu))).pow(2);
     let mut renderer = UvRenderer::new(gpu, &module.source)?;
-    if let Some(fields) = super::texel_fields::texel_fields(&mesh, &uses.mesh_fields, settings.size)
-    {
+    // Casting the texel fields counts as a pass's worth of tiles before the passes.
+    let mut lead = 0;
+    let mut wanted = true;
+    let all = per_pass * (passes.len() as u64 + 1);
+    let cast = super::texel_fields::texel_fields(&mesh, &uses.mesh_fields, size, |done, texels| {
+        wanted &= progress(per_pass * done as u64 / texels.max(1) as u64, all);
+    });
+    if let Some(fields) = cast {
         renderer.set_texel_fields(gpu, &fields);
+        lead = per_pass;
     }
     let gpu_mesh = GpuMesh::new(&gpu.device, &mesh);
     let placement = crate::render::texture_placement(preview);
-    let size = settings.size;
     let buffers =
         crate::render::mesh_passes(gpu, compiled, &gpu_mesh, placement, size, settings.time)?;
     if let Some(buffers) = &buffers {
         renderer.bind_passes(gpu, buffers);
     }
-    let per_pass = u64::from(size.div_ceil(crate::render::tile_size(gpu))).pow(2);
-    let total = per_pass * passes.len() as u64;
+    let total = lead + per_pass * passes.len() as u64;
     let mut rendered = Vec::new();
-    let mut wanted = true;
     for (index, channels) in passes.iter().enumerate() {
         if !wanted {
             return Err(BakeError::Cancelled);
         }
-        let base = index as u64 * per_pass;
+        let base = lead + index as u64 * per_pass;
         let report = |done: u32, _| wanted &= progress(base + u64::from(done), total);
         let mut pixels = renderer.render_channels(
             gpu,
