@@ -488,7 +488,11 @@ impl Planner<'_> {
                 mesh_fields: self.mesh_lanes,
                 ..SurfaceUse::of(&part)
             },
-            Some(_) => SurfaceUse::default(),
+            // A pass reads the material's mesh-field lanes too (flat, VENEER_FLAT_FIELDS).
+            Some(_) => SurfaceUse {
+                mesh_fields: self.mesh_lanes,
+                ..SurfaceUse::default()
+            },
         };
         let members = if self.options.params == super::ParamMode::Named {
             super::parameter_members(&self.graph.parameters)
