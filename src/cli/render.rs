@@ -42,7 +42,7 @@ pub struct RenderArgs {
     /// Width and height of the image in pixels.
     #[arg(long, default_value_t = 512)]
     size: u32,
-    /// Mesh to render on: a primitive (sphere, cube, torus, plane, genus2, optionally
+    /// Mesh to render on: a primitive (sphere, cube, torus, plane, genus2, rock, optionally
     /// with a detail level such as torus:160) or a mesh file (default: the preview mesh).
     #[arg(long, conflicts_with = "flat")]
     mesh: Option<String>,

@@ -1,11 +1,11 @@
-//! Procedural primitives: sphere, cube, torus, plane and a genus-2 double torus, each
-//! about unit size at the origin.
+//! Procedural primitives: sphere, cube, torus, plane, a genus-2 double torus and a
+//! rock (a sphere with a noisy surface), each about unit size at the origin.
 
 use super::Mesh;
 use std::f32::consts::{PI, TAU};
 
 /// Names accepted by [`primitive`].
-pub const PRIMITIVES: [&str; 5] = ["sphere", "cube", "torus", "plane", "genus2"];
+pub const PRIMITIVES: [&str; 6] = ["sphere", "cube", "torus", "plane", "genus2", "rock"];
 
 /// The largest level of detail of a primitive, measured on a 2-core machine with 24 GB:
 /// `torus:512` (1,048,576 triangles) takes 0.5 s and 90 MB in `veneer mesh`, 6 s and
@@ -22,7 +22,9 @@ pub const MAX_GENUS2_DETAIL: u32 = 256;
 
 /// The primitive called `name`, if there is one. A name may carry a level of detail,
 /// `torus:320` (segments across the smaller direction; the defaults are sphere 48,
-/// cube 8, torus 48, plane 16 and genus2 40), for refined meshes and benchmarks.
+/// cube 8, torus 48, plane 16, genus2 40 and rock 48), for refined meshes and
+/// benchmarks. Every level of detail samples the same shape, so `rock:24` and
+/// `rock:192` are a coarse and a fine mesh of one surface (for bakes from high to low).
 pub fn primitive(name: &str) -> Option<Mesh> {
     let (base, detail) = match name.split_once(':') {
         Some((base, detail)) => (
@@ -42,6 +44,7 @@ pub fn primitive(name: &str) -> Option<Mesh> {
         "cube" => Some(cube(detail(8))),
         "torus" => Some(torus(0.7, 0.3, 2 * detail(48), detail(48))),
         "plane" => Some(plane(detail(16))),
+        "rock" => Some(rock(2 * detail(48), detail(48))),
         // Marching tetrahedra cost the cube of the detail: capped where it stays seconds.
         "genus2" if detail(40) <= MAX_GENUS2_DETAIL => {
             Some(super::implicit::double_torus(1.0 / detail(40) as f32))
@@ -58,6 +61,43 @@ pub fn sphere(segments: u32, rings: u32) -> Mesh {
         let (theta, phi) = (u * TAU, v * PI);
         let p = [phi.sin() * theta.cos(), phi.cos(), -phi.sin() * theta.sin()];
         (p, p)
+    });
+    mesh
+}
+
+/// How far the rock's surface lies from the origin in the unit direction `d`: 1 plus
+/// four octaves of gradient noise, the finer octaves below what a coarse mesh holds.
+fn rock_radius(d: glam::Vec3) -> f32 {
+    use crate::nodes::{formulas::noise::signed, settings::Basis};
+    let (mut sum, mut amplitude, mut frequency) = (0.0, 0.2, 1.2);
+    for _ in 0..4 {
+        let p = (d * frequency).to_array();
+        sum += amplitude * signed(Basis::Gradient, p);
+        amplitude *= 0.5;
+        frequency *= 2.2;
+    }
+    1.0 + sum
+}
+
+/// The rock: a unit sphere's latitude-longitude grid (as [`sphere`], UVs and seam alike)
+/// pushed out to [`rock_radius`], normals from the gradient of the implicit surface
+/// `|p| − rock_radius(p/|p|)` by central differences (so the poles get theirs too). The
+/// differences span the grid's own spacing, so a coarse mesh's normals follow the shape
+/// it holds rather than point samples of bumps finer than its facets.
+fn rock(segments: u32, rings: u32) -> Mesh {
+    let surface = |p: glam::Vec3| p.length() - rock_radius(p.normalize());
+    let h = PI / rings as f32;
+    let mut mesh = Mesh::default();
+    mesh.push_grid(segments, rings, |u, v| {
+        let (theta, phi) = (u * TAU, v * PI);
+        let d = glam::Vec3::new(phi.sin() * theta.cos(), phi.cos(), -phi.sin() * theta.sin());
+        let p = d * rock_radius(d);
+        let gradient = glam::Vec3::new(
+            surface(p + glam::Vec3::X * h) - surface(p - glam::Vec3::X * h),
+            surface(p + glam::Vec3::Y * h) - surface(p - glam::Vec3::Y * h),
+            surface(p + glam::Vec3::Z * h) - surface(p - glam::Vec3::Z * h),
+        );
+        (p.to_array(), gradient.normalize_or(d).to_array())
     });
     mesh
 }
@@ -158,6 +198,42 @@ mod tests {
                     .all(|n| (glam::Vec3::from(*n).length() - 1.0).abs() < 1e-4),
                 "{name}"
             );
+        }
+    }
+
+    /// Every level of detail samples one rock: `rock:24`'s vertices are among
+    /// `rock:48`'s (the coarse grid's directions are a subset of the fine one's), and
+    /// each normal faces out of the stone and agrees with the fine mesh's facets.
+    #[test]
+    fn the_rock_is_one_shape_at_every_detail() {
+        let coarse = primitive("rock:24").unwrap();
+        let fine = primitive("rock:48").unwrap();
+        let near = |a: [f32; 3], b: [f32; 3]| glam::Vec3::from(a).distance(b.into()) < 1e-5;
+        for &p in &coarse.positions {
+            assert!(fine.positions.iter().any(|&q| near(p, q)), "{p:?}");
+        }
+        let radii = coarse
+            .positions
+            .iter()
+            .map(|&p| glam::Vec3::from(p).length());
+        let (low, high) = radii.fold((f32::MAX, 0.0f32), |(l, h), r| (l.min(r), h.max(r)));
+        assert!(
+            0.6 < low && low < 0.95 && 1.05 < high && high < 1.4,
+            "{low} {high}"
+        );
+        for triangle in fine.indices.chunks(3) {
+            let [a, b, c] =
+                [0, 1, 2].map(|k| glam::Vec3::from(fine.positions[triangle[k] as usize]));
+            let area = (b - a).cross(c - a);
+            if area.length() < 1e-5 {
+                continue; // a pole's degenerate triangle
+            }
+            let facet = area.normalize();
+            for &k in triangle {
+                let normal = glam::Vec3::from(fine.normals[k as usize]);
+                assert!(normal.dot(fine.positions[k as usize].into()) > 0.0);
+                assert!(normal.dot(facet) > 0.5, "{normal} against {facet}");
+            }
         }
     }
 }

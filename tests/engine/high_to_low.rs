@@ -153,3 +153,40 @@ fn a_coarse_torus_takes_the_fine_ones_heights() {
         done.heights
     );
 }
+
+/// The maps `graphs/baked_rock.ron` reads are what the README's command bakes today:
+/// `rock:160` onto `rock:24` at 512², within one level of a fresh bake at every texel.
+#[test]
+fn the_baked_rock_maps_are_a_fresh_bake() {
+    let dir = temp_dir("high-to-low-rock");
+    let output = run_veneer(&[
+        "bake",
+        "--mesh",
+        "rock:24",
+        "--from",
+        "rock:160",
+        "--maps",
+        "normal,height",
+        "--size",
+        "512",
+        "--out-dir",
+        dir.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        output.status.success() && !stderr.contains("warning"),
+        "{stderr}"
+    );
+    for map in ["normal", "height"] {
+        let file = format!("rock-24_{map}.png");
+        let fresh = image::open(dir.join(&file)).expect("a PNG").to_rgba16();
+        let committed = image::open(crate::support::root("graphs/baked").join(&file))
+            .expect("the committed PNG")
+            .to_rgba16();
+        assert_eq!(fresh.dimensions(), committed.dimensions(), "{file}");
+        let largest = (fresh.as_raw().iter().zip(committed.as_raw()))
+            .map(|(a, b)| a.abs_diff(*b))
+            .max();
+        assert!(largest <= Some(257), "{file}: texels differ by {largest:?}");
+    }
+}
