@@ -278,6 +278,8 @@ impl Bvh {
     /// Visits the triangles of the leaves the ray enters before `limit`, nearer boxes
     /// first; `visit` gets each one's leaf-ordered index and returns the hit's distance,
     /// the new limit, when the triangle was hit. Returns whether anything was hit.
+    /// Inlined into each query: left to the compiler, `benches/ray_casting.rs` measured
+    /// the walks 5–10% slower.
     #[inline(always)]
     fn walk(
         &self,

@@ -79,26 +79,22 @@ fn rock_radius(d: glam::Vec3) -> f32 {
     1.0 + sum
 }
 
-/// The rock: a unit sphere's latitude-longitude grid (as [`sphere`], UVs and seam alike)
-/// pushed out to [`rock_radius`], normals from the gradient of the implicit surface
+/// The rock: [`sphere`]'s latitude-longitude grid (UVs and seam alike) pushed out to
+/// [`rock_radius`], normals from the gradient of the implicit surface
 /// `|p| − rock_radius(p/|p|)` by central differences (so the poles get theirs too). The
 /// differences span the grid's own spacing, so a coarse mesh's normals follow the shape
 /// it holds rather than point samples of bumps finer than its facets.
 fn rock(segments: u32, rings: u32) -> Mesh {
     let surface = |p: glam::Vec3| p.length() - rock_radius(p.normalize());
     let h = PI / rings as f32;
-    let mut mesh = Mesh::default();
-    mesh.push_grid(segments, rings, |u, v| {
-        let (theta, phi) = (u * TAU, v * PI);
-        let d = glam::Vec3::new(phi.sin() * theta.cos(), phi.cos(), -phi.sin() * theta.sin());
+    let mut mesh = sphere(segments, rings);
+    for (position, normal) in mesh.positions.iter_mut().zip(&mut mesh.normals) {
+        let d = glam::Vec3::from(*position);
         let p = d * rock_radius(d);
-        let gradient = glam::Vec3::new(
-            surface(p + glam::Vec3::X * h) - surface(p - glam::Vec3::X * h),
-            surface(p + glam::Vec3::Y * h) - surface(p - glam::Vec3::Y * h),
-            surface(p + glam::Vec3::Z * h) - surface(p - glam::Vec3::Z * h),
-        );
-        (p.to_array(), gradient.normalize_or(d).to_array())
-    });
+        let gradient = glam::Vec3::AXES.map(|axis| surface(p + axis * h) - surface(p - axis * h));
+        *position = p.to_array();
+        *normal = glam::Vec3::from(gradient).normalize_or(d).to_array();
+    }
     mesh
 }
 
