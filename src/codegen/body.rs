@@ -5,6 +5,7 @@
 use super::parts::Block;
 use super::{Emitted, ParamMode, ParamSlot, fold, input_expression, member_expression, naming};
 use crate::graph::check::{CheckedGraph, InputSource};
+use crate::graph::frames::Frames;
 use crate::graph::group::Bindings;
 use crate::graph::parameters::{Exposed, Member};
 use crate::graph::{NodeId, NodeKind};
@@ -23,6 +24,15 @@ pub struct GroupCall {
     /// Per output pin of a group node, the struct member holding it (if any instance
     /// reads it).
     pub members: Vec<Option<String>>,
+}
+
+/// The frame a body's nodes are emitted in: the graph's frames, the names of their
+/// functions, and the instance's identifier inside a local frame's function.
+#[derive(Clone, Copy)]
+struct Frame<'f> {
+    frames: &'f Frames,
+    functions: &'f [String],
+    instance: Option<&'static str>,
 }
 
 /// What every body of one module shares: the modes, the slots and library items
@@ -52,6 +62,11 @@ pub struct Emitter<'a> {
     pub sources: FxHashMap<NodeId, String>,
     /// Which mesh field each lane of `VeneerSurface.fields` holds.
     pub mesh_lanes: MeshLanes,
+    /// The functions of the local frames the bodies hold (see `graph::frames`), their
+    /// text in the order emitted.
+    pub local_functions: String,
+    /// The names of the local frames' functions, unique in the module.
+    local_names: Namer,
 }
 
 impl<'a> Emitter<'a> {
@@ -81,6 +96,8 @@ impl<'a> Emitter<'a> {
             sampled: FxHashMap::default(),
             sources: FxHashMap::default(),
             mesh_lanes: MeshLanes::default(),
+            local_functions: String::new(),
+            local_names: Namer::default(),
         }
     }
 
@@ -105,28 +122,91 @@ impl<'a> Emitter<'a> {
         ))
     }
 
-    /// The blocks of `graph`'s nodes in order and what each left for its readers. Nodes
+    /// The blocks of `graph`'s nodes evaluated at the shaded point, in order, and what
+    /// each node left for its readers (nothing for nodes only local frames hold). Nodes
     /// in `arguments` stand for a function's arguments: their output is the argument.
+    /// The local frames' functions go to [`Emitter::local_functions`].
     pub fn body(
         &mut self,
         graph: &CheckedGraph,
         bindings: &Bindings,
         arguments: &BTreeMap<NodeId, String>,
     ) -> (Vec<Block>, Vec<Emitted>) {
+        let frames = Frames::of(graph);
+        let functions: Vec<String> = (frames.locals.iter())
+            .map(|local| {
+                let source = graph.order[local.source].node.display_name();
+                format!(
+                    "veneer_local_{}",
+                    self.local_names.name(source, local.source as u32)
+                )
+            })
+            .collect();
+        let frame = Frame {
+            frames: &frames,
+            functions: &functions,
+            instance: None,
+        };
+        for (local, function) in frames.locals.iter().zip(&functions) {
+            let inner = Frame {
+                instance: Some("instance"),
+                ..frame
+            };
+            let (blocks, emitted) = self.nodes(graph, bindings, arguments, &local.nodes, inner);
+            let value = emitted[local.source].outputs.get(local.output).cloned();
+            let value = emit::convert(value.unwrap_or_default(), local.from, local.ty);
+            let source = &graph.order[local.source].node;
+            let mut text = format!(
+                "\n// The pattern '{}' ({}) re-evaluates per instance: the surface moved into the instance's frame.\nfn {function}(s: VeneerSurface, instance: veneer_instance) -> {} {{\n",
+                naming::comment(source.display_name()),
+                naming::comment(&source.reference()),
+                local.ty.wgsl()
+            );
+            for block in &blocks {
+                text.push_str(&block.text);
+            }
+            text.push_str(&format!("    return {value};\n}}\n"));
+            self.local_functions.push_str(&text);
+            self.use_item("veneer_instance");
+        }
+        self.nodes(graph, bindings, arguments, &frames.main, frame)
+    }
+
+    /// Library item `item` is called (each listed once, in the order first called).
+    fn use_item(&mut self, item: &str) {
+        if self.called.insert(item.to_string()) {
+            self.roots.push(item.to_string());
+        }
+    }
+
+    /// The blocks of the nodes at `positions` (ascending) of `graph` in `frame`, and
+    /// what each left for its readers (by position; nothing for the others).
+    fn nodes(
+        &mut self,
+        graph: &CheckedGraph,
+        bindings: &Bindings,
+        arguments: &BTreeMap<NodeId, String>,
+        positions: &[usize],
+        frame: Frame,
+    ) -> (Vec<Block>, Vec<Emitted>) {
         let mut namer = Namer::default();
         for name in arguments.values() {
             namer.reserve(name);
         }
+        // A local frame's function takes the instance under this name.
+        namer.reserve("instance");
         let mut emitted: Vec<Emitted> = Vec::with_capacity(graph.order.len());
+        emitted.resize_with(graph.order.len(), Emitted::default);
         let mut blocks: Vec<Block> = Vec::new();
-        for checked in &graph.order {
+        for &at in positions {
+            let checked = &graph.order[at];
             let node = &checked.node;
             if let Some(argument) = arguments.get(&node.id) {
-                emitted.push(Emitted {
+                emitted[at] = Emitted {
                     outputs: vec![argument.clone()],
                     folded: None,
                     block: None,
-                });
+                };
                 continue;
             }
             let from: Vec<Option<&Emitted>> = checked
@@ -154,11 +234,11 @@ impl<'a> Emitter<'a> {
                     .zip(&values)
                     .map(|(pin, lanes)| emit::lanes_literal(pin.ty, *lanes))
                     .collect();
-                emitted.push(Emitted {
+                emitted[at] = Emitted {
                     outputs,
                     folded: Some(values),
                     block: None,
-                });
+                };
                 continue;
             }
             let inputs: Vec<String> = checked
@@ -171,6 +251,9 @@ impl<'a> Emitter<'a> {
                 .map(|(k, (((source, pin), from), bound))| match bound {
                     Some(expression) => expression.clone(),
                     None if pin.sampled => self.sampled[&(node.id, k)].clone(),
+                    None if matches!(pin.default, crate::graph::PinDefault::Builtin(_)) => {
+                        String::new()
+                    }
                     None => {
                         let slots = self.mode.has_slots().then_some(&mut self.params);
                         input_expression(source, pin, node.id, *from, slots)
@@ -182,6 +265,12 @@ impl<'a> Emitter<'a> {
                 NodeKind::Material => String::new(),
                 _ => namer.name(node.display_name(), node.id.0),
             };
+            let locals: Vec<Option<&str>> = (0..inputs.len())
+                .map(|k| {
+                    let local = frame.frames.sites.get(&(at, k))?;
+                    Some(frame.functions[*local].as_str())
+                })
+                .collect();
             let code = match &node.kind {
                 NodeKind::Group(group) => self.call(&group.name, &inputs, &name),
                 kind => {
@@ -193,7 +282,8 @@ impl<'a> Emitter<'a> {
                         self.detail,
                     )
                     .with_source(self.sources.get(&node.id).map(String::as_str))
-                    .with_mesh_lanes(self.mesh_lanes);
+                    .with_mesh_lanes(self.mesh_lanes)
+                    .in_frame(&locals, frame.instance);
                     kind.definition().emit(&mut io);
                     io.finish()
                 }
@@ -217,16 +307,14 @@ impl<'a> Emitter<'a> {
                     reads,
                 });
             }
-            for item in code.library {
-                if self.called.insert(item.clone()) {
-                    self.roots.push(item);
-                }
+            for item in &code.library {
+                self.use_item(item);
             }
-            emitted.push(Emitted {
+            emitted[at] = Emitted {
                 outputs: code.outputs,
                 folded: None,
                 block: (!code.statements.is_empty()).then(|| blocks.len() - 1),
-            });
+            };
         }
         (blocks, emitted)
     }

@@ -52,9 +52,11 @@ pub(super) fn compile(
 ) -> Option<Result<WgslModule, CompileError>> {
     // A graph with an image node compiles inlined: a group function cannot read
     // buffers, and a group's unused pins may hold cuts the flat graph prunes.
+    // So does a graph whose nodes re-evaluate inputs: a local frame's function cannot
+    // read the arguments of the group function around it.
     let samples = (graph.groups.values().flat_map(|group| &group.nodes))
         .chain(&graph.nodes)
-        .any(|node| node.kind.samples());
+        .any(|node| node.kind.samples() || node.kind.re_evaluates());
     if options.params.has_slots()
         || samples
         || !graph.nodes.iter().any(|n| group::group_name(n).is_some())

@@ -5,7 +5,7 @@ use std::collections::BTreeSet;
 use std::sync::OnceLock;
 
 /// The library sources, one family per file.
-const SOURCES: [(&str, &str); 22] = [
+const SOURCES: [(&str, &str); 24] = [
     ("hash", include_str!("../../shaders/hash.wgsl")),
     ("value", include_str!("../../shaders/value.wgsl")),
     ("gradient", include_str!("../../shaders/gradient.wgsl")),
@@ -14,6 +14,8 @@ const SOURCES: [(&str, &str); 22] = [
     ("worley", include_str!("../../shaders/worley.wgsl")),
     ("coords", include_str!("../../shaders/coords.wgsl")),
     ("patterns", include_str!("../../shaders/patterns.wgsl")),
+    ("instances", include_str!("../../shaders/instances.wgsl")),
+    ("shapes", include_str!("../../shaders/shapes.wgsl")),
     ("math", include_str!("../../shaders/math.wgsl")),
     ("fields", include_str!("../../shaders/fields.wgsl")),
     ("white", include_str!("../../shaders/white.wgsl")),

@@ -658,6 +658,10 @@ fn assemble(
         source.push_str(&item.text);
     }
     source.push_str(around.functions);
+    if !emitter.local_functions.is_empty() {
+        source.push_str("\n// ---- local frames\n");
+        source.push_str(&emitter.local_functions);
+    }
     let node_spans = parts::write_entry(&mut source, blocks, around.entry);
 
     let library = items.into_iter().map(|item| item.name).collect();

@@ -10,8 +10,10 @@ pub use crate::nodes::formulas::real::Real;
 pub use passes::Buffers;
 
 use crate::graph::check::{CheckedGraph, CheckedNode, InputSource};
+use crate::graph::frames::Frames;
 use crate::graph::{CheckError, Graph};
 use crate::nodes::cpu::Eval;
+use crate::nodes::cpu::Instance;
 use crate::nodes::formulas::real::V3;
 use crate::nodes::mesh_field::MeshLanes;
 use std::collections::BTreeMap;
@@ -69,6 +71,10 @@ pub struct Evaluator {
     /// Which mesh field each lane of the surface's `fields` holds (as the compiled
     /// material assigns them).
     mesh_lanes: MeshLanes,
+    /// Where each node is evaluated: at the point, or per instance in a local frame.
+    frames: Frames,
+    /// Whether the node at each position is evaluated at the shaded point.
+    in_main: Vec<bool>,
 }
 
 impl Evaluator {
@@ -86,7 +92,14 @@ impl Evaluator {
             .map(|(i, c)| (c.node.id, i))
             .collect();
         let bitmaps = Buffers::bitmaps_of(&graph);
+        let frames = Frames::of(&graph);
+        let mut in_main = vec![false; graph.order.len()];
+        for &at in &frames.main {
+            in_main[at] = true;
+        }
         Evaluator {
+            frames,
+            in_main,
             mesh_lanes: crate::codegen::mesh_lanes(&graph),
             graph,
             index,
@@ -115,10 +128,10 @@ impl Evaluator {
     pub fn eval_reading<R: Real>(&self, surface: &Surface<R>, buffers: &Buffers) -> Material<R> {
         let material = self.graph.order.len() - 1;
         let values = if buffers.material_nodes.is_empty() {
-            self.values(surface, buffers, 0..material)
+            self.values(surface, buffers, 0..material, None)
         } else {
             let part = buffers.material_nodes.iter().copied();
-            self.values(surface, buffers, part.filter(|&at| at != material))
+            self.values(surface, buffers, part.filter(|&at| at != material), None)
         };
         let checked = &self.graph.order[material];
         let inputs = self.inputs(checked, &values, surface);
@@ -126,25 +139,49 @@ impl Evaluator {
     }
 
     /// The outputs of the nodes at `positions` (ascending, in the checked order; the
-    /// others stay empty), at one point.
+    /// others stay empty), at one point: of those the shaded point evaluates, or inside
+    /// a local frame (`instance` given) all of them.
     fn values<R: Real>(
         &self,
         surface: &Surface<R>,
         buffers: &Buffers,
         positions: impl IntoIterator<Item = usize>,
+        instance: Option<&Instance<R>>,
     ) -> Vec<Vec<V3<R>>> {
         let mut values: Vec<Vec<V3<R>>> = vec![Vec::new(); self.graph.order.len()];
         for at in positions {
+            if instance.is_none() && !self.in_main[at] {
+                continue;
+            }
             let checked = &self.graph.order[at];
             let inputs = self.inputs(checked, &values, surface);
             let images = buffers.of(checked);
+            let reevaluate = |k: usize, surface: &Surface<R>, instance: &Instance<R>| {
+                let frame = self.frames.sites.get(&(at, k))?;
+                Some(self.local_value(*frame, surface, instance, buffers))
+            };
             let io = Eval::new(&checked.signature.inputs, &inputs, surface)
                 .with_images(&images)
                 .with_source(buffers.source_of(checked))
-                .with_mesh_lanes(self.mesh_lanes);
+                .with_mesh_lanes(self.mesh_lanes)
+                .in_frame(&reevaluate, instance);
             values[at] = checked.node.kind.eval(&io);
         }
         values
+    }
+
+    /// The value local frame `frame` returns at `surface` for `instance`.
+    fn local_value<R: Real>(
+        &self,
+        frame: usize,
+        surface: &Surface<R>,
+        instance: &Instance<R>,
+        buffers: &Buffers,
+    ) -> V3<R> {
+        let local = &self.frames.locals[frame];
+        let nodes = local.nodes.iter().copied();
+        let values = self.values(surface, buffers, nodes, Some(instance));
+        (values[local.source].get(local.output).copied()).unwrap_or([R::c(0.0); 3])
     }
 
     /// The input values of `checked`, its wires reading `values`.

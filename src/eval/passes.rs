@@ -95,7 +95,11 @@ impl Evaluator {
                                 time: f64::from(time),
                                 ..self.flat_surface(points[k])
                             };
-                            let values = self.values(&surface, &buffers, nodes.iter().copied());
+                            // Every node of the pass's part, as its module computes them
+                            // (the instance is the shaded point's: none).
+                            let none = crate::nodes::cpu::Instance::none();
+                            let nodes = nodes.iter().copied();
+                            let values = self.values(&surface, &buffers, nodes, Some(&none));
                             let value = values[*node][*output];
                             let lanes = match ty.width() {
                                 1 => [value[0], value[0], value[0], 1.0],

@@ -402,10 +402,14 @@ impl<'g> Checker<'g> {
                 Mark::Done => {}
                 Mark::Visiting(start) => {
                     let path = cycle_path(&stack[*start..]);
-                    self.error(
-                        Some(source),
-                        format!("cycle: {path} -> '{}'", source.display_name()),
-                    );
+                    let message = match re_evaluated_step(&stack[*start..]) {
+                        Some((reader, pin)) => format!(
+                            "cycle through the re-evaluated input '{pin}' of '{reader}' (the pattern it places reads the node placing it): {path} -> '{}'",
+                            source.display_name()
+                        ),
+                        None => format!("cycle: {path} -> '{}'", source.display_name()),
+                    };
+                    self.error(Some(source), message);
                 }
                 Mark::Unseen => {
                     marks[source_entry.2] = Mark::Visiting(stack.len());
@@ -442,12 +446,16 @@ impl<'g> Checker<'g> {
                     ),
                 );
                 InputSource::Const(Value::Float(0.0).convert(pin.ty))
-            } else if let Some(value) = node.inputs.get(pin.name) {
+            } else if let (Some(value), false) = (
+                node.inputs.get(pin.name),
+                matches!(pin.default, PinDefault::Builtin(_)),
+            ) {
                 InputSource::Const(value.convert(pin.ty))
             } else {
                 match pin.default {
                     PinDefault::Const(value) => InputSource::Const(value),
                     PinDefault::Position => InputSource::Position,
+                    PinDefault::Builtin(_) => InputSource::Const(Value::Float(0.0).convert(pin.ty)),
                     PinDefault::Required => {
                         self.error(
                             Some(node),
@@ -654,6 +662,15 @@ fn cycle_path(stack: &[(Entry, usize)]) -> String {
         .iter()
         .map(|((node, _, _), _)| format!("'{}'", node.display_name()));
     super::names::elided(names.collect(), " -> ")
+}
+
+/// The first node of a cycle (the search stack from where it closes) that reaches the
+/// next through a re-evaluated input, and that input's name.
+fn re_evaluated_step<'g>(stack: &[(Entry<'g>, usize)]) -> Option<(&'g str, &'static str)> {
+    stack.iter().find_map(|((node, signature, _), next)| {
+        let pin = signature.inputs.get(next.checked_sub(1)?)?;
+        pin.re_evaluated.then(|| (node.display_name(), pin.name))
+    })
 }
 
 /// The message for a text longer than `max` characters.

@@ -132,7 +132,7 @@ fn default_of(pin: &str) -> Value {
     let input = signature.inputs.iter().find(|input| input.name == pin);
     match input.expect("a Material input").default {
         PinDefault::Const(value) => value,
-        PinDefault::Position | PinDefault::Required => {
+        PinDefault::Position | PinDefault::Required | PinDefault::Builtin(_) => {
             unreachable!("every Material input has a constant default")
         }
     }

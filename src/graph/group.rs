@@ -184,6 +184,7 @@ impl Interface {
                     default: PinDefault::Const(input.default.convert(input.ty)),
                     range: input.pin_range(),
                     sampled: false,
+                    re_evaluated: false,
                 }
             })
             .collect();

@@ -4,6 +4,7 @@ pub mod check;
 mod declarations;
 pub mod edit;
 mod field;
+pub mod frames;
 pub mod graph_bakes;
 pub mod group;
 pub mod group_interface;

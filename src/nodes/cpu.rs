@@ -30,6 +30,39 @@ impl<R: Real> Surface<R> {
     }
 }
 
+/// The instance a local frame is evaluated for (the CPU side of `VeneerInstance`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Instance<R> {
+    /// The instance's cell (column, row), wrapped into its tile.
+    pub cell: [R; 2],
+    /// Its number within the tile: column + row × columns.
+    pub id: R,
+    /// Its random number in [0, 1), stable while the grid grows or the graph changes.
+    pub random: R,
+    /// Three more random numbers in [0, 1).
+    pub randoms: V3<R>,
+    /// The pixel's footprint in the instance's local units (0 when not filtering).
+    pub footprint: R,
+}
+
+impl<R: Real> Instance<R> {
+    /// What the shaded point's frame reads: instance 0 of cell (0, 0), randoms 0.
+    pub fn none() -> Instance<R> {
+        let zero = R::c(0.0);
+        Instance {
+            cell: [zero; 2],
+            id: zero,
+            random: zero,
+            randoms: [zero; 3],
+            footprint: zero,
+        }
+    }
+}
+
+/// Evaluates the upstream of a node's re-evaluated input `pin` (by index) at a surface
+/// for an instance; `None` when the pin is not wired.
+pub type Reevaluate<'a, R> = dyn Fn(usize, &Surface<R>, &Instance<R>) -> Option<V3<R>> + 'a;
+
 /// A node's view of CPU evaluation: its input values (three lanes each: a float in all
 /// three, a vec2 in the first two) and the surface point.
 pub struct Eval<'a, R> {
@@ -41,6 +74,10 @@ pub struct Eval<'a, R> {
     source: Option<&'a Image>,
     /// Which mesh field each lane of the surface's `fields` holds.
     mesh_lanes: MeshLanes,
+    /// Evaluates the node's wired re-evaluated inputs elsewhere.
+    reevaluate: Option<&'a Reevaluate<'a, R>>,
+    /// The instance, inside a local frame.
+    instance: Option<&'a Instance<R>>,
     /// The point being shaded.
     pub surface: &'a Surface<R>,
 }
@@ -54,8 +91,41 @@ impl<'a, R: Real> Eval<'a, R> {
             images: &[],
             source: None,
             mesh_lanes: MeshLanes::default(),
+            reevaluate: None,
+            instance: None,
             surface,
         }
+    }
+
+    /// The same node in a frame: `reevaluate` evaluates its re-evaluated inputs, and
+    /// `instance` is the instance being placed inside a local frame.
+    pub fn in_frame(
+        self,
+        reevaluate: &'a Reevaluate<'a, R>,
+        instance: Option<&'a Instance<R>>,
+    ) -> Self {
+        Eval {
+            reevaluate: Some(reevaluate),
+            instance,
+            ..self
+        }
+    }
+
+    /// Re-evaluated input `pin`'s upstream at `surface` for `instance`; `None` when the
+    /// pin is not wired (its value is then [`Eval::input`], or the node's own pattern).
+    pub fn reevaluate(
+        &self,
+        pin: &str,
+        surface: &Surface<R>,
+        instance: &Instance<R>,
+    ) -> Option<V3<R>> {
+        let k = super::pins::pin_index(self.pins, pin);
+        (self.reevaluate?)(k, surface, instance)
+    }
+
+    /// The instance being placed, inside a local frame (`None` at the shaded point).
+    pub fn instance(&self) -> Option<&'a Instance<R>> {
+        self.instance
     }
 
     /// The same node in a material whose mesh fields sit in `lanes`.

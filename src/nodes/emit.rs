@@ -92,6 +92,10 @@ pub struct Emit<'a> {
     pub detail: Detail,
     /// Which mesh field each lane of `VeneerSurface.fields` holds.
     mesh_lanes: MeshLanes,
+    /// Per input pin, the function of the local frame a wired re-evaluated input reads.
+    locals: &'a [Option<&'a str>],
+    /// The identifier of the instance, inside a local frame's function.
+    instance: Option<&'static str>,
     code: NodeCode,
 }
 
@@ -112,8 +116,40 @@ impl<'a> Emit<'a> {
             source: None,
             detail,
             mesh_lanes: MeshLanes::default(),
+            locals: &[],
+            instance: None,
             code: NodeCode::default(),
         }
+    }
+
+    /// The same node in a frame: `locals` holds, per input pin, the function a wired
+    /// re-evaluated input reads; `instance` names the instance inside a local frame.
+    pub fn in_frame(
+        self,
+        locals: &'a [Option<&'a str>],
+        instance: Option<&'static str>,
+    ) -> Emit<'a> {
+        Emit {
+            locals,
+            instance,
+            ..self
+        }
+    }
+
+    /// The function `fn(s: VeneerSurface, instance: VeneerInstance) -> T` that evaluates
+    /// re-evaluated input `pin`'s upstream, when the pin is wired (unwired, its value is
+    /// [`Emit::input`], or for a builtin default the node's own pattern).
+    pub fn local(&self, pin: &str) -> Option<&'a str> {
+        self.locals
+            .get(super::pins::pin_index(self.pins, pin))
+            .copied()
+            .flatten()
+    }
+
+    /// The identifier of the instance being placed, when the node is emitted inside a
+    /// local frame's function (`None` at the shaded point).
+    pub fn instance(&self) -> Option<&'static str> {
+        self.instance
     }
 
     /// The same node in a module whose mesh fields sit in `lanes`.

@@ -128,6 +128,8 @@ mod noise;
 mod output;
 mod patterns;
 mod sampled;
+mod scatter;
+mod shapes;
 mod vectors;
 
 pub use bitmap::{BitmapSource, ImageFile, LUMINANCE};
@@ -150,6 +152,8 @@ pub use mapping::{Clamp, MapRange, MapRangeMode, Mix, Step, Switch};
 pub use math::{Math, Unary};
 pub use noise::{Noise, NoiseBump};
 pub use sampled::{Blur, Buffer, HeightToNormal, NormalConvention, RadiusUnit, Warp};
+pub use scatter::{Instance, TileSampler};
+pub use shapes::{Shape, ShapeBoolean, ShapeFromSdf, ShapeKind};
 pub use vectors::{Combine, Dot, Length, Normalize, Split};
 
 use cpu::Eval;
@@ -442,7 +446,7 @@ macro_rules! registry {
     };
 }
 
-registry!(@gather [] [] inputs coordinates noise fractal cellular patterns fields mesh_field math mapping vectors colour sampled bitmap graph_bake image_ops distance flood_fill levels output group);
+registry!(@gather [] [] inputs coordinates noise fractal cellular patterns shapes scatter fields mesh_field math mapping vectors colour sampled bitmap graph_bake image_ops distance flood_fill levels output group);
 
 impl NodeKind {
     /// A short human-readable name (used for default labels and messages).
@@ -463,6 +467,11 @@ impl NodeKind {
     /// The lattice basis the node samples, if any.
     pub fn basis(&self) -> Option<Basis> {
         self.definition().basis()
+    }
+
+    /// Whether the node re-evaluates an input's upstream per instance it places.
+    pub fn re_evaluates(&self) -> bool {
+        self.signature().inputs.iter().any(|pin| pin.re_evaluated)
     }
 
     /// Whether the node reads an input as a buffer (at other points than the one

@@ -12,6 +12,9 @@ pub enum PinDefault {
     Position,
     /// The input must be wired.
     Required,
+    /// Unwired, the node draws a pattern of its own (a re-evaluated input's fallback,
+    /// described in these words: "a dome").
+    Builtin(&'static str),
 }
 
 /// Points of pointer travel a drag takes to change a value by its own size (or, near
@@ -70,6 +73,11 @@ pub struct InputPin {
     /// Whether the node reads its upstream at other points than the one being shaded:
     /// the compiler renders the upstream into a buffer (a pass) and the node samples it.
     pub sampled: bool,
+    /// Whether the node evaluates its upstream itself, once per instance it places, at
+    /// points of its own choosing (a local frame, or an instance's centre): the compiler
+    /// emits the upstream as a function of the surface and the instance (see
+    /// `graph::frames`).
+    pub re_evaluated: bool,
 }
 
 impl InputPin {
@@ -90,6 +98,14 @@ impl InputPin {
         InputPin {
             sampled: true,
             default: PinDefault::Required,
+            ..self
+        }
+    }
+
+    /// The same pin re-evaluated by its node (see [`InputPin::re_evaluated`]).
+    pub const fn re_evaluated(self) -> InputPin {
+        InputPin {
+            re_evaluated: true,
             ..self
         }
     }
@@ -239,6 +255,7 @@ pub const fn input(name: &'static str, ty: ValueType, default: PinDefault) -> In
         default,
         range: PinRange::ANY,
         sampled: false,
+        re_evaluated: false,
     }
 }
 /// An output pin.

@@ -112,7 +112,9 @@ fn ordinary_inputs(kind: &NodeKind, point: [f64; 3]) -> Vec<[f64; 3]> {
         .iter()
         .map(|pin| match pin.default {
             PinDefault::Const(value) => value.components(),
-            PinDefault::Position | PinDefault::Required => constant(pin, point).components(),
+            PinDefault::Position | PinDefault::Required | PinDefault::Builtin(_) => {
+                constant(pin, point).components()
+            }
         })
         .collect()
 }

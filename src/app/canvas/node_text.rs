@@ -22,6 +22,7 @@ pub fn input_tip(pin: &InputPin) -> String {
         PinDefault::Const(value) => format!("default {}", value_text(value)),
         PinDefault::Position => "unconnected: the surface position".to_string(),
         PinDefault::Required => "must be connected".to_string(),
+        PinDefault::Builtin(shape) => format!("unconnected: {shape}"),
     };
     let mut tip = format!("{} · {}\n{default}", pin.name, pin.ty);
     if matches!(pin.default, PinDefault::Const(_)) {

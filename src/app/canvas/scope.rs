@@ -76,6 +76,7 @@ fn boundary_node(side: Boundary, definition: &GroupDef) -> Node {
             default: PinDefault::Required,
             range: PinRange::ANY,
             sampled: false,
+            re_evaluated: false,
         })
         .collect();
     let outputs: Vec<OutputPin> = definition
@@ -292,6 +293,7 @@ fn add_output(
         default: PinDefault::Required,
         range: PinRange::ANY,
         sampled: false,
+        re_evaluated: false,
     };
     pins.inputs.insert(at, pin);
     snarl.connect(

@@ -258,6 +258,9 @@ impl SnarlViewer<Node> for Viewer<'_> {
                 PinDefault::Required => {
                     ui.colored_label(Color32::from_rgb(240, 120, 60), "connect");
                 }
+                PinDefault::Builtin(shape) => {
+                    ui.weak(shape);
+                }
             }
         }
         self.pin(spec.ty, PinSide::In(pin.id))

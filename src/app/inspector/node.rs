@@ -265,6 +265,7 @@ pub fn show(
                     PinDefault::Const(_) => "constant".to_string(),
                     PinDefault::Position => "position".to_string(),
                     PinDefault::Required => "(not connected)".to_string(),
+                    PinDefault::Builtin(shape) => format!("its own: {shape}"),
                 },
             };
             let mut chosen = source;

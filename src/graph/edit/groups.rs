@@ -271,6 +271,7 @@ fn boundary_node(definition: &GroupDef) -> Node {
         default: PinDefault::Required,
         range: PinRange::ANY,
         sampled: false,
+        re_evaluated: false,
     });
     let outputs = definition.inputs.iter().map(|input| OutputPin {
         name: intern(&input.name),

@@ -102,6 +102,7 @@ impl Footprint {
                 }
                 PinDefault::Position => SPACE + text_width("position", TEXT_SIZE),
                 PinDefault::Required => SPACE + text_width("connect", TEXT_SIZE),
+                PinDefault::Builtin(shape) => SPACE + text_width(shape, TEXT_SIZE),
             };
             PIN + SPACE + text_width(pin.name, TEXT_SIZE) + shown
         });

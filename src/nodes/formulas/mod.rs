@@ -7,6 +7,7 @@ pub mod fields;
 pub mod flood_fill;
 pub mod gabor;
 pub mod image_ops;
+pub mod instances;
 pub mod jump_flood;
 #[cfg(test)]
 mod library_items;
@@ -15,5 +16,6 @@ pub mod octaves;
 pub mod ranges;
 pub mod real;
 pub mod reduce;
+pub mod sdf;
 pub mod shapes;
 pub mod worley_edge;
