@@ -45,6 +45,7 @@ mod presets;
 mod properties;
 mod relief;
 mod report;
+mod scatter;
 mod seed001_reference;
 mod seed003_reference;
 mod seed004_reference;

@@ -167,8 +167,15 @@ fn low_floor<R: Real>(x: R) -> i32 {
 #[derive(Clone, Copy, Debug)]
 pub struct Placed<R> {
     pub instance: Instance<R>,
+    /// The centre, in cells, unwrapped (near the point).
     pub centre: [R; 2],
+    /// The angle it is turned by, in radians.
+    pub angle: R,
+    /// Its size in cells along its own axes.
+    pub size: [R; 2],
+    /// The point in its frame: [-0.5, 0.5]² over its square.
     pub local: [R; 2],
+    /// Whether the point is inside its square.
     pub inside: bool,
     /// Random numbers for the instance's height, colour, luminance and keeping.
     pub looks: [R; 4],
@@ -232,6 +239,8 @@ pub fn place<R: Real>(grid: &Grid<R>, column: i32, row: i32) -> Placed<R> {
             footprint,
         },
         centre,
+        angle,
+        size,
         local,
         inside,
         looks: [looks[1], looks[2], more[0], more[1]],
