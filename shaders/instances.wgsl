@@ -28,6 +28,8 @@ struct veneer_tile_grid {
     seed: u32,
     footprint: f32,   // the pixel's size in cells along its smaller axis
     splat: u32,       // instances per tile (a splatter); 0 for every cell (a tile sampler)
+    stride: u32,      // a splatter numbers cell k as (stride * k + shift) % cells: a shuffle
+    shift: u32,
 }
 
 // The most cells an instance reaches either side of its own along each axis: settings
@@ -41,10 +43,45 @@ fn veneer_tile_counts(counts: vec2f) -> vec2f {
     return clamp(floor(counts + 0.5), vec2f(1.0), vec2f(4096.0));
 }
 
-// The grid as point `p` (its xz) sees it over a tile of `size`.
-fn veneer_tile_setup(p: vec3f, size: vec2f, counts: vec2f, offsets: vec2f, jitter: f32, rotation: f32, rotation_random: f32, scale: f32, scale_xy: vec2f, scale_random: f32, seed: f32, footprint: f32, splat: u32) -> veneer_tile_grid {
+// The most instances a splatter places per tile.
+fn veneer_splat_limit() -> f32 {
+    return 65536.0;
+}
+
+// The grid of a splatter of `count` instances: ceil(sqrt(count)) columns and as many
+// rows as they need (whole numbers).
+fn veneer_splat_counts(count: f32) -> vec2f {
+    let n = clamp(floor(count + 0.5), 1.0, veneer_splat_limit());
+    let columns = ceil(sqrt(n));
+    return vec2f(columns, ceil(n / columns));
+}
+
+// The least odd number from 0.618 `cells` up that shares no factor with `cells` (1 if
+// none of the first 64 tried does): a stride that visits every cell once, far apart.
+fn veneer_splat_stride(cells: u32) -> u32 {
+    var stride = max(u32(0.618034 * f32(cells)), 1u) | 1u;
+    for (var tried = 0u; tried < 64u; tried++) {
+        var a = stride;
+        var b = cells;
+        while b != 0u {
+            let r = a % b;
+            a = b;
+            b = r;
+        }
+        if a == 1u {
+            return stride;
+        }
+        stride += 2u;
+    }
+    return 1u;
+}
+
+// The grid as point `p` (its xz) sees it over a tile of `size`: `counts` cells, or for a
+// splatter (`splat` above 0) the cells `splat` instances need.
+fn veneer_tile_setup(p: vec3f, size: vec2f, counts: vec2f, offsets: vec2f, jitter: f32, rotation: f32, rotation_random: f32, scale: f32, scale_xy: vec2f, scale_random: f32, seed: f32, footprint: f32, splat: f32) -> veneer_tile_grid {
     let tile = select(abs(size), vec2f(1.0), abs(size) < vec2f(1.0e-20));
-    let n = veneer_tile_counts(counts);
+    let splats = u32(clamp(floor(splat + 0.5), 0.0, veneer_splat_limit()));
+    let n = select(veneer_tile_counts(counts), veneer_splat_counts(splat), splats > 0u);
     let limit = vec2f(1.0e30);
     // Wrapped into the tile first: precise at any distance from the origin.
     let q = clamp(p.xz / tile, -limit, limit);
@@ -63,7 +100,13 @@ fn veneer_tile_setup(p: vec3f, size: vec2f, counts: vec2f, offsets: vec2f, jitte
     let pixel = footprint / max(min(cell.x, cell.y), 1.0e-30);
     let corner = floor(q) * tile;
     let seed_bits = u32(i32(clamp(floor(seed), -1.0e9, 1.0e9)));
-    return veneer_tile_grid(t, n, cell, moved, spread, turns, vec3f(size_cells, clamp(scale_random, 0.0, 1.0)), reach, corner, p.y, seed_bits, pixel, splat);
+    let cells = u32(n.x * n.y);
+    var stride = 1u;
+    if splats > 0u {
+        stride = veneer_splat_stride(cells);
+    }
+    let shift = veneer_pcg3d(vec3u(seed_bits, cells, 5u)).x % cells;
+    return veneer_tile_grid(t, n, cell, moved, spread, turns, vec3f(size_cells, clamp(scale_random, 0.0, 1.0)), reach, corner, p.y, seed_bits, pixel, splats, stride, shift);
 }
 
 // The rows point `grid.t` must search: every row whose instances can reach it (odd
@@ -117,7 +160,10 @@ fn veneer_tile_place(grid: veneer_tile_grid, column: i32, row: i32) -> veneer_pl
     let safe = select(world, vec2f(1.0e-30), abs(world) < vec2f(1.0e-30));
     let local = turned / safe;
     let inside = all(abs(local) <= vec2f(0.5)) && all(world > vec2f(0.0));
-    let id = f32(wrapped.x + wrapped.y * n.x);
+    let cells = u32(n.x * n.y);
+    let raw = u32(wrapped.x + wrapped.y * n.x);
+    let shuffled = ((grid.stride * raw) % cells + grid.shift) % cells;
+    let id = f32(select(raw, shuffled, grid.splat > 0u));
     let footprint = grid.footprint / max(min(size.x, size.y), 1.0e-30);
     let instance = veneer_instance(vec2f(wrapped), id, own.x, vec3f(own.yz, more.z), footprint);
     return veneer_placed(instance, centre, local, inside, vec4f(looks.yz, more.xy));
@@ -214,7 +260,7 @@ fn veneer_tile_height(placed: veneer_placed, height: f32, random: f32) -> f32 {
 // its own random number below `density` times the mask at its centre (a mask of 0 keeps
 // none, 1 with density 1 keeps all).
 fn veneer_tile_keeps(grid: veneer_tile_grid, placed: veneer_placed, density: f32, mask: f32) -> bool {
-    let counted = grid.splat == 0u || placed.instance.id < f32(grid.splat);
+    let counted = grid.splat == 0u || u32(placed.instance.id) < grid.splat;
     return counted && placed.looks.w < density * mask;
 }
 
@@ -229,4 +275,24 @@ fn veneer_tile_colour(placed: veneer_placed, low: vec3f, high: vec3f, luminance_
 // circle the square holds.
 fn veneer_tile_dome(local: vec2f) -> f32 {
     return max(0.0, 1.0 - 4.0 * dot(local, local));
+}
+
+// Three planes' samples blended by the normal: values, colours and masks weighted by the
+// normal's components to the fourth, the instance outputs of the plane that weighs most
+// (`x` the plane seen along x, and so on).
+fn veneer_tile_triplanar(x: veneer_tile_sampled, y: veneer_tile_sampled, z: veneer_tile_sampled, normal: vec3f) -> veneer_tile_sampled {
+    let square = normal * normal;
+    let power = square * square;
+    let total = power.x + power.y + power.z;
+    let w = select(vec3f(0.0, 1.0, 0.0), power / max(total, 1.0e-20), total > 1.0e-20);
+    var main = z;
+    if w.x >= max(w.y, w.z) {
+        main = x;
+    } else if w.y >= w.z {
+        main = y;
+    }
+    main.value = w.x * x.value + w.y * y.value + w.z * z.value;
+    main.colour = w.x * x.colour + w.y * y.colour + w.z * z.colour;
+    main.mask = w.x * x.mask + w.y * y.mask + w.z * z.mask;
+    return main;
 }

@@ -128,6 +128,7 @@ mod noise;
 mod output;
 mod patterns;
 mod sampled;
+pub mod sampler;
 mod scatter;
 mod shapes;
 mod vectors;
@@ -152,7 +153,7 @@ pub use mapping::{Clamp, MapRange, MapRangeMode, Mix, Step, Switch};
 pub use math::{Math, Unary};
 pub use noise::{Noise, NoiseBump};
 pub use sampled::{Blur, Buffer, HeightToNormal, NormalConvention, RadiusUnit, Warp};
-pub use scatter::{Instance, TileSampler};
+pub use scatter::{Instance, Splatter, TileSampler};
 pub use shapes::{Shape, ShapeBoolean, ShapeFromSdf, ShapeKind};
 pub use vectors::{Combine, Dot, Length, Normalize, Split};
 

@@ -98,7 +98,7 @@ fn grid_settings(settings: &[(&str, Value)]) -> GridSettings<f64> {
         scale_random: float("scale_random", 0.0),
         seed: float("seed", 0.0),
         footprint: 0.0,
-        splat: 0,
+        splat: 0.0,
     }
 }
 
@@ -422,4 +422,84 @@ fn instances_keep_their_random_numbers_when_the_grid_grows_or_the_graph_changes(
         distinct.insert(random.to_bits());
     }
     assert_eq!(distinct.len(), 4, "the cells draw distinct numbers");
+}
+
+#[test]
+fn a_splatter_places_exactly_its_count_per_tile_each_numbered_once() {
+    for count in [1.0, 2.0, 7.0, 40.0, 100.0, 257.0, 1000.0] {
+        let settings = GridSettings {
+            splat: count,
+            jitter: 0.5,
+            ..grid_settings(&[])
+        };
+        let grid = instances::setup([0.3, 0.0, 0.6], &settings);
+        let [columns, rows] = grid.counts.map(|n| n as i32);
+        let mut ids = BTreeSet::new();
+        for row in 0..rows {
+            for column in 0..columns {
+                let placed = instances::place(&grid, column, row);
+                if instances::keeps(&grid, &placed, 1.0, 1.0) {
+                    assert!(ids.insert(placed.instance.id as u32), "{count}: id twice");
+                }
+            }
+        }
+        let expected: BTreeSet<u32> = (0..count as u32).collect();
+        assert_eq!(ids, expected, "{count} instances per tile");
+    }
+}
+
+/// A splatter of 60 bumps, their noise in each instance's frame, over tiles of 1.5.
+fn splatter_graph(projection: veneer::nodes::sampler::Projection) -> Graph {
+    let mut graph = bumps_graph(4.0, 2.0).0;
+    let sampler = graph
+        .nodes
+        .iter()
+        .find(|n| n.label == "sampler")
+        .unwrap()
+        .id;
+    let node = graph.node_mut(sampler).unwrap();
+    node.kind = NodeKind::Splatter(veneer::nodes::Splatter {
+        blend: TileBlend::Max,
+        projection,
+    });
+    node.inputs.clear();
+    for (pin, value) in [
+        ("count", Value::Float(60.0)),
+        ("size", Value::Vec2(1.5, 1.5)),
+        ("scale", Value::Float(1.3)),
+        ("rotation_random", Value::Float(0.5)),
+    ] {
+        graph.set_input(sampler, pin, value);
+    }
+    graph
+}
+
+#[test]
+fn a_splatter_repeats_over_its_tile_and_renders_as_on_the_cpu() {
+    use veneer::nodes::sampler::Projection;
+    let graph = splatter_graph(Projection::Planar);
+    let evaluator = Evaluator::new(&graph).unwrap();
+    let mut covered = 0;
+    for point in points(24) {
+        let here = albedo(&evaluator, point);
+        for shift in [[1.5, 0.0, 0.0], [0.0, 0.0, -3.0], [4.5, 0.0, 1.5]] {
+            let there = [point[0] + shift[0], point[1], point[2] + shift[2]];
+            let moved = albedo(&evaluator, there);
+            let close = (0..3).all(|k| (here[k] - moved[k]).abs() < 1e-9);
+            assert!(close, "{point:?}: {here:?} but {moved:?} a tile away");
+        }
+        covered += usize::from(here[1] > 0.0);
+    }
+    assert!(covered > 200, "{covered} points covered");
+    gpu_agrees(&graph, "splatter");
+    // Seen from above, triplanar is planar.
+    let triplanar = splatter_graph(Projection::Triplanar);
+    let above = Evaluator::new(&triplanar).unwrap();
+    for point in points(8) {
+        assert_eq!(
+            albedo(&above, point),
+            albedo(&evaluator, point),
+            "{point:?}"
+        );
+    }
 }

@@ -54,7 +54,7 @@ pub struct GridSettings<R> {
     /// The pixel's size in the point's units (0 when not filtering).
     pub footprint: R,
     /// Instances per tile (a splatter), 0 for one per cell.
-    pub splat: u32,
+    pub splat: R,
 }
 
 /// One point's view of a grid (`veneer_tile_grid`).
@@ -73,6 +73,36 @@ pub struct Grid<R> {
     pub seed: u32,
     pub footprint: R,
     pub splat: u32,
+    pub stride: u32,
+    pub shift: u32,
+}
+
+/// The most instances a splatter places per tile (`veneer_splat_limit`).
+pub const SPLAT_LIMIT: f64 = 65536.0;
+
+/// The grid of a splatter of `count` instances (`veneer_splat_counts`).
+pub fn splat_counts<R: Real>(count: R) -> [R; 2] {
+    let n = (count + R::c(0.5))
+        .floor()
+        .clamp(R::c(1.0), R::c(SPLAT_LIMIT));
+    let columns = -(-n.sqrt()).floor();
+    [columns, -(-(n / columns)).floor()]
+}
+
+/// The shuffling stride of a splatter over `cells` cells (`veneer_splat_stride`).
+pub fn splat_stride(cells: u32) -> u32 {
+    let mut stride = ((0.618034f32 * cells as f32) as u32).max(1) | 1;
+    for _ in 0..64 {
+        let (mut a, mut b) = (stride, cells);
+        while b != 0 {
+            (a, b) = (b, a % b);
+        }
+        if a == 1 {
+            return stride;
+        }
+        stride += 2;
+    }
+    1
 }
 
 /// Whole, positive cell counts, at most 4096 per axis (`veneer_tile_counts`).
@@ -95,7 +125,15 @@ pub fn setup<R: Real>(p: V3<R>, settings: &GridSettings<R>) -> Grid<R> {
             s.abs()
         }
     });
-    let n = counts(settings.counts);
+    let splats = (settings.splat + R::c(0.5))
+        .floor()
+        .to_f64()
+        .clamp(0.0, SPLAT_LIMIT) as u32;
+    let n = if splats > 0 {
+        splat_counts(settings.splat)
+    } else {
+        counts(settings.counts)
+    };
     let limit = R::c(1.0e30);
     let q = [0, 1].map(|k| (p[2 * k] / tile[k]).clamp(-limit, limit));
     let t = [0, 1].map(|k| q[k].fract() * n[k]);
@@ -113,6 +151,7 @@ pub fn setup<R: Real>(p: V3<R>, settings: &GridSettings<R>) -> Grid<R> {
     let half = [0, 1].map(|k| if turned { radius } else { R::c(0.5) * world[k] } / cell[k]);
     let pixel = settings.footprint / cell[0].min(cell[1]).max(R::c(1.0e-30));
     let seed = (settings.seed.floor().to_f64().clamp(-1.0e9, 1.0e9) as i32) as u32;
+    let cells = (n[0] * n[1]).to_f64() as u32;
     Grid {
         t,
         counts: n,
@@ -130,7 +169,9 @@ pub fn setup<R: Real>(p: V3<R>, settings: &GridSettings<R>) -> Grid<R> {
         height: p[1],
         seed,
         footprint: pixel,
-        splat: settings.splat,
+        splat: splats,
+        stride: if splats > 0 { splat_stride(cells) } else { 1 },
+        shift: pcg3d([seed, cells, 5])[0] % cells,
     }
 }
 
@@ -228,7 +269,10 @@ pub fn place<R: Real>(grid: &Grid<R>, column: i32, row: i32) -> Placed<R> {
     let local = [turned[0] / safe[0], turned[1] / safe[1]];
     let half = R::c(0.5);
     let inside = local.iter().all(|l| l.abs() <= half) && world.iter().all(|w| *w > R::c(0.0));
-    let id = R::c(f64::from(wrapped[0] + wrapped[1] * n[0]));
+    let cells = (n[0] * n[1]) as u32;
+    let raw = (wrapped[0] + wrapped[1] * n[0]) as u32;
+    let shuffled = (grid.stride.wrapping_mul(raw) % cells + grid.shift) % cells;
+    let id = R::c(f64::from(if grid.splat > 0 { shuffled } else { raw }));
     let footprint = grid.footprint / size[0].min(size[1]).max(R::c(1.0e-30));
     Placed {
         instance: Instance {
@@ -326,7 +370,7 @@ pub fn height<R: Real>(placed: &Placed<R>, height: R, random: R) -> R {
 
 /// Whether `placed` is kept (`veneer_tile_keeps`).
 pub fn keeps<R: Real>(grid: &Grid<R>, placed: &Placed<R>, density: R, mask: R) -> bool {
-    let counted = grid.splat == 0 || placed.instance.id < R::c(f64::from(grid.splat));
+    let counted = grid.splat == 0 || (placed.instance.id.to_f64() as u32) < grid.splat;
     counted && placed.looks[3] < density * mask
 }
 
