@@ -14,7 +14,8 @@
 //! pays (drawing and reading back size² pixels).
 //!
 //! `VENEER_BENCH_SIZE=512 cargo bench --bench tile_sampler` (default size 2048;
-//! `VENEER_BENCH_RUNS`, default 5, the timed renders per row after one warm-up).
+//! `VENEER_BENCH_RUNS`, default 5, the timed renders per row after one warm-up, taken
+//! in turns across the rows; each row shows its median).
 
 use std::time::{Duration, Instant};
 use veneer::bake::UNIT_TILE;
@@ -99,7 +100,8 @@ impl Sampler {
             scale_random: SCALE_RANDOM,
             seed: 0.0,
             footprint: 0.0,
-            splat: 0,
+            // One instance per cell (0), whatever the field's type.
+            splat: Default::default(),
         }
     }
 

@@ -76,7 +76,7 @@ fn sector<R: Real>(p: V2<R>, half_angle: R) -> V2<R> {
 pub fn polygon<R: Real>(point: V2<R>, size: R, sides: R) -> R {
     let (p, radius) = (limit2(point), limit(size));
     let n = (sides + R::c(0.5)).floor().clamp(R::c(3.0), R::c(64.0));
-    let half_angle = R::c(3.14159265) / n;
+    let half_angle = R::c(std::f64::consts::PI) / n;
     let corner = [half_angle.cos(), half_angle.sin()];
     let turned = sector(p, half_angle);
     let mut q = [
@@ -92,8 +92,8 @@ pub fn star<R: Real>(point: V2<R>, size: R, points: R, sharpness: R) -> R {
     let (p, radius) = (limit2(point), limit(size));
     let n = (points + R::c(0.5)).floor().clamp(R::c(2.0), R::c(64.0));
     let m = R::mix(n, R::c(2.0), sharpness.clamp(R::c(0.0), R::c(1.0)));
-    let half_angle = R::c(3.14159265) / n;
-    let edge_angle = R::c(3.14159265) / m;
+    let half_angle = R::c(std::f64::consts::PI) / n;
+    let edge_angle = R::c(std::f64::consts::PI) / m;
     let corner = [half_angle.cos(), half_angle.sin()];
     let edge = [edge_angle.cos(), edge_angle.sin()];
     let turned = sector(p, half_angle);
