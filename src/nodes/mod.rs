@@ -255,6 +255,13 @@ pub trait Definition {
         let _ = constant;
         Ok(Vec::new())
     }
+    /// What `veneer check` reports of the node beyond hazards, from its inputs'
+    /// constants (`constant(pin)`, `None` when the pin is wired): a sampler says how many
+    /// cells it searches. None for most kinds.
+    fn report(&self, constant: &dyn Fn(&str) -> Option<[f64; 3]>) -> Option<String> {
+        let _ = constant;
+        None
+    }
     /// How the buffer of the node's sampled input is stored, when the node sets it (a
     /// Buffer node); sampled inputs wired to this node's output read the same buffer.
     fn buffer(&self) -> Option<BufferSpec> {

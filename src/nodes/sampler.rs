@@ -356,6 +356,61 @@ fn eval_plane<R: Real>(io: &Eval<R>, blend: TileBlend, layout: Layout, p: V3<R>)
     }
 }
 
+/// How many cells a sampler searches per point at most, across and down, and how far its
+/// largest instance reaches from its centre, from its constant settings; a sentence for
+/// `veneer check`.
+pub fn search_report(layout: Layout, constant: &dyn Fn(&str) -> Option<[f64; 3]>) -> String {
+    let float = |pin: &str| constant(pin).map(|value| value[0]);
+    let pair = |pin: &str| constant(pin).map(|value| [value[0], value[1]]);
+    let (counts, offsets, splat) = match layout {
+        Layout::Grid => (
+            float("columns").zip(float("rows")).map(|(c, r)| [c, r]),
+            float("row_offset")
+                .zip(float("column_offset"))
+                .map(|(r, c)| [r, c]),
+            Some(0.0),
+        ),
+        Layout::Splat => (Some([1.0; 2]), Some([0.0; 2]), float("count")),
+    };
+    let settings = (|| {
+        Some(GridSettings {
+            size: pair("size")?,
+            counts: counts?,
+            offsets: offsets?,
+            jitter: float("position_random")?,
+            rotation: float("rotation")?,
+            rotation_random: float("rotation_random")?,
+            scale: float("scale")?,
+            scale_xy: pair("scale_xy")?,
+            scale_random: float("scale_random")?,
+            seed: 0.0,
+            footprint: 0.0,
+            splat: splat?,
+        })
+    })();
+    let Some(settings) = settings else {
+        let most = 2 * REACH_CAP as u32 + 3;
+        return format!(
+            "its placement is wired, so the cells it searches per point follow the wired values (at most about {most} × {most})"
+        );
+    };
+    let grid = instances::setup([0.0; 3], &settings);
+    let across = (2.0 * (grid.reach[0] + grid.jitter[0])).floor() as u32 + 1;
+    let down = (2.0 * (grid.reach[1] + grid.jitter[1]) + grid.offsets[1]).floor() as u32 + 1;
+    format!(
+        "searches at most {across} × {down} cells per point ({} × {} cells per tile; its largest instance reaches {:.2} × {:.2} cells from its centre{})",
+        grid.counts[0],
+        grid.counts[1],
+        grid.reach[0],
+        grid.reach[1],
+        if grid.reach.iter().any(|r| *r >= REACH_CAP) {
+            ", cut at the cap"
+        } else {
+            ""
+        }
+    )
+}
+
 /// A sampler's output ranges, warning when its instances reach past the cells it
 /// searches.
 pub fn ranges(io: &mut Ranges, blend: TileBlend) -> Vec<Lanes> {

@@ -204,6 +204,9 @@ impl Definition for TileSampler {
     fn emit(&self, io: &mut Emit) {
         sampler::emit(io, self.blend, Layout::Grid, Projection::Planar);
     }
+    fn report(&self, constant: &dyn Fn(&str) -> Option<[f64; 3]>) -> Option<String> {
+        Some(sampler::search_report(Layout::Grid, constant))
+    }
     fn ranges(&self, io: &mut Ranges) -> Vec<Lanes> {
         sampler::ranges(io, self.blend)
     }
@@ -270,6 +273,16 @@ impl Definition for Splatter {
     }
     fn emit(&self, io: &mut Emit) {
         sampler::emit(io, self.blend, Layout::Splat, self.projection);
+    }
+    fn report(&self, constant: &dyn Fn(&str) -> Option<[f64; 3]>) -> Option<String> {
+        let planes = match self.projection {
+            Projection::Planar => "",
+            Projection::Triplanar => " on each of three planes",
+        };
+        Some(format!(
+            "{}{planes}",
+            sampler::search_report(Layout::Splat, constant)
+        ))
     }
     fn ranges(&self, io: &mut Ranges) -> Vec<Lanes> {
         sampler::ranges(io, self.blend)

@@ -4,7 +4,9 @@
 //!
 //! How an output shows as a colour: a colour as itself, a float as grey, a vec2 as red
 //! and green (blue 0), a vec3 remapped from [-1, 1] to [0, 1] (`v * 0.5 + 0.5`), each
-//! clamped to [0, 1] when drawn.
+//! clamped to [0, 1] when drawn. An output a sampler places per instance (upstream of a
+//! re-evaluated input) shows as placed: in every instance, as that instance sees it, so
+//! an Instance node's random numbers and ids show one per instance.
 
 use crate::graph::{Graph, MathOp, NodeId, NodeKind, PinRef, Value, ValueType};
 use crate::nodes::{Combine, Math, Mix, Split};
@@ -16,12 +18,78 @@ use rustc_hash::FxHashSet;
 pub fn probe_graph(graph: &Graph, node: NodeId) -> Option<Graph> {
     let output = *graph.node(node)?.kind.signature().outputs.first()?;
     let material = graph.material()?.id;
-    let mut probe = part_with(graph, graph.upstream([node]), material);
+    let pin = PinRef::new(node, output.name);
+    let upstream = graph.upstream(placing_samplers(graph, [&pin]).chain([node]));
+    let mut probe = part_with(graph, upstream, material);
     // Flat: the material's other inputs (a height, a bump) would light or move it.
     cut_material(&mut probe, material);
-    let (colour, pin) = as_colour(&mut probe, &PinRef::new(node, output.name), output.ty);
+    let (colour, pin) = shown_colour(&mut probe, &pin, output.ty);
     probe.connect(colour, pin, material, "albedo");
     Some(probe)
+}
+
+/// The sampler that places `node` per instance: the first node found downstream of it
+/// that reads it through a re-evaluated input (nodes are looked at nearest first).
+fn placing_sampler(graph: &Graph, node: NodeId) -> Option<NodeId> {
+    let mut seen = FxHashSet::default();
+    let mut queue = std::collections::VecDeque::from([node]);
+    while let Some(at) = queue.pop_front() {
+        for wire in graph.wires.iter().filter(|wire| wire.from.node == at) {
+            let reader = graph.node(wire.to.node)?;
+            let re_evaluated = (reader.kind.signature().input(&wire.to.pin))
+                .is_some_and(|(_, pin)| pin.re_evaluated);
+            if re_evaluated {
+                return Some(reader.id);
+            }
+            if seen.insert(reader.id) {
+                queue.push_back(reader.id);
+            }
+        }
+    }
+    None
+}
+
+/// The samplers placing the nodes of `pins` (see [`placing_sampler`]).
+fn placing_samplers<'p>(
+    graph: &Graph,
+    pins: impl IntoIterator<Item = &'p PinRef>,
+) -> impl Iterator<Item = NodeId> {
+    let samplers: Vec<NodeId> = pins
+        .into_iter()
+        .filter_map(|pin| placing_sampler(graph, pin.node))
+        .collect();
+    samplers.into_iter()
+}
+
+/// Adds to `graph` what shows `pin` (of type `ty`) as a colour (see the module's
+/// comment): as it is, or as placed by the sampler that places it, through a copy of
+/// that sampler (in `graph` with its upstream) drawing it in every instance untinted.
+fn shown_colour(graph: &mut Graph, pin: &PinRef, ty: ValueType) -> (NodeId, &'static str) {
+    let (colour, colour_pin) = as_colour(graph, pin, ty);
+    let Some(sampler) = placing_sampler(graph, pin.node) else {
+        return (colour, colour_pin);
+    };
+    let Some(original) = graph.node(sampler).cloned() else {
+        return (colour, colour_pin);
+    };
+    let placed = graph.add("probe placed", original.kind.clone());
+    let untinted = Value::Color(1.0, 1.0, 1.0);
+    if let Some(node) = graph.node_mut(placed) {
+        node.inputs = original.inputs.clone();
+        node.inputs.insert("colour_low".into(), untinted);
+        node.inputs.insert("colour_high".into(), untinted);
+        node.inputs
+            .insert("luminance_random".into(), Value::Float(0.0));
+    }
+    let wires: Vec<_> = (graph.wires.iter())
+        .filter(|wire| wire.to.node == sampler && wire.to.pin != "pattern_colour")
+        .cloned()
+        .collect();
+    for wire in wires {
+        graph.connect(wire.from.node, &wire.from.pin, placed, &wire.to.pin);
+    }
+    graph.connect(colour, colour_pin, placed, "pattern_colour");
+    (placed, "colour")
 }
 
 /// Places `probe`'s preview square on the unit tile (x and z from 0 to 1), where a
@@ -56,6 +124,9 @@ pub struct AtlasGraph {
     pub pins: Vec<PinRef>,
     /// The Mix node whose `factor` selects each tile.
     pub selectors: Vec<NodeId>,
+    /// The node each tile's colour comes from, in tile order: everything the tile shows
+    /// is upstream of it.
+    pub sources: Vec<NodeId>,
 }
 
 /// `graph` with the material's albedo showing one of `pins` (outputs of its nodes),
@@ -74,9 +145,12 @@ pub fn atlas_graph_reading(
     upstream: FxHashSet<NodeId>,
 ) -> Option<AtlasGraph> {
     let material = graph.material()?.id;
+    let mut upstream = upstream;
+    upstream.extend(graph.upstream(placing_samplers(graph, pins)));
     let mut atlas = part_with(graph, upstream, material);
     cut_material(&mut atlas, material);
     let (mut shown, mut selectors, mut chain) = (Vec::new(), Vec::new(), None);
+    let mut sources = Vec::new();
     for pin in pins {
         let Some(output) = graph
             .node(pin.node)
@@ -84,7 +158,8 @@ pub fn atlas_graph_reading(
         else {
             continue;
         };
-        let (colour, colour_pin) = as_colour(&mut atlas, pin, output.ty);
+        let (colour, colour_pin) = shown_colour(&mut atlas, pin, output.ty);
+        sources.push(colour);
         let tile = atlas.add(
             "thumbnail tile",
             NodeKind::Mix(Mix {
@@ -104,6 +179,7 @@ pub fn atlas_graph_reading(
         graph: atlas,
         pins: shown,
         selectors,
+        sources,
     })
 }
 
@@ -220,5 +296,50 @@ mod tests {
             ["albedo"],
             "only the probed output reaches it"
         );
+    }
+
+    #[test]
+    fn a_placed_instance_node_shows_one_random_number_per_instance() {
+        use crate::nodes::formulas::instances::TileBlend;
+        let mut graph = Graph::default();
+        let instance = graph.add("instance", NodeKind::Instance);
+        let sampler = graph.add(
+            "sampler",
+            NodeKind::TileSampler(crate::nodes::TileSampler {
+                blend: TileBlend::Max,
+            }),
+        );
+        graph.set_input(sampler, "columns", Value::Float(4.0));
+        graph.set_input(sampler, "rows", Value::Float(4.0));
+        graph.connect(instance, "random", sampler, "pattern_colour");
+        let material = graph.add("material", NodeKind::Material);
+        graph.connect(sampler, "colour", material, "albedo");
+        let pins = [PinRef::new(instance, "random")];
+        let mut atlas = atlas_graph(&graph, &pins).unwrap();
+        assert_ne!(atlas.sources, [instance], "shown through a sampler");
+        atlas
+            .graph
+            .set_input(atlas.selectors[0], "factor", Value::Float(1.0));
+        let evaluator = crate::eval::Evaluator::new(&atlas.graph).unwrap();
+        // The centres of the sixteen cells: each instance's own number.
+        let mut seen = std::collections::BTreeSet::new();
+        for k in 0..16 {
+            let centre = [
+                0.25 * (f64::from(k % 4) + 0.5),
+                0.0,
+                0.25 * (f64::from(k / 4) + 0.5),
+            ];
+            let albedo = evaluator
+                .eval::<f64>(&evaluator.flat_surface(centre))
+                .albedo;
+            assert!(albedo[0] > 0.0 && albedo[0] < 1.0, "{albedo:?}");
+            seen.insert(albedo[0].to_bits());
+        }
+        assert_eq!(seen.len(), 16, "one number per instance");
+        // Not placed, an Instance node is zero at the shaded point.
+        let mut unplaced = graph.clone();
+        unplaced.wires.retain(|wire| wire.from.node != instance);
+        let plain = atlas_graph(&unplaced, &pins).unwrap();
+        assert_eq!(plain.sources, [instance]);
     }
 }

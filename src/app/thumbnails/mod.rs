@@ -281,6 +281,9 @@ impl Thumbnails {
             // Drawn when the drag ends (`Seen::held` changes then).
             return;
         }
+        // Each tile's key hashes what is upstream of the node its colour comes from.
+        let sources: rustc_hash::FxHashMap<PinRef, NodeId> =
+            atlas.pins.iter().cloned().zip(atlas.sources).collect();
         self.tiles.lay_out(atlas.pins);
         self.selectors = atlas.selectors;
         if self.drawing.in_flight {
@@ -299,7 +302,7 @@ impl Thumbnails {
         let generation = self.atlas.generation;
         let changed = self
             .tiles
-            .take_changed(|pin| tile_key(&upstream, pin, generation, rect));
+            .take_changed(|pin| tile_key(&upstream, pin, sources.get(pin), generation, rect));
         let tiles: Vec<_> = changed
             .into_iter()
             .map(|index| (index, tile_params(&values, slots, &self.selectors, index)))
@@ -427,12 +430,14 @@ pub fn placement(graph: &Graph) -> FlatRect {
     }
 }
 
-/// What a tile shows depends on: its pin, the nodes upstream of it (kinds, settings,
-/// constants) and the wires between them, the code, the placement, and the time when
-/// some node upstream reads it — `upstream` holds all but the pin, code and placement.
+/// What a tile shows depends on: its pin, the nodes upstream of its colour's `source`
+/// (the pin's node, or the sampler copy placing it; kinds, settings, constants) and the
+/// wires between them, the code, the placement, and the time when some node upstream
+/// reads it — `upstream` holds all but the pin, code and placement.
 fn tile_key(
     upstream: &rustc_hash::FxHashMap<NodeId, u64>,
     pin: &PinRef,
+    source: Option<&NodeId>,
     generation: u64,
     rect: FlatRect,
 ) -> u64 {
@@ -440,7 +445,7 @@ fn tile_key(
     pin.hash(&mut hasher);
     generation.hash(&mut hasher);
     format!("{rect:?}").hash(&mut hasher);
-    upstream.get(&pin.node).hash(&mut hasher);
+    upstream.get(source.unwrap_or(&pin.node)).hash(&mut hasher);
     hasher.finish()
 }
 
