@@ -254,18 +254,8 @@ impl Planner<'_> {
         let mut stack = vec![root];
         let mut cuts = Vec::new();
         while let Some(at) = stack.pop() {
-            let checked = &self.graph.order[at];
-            for (k, (pin, source)) in checked
-                .signature
-                .inputs
-                .iter()
-                .zip(&checked.inputs)
-                .enumerate()
-            {
-                let InputSource::Wire { node, .. } = source else {
-                    continue;
-                };
-                let Some(from) = self.graph.index_of(*node) else {
+            for (k, pin, node, _, _) in self.graph.order[at].wired_inputs() {
+                let Some(from) = self.graph.index_of(node) else {
                     continue;
                 };
                 if pin.sampled {

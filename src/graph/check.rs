@@ -2,7 +2,7 @@
 
 use super::ids::IdIndex;
 use super::{Graph, MAX_PATH_CHARS, MAX_TEXT_CHARS, Node, NodeId, Wire, clip};
-use super::{NodeKind, PinDefault, Signature, Value, ValueType};
+use super::{InputPin, NodeKind, PinDefault, Signature, Value, ValueType};
 use crate::bitmaps::Bitmap;
 use std::collections::BTreeMap;
 use std::fmt;
@@ -53,6 +53,17 @@ pub struct CheckedNode {
 }
 
 impl CheckedNode {
+    /// The wired inputs: each one's index, pin, and the node, output and type it reads.
+    pub fn wired_inputs(
+        &self,
+    ) -> impl Iterator<Item = (usize, &InputPin, NodeId, usize, ValueType)> {
+        let pins = self.signature.inputs.iter().zip(&self.inputs).enumerate();
+        pins.filter_map(|(k, (pin, source))| match *source {
+            InputSource::Wire { node, output, ty } => Some((k, pin, node, output, ty)),
+            _ => None,
+        })
+    }
+
     /// Where input pin `name` gets its value.
     pub fn input(&self, name: &str) -> Option<&InputSource> {
         let (index, _) = self.signature.input(name)?;

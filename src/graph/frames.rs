@@ -12,7 +12,7 @@
 //! Codegen and the CPU evaluator read this one answer, so both place the same nodes.
 
 use super::ValueType;
-use super::check::{CheckedGraph, InputSource};
+use super::check::CheckedGraph;
 use rustc_hash::FxHashMap;
 
 /// The nodes of one local frame: the upstream of a re-evaluated input, returning one
@@ -54,16 +54,7 @@ impl Frames {
         let mut locals: Vec<LocalFrame> = Vec::new();
         let mut sites = FxHashMap::default();
         for (at, checked) in graph.order.iter().enumerate() {
-            for (k, (pin, source)) in checked
-                .signature
-                .inputs
-                .iter()
-                .zip(&checked.inputs)
-                .enumerate()
-            {
-                let InputSource::Wire { node, output, ty } = *source else {
-                    continue;
-                };
+            for (k, pin, node, output, ty) in checked.wired_inputs() {
                 let Some(from) = graph.index_of(node) else {
                     continue;
                 };
@@ -112,15 +103,11 @@ fn reach(graph: &CheckedGraph, roots: &[usize]) -> Vec<usize> {
         keep[root] = true;
     }
     while let Some(at) = stack.pop() {
-        let checked = &graph.order[at];
-        for (pin, source) in checked.signature.inputs.iter().zip(&checked.inputs) {
-            let InputSource::Wire { node, .. } = source else {
-                continue;
-            };
+        for (_, pin, node, _, _) in graph.order[at].wired_inputs() {
             if pin.re_evaluated {
                 continue;
             }
-            if let Some(from) = graph.index_of(*node)
+            if let Some(from) = graph.index_of(node)
                 && !keep[from]
             {
                 keep[from] = true;

@@ -184,6 +184,12 @@ impl<'a, R: Real> Eval<'a, R> {
         self.input(pin)[0]
     }
 
+    /// The value of vec2 input pin `pin`.
+    pub fn pair(&self, pin: &str) -> [R; 2] {
+        let value = self.input(pin);
+        [value[0], value[1]]
+    }
+
     /// Every input value, in pin order.
     pub fn inputs(&self) -> &'a [V3<R>] {
         self.inputs

@@ -17,14 +17,19 @@
 /// The parts of a definition for a kind that reads nothing of the surface, in
 /// `category`: with no lattice (`computed_in!(category)`), also with no settings to
 /// check (`computed_in!(category, unchecked)`), or sampling the lattice of its `basis`
-/// setting, its only setting (`computed_in!(category, sampling)`).
+/// setting, its only setting (`computed_in!(category, sampling)`); or for a kind that
+/// reads the surface, with no lattice and no settings to check
+/// (`computed_in!(category, reading the surface)`).
 macro_rules! computed_in {
     (@parts $category:expr, |$this:ident| $basis:expr) => {
+        computed_in!(@parts $category, |$this| $basis, false);
+    };
+    (@parts $category:expr, |$this:ident| $basis:expr, $reads:expr) => {
         fn category(&self) -> Category {
             $category
         }
         fn reads_surface(&self) -> bool {
-            false
+            $reads
         }
         fn basis(&$this) -> Option<Basis> {
             $basis
@@ -35,6 +40,12 @@ macro_rules! computed_in {
     };
     ($category:expr, unchecked) => {
         computed_in!($category);
+        fn check(&self) -> Option<String> {
+            None
+        }
+    };
+    ($category:expr, reading the surface) => {
+        computed_in!(@parts $category, |self| None, true);
         fn check(&self) -> Option<String> {
             None
         }

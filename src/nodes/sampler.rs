@@ -273,10 +273,6 @@ fn triplanar<R: Real>(planes: &[Sampled<R>; 3], normal: V3<R>) -> Sampled<R> {
 
 /// One plane's sample of a sampler at `p` (its xz) on the CPU.
 fn eval_plane<R: Real>(io: &Eval<R>, blend: TileBlend, layout: Layout, p: V3<R>) -> Sampled<R> {
-    let two = |pin: &str| {
-        let value = io.input(pin);
-        [value[0], value[1]]
-    };
     let zero = R::c(0.0);
     let (counts, offsets, count) = match layout {
         Layout::Grid => (
@@ -287,14 +283,14 @@ fn eval_plane<R: Real>(io: &Eval<R>, blend: TileBlend, layout: Layout, p: V3<R>)
         Layout::Splat => ([R::c(1.0); 2], [zero; 2], io.float("count")),
     };
     let settings = GridSettings {
-        size: two("size"),
+        size: io.pair("size"),
         counts,
         offsets,
         jitter: io.float("position_random"),
         rotation: io.float("rotation"),
         rotation_random: io.float("rotation_random"),
         scale: io.float("scale"),
-        scale_xy: two("scale_xy"),
+        scale_xy: io.pair("scale_xy"),
         scale_random: io.float("scale_random"),
         seed: io.float("seed"),
         // The CPU draws every edge in full, as `Detail::Full` does: no footprint.

@@ -37,19 +37,18 @@ pub(super) use kinds;
 pub struct Instance;
 
 /// The Instance node's outputs, in order, and the `veneer_instance` members they read.
+/// (The random number first: thumbnails show it, one grey per instance.)
 const INSTANCE_OUTPUTS: [(&str, super::value::ValueType, &str); 4] = [
-    ("cell", VEC2, "cell"),
-    ("id", FLOAT, "id"),
     ("random", FLOAT, "random"),
+    ("id", FLOAT, "id"),
     ("randoms", super::pins::VEC3, "randoms"),
+    ("cell", VEC2, "cell"),
 ];
 
 impl Definition for Instance {
+    computed_in!(Category::Input, reading the surface);
     fn title(&self) -> &'static str {
         "Instance"
-    }
-    fn category(&self) -> Category {
-        Category::Input
     }
     fn keywords(&self) -> &'static [&'static str] {
         &[
@@ -65,15 +64,6 @@ impl Definition for Instance {
         let outputs = INSTANCE_OUTPUTS.map(|(name, ty, _)| output(name, ty));
         Signature::new(vec![], outputs.to_vec())
     }
-    fn reads_surface(&self) -> bool {
-        true
-    }
-    fn basis(&self) -> Option<Basis> {
-        None
-    }
-    fn check(&self) -> Option<String> {
-        None
-    }
     fn emit(&self, io: &mut Emit) {
         let outputs = match io.instance() {
             Some(instance) => INSTANCE_OUTPUTS
@@ -88,10 +78,10 @@ impl Definition for Instance {
     fn ranges(&self, _: &mut Ranges) -> Vec<Lanes> {
         let cells = Interval::new(0.0, 4095.0);
         vec![
-            [cells, cells, Interval::point(0.0)],
+            interval::splat(Interval::UNIT),
             interval::splat(Interval::new(0.0, 4096.0 * 4096.0 - 1.0)),
             interval::splat(Interval::UNIT),
-            interval::splat(Interval::UNIT),
+            [cells, cells, Interval::point(0.0)],
         ]
     }
 }
@@ -101,10 +91,10 @@ impl Evaluate for Instance {
         let instance = io.instance().copied().unwrap_or_else(CpuInstance::none);
         let zero = R::c(0.0);
         vec![
-            [instance.cell[0], instance.cell[1], zero],
-            splat(instance.id),
             splat(instance.random),
+            splat(instance.id),
             instance.randoms,
+            [instance.cell[0], instance.cell[1], zero],
         ]
     }
 }

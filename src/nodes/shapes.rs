@@ -130,15 +130,11 @@ impl ShapeKind {
 
     /// The distance of point `p` on the CPU.
     fn eval_distance<R: Real>(self, io: &Eval<R>, p: V2<R>) -> R {
-        let two = |name: &str| {
-            let value = io.input(name);
-            [value[0], value[1]]
-        };
         match self {
             ShapeKind::Disc | ShapeKind::Bell => sdf::disc(p, io.float("radius")),
-            ShapeKind::Ellipse => sdf::ellipse(p, two("radii")),
-            ShapeKind::Box => sdf::rectangle(p, two("half_size"), R::c(0.0)),
-            ShapeKind::RoundedBox => sdf::rectangle(p, two("half_size"), io.float("corner")),
+            ShapeKind::Ellipse => sdf::ellipse(p, io.pair("radii")),
+            ShapeKind::Box => sdf::rectangle(p, io.pair("half_size"), R::c(0.0)),
+            ShapeKind::RoundedBox => sdf::rectangle(p, io.pair("half_size"), io.float("corner")),
             ShapeKind::Polygon => sdf::polygon(p, io.float("radius"), io.float("sides")),
             ShapeKind::Star => sdf::star(
                 p,
@@ -146,7 +142,7 @@ impl ShapeKind {
                 io.float("points"),
                 io.float("sharpness"),
             ),
-            ShapeKind::Capsule => sdf::segment(p, two("a"), two("b"), io.float("radius")),
+            ShapeKind::Capsule => sdf::segment(p, io.pair("a"), io.pair("b"), io.float("radius")),
             ShapeKind::Ring => sdf::ring(p, io.float("radius"), io.float("thickness")),
         }
     }
@@ -163,7 +159,7 @@ fn edge_width(io: &Emit, distance: &str, softness: &str) -> String {
     }
 }
 
-/// Binds the node to `veneer_shape(distance, width)`: outputs distance and fill.
+/// Binds the node to `veneer_shape(distance, width)`: outputs fill and distance.
 fn emit_shape(io: &mut Emit, distance: String) {
     let name = io.name();
     let raw = format!("{name}__distance");
@@ -174,7 +170,7 @@ fn emit_shape(io: &mut Emit, distance: String) {
         format!("veneer_shape({raw}, {width})"),
     );
     io.uses("veneer_shape");
-    io.outputs(vec![format!("{name}.distance"), format!("{name}.fill")]);
+    io.outputs(vec![format!("{name}.fill"), format!("{name}.distance")]);
 }
 
 /// The pin every fill reads: how far its edge spreads (0: as sharp as the pixel allows).
@@ -182,9 +178,9 @@ const SOFTNESS: InputPin = input("softness", FLOAT, f(0.0))
     .limits(0.0, 10.0)
     .soft(0.0, 0.1);
 
-/// The distance and fill outputs.
+/// The fill and distance outputs (the fill first: thumbnails show it).
 fn shape_outputs() -> Vec<super::pins::OutputPin> {
-    vec![output("distance", FLOAT), output("fill", FLOAT)]
+    vec![output("fill", FLOAT), output("distance", FLOAT)]
 }
 
 /// A shape at the origin: its signed distance and its anti-aliased fill.
@@ -247,7 +243,7 @@ impl Definition for Shape {
                 format!("veneer_shape_result({distance}, {bell})"),
             );
             io.uses("veneer_shape");
-            io.outputs(vec![format!("{name}.distance"), format!("{name}.fill")]);
+            io.outputs(vec![format!("{name}.fill"), format!("{name}.distance")]);
         } else {
             emit_shape(io, distance);
         }
@@ -259,8 +255,8 @@ impl Definition for Shape {
             .fold(0.0, f64::max);
         let reach = io.reach("p");
         vec![
-            interval::splat(Interval::new(-size, reach + size)),
             interval::splat(Interval::UNIT),
+            interval::splat(Interval::new(-size, reach + size)),
         ]
     }
 }
@@ -274,7 +270,7 @@ impl Evaluate for Shape {
             ShapeKind::Bell => sdf::bell(p, io.float("radius")),
             _ => sdf::fill(distance, io.float("softness")),
         };
-        vec![splat(distance), splat(fill)]
+        vec![splat(fill), splat(distance)]
     }
 }
 
@@ -361,8 +357,8 @@ impl Definition for ShapeBoolean {
             .hull(a.mul(Interval::point(-1.0)))
             .hull(b.mul(Interval::point(-1.0)));
         vec![
-            interval::splat(Interval::new(span.lo - k, span.hi + k)),
             interval::splat(Interval::UNIT),
+            interval::splat(Interval::new(span.lo - k, span.hi + k)),
         ]
     }
 }
@@ -373,8 +369,8 @@ impl Evaluate for ShapeBoolean {
             .op
             .apply(io.float("a"), io.float("b"), io.float("smoothness"));
         vec![
-            splat(distance),
             splat(sdf::fill(distance, io.float("softness"))),
+            splat(distance),
         ]
     }
 }
