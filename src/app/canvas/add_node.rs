@@ -248,8 +248,11 @@ impl VeneerApp {
                         search.scroll = true;
                     }
                     ui.separator();
+                    // As tall as the entries up to 320 points, whatever the last search
+                    // showed (the area otherwise kept the height of a short list).
                     egui::ScrollArea::vertical()
                         .max_height(320.0)
+                        .min_scrolled_height(320.0)
                         .auto_shrink([false, true])
                         .show(ui, |ui| {
                             let mut group = "";
