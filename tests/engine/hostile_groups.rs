@@ -369,12 +369,7 @@ fn unreadable_library_files_are_named_in_a_warning() {
 /// The errors `check` gives `text` (a graph), joined by lines.
 fn check_errors(text: &str) -> String {
     let graph = veneer::graph::from_ron(text).expect("the file loads");
-    let errors = veneer::graph::check(&graph).expect_err("the check refuses it");
-    errors
-        .iter()
-        .map(ToString::to_string)
-        .collect::<Vec<_>>()
-        .join("\n")
+    crate::support::refusal(&graph)
 }
 
 #[test]

@@ -198,3 +198,13 @@ pub fn metallic_roughness(normal: (f64, f64, f64)) -> veneer::graph::Graph {
     );
     graph
 }
+
+/// The errors `check` gives `graph`, which it must refuse, joined by lines.
+pub fn refusal(graph: &veneer::graph::Graph) -> String {
+    let errors = veneer::graph::check(graph).expect_err("the check refuses it");
+    errors
+        .iter()
+        .map(ToString::to_string)
+        .collect::<Vec<_>>()
+        .join("\n")
+}
