@@ -438,3 +438,67 @@ fn a_new_time_renders_the_passes_again_but_not_the_uploads() {
     flat.render(gpu(), TILE, 16, 1.0).expect("renders");
     assert_eq!(flat.passes_rendered() - all, all - uploads);
 }
+
+/// A bitmap placed per instance by a tile sampler (its pattern's colour) reads the file
+/// over each instance's square, alike on the GPU and the CPU; the instances outside
+/// their squares stay black.
+#[test]
+fn a_bitmap_placed_per_instance_reads_the_file_over_each_instance() {
+    use veneer::nodes::formulas::instances::TileBlend;
+    let dir = temp_dir("bitmap-per-instance");
+    std::fs::create_dir_all(dir.join("graphs")).unwrap();
+    picture(40, 24).save(dir.join("pic.png")).unwrap();
+    let image = ImageFile {
+        path: "../pic.png".into(),
+        colour_space: veneer::bitmaps::ColourSpace::Auto,
+        edge: EdgeMode::Clamp,
+        filter: Filter::Bilinear,
+    };
+    let mut graph = Graph::default();
+    let photo = graph.add("photo", NodeKind::ImageFile(image));
+    let sampler = graph.add(
+        "sampler",
+        NodeKind::TileSampler(veneer::nodes::TileSampler {
+            blend: TileBlend::Max,
+        }),
+    );
+    for (pin, value) in [("columns", 3.0), ("rows", 2.0), ("scale", 0.8)] {
+        graph.set_input(sampler, pin, veneer::graph::Value::Float(value));
+    }
+    graph.set_input(sampler, "rotation", veneer::graph::Value::Float(30.0));
+    let square = graph.add(
+        "square",
+        NodeKind::Shape(veneer::nodes::Shape {
+            shape: veneer::nodes::ShapeKind::Box,
+        }),
+    );
+    graph.set_input(square, "half_size", veneer::graph::Value::Vec2(0.5, 0.5));
+    graph.connect(square, "fill", sampler, "pattern");
+    graph.connect(photo, "colour", sampler, "pattern_colour");
+    show(&mut graph, sampler, "colour", ValueType::Color);
+    graph.folder = veneer::graph::Folder(Some(dir.join("graphs")));
+    let compiled = compile(&graph, &Default::default()).expect("compiles");
+    let differences = pixel_differences(&compiled, TILE, 48);
+    // Texel edges and instance edges within rounding of a pixel centre may fall either
+    // way: all but a few pixels agree.
+    let off = (differences.iter())
+        .filter(|d| **d > tolerance(&compiled))
+        .count();
+    assert!(
+        off * 100 <= differences.len(),
+        "{off} of {} pixels differ",
+        differences.len()
+    );
+    // The file shows: the pixels span its colours, not one colour per instance.
+    let evaluator = veneer::eval::Evaluator::new(&graph).unwrap();
+    let centre = [1.0 / 6.0, 0.0, 0.25];
+    let reds: std::collections::BTreeSet<u64> = (0..8)
+        .map(|k| {
+            let point = [centre[0] + 0.02 * f64::from(k), 0.0, centre[2]];
+            let surface = evaluator.flat_surface(point);
+            (evaluator.eval::<f64>(&surface).albedo[0] * 1e6) as u64
+        })
+        .collect();
+    assert!(reds.len() >= 4, "{reds:?}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
