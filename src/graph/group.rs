@@ -13,7 +13,7 @@ use super::names::shown;
 use super::nesting::{self, Nesting};
 use super::{Graph, Node, NodeId, NodeKind, PinRef, Value, ValueType, Wire};
 use crate::nodes::Group;
-use crate::nodes::pins::{InputPin, OutputPin, PinDefault, PinRange, Signature, intern};
+use crate::nodes::pins::{InputPin, PinDefault, PinRange, Signature, intern};
 use serde::{Deserialize, Serialize};
 use std::collections::{BTreeMap, BTreeSet, HashMap, HashSet};
 
@@ -191,10 +191,7 @@ impl Interface {
         let outputs = self
             .outputs
             .iter()
-            .map(|output| OutputPin {
-                name: intern(&output.name),
-                ty: output.ty,
-            })
+            .map(|output| crate::nodes::pins::output(intern(&output.name), output.ty))
             .collect();
         Signature::new(inputs, outputs)
     }

@@ -137,6 +137,19 @@ impl InputPin {
 pub struct OutputPin {
     pub name: &'static str,
     pub ty: ValueType,
+    /// Whether its whole-number values name things (an instance's number): thumbnails
+    /// show each value as a colour of its own rather than as a grey.
+    pub identity: bool,
+}
+
+impl OutputPin {
+    /// The same pin naming things (see [`OutputPin::identity`]).
+    pub const fn identity(self) -> OutputPin {
+        OutputPin {
+            identity: true,
+            ..self
+        }
+    }
 }
 
 /// The pins of a node kind.
@@ -260,7 +273,11 @@ pub const fn input(name: &'static str, ty: ValueType, default: PinDefault) -> In
 }
 /// An output pin.
 pub const fn output(name: &'static str, ty: ValueType) -> OutputPin {
-    OutputPin { name, ty }
+    OutputPin {
+        name,
+        ty,
+        identity: false,
+    }
 }
 
 pub const FLOAT: ValueType = ValueType::Float;

@@ -61,7 +61,10 @@ impl Definition for Instance {
         ]
     }
     fn signature(&self) -> Signature {
-        let outputs = INSTANCE_OUTPUTS.map(|(name, ty, _)| output(name, ty));
+        let outputs = INSTANCE_OUTPUTS.map(|(name, ty, _)| match name {
+            "id" => output(name, ty).identity(),
+            _ => output(name, ty),
+        });
         Signature::new(vec![], outputs.to_vec())
     }
     fn emit(&self, io: &mut Emit) {
@@ -148,7 +151,7 @@ fn sampler_signature(layout: &[InputPin]) -> Signature {
             output("height", FLOAT),
             output("colour", COLOR),
             output("mask", FLOAT),
-            output("id", FLOAT),
+            output("id", FLOAT).identity(),
             output("random", FLOAT),
             output("local", VEC2),
         ],

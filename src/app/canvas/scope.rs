@@ -84,7 +84,7 @@ fn boundary_node(side: Boundary, definition: &GroupDef) -> Node {
         .iter()
         .map(|input| (intern(&input.name), input.ty))
         .chain(add())
-        .map(|(name, ty)| OutputPin { name, ty })
+        .map(|(name, ty)| crate::nodes::pins::output(name, ty))
         .collect();
     let pins = match side {
         Boundary::Input => Signature::new(Vec::new(), outputs),
@@ -248,10 +248,7 @@ fn add_input(
     let pins = boundary_pins(snarl, boundary)?;
     let name = free_name(pins.outputs.iter().map(|pin| pin.name), target.name);
     let at = pins.outputs.len() - 1;
-    let pin = OutputPin {
-        name: intern(&name),
-        ty: target.ty,
-    };
+    let pin = crate::nodes::pins::output(intern(&name), target.ty);
     pins.outputs.insert(at, pin);
     snarl.drop_inputs(to);
     snarl.connect(

@@ -4,7 +4,8 @@
 //!
 //! How an output shows as a colour: a colour as itself, a float as grey, a vec2 as red
 //! and green (blue 0), a vec3 remapped from [-1, 1] to [0, 1] (`v * 0.5 + 0.5`), each
-//! clamped to [0, 1] when drawn. An output a sampler places per instance (upstream of a
+//! clamped to [0, 1] when drawn; a number naming things (an instance's id) as a colour
+//! per value. An output a sampler places per instance (upstream of a
 //! re-evaluated input) shows as placed: in every instance, as that instance sees it, so
 //! an Instance node's random numbers and ids show one per instance.
 
@@ -186,10 +187,16 @@ pub fn atlas_graph_reading(
 /// Adds to `graph` what shows `pin` (of type `ty`) as a colour (see the module's
 /// comment); returns the node and output pin that give the colour.
 fn as_colour(graph: &mut Graph, pin: &PinRef, ty: ValueType) -> (NodeId, &'static str) {
-    let source = graph
+    let output = graph
         .node(pin.node)
-        .and_then(|node| node.kind.signature().output(&pin.pin).map(|(_, o)| o.name))
-        .unwrap_or("value");
+        .and_then(|node| node.kind.signature().output(&pin.pin).map(|(_, o)| *o));
+    let source = output.map_or("value", |output| output.name);
+    if output.is_some_and(|output| output.identity) {
+        // A colour per whole number: white noise's colour of the lattice cell it names.
+        let colours = graph.add("probe colour per value", NodeKind::WhiteNoise);
+        graph.connect(pin.node, source, colours, "p");
+        return (colours, "color");
+    }
     match ty {
         ValueType::Float | ValueType::Color => (pin.node, source),
         ValueType::Vec2 => {
@@ -299,7 +306,7 @@ mod tests {
     }
 
     #[test]
-    fn a_placed_instance_node_shows_one_random_number_per_instance() {
+    fn a_placed_instance_node_shows_one_grey_and_one_colour_per_instance() {
         use crate::nodes::formulas::instances::TileBlend;
         let mut graph = Graph::default();
         let instance = graph.add("instance", NodeKind::Instance);
@@ -314,28 +321,26 @@ mod tests {
         graph.connect(instance, "random", sampler, "pattern_colour");
         let material = graph.add("material", NodeKind::Material);
         graph.connect(sampler, "colour", material, "albedo");
-        let pins = [PinRef::new(instance, "random")];
-        let mut atlas = atlas_graph(&graph, &pins).unwrap();
-        assert_ne!(atlas.sources, [instance], "shown through a sampler");
-        atlas
-            .graph
-            .set_input(atlas.selectors[0], "factor", Value::Float(1.0));
-        let evaluator = crate::eval::Evaluator::new(&atlas.graph).unwrap();
-        // The centres of the sixteen cells: each instance's own number.
-        let mut seen = std::collections::BTreeSet::new();
-        for k in 0..16 {
-            let centre = [
-                0.25 * (f64::from(k % 4) + 0.5),
-                0.0,
-                0.25 * (f64::from(k / 4) + 0.5),
-            ];
-            let albedo = evaluator
-                .eval::<f64>(&evaluator.flat_surface(centre))
-                .albedo;
-            assert!(albedo[0] > 0.0 && albedo[0] < 1.0, "{albedo:?}");
-            seen.insert(albedo[0].to_bits());
+        for output in ["random", "id"] {
+            let pins = [PinRef::new(instance, output)];
+            let mut atlas = atlas_graph(&graph, &pins).unwrap();
+            assert_ne!(atlas.sources, [instance], "shown through a sampler");
+            let selector = atlas.selectors[0];
+            atlas.graph.set_input(selector, "factor", Value::Float(1.0));
+            let evaluator = crate::eval::Evaluator::new(&atlas.graph).unwrap();
+            // The centres of the sixteen cells: each instance's own grey or colour.
+            let mut seen = std::collections::BTreeSet::new();
+            for k in 0..16 {
+                let (column, row) = (f64::from(k % 4), f64::from(k / 4));
+                let centre = [0.25 * (column + 0.5), 0.0, 0.25 * (row + 0.5)];
+                let surface = evaluator.flat_surface(centre);
+                let albedo = evaluator.eval::<f64>(&surface).albedo;
+                assert!(albedo.iter().all(|c| (0.0..1.0).contains(c)), "{albedo:?}");
+                seen.insert(albedo.map(f64::to_bits));
+            }
+            assert_eq!(seen.len(), 16, "{output}: one value per instance");
         }
-        assert_eq!(seen.len(), 16, "one number per instance");
+        let pins = [PinRef::new(instance, "random")];
         // Not placed, an Instance node is zero at the shaded point.
         let mut unplaced = graph.clone();
         unplaced.wires.retain(|wire| wire.from.node != instance);

@@ -9,7 +9,7 @@ use crate::graph::group::{self, BOUNDARY, GroupDef, GroupInput};
 use crate::graph::group_interface::{self, Side};
 use crate::graph::{Graph, Node, NodeId, NodeKind};
 use crate::nodes::Group;
-use crate::nodes::pins::{InputPin, OutputPin, PinDefault, PinRange, Signature, intern};
+use crate::nodes::pins::{InputPin, PinDefault, PinRange, Signature, intern, output};
 use std::collections::BTreeSet;
 
 /// The definition of group `name`.
@@ -273,10 +273,7 @@ fn boundary_node(definition: &GroupDef) -> Node {
         sampled: false,
         re_evaluated: false,
     });
-    let outputs = definition.inputs.iter().map(|input| OutputPin {
-        name: intern(&input.name),
-        ty: input.ty,
-    });
+    let outputs = (definition.inputs.iter()).map(|input| output(intern(&input.name), input.ty));
     let pins = Signature::new(inputs.collect(), outputs.collect());
     Node::new(
         BOUNDARY,
