@@ -249,10 +249,13 @@ impl VeneerApp {
                     }
                     ui.separator();
                     // As tall as the entries up to 320 points, whatever the last search
-                    // showed (the area otherwise kept the height of a short list).
+                    // showed (the area otherwise kept the height of a short list), and
+                    // no taller than the room below the mouse, so it opens there.
+                    let below = ctx.content_rect().max.y - ui.cursor().min.y - 12.0;
+                    let height = below.clamp(120.0, 320.0);
                     egui::ScrollArea::vertical()
-                        .max_height(320.0)
-                        .min_scrolled_height(320.0)
+                        .max_height(height)
+                        .min_scrolled_height(height)
                         .auto_shrink([false, true])
                         .show(ui, |ui| {
                             let mut group = "";
