@@ -225,7 +225,8 @@ fn huge_graphs(c: &mut Criterion) {
         group.bench_function(format!("{nodes} nodes"), |b| {
             b.iter(|| {
                 let checked = veneer::graph::check(black_box(&graph)).expect("checks");
-                veneer::codegen::compile_checked(&checked, &Default::default()).expect("compiles");
+                veneer::codegen::compile_checked(&graph, &checked, &Default::default())
+                    .expect("compiles");
                 veneer::lint::lint(&checked, positions)
             })
         });

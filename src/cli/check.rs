@@ -38,7 +38,8 @@ fn check_one(path: &Path) -> Result<(Vec<veneer::lint::Lint>, Vec<String>), Fail
     let positions = veneer::lint::preview_positions(&graph);
     let (module, lints) = std::thread::scope(|scope| {
         let lints = scope.spawn(|| veneer::lint::lint(&checked, positions));
-        let module = veneer::codegen::compile_checked(&checked, &Default::default());
+        let module = veneer::codegen::compile_checked(&graph, &checked, &Default::default())
+            .map(|(module, _)| module);
         (module, lints.join())
     });
     let lints = lints.map_err(|_| Failure::new(format!("{}: the lint failed", path.display())))?;

@@ -3,7 +3,8 @@
 //!
 //! One entry point: [`compile`] checks a graph and emits its module once, as a
 //! [`Compiled`] value that renders, bakes, snapshots, reports and the editor hand on;
-//! [`compile_checked`] emits a graph some caller has checked already.
+//! [`compile_checked`] emits the same module for a graph some caller has checked already
+//! (`veneer check`, which lints it meanwhile).
 
 mod body;
 pub mod export;
@@ -326,13 +327,7 @@ impl Compiled {
 pub fn compile(graph: &Graph, options: &CompileOptions) -> Result<Compiled, CompileError> {
     counts::checked();
     let checked = graph::check(graph).map_err(CompileError::Check)?;
-    let (module, passes) = match passes::plan(&checked, options)? {
-        Some(planned) => planned,
-        None => match functions::compile(graph, &checked, options) {
-            Some(module) => (module?, passes::Passes::default()),
-            None => (single_pass(&checked, options)?, passes::Passes::default()),
-        },
-    };
+    let (module, passes) = compile_checked(graph, &checked, options)?;
     Ok(Compiled {
         checked,
         module,
@@ -544,18 +539,22 @@ fn named_block(graph: &CheckedGraph, members: &[crate::graph::parameters::Member
     text
 }
 
-/// Compiles a graph checked by [`graph::check`] to a validated WGSL module, for callers
-/// that have the checked graph already (`veneer check` lints it meanwhile). Groups are
-/// inlined: every node's code sits in `veneer_material`. A multi-pass graph's passes
-/// are planned and validated too; its material's module is the one returned.
+/// The module (and passes) [`compile`] emits for `graph`, checked already as `checked`
+/// by [`graph::check`]: `veneer check` validates exactly this, the module `veneer
+/// compile` exports (a group as one function where the graph allows it, else inlined;
+/// a multi-pass material's passes planned and validated too).
 pub fn compile_checked(
-    graph: &CheckedGraph,
+    graph: &Graph,
+    checked: &CheckedGraph,
     options: &CompileOptions,
-) -> Result<WgslModule, CompileError> {
-    match passes::plan(graph, options)? {
-        Some((module, _)) => Ok(module),
-        None => single_pass(graph, options),
-    }
+) -> Result<(WgslModule, passes::Passes), CompileError> {
+    Ok(match passes::plan(checked, options)? {
+        Some(planned) => planned,
+        None => match functions::compile(graph, checked, options) {
+            Some(module) => (module?, passes::Passes::default()),
+            None => (single_pass(checked, options)?, passes::Passes::default()),
+        },
+    })
 }
 
 /// The module of a checked graph without sampled inputs, groups inlined.

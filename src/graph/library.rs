@@ -206,7 +206,8 @@ pub fn save_to_user(name: &str, group: &GroupDef) -> std::io::Result<PathBuf> {
 /// Brings every linked group of `graph` up to the library's version (keeping its copy
 /// when the library has none, or a user file for it cannot be used), then resolves the
 /// group nodes' pins. Returns a warning for each copy kept because of a file that
-/// cannot be used, naming the file.
+/// cannot be used, naming the file, and for each copy replaced that differed from the
+/// library's (a hand edit of a linked copy would otherwise vanish unsaid).
 pub fn refresh(graph: &mut Graph) -> Vec<String> {
     let mut warnings = Vec::new();
     for (name, definition) in graph.groups.iter_mut() {
@@ -214,9 +215,17 @@ pub fn refresh(graph: &mut Graph) -> Vec<String> {
             continue;
         }
         match find(name) {
-            Ok(Some((mut current, _))) => {
+            Ok(Some((mut current, source))) => {
                 current.linked = true;
                 if current != *definition {
+                    let library = match &source {
+                        Source::Shipped => "the one shipped with Veneer".to_string(),
+                        Source::User(path) => path.display().to_string(),
+                    };
+                    warnings.push(format!(
+                        "the graph's copy of linked group '{}' differs from the library's ({library}): the library's is used, as the group is linked; to keep the graph's copy, make the group local (Make local in the editor, or remove `linked: true` from the file)",
+                        super::names::shown(name)
+                    ));
                     *definition = current;
                 }
             }

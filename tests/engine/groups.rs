@@ -99,6 +99,43 @@ proptest! {
 }
 
 proptest! {
+    #![proptest_config(ProptestConfig { cases: 96, ..ProptestConfig::default() })]
+
+    /// `veneer check` validates exactly the module `veneer compile` exports: for any
+    /// grouped graph both pass with the same WGSL (a group as one function where the
+    /// graph allows it) or both fail with the same message.
+    #[test]
+    fn check_validates_the_module_compile_exports(
+        kinds in prop::collection::vec(0u32..8192, 2..16),
+        choices in prop::collection::vec(any::<u32>(), 1..48),
+        start in any::<usize>(),
+        size in 1usize..8,
+    ) {
+        let graph = random_graph(&kinds, &choices, true);
+        let part = grouped_part(&graph, start, size);
+        prop_assume!(part.is_some());
+        let (grouped, _) = part.expect("assumed");
+        let exported = compile(&grouped, &Default::default());
+        let checked = veneer::graph::check(&grouped);
+        match (checked, exported) {
+            (Ok(checked), Ok(exported)) => {
+                let (module, _) = veneer::codegen::compile_checked(&grouped, &checked, &Default::default())
+                    .expect("the check passes where the export does");
+                prop_assert_eq!(&module.source, exported.source());
+            }
+            (Ok(checked), Err(error)) => {
+                let checked = veneer::codegen::compile_checked(&grouped, &checked, &Default::default());
+                prop_assert_eq!(checked.err().map(|e| e.to_string()), Some(error.to_string()));
+            }
+            (Err(errors), exported) => {
+                let message = veneer::codegen::CompileError::Check(errors).to_string();
+                prop_assert_eq!(exported.err().map(|e| e.to_string()), Some(message));
+            }
+        }
+    }
+}
+
+proptest! {
     #![proptest_config(ProptestConfig { cases: 32, ..ProptestConfig::default() })]
 
     /// The GPU draws a grouped graph (its group as a WGSL function) exactly as the
@@ -574,6 +611,34 @@ fn editing_a_library_group_updates_the_graphs_that_link_it() {
         String::from_utf8_lossy(&output.stderr)
     );
     assert_eq!(std::fs::read(&out).unwrap(), default);
+}
+
+/// A hand edit of a linked group's copy inside a graph file is replaced by the library's
+/// version on load: said, naming the group and which version is used.
+#[test]
+fn a_linked_copy_that_differs_from_the_library_is_reported_on_load() {
+    let dir = temp_dir("groups-linked-copy");
+    let text = std::fs::read_to_string(root("graphs/wood.ron")).expect("reads");
+    let edited = text.replacen(
+        "(name: \"ring_frequency\", ty: Float, default: Float(0.5)",
+        "(name: \"ring_frequency\", ty: Float, default: Float(0.9)",
+        1,
+    );
+    assert_ne!(edited, text);
+    let path = dir.join("wood_edited.ron");
+    std::fs::write(&path, edited).expect("writes");
+    let output = run_veneer(&["check", &path.to_string_lossy()]);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(output.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("the graph's copy of linked group 'ring_wood' differs from the library's")
+            && stderr.contains("the library's is used"),
+        "{stderr}"
+    );
+    // The shipped graph's copy is the library's: nothing to say.
+    let shipped = run_veneer(&["check", "graphs/wood.ron"]);
+    assert!(!String::from_utf8_lossy(&shipped.stderr).contains("differs"));
+    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]
