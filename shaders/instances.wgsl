@@ -139,7 +139,8 @@ struct veneer_placed {
 // Instance (column, row) of `grid` (unwrapped cell coordinates) as point `grid.t` sees it.
 fn veneer_tile_place(grid: veneer_tile_grid, column: i32, row: i32) -> veneer_placed {
     let n = vec2i(grid.counts);
-    var wrapped = vec2i(column, row) % n;
+    // (Per lane: naga's SPIR-V reader rejects the vector form of its remainder guard.)
+    var wrapped = vec2i(column % n.x, row % n.y);
     wrapped = select(wrapped, wrapped + n, wrapped < vec2i(0));
     let cell = bitcast<vec2u>(wrapped);
     let place = veneer_unit_floats(veneer_pcg3d(vec3u(cell, grid.seed * 4u)));
@@ -159,7 +160,7 @@ fn veneer_tile_place(grid: veneer_tile_grid, column: i32, row: i32) -> veneer_pl
     let world = size * grid.cell;
     let safe = select(world, vec2f(1.0e-30), abs(world) < vec2f(1.0e-30));
     let local = turned / safe;
-    let inside = all(abs(local) <= vec2f(0.5)) && all(world > vec2f(0.0));
+    let inside = max(abs(local.x), abs(local.y)) <= 0.5 && min(world.x, world.y) > 0.0;
     let cells = u32(n.x * n.y);
     let raw = u32(wrapped.x + wrapped.y * n.x);
     let shuffled = ((grid.stride * raw) % cells + grid.shift) % cells;

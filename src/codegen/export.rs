@@ -251,5 +251,22 @@ fn check_spirv(bytes: &[u8]) -> Result<(), String> {
     )
     .validate(&module)
     .map(|_| ())
-    .map_err(|error| format!("the SPIR-V does not validate back: {error}"))
+    .map_err(|error| {
+        format!(
+            "the SPIR-V does not validate back: {}",
+            causes(error.as_inner())
+        )
+    })
+}
+
+/// `error` and every error behind it, joined by colons: naga's validation errors name the
+/// function first and say what is wrong with it only in their sources.
+fn causes(error: &dyn std::error::Error) -> String {
+    let mut text = error.to_string();
+    let mut source = error.source();
+    while let Some(cause) = source {
+        text.push_str(&format!(": {cause}"));
+        source = cause.source();
+    }
+    text
 }

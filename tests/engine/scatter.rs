@@ -498,3 +498,28 @@ fn a_splatter_repeats_over_its_tile_and_renders_as_on_the_cpu() {
         );
     }
 }
+
+/// Samplers, shapes and local frames export to every target, each output read back by
+/// its validator where Veneer has one (the SPIR-V reader once mistyped the sampler's
+/// inside test).
+#[test]
+fn placed_patterns_export_to_every_target() {
+    use veneer::codegen::ParamMode;
+    use veneer::codegen::export::{Target, export};
+    use veneer::nodes::sampler::Projection;
+    // The pattern's noise as a group: a group placed per instance.
+    let (mut placed, pattern) = bumps_graph(5.0, 1.0);
+    let grain: BTreeSet<NodeId> = (placed.nodes.iter())
+        .filter(|node| pattern.contains(&node.id) && node.label == "grain")
+        .map(|node| node.id)
+        .collect();
+    veneer::graph::group::group_nodes(&mut placed, &grain, "grain").expect("groups");
+    for graph in [placed, splatter_graph(Projection::Triplanar)] {
+        for (target, _, _) in Target::ALL {
+            for params in [ParamMode::Baked, ParamMode::Uniform] {
+                export(&graph, target, params)
+                    .unwrap_or_else(|e| panic!("{target:?} {params:?}: {e}"));
+            }
+        }
+    }
+}
