@@ -177,11 +177,16 @@ fn veneer_tile_surface(s: VeneerSurface, placed: veneer_placed) -> VeneerSurface
     return VeneerSurface(vec3f(local.x, 0.0, local.y), s.normal, local + 0.5, s.fields, s.time);
 }
 
-// The surface a mask is read at for `placed`: the instance's centre, in the sampler's
-// coordinates (its `p`), at the point's height.
-fn veneer_tile_centre_surface(s: VeneerSurface, grid: veneer_tile_grid, placed: veneer_placed) -> VeneerSurface {
+// The centre of `placed` in the point's coordinates (the grid's `p`, its plane in x
+// and z), at the point's height: where a mask is read.
+fn veneer_tile_centre(grid: veneer_tile_grid, placed: veneer_placed) -> vec3f {
     let centre = grid.corner + placed.centre * grid.cell;
-    return VeneerSurface(vec3f(centre.x, grid.height, centre.y), s.normal, s.uv, s.fields, s.time);
+    return vec3f(centre.x, grid.height, centre.y);
+}
+
+// `s` moved to `position`, the rest as shaded.
+fn veneer_surface_at(s: VeneerSurface, position: vec3f) -> VeneerSurface {
+    return VeneerSurface(position, s.normal, s.uv, s.fields, s.time);
 }
 
 // How instances accumulate at a point: the blended value, the coverage, and the instance

@@ -41,6 +41,15 @@ impl Projection {
 /// normal's axis.
 const PLANES: [(&str, [usize; 3]); 3] = [("x", [2, 0, 1]), ("y", [0, 1, 2]), ("z", [0, 2, 1])];
 
+/// The lanes that undo `swizzle`: lane k of the original point is lane `inverse[k]` of
+/// the swizzled one (a mask reads the instance's centre where the shaded point lives).
+fn inverse(swizzle: [usize; 3]) -> [usize; 3] {
+    [0, 1, 2].map(|k| swizzle.iter().position(|&lane| lane == k).unwrap_or(k))
+}
+
+/// The identity swizzle (a planar sampler).
+const PLANAR: [usize; 3] = [0, 1, 2];
+
 /// Writes a sampler node's WGSL: a loop over the instances reaching the point (three,
 /// blended by the normal, when triplanar), each kept instance's pattern called in its
 /// frame and blended, then the deciding instance's colour; bound to the node's name as
@@ -49,13 +58,14 @@ pub fn emit(io: &mut Emit, blend: TileBlend, layout: Layout, projection: Project
     let name = io.name();
     let p = io.input("p").to_string();
     let sampled = match projection {
-        Projection::Planar => emit_plane(io, blend, layout, &p, name),
+        Projection::Planar => emit_plane(io, blend, layout, (&p, PLANAR), name),
         Projection::Triplanar => {
             let mut planes = Vec::new();
-            for (axis, [a, b, c]) in PLANES {
+            for (axis, swizzle) in PLANES {
+                let [a, b, c] = swizzle;
                 let swizzled = format!("vec3f(({p})[{a}], ({p})[{b}], ({p})[{c}])");
                 let prefix = format!("{name}__{axis}");
-                let sampled = emit_plane(io, blend, layout, &swizzled, &prefix);
+                let sampled = emit_plane(io, blend, layout, (&swizzled, swizzle), &prefix);
                 io.statement(format!("let {prefix} = {sampled};"));
                 planes.push(prefix);
             }
@@ -71,9 +81,15 @@ pub fn emit(io: &mut Emit, blend: TileBlend, layout: Layout, projection: Project
     );
 }
 
-/// The statements of one plane's loop (its names prefixed with `prefix`), and the
-/// expression of its `veneer_tile_sampled`.
-fn emit_plane(io: &mut Emit, blend: TileBlend, layout: Layout, p: &str, prefix: &str) -> String {
+/// The statements of one plane's loop at point `p` (`swizzle` of the sampler's point;
+/// its names prefixed with `prefix`), and the expression of its `veneer_tile_sampled`.
+fn emit_plane(
+    io: &mut Emit,
+    blend: TileBlend,
+    layout: Layout,
+    (p, swizzle): (&str, [usize; 3]),
+    prefix: &str,
+) -> String {
     let mode = format!("{}u", blend.code());
     let footprint = match (io.detail, io.instance()) {
         (Detail::Full, _) => "0.0".to_string(),
@@ -117,11 +133,15 @@ fn emit_plane(io: &mut Emit, blend: TileBlend, layout: Layout, p: &str, prefix: 
     let local =
         |function: &str, frame: &str, of: &str| format!("{function}({frame}, {of}.instance)");
     let mask = match io.local("mask") {
-        Some(function) => local(
-            function,
-            &format!("veneer_tile_centre_surface(s, {grid}, {placed})"),
-            &placed,
-        ),
+        Some(function) => {
+            let lanes = inverse(swizzle).map(|k| ["x", "y", "z"][k]).concat();
+            let centre = format!("veneer_tile_centre({grid}, {placed}).{lanes}");
+            local(
+                function,
+                &format!("veneer_surface_at(s, {centre})"),
+                &placed,
+            )
+        }
         None => io.input("mask").to_string(),
     };
     let pattern = match io.local("pattern") {
@@ -163,7 +183,8 @@ fn emit_plane(io: &mut Emit, blend: TileBlend, layout: Layout, p: &str, prefix: 
         io.uses(item);
     }
     if io.local("mask").is_some() {
-        io.uses("veneer_tile_centre_surface");
+        io.uses("veneer_tile_centre");
+        io.uses("veneer_surface_at");
     }
     if io.local("pattern").is_some() || io.local("pattern_colour").is_some() {
         io.uses("veneer_tile_surface");
@@ -221,10 +242,10 @@ pub fn eval<R: Real>(
 ) -> Vec<V3<R>> {
     let p = io.input("p");
     let sampled = match projection {
-        Projection::Planar => eval_plane(io, blend, layout, p),
+        Projection::Planar => eval_plane(io, blend, layout, p, PLANAR),
         Projection::Triplanar => {
-            let planes =
-                PLANES.map(|(_, swizzle)| eval_plane(io, blend, layout, swizzle.map(|k| p[k])));
+            let planes = PLANES
+                .map(|(_, swizzle)| eval_plane(io, blend, layout, swizzle.map(|k| p[k]), swizzle));
             triplanar(&planes, io.surface.normal)
         }
     };
@@ -271,8 +292,16 @@ fn triplanar<R: Real>(planes: &[Sampled<R>; 3], normal: V3<R>) -> Sampled<R> {
     }
 }
 
-/// One plane's sample of a sampler at `p` (its xz) on the CPU.
-fn eval_plane<R: Real>(io: &Eval<R>, blend: TileBlend, layout: Layout, p: V3<R>) -> Sampled<R> {
+/// One plane's sample of a sampler at `p` (its xz; `swizzle` of the sampler's point)
+/// on the CPU.
+fn eval_plane<R: Real>(
+    io: &Eval<R>,
+    blend: TileBlend,
+    layout: Layout,
+    p: V3<R>,
+    swizzle: [usize; 3],
+) -> Sampled<R> {
+    let unswizzle = inverse(swizzle);
     let zero = R::c(0.0);
     let (counts, offsets, count) = match layout {
         Layout::Grid => (
@@ -305,8 +334,9 @@ fn eval_plane<R: Real>(io: &Eval<R>, blend: TileBlend, layout: Layout, p: V3<R>)
     };
     let mut state = BlendState::start(blend);
     instances::search(&grid, |placed| {
+        let centre = instances::centre_position(&grid, placed);
         let centre = Surface {
-            position: instances::centre_position(&grid, placed),
+            position: unswizzle.map(|k| centre[k]),
             ..*io.surface
         };
         let mask = (io.reevaluate("mask", &centre, &placed.instance))

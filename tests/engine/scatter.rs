@@ -523,3 +523,65 @@ fn placed_patterns_export_to_every_target() {
         }
     }
 }
+
+/// A triplanar splatter reads its mask at each instance's centre in the shaded point's
+/// own coordinates, whichever plane places it: on the plane seen along x, a mask of the
+/// point's x (the same for every instance there) keeps every instance or none.
+#[test]
+fn a_triplanar_splatter_reads_its_mask_where_the_surface_is() {
+    use veneer::nodes::sampler::Projection;
+    use veneer::nodes::{Splatter, Step};
+    let plain = splatter_graph(Projection::Triplanar);
+    let mut masked = plain.clone();
+    let sampler = masked
+        .nodes
+        .iter()
+        .find(|n| n.label == "sampler")
+        .unwrap()
+        .id;
+    let position = masked.add("position", NodeKind::Position);
+    let parts = masked.add(
+        "parts",
+        NodeKind::Split(Split {
+            ty: ValueType::Vec3,
+        }),
+    );
+    let right = masked.add(
+        "right of 0.2",
+        NodeKind::Step(Step {
+            ty: ValueType::Float,
+        }),
+    );
+    masked.connect(position, "position", parts, "v");
+    masked.connect(parts, "x", right, "x");
+    masked.set_input(right, "edge", Value::Float(0.2));
+    masked.connect(right, "result", sampler, "mask");
+    assert!(matches!(
+        masked.node(sampler).unwrap().kind,
+        NodeKind::Splatter(Splatter { .. })
+    ));
+    // The GPU's module reads the mask through the same unswizzle (validated; flat views
+    // see only the plane along y).
+    veneer::codegen::compile(&masked, &Default::default()).expect("compiles");
+    let (plain, masked) = (
+        Evaluator::new(&plain).unwrap(),
+        Evaluator::new(&masked).unwrap(),
+    );
+    let at = |evaluator: &Evaluator, x: f64, point: [f64; 3]| {
+        let surface = veneer::eval::Surface {
+            normal: [1.0, 0.0, 0.0],
+            ..evaluator.flat_surface([x, point[2], point[0]])
+        };
+        evaluator.eval::<f64>(&surface).albedo
+    };
+    let mut covered = 0;
+    for point in points(16) {
+        // x = 0.3: every centre there is right of 0.2, so all are kept.
+        let kept = at(&masked, 0.3, point);
+        assert_eq!(kept, at(&plain, 0.3, point), "{point:?}");
+        covered += usize::from(kept[1] > 0.0);
+        // x = 0.1: none is.
+        assert_eq!(at(&masked, 0.1, point), [0.0; 3], "{point:?}");
+    }
+    assert!(covered > 50, "{covered} points covered");
+}

@@ -297,7 +297,7 @@ pub fn local_position<R: Real>(placed: &Placed<R>) -> V3<R> {
     [placed.local[0], R::c(0.0), placed.local[1]]
 }
 
-/// The position a mask reads for `placed` (`veneer_tile_centre_surface`).
+/// The centre of `placed` where a mask reads it (`veneer_tile_centre`).
 pub fn centre_position<R: Real>(grid: &Grid<R>, placed: &Placed<R>) -> V3<R> {
     [
         grid.corner[0] + placed.centre[0] * grid.cell[0],
