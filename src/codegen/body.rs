@@ -265,12 +265,18 @@ impl<'a> Emitter<'a> {
                 NodeKind::Material => String::new(),
                 _ => namer.name(node.display_name(), node.id.0),
             };
-            let locals: Vec<Option<&str>> = (0..inputs.len())
-                .map(|k| {
-                    let local = frame.frames.sites.get(&(at, k))?;
-                    Some(frame.functions[*local].as_str())
-                })
-                .collect();
+            // (Only a node that re-evaluates inputs looks its frames up: most nodes do
+            // not, and a graph may have a million.)
+            let locals: Vec<Option<&str>> = if frame.frames.sites.is_empty() {
+                Vec::new()
+            } else {
+                (0..inputs.len())
+                    .map(|k| {
+                        let local = frame.frames.sites.get(&(at, k))?;
+                        Some(frame.functions[*local].as_str())
+                    })
+                    .collect()
+            };
             let code = match &node.kind {
                 NodeKind::Group(group) => self.call(&group.name, &inputs, &name),
                 kind => {

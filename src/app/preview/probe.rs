@@ -9,9 +9,9 @@
 //! re-evaluated input) shows as placed: in every instance, as that instance sees it, so
 //! an Instance node's random numbers and ids show one per instance.
 
-use crate::graph::{Graph, MathOp, NodeId, NodeKind, PinRef, Value, ValueType};
+use crate::graph::{Graph, MathOp, NodeId, NodeKind, PinRef, Value, ValueType, Wire};
 use crate::nodes::{Combine, Math, Mix, Split};
-use rustc_hash::FxHashSet;
+use rustc_hash::{FxHashMap, FxHashSet};
 
 /// The part of `graph` that `node` reads, its first output wired into the material's
 /// albedo (see [`Graph::part`]), or `None` for the material node itself and nodes
@@ -20,54 +20,65 @@ pub fn probe_graph(graph: &Graph, node: NodeId) -> Option<Graph> {
     let output = *graph.node(node)?.kind.signature().outputs.first()?;
     let material = graph.material()?.id;
     let pin = PinRef::new(node, output.name);
-    let upstream = graph.upstream(placing_samplers(graph, [&pin]).chain([node]));
+    let sampler = Placing::of(graph).sampler(node);
+    let upstream = graph.upstream(sampler.into_iter().chain([node]));
     let mut probe = part_with(graph, upstream, material);
     // Flat: the material's other inputs (a height, a bump) would light or move it.
     cut_material(&mut probe, material);
-    let (colour, pin) = shown_colour(&mut probe, &pin, output.ty);
+    let (colour, pin) = shown_colour(&mut probe, &pin, output.ty, sampler);
     probe.connect(colour, pin, material, "albedo");
     Some(probe)
 }
 
-/// The sampler that places `node` per instance: the first node found downstream of it
-/// that reads it through a re-evaluated input (nodes are looked at nearest first).
-fn placing_sampler(graph: &Graph, node: NodeId) -> Option<NodeId> {
-    let mut seen = FxHashSet::default();
-    let mut queue = std::collections::VecDeque::from([node]);
-    while let Some(at) = queue.pop_front() {
-        for wire in graph.wires.iter().filter(|wire| wire.from.node == at) {
-            let reader = graph.node(wire.to.node)?;
-            let re_evaluated = (reader.kind.signature().input(&wire.to.pin))
-                .is_some_and(|(_, pin)| pin.re_evaluated);
-            if re_evaluated {
-                return Some(reader.id);
-            }
-            if seen.insert(reader.id) {
-                queue.push_back(reader.id);
-            }
-        }
-    }
-    None
+/// Which sampler places a node per instance, over an index of each node's readers made
+/// once per graph (an atlas asks for every tile).
+struct Placing<'g> {
+    graph: &'g Graph,
+    readers: FxHashMap<NodeId, Vec<&'g Wire>>,
 }
 
-/// The samplers placing the nodes of `pins` (see [`placing_sampler`]).
-fn placing_samplers<'p>(
-    graph: &Graph,
-    pins: impl IntoIterator<Item = &'p PinRef>,
-) -> impl Iterator<Item = NodeId> {
-    let samplers: Vec<NodeId> = pins
-        .into_iter()
-        .filter_map(|pin| placing_sampler(graph, pin.node))
-        .collect();
-    samplers.into_iter()
+impl<'g> Placing<'g> {
+    fn of(graph: &'g Graph) -> Placing<'g> {
+        let mut readers: FxHashMap<NodeId, Vec<&Wire>> = FxHashMap::default();
+        for wire in &graph.wires {
+            readers.entry(wire.from.node).or_default().push(wire);
+        }
+        Placing { graph, readers }
+    }
+
+    /// The sampler that places `node` per instance: the first node found downstream of
+    /// it that reads it through a re-evaluated input (nodes are looked at nearest first).
+    fn sampler(&self, node: NodeId) -> Option<NodeId> {
+        let mut seen = FxHashSet::default();
+        let mut queue = std::collections::VecDeque::from([node]);
+        while let Some(at) = queue.pop_front() {
+            for wire in self.readers.get(&at).into_iter().flatten() {
+                let reader = self.graph.node(wire.to.node)?;
+                let re_evaluated = (reader.kind.signature().input(&wire.to.pin))
+                    .is_some_and(|(_, pin)| pin.re_evaluated);
+                if re_evaluated {
+                    return Some(reader.id);
+                }
+                if seen.insert(reader.id) {
+                    queue.push_back(reader.id);
+                }
+            }
+        }
+        None
+    }
 }
 
 /// Adds to `graph` what shows `pin` (of type `ty`) as a colour (see the module's
-/// comment): as it is, or as placed by the sampler that places it, through a copy of
-/// that sampler (in `graph` with its upstream) drawing it in every instance untinted.
-fn shown_colour(graph: &mut Graph, pin: &PinRef, ty: ValueType) -> (NodeId, &'static str) {
+/// comment): as it is, or as placed by `sampler` (the one placing it, in `graph` with its
+/// upstream), through a copy of that sampler drawing it in every instance untinted.
+fn shown_colour(
+    graph: &mut Graph,
+    pin: &PinRef,
+    ty: ValueType,
+    sampler: Option<NodeId>,
+) -> (NodeId, &'static str) {
     let (colour, colour_pin) = as_colour(graph, pin, ty);
-    let Some(sampler) = placing_sampler(graph, pin.node) else {
+    let Some(sampler) = sampler else {
         return (colour, colour_pin);
     };
     let Some(original) = graph.node(sampler).cloned() else {
@@ -146,20 +157,22 @@ pub fn atlas_graph_reading(
     upstream: FxHashSet<NodeId>,
 ) -> Option<AtlasGraph> {
     let material = graph.material()?.id;
+    let placing = Placing::of(graph);
+    let samplers: Vec<Option<NodeId>> = pins.iter().map(|pin| placing.sampler(pin.node)).collect();
     let mut upstream = upstream;
-    upstream.extend(graph.upstream(placing_samplers(graph, pins)));
+    upstream.extend(graph.upstream(samplers.iter().flatten().copied()));
     let mut atlas = part_with(graph, upstream, material);
     cut_material(&mut atlas, material);
     let (mut shown, mut selectors, mut chain) = (Vec::new(), Vec::new(), None);
     let mut sources = Vec::new();
-    for pin in pins {
+    for (pin, sampler) in pins.iter().zip(samplers) {
         let Some(output) = graph
             .node(pin.node)
             .and_then(|node| node.kind.signature().output(&pin.pin).map(|(_, o)| *o))
         else {
             continue;
         };
-        let (colour, colour_pin) = shown_colour(&mut atlas, pin, output.ty);
+        let (colour, colour_pin) = shown_colour(&mut atlas, pin, output.ty, sampler);
         sources.push(colour);
         let tile = atlas.add(
             "thumbnail tile",
