@@ -1,10 +1,14 @@
 //! Periodic patterns: sine bands, triangle waves, tiles and rings.
 
-// Marble bands of seed 000: 0.5 + 0.5 sin(frequency x + distortion turbulence), the
-// products and the phase clamped to the finite range.
+// Marble bands of seed 000: 0.5 + 0.5 sin(frequency x + distortion turbulence).
 fn veneer_sine_band(x: f32, frequency: f32, distortion: f32, turbulence: f32) -> f32 {
-    let phase = veneer_finite_f32(frequency * x) + veneer_finite_f32(distortion * turbulence);
-    return 0.5 + 0.5 * sin(veneer_finite_f32(phase));
+    return 0.5 + 0.5 * sin(veneer_sine_band_phase(x, frequency, distortion, turbulence));
+}
+
+// The sine band's phase, frequency x + distortion turbulence, the products and the sum
+// clamped to the finite range.
+fn veneer_sine_band_phase(x: f32, frequency: f32, distortion: f32, turbulence: f32) -> f32 {
+    return veneer_finite_f32(veneer_finite_f32(frequency * x) + veneer_finite_f32(distortion * turbulence));
 }
 
 // 0 -> 1 -> 0 once per period of `x * frequency` (the ring profile of seed 001), the
@@ -21,13 +25,15 @@ fn veneer_tile_integral(x: vec2f, gap: vec2f) -> vec2f {
 
 // Share of [x - width/2, x + width/2] covered by tile: the box-filtered tile mask of
 // seed 004, centred on the pixel (seed 004 filters [x, x + width], half a filter off,
-// which at joints narrower than a pixel is worse than no filter), a hard step where the
-// width is 0.
+// which at joints narrower than a pixel is worse than no filter), faded to the mean
+// 1 - gap past Nyquist (a box wider than a tile only ripples about it); a hard step
+// where the width is 0.
 fn veneer_tile_coverage(x: vec2f, gap: vec2f, width: vec2f) -> vec2f {
     let hard = step(gap, fract(x));
     let half = width * 0.5;
     let soft = (veneer_tile_integral(x + half, gap) - veneer_tile_integral(x - half, gap)) / max(width, vec2f(1.0e-30));
-    return select(soft, hard, width <= vec2f(0.0));
+    let band_limited = mix(1.0 - gap, soft, veneer_nyquist_fade_vec2f(width));
+    return select(band_limited, hard, width <= vec2f(0.0));
 }
 
 struct veneer_tiles_result {
@@ -57,9 +63,14 @@ fn veneer_plane_footprint(p: vec3f) -> f32 {
     return max(extent.x, extent.z);
 }
 
-// Concentric rings about an axis: 0.5 + 0.5 sin(2 pi frequency r), the products clamped
-// to the finite range.
+// Concentric rings about an axis: 0.5 + 0.5 sin(2 pi frequency r).
 fn veneer_rings(p: vec3f, origin: vec3f, axis: vec3f, frequency: f32) -> f32 {
+    return 0.5 + 0.5 * sin(veneer_rings_phase(p, origin, axis, frequency));
+}
+
+// The rings' phase, 2 pi frequency r at distance r from the axis, the products clamped to
+// the finite range.
+fn veneer_rings_phase(p: vec3f, origin: vec3f, axis: vec3f, frequency: f32) -> f32 {
     let r = veneer_cylindrical(p, origin, axis).y;
-    return 0.5 + 0.5 * sin(veneer_finite_f32(veneer_finite_f32(6.283185307 * frequency) * r));
+    return veneer_finite_f32(veneer_finite_f32(6.283185307 * frequency) * r);
 }

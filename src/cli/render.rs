@@ -17,7 +17,8 @@ use veneer::render::{
 pub enum DetailName {
     /// Every octave everywhere (the CPU reference's numbers).
     Full,
-    /// Leave out octaves finer than a pixel, fading the last one.
+    /// Filter over the pixel: leave out octaves finer than it, fading the last one, and
+    /// box-filter bands, waves, rings, tiles, steps and smoothsteps over it.
     Footprint,
 }
 

@@ -5,7 +5,7 @@ use std::collections::BTreeSet;
 use std::sync::OnceLock;
 
 /// The library sources, one family per file.
-const SOURCES: [(&str, &str); 24] = [
+const SOURCES: [(&str, &str); 25] = [
     ("hash", include_str!("../../shaders/hash.wgsl")),
     ("value", include_str!("../../shaders/value.wgsl")),
     ("gradient", include_str!("../../shaders/gradient.wgsl")),
@@ -14,6 +14,7 @@ const SOURCES: [(&str, &str); 24] = [
     ("worley", include_str!("../../shaders/worley.wgsl")),
     ("coords", include_str!("../../shaders/coords.wgsl")),
     ("patterns", include_str!("../../shaders/patterns.wgsl")),
+    ("band_limit", include_str!("../../shaders/band_limit.wgsl")),
     ("instances", include_str!("../../shaders/instances.wgsl")),
     ("shapes", include_str!("../../shaders/shapes.wgsl")),
     ("math", include_str!("../../shaders/math.wgsl")),

@@ -60,9 +60,12 @@ pub enum Detail {
     #[default]
     Full,
     /// Fractal nodes leave out octaves finer than the pixel footprint (from screen-space
-    /// derivatives of their input), fading the last one, and tiles filter their joints
-    /// over it: less aliasing and less work in the distance. Fragment stage only, so
-    /// materials that displace vertices keep full detail.
+    /// derivatives of their input), fading the last one; periodic and thresholding
+    /// patterns (bands, waves, rings, tiles, steps, smoothsteps, stepped ranges) are
+    /// box-filtered over it analytically, fading to their mean past Nyquist: less
+    /// aliasing and less work in the distance. Fragment stage only, so materials that
+    /// displace vertices keep full detail, and only at the shaded point (see
+    /// [`Emit::filters_footprint`]).
     Footprint,
 }
 
@@ -144,6 +147,14 @@ impl<'a> Emit<'a> {
             .get(super::pins::pin_index(self.pins, pin))
             .copied()
             .flatten()
+    }
+
+    /// Whether the node filters over the pixel footprint: footprint detail, at the shaded
+    /// point. A local frame's function runs once per instance, in non-uniform control
+    /// flow where screen-space derivatives are undefined, so nodes there draw in full
+    /// (a sampler filters the edges it places over the instance's own footprint).
+    pub fn filters_footprint(&self) -> bool {
+        self.detail == Detail::Footprint && self.instance.is_none()
     }
 
     /// The identifier of the instance being placed, when the node is emitted inside a

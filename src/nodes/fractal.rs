@@ -1,7 +1,7 @@
 //! Fractals: sums of octaves of lattice noise (fBm, turbulence, fractal sum).
 
 use super::cpu::Eval;
-use super::emit::{Detail, Emit, float_literal};
+use super::emit::{Emit, float_literal};
 use super::formulas::real::{Real, V3, scale, splat};
 use super::formulas::{noise, octaves, shapes};
 use super::interval::{Interval, Lanes};
@@ -198,12 +198,11 @@ fn emit(
     let function = format!("veneer_{}{turned}_{}", mode.name(), basis.suffix());
     let q = format!("{} * {}", io.input("p"), io.input("scale"));
     let lacunarity = io.input("lacunarity");
-    let cutoff = match io.detail {
-        Detail::Full => float_literal(1.0e9),
-        Detail::Footprint => {
-            io.uses("veneer_octave_cutoff");
-            format!("veneer_octave_cutoff({q}, {lacunarity})")
-        }
+    let cutoff = if io.filters_footprint() {
+        io.uses("veneer_octave_cutoff");
+        format!("veneer_octave_cutoff({q}, {lacunarity})")
+    } else {
+        float_literal(1.0e9)
     };
     let arguments = format!(
         "{q}, {octaves}, {lacunarity}, {}, {}, {normalize}, {cutoff}",

@@ -236,12 +236,14 @@ impl Definition for Step {
         None
     }
     fn emit(&self, io: &mut Emit) {
-        io.single(format!(
-            "step({}({}), {})",
-            self.ty.wgsl(),
-            io.input("edge"),
-            io.input("x")
-        ));
+        let (edge, x) = (io.input("edge"), io.input("x"));
+        if io.filters_footprint() {
+            let function = format!("veneer_step_filtered_{}", self.ty.wgsl());
+            io.single(format!("{function}({edge}, {x})"));
+            io.uses(&function);
+        } else {
+            io.single(format!("step({}({edge}), {x})", self.ty.wgsl()));
+        }
     }
     fn ranges(&self, _: &mut Ranges) -> Vec<Lanes> {
         super::unit_range()
@@ -283,7 +285,11 @@ impl Definition for Smoothstep {
         None
     }
     fn emit(&self, io: &mut Emit) {
-        io.call("veneer_smoothstep");
+        io.call(if io.filters_footprint() {
+            "veneer_smoothstep_filtered"
+        } else {
+            "veneer_smoothstep"
+        });
     }
     fn ranges(&self, io: &mut Ranges) -> Vec<Lanes> {
         match (io.constant("edge0"), io.constant("edge1")) {
@@ -444,6 +450,7 @@ impl Definition for MapRange {
     fn emit(&self, io: &mut Emit) {
         let function = match self.mode {
             MapRangeMode::Linear => "veneer_map_range_linear",
+            MapRangeMode::Stepped if io.filters_footprint() => "veneer_map_range_stepped_filtered",
             MapRangeMode::Stepped => "veneer_map_range_stepped",
             MapRangeMode::Smooth => "veneer_map_range_smooth",
             MapRangeMode::Smoother => "veneer_map_range_smoother",

@@ -2,7 +2,7 @@
 
 use super::coordinates::axis_reach;
 use super::cpu::Eval;
-use super::emit::{Detail, Emit};
+use super::emit::Emit;
 use super::formulas::real::{Real, V3, splat};
 use super::formulas::shapes;
 use super::interval::{self, Interval, Lanes};
@@ -47,7 +47,11 @@ impl Definition for SineBand {
         )
     }
     fn emit(&self, io: &mut Emit) {
-        io.call("veneer_sine_band");
+        io.call(if io.filters_footprint() {
+            "veneer_sine_band_filtered"
+        } else {
+            "veneer_sine_band"
+        });
     }
     fn ranges(&self, _: &mut Ranges) -> Vec<Lanes> {
         super::unit_range()
@@ -89,7 +93,11 @@ impl Definition for TriangleWave {
         )
     }
     fn emit(&self, io: &mut Emit) {
-        io.call("veneer_triangle_wave");
+        io.call(if io.filters_footprint() {
+            "veneer_triangle_wave_filtered"
+        } else {
+            "veneer_triangle_wave"
+        });
     }
     fn ranges(&self, _: &mut Ranges) -> Vec<Lanes> {
         super::unit_range()
@@ -138,7 +146,7 @@ impl Definition for Tiles {
     fn emit(&self, io: &mut Emit) {
         io.uses("veneer_tiles");
         let mut inputs = io.inputs().to_vec();
-        if io.detail == Detail::Footprint {
+        if io.filters_footprint() {
             // Seed 004's antialiasing: the mortar box-filtered over the pixel's footprint
             // (its `fwidth`), or over `blur` where that is wider.
             io.uses("veneer_plane_footprint");
@@ -212,7 +220,11 @@ impl Definition for Rings {
         )
     }
     fn emit(&self, io: &mut Emit) {
-        io.call("veneer_rings");
+        io.call(if io.filters_footprint() {
+            "veneer_rings_filtered"
+        } else {
+            "veneer_rings"
+        });
     }
     fn ranges(&self, io: &mut Ranges) -> Vec<Lanes> {
         axis_reach(io, "origin", "axis");

@@ -1,13 +1,14 @@
 //! The report's material sections: precision (GPU f32 and CPU f32 against CPU f64),
-//! hash choice, octave budget, and footprint-aware detail.
+//! hash choice and octave budget.
 
+use super::level_of_detail::shown_in_grey;
 use super::measure::{cpu_albedo, errors, gpu_albedo, median};
 use super::plot::{Plot, Series};
 use super::table::{Table, number};
 use super::{Context, Section};
 use crate::codegen::{CompileOptions, Detail, compile};
-use crate::graph::{Basis, Graph, NodeKind, PRESETS, Value, ValueType};
-use crate::nodes::{Combine, Fbm, Noise, Turbulence, Worley};
+use crate::graph::{Basis, Graph, NodeKind, PRESETS, Value};
+use crate::nodes::{Fbm, Noise, Turbulence, Worley};
 use crate::render::{FlatRect, FlatRenderer, flat_points, preview_rect};
 
 /// A graph showing one scalar node's output as grey, at `scale`.
@@ -15,29 +16,23 @@ fn single_node(kind: NodeKind, scale: f64) -> Graph {
     let mut graph = Graph::default();
     let node = graph.add("under test", kind);
     graph.set_input(node, "scale", Value::Float(scale));
-    let grey = graph.add(
-        "grey",
-        NodeKind::Combine(Combine {
-            ty: ValueType::Color,
-        }),
-    );
-    for pin in ["x", "y", "z"] {
-        graph.connect(node, "value", grey, pin);
-    }
-    let material = graph.add("material", NodeKind::Material);
-    graph.connect(grey, "v", material, "albedo");
+    shown_in_grey(&mut graph, node, "value");
     graph
 }
 
 /// The flat renderer of `graph`, compiled once with noise detail `detail`.
-fn renderer(ctx: &Context, graph: &Graph, detail: Detail) -> Result<FlatRenderer, String> {
+pub(super) fn renderer(
+    ctx: &Context,
+    graph: &Graph,
+    detail: Detail,
+) -> Result<FlatRenderer, String> {
     let compiled =
         compile(graph, &CompileOptions::with_detail(detail)).map_err(|e| e.to_string())?;
     FlatRenderer::new(ctx.gpu, compiled.source()).map_err(|e| e.to_string())
 }
 
 /// GPU time per megapixel of a flat render of `graph` over `rect`.
-fn gpu_ms_per_megapixel(ctx: &Context, renderer: &FlatRenderer, rect: FlatRect) -> f64 {
+pub(super) fn gpu_ms_per_megapixel(ctx: &Context, renderer: &FlatRenderer, rect: FlatRect) -> f64 {
     let size = ctx.timing_size;
     let ms = median(ctx.repetitions, || {
         renderer
@@ -319,112 +314,4 @@ pub fn octaves(ctx: &Context) -> Result<Section, String> {
             series,
         },
     })
-}
-
-/// Footprint-aware detail against full evaluation on distant views.
-pub fn detail(ctx: &Context) -> Result<Section, String> {
-    let mut table = Table::new(&[
-        "material",
-        "view width",
-        "full: error",
-        "footprint: error",
-        "full ms/MP",
-        "footprint ms/MP",
-    ]);
-    let (mut full_points, mut footprint_points) = (Vec::new(), Vec::new());
-    let fbm = single_node(
-        NodeKind::Fbm(Fbm {
-            basis: Basis::Gradient,
-            octaves: 8,
-            normalize: true,
-            rotate: false,
-            period: 0,
-        }),
-        1.0,
-    );
-    let mut cases = vec![("fBm 8 (gradient)".to_string(), fbm)];
-    for name in ["wood", "marble_tiles"] {
-        cases.push((
-            name.to_string(),
-            crate::graph::preset(name).ok_or("preset")?,
-        ));
-    }
-    let (size, factor) = (128u32, 8u32);
-    for (name, graph) in &cases {
-        let base = preview_rect(&graph.preview);
-        let full = renderer(ctx, graph, Detail::Full)?;
-        let footprint = renderer(ctx, graph, Detail::Footprint)?;
-        for zoom in [1.0, 10.0, 100.0] {
-            let half = (base.x1 - base.x0) * 0.5 * zoom;
-            let rect = FlatRect {
-                x0: -half,
-                z0: -half,
-                x1: half,
-                z1: half,
-                y: base.y,
-            };
-            let wide =
-                gpu_albedo(ctx.gpu, &full, rect, size * factor).map_err(|e| e.to_string())?;
-            let reference = box_down(&wide, size as usize, factor as usize);
-            let full_values = gpu_albedo(ctx.gpu, &full, rect, size).map_err(|e| e.to_string())?;
-            let footprint_values =
-                gpu_albedo(ctx.gpu, &footprint, rect, size).map_err(|e| e.to_string())?;
-            let (_, full_error) = errors(&full_values, &reference);
-            let (_, footprint_error) = errors(&footprint_values, &reference);
-            let (full_ms, footprint_ms) = (
-                gpu_ms_per_megapixel(ctx, &full, rect),
-                gpu_ms_per_megapixel(ctx, &footprint, rect),
-            );
-            full_points.push((full_ms, full_error.max(1e-6)));
-            footprint_points.push((footprint_ms, footprint_error.max(1e-6)));
-            table.push(vec![
-                name.clone(),
-                number(2.0 * half, 3),
-                number(full_error, 2),
-                number(footprint_error, 2),
-                number(full_ms, 3),
-                number(footprint_ms, 3),
-            ]);
-        }
-        (ctx.progress)();
-    }
-    Ok(Section {
-        title: "Level of detail: footprint-aware octaves against full evaluation".into(),
-        text: format!(
-            "Flat renders at {size}² of each material over its preview square widened 1×, 10× and 100×; the error is the mean absolute difference from the same view rendered with every octave at {}² and box-filtered down (the truly filtered pattern). Footprint-aware detail leaves out octaves finer than half a pixel, fading the last one to its mean: far away it is both closer to the filtered pattern (less aliasing) and cheaper; near by it changes nothing in the image but costs each fractal node its screen-space derivatives and octave count, which a material of several short fBm nodes (wood) feels most. Wood's sine bands and ring shapes are not octaves, so they still alias at a distance.",
-            size * factor
-        ),
-        table,
-        plot: Plot {
-            title: "Detail: error against time".into(),
-            x_label: "GPU time per megapixel (ms)".into(),
-            y_label: "mean error against the filtered pattern".into(),
-            series: vec![
-                Series {
-                    name: "every octave".into(),
-                    points: full_points,
-                    joined: false,
-                },
-                Series {
-                    name: "footprint-aware".into(),
-                    points: footprint_points,
-                    joined: false,
-                },
-            ],
-        },
-    })
-}
-
-/// `pixels` (size·factor squared) averaged over factor×factor blocks.
-fn box_down(pixels: &[[f64; 3]], size: usize, factor: usize) -> Vec<[f64; 3]> {
-    let wide = size * factor;
-    let mut out = vec![[0.0; 3]; size * size];
-    let weight = 1.0 / (factor * factor) as f64;
-    for (k, value) in pixels.iter().enumerate() {
-        let target = &mut out[(k / wide / factor) * size + k % wide / factor];
-        for c in 0..3 {
-            target[c] += value[c] * weight;
-        }
-    }
-    out
 }

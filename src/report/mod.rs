@@ -2,6 +2,7 @@
 //! (Markdown, a CSV per table, a PNG plot of error against time per section).
 
 mod geodesics;
+pub mod level_of_detail;
 mod materials;
 mod measure;
 mod mesh_fields;
@@ -58,7 +59,8 @@ pub fn steps(settings: &Settings) -> u64 {
     // kinds + detail materials + geodesic meshes + thesis models (field times, frames)
     let precision = crate::graph::PRESETS.len() + 2 * crate::graph::Basis::ALL.len() + 1;
     // ... + mesh fields (occlusion per vertex and per texel, curvature, thickness)
-    precision as u64 + 6 + 2 + 3 + meshes + 2 * thesis::MODELS.len() as u64 + 4
+    let detail = level_of_detail::cases().len() as u64;
+    precision as u64 + 6 + 2 + detail + meshes + 2 * thesis::MODELS.len() as u64 + 4
 }
 
 /// The sections' slugs, in the order they are measured and appear: each gives its
@@ -143,7 +145,7 @@ fn measure_and_write(
         materials::hashes(&ctx)?,
         materials::octaves(&ctx)?,
         geodesics::geodesics(&ctx)?,
-        materials::detail(&ctx)?,
+        level_of_detail::detail(&ctx)?,
         thesis::distance_times(&ctx)?,
         thesis::frame_rates(&ctx)?,
         mesh_fields::mesh_fields(&ctx, settings.quick)?,

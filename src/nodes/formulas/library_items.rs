@@ -3,14 +3,15 @@
 //! validates with naga on its own, and the GPU computes what its CPU twin computes.
 
 use super::real::{V3, scale};
-use super::{colour, gabor, octaves, ranges, worley_edge};
+use super::{band_limit, colour, gabor, octaves, ranges, worley_edge};
 use crate::codegen::library::{SURFACE, closure, instance};
 use crate::nodes::settings::{Basis, FractalMode};
 use crate::render::{FlatRect, FlatRenderer, GpuContext, flat_points};
 use std::sync::OnceLock;
 
 /// The new library files (`shaders/<family>.wgsl`).
-const FAMILIES: [&str; 7] = [
+const FAMILIES: [&str; 8] = [
+    "band_limit",
     "white",
     "value_gradient",
     "gabor",
@@ -22,6 +23,7 @@ const FAMILIES: [&str; 7] = [
 
 const MODES: [&str; 3] = ["fbm", "turbulence", "fractal_sum"];
 const BASES: [&str; 4] = ["value_sine", "value_pcg", "gradient", "simplex"];
+const TYPES: [&str; 3] = ["f32", "vec2f", "vec3f"];
 
 /// Every item of the new files by name, templates instantiated, with its family.
 fn new_items() -> Vec<(String, &'static str)> {
@@ -44,6 +46,10 @@ fn new_items() -> Vec<(String, &'static str)> {
                         names.push((concrete, family));
                     }
                 }
+            } else if name.contains("TYPE") {
+                for ty in TYPES {
+                    names.push((name.replace("TYPE", ty), family));
+                }
             } else {
                 names.push((name, family));
             }
@@ -55,7 +61,7 @@ fn new_items() -> Vec<(String, &'static str)> {
 #[test]
 fn every_new_item_is_found_in_its_own_family_and_validates_alone() {
     let items = new_items();
-    assert_eq!(items.len(), 3 + 5 + 1 + 12 + 2 + 14 + 7);
+    assert_eq!(items.len(), 23 + 3 + 5 + 1 + 12 + 2 + 14 + 7);
     for (name, family) in items {
         let item = instance(&name).unwrap_or_else(|| panic!("no library item {name}"));
         assert_eq!(
@@ -130,6 +136,45 @@ fn cases() -> Vec<Case> {
         tolerance,
     };
     vec![
+        case(
+            &["veneer_band_limited_sine"],
+            "vec3f(veneer_band_limited_sine(p.x * 7.0, c.x * 9.0), veneer_band_limited_sine(p.z * 3.0, d.y * 2.0), veneer_band_limited_sine(p.x * 2.0 + p.z, 0.0))",
+            |p, c, d| {
+                [
+                    band_limit::band_limited_sine(p[0] * 7.0, c[0] * 9.0),
+                    band_limit::band_limited_sine(p[2] * 3.0, d[1] * 2.0),
+                    band_limit::band_limited_sine(p[0] * 2.0 + p[2], 0.0),
+                ]
+            },
+            2.0e-4,
+        ),
+        case(
+            &["veneer_band_limited_triangle", "veneer_band_limited_floor"],
+            "vec3f(veneer_band_limited_triangle(p.x * 1.3, c.y * 1.5), veneer_band_limited_triangle(p.z * 2.1, d.x * 0.4), veneer_band_limited_floor(p.x * 2.3, c.z * 1.2))",
+            |p, c, d| {
+                [
+                    band_limit::band_limited_triangle(p[0] * 1.3, c[1] * 1.5),
+                    band_limit::band_limited_triangle(p[2] * 2.1, d[0] * 0.4),
+                    band_limit::band_limited_floor(p[0] * 2.3, c[2] * 1.2),
+                ]
+            },
+            1.0e-5,
+        ),
+        case(
+            &[
+                "veneer_band_limited_smoothstep",
+                "veneer_band_limited_step_f32",
+            ],
+            "vec3f(veneer_band_limited_smoothstep(-0.5, 1.5, p.x, c.x * 2.0), veneer_band_limited_smoothstep(1.0, -1.0, p.z, d.z), veneer_band_limited_step_f32(0.3, p.x * 0.5, c.y))",
+            |p, c, d| {
+                [
+                    band_limit::band_limited_smoothstep(-0.5, 1.5, p[0], c[0] * 2.0),
+                    band_limit::band_limited_smoothstep(1.0, -1.0, p[2], d[2]),
+                    band_limit::band_limited_step(0.3, p[0] * 0.5, c[1]),
+                ]
+            },
+            1.0e-5,
+        ),
         case(
             &["veneer_white_noise"],
             "vec3f(veneer_white_noise(p * 3.7))",

@@ -1,6 +1,7 @@
 //! CPU twins of the WGSL library in `shaders/`: the same formulas, generic over the
 //! precision (f32 like the GPU, f64 as the reference).
 
+pub mod band_limit;
 pub mod buffers;
 pub mod colour;
 pub mod fields;

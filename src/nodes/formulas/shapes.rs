@@ -1,10 +1,10 @@
 //! Coordinates, patterns and safe arithmetic, as in shaders/coords.wgsl, patterns.wgsl
 //! and math.wgsl.
 
-use super::noise;
 use super::real::{
     DOWN, Real, V3, add, cross, dot, finite, length, map, mul, safe_normalize, scale, sub, zip,
 };
+use super::{band_limit, noise};
 use crate::nodes::settings::{Basis, FractalMode};
 
 /// `veneer_scaled`: `p * scale` clamped to ±1e38, so that a rotation of it stays finite.
@@ -172,13 +172,16 @@ fn tile_integral<R: Real>(x: R, gap: R) -> R {
     x.floor() * (R::c(1.0) - gap) + (x.fract() - gap).max(R::c(0.0))
 }
 
-/// Share of [x − width/2, x + width/2] covered by tile (`veneer_tile_coverage`).
+/// Share of [x − width/2, x + width/2] covered by tile, faded to the mean past Nyquist
+/// (`veneer_tile_coverage`).
 fn tile_coverage<R: Real>(x: R, gap: R, width: R) -> R {
     if width <= R::c(0.0) {
         R::step(gap, x.fract())
     } else {
         let half = width * R::c(0.5);
-        (tile_integral(x + half, gap) - tile_integral(x - half, gap)) / width.max(R::c(1.0e-30))
+        let soft = (tile_integral(x + half, gap) - tile_integral(x - half, gap))
+            / width.max(R::c(1.0e-30));
+        R::mix(R::c(1.0) - gap, soft, band_limit::nyquist_fade(width))
     }
 }
 

@@ -27,6 +27,15 @@ struct VeneerMaterial {
 // The fields flat views pass (no mesh): 0 for distance fields, an unbounded flat plane's value for mesh fields.
 const VENEER_FLAT_FIELDS = vec4f(0.0f, 0.0f, 0.0f, 0.0f);
 
+// ---- shaders/band_limit.wgsl
+
+// How much of a periodic pattern's variation a box `width` periods wide keeps on top of
+// the box filter itself: all of it up to half a period (Nyquist), none from a whole
+// period on, where the box holds the mean; smooth in between.
+fn veneer_nyquist_fade_vec2f(width: vec2f) -> vec2f {
+    return vec2f(1.0) - smoothstep(vec2f(0.5), vec2f(1.0), width);
+}
+
 // ---- shaders/patterns.wgsl
 
 // Length of tile (not gap) in [0, x] along each axis, for cells whose first `gap` is mortar.
@@ -36,13 +45,15 @@ fn veneer_tile_integral(x: vec2f, gap: vec2f) -> vec2f {
 
 // Share of [x - width/2, x + width/2] covered by tile: the box-filtered tile mask of
 // seed 004, centred on the pixel (seed 004 filters [x, x + width], half a filter off,
-// which at joints narrower than a pixel is worse than no filter), a hard step where the
-// width is 0.
+// which at joints narrower than a pixel is worse than no filter), faded to the mean
+// 1 - gap past Nyquist (a box wider than a tile only ripples about it); a hard step
+// where the width is 0.
 fn veneer_tile_coverage(x: vec2f, gap: vec2f, width: vec2f) -> vec2f {
     let hard = step(gap, fract(x));
     let half = width * 0.5;
     let soft = (veneer_tile_integral(x + half, gap) - veneer_tile_integral(x - half, gap)) / max(width, vec2f(1.0e-30));
-    return select(soft, hard, width <= vec2f(0.0));
+    let band_limited = mix(1.0 - gap, soft, veneer_nyquist_fade_vec2f(width));
+    return select(band_limited, hard, width <= vec2f(0.0));
 }
 
 struct veneer_tiles_result {
@@ -221,11 +232,15 @@ fn veneer_turbulence_gradient(p: vec3f, octaves: i32, lacunarity: f32, gain: f32
 
 // ---- shaders/patterns.wgsl
 
-// Marble bands of seed 000: 0.5 + 0.5 sin(frequency x + distortion turbulence), the
-// products and the phase clamped to the finite range.
+// The sine band's phase, frequency x + distortion turbulence, the products and the sum
+// clamped to the finite range.
+fn veneer_sine_band_phase(x: f32, frequency: f32, distortion: f32, turbulence: f32) -> f32 {
+    return veneer_finite_f32(veneer_finite_f32(frequency * x) + veneer_finite_f32(distortion * turbulence));
+}
+
+// Marble bands of seed 000: 0.5 + 0.5 sin(frequency x + distortion turbulence).
 fn veneer_sine_band(x: f32, frequency: f32, distortion: f32, turbulence: f32) -> f32 {
-    let phase = veneer_finite_f32(frequency * x) + veneer_finite_f32(distortion * turbulence);
-    return 0.5 + 0.5 * sin(veneer_finite_f32(phase));
+    return 0.5 + 0.5 * sin(veneer_sine_band_phase(x, frequency, distortion, turbulence));
 }
 
 // ---- shaders/math.wgsl

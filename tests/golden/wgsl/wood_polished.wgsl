@@ -232,11 +232,15 @@ fn veneer_finite_f32(x: f32) -> f32 {
 
 // ---- shaders/patterns.wgsl
 
-// Marble bands of seed 000: 0.5 + 0.5 sin(frequency x + distortion turbulence), the
-// products and the phase clamped to the finite range.
+// The sine band's phase, frequency x + distortion turbulence, the products and the sum
+// clamped to the finite range.
+fn veneer_sine_band_phase(x: f32, frequency: f32, distortion: f32, turbulence: f32) -> f32 {
+    return veneer_finite_f32(veneer_finite_f32(frequency * x) + veneer_finite_f32(distortion * turbulence));
+}
+
+// Marble bands of seed 000: 0.5 + 0.5 sin(frequency x + distortion turbulence).
 fn veneer_sine_band(x: f32, frequency: f32, distortion: f32, turbulence: f32) -> f32 {
-    let phase = veneer_finite_f32(frequency * x) + veneer_finite_f32(distortion * turbulence);
-    return 0.5 + 0.5 * sin(veneer_finite_f32(phase));
+    return 0.5 + 0.5 * sin(veneer_sine_band_phase(x, frequency, distortion, turbulence));
 }
 
 // ---- shaders/math.wgsl
