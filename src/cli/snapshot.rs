@@ -9,7 +9,8 @@ use std::path::{Path, PathBuf};
 use veneer::fsutil::{Naming, OutputPlan};
 use veneer::render::{GpuContext, View};
 use veneer::snapshot::{
-    Outcome, Report, Settings, Tolerance, UPDATE_VARIABLE, beside, check, update_requested,
+    Outcome, Report, Settings, Tolerance, UPDATE_VARIABLE, beside, check, kept_for,
+    update_requested,
 };
 
 #[derive(Args)]
@@ -17,7 +18,8 @@ pub struct SnapshotArgs {
     /// Graph files; each is compared with DIR/<graph>.png.
     #[arg(required = true)]
     graphs: Vec<PathBuf>,
-    /// Folder of golden images and their .snap.ron sidecars.
+    /// Folder of golden images and their .snap.ron sidecars; an adapter whose bits differ
+    /// keeps its own in a subfolder named after it (`llvmpipe-gl/`), used where it exists.
     #[arg(long, value_name = "DIR")]
     golden: PathBuf,
     /// Write the renders as the new goldens (also with VENEER_UPDATE_SNAPSHOTS=1).
@@ -166,7 +168,7 @@ pub fn run(args: SnapshotArgs) -> Result<(), Failure> {
     let gpu = GpuContext::new().map_err(|error| bad_input(error.to_string()))?;
     let mut reports = Vec::new();
     for graph in &args.graphs {
-        let golden = args.golden(graph);
+        let golden = kept_for(&gpu, &args.golden(graph), update);
         let report = check(&gpu, graph, &golden, &settings, update)
             .map_err(|error| bad_input(error.to_string()))?;
         if !args.json {

@@ -308,7 +308,7 @@ impl PassRenderer {
         }
         let limit = gpu.device.limits().max_texture_dimension_2d;
         let mut textures = Vec::with_capacity(self.slot_specs.len());
-        for &index in &self.slot_specs {
+        for (slot, &index) in self.slot_specs.iter().enumerate() {
             let pass = &self.passes.passes[index];
             let (width, height) = pass.extent(size);
             if width.max(height) > limit {
@@ -317,12 +317,21 @@ impl PassRenderer {
                     pass.label
                 )));
             }
+            // A slot only ever uploaded into (bitmaps) is no render target: adapters that
+            // cannot render into float textures (GL) can still hold a float bitmap.
+            let drawn = (self.storage.iter().zip(&self.passes.passes))
+                .any(|(&held, pass)| held == slot && !matches!(pass.kind, PassKind::Bitmap { .. }));
+            let target = if drawn {
+                wgpu::TextureUsages::RENDER_ATTACHMENT
+            } else {
+                wgpu::TextureUsages::empty()
+            };
             textures.push(super::plain_texture(
                 &gpu.device,
                 &pass.label,
                 (width, height),
                 texture_format(pass.spec.format),
-                wgpu::TextureUsages::RENDER_ATTACHMENT
+                target
                     | wgpu::TextureUsages::TEXTURE_BINDING
                     | wgpu::TextureUsages::COPY_SRC
                     | wgpu::TextureUsages::COPY_DST,

@@ -376,16 +376,49 @@ fn shared_gpu() -> &'static GpuContext {
 }
 
 /// For `cargo test`: renders `graph` and panics unless it matches `golden` (writing the
-/// golden instead when `VENEER_UPDATE_SNAPSHOTS=1`). On a mismatch the panic message
-/// explains why, and `<golden>.actual.png` and `<golden>.diff.png` are left beside it.
+/// golden instead when `VENEER_UPDATE_SNAPSHOTS=1`), or the adapter's own copy of it
+/// ([`kept_for`]). On a mismatch the panic message explains why, and
+/// `<golden>.actual.png` and `<golden>.diff.png` are left beside it.
 pub fn assert_matches(graph: impl AsRef<Path>, golden: impl AsRef<Path>, settings: &Settings) {
-    let report = check(
-        shared_gpu(),
-        graph.as_ref(),
-        golden.as_ref(),
-        settings,
-        update_requested(),
-    )
-    .unwrap_or_else(|error| panic!("snapshot of {} failed: {error}", graph.as_ref().display()));
+    assert_matches_on(shared_gpu(), graph, golden, settings);
+}
+
+/// [`assert_matches`] on adapter `gpu`.
+pub fn assert_matches_on(
+    gpu: &GpuContext,
+    graph: impl AsRef<Path>,
+    golden: impl AsRef<Path>,
+    settings: &Settings,
+) {
+    let update = update_requested();
+    let golden = kept_for(gpu, golden.as_ref(), update);
+    let report = check(gpu, graph.as_ref(), &golden, settings, update)
+        .unwrap_or_else(|error| panic!("snapshot of {} failed: {error}", graph.as_ref().display()));
     assert!(report.passed(), "{}", report.summary());
+}
+
+/// The name of the subfolder that keeps an adapter's own goldens, `<device>-<backend>` in
+/// lower case (`llvmpipe-gl`): graphs whose bits differ between adapters (the sine
+/// hash's) need one golden per adapter, kept beside the others.
+pub fn adapter_folder(gpu: &GpuContext) -> String {
+    let info = gpu.adapter.get_info();
+    let device = info.name.split_whitespace().next().unwrap_or("unknown");
+    format!("{device}-{:?}", info.backend).to_lowercase()
+}
+
+/// Where `gpu` keeps golden `golden`: under [`adapter_folder`] in the golden's folder
+/// (`tests/snapshots/llvmpipe-gl/wood.png` for `tests/snapshots/wood.png`) when that
+/// subfolder exists and holds the file, or when updating; else `golden` itself (the
+/// graph renders alike on every adapter, or the adapter keeps no goldens of its own).
+pub fn kept_for(gpu: &GpuContext, golden: &Path, update: bool) -> PathBuf {
+    let (Some(folder), Some(name)) = (golden.parent(), golden.file_name()) else {
+        return golden.to_path_buf();
+    };
+    let own = folder.join(adapter_folder(gpu));
+    let kept = own.join(name);
+    if own.is_dir() && (update || kept.is_file()) {
+        kept
+    } else {
+        golden.to_path_buf()
+    }
 }

@@ -1,10 +1,13 @@
 //! Every preset loads, checks, compiles to its golden WGSL, saves byte-identically, and
-//! renders (flat and on its mesh) like its snapshot, through `veneer::snapshot`; the
-//! texture graphs (materials with passes) render like theirs.
+//! renders (flat and on its mesh) like its snapshot, through `veneer::snapshot`, on the
+//! default adapter and on GL; the texture graphs (materials with passes) render like
+//! theirs.
 
-use crate::support::{flat_rgb8, presets, root, snapshot_folder, stem, texture_graphs, updating};
-use veneer::render::{FlatRect, View};
-use veneer::snapshot::{Settings, assert_matches};
+use crate::support::{
+    flat_rgb8, gpu, presets, root, snapshot_folder, stem, texture_graphs, updating,
+};
+use veneer::render::{FlatRect, GpuContext, View};
+use veneer::snapshot::{Settings, assert_matches_on};
 
 #[test]
 fn presets_load_check_and_match_their_golden_wgsl() {
@@ -46,12 +49,13 @@ fn presets_save_byte_identically() {
     }
 }
 
-/// Each of `graphs` renders like its snapshots in `folder`: on its mesh (`NAME.png`)
-/// and flat (`flat/NAME.png`).
-fn assert_snapshots(graphs: &[std::path::PathBuf], folder: &std::path::Path) {
+/// Each of `graphs` renders on `gpu` like its snapshots in `folder`: on its mesh
+/// (`NAME.png`) and flat (`flat/NAME.png`), or like the adapter's own copies of them.
+fn assert_snapshots(gpu: &GpuContext, graphs: &[std::path::PathBuf], folder: &std::path::Path) {
     for path in graphs {
         let name = stem(path);
-        assert_matches(
+        assert_matches_on(
+            gpu,
             path,
             folder.join(format!("{name}.png")),
             &Settings::default(),
@@ -60,18 +64,36 @@ fn assert_snapshots(graphs: &[std::path::PathBuf], folder: &std::path::Path) {
             view: View::PreviewFlat,
             ..Settings::default()
         };
-        assert_matches(path, folder.join(format!("flat/{name}.png")), &flat);
+        assert_matches_on(gpu, path, folder.join(format!("flat/{name}.png")), &flat);
     }
 }
 
 #[test]
 fn presets_render_like_their_snapshots_flat_and_on_their_mesh() {
-    assert_snapshots(&presets(), &snapshot_folder());
+    assert_snapshots(gpu(), &presets(), &snapshot_folder());
+}
+
+/// The same goldens on Mesa's GL adapter (llvmpipe), as on a machine without Vulkan:
+/// the sine hash's presets against GL's own copies (`llvmpipe-gl/`), the rest against
+/// the same files as Vulkan. Under `VENEER_UPDATE_SNAPSHOTS=1` it stands aside, so that
+/// updating the goldens does not copy every preset into GL's folder.
+#[test]
+fn presets_render_like_their_snapshots_on_gl_too() {
+    if veneer::snapshot::update_requested() {
+        return;
+    }
+    let gl = GpuContext::on_backends(wgpu::Backends::GL).unwrap_or_else(|error| {
+        panic!(
+            "this test needs Mesa's GL adapter (packages libegl-mesa0 and libgl1-mesa-dri, \
+             which the README's test command installs): {error}"
+        )
+    });
+    assert_snapshots(&gl, &presets(), &snapshot_folder());
 }
 
 #[test]
 fn texture_graphs_render_like_their_snapshots_flat_and_on_their_mesh() {
-    assert_snapshots(&texture_graphs(), &snapshot_folder().join("texture"));
+    assert_snapshots(gpu(), &texture_graphs(), &snapshot_folder().join("texture"));
 }
 
 #[test]

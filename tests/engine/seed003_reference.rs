@@ -504,3 +504,63 @@ fn the_brick_preset_jitters_its_rows() {
         .count();
     assert!(differing > 40, "only {differing} of 2000 points moved");
 }
+
+/// The listings' uniforms are the presets' parameters under the listings' names, so a
+/// sweep is `--set distanceThreshold=0.12`: each sets the node labelled with the name,
+/// whose value the transcriptions above read.
+#[test]
+fn the_listings_uniforms_are_parameters_with_their_names() {
+    let uniforms: [(&str, &[&str]); 8] = [
+        ("thesis_c2_sand_water", &["distanceThreshold", "bumpScale"]),
+        ("thesis_c3_moss_granite", &["distanceThreshold"]),
+        (
+            "thesis_c4_paint_metal_rust",
+            &[
+                "thresholdLayer1",
+                "thresholdLayer2",
+                "thresholdLayer3",
+                "bumpScale",
+            ],
+        ),
+        (
+            "thesis_c5_water_lava",
+            &["thresholdLayer1", "thresholdLayer2", "bumpScale"],
+        ),
+        (
+            "thesis_c6_waves",
+            &["stripeWidth", "frequency", "bumpScale"],
+        ),
+        (
+            "thesis_c6_waves_adaptive",
+            &["stripeWidth", "frequency", "bumpScale"],
+        ),
+        ("thesis_fig1_1_fronts", &["distanceThreshold"]),
+        ("thesis_fig5_7_opacity", &["distanceThreshold"]),
+    ];
+    for (preset, names) in uniforms {
+        let mut graph = veneer::graph::load(&root(&format!("graphs/{preset}.ron"))).unwrap();
+        for &name in names {
+            let parameter = (graph.parameters.iter())
+                .find(|p| p.name == name)
+                .unwrap_or_else(|| panic!("{preset} exposes no {name}"))
+                .clone();
+            let node = graph.nodes.iter().find(|n| n.id == parameter.node).unwrap();
+            assert!(
+                node.label == name || node.label.contains(name),
+                "{preset}: {name} sets '{}'",
+                node.label
+            );
+            // A value within the parameter's range, unlike any preset's.
+            let (low, high) = parameter.range.expect("the uniforms have ranges");
+            let value = low + 0.377 * (high - low);
+            let given = veneer::graph::parameters::Given::Number(value);
+            veneer::graph::parameters::set(&mut graph, name, &given).unwrap();
+            let node = graph.nodes.iter().find(|n| n.id == parameter.node).unwrap();
+            assert_eq!(
+                node.inputs.get(parameter.pin.as_str()),
+                Some(&veneer::graph::Value::Float(value)),
+                "{preset}: {name}"
+            );
+        }
+    }
+}

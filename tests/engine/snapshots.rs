@@ -139,3 +139,32 @@ fn time_dependent_graphs_render_at_the_given_time() {
     let expected = (255.0 * (0.5 + 0.5 * (3.0f32 * 0.75).sin())).round() as u8;
     assert!(render(0.75).iter().all(|&v| v.abs_diff(expected) <= 1));
 }
+
+/// On a machine with only GL, `veneer snapshot graphs/*.ron --golden tests/snapshots`
+/// passes: GL reads its own copies where the sine hash's bits differ (`llvmpipe-gl/`),
+/// and the shared goldens elsewhere.
+#[test]
+fn the_cli_passes_the_shipped_goldens_on_gl() {
+    let output = crate::support::veneer()
+        .current_dir(root(""))
+        .args(["snapshot", "graphs/wood.ron", "graphs/wood_classic.ron"])
+        .args(["--golden", "tests/snapshots", "--json"])
+        .env("WGPU_BACKEND", "gl")
+        .env_remove(veneer::snapshot::UPDATE_VARIABLE)
+        .output()
+        .expect("veneer runs");
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(
+        output.status.success(),
+        "{stdout}\n{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    assert!(
+        stdout.contains("llvmpipe-gl/wood.png"),
+        "wood read GL's own golden: {stdout}"
+    );
+    assert!(
+        stdout.contains("tests/snapshots/wood_classic.png"),
+        "wood_classic read the shared golden: {stdout}"
+    );
+}

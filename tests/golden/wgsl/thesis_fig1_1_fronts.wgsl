@@ -104,11 +104,11 @@ fn veneer_mix_vec3f(a: vec3f, b: vec3f, t: f32) -> vec3f {
 
 fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     // Math 'from source (uv)' (#7)
-    let from_source_uv: vec2f = veneer_finite_vec2f(s.uv - vec2f(0.0f, 0.5f));
+    let from_source_uv: vec2f = veneer_finite_vec2f(s.uv - vec2f(0.0f, 0.0f));
     // Length 'uv length' (#8)
     let uv_length: f32 = veneer_length_vec2f(from_source_uv);
     // Math 'uv distance' (#9)
-    let uv_distance: f32 = veneer_finite_f32(uv_length * 0.894427f);
+    let uv_distance: f32 = veneer_finite_f32(uv_length * 0.707107f);
     // Math 'from source (3D)' (#4)
     let from_source_3d: vec3f = veneer_finite_vec3f(s.position - vec3f(0.4f, 0.0f, 0.0f));
     // Length '3D length' (#5)
