@@ -2,6 +2,12 @@
 //! share of ambient light, a Blinn-Phong highlight, and the emission added on top (each
 //! term clamped to +-1e18, far past white, so that their sum is finite).
 
+// The normal the lighting takes, from the mesh's unit normal plus the material's
+// perturbation: a unit vector.
+fn veneer_lit_normal(perturbed: vec3f) -> vec3f {
+    return normalize(perturbed);
+}
+
 fn veneer_shade(material: VeneerMaterial, n: vec3f, v: vec3f, l: vec3f) -> vec3f {
     let view = veneer_mesh_view;
     let h = normalize(l + v);

@@ -46,6 +46,12 @@ fn veneer_display(light: vec3f) -> vec3f {
     return veneer_srgb_encode(veneer_tone_map(light * view.exposure_scale, view.tone_map));
 }
 
+// The normal the lighting takes, from the mesh's unit normal plus the material's
+// perturbation: a unit vector.
+fn veneer_lit_normal(perturbed: vec3f) -> vec3f {
+    return normalize(perturbed);
+}
+
 fn veneer_shade(material: VeneerMaterial, n: vec3f, v: vec3f, l: vec3f) -> vec3f {
     let base = clamp(material.albedo, vec3f(0.0), vec3f(1.0));
     let metallic = clamp(material.metallic, 0.0, 1.0);

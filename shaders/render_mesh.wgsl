@@ -95,19 +95,20 @@ fn veneer_mesh_fragment(input: VeneerVertexOut, @builtin(front_facing) front: bo
     }
     // VENEER_RELIEF (set by the pipeline): a bump, a height or a tilt perturbs the normal
     // (by at most 1e18 per axis, which already turns it all the way, so that it
-    // normalises to a finite direction whatever the material gives).
+    // normalises to a finite direction whatever the material gives); the shading's
+    // veneer_lit_normal normalises it, or not (the thesis's).
     var n = normal;
     if VENEER_RELIEF {
         let limit = vec3f(1.0e18);
-        n = normalize(normal + clamp(material.bump, -limit, limit) + clamp(relief, -limit, limit) + tilt);
+        n = veneer_lit_normal(normal + clamp(material.bump, -limit, limit) + clamp(relief, -limit, limit) + tilt);
     }
     // A back face (drawn where the material can be cut away or see-through) is lit
     // from its own side.
     n = select(-n, n, front);
     let l = view.light_direction.xyz;
     let v = normalize(view.eye.xyz - input.position);
-    // veneer_shade comes from the graph's shading: render_lit_blinn_phong.wgsl or
-    // render_lit_metallic_roughness.wgsl.
+    // veneer_shade comes from the graph's shading: render_lit_blinn_phong.wgsl,
+    // render_lit_metallic_roughness.wgsl or render_lit_thesis.wgsl.
     var color = veneer_shade(material, n, v, l);
     color = select(color, material.albedo, view.unlit == 1u);
     // VENEER_BLENDED (set by the pipeline): this pass blends by the material's alpha.

@@ -263,7 +263,9 @@ fn pixel(map: Map, shading: Shading, p: [f32; 4]) -> [f32; 4] {
     // (metallic, roughness, occlusion, shininess) → the roughness the shading uses.
     let roughness = |p: [f32; 4]| match shading {
         Shading::MetallicRoughness => p[1],
-        Shading::BlinnPhong => (2.0 / (p[3].max(0.0) + 2.0)).sqrt(),
+        Shading::BlinnPhong | Shading::Thesis | Shading::ThesisAbsolute => {
+            (2.0 / (p[3].max(0.0) + 2.0)).sqrt()
+        }
     };
     match map {
         Map::Albedo | Map::Normal => p,

@@ -13,9 +13,24 @@ pub enum Shading {
     /// Base colour (the albedo), metallic, roughness, occlusion and the tangent-space
     /// normal: Cook-Torrance GGX under the key light and the environment.
     MetallicRoughness,
+    /// Seed 003's lighting as its appendix C listings write it: Phong's R·V highlight,
+    /// the diffuse by N·L as it comes (below 0 on the far side, which the frame clamps),
+    /// no ambient fill, and the bumped normal left as `normalize(N) + bump`.
+    Thesis,
+    /// [`Shading::Thesis`] with |N·L|, as listings C.4 and C.5 write it: the far side is
+    /// lit as the near one.
+    ThesisAbsolute,
 }
 
 impl Shading {
+    /// Every model, in menu order.
+    pub const ALL: [Shading; 4] = [
+        Shading::BlinnPhong,
+        Shading::MetallicRoughness,
+        Shading::Thesis,
+        Shading::ThesisAbsolute,
+    ];
+
     pub(super) fn is_default(&self) -> bool {
         *self == Shading::default()
     }
@@ -25,15 +40,20 @@ impl Shading {
         match self {
             Shading::BlinnPhong => "Blinn-Phong",
             Shading::MetallicRoughness => "metallic-roughness",
+            Shading::Thesis => "thesis Phong",
+            Shading::ThesisAbsolute => "thesis Phong |N·L|",
         }
     }
 
-    /// Whether the lighting reads the material's input `pin` (Blinn-Phong leaves out
-    /// metallic, roughness and occlusion; metallic-roughness, specular and shininess).
+    /// Whether the lighting reads the material's input `pin` (Blinn-Phong and the
+    /// thesis's Phong leave out metallic, roughness and occlusion; metallic-roughness,
+    /// specular and shininess).
     pub fn reads(self, pin: &str) -> bool {
         let ignored: &[&str] = match self {
-            Shading::BlinnPhong => &["metallic", "roughness", "occlusion"],
             Shading::MetallicRoughness => &["specular", "shininess"],
+            Shading::BlinnPhong | Shading::Thesis | Shading::ThesisAbsolute => {
+                &["metallic", "roughness", "occlusion"]
+            }
         };
         !ignored.contains(&pin)
     }
@@ -43,7 +63,7 @@ impl Shading {
 mod tests {
     use super::*;
 
-    /// The inputs one shading's lighting reads and the other's does not are those its
+    /// The inputs one shading's lighting reads and another's does not are those its
     /// WGSL lighting file reads from the material.
     #[test]
     fn the_inputs_a_shading_reads_are_those_its_lighting_file_reads() {
@@ -57,14 +77,15 @@ mod tests {
                 Shading::MetallicRoughness,
                 "render_lit_metallic_roughness.wgsl",
             ),
+            (Shading::Thesis, "render_lit_thesis.wgsl"),
         ];
         let texts = files.map(|(_, file)| std::fs::read_to_string(root.join(file)).unwrap());
         for pin in pins {
             let lit = texts
                 .each_ref()
                 .map(|text| text.contains(&format!("material.{}", pin.name)));
-            // Inputs read outside the lighting (alpha, bump, height, normal) or by both.
-            if lit[0] == lit[1] {
+            // Inputs read outside the lighting (alpha, bump, height, normal) or by all.
+            if lit.iter().all(|&read| read == lit[0]) {
                 assert!(
                     files.iter().all(|(shading, _)| shading.reads(pin.name)),
                     "{}",

@@ -260,6 +260,8 @@ const ENTRY_POINTS: &str = concat!(
 );
 /// The seeds' lighting.
 const BLINN_PHONG: &str = include_str!("../../shaders/render_lit_blinn_phong.wgsl");
+/// Seed 003's lighting, as its listings write it.
+const THESIS: &str = include_str!("../../shaders/render_lit_thesis.wgsl");
 /// Metallic-roughness lighting, its environment and the backdrop behind it.
 const METALLIC_ROUGHNESS: &str = concat!(
     include_str!("../../shaders/ggx.wgsl"),
@@ -695,8 +697,12 @@ fn mesh_module(
         kind.constants()
     );
     let lighting = match uses.shading {
-        Shading::BlinnPhong => BLINN_PHONG,
-        Shading::MetallicRoughness => METALLIC_ROUGHNESS,
+        Shading::BlinnPhong => BLINN_PHONG.to_string(),
+        Shading::MetallicRoughness => METALLIC_ROUGHNESS.to_string(),
+        Shading::Thesis | Shading::ThesisAbsolute => format!(
+            "const VENEER_ABSOLUTE_N_DOT_L: bool = {};\n{THESIS}",
+            uses.shading == Shading::ThesisAbsolute
+        ),
     };
     let displacement = if displaced { DISPLACED_ENTRY_POINT } else { "" };
     let entry_points = format!("{constants}{ENTRY_POINTS}\n{lighting}\n{displacement}");

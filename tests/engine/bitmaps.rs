@@ -92,7 +92,7 @@ fn a_square_image_drawn_at_its_size_gives_back_its_texels() {
     let dir = temp_dir("bitmap-texels");
     let picture = picture(32, 32);
     picture.save(dir.join("pic.png")).unwrap();
-    for shading in [Shading::BlinnPhong, Shading::MetallicRoughness] {
+    for shading in Shading::ALL {
         let image = ImageFile {
             path: "pic.png".into(),
             ..ImageFile::default()
@@ -107,11 +107,12 @@ fn a_square_image_drawn_at_its_size_gives_back_its_texels() {
         for (pixel, texel) in pixels.iter().zip(picture.pixels()) {
             for lane in 0..3 {
                 let stored = f32::from(texel.0[lane]) / 255.0;
-                // A Blinn-Phong graph's colours are display values: the file's numbers;
-                // a metallic-roughness graph's are linear light: decoded from sRGB.
+                // A Blinn-Phong (or thesis) graph's colours are display values: the
+                // file's numbers; a metallic-roughness graph's are linear light: decoded
+                // from sRGB.
                 let expected = match shading {
-                    Shading::BlinnPhong => stored,
                     Shading::MetallicRoughness => veneer::bitmaps::srgb_to_linear(stored),
+                    Shading::BlinnPhong | Shading::Thesis | Shading::ThesisAbsolute => stored,
                 };
                 assert!(
                     (pixel[lane] - expected).abs() < 1e-6,

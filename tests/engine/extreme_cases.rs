@@ -334,10 +334,7 @@ fn extreme_material(shading: veneer::graph::Shading, scale: f64) -> Graph {
 fn extreme_material_outputs_bake_into_finite_maps() {
     use veneer::bake::{BakeSettings, BakeSurface, Format, Map, NormalConvention, bake};
     let dir = crate::support::temp_dir("extreme-material-bakes");
-    for shading in [
-        veneer::graph::Shading::BlinnPhong,
-        veneer::graph::Shading::MetallicRoughness,
-    ] {
+    for shading in veneer::graph::Shading::ALL {
         let compiled =
             veneer::codegen::compile(&extreme_material(shading, 3.4e38), &Default::default())
                 .expect("compiles");
@@ -386,10 +383,7 @@ fn extreme_material_outputs_bake_into_finite_maps() {
 #[test]
 fn extreme_material_outputs_light_like_saturated_ones() {
     use veneer::render::{View, render_material};
-    for shading in [
-        veneer::graph::Shading::BlinnPhong,
-        veneer::graph::Shading::MetallicRoughness,
-    ] {
+    for shading in veneer::graph::Shading::ALL {
         let image = |scale: f64| {
             let mut graph = extreme_material(shading, scale);
             // The height's relief differs with its scale; the bump and emission do not.

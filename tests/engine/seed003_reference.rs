@@ -19,6 +19,7 @@
 
 use crate::support::{Samples, root};
 use veneer::eval::{Evaluator, Material, Surface};
+use veneer::graph::Shading;
 use veneer::nodes::formulas::noise;
 use veneer::nodes::settings::{Basis, Metric};
 
@@ -342,8 +343,74 @@ impl Samples {
     }
 }
 
+/// Seed 003's lighting as a listing writes it: `fvNormal = normalize(Normal) + bump`
+/// (not normalised again), N·L as it comes or, in C.4 and C.5, |N·L|, the reflection
+/// `normalize(2 N (N·L) − L)`, and `ambient + diffuse · N·L + specular · pow(max(R·V, 0),
+/// power)` (the ambient is the preset's emission).
+fn listing_lighting(thesis: &Channels, normal: V3, light: V3, view: V3, absolute: bool) -> V3 {
+    let n = normal.map(|x| x + thesis.bump);
+    let dot = |a: V3, b: V3| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let n_dot_l = if absolute {
+        dot(n, light).abs()
+    } else {
+        dot(n, light)
+    };
+    let reflected = [0, 1, 2].map(|i| 2.0 * n[i] * n_dot_l - light[i]);
+    let r = times(reflected, 1.0 / dot(reflected, reflected).sqrt());
+    let highlight = dot(r, view).max(0.0).powf(thesis.shininess);
+    [0, 1, 2]
+        .map(|i| thesis.emission[i] + thesis.diffuse[i] * n_dot_l + thesis.specular[i] * highlight)
+}
+
+/// Veneer's thesis shading, as `shaders/render_lit_thesis.wgsl` and the mesh fragment
+/// (the normal plus the material's bump, as it is) compute it from a material.
+fn veneer_thesis_lighting(
+    material: &Material<f64>,
+    normal: V3,
+    light: V3,
+    view: V3,
+    absolute: bool,
+) -> V3 {
+    let n = [0, 1, 2].map(|i| normal[i] + material.bump[i]);
+    let dot = |a: V3, b: V3| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let n_dot_l = if absolute {
+        dot(n, light).abs()
+    } else {
+        dot(n, light)
+    };
+    let reflected = [0, 1, 2].map(|i| 2.0 * n[i] * n_dot_l - light[i]);
+    let r = times(
+        reflected,
+        1.0 / dot(reflected, reflected).max(1.0e-30).sqrt(),
+    );
+    let highlight = dot(r, view).max(0.0).powf(material.shininess.max(1.0));
+    [0, 1, 2].map(|i| {
+        material.albedo[i] * n_dot_l
+            + material.specular[i] * highlight
+            + material.emission[i] * material.emission_strength
+    })
+}
+
+/// A random unit vector.
+fn direction(samples: &mut Samples) -> V3 {
+    let v = [0, 1, 2].map(|_| samples.unit() * 2.0 - 1.0);
+    let length = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt().max(1e-9);
+    times(v, 1.0 / length)
+}
+
 fn check(preset: &str, edges: [&[f64]; 2], reference: fn(V3, [f64; 2], f64) -> Channels) {
     let graph = veneer::graph::load(&root(&format!("graphs/{preset}.ron"))).expect("preset loads");
+    // C.4 and C.5 light by |N·L|, the others by N·L.
+    let absolute = matches!(
+        preset,
+        "thesis_c4_paint_metal_rust" | "thesis_c5_water_lava"
+    );
+    let expected = if absolute {
+        Shading::ThesisAbsolute
+    } else {
+        Shading::Thesis
+    };
+    assert_eq!(graph.shading, expected, "{preset} is lit as its listing");
     let evaluator = Evaluator::new(&graph).expect("preset checks");
     let mut samples = Samples(0x5eed_0003);
     let mut worst = 0.0_f64;
@@ -374,6 +441,24 @@ fn check(preset: &str, edges: [&[f64]; 2], reference: fn(V3, [f64; 2], f64) -> C
                  fields {fields:?}, time {time}"
             );
         }
+        // The whole fragment: the channels lit as the listing lights them, under a
+        // random normal, light and eye.
+        let (normal, light, view) = (
+            direction(&mut samples),
+            direction(&mut samples),
+            direction(&mut samples),
+        );
+        let ours = veneer_thesis_lighting(&ours, normal, light, view, absolute);
+        let listing = listing_lighting(&thesis, normal, light, view, absolute);
+        let error = (0..3)
+            .map(|i| (ours[i] - listing[i]).abs())
+            .fold(0.0, f64::max);
+        worst = worst.max(error);
+        assert!(
+            error <= 1e-6,
+            "{preset}: lit {ours:?}, the listing gives {listing:?} at position {position:?}, \
+             normal {normal:?}, light {light:?}, eye {view:?}"
+        );
     }
     eprintln!("{preset}: largest difference from the thesis {worst:e}");
 }
@@ -562,5 +647,76 @@ fn the_listings_uniforms_are_parameters_with_their_names() {
                 "{preset}: {name}"
             );
         }
+    }
+}
+
+/// The GPU lights as [`veneer_thesis_lighting`] does: `render_lit_thesis.wgsl` over a
+/// flat render of materials, normals and eyes varying with the point, both with N·L and
+/// with |N·L|.
+#[test]
+fn the_gpu_lights_as_the_thesis_shading_is_transcribed() {
+    let gpu = crate::support::gpu();
+    let lighting = include_str!("../../shaders/render_lit_thesis.wgsl");
+    let surface: String = (veneer::codegen::library::SURFACE.lines())
+        .filter(|line| !line.starts_with("//!"))
+        .map(|line| format!("{line}\n"))
+        .collect();
+    let rect = veneer::render::FlatRect {
+        x0: -3.3,
+        z0: -2.7,
+        x1: 4.1,
+        z1: 4.7,
+        y: 0.37,
+    };
+    for absolute in [false, true] {
+        let source = format!(
+            "{surface}\nconst VENEER_ABSOLUTE_N_DOT_L: bool = {absolute};\n{lighting}
+fn veneer_material(s: VeneerSurface) -> VeneerMaterial {{
+    let c = fract(s.position * vec3f(0.31, 0.47, 0.73));
+    let n = normalize(vec3f(c.x - 0.5, 0.6, c.z - 0.5));
+    let v = normalize(vec3f(c.z - 0.2, 1.0, c.x - 0.7));
+    let l = normalize(vec3f(0.3, 0.8, -0.5));
+    let m = VeneerMaterial(c, 1.0, vec3f(0.5, 0.4, 0.3), 12.0, vec3f(c.y * 0.3 - 0.15), 0.0, vec3f(0.1, 0.0, 0.05), 0.0, 0.5, vec3f(0.0, 0.0, 1.0), 1.0, 1.0);
+    let lit = veneer_shade(m, veneer_lit_normal(n + m.bump), v, l);
+    return VeneerMaterial(clamp(lit, vec3f(0.0), vec3f(1.0)), 1.0, vec3f(0.0), 1.0, vec3f(0.0), 0.0, vec3f(0.0), 0.0, 0.5, vec3f(0.0, 0.0, 1.0), 1.0, 1.0);
+}}
+"
+        );
+        let renderer =
+            veneer::render::FlatRenderer::new(gpu, &source).expect("the lighting compiles");
+        let pixels = renderer.render(gpu, rect, 32, 0.0).expect("renders");
+        let unit = |v: V3| times(v, 1.0 / (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt());
+        let mut worst = 0.0f64;
+        for (point, pixel) in veneer::render::flat_points(rect, 32)
+            .into_iter()
+            .zip(pixels)
+        {
+            let fract = |x: f64| x - x.floor();
+            let c =
+                [point[0] * 0.31, point[1] * 0.47, point[2] * 0.73].map(|x| fract(x as f32 as f64));
+            let material = Material::<f64> {
+                albedo: c,
+                alpha: 1.0,
+                specular: [0.5, 0.4, 0.3],
+                shininess: 12.0,
+                bump: [c[1] * 0.3 - 0.15; 3],
+                height: 0.0,
+                emission: [0.1, 0.0, 0.05],
+                metallic: 0.0,
+                roughness: 0.5,
+                normal: [0.0, 0.0, 1.0],
+                emission_strength: 1.0,
+                occlusion: 1.0,
+            };
+            let normal = unit([c[0] - 0.5, 0.6, c[2] - 0.5]);
+            let view = unit([c[2] - 0.2, 1.0, c[0] - 0.7]);
+            let light = unit([0.3, 0.8, -0.5]);
+            let lit = veneer_thesis_lighting(&material, normal, light, view, absolute);
+            for k in 0..3 {
+                let error = (f64::from(pixel[k]) - lit[k].clamp(0.0, 1.0)).abs();
+                worst = worst.max(error);
+            }
+        }
+        assert!(worst <= 1e-4, "|N·L| {absolute}: worst difference {worst}");
     }
 }

@@ -374,12 +374,12 @@ impl VeneerApp {
             egui::ComboBox::from_id_salt("shading")
                 .selected_text(shading.name())
                 .show_ui(ui, |ui| {
-                    for choice in [Shading::BlinnPhong, Shading::MetallicRoughness] {
+                    for choice in Shading::ALL {
                         ui.selectable_value(shading, choice, choice.name());
                     }
                 })
                 .response
-                .on_hover_text("Blinn-Phong: albedo, specular and shininess under the seeds' lighting; metallic-roughness: base colour, metallic, roughness and occlusion shaded by GGX, as glTF and the engines do");
+                .on_hover_text("Blinn-Phong: albedo, specular and shininess under the seeds' lighting; metallic-roughness: base colour, metallic, roughness and occlusion shaded by GGX, as glTF and the engines do; thesis Phong: seed 003's listings' own lighting (Phong's R·V, N·L unclamped or, as C.4 and C.5, |N·L|, no ambient)");
             let alpha = &mut alpha;
             let name = |mode: &AlphaMode| match mode {
                 AlphaMode::Mask { .. } => "cut out",

@@ -192,9 +192,7 @@ fn random_edit(graph: &Graph, (op, a, b, c): Pick) -> GraphEdit {
             1 => GraphSetting::Alpha(
                 [AlphaMode::Opaque, AlphaMode::Blend, AlphaMode::default()][c as usize % 3],
             ),
-            2 => GraphSetting::Shading(
-                [Shading::BlinnPhong, Shading::MetallicRoughness][c as usize % 2],
-            ),
+            2 => GraphSetting::Shading(Shading::ALL[c as usize % Shading::ALL.len()]),
             3 => GraphSetting::Frames(vec![Frame {
                 title: "frame".into(),
                 min: (0.0, 0.0),

@@ -123,8 +123,7 @@ impl Footprint {
         let mut title = TITLE_LEAD + text_width(&node.title(), TITLE_SIZE) + SIGN;
         if node.kind == NodeKind::Material {
             // The shading's name after the title, whichever it is.
-            let names = [Shading::BlinnPhong, Shading::MetallicRoughness];
-            let widest = names.map(|shading| text_width(shading.name(), TEXT_SIZE));
+            let widest = Shading::ALL.map(|shading| text_width(shading.name(), TEXT_SIZE));
             title += SPACE + widest.into_iter().fold(0.0, f32::max);
         }
         let rows = signature.inputs.len().max(signature.outputs.len()) as f32;
