@@ -149,11 +149,22 @@ impl PassRenderer {
                 .get_texture_format_features(format)
                 .allowed_usages;
             if !usages.contains(wgpu::TextureUsages::RENDER_ATTACHMENT) {
+                let info = gpu.adapter.get_info();
+                // wgpu finds float render targets on desktop GL only by extension names
+                // that Mesa's core profiles leave out (gfx-rs/wgpu#2838).
+                let mesa_gl =
+                    info.backend == wgpu::Backend::Gl && info.driver_info.contains("Mesa");
+                let workaround = if mesa_gl {
+                    "; on Mesa's OpenGL, MESA_EXTENSION_OVERRIDE=+GL_ARB_color_buffer_float \
+                     lets wgpu see the float render targets the driver has"
+                } else {
+                    ""
+                };
                 return Err(RenderError::Gpu(format!(
                     "pass '{}': this adapter, {}, cannot render into {format:?} textures, \
                      which the material's passes need; use a Vulkan, Metal or DirectX 12 \
                      adapter (without a GPU on Linux: Mesa's lavapipe, package \
-                     mesa-vulkan-drivers)",
+                     mesa-vulkan-drivers){workaround}",
                     pass.label,
                     gpu.adapter_description()
                 )));

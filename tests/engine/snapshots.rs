@@ -140,24 +140,38 @@ fn time_dependent_graphs_render_at_the_given_time() {
     assert!(render(0.75).iter().all(|&v| v.abs_diff(expected) <= 1));
 }
 
+/// `veneer snapshot` of `graphs` against `golden` on GL (`extra` arguments after), as on
+/// a machine without Vulkan.
+fn snapshot_on_gl(graphs: &[&str], golden: &str, extra: &[&str]) -> String {
+    let output = crate::support::veneer()
+        .current_dir(root(""))
+        .arg("snapshot")
+        .args(graphs)
+        .args(["--golden", golden, "--json"])
+        .args(extra)
+        .env("WGPU_BACKEND", "gl")
+        .env_remove("MESA_EXTENSION_OVERRIDE")
+        .env_remove(veneer::snapshot::UPDATE_VARIABLE)
+        .output()
+        .expect("veneer runs");
+    let stdout = String::from_utf8_lossy(&output.stdout).into_owned();
+    assert!(
+        output.status.success(),
+        "{stdout}\n{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    stdout
+}
+
 /// On a machine with only GL, `veneer snapshot graphs/*.ron --golden tests/snapshots`
 /// passes: GL reads its own copies where the sine hash's bits differ (`llvmpipe-gl/`),
 /// and the shared goldens elsewhere.
 #[test]
 fn the_cli_passes_the_shipped_goldens_on_gl() {
-    let output = crate::support::veneer()
-        .current_dir(root(""))
-        .args(["snapshot", "graphs/wood.ron", "graphs/wood_classic.ron"])
-        .args(["--golden", "tests/snapshots", "--json"])
-        .env("WGPU_BACKEND", "gl")
-        .env_remove(veneer::snapshot::UPDATE_VARIABLE)
-        .output()
-        .expect("veneer runs");
-    let stdout = String::from_utf8_lossy(&output.stdout);
-    assert!(
-        output.status.success(),
-        "{stdout}\n{}",
-        String::from_utf8_lossy(&output.stderr)
+    let stdout = snapshot_on_gl(
+        &["graphs/wood.ron", "graphs/wood_classic.ron"],
+        "tests/snapshots",
+        &[],
     );
     assert!(
         stdout.contains("llvmpipe-gl/wood.png"),
@@ -167,4 +181,23 @@ fn the_cli_passes_the_shipped_goldens_on_gl() {
         stdout.contains("tests/snapshots/wood_classic.png"),
         "wood_classic read the shared golden: {stdout}"
     );
+}
+
+/// The texture graphs (float buffers) on GL too (the binary names Mesa's float render
+/// targets for wgpu, gfx-rs/wgpu#2838): on their mesh and flat; the samplers' placements
+/// round differently there, so pebbles and fish scales keep GL copies.
+#[test]
+fn the_texture_graphs_pass_their_goldens_on_gl() {
+    let graphs: Vec<String> = crate::support::texture_graphs()
+        .iter()
+        .map(|path| path.display().to_string())
+        .collect();
+    let graphs: Vec<&str> = graphs.iter().map(String::as_str).collect();
+    snapshot_on_gl(&graphs, "tests/snapshots/texture", &[]);
+    let flat = snapshot_on_gl(
+        &graphs,
+        "tests/snapshots/texture/flat",
+        &["--flat", "preview"],
+    );
+    assert!(flat.contains("flat/llvmpipe-gl/pebbles.png"), "{flat}");
 }
