@@ -34,18 +34,6 @@ fn veneer_image_based_light(n: vec3f, v: vec3f, base: vec3f, metallic: f32, roug
     return diffuse + specular;
 }
 
-// The sRGB transfer function (linear light to the encoded value a display shows).
-fn veneer_srgb_encode(linear: vec3f) -> vec3f {
-    let c = clamp(linear, vec3f(0.0), vec3f(1.0));
-    return select(1.055 * pow(c, vec3f(1.0 / 2.4)) - 0.055, 12.92 * c, c <= vec3f(0.0031308));
-}
-
-// Scene-linear light to the display: exposure, tone mapper, sRGB.
-fn veneer_display(light: vec3f) -> vec3f {
-    let view = veneer_mesh_view;
-    return veneer_srgb_encode(veneer_tone_map(light * view.exposure_scale, view.tone_map));
-}
-
 // The normal the lighting takes, from the mesh's unit normal plus the material's
 // perturbation: a unit vector.
 fn veneer_lit_normal(perturbed: vec3f) -> vec3f {

@@ -1,6 +1,8 @@
-//! Tone mappers for metallic-roughness previews: scene-linear light to display-linear
-//! values in [0, 1] (sRGB encoding follows). `kind` is `ToneMap as u32` (render/tone_map.rs
-//! holds the CPU twins the tests check against published values).
+//! Tone mappers for the previews that light by an environment (metallic-roughness, the
+//! thesis's sphere map): scene-linear light to display-linear values in [0, 1], then
+//! sRGB-encoded by `veneer_display`, which reads the mesh view's exposure and tone mapper.
+//! `kind` is `ToneMap as u32` (render/tone_map.rs holds the CPU twins the tests check
+//! against published values).
 
 // Khronos PBR Neutral (Khronos 3D Commerce, 2024): identity below 0.76 up to a small
 // toe offset, then a hue-preserving highlight roll-off.
@@ -60,4 +62,16 @@ fn veneer_tone_map(colour: vec3f, kind: u32) -> vec3f {
         case 3u: { return veneer_agx(c); }
         default: { return clamp(c, vec3f(0.0), vec3f(1.0)); }
     }
+}
+
+// The sRGB transfer function (linear light to the encoded value a display shows).
+fn veneer_srgb_encode(linear: vec3f) -> vec3f {
+    let c = clamp(linear, vec3f(0.0), vec3f(1.0));
+    return select(1.055 * pow(c, vec3f(1.0 / 2.4)) - 0.055, 12.92 * c, c <= vec3f(0.0031308));
+}
+
+// Scene-linear light to the display: exposure, tone mapper, sRGB.
+fn veneer_display(light: vec3f) -> vec3f {
+    let view = veneer_mesh_view;
+    return veneer_srgb_encode(veneer_tone_map(light * view.exposure_scale, view.tone_map));
 }

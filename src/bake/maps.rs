@@ -261,9 +261,10 @@ impl Converter {
 fn pixel(map: Map, shading: Shading, p: [f32; 4]) -> [f32; 4] {
     let grey = |v: f32| [v, v, v, 1.0];
     // (metallic, roughness, occlusion, shininess) → the roughness the shading uses.
-    let roughness = |p: [f32; 4]| match shading {
-        Shading::MetallicRoughness => p[1],
-        Shading::BlinnPhong | Shading::Thesis | Shading::ThesisAbsolute => {
+    let roughness = |p: [f32; 4]| {
+        if shading == Shading::MetallicRoughness {
+            p[1]
+        } else {
             (2.0 / (p[3].max(0.0) + 2.0)).sqrt()
         }
     };

@@ -642,7 +642,7 @@ fn read_bitmaps(
         let Some(source) = checked.node.kind.definition().bitmap() else {
             continue;
         };
-        let linear = graph.shading == super::Shading::MetallicRoughness;
+        let linear = graph.shading.is_linear();
         match crate::bitmaps::load(
             graph.folder.path(),
             source.path,

@@ -20,15 +20,22 @@ pub enum Shading {
     /// [`Shading::Thesis`] with |N·L|, as listings C.4 and C.5 write it: the far side is
     /// lit as the near one.
     ThesisAbsolute,
+    /// [`Shading::Thesis`] with C.6.4's environment, the waves' final look: the colour
+    /// is the environment in the direction of the light's reflection (which the listing
+    /// looks up in a sphere map; here the environment itself, the procedural sky by
+    /// default, shown through the exposure and tone mapper) plus the highlight, the
+    /// diffuse term dropped as the listing drops it.
+    ThesisSphereMap,
 }
 
 impl Shading {
     /// Every model, in menu order.
-    pub const ALL: [Shading; 4] = [
+    pub const ALL: [Shading; 5] = [
         Shading::BlinnPhong,
         Shading::MetallicRoughness,
         Shading::Thesis,
         Shading::ThesisAbsolute,
+        Shading::ThesisSphereMap,
     ];
 
     pub(super) fn is_default(&self) -> bool {
@@ -42,18 +49,33 @@ impl Shading {
             Shading::MetallicRoughness => "metallic-roughness",
             Shading::Thesis => "thesis Phong",
             Shading::ThesisAbsolute => "thesis Phong |N·L|",
+            Shading::ThesisSphereMap => "thesis sphere map",
         }
     }
 
+    /// Whether the lighting reads an environment (its maps are bound, and the preview
+    /// offers the environment, exposure and tone mapper).
+    pub fn reads_environment(self) -> bool {
+        matches!(self, Shading::MetallicRoughness | Shading::ThesisSphereMap)
+    }
+
+    /// Whether colours are linear light (metallic-roughness) rather than the display
+    /// values the seeds' and the thesis's lighting show.
+    pub fn is_linear(self) -> bool {
+        self == Shading::MetallicRoughness
+    }
+
     /// Whether the lighting reads the material's input `pin` (Blinn-Phong and the
-    /// thesis's Phong leave out metallic, roughness and occlusion; metallic-roughness,
-    /// specular and shininess).
+    /// thesis's Phong leave out metallic, roughness and occlusion, the thesis's sphere map
+    /// the albedo too; metallic-roughness, specular and shininess).
     pub fn reads(self, pin: &str) -> bool {
         let ignored: &[&str] = match self {
             Shading::MetallicRoughness => &["specular", "shininess"],
             Shading::BlinnPhong | Shading::Thesis | Shading::ThesisAbsolute => {
                 &["metallic", "roughness", "occlusion"]
             }
+            // C.6.4 shows the environment where the others show the diffuse colour.
+            Shading::ThesisSphereMap => &["albedo", "metallic", "roughness", "occlusion"],
         };
         !ignored.contains(&pin)
     }
@@ -78,6 +100,10 @@ mod tests {
                 "render_lit_metallic_roughness.wgsl",
             ),
             (Shading::Thesis, "render_lit_thesis.wgsl"),
+            (
+                Shading::ThesisSphereMap,
+                "render_lit_thesis_sphere_map.wgsl",
+            ),
         ];
         let texts = files.map(|(_, file)| std::fs::read_to_string(root.join(file)).unwrap());
         for pin in pins {

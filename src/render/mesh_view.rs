@@ -261,7 +261,18 @@ const ENTRY_POINTS: &str = concat!(
 /// The seeds' lighting.
 const BLINN_PHONG: &str = include_str!("../../shaders/render_lit_blinn_phong.wgsl");
 /// Seed 003's lighting, as its listings write it.
-const THESIS: &str = include_str!("../../shaders/render_lit_thesis.wgsl");
+const THESIS: &str = concat!(
+    include_str!("../../shaders/render_lit_thesis_phong.wgsl"),
+    include_str!("../../shaders/render_lit_thesis.wgsl")
+);
+/// Seed 003's C.6.4 lighting and the environment it reflects.
+const THESIS_SPHERE_MAP: &str = concat!(
+    include_str!("../../shaders/ggx.wgsl"),
+    include_str!("../../shaders/tone_map.wgsl"),
+    include_str!("../../shaders/render_environment.wgsl"),
+    include_str!("../../shaders/render_lit_thesis_phong.wgsl"),
+    include_str!("../../shaders/render_lit_thesis_sphere_map.wgsl")
+);
 /// Metallic-roughness lighting, its environment and the backdrop behind it.
 const METALLIC_ROUGHNESS: &str = concat!(
     include_str!("../../shaders/ggx.wgsl"),
@@ -401,7 +412,10 @@ pub struct MeshPipeline {
     passes: Vec<MeshPass>,
     /// Metallic-roughness shading: what draws the backdrop, and its bind group.
     backdrop: Option<(wgpu::RenderPipeline, Option<wgpu::BindGroup>)>,
-    /// The environment the bind groups hold (metallic-roughness shading).
+    /// The environment's bindings the passes read (none unless the shading reads an
+    /// environment).
+    environment_maps: &'static [u32],
+    /// The environment the bind groups hold.
     environment: Option<Arc<EnvironmentMaps>>,
     view: wgpu::Buffer,
     params: Option<wgpu::Buffer>,
@@ -463,7 +477,8 @@ impl MeshPipeline {
         let view = uniform("mesh view", std::mem::size_of::<MeshViewUniform>());
         let params = (param_slots > 0).then(|| uniform("material parameters", param_slots * 16));
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let lit_by_environment = uses.shading == Shading::MetallicRoughness;
+        let environment_maps = mesh_maps(uses.shading);
+        let lit_by_environment = !environment_maps.is_empty();
         let mut modules = Vec::new();
         let passes = PassKind::for_alpha(uses.alpha)
             .iter()
@@ -490,14 +505,15 @@ impl MeshPipeline {
                 }
             })
             .collect();
-        let backdrop =
-            lit_by_environment.then(|| (backdrop_pipeline(device, &modules[0], samples), None));
+        let backdrop = (uses.shading == Shading::MetallicRoughness)
+            .then(|| (backdrop_pipeline(device, &modules[0], samples), None));
         if let Some(error) = pollster::block_on(scope.pop()) {
             return Err(RenderError::Gpu(format!("mesh render pipeline: {error}")));
         }
         Ok(MeshPipeline {
             passes,
             backdrop,
+            environment_maps,
             environment: None,
             view,
             params,
@@ -513,10 +529,11 @@ impl MeshPipeline {
         }
     }
 
-    /// Whether the pipeline's shading samples an environment: metallic-roughness
-    /// pipelines draw nothing until [`MeshPipeline::set_environment`] gives them one.
+    /// Whether the pipeline's shading samples an environment: such pipelines
+    /// (metallic-roughness, the thesis's sphere map) draw nothing until
+    /// [`MeshPipeline::set_environment`] gives them one.
     pub fn needs_environment(&self) -> bool {
-        self.backdrop.is_some()
+        !self.environment_maps.is_empty()
     }
 
     /// Lights a metallic-roughness pipeline with `environment` (nothing to do when it is
@@ -535,7 +552,7 @@ impl MeshPipeline {
                 device,
                 &pass.pipeline,
                 &self.view,
-                Some((environment, MESH_MAPS)),
+                Some((environment, self.environment_maps)),
             ));
         }
         if let Some((pipeline, group)) = &mut self.backdrop {
@@ -703,6 +720,9 @@ fn mesh_module(
             "const VENEER_ABSOLUTE_N_DOT_L: bool = {};\n{THESIS}",
             uses.shading == Shading::ThesisAbsolute
         ),
+        Shading::ThesisSphereMap => {
+            format!("const VENEER_ABSOLUTE_N_DOT_L: bool = false;\n{THESIS_SPHERE_MAP}")
+        }
     };
     let displacement = if displaced { DISPLACED_ENTRY_POINT } else { "" };
     let entry_points = format!("{constants}{ENTRY_POINTS}\n{lighting}\n{displacement}");
@@ -712,9 +732,16 @@ fn mesh_module(
     })
 }
 
-/// The environment's bindings (render_environment.wgsl) the mesh passes read: the
-/// prefiltered chain, the irradiance, the BRDF table and the sampler.
-const MESH_MAPS: &[u32] = &[2, 3, 4, 5];
+/// The environment's bindings (render_environment.wgsl) the mesh passes of a shading
+/// read: metallic-roughness the prefiltered chain, the irradiance, the BRDF table and the
+/// sampler; the thesis's sphere map the sharpest level of the chain and the sampler.
+fn mesh_maps(shading: Shading) -> &'static [u32] {
+    match shading {
+        Shading::MetallicRoughness => &[2, 3, 4, 5],
+        Shading::ThesisSphereMap => &[2, 5],
+        Shading::BlinnPhong | Shading::Thesis | Shading::ThesisAbsolute => &[],
+    }
+}
 /// The bindings the backdrop reads: the panorama, the prefiltered chain, the sampler.
 const BACKDROP_MAPS: &[u32] = &[1, 2, 5];
 

@@ -346,34 +346,39 @@ impl Samples {
 /// Seed 003's lighting as a listing writes it: `fvNormal = normalize(Normal) + bump`
 /// (not normalised again), N·L as it comes or, in C.4 and C.5, |N·L|, the reflection
 /// `normalize(2 N (N·L) − L)`, and `ambient + diffuse · N·L + specular · pow(max(R·V, 0),
-/// power)` (the ambient is the preset's emission).
-fn listing_lighting(thesis: &Channels, normal: V3, light: V3, view: V3, absolute: bool) -> V3 {
+/// power)` (the ambient is the preset's emission). C.6.4 replaces the ambient and diffuse
+/// terms by the environment its sphere map shows, which is left out here on both sides
+/// (the renderer's, seen in the snapshot).
+fn listing_lighting(thesis: &Channels, normal: V3, light: V3, view: V3, shading: Shading) -> V3 {
     let n = normal.map(|x| x + thesis.bump);
     let dot = |a: V3, b: V3| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-    let n_dot_l = if absolute {
-        dot(n, light).abs()
-    } else {
-        dot(n, light)
+    let n_dot_l = match shading {
+        Shading::ThesisAbsolute => dot(n, light).abs(),
+        _ => dot(n, light),
     };
     let reflected = [0, 1, 2].map(|i| 2.0 * n[i] * n_dot_l - light[i]);
     let r = times(reflected, 1.0 / dot(reflected, reflected).sqrt());
     let highlight = dot(r, view).max(0.0).powf(thesis.shininess);
-    [0, 1, 2]
-        .map(|i| thesis.emission[i] + thesis.diffuse[i] * n_dot_l + thesis.specular[i] * highlight)
+    let lit = thesis.specular.map(|s| s * highlight);
+    if shading == Shading::ThesisSphereMap {
+        return lit;
+    }
+    [0, 1, 2].map(|i| thesis.emission[i] + thesis.diffuse[i] * n_dot_l + lit[i])
 }
 
-/// Veneer's thesis shading, as `shaders/render_lit_thesis.wgsl` and the mesh fragment
-/// (the normal plus the material's bump, as it is) compute it from a material.
+/// Veneer's thesis shadings, as `shaders/render_lit_thesis*.wgsl` and the mesh fragment
+/// (the normal plus the material's bump, as it is) compute them from a material; the
+/// sphere map's environment term left out (see [`listing_lighting`]).
 fn veneer_thesis_lighting(
     material: &Material<f64>,
     normal: V3,
     light: V3,
     view: V3,
-    absolute: bool,
+    shading: Shading,
 ) -> V3 {
     let n = [0, 1, 2].map(|i| normal[i] + material.bump[i]);
     let dot = |a: V3, b: V3| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-    let n_dot_l = if absolute {
+    let n_dot_l = if shading == Shading::ThesisAbsolute {
         dot(n, light).abs()
     } else {
         dot(n, light)
@@ -384,8 +389,13 @@ fn veneer_thesis_lighting(
         1.0 / dot(reflected, reflected).max(1.0e-30).sqrt(),
     );
     let highlight = dot(r, view).max(0.0).powf(material.shininess.max(1.0));
+    let diffuse = if shading == Shading::ThesisSphereMap {
+        0.0
+    } else {
+        n_dot_l
+    };
     [0, 1, 2].map(|i| {
-        material.albedo[i] * n_dot_l
+        material.albedo[i] * diffuse
             + material.specular[i] * highlight
             + material.emission[i] * material.emission_strength
     })
@@ -400,15 +410,11 @@ fn direction(samples: &mut Samples) -> V3 {
 
 fn check(preset: &str, edges: [&[f64]; 2], reference: fn(V3, [f64; 2], f64) -> Channels) {
     let graph = veneer::graph::load(&root(&format!("graphs/{preset}.ron"))).expect("preset loads");
-    // C.4 and C.5 light by |N·L|, the others by N·L.
-    let absolute = matches!(
-        preset,
-        "thesis_c4_paint_metal_rust" | "thesis_c5_water_lava"
-    );
-    let expected = if absolute {
-        Shading::ThesisAbsolute
-    } else {
-        Shading::Thesis
+    // C.4 and C.5 light by |N·L|, C.6 adds its sphere map, the others by N·L.
+    let expected = match preset {
+        "thesis_c4_paint_metal_rust" | "thesis_c5_water_lava" => Shading::ThesisAbsolute,
+        "thesis_c6_waves" => Shading::ThesisSphereMap,
+        _ => Shading::Thesis,
     };
     assert_eq!(graph.shading, expected, "{preset} is lit as its listing");
     let evaluator = Evaluator::new(&graph).expect("preset checks");
@@ -448,8 +454,8 @@ fn check(preset: &str, edges: [&[f64]; 2], reference: fn(V3, [f64; 2], f64) -> C
             direction(&mut samples),
             direction(&mut samples),
         );
-        let ours = veneer_thesis_lighting(&ours, normal, light, view, absolute);
-        let listing = listing_lighting(&thesis, normal, light, view, absolute);
+        let ours = veneer_thesis_lighting(&ours, normal, light, view, expected);
+        let listing = listing_lighting(&thesis, normal, light, view, expected);
         let error = (0..3)
             .map(|i| (ours[i] - listing[i]).abs())
             .fold(0.0, f64::max);
@@ -656,7 +662,10 @@ fn the_listings_uniforms_are_parameters_with_their_names() {
 #[test]
 fn the_gpu_lights_as_the_thesis_shading_is_transcribed() {
     let gpu = crate::support::gpu();
-    let lighting = include_str!("../../shaders/render_lit_thesis.wgsl");
+    let lighting = concat!(
+        include_str!("../../shaders/render_lit_thesis_phong.wgsl"),
+        include_str!("../../shaders/render_lit_thesis.wgsl")
+    );
     let surface: String = (veneer::codegen::library::SURFACE.lines())
         .filter(|line| !line.starts_with("//!"))
         .map(|line| format!("{line}\n"))
@@ -668,7 +677,8 @@ fn the_gpu_lights_as_the_thesis_shading_is_transcribed() {
         z1: 4.7,
         y: 0.37,
     };
-    for absolute in [false, true] {
+    for shading in [Shading::Thesis, Shading::ThesisAbsolute] {
+        let absolute = shading == Shading::ThesisAbsolute;
         let source = format!(
             "{surface}\nconst VENEER_ABSOLUTE_N_DOT_L: bool = {absolute};\n{lighting}
 fn veneer_material(s: VeneerSurface) -> VeneerMaterial {{
@@ -711,7 +721,7 @@ fn veneer_material(s: VeneerSurface) -> VeneerMaterial {{
             let normal = unit([c[0] - 0.5, 0.6, c[2] - 0.5]);
             let view = unit([c[2] - 0.2, 1.0, c[0] - 0.7]);
             let light = unit([0.3, 0.8, -0.5]);
-            let lit = veneer_thesis_lighting(&material, normal, light, view, absolute);
+            let lit = veneer_thesis_lighting(&material, normal, light, view, shading);
             for k in 0..3 {
                 let error = (f64::from(pixel[k]) - lit[k].clamp(0.0, 1.0)).abs();
                 worst = worst.max(error);

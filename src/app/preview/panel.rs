@@ -288,7 +288,7 @@ impl VeneerApp {
     /// How metallic-roughness materials are lit and shown: the environment (the sky, or
     /// a panorama file), its turn, the key light, exposure, tone mapper and backdrop.
     fn lighting_settings(&mut self, ui: &mut Ui) {
-        if self.session.document.graph.shading != Shading::MetallicRoughness {
+        if !self.session.document.graph.shading.reads_environment() {
             return;
         }
         // Two rows of fixed content, not one that wraps: a field turned into a text box

@@ -35,10 +35,12 @@ pub struct GltfSettings {
 /// stored as they are.
 fn encode_colour(shading: Shading, linear: f32) -> f32 {
     let c = linear.clamp(0.0, 1.0);
-    match shading {
-        Shading::BlinnPhong | Shading::Thesis | Shading::ThesisAbsolute => c,
-        Shading::MetallicRoughness if c <= 0.003_130_8 => 12.92 * c,
-        Shading::MetallicRoughness => 1.055 * c.powf(1.0 / 2.4) - 0.055,
+    if !shading.is_linear() {
+        c
+    } else if c <= 0.003_130_8 {
+        12.92 * c
+    } else {
+        1.055 * c.powf(1.0 / 2.4) - 0.055
     }
 }
 
