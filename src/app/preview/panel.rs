@@ -285,12 +285,15 @@ impl VeneerApp {
         })
     }
 
-    /// How metallic-roughness materials are lit and shown: the environment (the sky, or
-    /// a panorama file), its turn, the key light, exposure, tone mapper and backdrop.
+    /// How materials lit by an environment are lit and shown: the environment (the sky,
+    /// or a panorama file), its turn, exposure and tone mapper; for metallic-roughness
+    /// also the key light and the backdrop (the thesis's sphere map has neither).
     fn lighting_settings(&mut self, ui: &mut Ui) {
-        if !self.session.document.graph.shading.reads_environment() {
+        let shading = self.session.document.graph.shading;
+        if !shading.reads_environment() {
             return;
         }
+        let physical = shading == Shading::MetallicRoughness;
         // Two rows of fixed content, not one that wraps: a field turned into a text box
         // while typed in is narrower, and a row wrapped anew around it was once wider
         // than the panel, which then stayed that wide over the graph.
@@ -327,13 +330,15 @@ impl VeneerApp {
                     .suffix("°"),
             )
             .on_hover_text("turns the environment about the vertical axis");
-            ui.add(
-                egui::DragValue::new(&mut view.key_light)
-                    .speed(0.02)
-                    .range(0.0..=20.0)
-                    .prefix("key light "),
-            )
-            .on_hover_text("irradiance of the key light (0: the environment alone)");
+            if physical {
+                ui.add(
+                    egui::DragValue::new(&mut view.key_light)
+                        .speed(0.02)
+                        .range(0.0..=20.0)
+                        .prefix("key light "),
+                )
+                .on_hover_text("irradiance of the key light (0: the environment alone)");
+            }
         });
         ui.horizontal(|ui| {
             let view = &mut self.preview.state.view;
@@ -353,14 +358,16 @@ impl VeneerApp {
             ];
             choice(ui, "tone map", &mut view.tone_map, &tone_maps)
                 .on_hover_text("how scene light maps to the display: Khronos PBR Neutral keeps base colours true; ACES (fitted) and AgX are filmic");
-            let backdrops = [
-                (Backdrop::Blurred, "blurred"),
-                (Backdrop::Environment, "environment"),
-                (Backdrop::Colour, "colour"),
-            ];
-            ui.label("backdrop");
-            choice(ui, "backdrop", &mut view.backdrop, &backdrops)
-                .on_hover_text("what shows behind the mesh: the environment blurred or sharp, or the background colour");
+            if physical {
+                let backdrops = [
+                    (Backdrop::Blurred, "blurred"),
+                    (Backdrop::Environment, "environment"),
+                    (Backdrop::Colour, "colour"),
+                ];
+                ui.label("backdrop");
+                choice(ui, "backdrop", &mut view.backdrop, &backdrops)
+                    .on_hover_text("what shows behind the mesh: the environment blurred or sharp, or the background colour");
+            }
         });
     }
 
