@@ -205,10 +205,12 @@ pub enum Given {
 
 impl Given {
     /// Reads `0.7`, `0.1,0.2,0.3`, `#ff8800` (a colour in sRGB hex, stored as its
-    /// 0–1 components) or a word.
+    /// 0–1 components) or a word: anything else without a comma (`geodesic`, `3D`; a
+    /// slider then refuses it as not a number).
     pub fn parse(text: &str) -> Result<Given, String> {
         let text = text.trim();
-        if text.starts_with(|c: char| c.is_ascii_alphabetic()) {
+        let single = !text.contains(',') && !text.starts_with('#');
+        if single && text.parse::<f64>().is_err() {
             return Ok(Given::Word(text.to_string()));
         }
         if let Some(hex) = text.strip_prefix('#') {

@@ -742,9 +742,10 @@ fn set_works_on_every_command() {
 fn choices_and_toggles_take_their_words() {
     let mut graph = nested_graph();
     let inner = graph.groups.get_mut("inner").expect("inner");
-    inner.inputs[0].hint = Hint::Choice(vec!["off".into(), "single".into(), "double".into()]);
+    inner.inputs[0].hint = Hint::Choice(vec!["off".into(), "single".into(), "2x".into()]);
     veneer::graph::group::resolve(&mut graph);
-    set(&mut graph, "gain", &Given::parse("double").unwrap()).expect("an option");
+    // An option may start with a digit.
+    set(&mut graph, "gain", &Given::parse("2x").unwrap()).expect("an option");
     assert!(
         (red_at_quarter(&graph) - 0.5).abs() < 1e-9,
         "option 2 is a gain of 2"
@@ -753,7 +754,7 @@ fn choices_and_toggles_take_their_words() {
     assert!(
         error
             .to_string()
-            .contains("'triple' is not one of its options (off, single, double)"),
+            .contains("'triple' is not one of its options (off, single, 2x)"),
         "{error}"
     );
     let inner = graph.groups.get_mut("inner").expect("inner");
@@ -761,6 +762,15 @@ fn choices_and_toggles_take_their_words() {
     veneer::graph::group::resolve(&mut graph);
     set(&mut graph, "gain", &Given::parse("on").unwrap()).expect("a toggle");
     assert!((red_at_quarter(&graph) - 0.25).abs() < 1e-9);
+    let inner = graph.groups.get_mut("inner").expect("inner");
+    inner.inputs[0].hint = Hint::Slider;
+    veneer::graph::group::resolve(&mut graph);
+    let error = set(&mut graph, "gain", &Given::parse("0.5x").unwrap()).unwrap_err();
+    assert!(
+        error.to_string().contains("'0.5x' is not a number"),
+        "{error}"
+    );
+    assert!(Given::parse("0.1,x").is_err(), "a list is of numbers");
 }
 
 #[test]
