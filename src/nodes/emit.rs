@@ -237,6 +237,17 @@ impl<'a> Emit<'a> {
         self.uses(function);
     }
 
+    /// The library function a band-limited pattern calls: `function`, or its twin
+    /// `<function>_filtered` (shaders/band_limit.wgsl), which takes the same arguments and
+    /// filters over the pixel footprint, where the node [filters](Emit::filters_footprint).
+    pub fn band_limited(&self, function: &str) -> String {
+        if self.filters_footprint() {
+            format!("{function}_filtered")
+        } else {
+            function.to_string()
+        }
+    }
+
     /// `let name = expression;` of type `ty`, whose parts the outputs then name.
     pub fn bind(&mut self, ty: &'static str, expression: String) {
         self.code

@@ -285,11 +285,7 @@ impl Definition for Smoothstep {
         None
     }
     fn emit(&self, io: &mut Emit) {
-        io.call(if io.filters_footprint() {
-            "veneer_smoothstep_filtered"
-        } else {
-            "veneer_smoothstep"
-        });
+        io.call(&io.band_limited("veneer_smoothstep"));
     }
     fn ranges(&self, io: &mut Ranges) -> Vec<Lanes> {
         match (io.constant("edge0"), io.constant("edge1")) {
@@ -449,11 +445,10 @@ impl Definition for MapRange {
     }
     fn emit(&self, io: &mut Emit) {
         let function = match self.mode {
-            MapRangeMode::Linear => "veneer_map_range_linear",
-            MapRangeMode::Stepped if io.filters_footprint() => "veneer_map_range_stepped_filtered",
-            MapRangeMode::Stepped => "veneer_map_range_stepped",
-            MapRangeMode::Smooth => "veneer_map_range_smooth",
-            MapRangeMode::Smoother => "veneer_map_range_smoother",
+            MapRangeMode::Linear => "veneer_map_range_linear".to_string(),
+            MapRangeMode::Stepped => io.band_limited("veneer_map_range_stepped"),
+            MapRangeMode::Smooth => "veneer_map_range_smooth".to_string(),
+            MapRangeMode::Smoother => "veneer_map_range_smoother".to_string(),
         };
         let clamp = if self.mode.overshoots() {
             format!(", {}", self.clamp)
@@ -461,7 +456,7 @@ impl Definition for MapRange {
             String::new()
         };
         io.single(format!("{function}({}{clamp})", io.inputs().join(", ")));
-        io.uses(function);
+        io.uses(&function);
     }
     fn ranges(&self, io: &mut Ranges) -> Vec<Lanes> {
         let target = io.float("to_min").hull(io.float("to_max"));

@@ -47,11 +47,7 @@ impl Definition for SineBand {
         )
     }
     fn emit(&self, io: &mut Emit) {
-        io.call(if io.filters_footprint() {
-            "veneer_sine_band_filtered"
-        } else {
-            "veneer_sine_band"
-        });
+        io.call(&io.band_limited("veneer_sine_band"));
     }
     fn ranges(&self, _: &mut Ranges) -> Vec<Lanes> {
         super::unit_range()
@@ -93,11 +89,7 @@ impl Definition for TriangleWave {
         )
     }
     fn emit(&self, io: &mut Emit) {
-        io.call(if io.filters_footprint() {
-            "veneer_triangle_wave_filtered"
-        } else {
-            "veneer_triangle_wave"
-        });
+        io.call(&io.band_limited("veneer_triangle_wave"));
     }
     fn ranges(&self, _: &mut Ranges) -> Vec<Lanes> {
         super::unit_range()
@@ -220,11 +212,7 @@ impl Definition for Rings {
         )
     }
     fn emit(&self, io: &mut Emit) {
-        io.call(if io.filters_footprint() {
-            "veneer_rings_filtered"
-        } else {
-            "veneer_rings"
-        });
+        io.call(&io.band_limited("veneer_rings"));
     }
     fn ranges(&self, io: &mut Ranges) -> Vec<Lanes> {
         axis_reach(io, "origin", "axis");

@@ -169,12 +169,18 @@ fn nodes_a_sampler_places_take_no_derivatives() {
         source.contains("veneer_octave_cutoff("),
         "the ground filters where shaded"
     );
+    let mut placed_ground = false;
     for (start, _) in source.match_indices("fn veneer_local_") {
         let body = &source[start..];
         let body = &body[..body.find("\n}\n").expect("the function ends")];
+        placed_ground |= body.contains("veneer_fbm_");
         assert!(
-            !body.contains("fwidth(") && !body.contains("dpdx(") && !body.contains("_filtered("),
+            !body.contains("fwidth(")
+                && !body.contains("dpdx(")
+                && !body.contains("_filtered(")
+                && !body.contains("veneer_octave_cutoff("),
             "{body}"
         );
     }
+    assert!(placed_ground, "the ground's fBm is placed per pebble");
 }
