@@ -571,17 +571,10 @@ pub fn ungroup(graph: &mut Graph, instance: NodeId) -> Result<Vec<NodeId>, Strin
     let name = group_name(&graph.nodes[position])
         .unwrap_or_default()
         .to_string();
-    let exposed = |graph: &Graph| -> HashSet<String> {
-        let list = super::parameters::exposed(graph);
-        list.into_iter().map(|entry| entry.name).collect()
-    };
-    let before = exposed(graph);
+    let before = super::parameters::exposed_names(graph);
     let inlined =
         super::inline::dissolve(graph, position, &interfaces).map_err(|error| error.to_string())?;
-    let after = exposed(graph);
-    for values in graph.presets.values_mut() {
-        values.retain(|name, _| !before.contains(name) || after.contains(name));
-    }
+    super::parameters::forget_removed(graph, &before);
     let used = graph
         .nodes
         .iter()

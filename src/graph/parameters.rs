@@ -400,6 +400,25 @@ pub fn set(graph: &mut Graph, name: &str, given: &Given) -> Result<(), Parameter
     ByName::of(graph).set(graph, name, given)
 }
 
+/// The names of the parameters `graph` exposes.
+pub fn exposed_names(graph: &Graph) -> HashSet<String> {
+    exposed(graph).into_iter().map(|entry| entry.name).collect()
+}
+
+/// After nodes left the graph: drops the parameters that exposed them, and forgets in
+/// every parameter preset the values of parameters among `before` (the names exposed
+/// before) that the graph no longer exposes, so that the presets still check.
+pub fn forget_removed(graph: &mut Graph, before: &HashSet<String>) {
+    let ids: HashSet<NodeId> = graph.nodes.iter().map(|node| node.id).collect();
+    graph
+        .parameters
+        .retain(|parameter| ids.contains(&parameter.node));
+    let after = exposed_names(graph);
+    for values in graph.presets.values_mut() {
+        values.retain(|name, _| !before.contains(name) || after.contains(name));
+    }
+}
+
 /// Applies parameter preset `preset` of the graph: the group parameters it does not
 /// list go back to their groups' defaults, so that a preset looks the same whatever was
 /// set before (top-level parameters it does not list keep their values: the graph

@@ -208,7 +208,7 @@ pub(super) fn ungroup(
 /// Carries out `edit` on a copy of `graph` and takes the copy in (resolved and in
 /// canonical order): an edit that reaches across the whole graph, undone by putting
 /// the graph back as it was.
-fn whole(
+pub(super) fn whole(
     graph: &mut Graph,
     edit: impl FnOnce(&mut Graph) -> Result<(), String>,
 ) -> Result<Applied, EditError> {

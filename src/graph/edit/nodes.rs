@@ -4,7 +4,7 @@ use super::level::{contents, settle};
 use super::wires::{check_id, check_pins, cycle_through};
 use super::{Applied, Change, EditError, GraphEdit, Level};
 use crate::graph::group::{self, GroupDef, group_name};
-use crate::graph::{Graph, Node, NodeId, NodeKind, Wire};
+use crate::graph::{Graph, Node, NodeId, NodeKind, Wire, parameters};
 use std::collections::{BTreeMap, BTreeSet, HashSet};
 
 /// Adds `nodes` and `wires` (see [`GraphEdit::AddNodes`]).
@@ -82,6 +82,36 @@ pub(super) fn remove(
     for id in ids {
         at.find(*id)?;
     }
+    // At the top level the graph's parameters and presets can name what goes: a removal
+    // that takes parameters with it reaches across the graph, undone by putting it back.
+    let exposing = level.group().is_none()
+        && graph.nodes.iter().any(|node| {
+            ids.contains(&node.id)
+                && (graph.parameters.iter().any(|p| p.node == node.id)
+                    || (group_name(node).is_some() && !graph.presets.is_empty()))
+        });
+    if exposing {
+        return super::groups::whole(graph, |graph| {
+            let before = parameters::exposed_names(graph);
+            take_out(graph, &level, ids);
+            parameters::forget_removed(graph, &before);
+            Ok(())
+        });
+    }
+    let (nodes, wires) = take_out(graph, &level, ids);
+    let inverse = GraphEdit::Restore {
+        level,
+        nodes,
+        wires,
+    };
+    Ok(Applied::new(inverse, Change::Structure))
+}
+
+/// Takes nodes `ids` (all at `level`) and every wire to or from them out of the graph.
+fn take_out(graph: &mut Graph, level: &Level, ids: &[NodeId]) -> (Vec<Node>, Vec<Wire>) {
+    let Ok(at) = contents(graph, level) else {
+        return (Vec::new(), Vec::new());
+    };
     let gone: HashSet<NodeId> = ids.iter().copied().collect();
     let nodes: Vec<Node> = at
         .nodes
@@ -89,13 +119,8 @@ pub(super) fn remove(
         .collect();
     let touching = |wire: &mut Wire| gone.contains(&wire.from.node) || gone.contains(&wire.to.node);
     let wires: Vec<Wire> = at.wires.extract_if(.., touching).collect();
-    settle(graph, &level);
-    let inverse = GraphEdit::Restore {
-        level,
-        nodes,
-        wires,
-    };
-    Ok(Applied::new(inverse, Change::Structure))
+    settle(graph, level);
+    (nodes, wires)
 }
 
 /// Puts back `nodes` and `wires` as they are (see [`GraphEdit::Restore`]).

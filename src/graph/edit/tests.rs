@@ -726,3 +726,52 @@ fn a_batch_is_all_or_nothing() {
     );
     assert_eq!(error.to_string(), "no group named 'bark'");
 }
+
+/// Removing a node a parameter exposes takes the parameter and its preset values with
+/// it, so the graph still checks (before, the material stopped compiling: "parameter
+/// 'bumpScale' exposes node #14, which the graph does not have"); undo puts them back.
+/// Removing the wood's group node forgets the presets' values of the parameters its
+/// inputs exposed.
+#[test]
+fn removing_an_exposed_node_takes_its_parameter_and_preset_values() {
+    let mut graph = crate::graph::preset("thesis_c2_sand_water").expect("the C.2 preset");
+    graph.canonicalize();
+    let parameter = (graph.parameters.iter())
+        .find(|p| p.name == "distanceThreshold")
+        .expect("the preset exposes the listing's threshold")
+        .clone();
+    (graph.presets.get_mut("glossy").expect("a glossy preset"))
+        .insert(parameter.name.clone(), Value::Float(0.5));
+    round_trip(
+        &mut graph,
+        GraphEdit::RemoveNodes {
+            level: Level::Top,
+            nodes: vec![parameter.node],
+        },
+    );
+    assert!(graph.parameters.iter().all(|p| p.name != parameter.name));
+    assert!(
+        graph
+            .presets
+            .values()
+            .all(|v| !v.contains_key(&parameter.name))
+    );
+    crate::graph::check(&graph).expect("the graph still checks");
+
+    let mut graph = wood();
+    let group = graph
+        .nodes
+        .iter()
+        .find(|node| matches!(node.kind, NodeKind::Group(_)))
+        .expect("the wood's group")
+        .id;
+    round_trip(
+        &mut graph,
+        GraphEdit::RemoveNodes {
+            level: Level::Top,
+            nodes: vec![group],
+        },
+    );
+    assert!(graph.presets.values().all(|values| values.is_empty()));
+    crate::graph::check(&graph).expect("the presets still check");
+}
