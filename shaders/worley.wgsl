@@ -38,6 +38,26 @@ fn veneer_worley(point: vec3f, jitter: f32, metric: i32) -> vec3f {
     return f;
 }
 
+// F1, F2, F3 over the GeoTextures thesis's feature points (seed 003, appendix B's
+// gpuCellNoise3D): each cell's corner moved along (1, 1, 1) by signed simplex noise at
+// the corner times `spread` (the thesis's noiseScale), unclamped, so that past 0.5 points
+// stray beyond the 27 cells searched, as in the thesis.
+fn veneer_worley_simplex(point: vec3f, spread: f32, metric: i32) -> vec3f {
+    let p = veneer_lattice_domain(point);
+    var f = vec3f(1.0e9);
+    for (var k = 0; k < 27; k++) {
+        let c = floor(p) + vec3f(vec3i(k % 3, (k / 3) % 3, k / 9) - 1);
+        let feature = c + spread * veneer_noise_simplex_signed(c);
+        f = veneer_nearest_three(f, veneer_metric(p - feature, metric));
+    }
+    return f;
+}
+
+// The three smallest of F1 <= F2 <= F3 and a new distance `d`, in order.
+fn veneer_nearest_three(f: vec3f, d: f32) -> vec3f {
+    return select(select(select(f, vec3f(f.xy, d), d < f.z), vec3f(f.x, d, f.y), d < f.y), vec3f(d, f.xy), d < f.x);
+}
+
 // Feature 0 = F1, 1 = F2, 2 = F3, 3 = F2 - F1.
 fn veneer_worley_feature(f: vec3f, feature: i32) -> f32 {
     switch feature {
@@ -50,12 +70,12 @@ fn veneer_worley_feature(f: vec3f, feature: i32) -> f32 {
 
 // Fractal Worley: `octaves` octaves of a feature, frequency times `lacunarity`, amplitude
 // times `gain`; the frequency, the amplitude and the sum clamped to the finite range.
-fn veneer_worley_fractal(p: vec3f, jitter: f32, metric: i32, feature: i32, octaves: i32, lacunarity: f32, gain: f32) -> f32 {
+fn veneer_CELLS_fractal(p: vec3f, jitter: f32, metric: i32, feature: i32, octaves: i32, lacunarity: f32, gain: f32) -> f32 {
     var sum = 0.0;
     var amp = 1.0;
     var freq = 1.0;
     for (var i = 0; i < octaves; i++) {
-        sum = clamp(sum + amp * veneer_worley_feature(veneer_worley(p * freq, jitter, metric), feature), -3.0e38, 3.0e38);
+        sum = clamp(sum + amp * veneer_worley_feature(veneer_CELLS(p * freq, jitter, metric), feature), -3.0e38, 3.0e38);
         freq = clamp(freq * lacunarity, -3.0e38, 3.0e38);
         amp = clamp(amp * gain, -3.0e38, 3.0e38);
     }
@@ -73,7 +93,7 @@ fn veneer_worley_periodic(point: vec3f, jitter: f32, metric: i32, period: i32) -
         let c = floor(p) + vec3f(vec3i(k % 3, (k / 3) % 3, k / 9) - 1);
         let r = veneer_unit_floats(veneer_pcg3d(veneer_cell_bits(veneer_wrap_cell(c, period))));
         let d = veneer_metric(p - (c + 0.5 + spread * (r - 0.5)), metric);
-        f = select(select(select(f, vec3f(f.xy, d), d < f.z), vec3f(f.x, d, f.y), d < f.y), vec3f(d, f.xy), d < f.x);
+        f = veneer_nearest_three(f, d);
     }
     return f;
 }

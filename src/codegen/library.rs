@@ -46,8 +46,9 @@ const SOURCES: [(&str, &str); 25] = [
 pub const SURFACE: &str = include_str!("../../shaders/surface.wgsl");
 
 /// Template placeholders and the values each may take.
-const PLACEHOLDERS: [(&str, &[&str]); 4] = [
+const PLACEHOLDERS: [(&str, &[&str]); 5] = [
     ("TYPE", &["f32", "vec2f", "vec3f"]),
+    ("CELLS", &["worley", "worley_simplex"]),
     ("HASH", &["sine", "pcg"]),
     ("BASIS", &["value_sine", "value_pcg", "gradient", "simplex"]),
     ("MODE", &["fbm", "turbulence", "fractal_sum"]),

@@ -26,7 +26,7 @@ pub use shading::Shading;
 
 pub use crate::nodes::pins::{InputPin, OutputPin, PinDefault, PinRange, Signature};
 pub use crate::nodes::settings::{
-    Basis, FractalMode, MAX_OCTAVES, MAX_OCTAVES_UI, MAX_RAMP_STOPS, MathOp, Metric,
+    Basis, FeaturePoints, FractalMode, MAX_OCTAVES, MAX_OCTAVES_UI, MAX_RAMP_STOPS, MathOp, Metric,
     RampInterpolation, RampStop, UnaryOp, WorleyFeature,
 };
 pub use crate::nodes::value::{Value, ValueType};

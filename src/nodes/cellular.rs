@@ -8,8 +8,8 @@ use super::interval::{self, Interval, Lanes};
 use super::pins::{FLOAT, InputPin, POINT, SCALE, Signature, f, input, output};
 use super::ranges::Ranges;
 use super::settings::{
-    Basis, METRICS, Metric, Setting, WORLEY_FEATURES, WorleyFeature, check_period, choice,
-    no_period, period, period_setting,
+    Basis, FEATURE_POINTS, FeaturePoints, METRICS, Metric, Setting, WORLEY_FEATURES, WorleyFeature,
+    check_period, choice, no_period, period, period_setting,
 };
 use super::{Catalogue, Category, Configure, Definition, Evaluate};
 use serde::{Deserialize, Serialize};
@@ -58,7 +58,14 @@ pub struct Worley {
     /// when 0.
     #[serde(default, skip_serializing_if = "no_period")]
     pub period: u32,
+    /// Where each cell's feature point lies; graph files leave it out when hashed.
+    #[serde(default, skip_serializing_if = "FeaturePoints::is_hashed")]
+    pub points: FeaturePoints,
 }
+
+/// The thesis's `noiseScale`: how far simplex noise moves each feature point along
+/// (1, 1, 1), in cells (C.5 uses 2.2).
+const NOISE_SCALE: InputPin = input("jitter", FLOAT, f(1.0)).soft(0.0, 4.0);
 
 impl Definition for Worley {
     fn title(&self) -> &'static str {
@@ -77,7 +84,10 @@ impl Definition for Worley {
             vec![
                 POINT,
                 SCALE,
-                JITTER,
+                match self.points {
+                    FeaturePoints::Hashed => JITTER,
+                    FeaturePoints::Simplex => NOISE_SCALE,
+                },
                 input("lacunarity", FLOAT, f(2.0)).soft(1.0, 4.0),
                 input("gain", FLOAT, f(0.5)).limits(0.0, 1.0),
             ],
@@ -91,16 +101,24 @@ impl Definition for Worley {
         None
     }
     fn check(&self) -> Option<String> {
-        super::fractal::check_octaves(self.octaves).or_else(|| check_period(self.period, None))
+        super::fractal::check_octaves(self.octaves)
+            .or_else(|| check_period(self.period, None))
+            .or_else(|| {
+                (self.period > 0 && self.points == FeaturePoints::Simplex).then(|| {
+                    "simplex feature points (the thesis's) do not repeat: set the period to 0 or use hashed points".to_string()
+                })
+            })
     }
     fn emit(&self, io: &mut Emit) {
         let feature = worley_feature_index(self.feature);
         let metric = metric_index(self.metric);
         let (p, scale, jitter) = (io.input("p"), io.input("scale"), io.input("jitter"));
-        // A periodic noise's functions end in `_periodic` and take the period last.
-        let (suffix, period) = match period(self.period) {
-            None => ("", String::new()),
-            Some(cells) => ("_periodic", format!(", {cells}i")),
+        // A periodic noise's functions end in `_periodic` and take the period last; the
+        // thesis's feature points have functions of their own (and no period).
+        let (suffix, period) = match (self.points, period(self.period)) {
+            (FeaturePoints::Simplex, _) => ("_simplex", String::new()),
+            (FeaturePoints::Hashed, None) => ("", String::new()),
+            (FeaturePoints::Hashed, Some(cells)) => ("_periodic", format!(", {cells}i")),
         };
         let expression = if self.octaves == 1 {
             io.uses(&format!("veneer_worley{suffix}"));
@@ -109,9 +127,14 @@ impl Definition for Worley {
                 "veneer_worley_feature(veneer_worley{suffix}({p} * {scale}, {jitter}, {metric}{period}), {feature})"
             )
         } else {
-            io.uses(&format!("veneer_worley_fractal{suffix}"));
+            // `veneer_CELLS_fractal` in the library, the periodic one apart.
+            let fractal = match self.points {
+                FeaturePoints::Simplex => "veneer_worley_simplex_fractal".to_string(),
+                FeaturePoints::Hashed => format!("veneer_worley_fractal{suffix}"),
+            };
+            io.uses(&fractal);
             format!(
-                "veneer_worley_fractal{suffix}({p} * {scale}, {jitter}, {metric}, {feature}, {}, {}, {}{period})",
+                "{fractal}({p} * {scale}, {jitter}, {metric}, {feature}, {}, {}, {}{period})",
                 self.octaves,
                 io.input("lacunarity"),
                 io.input("gain")
@@ -130,7 +153,13 @@ impl Definition for Worley {
         io.lattice(None, magnitude);
         let gain = io.float("gain").magnitude();
         let sum: f64 = (0..octaves).map(|k| gain.powi(k)).sum();
-        vec![interval::splat(Interval::new(0.0, 3.0 * sum))]
+        // Within 2 cells of a point in Manhattan distance per axis, plus how far the
+        // thesis's points stray.
+        let farthest = match self.points {
+            FeaturePoints::Hashed => 3.0,
+            FeaturePoints::Simplex => 3.0 * (2.0 + io.float("jitter").magnitude()),
+        };
+        vec![interval::splat(Interval::new(0.0, farthest * sum))]
     }
 }
 
@@ -141,7 +170,11 @@ impl Evaluate for Worley {
         let jitter = io.float("jitter");
         let period = period(self.period);
         let octave = |q: V3<R>, period| {
-            shapes::worley_feature(noise::worley(q, jitter, self.metric, period), feature)
+            let distances = match self.points {
+                FeaturePoints::Hashed => noise::worley(q, jitter, self.metric, period),
+                FeaturePoints::Simplex => noise::worley_simplex(q, jitter, self.metric),
+            };
+            shapes::worley_feature(distances, feature)
         };
         if self.octaves == 1 {
             return vec![splat(octave(p, period))];
@@ -177,6 +210,7 @@ impl Configure for Worley {
                 range: 1..=8,
             },
             period_setting(&mut self.period),
+            choice("points", &mut self.points, &FEATURE_POINTS),
         ]
     }
 }
@@ -191,6 +225,7 @@ impl Catalogue for Worley {
                     metric: Metric::Euclidean,
                     octaves: 1,
                     period: 0,
+                    points: FeaturePoints::Hashed,
                 },
             ),
             (
@@ -200,13 +235,15 @@ impl Catalogue for Worley {
                     metric: Metric::Euclidean,
                     octaves: 3,
                     period: 0,
+                    points: FeaturePoints::Hashed,
                 },
             ),
         ]
     }
-    /// Every feature and metric; one and three octaves, infinite and repeating.
+    /// Every feature and metric; one and three octaves, infinite and repeating; the
+    /// thesis's feature points with one and three octaves.
     fn examples() -> Vec<Self> {
-        WORLEY_FEATURES
+        let hashed = WORLEY_FEATURES
             .into_iter()
             .zip(METRICS.into_iter().cycle())
             .zip([(1, 0), (1, 5), (1, 0), (3, 0)])
@@ -216,8 +253,19 @@ impl Catalogue for Worley {
                 metric,
                 octaves,
                 period,
-            })
-            .collect()
+                points: FeaturePoints::Hashed,
+            });
+        let simplex =
+            [(WorleyFeature::F1, 3), (WorleyFeature::F2MinusF1, 1)].map(|(feature, octaves)| {
+                Worley {
+                    feature,
+                    metric: Metric::Euclidean,
+                    octaves,
+                    period: 0,
+                    points: FeaturePoints::Simplex,
+                }
+            });
+        hashed.chain(simplex).collect()
     }
 }
 

@@ -83,6 +83,27 @@ pub enum WorleyFeature {
     F2MinusF1,
 }
 
+/// Where a Worley node puts each cell's feature point.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[cfg_attr(feature = "arbitrary", derive(arbitrary::Arbitrary))]
+pub enum FeaturePoints {
+    /// Inside the cell: its centre moved by up to `jitter` / 2 per axis, by a PCG hash.
+    #[default]
+    Hashed,
+    /// The GeoTextures thesis's (seed 003, appendix B's `gpuCellNoise3D`): the cell's
+    /// corner moved along (1, 1, 1) by signed simplex noise at the corner times `jitter`
+    /// (the thesis's `noiseScale`); past 0.5 points leave their cell, beyond the 27 cells
+    /// searched, and the pattern shows the thesis's seams.
+    Simplex,
+}
+
+impl FeaturePoints {
+    /// Graph files leave the placement out when it is the usual one.
+    pub fn is_hashed(&self) -> bool {
+        *self == FeaturePoints::Hashed
+    }
+}
+
 /// The distance metric of a cellular node.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[cfg_attr(feature = "arbitrary", derive(arbitrary::Arbitrary))]
@@ -298,6 +319,9 @@ pub const WORLEY_FEATURES: [WorleyFeature; 4] = [
     WorleyFeature::F3,
     WorleyFeature::F2MinusF1,
 ];
+
+/// Every feature-point placement, in menu order.
+pub const FEATURE_POINTS: [FeaturePoints; 2] = [FeaturePoints::Hashed, FeaturePoints::Simplex];
 
 /// Every distance metric, in menu order.
 pub const METRICS: [Metric; 3] = [Metric::Euclidean, Metric::Manhattan, Metric::Chebyshev];

@@ -163,6 +163,7 @@ pub fn cases() -> Vec<DetailCase> {
                     metric: Metric::Euclidean,
                     octaves: 1,
                     period: 0,
+                    points: crate::graph::FeaturePoints::Hashed,
                 }),
                 frequency,
                 "value",

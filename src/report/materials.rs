@@ -79,6 +79,7 @@ pub fn precision(ctx: &Context) -> Result<Section, String> {
         metric: crate::graph::Metric::Euclidean,
         octaves: 3,
         period: 0,
+        points: crate::graph::FeaturePoints::Hashed,
     });
     cases.push(("Worley, 3 octaves".into(), single_node(worley, 2.0), square));
     let mut table = Table::new(&[

@@ -48,6 +48,7 @@ fn pcg_graph() -> Graph {
             metric: Metric::Euclidean,
             octaves: 2,
             period: 0,
+            points: veneer::graph::FeaturePoints::Hashed,
         }),
     );
     let tiles = g.add("tiles", NodeKind::Tiles);

@@ -146,6 +146,7 @@ fn named_cases() -> Vec<(&'static str, NodeKind, Inputs)> {
                 metric: veneer::graph::Metric::Euclidean,
                 octaves: 8,
                 period: 0,
+                points: veneer::graph::FeaturePoints::Hashed,
             }),
             vec![("gain", Value::Float(3.4e38))],
         ),

@@ -29,6 +29,7 @@ fn voronoi(graph: &mut Graph) -> (NodeId, &'static str) {
             metric: Metric::Euclidean,
             octaves: 1,
             period: 4,
+            points: veneer::graph::FeaturePoints::Hashed,
         }),
     );
     graph.set_input(worley, "scale", Value::Float(4.0));

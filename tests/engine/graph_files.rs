@@ -28,6 +28,7 @@ fn unconnected_worley_emits_no_worley_code() {
             metric: Metric::Euclidean,
             octaves: 1,
             period: 0,
+            points: veneer::graph::FeaturePoints::Hashed,
         }),
     );
     let module = compile(&graph, &Default::default())

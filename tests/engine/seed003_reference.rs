@@ -12,16 +12,17 @@
 //!
 //! The thesis leaves its uniforms (`distanceThreshold`, `thresholdLayer1..3`,
 //! `bumpScale`, `stripeWidth`, `frequency`) to the application; each `const` below is the
-//! value the preset shows in a labelled Constant node. Its noise primitives (`snoise`,
-//! `fractalsum`, `turbulence`, `fractalcell`, appendices A and B) are built here from our
-//! simplex and Worley bases, whose own tests pin them; the loops are the thesis's
+//! value the preset shows in a labelled Constant node (`noiseScale`, a parameter of the
+//! Worley node, too). Its noise primitives (`snoise`, `fractalsum`, `turbulence`,
+//! `fractalcell`, appendices A and B) are built here on our simplex basis, whose own tests
+//! pin it (`gpuCellNoise3D` transcribed line by line on it); the loops are the thesis's
 //! `for (f = 1.0; f < 5.0; f *= 2.0) value += noise(p * f) / f`.
 
 use crate::support::{Samples, root};
 use veneer::eval::{Evaluator, Material, Surface};
 use veneer::graph::Shading;
 use veneer::nodes::formulas::noise;
-use veneer::nodes::settings::{Basis, Metric};
+use veneer::nodes::settings::Basis;
 
 type V3 = [f64; 3];
 type V4 = [f64; 4];
@@ -107,9 +108,38 @@ fn turbulence(p: V3) -> f64 {
     octaves(p, |q| snoise(q).abs())
 }
 
+/// The `noiseScale` uniform of C.2 and C.3 and the `#define` of C.5 (the only value the
+/// thesis gives; the presets use it for all three).
+const NOISE_SCALE: f64 = 2.2;
+
+/// Appendix B's `gpuCellNoise3D(xyz).x`, line by line: the feature point of the cell at
+/// corner `(xi + x, yi + y, zi + z)` sits at that corner plus `snoise` of the corner times
+/// `noiseScale` (the listing assigns the float to a `vec3`, which splats it), and the
+/// nearest of the 27 cells' points gives F1.
+fn gpu_cell_noise_f1(xyz: V3) -> f64 {
+    let [xi, yi, zi] = xyz.map(f64::floor);
+    let [xf, yf, zf] = [xyz[0] - xi, xyz[1] - yi, xyz[2] - zi];
+    let mut dist1 = 9999999.0f64;
+    for z in -1..=1 {
+        for y in -1..=1 {
+            for x in -1..=1 {
+                let corner = [xi + f64::from(x), yi + f64::from(y), zi + f64::from(z)];
+                let s = snoise(corner) * NOISE_SCALE;
+                let cell = [
+                    s + (f64::from(x) - xf),
+                    s + (f64::from(y) - yf),
+                    s + (f64::from(z) - zf),
+                ];
+                dist1 = dist1.min(cell[0] * cell[0] + cell[1] * cell[1] + cell[2] * cell[2]);
+            }
+        }
+    }
+    dist1.sqrt()
+}
+
 /// `fractalcell(p, 1.0, 5.0, 2.0).x`: the fractal sum of the nearest feature distance.
 fn fractalcell_x(p: V3) -> f64 {
-    octaves(p, |q| noise::worley(q, 1.0, Metric::Euclidean, None)[0])
+    octaves(p, gpu_cell_noise_f1)
 }
 
 /// `position * cellScale + time * 0.5`, the flowing Worley domain of C.2, C.3 and C.5.
@@ -602,8 +632,14 @@ fn the_brick_preset_jitters_its_rows() {
 #[test]
 fn the_listings_uniforms_are_parameters_with_their_names() {
     let uniforms: [(&str, &[&str]); 8] = [
-        ("thesis_c2_sand_water", &["distanceThreshold", "bumpScale"]),
-        ("thesis_c3_moss_granite", &["distanceThreshold"]),
+        (
+            "thesis_c2_sand_water",
+            &["distanceThreshold", "bumpScale", "noiseScale"],
+        ),
+        (
+            "thesis_c3_moss_granite",
+            &["distanceThreshold", "noiseScale"],
+        ),
         (
             "thesis_c4_paint_metal_rust",
             &[
@@ -615,7 +651,12 @@ fn the_listings_uniforms_are_parameters_with_their_names() {
         ),
         (
             "thesis_c5_water_lava",
-            &["thresholdLayer1", "thresholdLayer2", "bumpScale"],
+            &[
+                "thresholdLayer1",
+                "thresholdLayer2",
+                "bumpScale",
+                "noiseScale",
+            ],
         ),
         (
             "thesis_c6_waves",

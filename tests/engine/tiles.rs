@@ -58,6 +58,7 @@ pub fn periodic_noises() -> Vec<(String, NodeKind, f64, Option<f64>)> {
                 metric: Metric::Euclidean,
                 octaves,
                 period,
+                points: veneer::graph::FeaturePoints::Hashed,
             }),
             f64::from(period),
             None,

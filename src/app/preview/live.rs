@@ -383,6 +383,7 @@ mod tests {
                 metric: crate::graph::Metric::Euclidean,
                 octaves: 1,
                 period: 0,
+                points: crate::graph::FeaturePoints::Hashed,
             }),
         );
         assert!(live.update(&graph), "a new node is a structural edit");

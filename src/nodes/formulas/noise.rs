@@ -247,20 +247,35 @@ fn metric<R: Real>(d: V3<R>, metric: Metric) -> R {
 /// With a `period`, the point is moved by whole periods near the origin and the cells
 /// whose feature points are hashed are wrapped (`veneer_worley_periodic`).
 pub fn worley<R: Real>(point: V3<R>, jitter: R, m: Metric, period: Period) -> V3<R> {
-    let p = domain(point, period);
     let jitter = jitter.clamp(R::c(-1.0), R::c(1.0));
+    nearest_features(domain(point, period), m, |c| {
+        let r = unit_floats::<R>(pcg3d(cell_bits(wrap(c, period))));
+        add(
+            add(c, splat(R::c(0.5))),
+            map(r, |r| jitter * (r - R::c(0.5))),
+        )
+    })
+}
+
+/// F1, F2, F3 over the GeoTextures thesis's feature points (`veneer_worley_simplex`,
+/// seed 003's `gpuCellNoise3D`): each cell's corner moved along (1, 1, 1) by signed
+/// simplex noise at the corner times `spread` (the thesis's `noiseScale`), unclamped.
+pub fn worley_simplex<R: Real>(point: V3<R>, spread: R, m: Metric) -> V3<R> {
+    nearest_features(domain(point, None), m, |c| {
+        add(c, splat(spread * signed(Basis::Simplex, c)))
+    })
+}
+
+/// The three smallest distances under metric `m` from `p` to the feature points
+/// `feature(cell)` of the 27 cells around it, visited z, y, x from −1 to 1.
+fn nearest_features<R: Real>(p: V3<R>, m: Metric, feature: impl Fn(V3<R>) -> V3<R>) -> V3<R> {
     let cell = map(p, R::floor);
     let mut f = splat(R::c(1.0e9));
     for z in -1..=1 {
         for y in -1..=1 {
             for x in -1..=1 {
                 let c = add(cell, [R::c(x as f64), R::c(y as f64), R::c(z as f64)]);
-                let r = unit_floats::<R>(pcg3d(cell_bits(wrap(c, period))));
-                let feature = add(
-                    add(c, splat(R::c(0.5))),
-                    map(r, |r| jitter * (r - R::c(0.5))),
-                );
-                let d = metric(sub(p, feature), m);
+                let d = metric(sub(p, feature(c)), m);
                 if d < f[0] {
                     f = [d, f[0], f[1]];
                 } else if d < f[1] {

@@ -80,14 +80,19 @@ fn veneer_mix_vec3f(a: vec3f, b: vec3f, t: f32) -> vec3f {
     return veneer_finite_vec3f(veneer_finite_vec3f(a * (1.0 - t)) + veneer_finite_vec3f(b * t));
 }
 
-// ---- shaders/hash.wgsl
+// ---- shaders/worley.wgsl
 
-// Integer coordinates of a lattice cell, clamped to the i32 range so that any finite
-// coordinate maps to a well-defined cell on every device.
-fn veneer_cell_bits(cell: vec3f) -> vec3u {
-    let limit = vec3f(2147483520.0);
-    return bitcast<vec3u>(vec3i(clamp(cell, -limit, limit)));
+// Feature 0 = F1, 1 = F2, 2 = F3, 3 = F2 - F1.
+fn veneer_worley_feature(f: vec3f, feature: i32) -> f32 {
+    switch feature {
+        case 1: { return f.y; }
+        case 2: { return f.z; }
+        case 3: { return f.y - f.x; }
+        default: { return f.x; }
+    }
 }
+
+// ---- shaders/hash.wgsl
 
 // `p` within the lattice's range (+-2147483520 per axis, where the cells' integer
 // coordinates saturate anyway): every lattice noise samples its point through this, so
@@ -109,7 +114,19 @@ fn veneer_metric(d: vec3f, metric: i32) -> f32 {
     }
 }
 
+// The three smallest of F1 <= F2 <= F3 and a new distance `d`, in order.
+fn veneer_nearest_three(f: vec3f, d: f32) -> vec3f {
+    return select(select(select(f, vec3f(f.xy, d), d < f.z), vec3f(f.x, d, f.y), d < f.y), vec3f(d, f.xy), d < f.x);
+}
+
 // ---- shaders/hash.wgsl
+
+// Integer coordinates of a lattice cell, clamped to the i32 range so that any finite
+// coordinate maps to a well-defined cell on every device.
+fn veneer_cell_bits(cell: vec3f) -> vec3u {
+    let limit = vec3f(2147483520.0);
+    return bitcast<vec3u>(vec3i(clamp(cell, -limit, limit)));
+}
 
 // PCG3D (Jarzynski and Olano 2020): three rounds of an LCG mixed across lanes.
 fn veneer_pcg3d(seed: vec3u) -> vec3u {
@@ -122,65 +139,6 @@ fn veneer_pcg3d(seed: vec3u) -> vec3u {
     v.y += v.z * v.x;
     v.z += v.x * v.y;
     return v;
-}
-
-// Top 24 bits of each lane as floats in [0, 1): exact, so CPU and GPU agree bit for bit.
-fn veneer_unit_floats(bits: vec3u) -> vec3f {
-    return vec3f(bits >> vec3u(8u)) * (1.0 / 16777216.0);
-}
-
-// ---- shaders/worley.wgsl
-
-// The three smallest feature distances (F1, F2, F3) around `p`; one feature point per
-// cell, displaced from the cell centre by up to `jitter` / 2 per axis (`jitter` clamped
-// to [-1, 1], where every feature point stays in its cell, so distances stay small).
-fn veneer_worley(point: vec3f, jitter: f32, metric: i32) -> vec3f {
-    let p = veneer_lattice_domain(point);
-    let spread = clamp(jitter, -1.0, 1.0);
-    let cell = floor(p);
-    var f = vec3f(1.0e9);
-    for (var z = -1; z <= 1; z++) {
-        for (var y = -1; y <= 1; y++) {
-            for (var x = -1; x <= 1; x++) {
-                let c = cell + vec3f(f32(x), f32(y), f32(z));
-                let r = veneer_unit_floats(veneer_pcg3d(veneer_cell_bits(c)));
-                let feature = c + 0.5 + spread * (r - 0.5);
-                let d = veneer_metric(p - feature, metric);
-                if d < f.x {
-                    f = vec3f(d, f.x, f.y);
-                } else if d < f.y {
-                    f = vec3f(f.x, d, f.y);
-                } else if d < f.z {
-                    f.z = d;
-                }
-            }
-        }
-    }
-    return f;
-}
-
-// Feature 0 = F1, 1 = F2, 2 = F3, 3 = F2 - F1.
-fn veneer_worley_feature(f: vec3f, feature: i32) -> f32 {
-    switch feature {
-        case 1: { return f.y; }
-        case 2: { return f.z; }
-        case 3: { return f.y - f.x; }
-        default: { return f.x; }
-    }
-}
-
-// Fractal Worley: `octaves` octaves of a feature, frequency times `lacunarity`, amplitude
-// times `gain`; the frequency, the amplitude and the sum clamped to the finite range.
-fn veneer_worley_fractal(p: vec3f, jitter: f32, metric: i32, feature: i32, octaves: i32, lacunarity: f32, gain: f32) -> f32 {
-    var sum = 0.0;
-    var amp = 1.0;
-    var freq = 1.0;
-    for (var i = 0; i < octaves; i++) {
-        sum = clamp(sum + amp * veneer_worley_feature(veneer_worley(p * freq, jitter, metric), feature), -3.0e38, 3.0e38);
-        freq = clamp(freq * lacunarity, -3.0e38, 3.0e38);
-        amp = clamp(amp * gain, -3.0e38, 3.0e38);
-    }
-    return sum;
 }
 
 // ---- shaders/gradient.wgsl
@@ -226,6 +184,37 @@ fn veneer_noise_simplex(point: vec3f) -> f32 {
 // Any basis remapped from [0, 1] to [-1, 1].
 fn veneer_noise_simplex_signed(p: vec3f) -> f32 {
     return 2.0 * veneer_noise_simplex(p) - 1.0;
+}
+
+// ---- shaders/worley.wgsl
+
+// F1, F2, F3 over the GeoTextures thesis's feature points (seed 003, appendix B's
+// gpuCellNoise3D): each cell's corner moved along (1, 1, 1) by signed simplex noise at
+// the corner times `spread` (the thesis's noiseScale), unclamped, so that past 0.5 points
+// stray beyond the 27 cells searched, as in the thesis.
+fn veneer_worley_simplex(point: vec3f, spread: f32, metric: i32) -> vec3f {
+    let p = veneer_lattice_domain(point);
+    var f = vec3f(1.0e9);
+    for (var k = 0; k < 27; k++) {
+        let c = floor(p) + vec3f(vec3i(k % 3, (k / 3) % 3, k / 9) - 1);
+        let feature = c + spread * veneer_noise_simplex_signed(c);
+        f = veneer_nearest_three(f, veneer_metric(p - feature, metric));
+    }
+    return f;
+}
+
+// Fractal Worley: `octaves` octaves of a feature, frequency times `lacunarity`, amplitude
+// times `gain`; the frequency, the amplitude and the sum clamped to the finite range.
+fn veneer_worley_simplex_fractal(p: vec3f, jitter: f32, metric: i32, feature: i32, octaves: i32, lacunarity: f32, gain: f32) -> f32 {
+    var sum = 0.0;
+    var amp = 1.0;
+    var freq = 1.0;
+    for (var i = 0; i < octaves; i++) {
+        sum = clamp(sum + amp * veneer_worley_feature(veneer_worley_simplex(p * freq, jitter, metric), feature), -3.0e38, 3.0e38);
+        freq = clamp(freq * lacunarity, -3.0e38, 3.0e38);
+        amp = clamp(amp * gain, -3.0e38, 3.0e38);
+    }
+    return sum;
 }
 
 // ---- shaders/fractal.wgsl
@@ -293,14 +282,14 @@ fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     let flow: f32 = veneer_finite_f32(flow_time * 0.5f);
     // Math 'flowing cell space' (#9)
     let flowing_cell_space: vec3f = veneer_finite_vec3f(cell_space + vec3f(flow));
-    // Worley 'worley' (#10)
-    let worley: f32 = veneer_worley_fractal(flowing_cell_space * 1.0f, 1.0f, 0, 0, 3, 2.0f, 0.5f);
+    // Worley 'fractalcell (noiseScale)' (#10)
+    let fractalcell_noise_scale: f32 = veneer_worley_simplex_fractal(flowing_cell_space * 1.0f, 2.2f, 0, 0, 3, 2.0f, 0.5f);
     // Math 'sand space' (#11)
     let sand_space: vec3f = veneer_finite_vec3f(s.position * vec3f(1000.0f, 1000.0f, 1000.0f));
     // Fractal sum 'sandBump' (#12)
     let sand_bump: f32 = veneer_fractal_sum_simplex(sand_space * 1.0f, 1, 2.0f, 0.5f, 1.0f, false, 1000000000.0f);
     // Mix 'bump' (#13)
-    let bump: f32 = veneer_mix_f32(worley, sand_bump, sand_1_shore);
+    let bump: f32 = veneer_mix_f32(fractalcell_noise_scale, sand_bump, sand_1_shore);
     // Math 'bumpScale' (#14)
     let bump_scale: f32 = veneer_finite_f32(bump * 0.15f);
     // Material 'material' (#16)

@@ -201,53 +201,6 @@ fn veneer_turbulence_simplex(p: vec3f, octaves: i32, lacunarity: f32, gain: f32,
 
 // ---- shaders/worley.wgsl
 
-// Distance of offset `d` under metric 0 (Euclidean), 1 (Manhattan) or 2 (Chebyshev).
-fn veneer_metric(d: vec3f, metric: i32) -> f32 {
-    let a = abs(d);
-    switch metric {
-        case 1: { return a.x + a.y + a.z; }
-        case 2: { return max(a.x, max(a.y, a.z)); }
-        default: { return length(d); }
-    }
-}
-
-// ---- shaders/hash.wgsl
-
-// Top 24 bits of each lane as floats in [0, 1): exact, so CPU and GPU agree bit for bit.
-fn veneer_unit_floats(bits: vec3u) -> vec3f {
-    return vec3f(bits >> vec3u(8u)) * (1.0 / 16777216.0);
-}
-
-// ---- shaders/worley.wgsl
-
-// The three smallest feature distances (F1, F2, F3) around `p`; one feature point per
-// cell, displaced from the cell centre by up to `jitter` / 2 per axis (`jitter` clamped
-// to [-1, 1], where every feature point stays in its cell, so distances stay small).
-fn veneer_worley(point: vec3f, jitter: f32, metric: i32) -> vec3f {
-    let p = veneer_lattice_domain(point);
-    let spread = clamp(jitter, -1.0, 1.0);
-    let cell = floor(p);
-    var f = vec3f(1.0e9);
-    for (var z = -1; z <= 1; z++) {
-        for (var y = -1; y <= 1; y++) {
-            for (var x = -1; x <= 1; x++) {
-                let c = cell + vec3f(f32(x), f32(y), f32(z));
-                let r = veneer_unit_floats(veneer_pcg3d(veneer_cell_bits(c)));
-                let feature = c + 0.5 + spread * (r - 0.5);
-                let d = veneer_metric(p - feature, metric);
-                if d < f.x {
-                    f = vec3f(d, f.x, f.y);
-                } else if d < f.y {
-                    f = vec3f(f.x, d, f.y);
-                } else if d < f.z {
-                    f.z = d;
-                }
-            }
-        }
-    }
-    return f;
-}
-
 // Feature 0 = F1, 1 = F2, 2 = F3, 3 = F2 - F1.
 fn veneer_worley_feature(f: vec3f, feature: i32) -> f32 {
     switch feature {
@@ -258,14 +211,44 @@ fn veneer_worley_feature(f: vec3f, feature: i32) -> f32 {
     }
 }
 
+// Distance of offset `d` under metric 0 (Euclidean), 1 (Manhattan) or 2 (Chebyshev).
+fn veneer_metric(d: vec3f, metric: i32) -> f32 {
+    let a = abs(d);
+    switch metric {
+        case 1: { return a.x + a.y + a.z; }
+        case 2: { return max(a.x, max(a.y, a.z)); }
+        default: { return length(d); }
+    }
+}
+
+// The three smallest of F1 <= F2 <= F3 and a new distance `d`, in order.
+fn veneer_nearest_three(f: vec3f, d: f32) -> vec3f {
+    return select(select(select(f, vec3f(f.xy, d), d < f.z), vec3f(f.x, d, f.y), d < f.y), vec3f(d, f.xy), d < f.x);
+}
+
+// F1, F2, F3 over the GeoTextures thesis's feature points (seed 003, appendix B's
+// gpuCellNoise3D): each cell's corner moved along (1, 1, 1) by signed simplex noise at
+// the corner times `spread` (the thesis's noiseScale), unclamped, so that past 0.5 points
+// stray beyond the 27 cells searched, as in the thesis.
+fn veneer_worley_simplex(point: vec3f, spread: f32, metric: i32) -> vec3f {
+    let p = veneer_lattice_domain(point);
+    var f = vec3f(1.0e9);
+    for (var k = 0; k < 27; k++) {
+        let c = floor(p) + vec3f(vec3i(k % 3, (k / 3) % 3, k / 9) - 1);
+        let feature = c + spread * veneer_noise_simplex_signed(c);
+        f = veneer_nearest_three(f, veneer_metric(p - feature, metric));
+    }
+    return f;
+}
+
 // Fractal Worley: `octaves` octaves of a feature, frequency times `lacunarity`, amplitude
 // times `gain`; the frequency, the amplitude and the sum clamped to the finite range.
-fn veneer_worley_fractal(p: vec3f, jitter: f32, metric: i32, feature: i32, octaves: i32, lacunarity: f32, gain: f32) -> f32 {
+fn veneer_worley_simplex_fractal(p: vec3f, jitter: f32, metric: i32, feature: i32, octaves: i32, lacunarity: f32, gain: f32) -> f32 {
     var sum = 0.0;
     var amp = 1.0;
     var freq = 1.0;
     for (var i = 0; i < octaves; i++) {
-        sum = clamp(sum + amp * veneer_worley_feature(veneer_worley(p * freq, jitter, metric), feature), -3.0e38, 3.0e38);
+        sum = clamp(sum + amp * veneer_worley_feature(veneer_worley_simplex(p * freq, jitter, metric), feature), -3.0e38, 3.0e38);
         freq = clamp(freq * lacunarity, -3.0e38, 3.0e38);
         amp = clamp(amp * gain, -3.0e38, 3.0e38);
     }
@@ -303,10 +286,10 @@ fn veneer_material(s: VeneerSurface) -> VeneerMaterial {
     let flow: f32 = veneer_finite_f32(flow_time * 0.5f);
     // Math 'flowing cell space' (#9)
     let flowing_cell_space: vec3f = veneer_finite_vec3f(cell_space + vec3f(flow));
-    // Worley 'worley' (#10)
-    let worley: f32 = veneer_worley_fractal(flowing_cell_space * 1.0f, 1.0f, 0, 0, 3, 2.0f, 0.5f);
+    // Worley 'fractalcell (noiseScale)' (#10)
+    let fractalcell_noise_scale: f32 = veneer_worley_simplex_fractal(flowing_cell_space * 1.0f, 2.2f, 0, 0, 3, 2.0f, 0.5f);
     // Unary 'mossCells' (#11)
-    let moss_cells: f32 = 1.0 - worley;
+    let moss_cells: f32 = 1.0 - fractalcell_noise_scale;
     // Math 'moss space' (#12)
     let moss_space: vec3f = veneer_finite_vec3f(s.position * vec3f(163.0f, 163.0f, 163.0f));
     // Turbulence 'moss turbulence' (#13)
