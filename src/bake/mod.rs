@@ -10,6 +10,7 @@ mod encode;
 mod exr_rle;
 mod gltf;
 mod maps;
+mod materialx;
 mod mesh_maps;
 mod pipeline;
 mod texel_fields;
@@ -18,6 +19,7 @@ mod transfer;
 
 pub use gltf::{GltfSettings, Packaging, export_gltf, gltf_files};
 pub use maps::{Converter, Map, NormalConvention, fill_uncovered};
+pub use materialx::{MaterialxSettings, SurfaceModel, export_materialx, materialx_files};
 pub use mesh_maps::{
     BakedMeshMap, MOST_POOLING, MeshMap, MeshMapSettings, bake_mesh_maps, mesh_map_path,
 };

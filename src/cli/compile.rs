@@ -3,6 +3,7 @@
 use super::{Failure, in_file, load_graph, write_output};
 use clap::{Args, ValueEnum};
 use std::path::{Path, PathBuf};
+use veneer::bake::{MaterialxSettings, SurfaceModel, export_materialx, materialx_files};
 use veneer::codegen::export::{Target, export_compiled};
 use veneer::codegen::manifest::export_beside;
 use veneer::codegen::{CompileOptions, ParamMode, compile, describe_parameters};
@@ -21,13 +22,72 @@ pub enum ParamsArg {
     Slots,
 }
 
+/// What `--target` names: a shader language, or a MaterialX document.
+#[derive(Clone, Copy, PartialEq)]
+enum TargetArg {
+    Shader(Target),
+    Materialx,
+}
+
+impl ValueEnum for TargetArg {
+    fn value_variants<'a>() -> &'a [Self] {
+        const TARGETS: [TargetArg; 7] = [
+            TargetArg::Shader(Target::ALL[0].0),
+            TargetArg::Shader(Target::ALL[1].0),
+            TargetArg::Shader(Target::ALL[2].0),
+            TargetArg::Shader(Target::ALL[3].0),
+            TargetArg::Shader(Target::ALL[4].0),
+            TargetArg::Shader(Target::ALL[5].0),
+            TargetArg::Materialx,
+        ];
+        &TARGETS
+    }
+
+    fn to_possible_value(&self) -> Option<clap::builder::PossibleValue> {
+        match self {
+            TargetArg::Shader(target) => target.to_possible_value(),
+            TargetArg::Materialx => Some(clap::builder::PossibleValue::new("mtlx").help(
+                "MaterialX 1.39 document: the material's maps baked beside it, wired into a surface shader",
+            )),
+        }
+    }
+}
+
+/// The surface shader a MaterialX export wires its maps into.
+#[derive(Clone, Copy)]
+struct SurfaceArg(SurfaceModel);
+
+impl ValueEnum for SurfaceArg {
+    fn value_variants<'a>() -> &'a [Self] {
+        const MODELS: [SurfaceArg; 3] = [
+            SurfaceArg(SurfaceModel::ALL[0].0),
+            SurfaceArg(SurfaceModel::ALL[1].0),
+            SurfaceArg(SurfaceModel::ALL[2].0),
+        ];
+        &MODELS
+    }
+
+    fn to_possible_value(&self) -> Option<clap::builder::PossibleValue> {
+        let (_, name, node) = SurfaceModel::ALL
+            .iter()
+            .find(|(model, _, _)| *model == self.0)?;
+        Some(clap::builder::PossibleValue::new(*name).help(*node))
+    }
+}
+
 #[derive(Args)]
 pub struct CompileArgs {
     /// The graph file.
     graph: PathBuf,
-    /// Shader language of the output.
+    /// Shader language of the output, or `mtlx` for a MaterialX document.
     #[arg(long, value_enum, default_value = "wgsl")]
-    target: Target,
+    target: TargetArg,
+    /// With `--target mtlx`: the surface shader the baked maps are wired into.
+    #[arg(long, value_enum, default_value = "open-pbr")]
+    surface: SurfaceArg,
+    /// With `--target mtlx`: width and height of the baked maps in pixels.
+    #[arg(long, default_value_t = 1024)]
+    size: u32,
     /// Parameters baked as constants, exposed ones in a named uniform struct, or every
     /// constant in a block of slots.
     #[arg(long, value_enum, default_value = "baked")]
@@ -50,6 +110,17 @@ impl CompileArgs {
     pub fn plan(&self, plan: &mut OutputPlan, job: Option<&str>) {
         let by = self.parameters.plan_graph(plan, job, &self.graph);
         if let Some(output) = self.output.as_deref().and_then(super::output_file) {
+            if self.target == TargetArg::Materialx {
+                for (index, path) in materialx_files(output).iter().enumerate() {
+                    let naming = if index == 0 {
+                        Naming::Given
+                    } else {
+                        Naming::Implied
+                    };
+                    plan.writes(path, naming, &by);
+                }
+                return;
+            }
             plan.writes(output, Naming::Given, &by);
             if self.describes_beside() {
                 plan.writes(description_path(output), Naming::Implied, &by);
@@ -77,6 +148,10 @@ impl CompileArgs {
 pub fn run(args: CompileArgs) -> Result<(), Failure> {
     let mut graph = load_graph(&args.graph)?;
     args.parameters.apply(&mut graph, &args.graph)?;
+    let target = match args.target {
+        TargetArg::Shader(target) => target,
+        TargetArg::Materialx => return run_materialx(&args, &graph),
+    };
     let params = args.param_mode();
     let compiled = compile(&graph, &CompileOptions::with_params(params))
         .map_err(|error| in_file(&args.graph, error))?;
@@ -87,8 +162,7 @@ pub fn run(args: CompileArgs) -> Result<(), Failure> {
     if !compiled.passes.is_empty() {
         return write_passes(&args, &compiled);
     }
-    let bytes =
-        export_compiled(&compiled, args.target).map_err(|error| in_file(&args.graph, error))?;
+    let bytes = export_compiled(&compiled, target).map_err(|error| in_file(&args.graph, error))?;
     match args.output.as_deref().and_then(super::output_file) {
         Some(path) if args.describes_beside() && !super::names_folder(path) => write_both(
             path,
@@ -113,8 +187,11 @@ fn write_passes(args: &CompileArgs, compiled: &veneer::codegen::Compiled) -> Res
             )));
         }
     };
-    let files = export_beside(compiled, args.target, output)
-        .map_err(|error| in_file(&args.graph, error))?;
+    let TargetArg::Shader(target) = args.target else {
+        unreachable!("MaterialX exports return before passes are written")
+    };
+    let files =
+        export_beside(compiled, target, output).map_err(|error| in_file(&args.graph, error))?;
     let description = describe_parameters(compiled);
     let described = args.describes_beside().then(|| description_path(output));
     let mut writes: Vec<(&Path, Naming, &[u8])> = (files.iter())
@@ -132,6 +209,55 @@ fn write_passes(args: &CompileArgs, compiled: &veneer::codegen::Compiled) -> Res
         compiled.passes.passes.len(),
         files.last().expect("the manifest").0.display()
     ))
+}
+
+/// `veneer compile --target mtlx`: the material's maps baked beside a MaterialX document
+/// that wires them into a surface shader.
+fn run_materialx(args: &CompileArgs, graph: &veneer::graph::Graph) -> Result<(), Failure> {
+    let output = match args.output.as_deref().and_then(super::output_file) {
+        Some(path) if !veneer::fsutil::is_stream(path) && !super::names_folder(path) => path,
+        _ => {
+            return Err(Failure::new(format!(
+                "{}: a MaterialX export is a document with its maps beside it: give `-o FILE.mtlx`",
+                args.graph.display()
+            )));
+        }
+    };
+    if args.size == 0 {
+        return Err(Failure::new("--size must be at least 1"));
+    }
+    if args.describe || !matches!(args.params, ParamsArg::Baked) {
+        return Err(Failure::new(
+            "--target mtlx bakes the parameters into its maps: leave out --params and --describe",
+        ));
+    }
+    let compiled =
+        compile(graph, &CompileOptions::default()).map_err(|error| in_file(&args.graph, error))?;
+    let gpu = veneer::render::GpuContext::new()?;
+    let settings = MaterialxSettings {
+        surface: args.surface.0,
+        size: args.size,
+        time: 0.0,
+    };
+    let bar = indicatif::ProgressBar::new(0).with_style(
+        indicatif::ProgressStyle::with_template(
+            "{prefix:>16} [{bar:40}] {pos}/{len} tiles {elapsed}",
+        )
+        .expect("valid template"),
+    );
+    bar.set_prefix("MaterialX");
+    let written = export_materialx(&gpu, &compiled, &settings, output, |done, total| {
+        bar.set_length(total);
+        bar.set_position(done);
+        true
+    })
+    .map_err(|error| in_file(&args.graph, error))?;
+    bar.finish_and_clear();
+    for path in &written {
+        let bytes = std::fs::metadata(path).map(|m| m.len()).unwrap_or(0);
+        super::output::note(format_args!("wrote {} ({bytes} bytes)", path.display()))?;
+    }
+    Ok(())
 }
 
 /// Writes the shader and its parameters' description together: neither is left

@@ -35,6 +35,7 @@ mod layout;
 mod limits;
 mod lint;
 mod live_preview;
+mod materialx;
 mod mesh_fields;
 mod mesh_passes;
 mod meshes;

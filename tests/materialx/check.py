@@ -1,0 +1,57 @@
+#!/usr/bin/env python3
+"""Checks MaterialX documents with the MaterialX library itself (its Python package, which
+`.ci/run` installs into target/python): each file is read, validated against the
+standard data libraries, and every renderable element in it is given to MaterialX's GLSL
+shader generator, whose pixel and vertex stages are written beside the file as
+`<file>.<element>.frag` and `.vert` for glslangValidator.
+
+    PYTHONPATH=target/python python3 tests/materialx/check.py FILE.mtlx...
+
+Prints one line per file (`FILE: valid, N shaders`) and exits with 1 if any file fails.
+"""
+
+import sys
+
+import MaterialX as mx
+import MaterialX.PyMaterialXGenGlsl as glsl
+import MaterialX.PyMaterialXGenShader as shadergen
+
+
+def main():
+    search = mx.getDefaultDataSearchPath()
+    libraries = mx.createDocument()
+    mx.loadLibraries(mx.getDefaultDataLibraryFolders(), search, libraries)
+    failed = False
+    for path in sys.argv[1:]:
+        document = mx.createDocument()
+        try:
+            mx.readFromXmlFile(document, path)
+        except mx.Exception as error:
+            print(f"{path}: does not read: {error}")
+            failed = True
+            continue
+        document.importLibrary(libraries)
+        valid, message = document.validate()
+        if not valid:
+            print(f"{path}: invalid: {message}")
+            failed = True
+            continue
+        generator = glsl.GlslShaderGenerator.create()
+        context = shadergen.GenContext(generator)
+        context.registerSourceCodeSearchPath(search)
+        elements = shadergen.findRenderableElements(document)
+        for element in elements:
+            shader = generator.generate(element.getName(), element, context)
+            for stage, extension in ((shadergen.PIXEL_STAGE, "frag"), (shadergen.VERTEX_STAGE, "vert")):
+                with open(f"{path}.{element.getName()}.{extension}", "w") as out:
+                    out.write(shader.getSourceCode(stage))
+        if not elements:
+            print(f"{path}: nothing renderable")
+            failed = True
+            continue
+        print(f"{path}: valid, {len(elements)} shaders")
+    sys.exit(1 if failed else 0)
+
+
+if __name__ == "__main__":
+    main()
