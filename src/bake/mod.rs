@@ -12,19 +12,23 @@ mod gltf;
 mod maps;
 mod materialx;
 mod mesh_maps;
+mod model;
 mod pipeline;
 mod texel_fields;
 pub mod tile;
 mod transfer;
+mod usd;
 
-pub use gltf::{GltfSettings, Packaging, export_gltf, gltf_files};
+pub use gltf::{Packaging, export_gltf, gltf_files};
 pub use maps::{Converter, Map, NormalConvention, fill_uncovered};
 pub use materialx::{MaterialxSettings, SurfaceModel, export_materialx, materialx_files};
 pub use mesh_maps::{
     BakedMeshMap, MOST_POOLING, MeshMap, MeshMapSettings, bake_mesh_maps, mesh_map_path,
 };
+pub use model::ModelSettings;
 use pipeline::MapTarget;
 pub use transfer::{CAGES, TransferMap, TransferSettings, Transferred, transfer};
+pub use usd::{export_usd, usd_files};
 
 use crate::codegen::Compiled;
 use crate::render::{FlatRect, FlatRenderer, GpuContext, GpuMesh, RenderError, UvRenderer};

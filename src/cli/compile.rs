@@ -111,14 +111,7 @@ impl CompileArgs {
         let by = self.parameters.plan_graph(plan, job, &self.graph);
         if let Some(output) = self.output.as_deref().and_then(super::output_file) {
             if self.target == TargetArg::Materialx {
-                for (index, path) in materialx_files(output).iter().enumerate() {
-                    let naming = if index == 0 {
-                        Naming::Given
-                    } else {
-                        Naming::Implied
-                    };
-                    plan.writes(path, naming, &by);
-                }
+                plan.writes_beside(&materialx_files(output), &by);
                 return;
             }
             plan.writes(output, Naming::Given, &by);

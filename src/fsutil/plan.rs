@@ -51,6 +51,19 @@ impl OutputPlan {
         self.writes.push((entry, naming));
     }
 
+    /// Notes that `by` writes `files`: the first the file the user named, the rest
+    /// named by Veneer beside it (a document and its textures).
+    pub fn writes_beside(&mut self, files: &[std::path::PathBuf], by: &str) {
+        for (index, path) in files.iter().enumerate() {
+            let naming = if index == 0 {
+                Naming::Given
+            } else {
+                Naming::Implied
+            };
+            self.writes(path, naming, by);
+        }
+    }
+
     /// The first problem of the plan, as a message naming the files (and their writers
     /// when they differ): a file Veneer names itself that is not a regular file of its
     /// own, an output that is an input, an output written twice.

@@ -8,7 +8,7 @@
 use crate::support::{gpu, metallic_roughness, presets, root, stem, temp_dir};
 use std::path::{Path, PathBuf};
 use std::process::Command;
-use veneer::bake::{BakeError, GltfSettings, export_gltf};
+use veneer::bake::{BakeError, ModelSettings, export_gltf};
 use veneer::codegen::{Compiled, compile};
 use veneer::graph::Graph;
 
@@ -45,7 +45,7 @@ fn compiled(graph: &Graph) -> Compiled {
 }
 
 fn export(compiled: &Compiled, path: &Path) -> Result<Vec<PathBuf>, BakeError> {
-    let settings = GltfSettings {
+    let settings = ModelSettings {
         mesh: None,
         size: 64,
         time: 0.0,
@@ -103,7 +103,7 @@ fn every_preset_exports_to_a_valid_glb() {
 fn an_export_cancelled_from_its_progress_writes_nothing() {
     let dir = temp_dir("gltf-cancelled");
     let graph = veneer::graph::preset("wood").expect("preset");
-    let settings = GltfSettings {
+    let settings = ModelSettings {
         mesh: None,
         size: 64,
         time: 0.0,

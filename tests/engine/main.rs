@@ -55,3 +55,4 @@ mod snapshots;
 mod support;
 mod tiles;
 mod transparency;
+mod usd;

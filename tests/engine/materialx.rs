@@ -7,7 +7,7 @@
 //! model: its alpha mode); the same export gives the same bytes; outputs that cannot be
 //! written are refused with nothing written.
 
-use crate::support::{gpu, presets, root, stem, temp_dir, texture_graphs, veneer};
+use crate::support::{gpu, presets, python_check, root, stem, temp_dir, texture_graphs, veneer};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use veneer::bake::{MaterialxSettings, SurfaceModel, export_materialx};
@@ -41,25 +41,11 @@ fn named_files(document: &str) -> Vec<String> {
 /// Runs MaterialX's own validation and GLSL generation on `documents`, then
 /// glslangValidator on every shader stage it wrote.
 fn check_with_materialx(documents: &[PathBuf]) {
-    let output = Command::new("python3")
-        .arg(root("tests/materialx/check.py"))
-        .args(documents)
-        .env("PYTHONPATH", root("target/python"))
-        .output()
-        .expect("python3 runs the MaterialX check");
-    let report = String::from_utf8_lossy(&output.stdout);
-    assert!(
-        output.status.success(),
-        "MaterialX (`.ci/run` installs its package into target/python):\n{report}{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
-    assert_eq!(
-        report
-            .lines()
-            .filter(|l| l.contains(": valid, 1 shaders"))
-            .count(),
-        documents.len(),
-        "{report}"
+    python_check(
+        "tests/materialx/check.py",
+        documents,
+        ": valid, 1 shaders",
+        "MaterialX",
     );
     for document in documents {
         let folder = document.parent().expect("a folder");

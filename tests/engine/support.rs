@@ -196,3 +196,23 @@ pub fn refusal(graph: &veneer::graph::Graph) -> String {
         .collect::<Vec<_>>()
         .join("\n")
 }
+
+/// Runs the Python check `script` (under the crate root) on `files` with the packages
+/// `.ci/run` installs into `target/python` (`what` names them); panics with its report
+/// unless it succeeds and has a line containing `passed` for every file.
+pub fn python_check(script: &str, files: &[PathBuf], passed: &str, what: &str) {
+    let output = std::process::Command::new("python3")
+        .arg(root(script))
+        .args(files)
+        .env("PYTHONPATH", root("target/python"))
+        .output()
+        .unwrap_or_else(|error| panic!("python3 runs {script}: {error}"));
+    let report = String::from_utf8_lossy(&output.stdout);
+    assert!(
+        output.status.success(),
+        "{what} (`.ci/run` installs it into target/python):\n{report}{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let passing = report.lines().filter(|line| line.contains(passed)).count();
+    assert_eq!(passing, files.len(), "{report}");
+}

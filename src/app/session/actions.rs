@@ -211,7 +211,7 @@ impl VeneerApp {
         let compiled =
             crate::codegen::compile(&self.session.document.graph, &CompileOptions::default())
                 .map_err(|error| error.to_string())?;
-        let settings = crate::bake::GltfSettings {
+        let settings = crate::bake::ModelSettings {
             mesh: Some(self.preview.state.mesh.clone()),
             size,
             time: self.preview.state.view.time,

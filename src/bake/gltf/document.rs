@@ -3,24 +3,8 @@
 //! PNGs beside it. Keys are written sorted (serde_json's map), so the same bake gives
 //! the same bytes.
 
+use super::super::model::{MeshData, Texture};
 use serde_json::{Value, json};
-
-/// One triangle mesh as glTF's attributes hold it.
-pub struct MeshData {
-    pub positions: Vec<[f32; 3]>,
-    /// Unit normals.
-    pub normals: Vec<[f32; 3]>,
-    /// Unit tangents with their bitangent sign; `None` when no normal texture needs them.
-    pub tangents: Option<Vec<[f32; 4]>>,
-    pub uvs: Vec<[f32; 2]>,
-    pub indices: Vec<u32>,
-}
-
-/// A PNG texture and the file name it has beside a `.gltf`.
-pub struct Texture {
-    pub file_name: String,
-    pub png: Vec<u8>,
-}
 
 /// The material's glTF description: its `materials[0]` object, which refers to textures
 /// by their index in `textures`.

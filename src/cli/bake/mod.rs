@@ -10,8 +10,8 @@ use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
 use std::path::PathBuf;
 use veneer::bake::tile::seam_text;
 use veneer::bake::{
-    BakeSettings, BakeSurface, BakedMap, Format, GltfSettings, Map, MeshMap, MeshMapSettings,
-    NormalConvention, bake, export_gltf, map_path, mesh_map_path,
+    BakeSettings, BakeSurface, BakedMap, Format, Map, MeshMap, MeshMapSettings, ModelSettings,
+    NormalConvention, bake, map_path, mesh_map_path,
 };
 use veneer::codegen::{CompileOptions, compile};
 use veneer::fsutil::{Naming, OutputPlan};
@@ -112,6 +112,12 @@ pub struct BakeArgs {
     /// gives one file; `.gltf` writes its buffer and PNGs beside it. One graph at a time.
     #[arg(long, value_name = "OUT.glb|OUT.gltf", conflicts_with_all = ["flat", "tile", "out_dir", "maps", "format", "normal"])]
     gltf: Option<PathBuf>,
+    /// Write a USD stage instead of map files: the mesh (as for --gltf) bound to a
+    /// material with a UsdPreviewSurface reading the baked maps and, beside it for
+    /// renderers that read MaterialX, the same maps in an OpenPBR Surface. `.usdz` gives
+    /// one package; `.usda` writes its PNGs beside it. One graph at a time.
+    #[arg(long, value_name = "OUT.usda|OUT.usdz", conflicts_with_all = ["flat", "tile", "out_dir", "maps", "format", "normal", "gltf"])]
+    usd: Option<PathBuf>,
     /// Print a JSON summary of what was written on stdout.
     #[arg(long)]
     json: bool,
@@ -151,16 +157,10 @@ impl BakeArgs {
             }
             return;
         };
-        if let Some(out) = &self.gltf {
-            let by = super::by(job, first);
-            for (index, path) in veneer::bake::gltf_files(out).iter().enumerate() {
-                let naming = if index == 0 {
-                    Naming::Given
-                } else {
-                    Naming::Implied
-                };
-                plan.writes(path, naming, &by);
-            }
+        let model = (self.gltf.as_deref().map(veneer::bake::gltf_files))
+            .or_else(|| self.usd.as_deref().map(veneer::bake::usd_files));
+        if let Some(files) = model {
+            plan.writes_beside(&files, &super::by(job, first));
             return;
         }
         let format = self.settings().format;
@@ -283,7 +283,14 @@ impl BakeArgs {
 
 pub fn run(args: BakeArgs) -> Result<(), Failure> {
     if let Some(out) = &args.gltf {
-        return run_gltf(&args, out);
+        return run_model(&args, out, "glTF", |g, c, s, o, p| {
+            veneer::bake::export_gltf(g, c, s, o, p)
+        });
+    }
+    if let Some(out) = &args.usd {
+        return run_model(&args, out, "USD", |g, c, s, o, p| {
+            veneer::bake::export_usd(g, c, s, o, p)
+        });
     }
     if args.size == 0 {
         return Err(Failure::new("--size must be at least 1"));
@@ -460,12 +467,28 @@ fn bake_material_maps(
     Ok((written, failures))
 }
 
-/// `veneer bake GRAPH --gltf OUT`: one graph exported as a glTF model.
-fn run_gltf(args: &BakeArgs, out: &std::path::Path) -> Result<(), Failure> {
+/// How a model format is exported: the GPU, the graph compiled, what to bake, where,
+/// and the progress callback; the paths written come back.
+type ModelExport = fn(
+    &GpuContext,
+    &veneer::codegen::Compiled,
+    &ModelSettings,
+    &std::path::Path,
+    &mut dyn FnMut(u64, u64) -> bool,
+) -> Result<Vec<PathBuf>, veneer::bake::BakeError>;
+
+/// `veneer bake GRAPH --gltf OUT` or `--usd OUT`: one graph exported as a model in the
+/// `format` `export` writes.
+fn run_model(
+    args: &BakeArgs,
+    out: &std::path::Path,
+    format: &str,
+    export: ModelExport,
+) -> Result<(), Failure> {
     let [graph_path] = args.graphs.as_slice() else {
-        return Err(Failure::new(
-            "--gltf exports one graph at a time; give one graph file",
-        ));
+        return Err(Failure::new(format!(
+            "{format} exports one graph at a time; give one graph file"
+        )));
     };
     if args.size == 0 {
         return Err(Failure::new("--size must be at least 1"));
@@ -475,7 +498,7 @@ fn run_gltf(args: &BakeArgs, out: &std::path::Path) -> Result<(), Failure> {
     let compiled = compile(&graph, &CompileOptions::default())
         .map_err(|error| Failure::new(format!("{}: {error}", graph_path.display())))?;
     let gpu = GpuContext::new()?;
-    let settings = GltfSettings {
+    let settings = ModelSettings {
         mesh: args.mesh.clone(),
         size: args.size,
         time: args.time,
@@ -484,8 +507,8 @@ fn run_gltf(args: &BakeArgs, out: &std::path::Path) -> Result<(), Failure> {
         ProgressStyle::with_template("{prefix:>16} [{bar:40}] {pos}/{len} tiles {elapsed}")
             .expect("valid template"),
     );
-    bar.set_prefix("glTF");
-    let written = export_gltf(&gpu, &compiled, &settings, out, |done, total| {
+    bar.set_prefix(format.to_string());
+    let written = export(&gpu, &compiled, &settings, out, &mut |done, total| {
         bar.set_length(total);
         bar.set_position(done);
         true

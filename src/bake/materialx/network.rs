@@ -1,0 +1,355 @@
+//! The MaterialX node network that wires a baked material's maps into a surface shader:
+//! `image` nodes reading the maps, `extract` splitting the packed ORM map, `normalmap`,
+//! a threshold for a cut-out, and the surface shader's inputs. The MaterialX document
+//! ([`super::document`]) and the USD export's MaterialX material (`bake::usd`) write the
+//! same network, each in its own syntax.
+
+use crate::codegen::AlphaUse;
+
+/// The surface shader of MaterialX's standard library the maps are wired into.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SurfaceModel {
+    /// OpenPBR Surface (`open_pbr_surface`), the ASWF's shared surface model.
+    OpenPbr,
+    /// glTF's metallic-roughness model (`gltf_pbr`): also occlusion and the alpha mode.
+    GltfPbr,
+    /// Autodesk Standard Surface (`standard_surface`).
+    StandardSurface,
+}
+
+impl SurfaceModel {
+    /// Every model: its name on the command line and its node in MaterialX.
+    pub const ALL: [(SurfaceModel, &'static str, &'static str); 3] = [
+        (SurfaceModel::OpenPbr, "open-pbr", "open_pbr_surface"),
+        (SurfaceModel::GltfPbr, "gltf-pbr", "gltf_pbr"),
+        (
+            SurfaceModel::StandardSurface,
+            "standard-surface",
+            "standard_surface",
+        ),
+    ];
+
+    /// The MaterialX node (`open_pbr_surface`, …).
+    pub fn node(self) -> &'static str {
+        let (_, _, node) = (Self::ALL.iter())
+            .find(|(model, _, _)| *model == self)
+            .expect("listed");
+        node
+    }
+}
+
+/// Where an input's value comes from.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Source {
+    /// A constant, as MaterialX writes it (`1`, `0.5`).
+    Value(String),
+    /// The output of another node of the network.
+    Node(&'static str),
+    /// An image file beside the document, and its colour space (none: raw data).
+    File {
+        path: String,
+        colour_space: Option<&'static str>,
+    },
+}
+
+/// One input of a node.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Input {
+    pub name: &'static str,
+    /// The MaterialX type (`float`, `color3`, `vector3`, `integer`, `filename`).
+    pub ty: &'static str,
+    pub source: Source,
+}
+
+/// One node: its name in the network, its category (`image`), its output type and the
+/// node definition it instantiates (`ND_image_color3`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Node {
+    pub name: &'static str,
+    pub category: &'static str,
+    pub ty: &'static str,
+    pub nodedef: &'static str,
+    pub inputs: Vec<Input>,
+}
+
+/// The nodes reading and combining the maps, and the surface shader reading them.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Network {
+    pub nodes: Vec<Node>,
+    pub surface: SurfaceModel,
+    /// The surface shader's inputs, each a node of `nodes` or a constant.
+    pub surface_inputs: Vec<Input>,
+}
+
+/// Where a baked material's alpha is.
+#[derive(Clone, Debug, PartialEq)]
+pub enum AlphaMap {
+    /// The material's alpha never shows.
+    None,
+    /// A grey map of its own.
+    Map(String),
+    /// The base colour map's alpha channel.
+    InBaseColor,
+}
+
+/// The maps of a baked material, by file name.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Maps {
+    pub base_color: String,
+    /// The colour space of the base colour and emission maps.
+    pub colour_space: &'static str,
+    pub alpha: AlphaMap,
+    /// Occlusion, roughness, metallic in R, G, B.
+    pub orm: String,
+    /// The emission map and the factor it is multiplied by.
+    pub emission: Option<(String, f32)>,
+    /// An OpenGL-convention tangent-space normal map.
+    pub normal: Option<String>,
+}
+
+fn input(name: &'static str, ty: &'static str, source: Source) -> Input {
+    Input { name, ty, source }
+}
+
+fn node(
+    name: &'static str,
+    category: &'static str,
+    ty: &'static str,
+    nodedef: &'static str,
+    inputs: Vec<Input>,
+) -> Node {
+    Node {
+        name,
+        category,
+        ty,
+        nodedef,
+        inputs,
+    }
+}
+
+/// An `image` node reading `path`.
+fn image(
+    name: &'static str,
+    ty: &'static str,
+    nodedef: &'static str,
+    path: &str,
+    colour_space: Option<&'static str>,
+) -> Node {
+    let file = Source::File {
+        path: path.to_string(),
+        colour_space,
+    };
+    node(
+        name,
+        "image",
+        ty,
+        nodedef,
+        vec![input("file", "filename", file)],
+    )
+}
+
+/// The network wiring `maps` into `surface`, with the material's `alpha` use.
+pub fn network(maps: &Maps, alpha: AlphaUse, surface: SurfaceModel) -> Network {
+    let space = Some(maps.colour_space);
+    let mut nodes = Vec::new();
+    let mut alpha_node = None;
+    match &maps.alpha {
+        AlphaMap::InBaseColor => {
+            nodes.push(image(
+                "base_color_texture",
+                "color4",
+                "ND_image_color4",
+                &maps.base_color,
+                space,
+            ));
+            nodes.push(node(
+                "albedo",
+                "convert",
+                "color3",
+                "ND_convert_color4_color3",
+                vec![input("in", "color4", Source::Node("base_color_texture"))],
+            ));
+            nodes.push(node(
+                "alpha_texture",
+                "extract",
+                "float",
+                "ND_extract_color4",
+                vec![
+                    input("in", "color4", Source::Node("base_color_texture")),
+                    input("index", "integer", Source::Value("3".into())),
+                ],
+            ));
+            alpha_node = Some("alpha_texture");
+        }
+        other => {
+            nodes.push(image(
+                "albedo",
+                "color3",
+                "ND_image_color3",
+                &maps.base_color,
+                space,
+            ));
+            if let AlphaMap::Map(path) = other {
+                nodes.push(image(
+                    "alpha_texture",
+                    "float",
+                    "ND_image_float",
+                    path,
+                    None,
+                ));
+                alpha_node = Some("alpha_texture");
+            }
+        }
+    }
+    nodes.push(image("orm", "vector3", "ND_image_vector3", &maps.orm, None));
+    for (channel, index) in [("occlusion", 0), ("roughness", 1), ("metallic", 2)] {
+        nodes.push(node(
+            channel,
+            "extract",
+            "float",
+            "ND_extract_vector3",
+            vec![
+                input("in", "vector3", Source::Node("orm")),
+                input("index", "integer", Source::Value(index.to_string())),
+            ],
+        ));
+    }
+    let emission = maps.emission.as_ref().map(|(path, factor)| {
+        if *factor == 1.0 {
+            nodes.push(image("emission", "color3", "ND_image_color3", path, space));
+        } else {
+            nodes.push(image(
+                "emission_texture",
+                "color3",
+                "ND_image_color3",
+                path,
+                space,
+            ));
+            nodes.push(node(
+                "emission",
+                "multiply",
+                "color3",
+                "ND_multiply_color3FA",
+                vec![
+                    input("in1", "color3", Source::Node("emission_texture")),
+                    input("in2", "float", Source::Value(factor.to_string())),
+                ],
+            ));
+        }
+        "emission"
+    });
+    let normal = maps.normal.as_ref().map(|path| {
+        nodes.push(image(
+            "normal_texture",
+            "vector3",
+            "ND_image_vector3",
+            path,
+            None,
+        ));
+        nodes.push(node(
+            "normal",
+            "normalmap",
+            "vector3",
+            "ND_normalmap_float",
+            vec![input("in", "vector3", Source::Node("normal_texture"))],
+        ));
+        "normal"
+    });
+    // A cut-out keeps what reaches the cutoff and drops the rest, as the preview does
+    // (glTF's model has an alpha mode of its own).
+    if let (Some(texture), AlphaUse::Mask(cutoff), false) =
+        (alpha_node, alpha, surface == SurfaceModel::GltfPbr)
+    {
+        nodes.push(node(
+            "alpha",
+            "ifgreatereq",
+            "float",
+            "ND_ifgreatereq_float",
+            vec![
+                input("value1", "float", Source::Node(texture)),
+                input("value2", "float", Source::Value(cutoff.to_string())),
+                input("in1", "float", Source::Value("1".into())),
+                input("in2", "float", Source::Value("0".into())),
+            ],
+        ));
+        alpha_node = Some("alpha");
+    }
+    let connect = |name, ty, node| input(name, ty, Source::Node(node));
+    let constant = |name, ty, value: &str| input(name, ty, Source::Value(value.to_string()));
+    let mut inputs = Vec::new();
+    match surface {
+        SurfaceModel::OpenPbr => {
+            inputs.extend([
+                connect("base_color", "color3", "albedo"),
+                connect("specular_roughness", "float", "roughness"),
+                connect("base_metalness", "float", "metallic"),
+            ]);
+            inputs.extend(normal.map(|n| connect("geometry_normal", "vector3", n)));
+            inputs.extend(alpha_node.map(|a| connect("geometry_opacity", "float", a)));
+            if let Some(e) = emission {
+                inputs.extend([
+                    connect("emission_color", "color3", e),
+                    constant("emission_luminance", "float", "1"),
+                ]);
+            }
+        }
+        SurfaceModel::GltfPbr => {
+            inputs.extend([
+                connect("base_color", "color3", "albedo"),
+                connect("roughness", "float", "roughness"),
+                connect("metallic", "float", "metallic"),
+                connect("occlusion", "float", "occlusion"),
+            ]);
+            inputs.extend(normal.map(|n| connect("normal", "vector3", n)));
+            if let Some(a) = alpha_node {
+                inputs.push(connect("alpha", "float", a));
+                match alpha {
+                    AlphaUse::Mask(cutoff) => inputs.extend([
+                        constant("alpha_mode", "integer", "1"),
+                        constant("alpha_cutoff", "float", &cutoff.to_string()),
+                    ]),
+                    _ => inputs.push(constant("alpha_mode", "integer", "2")),
+                }
+            }
+            inputs.extend(emission.map(|e| connect("emissive", "color3", e)));
+        }
+        SurfaceModel::StandardSurface => {
+            inputs.extend([
+                constant("base", "float", "1"),
+                connect("base_color", "color3", "albedo"),
+                connect("specular_roughness", "float", "roughness"),
+                connect("metalness", "float", "metallic"),
+            ]);
+            inputs.extend(normal.map(|n| connect("normal", "vector3", n)));
+            if let Some(a) = alpha_node {
+                // Standard Surface's opacity is a colour.
+                nodes.push(node(
+                    "opacity",
+                    "convert",
+                    "color3",
+                    "ND_convert_float_color3",
+                    vec![connect("in", "float", a)],
+                ));
+                inputs.push(connect("opacity", "color3", "opacity"));
+            }
+            if let Some(e) = emission {
+                inputs.extend([
+                    connect("emission_color", "color3", e),
+                    constant("emission", "float", "1"),
+                ]);
+            }
+        }
+    }
+    Network {
+        nodes,
+        surface,
+        surface_inputs: inputs,
+    }
+}
+
+impl Network {
+    /// The node definition of the surface shader (`ND_open_pbr_surface_surfaceshader`).
+    pub fn surface_nodedef(&self) -> String {
+        format!("ND_{}_surfaceshader", self.surface.node())
+    }
+}
