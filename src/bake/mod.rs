@@ -25,7 +25,7 @@ pub use materialx::{MaterialxSettings, SurfaceModel, export_materialx, materialx
 pub use mesh_maps::{
     BakedMeshMap, MOST_POOLING, MeshMap, MeshMapSettings, bake_mesh_maps, mesh_map_path,
 };
-pub use model::ModelSettings;
+pub use model::{ModelFormat, ModelSettings};
 use pipeline::MapTarget;
 pub use transfer::{CAGES, TransferMap, TransferSettings, Transferred, transfer};
 pub use usd::{export_usd, usd_files};

@@ -12,6 +12,65 @@ use crate::codegen::{AlphaUse, Compiled};
 use crate::graph::Shading;
 use crate::render::{FlatChannels, GpuContext, GpuMesh, UvRenderer};
 
+/// A model format: a mesh with the material baked into its UV layout.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ModelFormat {
+    /// glTF 2.0 (`.glb`, or `.gltf` with its files beside it).
+    Gltf,
+    /// USD (`.usdz`, or `.usda` with its PNGs beside it).
+    Usd,
+}
+
+impl ModelFormat {
+    /// The format's name, as menus and messages give it.
+    pub fn name(self) -> &'static str {
+        match self {
+            ModelFormat::Gltf => "glTF",
+            ModelFormat::Usd => "USD",
+        }
+    }
+
+    /// The heading of its export dialog and file browser.
+    pub fn title(self) -> &'static str {
+        match self {
+            ModelFormat::Gltf => "Export glTF",
+            ModelFormat::Usd => "Export USD",
+        }
+    }
+
+    /// The extension of its one-file form.
+    pub fn extension(self) -> &'static str {
+        match self {
+            ModelFormat::Gltf => "glb",
+            ModelFormat::Usd => "usdz",
+        }
+    }
+
+    /// Every file an export to `path` may write, `path` itself first.
+    pub fn files(self, path: &std::path::Path) -> Vec<std::path::PathBuf> {
+        match self {
+            ModelFormat::Gltf => super::gltf_files(path),
+            ModelFormat::Usd => super::usd_files(path),
+        }
+    }
+
+    /// Exports `compiled` to `path` in this format ([`super::export_gltf`],
+    /// [`super::export_usd`]); the paths written come back, the document first.
+    pub fn export(
+        self,
+        gpu: &GpuContext,
+        compiled: &Compiled,
+        settings: &ModelSettings,
+        path: &std::path::Path,
+        progress: impl FnMut(u64, u64) -> bool,
+    ) -> Result<Vec<std::path::PathBuf>, BakeError> {
+        match self {
+            ModelFormat::Gltf => super::export_gltf(gpu, compiled, settings, path, progress),
+            ModelFormat::Usd => super::export_usd(gpu, compiled, settings, path, progress),
+        }
+    }
+}
+
 /// What a model export bakes.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ModelSettings {

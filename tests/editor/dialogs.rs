@@ -222,12 +222,16 @@ type Opener = (&'static str, fn(&mut Editor));
 fn escape_cancels_every_dialog() {
     let dir = scratch("dialog-escape");
     let mut harness = editor(&dir, None);
-    let openers: [Opener; 7] = [
+    let openers: [Opener; 9] = [
         ("Open graph", |h| press(h, egui::Key::O, true)),
         ("Save graph as", |h| press(h, egui::Key::S, true)),
         ("Export shader", |h| from_file_menu(h, "Export shader")),
         ("Export PNG", |h| from_file_menu(h, "Export PNG")),
         ("Export glTF", |h| from_file_menu(h, "Export glTF")),
+        ("Export USD", |h| from_file_menu(h, "Export USD")),
+        ("Export MaterialX", |h| {
+            from_file_menu(h, "Export MaterialX")
+        }),
         ("Export maps", |h| from_file_menu(h, "Export maps")),
         ("Preview on a mesh file", mesh_dialog),
     ];
@@ -307,6 +311,28 @@ fn enter_confirms_every_dialog() {
     );
     let bytes = std::fs::read(&glb).expect("Enter exported the glTF");
     assert_eq!(&bytes[..4], b"glTF");
+
+    // Export USD (one package) and MaterialX (a document with its maps beside it), the
+    // same way.
+    for (menu, file, starts) in [
+        ("Export USD", "wood.usdz", &b"PK\x03\x04"[..]),
+        ("Export MaterialX", "wood.mtlx", &b"<?xml"[..]),
+    ] {
+        from_file_menu(&mut harness, menu);
+        let out = dir.join(file);
+        type_text(&mut harness, &out.display().to_string());
+        harness.key_press(egui::Key::Enter);
+        harness.step();
+        assert!(!dialog_up(&harness, menu), "Enter starts the {menu}");
+        wait_for_export(&mut harness);
+        assert!(
+            shows(&harness, "exported "),
+            "the status bar says it exported"
+        );
+        let bytes = std::fs::read(&out).unwrap_or_else(|_| panic!("Enter exported {file}"));
+        assert!(bytes.starts_with(starts), "{file}");
+    }
+    assert!(dir.join("wood_albedo.png").is_file() && dir.join("wood_orm.png").is_file());
 
     // Load mesh.
     mesh_dialog(&mut harness);

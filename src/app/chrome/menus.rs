@@ -192,7 +192,15 @@ impl VeneerApp {
                     self.chrome.dialog = Some(Dialog::export_png(&self.session.document));
                 }
                 if entry(ui, "Export glTF…", "", true) {
-                    self.chrome.dialog = Some(Dialog::export_gltf(&self.session.document));
+                    let glb = crate::bake::ModelFormat::Gltf;
+                    self.chrome.dialog = Some(Dialog::export_model(&self.session.document, glb));
+                }
+                if entry(ui, "Export USD…", "", true) {
+                    let usd = crate::bake::ModelFormat::Usd;
+                    self.chrome.dialog = Some(Dialog::export_model(&self.session.document, usd));
+                }
+                if entry(ui, "Export MaterialX…", "", true) {
+                    self.chrome.dialog = Some(Dialog::export_materialx(&self.session.document));
                 }
                 if entry(ui, "Export maps…", "", true) {
                     self.chrome.dialog = Some(Dialog::export_maps(&self.session.document));

@@ -45,7 +45,12 @@ impl VeneerApp {
             } => export_shader(&self.session.document.graph, &path, target, params)
                 .map(|()| Some(format!("exported {}", path.display()))),
             Action::ExportPng { path, size, flat } => self.export_png(ctx, path, size, flat),
-            Action::ExportGltf { path, size } => self.export_gltf(ctx, path, size),
+            Action::ExportModel { path, size, format } => {
+                self.export_model(ctx, path, size, format)
+            }
+            Action::ExportMaterialx { path, settings } => {
+                self.export_materialx(ctx, path, settings)
+            }
             Action::ExportMaps { stem, settings } => self.export_maps(ctx, stem, settings),
             Action::LoadMesh(path) => self.load_mesh(&path).map(|()| None),
             Action::LoadEnvironment(path) => self
@@ -183,9 +188,7 @@ impl VeneerApp {
         } else {
             crate::render::View::Mesh(Some(self.preview.state.mesh.clone()))
         };
-        let compiled =
-            crate::codegen::compile(&self.session.document.graph, &CompileOptions::default())
-                .map_err(|error| error.to_string())?;
+        let compiled = self.compiled_for_export()?;
         let (time, look) = (self.preview.state.view.time, self.preview.state.look());
         self.start_export(ctx, &path.clone(), move |_| {
             let image =
@@ -199,29 +202,53 @@ impl VeneerApp {
         })
     }
 
-    /// Bakes the document into a glTF file on the preview mesh, on a thread of its own
-    /// that reports its tiles (and stops, writing nothing, when cancelled).
-    fn export_gltf(
+    /// Bakes the document onto the preview mesh as a model file in `format` (glTF or
+    /// USD), on a thread of its own that reports its tiles (and stops, writing nothing,
+    /// when cancelled).
+    fn export_model(
         &mut self,
         ctx: &egui::Context,
         path: PathBuf,
         size: u32,
+        format: crate::bake::ModelFormat,
     ) -> Result<Option<String>, String> {
         let gpu = self.export_gpu()?;
-        let compiled =
-            crate::codegen::compile(&self.session.document.graph, &CompileOptions::default())
-                .map_err(|error| error.to_string())?;
+        let compiled = self.compiled_for_export()?;
         let settings = crate::bake::ModelSettings {
             mesh: Some(self.preview.state.mesh.clone()),
             size,
             time: self.preview.state.view.time,
         };
         self.start_export(ctx, &path.clone(), move |report| {
-            let written = crate::bake::export_gltf(&gpu, &compiled, &settings, &path, report)
+            let written = format
+                .export(&gpu, &compiled, &settings, &path, report)
                 .map_err(|error| error.to_string())?;
-            let names: Vec<String> = written.iter().map(|p| p.display().to_string()).collect();
-            Ok(format!("exported {}", names.join(", ")))
+            Ok(exported(&written))
         })
+    }
+
+    /// Writes the document as a MaterialX document with its maps beside it, on a thread
+    /// of its own that reports its tiles (and stops, writing nothing, when cancelled).
+    fn export_materialx(
+        &mut self,
+        ctx: &egui::Context,
+        path: PathBuf,
+        mut settings: crate::bake::MaterialxSettings,
+    ) -> Result<Option<String>, String> {
+        let gpu = self.export_gpu()?;
+        let compiled = self.compiled_for_export()?;
+        settings.time = self.preview.state.view.time;
+        self.start_export(ctx, &path.clone(), move |report| {
+            let written = crate::bake::export_materialx(&gpu, &compiled, &settings, &path, report)
+                .map_err(|error| error.to_string())?;
+            Ok(exported(&written))
+        })
+    }
+
+    /// The document compiled with its parameters baked, as exports want it.
+    fn compiled_for_export(&self) -> Result<crate::codegen::Compiled, String> {
+        crate::codegen::compile(&self.session.document.graph, &CompileOptions::default())
+            .map_err(|error| error.to_string())
     }
 
     /// Bakes the document's maps into `<stem>_<map>.<ext>` files on a thread of its
@@ -237,9 +264,7 @@ impl VeneerApp {
             return Err("choose at least one map to export".into());
         }
         let gpu = self.export_gpu()?;
-        let compiled =
-            crate::codegen::compile(&self.session.document.graph, &CompileOptions::default())
-                .map_err(|error| error.to_string())?;
+        let compiled = self.compiled_for_export()?;
         settings.time = self.preview.state.view.time;
         let stems = [stem.as_path()];
         crate::bake::check_outputs(&stems, &settings).map_err(|error| error.to_string())?;
@@ -297,4 +322,10 @@ fn export_shader(
         (files.iter()).map(|(path, naming, bytes)| (path.as_path(), *naming, bytes.as_slice()));
     crate::fsutil::write_together(writes)
         .map_err(|(path, error)| format!("{}: {error}", path.display()))
+}
+
+/// The status line of an export that wrote `written`.
+fn exported(written: &[PathBuf]) -> String {
+    let names: Vec<String> = written.iter().map(|p| p.display().to_string()).collect();
+    format!("exported {}", names.join(", "))
 }

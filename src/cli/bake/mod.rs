@@ -10,8 +10,8 @@ use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
 use std::path::PathBuf;
 use veneer::bake::tile::seam_text;
 use veneer::bake::{
-    BakeSettings, BakeSurface, BakedMap, Format, Map, MeshMap, MeshMapSettings, ModelSettings,
-    NormalConvention, bake, map_path, mesh_map_path,
+    BakeSettings, BakeSurface, BakedMap, Format, Map, MeshMap, MeshMapSettings, ModelFormat,
+    ModelSettings, NormalConvention, bake, map_path, mesh_map_path,
 };
 use veneer::codegen::{CompileOptions, compile};
 use veneer::fsutil::{Naming, OutputPlan};
@@ -157,10 +157,8 @@ impl BakeArgs {
             }
             return;
         };
-        let model = (self.gltf.as_deref().map(veneer::bake::gltf_files))
-            .or_else(|| self.usd.as_deref().map(veneer::bake::usd_files));
-        if let Some(files) = model {
-            plan.writes_beside(&files, &super::by(job, first));
+        if let Some((format, out)) = self.model() {
+            plan.writes_beside(&format.files(out), &super::by(job, first));
             return;
         }
         let format = self.settings().format;
@@ -173,6 +171,12 @@ impl BakeArgs {
                 plan.writes(mesh_map_path(&stem, map, format), Naming::Implied, &by);
             }
         }
+    }
+
+    /// The model `--gltf` or `--usd` asks for, and where it goes.
+    fn model(&self) -> Option<(ModelFormat, &std::path::Path)> {
+        (self.gltf.as_deref().map(|out| (ModelFormat::Gltf, out)))
+            .or_else(|| self.usd.as_deref().map(|out| (ModelFormat::Usd, out)))
     }
 
     /// Plans a bake of mesh maps alone: the mesh read, its maps written.
@@ -282,15 +286,8 @@ impl BakeArgs {
 }
 
 pub fn run(args: BakeArgs) -> Result<(), Failure> {
-    if let Some(out) = &args.gltf {
-        return run_model(&args, out, "glTF", |g, c, s, o, p| {
-            veneer::bake::export_gltf(g, c, s, o, p)
-        });
-    }
-    if let Some(out) = &args.usd {
-        return run_model(&args, out, "USD", |g, c, s, o, p| {
-            veneer::bake::export_usd(g, c, s, o, p)
-        });
+    if let Some((format, out)) = args.model() {
+        return run_model(&args, out, format);
     }
     if args.size == 0 {
         return Err(Failure::new("--size must be at least 1"));
@@ -467,27 +464,13 @@ fn bake_material_maps(
     Ok((written, failures))
 }
 
-/// How a model format is exported: the GPU, the graph compiled, what to bake, where,
-/// and the progress callback; the paths written come back.
-type ModelExport = fn(
-    &GpuContext,
-    &veneer::codegen::Compiled,
-    &ModelSettings,
-    &std::path::Path,
-    &mut dyn FnMut(u64, u64) -> bool,
-) -> Result<Vec<PathBuf>, veneer::bake::BakeError>;
-
 /// `veneer bake GRAPH --gltf OUT` or `--usd OUT`: one graph exported as a model in the
 /// `format` `export` writes.
-fn run_model(
-    args: &BakeArgs,
-    out: &std::path::Path,
-    format: &str,
-    export: ModelExport,
-) -> Result<(), Failure> {
+fn run_model(args: &BakeArgs, out: &std::path::Path, format: ModelFormat) -> Result<(), Failure> {
     let [graph_path] = args.graphs.as_slice() else {
         return Err(Failure::new(format!(
-            "{format} exports one graph at a time; give one graph file"
+            "{} exports one graph at a time; give one graph file",
+            format.name()
         )));
     };
     if args.size == 0 {
@@ -507,13 +490,14 @@ fn run_model(
         ProgressStyle::with_template("{prefix:>16} [{bar:40}] {pos}/{len} tiles {elapsed}")
             .expect("valid template"),
     );
-    bar.set_prefix(format.to_string());
-    let written = export(&gpu, &compiled, &settings, out, &mut |done, total| {
-        bar.set_length(total);
-        bar.set_position(done);
-        true
-    })
-    .map_err(|error| Failure::new(format!("{}: {error}", graph_path.display())))?;
+    bar.set_prefix(format.name());
+    let written = format
+        .export(&gpu, &compiled, &settings, out, |done, total| {
+            bar.set_length(total);
+            bar.set_position(done);
+            true
+        })
+        .map_err(|error| Failure::new(format!("{}: {error}", graph_path.display())))?;
     bar.finish_and_clear();
     if args.json {
         out_json(&written)?;

@@ -61,10 +61,29 @@ impl Dialog {
                 );
                 frame.path_buttons(ui, "Export");
             }
-            Dialog::ExportGltf { path, size } => {
-                ui.heading("Export glTF");
-                ui.label("The material baked into the preview mesh's UV layout: base colour, metallic-roughness, occlusion, normal and emission maps (.glb, or .gltf with PNGs beside it)");
+            Dialog::ExportModel { path, size, format } => {
+                ui.heading(format.title());
+                ui.label(match format {
+                    crate::bake::ModelFormat::Gltf => "The material baked into the preview mesh's UV layout: base colour, metallic-roughness, occlusion, normal and emission maps (.glb, or .gltf with PNGs beside it)",
+                    crate::bake::ModelFormat::Usd => "The preview mesh bound to a material with a UsdPreviewSurface and a MaterialX OpenPBR surface over its baked maps (.usdz, or .usda with PNGs beside it)",
+                });
                 frame.path_field(ui, path);
+                ui.add(egui::Slider::new(size, 16..=4096).text("maps (px)"));
+                frame.path_buttons(ui, "Export");
+            }
+            Dialog::ExportMaterialx {
+                path,
+                size,
+                surface,
+            } => {
+                ui.heading("Export MaterialX");
+                ui.label("A MaterialX 1.39 document whose surface shader reads the material's maps, baked beside it (wood.mtlx giving wood_albedo.png, wood_orm.png and so on)");
+                frame.path_field(ui, path);
+                ui.horizontal(|ui| {
+                    for (model, _, node) in crate::bake::SurfaceModel::ALL {
+                        ui.radio_value(surface, model, node);
+                    }
+                });
                 ui.add(egui::Slider::new(size, 16..=4096).text("maps (px)"));
                 frame.path_buttons(ui, "Export");
             }

@@ -58,8 +58,18 @@ pub enum Action {
         size: u32,
         flat: bool,
     },
-    /// Bake the material into a glTF 2.0 file on the preview mesh, maps `size` pixels.
-    ExportGltf { path: PathBuf, size: u32 },
+    /// Bake the material into a model file (glTF or USD) on the preview mesh, maps `size`
+    /// pixels.
+    ExportModel {
+        path: PathBuf,
+        size: u32,
+        format: crate::bake::ModelFormat,
+    },
+    /// Write a MaterialX document with the material's maps beside it.
+    ExportMaterialx {
+        path: PathBuf,
+        settings: crate::bake::MaterialxSettings,
+    },
     /// Bake the material's maps into `<stem>_<map>.<ext>` files.
     ExportMaps {
         stem: PathBuf,
@@ -99,9 +109,15 @@ pub enum Dialog {
         size: u32,
         flat: bool,
     },
-    ExportGltf {
+    ExportModel {
         path: String,
         size: u32,
+        format: crate::bake::ModelFormat,
+    },
+    ExportMaterialx {
+        path: String,
+        size: u32,
+        surface: crate::bake::SurfaceModel,
     },
     /// The maps as files beside each other (`path` names the first, `<stem>_<map>.<ext>`).
     ExportMaps {
@@ -173,11 +189,21 @@ impl Dialog {
         }
     }
 
-    /// Bake the material into a glTF binary on the preview mesh.
-    pub fn export_gltf(document: &Document) -> Dialog {
-        Dialog::ExportGltf {
-            path: default_path(document, "glb"),
+    /// Bake the material onto the preview mesh as a model file in `format`.
+    pub fn export_model(document: &Document, format: crate::bake::ModelFormat) -> Dialog {
+        Dialog::ExportModel {
+            path: default_path(document, format.extension()),
             size: 1024,
+            format,
+        }
+    }
+
+    /// Write a MaterialX document (OpenPBR Surface to start with) with the maps beside it.
+    pub fn export_materialx(document: &Document) -> Dialog {
+        Dialog::ExportMaterialx {
+            path: default_path(document, "mtlx"),
+            size: 1024,
+            surface: crate::bake::SurfaceModel::OpenPbr,
         }
     }
 
@@ -211,7 +237,8 @@ impl Dialog {
             | Dialog::SaveAs { path, .. }
             | Dialog::ExportShader { path, .. }
             | Dialog::ExportPng { path, .. }
-            | Dialog::ExportGltf { path, .. }
+            | Dialog::ExportModel { path, .. }
+            | Dialog::ExportMaterialx { path, .. }
             | Dialog::ExportMaps { path, .. }
             | Dialog::LoadMesh { path }
             | Dialog::LoadEnvironment { path } => Some(path),
@@ -252,10 +279,15 @@ impl Dialog {
                 kind: "PNG image",
                 extension: "png",
             },
-            Dialog::ExportGltf { .. } => Purpose::Save {
-                title: "Export glTF",
-                kind: "glTF binary",
-                extension: "glb",
+            Dialog::ExportModel { format, .. } => Purpose::Save {
+                title: format.title(),
+                kind: format.name(),
+                extension: format.extension(),
+            },
+            Dialog::ExportMaterialx { .. } => Purpose::Save {
+                title: "Export MaterialX",
+                kind: "MaterialX document",
+                extension: "mtlx",
             },
             Dialog::ExportMaps { format, .. } => Purpose::Save {
                 title: "Export maps",
@@ -417,9 +449,24 @@ impl Dialog {
                     flat: *flat,
                 }
             }
-            Dialog::ExportGltf { path, size } if !path.trim().is_empty() => Action::ExportGltf {
+            Dialog::ExportModel { path, size, format } if !path.trim().is_empty() => {
+                Action::ExportModel {
+                    path: typed_path(path),
+                    size: *size,
+                    format: *format,
+                }
+            }
+            Dialog::ExportMaterialx {
+                path,
+                size,
+                surface,
+            } if !path.trim().is_empty() => Action::ExportMaterialx {
                 path: typed_path(path),
-                size: *size,
+                settings: crate::bake::MaterialxSettings {
+                    surface: *surface,
+                    size: *size,
+                    time: 0.0,
+                },
             },
             Dialog::ExportMaps {
                 path,
