@@ -46,6 +46,29 @@ impl ModelFormat {
         }
     }
 
+    /// Why a model cannot be written to `path`, if it cannot. USD: standard output (`-`),
+    /// a folder, or an extension USD would not read as what is written. (A glTF binary
+    /// may go to a device; what cannot be written is refused as it is written.)
+    pub fn refuses(self, path: &std::path::Path) -> Option<String> {
+        if self == ModelFormat::Gltf {
+            return None;
+        }
+        let usage =
+            "give a file name ending in .usdz (one package) or .usda (text, its PNGs beside it)";
+        let extension = (path.extension().and_then(|e| e.to_str())).map(str::to_ascii_lowercase);
+        if path.as_os_str() == "-" {
+            Some(format!("a USD export writes files, not a stream: {usage}"))
+        } else if path.is_dir() || path.as_os_str().as_encoded_bytes().ends_with(b"/") {
+            Some(format!("is a folder: {usage}"))
+        } else if !matches!(extension.as_deref(), Some("usda" | "usd" | "usdz")) {
+            Some(format!(
+                "not a USD file name: {usage} (.usd is written as text)"
+            ))
+        } else {
+            None
+        }
+    }
+
     /// Every file an export to `path` may write, `path` itself first.
     pub fn files(self, path: &std::path::Path) -> Vec<std::path::PathBuf> {
         match self {

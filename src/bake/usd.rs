@@ -345,7 +345,7 @@ fn usdz(entries: &[(&str, &[u8])]) -> Vec<u8> {
         central.extend_from_slice(&(data.len() as u32).to_le_bytes());
         central.extend_from_slice(&(data.len() as u32).to_le_bytes());
         central.extend_from_slice(&(name.len() as u16).to_le_bytes());
-        central.extend_from_slice(&[0; 12]); // extra, comment, disk, internal attributes
+        central.extend_from_slice(&[0; 8]); // extra, comment, disk, internal attributes
         central.extend_from_slice(&0u32.to_le_bytes()); // external attributes
         central.extend_from_slice(&offset.to_le_bytes());
         central.extend_from_slice(name.as_bytes());
@@ -385,9 +385,22 @@ mod tests {
             assert_eq!(&zip[start..start + data.len()], data);
             at = start + data.len();
         }
-        assert_eq!(
-            &zip[zip.len() - 22..zip.len() - 18],
-            &0x0605_4b50u32.to_le_bytes()
-        );
+        // The central directory lists every entry at its local header.
+        let end = zip.len() - 22;
+        assert_eq!(&zip[end..end + 4], &0x0605_4b50u32.to_le_bytes());
+        let count = u16::from_le_bytes([zip[end + 10], zip[end + 11]]) as usize;
+        let size = u32::from_le_bytes(zip[end + 12..end + 16].try_into().unwrap()) as usize;
+        let mut at = u32::from_le_bytes(zip[end + 16..end + 20].try_into().unwrap()) as usize;
+        assert_eq!(at + size, end);
+        assert_eq!(count, entries.len());
+        for (name, _) in entries {
+            assert_eq!(&zip[at..at + 4], &0x0201_4b50u32.to_le_bytes());
+            let name_len = u16::from_le_bytes([zip[at + 28], zip[at + 29]]) as usize;
+            let offset = u32::from_le_bytes(zip[at + 42..at + 46].try_into().unwrap()) as usize;
+            assert_eq!(&zip[at + 46..at + 46 + name_len], name.as_bytes());
+            assert_eq!(&zip[offset..offset + 4], &0x0403_4b50u32.to_le_bytes());
+            at += 46 + name_len;
+        }
+        assert_eq!(at, end);
     }
 }

@@ -44,7 +44,7 @@ fn check_with_materialx(documents: &[PathBuf]) {
     python_check(
         "tests/materialx/check.py",
         documents,
-        ": valid, 1 shaders",
+        ": valid, 1 shader",
         "MaterialX",
     );
     for document in documents {

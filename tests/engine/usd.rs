@@ -68,12 +68,16 @@ fn what_cannot_be_exported_is_refused_with_nothing_written() {
     let wood = root("graphs/wood.ron");
     let marble = root("graphs/marble.ron");
     let two = dir.join("two.usdz");
-    let cases: [(Vec<&Path>, &Path, &str); 2] = [
-        (vec![&wood], &folder, "taken.usda"),
+    let glb = dir.join("wood.glb");
+    let cases: [(Vec<&Path>, &Path, &str); 4] = [
+        (vec![&wood], &folder, "taken.usda: is a folder"),
         (vec![&wood, &marble], &two, "one graph at a time"),
+        (vec![&wood], Path::new("-"), "not a stream"),
+        (vec![&wood], &glb, "not a USD file name"),
     ];
     for (graphs, out, expected) in cases {
         let output = veneer()
+            .current_dir(&dir)
             .arg("bake")
             .args(&graphs)
             .args(["--size", "8", "--usd"])

@@ -7,7 +7,9 @@ shader generator, whose pixel and vertex stages are written beside the file as
 
     PYTHONPATH=target/python python3 tests/materialx/check.py FILE.mtlx...
 
-Prints one line per file (`FILE: valid, N shaders`) and exits with 1 if any file fails.
+Prints one line per file (`FILE: valid, 1 shader`) and exits with 1 if any file fails.
+Compile the stages it writes with `glslangValidator FILE.mtlx.<element>.frag` (the tests
+do); they are left beside the document.
 """
 
 import sys
@@ -49,7 +51,8 @@ def main():
             print(f"{path}: nothing renderable")
             failed = True
             continue
-        print(f"{path}: valid, {len(elements)} shaders")
+        count = len(elements)
+        print(f"{path}: valid, {count} shader{'' if count == 1 else 's'}")
     sys.exit(1 if failed else 0)
 
 

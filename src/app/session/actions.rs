@@ -212,6 +212,9 @@ impl VeneerApp {
         size: u32,
         format: crate::bake::ModelFormat,
     ) -> Result<Option<String>, String> {
+        if let Some(why) = format.refuses(&path) {
+            return Err(format!("{}: {why}", path.display()));
+        }
         let gpu = self.export_gpu()?;
         let compiled = self.compiled_for_export()?;
         let settings = crate::bake::ModelSettings {

@@ -340,6 +340,27 @@ pub fn network(maps: &Maps, alpha: AlphaUse, surface: SurfaceModel) -> Network {
             }
         }
     }
+    // Only what the surface reads (OpenPBR and Standard Surface have no occlusion).
+    let mut needed: Vec<&'static str> = (inputs.iter())
+        .filter_map(|input| match input.source {
+            Source::Node(node) => Some(node),
+            _ => None,
+        })
+        .collect();
+    let mut read = std::collections::BTreeSet::new();
+    while let Some(name) = needed.pop() {
+        if read.insert(name) {
+            let node = nodes
+                .iter()
+                .find(|node| node.name == name)
+                .expect("a node of the network");
+            needed.extend(node.inputs.iter().filter_map(|input| match input.source {
+                Source::Node(node) => Some(node),
+                _ => None,
+            }));
+        }
+    }
+    nodes.retain(|node| read.contains(node.name));
     Network {
         nodes,
         surface,

@@ -476,6 +476,9 @@ fn run_model(args: &BakeArgs, out: &std::path::Path, format: ModelFormat) -> Res
     if args.size == 0 {
         return Err(Failure::new("--size must be at least 1"));
     }
+    if let Some(why) = format.refuses(out) {
+        return Err(Failure::new(format!("{}: {why}", out.display())));
+    }
     let mut graph = veneer::graph::load(graph_path)?;
     args.parameters.apply(&mut graph, graph_path)?;
     let compiled = compile(&graph, &CompileOptions::default())
