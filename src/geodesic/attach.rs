@@ -9,7 +9,9 @@ use crate::mesh::Mesh;
 /// Why fields could not be attached.
 #[derive(Debug, thiserror::Error)]
 pub enum FieldError {
-    #[error("field {slot}: source vertex {vertex} does not exist (the mesh has {count} vertices)")]
+    #[error(
+        "field {slot}: source vertex {vertex} does not exist (the mesh has {count} vertices); a graph's field sources are vertices of its preview mesh: pick sources on this mesh in the editor (Distance fields → pick), or export onto the preview mesh"
+    )]
     NoSuchVertex {
         slot: usize,
         vertex: u32,
