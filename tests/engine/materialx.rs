@@ -7,7 +7,10 @@
 //! model: its alpha mode); the same export gives the same bytes; outputs that cannot be
 //! written are refused with nothing written.
 
-use crate::support::{gpu, presets, python_check, root, stem, temp_dir, texture_graphs, veneer};
+use crate::support::{
+    assert_holds_only, assert_refused, gpu, presets, python_check, root, stem, temp_dir,
+    texture_graphs, veneer,
+};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use veneer::bake::{MaterialxSettings, SurfaceModel, export_materialx};
@@ -225,24 +228,13 @@ fn outputs_a_materialx_export_cannot_write_are_refused_with_nothing_written() {
         ),
     ];
     for (arguments, expected) in cases {
-        let output = veneer()
+        let mut command = veneer();
+        command
             .args(["compile", "--target", "mtlx", "--size", "8"])
             .arg(&wood)
-            .args(&arguments)
-            .output()
-            .unwrap();
-        let stderr = String::from_utf8_lossy(&output.stderr);
-        assert!(!output.status.success(), "{arguments:?}");
-        assert!(stderr.contains(expected), "{arguments:?}: {stderr}");
+            .args(&arguments);
+        assert_refused(&mut command, expected);
     }
-    let left: Vec<_> = std::fs::read_dir(&dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name())
-        .collect();
-    assert_eq!(
-        left,
-        vec![std::ffi::OsString::from("taken.mtlx")],
-        "nothing written"
-    );
-    assert_eq!(std::fs::read_dir(&folder).unwrap().count(), 0);
+    assert_holds_only(&dir, &["taken.mtlx"]);
+    assert_holds_only(&folder, &[]);
 }

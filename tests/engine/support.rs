@@ -216,3 +216,27 @@ pub fn python_check(script: &str, files: &[PathBuf], passed: &str, what: &str) {
     let passing = report.lines().filter(|line| line.contains(passed)).count();
     assert_eq!(passing, files.len(), "{report}");
 }
+
+/// Runs `command` and checks that it fails with `expected` in its error output.
+pub fn assert_refused(command: &mut std::process::Command, expected: &str) {
+    let output = command.output().expect("the command runs");
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(!output.status.success(), "{command:?} succeeded");
+    assert!(stderr.contains(expected), "{command:?}: {stderr}");
+}
+
+/// Checks that `dir` holds exactly the entries `names` (what a refused command left).
+pub fn assert_holds_only(dir: &Path, names: &[&str]) {
+    let mut left: Vec<String> = std::fs::read_dir(dir)
+        .expect("the folder")
+        .map(|entry| {
+            entry
+                .expect("an entry")
+                .file_name()
+                .to_string_lossy()
+                .into_owned()
+        })
+        .collect();
+    left.sort();
+    assert_eq!(left, names, "{}", dir.display());
+}

@@ -5,7 +5,9 @@
 //! the `usd-core` package `.ci/run` installs into `target/python`); the same export gives
 //! the same bytes; what cannot be exported is refused with nothing written.
 
-use crate::support::{gpu, presets, python_check, root, stem, temp_dir, veneer};
+use crate::support::{
+    assert_holds_only, assert_refused, gpu, presets, python_check, root, stem, temp_dir, veneer,
+};
 use std::path::{Path, PathBuf};
 use veneer::bake::{ModelSettings, export_usd};
 use veneer::codegen::compile;
@@ -76,25 +78,14 @@ fn what_cannot_be_exported_is_refused_with_nothing_written() {
         (vec![&wood], &glb, "not a USD file name"),
     ];
     for (graphs, out, expected) in cases {
-        let output = veneer()
+        let mut command = veneer();
+        command
             .current_dir(&dir)
             .arg("bake")
             .args(&graphs)
             .args(["--size", "8", "--usd"])
-            .arg(out)
-            .output()
-            .unwrap();
-        let stderr = String::from_utf8_lossy(&output.stderr);
-        assert!(!output.status.success(), "{graphs:?}");
-        assert!(stderr.contains(expected), "{graphs:?}: {stderr}");
+            .arg(out);
+        assert_refused(&mut command, expected);
     }
-    let left: Vec<_> = std::fs::read_dir(&dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name())
-        .collect();
-    assert_eq!(
-        left,
-        vec![std::ffi::OsString::from("taken.usda")],
-        "nothing written"
-    );
+    assert_holds_only(&dir, &["taken.usda"]);
 }

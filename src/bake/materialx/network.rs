@@ -61,6 +61,16 @@ pub struct Input {
     pub source: Source,
 }
 
+impl Input {
+    /// The node the input reads, if it reads one.
+    pub fn node(&self) -> Option<&'static str> {
+        match self.source {
+            Source::Node(node) => Some(node),
+            _ => None,
+        }
+    }
+}
+
 /// One node: its name in the network, its category (`image`), its output type and the
 /// node definition it instantiates (`ND_image_color3`).
 #[derive(Clone, Debug, PartialEq)]
@@ -341,23 +351,13 @@ pub fn network(maps: &Maps, alpha: AlphaUse, surface: SurfaceModel) -> Network {
         }
     }
     // Only what the surface reads (OpenPBR and Standard Surface have no occlusion).
-    let mut needed: Vec<&'static str> = (inputs.iter())
-        .filter_map(|input| match input.source {
-            Source::Node(node) => Some(node),
-            _ => None,
-        })
-        .collect();
+    let mut needed: Vec<&'static str> = inputs.iter().filter_map(Input::node).collect();
     let mut read = std::collections::BTreeSet::new();
     while let Some(name) = needed.pop() {
         if read.insert(name) {
-            let node = nodes
-                .iter()
-                .find(|node| node.name == name)
-                .expect("a node of the network");
-            needed.extend(node.inputs.iter().filter_map(|input| match input.source {
-                Source::Node(node) => Some(node),
-                _ => None,
-            }));
+            let node =
+                (nodes.iter().find(|node| node.name == name)).expect("a node of the network");
+            needed.extend(node.inputs.iter().filter_map(Input::node));
         }
     }
     nodes.retain(|node| read.contains(node.name));
