@@ -351,7 +351,12 @@ fn convert(
 
 /// An 8-bit PNG (RGB, or RGBA with `alpha`) of values in [0, 1], rows from the top, of the
 /// texture `what`; a non-finite sample fails it.
-fn png(what: &str, pixels: &[[f32; 4]], size: u32, alpha: bool) -> std::io::Result<Vec<u8>> {
+pub(super) fn png(
+    what: &str,
+    pixels: &[[f32; 4]],
+    size: u32,
+    alpha: bool,
+) -> std::io::Result<Vec<u8>> {
     use image::ImageEncoder;
     if let Some(why) = crate::render::non_finite(what, pixels, size as usize, 0) {
         return Err(std::io::Error::other(why));

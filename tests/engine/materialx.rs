@@ -175,7 +175,12 @@ fn every_surface_model_wires_the_same_maps_and_exports_the_same_bytes_twice() {
             assert_eq!(&std::fs::read(file).unwrap(), before, "{}", file.display());
         }
         let document = std::fs::read_to_string(&path).unwrap();
-        // Lava glows: its emission map is wired, and the colour maps are linear.
+        // Lava glows past 1: its emission map is wired, times its brightness (the map
+        // holds emission over it), and the colour maps are linear.
+        assert!(
+            document.contains("<multiply name=\"emission\" type=\"color3\">"),
+            "{document}"
+        );
         assert!(
             named_files(&document)
                 .iter()

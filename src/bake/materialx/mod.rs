@@ -56,7 +56,7 @@ pub fn export_materialx(
     compiled: &Compiled,
     settings: &MaterialxSettings,
     path: &Path,
-    progress: impl FnMut(u64, u64) -> bool,
+    mut progress: impl FnMut(u64, u64) -> bool,
 ) -> Result<Vec<PathBuf>, BakeError> {
     let folder = super::output_folder(path)?;
     let uses = compiled.uses();
@@ -67,6 +67,8 @@ pub fn export_materialx(
         .filter(|map| match map {
             Map::Alpha => uses.alpha != AlphaUse::Opaque,
             Map::Normal => uses.perturbs_normal(),
+            // Baked apart, as EXR, to keep glow past 1.
+            Map::Emission => false,
             _ => true,
         })
         .collect();
@@ -95,30 +97,51 @@ pub fn export_materialx(
         .unwrap_or_default()
         .to_string_lossy()
         .into_owned();
-    let baked = bake(
-        gpu,
-        compiled,
-        &bake_settings,
-        &staging.path().join(&stem_name),
-        progress,
-    )?;
+    let stem = staging.path().join(&stem_name);
+    let baked = bake(gpu, compiled, &bake_settings, &stem, &mut progress)?;
     let mut files: Vec<(PathBuf, Vec<u8>)> = Vec::new();
     let mut wired = Vec::new();
     for map in &baked {
         let bytes = std::fs::read(&map.path).map_err(write_error(&map.path))?;
-        // An emission map that is black everywhere is left out, as glTF leaves it.
-        if map.map == Map::Emission && is_black(&bytes) {
-            continue;
-        }
         let name = map.path.file_name().unwrap_or_default().to_owned();
         wired.push((map.map, name.to_string_lossy().into_owned()));
         files.push((path.with_file_name(name), bytes));
+    }
+    // Emission as the glTF export keeps it: the map over its brightest channel (an
+    // 8-bit PNG), that brightness past 1 a factor in the network; none where nothing glows.
+    let emission_settings = BakeSettings {
+        maps: vec![Map::Emission],
+        format: Format::Exr,
+        ..bake_settings
+    };
+    let glow = bake(gpu, compiled, &emission_settings, &stem, &mut progress)?;
+    let mut strength = 1.0;
+    if let Some(exr) = glow.first() {
+        let read = |error: image::ImageError| BakeError::Write {
+            path: exr.path.clone(),
+            error: std::io::Error::other(error),
+        };
+        let pixels = image::open(&exr.path).map_err(read)?.to_rgba32f();
+        let brightest = (pixels.pixels())
+            .flat_map(|p| [p[0], p[1], p[2]])
+            .fold(0.0f32, f32::max);
+        if brightest > 0.0 {
+            strength = brightest.max(1.0);
+            let scaled: Vec<[f32; 4]> = (pixels.pixels())
+                .map(|p| [p[0] / strength, p[1] / strength, p[2] / strength, 1.0])
+                .collect();
+            let name = super::map_path(Path::new(&stem_name), Map::Emission, Format::Png8);
+            let png = super::model::png("emission", &scaled, settings.size, false)
+                .map_err(write_error(&exr.path))?;
+            wired.push((Map::Emission, name.display().to_string()));
+            files.push((path.with_file_name(name), png));
+        }
     }
     let place = match on_mesh {
         true => format!("the UV layout of {}", compiled.preview.mesh),
         false => "the preview square".to_string(),
     };
-    let document = document(compiled, settings, &wired, &place);
+    let document = document(compiled, settings, &wired, strength, &place);
     let mut writes = vec![(path, Naming::Given, document.as_bytes())];
     writes.extend(
         (files.iter()).map(|(target, bytes)| (target.as_path(), Naming::Implied, bytes.as_slice())),
@@ -128,13 +151,6 @@ pub fn export_materialx(
     Ok(std::iter::once(path.to_path_buf())
         .chain(files.into_iter().map(|(target, _)| target))
         .collect())
-}
-
-/// Whether an 8-bit PNG holds nothing but black (one that does not decode counts as not).
-fn is_black(png: &[u8]) -> bool {
-    image::load_from_memory(png)
-        .map(|image| image.to_rgb8().pixels().all(|p| p.0 == [0, 0, 0]))
-        .unwrap_or(false)
 }
 
 /// `text` escaped for an XML attribute value.
@@ -167,12 +183,14 @@ fn colour_space(shading: Shading) -> &'static str {
     }
 }
 
-/// The document: a node graph reading the maps (`wired`: each map and its file name) and
-/// giving the surface inputs as outputs, the surface shader and the material.
+/// The document: a node graph reading the maps (`wired`: each map and its file name; the
+/// emission map's values times `strength`) and giving the surface inputs as outputs, the
+/// surface shader and the material.
 fn document(
     compiled: &Compiled,
     settings: &MaterialxSettings,
     wired: &[(Map, String)],
+    strength: f32,
     place: &str,
 ) -> String {
     let file = |map: Map| {
@@ -186,7 +204,7 @@ fn document(
         colour_space: colour_space(compiled.checked.shading),
         alpha: file(Map::Alpha).map_or(AlphaMap::None, AlphaMap::Map),
         orm: file(Map::Orm).expect("always baked"),
-        emission: file(Map::Emission).map(|path| (path, 1.0)),
+        emission: file(Map::Emission).map(|path| (path, strength)),
         normal: file(Map::Normal),
     };
     let network = network(&maps, compiled.uses().alpha, settings.surface);
