@@ -46,18 +46,27 @@ impl ModelFormat {
         }
     }
 
-    /// Why a model cannot be written to `path`, if it cannot. USD: standard output (`-`),
-    /// a folder, or an extension USD would not read as what is written. (A glTF binary
-    /// may go to a device; what cannot be written is refused as it is written.)
+    /// Why a model cannot be written to `path`, if it cannot: standard output (`-`, which
+    /// would name files `-_basecolor.png`); for USD also a folder or an extension USD
+    /// would not read as what is written. (A glTF binary may go to a device; what cannot
+    /// be written there is refused as it is written.)
     pub fn refuses(self, path: &std::path::Path) -> Option<String> {
-        if self == ModelFormat::Gltf {
-            return None;
-        }
-        let usage =
-            "give a file name ending in .usdz (one package) or .usda (text, its PNGs beside it)";
+        let usage = match self {
+            ModelFormat::Gltf => {
+                "give a file name ending in .glb (one file) or .gltf (its files beside it)"
+            }
+            ModelFormat::Usd => {
+                "give a file name ending in .usdz (one package) or .usda (text, its PNGs beside it)"
+            }
+        };
         let extension = (path.extension().and_then(|e| e.to_str())).map(str::to_ascii_lowercase);
         if path.as_os_str() == "-" {
-            Some(format!("a USD export writes files, not a stream: {usage}"))
+            Some(format!(
+                "a {} export writes files, not a stream: {usage}",
+                self.name()
+            ))
+        } else if self == ModelFormat::Gltf {
+            None
         } else if path.is_dir() || path.as_os_str().as_encoded_bytes().ends_with(b"/") {
             Some(format!("is a folder: {usage}"))
         } else if !matches!(extension.as_deref(), Some("usda" | "usd" | "usdz")) {

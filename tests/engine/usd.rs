@@ -87,5 +87,13 @@ fn what_cannot_be_exported_is_refused_with_nothing_written() {
             .arg(out);
         assert_refused(&mut command, expected);
     }
+    // glTF has no stream either.
+    let mut command = veneer();
+    command
+        .current_dir(&dir)
+        .arg("bake")
+        .arg(&wood)
+        .args(["--size", "8", "--gltf", "-"]);
+    assert_refused(&mut command, "a glTF export writes files, not a stream");
     assert_holds_only(&dir, &["taken.usda"]);
 }
