@@ -290,24 +290,14 @@ pub fn bake_model(
     let occluded = orm.iter().any(|p| p[0] < OCCLUDED);
     let orm = texture(ORM, &orm, false)?;
     // Emission: the texture holds emission / its largest channel, the strength the rest.
-    let brightest = (rendered[2].iter())
-        .flat_map(|p| [p[0], p[1], p[2]])
-        .fold(0.0f32, f32::max);
-    let emission = if brightest > 0.0 {
-        let scale = brightest.max(1.0);
-        let pixels: Vec<[f32; 4]> = (rendered[2].iter())
-            .map(|p| {
-                [
-                    colour(p[0] / scale),
-                    colour(p[1] / scale),
-                    colour(p[2] / scale),
-                    1.0,
-                ]
-            })
-            .collect();
-        Some((texture(EMISSION, &pixels, false)?, scale))
-    } else {
-        None
+    let emission = match over_brightest(&rendered[2]) {
+        Some((pixels, strength)) => {
+            let encoded: Vec<[f32; 4]> = (pixels.iter())
+                .map(|p| [colour(p[0]), colour(p[1]), colour(p[2]), 1.0])
+                .collect();
+            Some((texture(EMISSION, &encoded, false)?, strength))
+        }
+        None => None,
     };
     let normals = crate::mesh::unit_normals(&mesh);
     let tangents = wants_normal.then(|| crate::mesh::vertex_tangents(&mesh, &normals));
@@ -335,6 +325,23 @@ pub fn bake_model(
         normal,
         alpha: uses.alpha,
     })
+}
+
+/// Emission (RGB of `pixels`) over its brightest channel where that passes 1, and the
+/// factor it was divided by (1 where nothing passes 1), so an 8-bit texture times the
+/// factor keeps glow brighter than 1; `None` where nothing glows.
+pub(super) fn over_brightest(pixels: &[[f32; 4]]) -> Option<(Vec<[f32; 4]>, f32)> {
+    let brightest = (pixels.iter())
+        .flat_map(|p| [p[0], p[1], p[2]])
+        .fold(0.0f32, f32::max);
+    if brightest <= 0.0 {
+        return None;
+    }
+    let strength = brightest.max(1.0);
+    let scaled = (pixels.iter())
+        .map(|p| [p[0] / strength, p[1] / strength, p[2] / strength, 1.0])
+        .collect();
+    Some((scaled, strength))
 }
 
 /// A whole `map` (OpenGL-convention normals) from its rendered outputs, texels `spacing`

@@ -317,48 +317,40 @@ fn usdz(entries: &[(&str, &[u8])]) -> Vec<u8> {
     let mut central = Vec::new();
     for (name, data) in entries {
         let offset = out.len() as u32;
-        let crc = crc32fast::hash(data);
-        let header = 30 + name.len();
-        // The extra field: id 0x1986 (unused), size, padding to the alignment.
-        let mut pad = (64 - (out.len() + header + 4) % 64) % 64;
-        let extra_len = 4 + pad;
-        let mut local = Vec::new();
-        local.extend_from_slice(&0x0403_4b50u32.to_le_bytes());
-        local.extend_from_slice(&[20, 0, 0, 0, 0, 0, 0, 0, 0x21, 0]); // version, flags, stored, time, date (1980-01-01)
-        local.extend_from_slice(&crc.to_le_bytes());
-        local.extend_from_slice(&(data.len() as u32).to_le_bytes());
-        local.extend_from_slice(&(data.len() as u32).to_le_bytes());
-        local.extend_from_slice(&(name.len() as u16).to_le_bytes());
-        local.extend_from_slice(&(extra_len as u16).to_le_bytes());
-        local.extend_from_slice(name.as_bytes());
-        local.extend_from_slice(&0x1986u16.to_le_bytes());
-        local.extend_from_slice(&(pad as u16).to_le_bytes());
-        while pad > 0 {
-            local.push(0);
-            pad -= 1;
-        }
-        out.extend_from_slice(&local);
+        // What the local and the central header both give, from the stored-data version
+        // (2.0) on: flags, method (stored), time and date (1980-01-01), CRC, sizes, name length.
+        let mut shared = vec![20, 0, 0, 0, 0, 0, 0, 0, 0x21, 0];
+        shared.extend_from_slice(&crc32fast::hash(data).to_le_bytes());
+        shared.extend_from_slice(&(data.len() as u32).to_le_bytes());
+        shared.extend_from_slice(&(data.len() as u32).to_le_bytes());
+        shared.extend_from_slice(&(name.len() as u16).to_le_bytes());
+        // The extra field (id 0x1986, its size) pads the data to the alignment.
+        let pad = (64 - (out.len() + 30 + name.len() + 4) % 64) % 64;
+        out.extend_from_slice(&0x0403_4b50u32.to_le_bytes());
+        out.extend_from_slice(&shared);
+        out.extend_from_slice(&(4 + pad as u16).to_le_bytes());
+        out.extend_from_slice(name.as_bytes());
+        out.extend_from_slice(&0x1986u16.to_le_bytes());
+        out.extend_from_slice(&(pad as u16).to_le_bytes());
+        out.resize(out.len() + pad, 0);
         out.extend_from_slice(data);
         central.extend_from_slice(&0x0201_4b50u32.to_le_bytes());
-        central.extend_from_slice(&[20, 0, 20, 0, 0, 0, 0, 0, 0, 0, 0x21, 0]);
-        central.extend_from_slice(&crc.to_le_bytes());
-        central.extend_from_slice(&(data.len() as u32).to_le_bytes());
-        central.extend_from_slice(&(data.len() as u32).to_le_bytes());
-        central.extend_from_slice(&(name.len() as u16).to_le_bytes());
-        central.extend_from_slice(&[0; 8]); // extra, comment, disk, internal attributes
-        central.extend_from_slice(&0u32.to_le_bytes()); // external attributes
+        central.extend_from_slice(&[20, 0]); // made by version 2.0
+        central.extend_from_slice(&shared);
+        central.extend_from_slice(&[0; 12]); // extra, comment, disk, internal and external attributes
         central.extend_from_slice(&offset.to_le_bytes());
         central.extend_from_slice(name.as_bytes());
     }
     let start = out.len() as u32;
+    let count = (entries.len() as u16).to_le_bytes();
     out.extend_from_slice(&central);
     out.extend_from_slice(&0x0605_4b50u32.to_le_bytes());
-    out.extend_from_slice(&[0, 0, 0, 0]);
-    out.extend_from_slice(&(entries.len() as u16).to_le_bytes());
-    out.extend_from_slice(&(entries.len() as u16).to_le_bytes());
+    out.extend_from_slice(&[0, 0, 0, 0]); // this disk, the directory's disk
+    out.extend_from_slice(&count);
+    out.extend_from_slice(&count);
     out.extend_from_slice(&(central.len() as u32).to_le_bytes());
     out.extend_from_slice(&start.to_le_bytes());
-    out.extend_from_slice(&[0, 0]);
+    out.extend_from_slice(&[0, 0]); // comment length
     out
 }
 

@@ -153,7 +153,7 @@ pub fn run(args: CompileArgs) -> Result<(), Failure> {
         return write_output(args.output.as_ref(), description.as_bytes());
     }
     if !compiled.passes.is_empty() {
-        return write_passes(&args, &compiled);
+        return write_passes(&args, &compiled, target);
     }
     let bytes = export_compiled(&compiled, target).map_err(|error| in_file(&args.graph, error))?;
     match args.output.as_deref().and_then(super::output_file) {
@@ -169,7 +169,11 @@ pub fn run(args: CompileArgs) -> Result<(), Failure> {
 
 /// Writes a multi-pass material's modules and manifest together beside the output file
 /// (which names the material's module): a half-written export is never left.
-fn write_passes(args: &CompileArgs, compiled: &veneer::codegen::Compiled) -> Result<(), Failure> {
+fn write_passes(
+    args: &CompileArgs,
+    compiled: &veneer::codegen::Compiled,
+    target: Target,
+) -> Result<(), Failure> {
     let output = match args.output.as_deref().and_then(super::output_file) {
         Some(path) if !veneer::fsutil::is_stream(path) && !super::names_folder(path) => path,
         _ => {
@@ -179,9 +183,6 @@ fn write_passes(args: &CompileArgs, compiled: &veneer::codegen::Compiled) -> Res
                 compiled.passes.passes.len()
             )));
         }
-    };
-    let TargetArg::Shader(target) = args.target else {
-        unreachable!("MaterialX exports return before passes are written")
     };
     let files =
         export_beside(compiled, target, output).map_err(|error| in_file(&args.graph, error))?;

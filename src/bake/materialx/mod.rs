@@ -56,7 +56,7 @@ pub fn export_materialx(
     compiled: &Compiled,
     settings: &MaterialxSettings,
     path: &Path,
-    mut progress: impl FnMut(u64, u64) -> bool,
+    progress: impl FnMut(u64, u64) -> bool,
 ) -> Result<Vec<PathBuf>, BakeError> {
     let folder = super::output_folder(path)?;
     let uses = compiled.uses();
@@ -67,8 +67,6 @@ pub fn export_materialx(
         .filter(|map| match map {
             Map::Alpha => uses.alpha != AlphaUse::Opaque,
             Map::Normal => uses.perturbs_normal(),
-            // Baked apart, as EXR, to keep glow past 1.
-            Map::Emission => false,
             _ => true,
         })
         .collect();
@@ -80,7 +78,9 @@ pub fn export_materialx(
         surface,
         size: settings.size,
         maps,
-        format: Format::Png8,
+        // As float, so emission past 1 can be scaled into the 8-bit map (every map is
+        // then stored as the PNG `bake` would have written).
+        format: Format::Exr,
         normal: NormalConvention::OpenGl,
         time: settings.time,
     };
@@ -98,44 +98,34 @@ pub fn export_materialx(
         .to_string_lossy()
         .into_owned();
     let stem = staging.path().join(&stem_name);
-    let baked = bake(gpu, compiled, &bake_settings, &stem, &mut progress)?;
+    let baked = bake(gpu, compiled, &bake_settings, &stem, progress)?;
     let mut files: Vec<(PathBuf, Vec<u8>)> = Vec::new();
     let mut wired = Vec::new();
-    for map in &baked {
-        let bytes = std::fs::read(&map.path).map_err(write_error(&map.path))?;
-        let name = map.path.file_name().unwrap_or_default().to_owned();
-        wired.push((map.map, name.to_string_lossy().into_owned()));
-        files.push((path.with_file_name(name), bytes));
-    }
-    // Emission as the glTF export keeps it: the map over its brightest channel (an
-    // 8-bit PNG), that brightness past 1 a factor in the network; none where nothing glows.
-    let emission_settings = BakeSettings {
-        maps: vec![Map::Emission],
-        format: Format::Exr,
-        ..bake_settings
-    };
-    let glow = bake(gpu, compiled, &emission_settings, &stem, &mut progress)?;
     let mut strength = 1.0;
-    if let Some(exr) = glow.first() {
+    for map in &baked {
         let read = |error: image::ImageError| BakeError::Write {
-            path: exr.path.clone(),
+            path: map.path.clone(),
             error: std::io::Error::other(error),
         };
-        let pixels = image::open(&exr.path).map_err(read)?.to_rgba32f();
-        let brightest = (pixels.pixels())
-            .flat_map(|p| [p[0], p[1], p[2]])
-            .fold(0.0f32, f32::max);
-        if brightest > 0.0 {
-            strength = brightest.max(1.0);
-            let scaled: Vec<[f32; 4]> = (pixels.pixels())
-                .map(|p| [p[0] / strength, p[1] / strength, p[2] / strength, 1.0])
-                .collect();
-            let name = super::map_path(Path::new(&stem_name), Map::Emission, Format::Png8);
-            let png = super::model::png("emission", &scaled, settings.size, false)
-                .map_err(write_error(&exr.path))?;
-            wired.push((Map::Emission, name.display().to_string()));
-            files.push((path.with_file_name(name), png));
-        }
+        let image = image::open(&map.path).map_err(read)?.to_rgba32f();
+        let pixels: Vec<[f32; 4]> = image.pixels().map(|p| p.0).collect();
+        // Emission as the glTF export keeps it: over its brightest channel, that
+        // brightness past 1 a factor in the network; none where nothing glows.
+        let pixels = match map.map {
+            Map::Emission => match super::model::over_brightest(&pixels) {
+                Some((scaled, factor)) => {
+                    strength = factor;
+                    scaled
+                }
+                None => continue,
+            },
+            _ => pixels,
+        };
+        let name = super::map_path(Path::new(&stem_name), map.map, Format::Png8);
+        let png = super::model::png(map.map.name(), &pixels, settings.size, false)
+            .map_err(write_error(&map.path))?;
+        wired.push((map.map, name.display().to_string()));
+        files.push((path.with_file_name(name), png));
     }
     let place = match on_mesh {
         true => format!("the UV layout of {}", compiled.preview.mesh),
