@@ -21,7 +21,10 @@ mod usd;
 
 pub use gltf::{Packaging, export_gltf, gltf_files};
 pub use maps::{Converter, Map, NormalConvention, fill_uncovered};
-pub use materialx::{MaterialxSettings, SurfaceModel, export_materialx, materialx_files};
+pub use materialx::{
+    ALBEDO_OUTPUT, MaterialxExport, MaterialxSettings, SurfaceModel, Tier, coverage_table,
+    export_materialx, materialx_files,
+};
 pub use mesh_maps::{
     BakedMeshMap, MOST_POOLING, MeshMap, MeshMapSettings, bake_mesh_maps, mesh_map_path,
 };
@@ -135,6 +138,12 @@ pub enum BakeError {
         #[source]
         error: std::io::Error,
     },
+    /// Nodes the MaterialX export's procedural tier cannot translate, each with why.
+    #[error(
+        "cannot translate to MaterialX nodes: {}; export it with --tier baked (or auto); nothing was written",
+        .0.iter().map(ToString::to_string).collect::<Vec<_>>().join("; ")
+    )]
+    Untranslatable(Vec<materialx::Untranslatable>),
     /// The thread writing a map panicked.
     #[error("{path}: the map writer panicked")]
     WriterPanicked { path: PathBuf },

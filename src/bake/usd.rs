@@ -120,6 +120,14 @@ fn usd_input(input: &Input, material: &str) -> String {
             "{ty} inputs:{}.connect = <{material}/{node}.outputs:out>",
             input.name
         ),
+        Source::Output(node, output) => format!(
+            "{ty} inputs:{}.connect = <{material}/{node}.outputs:{output}>",
+            input.name
+        ),
+        Source::Interface(name) => format!(
+            "{ty} inputs:{}.connect = <{material}.inputs:{name}>",
+            input.name
+        ),
         Source::File { path, colour_space } => {
             let space = colour_space
                 .map(|s| format!(" (\n        colorSpace = \"{s}\"\n    )"))

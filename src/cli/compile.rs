@@ -3,7 +3,7 @@
 use super::{Failure, in_file, load_graph, write_output};
 use clap::{Args, ValueEnum};
 use std::path::{Path, PathBuf};
-use veneer::bake::{MaterialxSettings, SurfaceModel, export_materialx, materialx_files};
+use veneer::bake::{MaterialxSettings, SurfaceModel, Tier, export_materialx, materialx_files};
 use veneer::codegen::export::{Target, export_compiled};
 use veneer::codegen::manifest::export_beside;
 use veneer::codegen::{CompileOptions, ParamMode, compile, describe_parameters};
@@ -75,6 +75,30 @@ impl ValueEnum for SurfaceArg {
     }
 }
 
+/// `--tier`: how a MaterialX export keeps the material.
+#[derive(Clone, Copy)]
+struct TierArg(Tier);
+
+impl ValueEnum for TierArg {
+    fn value_variants<'a>() -> &'a [Self] {
+        const TIERS: [TierArg; 3] = [
+            TierArg(Tier::ALL[0].0),
+            TierArg(Tier::ALL[1].0),
+            TierArg(Tier::ALL[2].0),
+        ];
+        &TIERS
+    }
+
+    fn to_possible_value(&self) -> Option<clap::builder::PossibleValue> {
+        let help = match self.0 {
+            Tier::Baked => "every map baked, read by image nodes",
+            Tier::Procedural => "the graph translated node by node",
+            Tier::Auto => "procedural where every node translates, else baked",
+        };
+        Some(clap::builder::PossibleValue::new(self.0.name()).help(help))
+    }
+}
+
 #[derive(Args)]
 pub struct CompileArgs {
     /// The graph file.
@@ -85,6 +109,9 @@ pub struct CompileArgs {
     /// With `--target mtlx`: the surface shader the baked maps are wired into.
     #[arg(long, value_enum, default_value = "open-pbr")]
     surface: SurfaceArg,
+    /// With `--target mtlx`: how the material is kept.
+    #[arg(long, value_enum, default_value = "baked")]
+    tier: TierArg,
     /// With `--target mtlx`: width and height of the baked maps in pixels.
     #[arg(long, default_value_t = 1024)]
     size: u32,
@@ -229,6 +256,7 @@ fn run_materialx(args: &CompileArgs, graph: &veneer::graph::Graph) -> Result<(),
         compile(graph, &CompileOptions::default()).map_err(|error| in_file(&args.graph, error))?;
     let gpu = veneer::render::GpuContext::new()?;
     let settings = MaterialxSettings {
+        tier: args.tier.0,
         surface: args.surface.0,
         size: args.size,
         time: 0.0,
@@ -247,7 +275,10 @@ fn run_materialx(args: &CompileArgs, graph: &veneer::graph::Graph) -> Result<(),
     })
     .map_err(|error| in_file(&args.graph, error))?;
     bar.finish_and_clear();
-    for path in &written {
+    for node in &written.untranslatable {
+        super::output::note(format_args!("baked: cannot translate {node}"))?;
+    }
+    for path in &written.files {
         let bytes = std::fs::metadata(path).map(|m| m.len()).unwrap_or(0);
         super::output::note(format_args!("wrote {} ({bytes} bytes)", path.display()))?;
     }

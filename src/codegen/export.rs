@@ -145,37 +145,7 @@ pub(super) fn translate(
                     is_webgl: false,
                 }
             };
-            // Explicit bindings where the version has them (450): the frame block at 0,
-            // the parameter block at 1, a multi-pass material's buffers (group 2) from 2
-            // on. ES 3.00 binds them by name instead.
-            let binding = |group, binding| naga::ResourceBinding { group, binding };
-            let buffers = (0..MAX_BUFFER_BINDINGS).map(|k| (binding(2, u32::from(k)), 2 + k));
-            let binding_map = [(binding(0, 0), 0u8), (binding(1, 0), 1u8)]
-                .into_iter()
-                .chain(buffers)
-                .collect();
-            let options = naga::back::glsl::Options {
-                version,
-                writer_flags: naga::back::glsl::WriterFlags::empty(),
-                binding_map,
-                ..Default::default()
-            };
-            let pipeline = naga::back::glsl::PipelineOptions {
-                shader_stage: naga::ShaderStage::Fragment,
-                entry_point: fragment.to_string(),
-                multiview: None,
-            };
-            let mut text = String::new();
-            let mut writer = naga::back::glsl::Writer::new(
-                &mut text,
-                &naga_module,
-                &info,
-                &options,
-                &pipeline,
-                naga::proc::BoundsCheckPolicies::default(),
-            )
-            .map_err(|e| fail(e.to_string()))?;
-            writer.write().map_err(|e| fail(e.to_string()))?;
+            let text = write_glsl(&naga_module, &info, version, fragment).map_err(fail)?;
             // naga's GLSL front end reads no combined image samplers (a multi-pass
             // material's buffers): glslangValidator checks those in the tests.
             let binds_textures = (naga_module.global_variables.iter()).any(|(_, variable)| {
@@ -219,6 +189,63 @@ pub(super) fn translate(
             Ok(bytes)
         }
     }
+}
+
+/// `module` as GLSL of `version`, its fragment entry point `entry` the shader's `main`.
+/// Explicit bindings where the version has them (450): the frame block at 0, the
+/// parameter block at 1, a multi-pass material's buffers (group 2) from 2 on. ES 3.00
+/// binds them by name instead.
+fn write_glsl(
+    module: &naga::Module,
+    info: &naga::valid::ModuleInfo,
+    version: naga::back::glsl::Version,
+    entry: &str,
+) -> Result<String, String> {
+    let binding = |group, binding| naga::ResourceBinding { group, binding };
+    let buffers = (0..MAX_BUFFER_BINDINGS).map(|k| (binding(2, u32::from(k)), 2 + k));
+    let binding_map = [(binding(0, 0), 0u8), (binding(1, 0), 1u8)]
+        .into_iter()
+        .chain(buffers)
+        .collect();
+    let options = naga::back::glsl::Options {
+        version,
+        writer_flags: naga::back::glsl::WriterFlags::empty(),
+        binding_map,
+        ..Default::default()
+    };
+    let pipeline = naga::back::glsl::PipelineOptions {
+        shader_stage: naga::ShaderStage::Fragment,
+        entry_point: entry.to_string(),
+        multiview: None,
+    };
+    let mut text = String::new();
+    let mut writer = naga::back::glsl::Writer::new(
+        &mut text,
+        module,
+        info,
+        &options,
+        &pipeline,
+        naga::proc::BoundsCheckPolicies::default(),
+    )
+    .map_err(|e| e.to_string())?;
+    writer.write().map_err(|e| e.to_string())?;
+    Ok(text)
+}
+
+/// `source`, a WGSL module with one fragment entry point, validated and written as GLSL
+/// of `version` (MaterialX's node functions: see `bake::materialx`).
+pub(crate) fn glsl(source: &str, version: naga::back::glsl::Version) -> Result<String, String> {
+    let module = validate(source).map_err(|error| error.to_string())?;
+    let info = naga::valid::Validator::new(
+        naga::valid::ValidationFlags::all(),
+        naga::valid::Capabilities::default(),
+    )
+    .validate(&module)
+    .map_err(|error| error.emit_to_string(source))?;
+    let entry = (module.entry_points.first())
+        .map(|entry| entry.name.clone())
+        .ok_or("the module has no entry point")?;
+    write_glsl(&module, &info, version, &entry)
 }
 
 /// GLSL output parsed back and validated by naga.

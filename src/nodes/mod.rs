@@ -119,7 +119,7 @@ pub mod ranges;
 pub mod settings;
 pub mod value;
 
-mod bitmap;
+pub mod bitmap;
 mod cellular;
 mod colour;
 mod coordinates;

@@ -334,6 +334,22 @@ fn enter_confirms_every_dialog() {
     }
     assert!(dir.join("wood_albedo.png").is_file() && dir.join("wood_orm.png").is_file());
 
+    // MaterialX's procedural tier: the graph node by node, Veneer's own nodes' GLSL
+    // beside it and no maps.
+    from_file_menu(&mut harness, "Export MaterialX");
+    let nodes = dir.join("wood_nodes.mtlx");
+    type_text(&mut harness, &nodes.display().to_string());
+    wait(&mut harness, 1.0);
+    harness.get_by_label("procedural").click_accesskit();
+    harness.run();
+    harness.get_by_label("Export").click();
+    harness.step();
+    wait_for_export(&mut harness);
+    let document = std::fs::read_to_string(&nodes).expect("the procedural document");
+    assert!(document.contains("<nodedef "), "{document}");
+    assert!(dir.join("wood_nodes_veneer.glsl").is_file());
+    assert!(!dir.join("wood_nodes_albedo.png").exists());
+
     // Load mesh.
     mesh_dialog(&mut harness);
     let cube = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/meshes/cube_quads.ply");

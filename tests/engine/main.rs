@@ -36,6 +36,7 @@ mod limits;
 mod lint;
 mod live_preview;
 mod materialx;
+mod materialx_procedural;
 mod mesh_fields;
 mod mesh_passes;
 mod meshes;

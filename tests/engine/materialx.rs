@@ -13,7 +13,7 @@ use crate::support::{
 };
 use std::path::{Path, PathBuf};
 use std::process::Command;
-use veneer::bake::{MaterialxSettings, SurfaceModel, export_materialx};
+use veneer::bake::{MaterialxSettings, SurfaceModel, Tier, export_materialx};
 use veneer::codegen::{AlphaUse, Compiled, compile};
 
 fn compiled(path: &Path) -> Compiled {
@@ -23,16 +23,18 @@ fn compiled(path: &Path) -> Compiled {
 
 fn export(compiled: &Compiled, surface: SurfaceModel, path: &Path) -> Vec<PathBuf> {
     let settings = MaterialxSettings {
+        tier: Tier::Baked,
         surface,
         size: 8,
         time: 0.0,
     };
     export_materialx(gpu(), compiled, &settings, path, |_, _| true)
         .unwrap_or_else(|error| panic!("{}: {error}", path.display()))
+        .files
 }
 
 /// The file names a document's `filename` inputs give.
-fn named_files(document: &str) -> Vec<String> {
+pub fn named_files(document: &str) -> Vec<String> {
     document
         .lines()
         .filter(|line| line.contains("type=\"filename\""))
@@ -43,7 +45,7 @@ fn named_files(document: &str) -> Vec<String> {
 
 /// Runs MaterialX's own validation and GLSL generation on `documents`, then
 /// glslangValidator on every shader stage it wrote.
-fn check_with_materialx(documents: &[PathBuf]) {
+pub fn check_with_materialx(documents: &[PathBuf]) {
     python_check(
         "tests/materialx/check.py",
         documents,

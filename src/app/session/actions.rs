@@ -244,7 +244,7 @@ impl VeneerApp {
         self.start_export(ctx, &path.clone(), move |report| {
             let written = crate::bake::export_materialx(&gpu, &compiled, &settings, &path, report)
                 .map_err(|error| error.to_string())?;
-            Ok(exported(&written))
+            Ok(exported(&written.files))
         })
     }
 

@@ -8,9 +8,15 @@
 //! distance or mesh fields is baked into its preview mesh's UV layout (the maps belong to
 //! that mesh); any other over its preview square.
 
+mod coverage;
+mod custom;
 mod network;
+mod procedural;
+mod standard;
 
+pub use coverage::coverage_table;
 pub use network::{AlphaMap, Input, Maps, Network, Source, SurfaceModel, network};
+pub use procedural::{ALBEDO_OUTPUT, Untranslatable};
 
 use super::{BakeError, BakeSettings, BakeSurface, Format, Map, NormalConvention, bake};
 use crate::codegen::{AlphaUse, Compiled};
@@ -19,9 +25,40 @@ use crate::graph::Shading;
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
 
+/// How a MaterialX export keeps the material.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Tier {
+    /// Every map baked, read by `image` nodes.
+    #[default]
+    Baked,
+    /// The graph translated node by node (the shading normal's map baked); refused,
+    /// naming the nodes, when a node cannot be translated.
+    Procedural,
+    /// Procedural where every node translates, else baked.
+    Auto,
+}
+
+impl Tier {
+    /// Every tier and its name on the command line.
+    pub const ALL: [(Tier, &'static str); 3] = [
+        (Tier::Baked, "baked"),
+        (Tier::Procedural, "procedural"),
+        (Tier::Auto, "auto"),
+    ];
+
+    /// The tier's name on the command line.
+    pub fn name(self) -> &'static str {
+        let (_, name) = (Self::ALL.iter())
+            .find(|(tier, _)| *tier == self)
+            .expect("listed");
+        name
+    }
+}
+
 /// What a MaterialX export bakes and wires.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MaterialxSettings {
+    pub tier: Tier,
     pub surface: SurfaceModel,
     /// Width and height of every map in pixels.
     pub size: u32,
@@ -38,35 +75,86 @@ const MAPS: [Map; 5] = [
 ];
 
 /// Every file an export to `path` may write, `path` itself first: the maps go beside it
-/// as `<stem>_<map>.png` (alpha, emission and normal only when the material has them).
+/// as `<stem>_<map>.png` (alpha, emission and normal only when the material has them),
+/// the procedural tier's node functions as `<stem>_veneer.glsl`.
 pub fn materialx_files(path: &Path) -> Vec<PathBuf> {
     let stem = path.with_extension("");
     std::iter::once(path.to_path_buf())
         .chain(MAPS.map(|map| super::map_path(&stem, map, Format::Png8)))
+        .chain([functions_path(path)])
         .collect()
+}
+
+/// Where the procedural tier's GLSL node functions go: `<stem>_veneer.glsl`.
+fn functions_path(path: &Path) -> PathBuf {
+    let stem = path.file_stem().unwrap_or_default().to_string_lossy();
+    path.with_file_name(format!("{stem}_veneer.glsl"))
+}
+
+/// What a MaterialX export wrote.
+#[derive(Debug)]
+pub struct MaterialxExport {
+    /// The files, the document first.
+    pub files: Vec<PathBuf>,
+    /// The tier the document has (`Auto` resolves to one of the others).
+    pub tier: Tier,
+    /// Under `Auto`, the nodes that made the export fall back to baked.
+    pub untranslatable: Vec<Untranslatable>,
 }
 
 /// Exports `compiled` (parameters baked) as a MaterialX document at `path` with its maps
 /// beside it, calling `progress(done, total)` as tiles render (answering `false` stops
 /// the export, nothing written). The maps are baked into a temporary folder beside
 /// `path` and everything is put in place together, so a failed export leaves no file.
-/// The paths written come back, the document first.
 pub fn export_materialx(
     gpu: &crate::render::GpuContext,
     compiled: &Compiled,
     settings: &MaterialxSettings,
     path: &Path,
-    progress: impl FnMut(u64, u64) -> bool,
-) -> Result<Vec<PathBuf>, BakeError> {
+    mut progress: impl FnMut(u64, u64) -> bool,
+) -> Result<MaterialxExport, BakeError> {
     let folder = super::output_folder(path)?;
     let uses = compiled.uses();
+    let stem_name = path
+        .file_stem()
+        .unwrap_or_default()
+        .to_string_lossy()
+        .into_owned();
+    let normal_map = (uses.perturbs_normal())
+        .then(|| super::map_path(Path::new(&stem_name), Map::Normal, Format::Png8))
+        .map(|name| name.display().to_string());
+    let mut untranslatable = Vec::new();
+    let procedural = match settings.tier {
+        Tier::Baked => None,
+        Tier::Procedural | Tier::Auto => {
+            match procedural::translate(
+                &compiled.checked,
+                &compiled.preview,
+                &stem_name,
+                uses.alpha,
+                settings.surface,
+                normal_map.as_deref(),
+            ) {
+                Ok(procedural) => Some(procedural),
+                Err(nodes) if settings.tier == Tier::Procedural => {
+                    return Err(BakeError::Untranslatable(nodes));
+                }
+                Err(nodes) => {
+                    untranslatable = nodes;
+                    None
+                }
+            }
+        }
+    };
     let on_mesh =
         uses.fields.iter().any(|&read| read) || uses.mesh_fields.iter().any(Option::is_some);
     let maps: Vec<Map> = MAPS
         .into_iter()
         .filter(|map| match map {
-            Map::Alpha => uses.alpha != AlphaUse::Opaque,
+            // The procedural tier bakes the shading normal only.
             Map::Normal => uses.perturbs_normal(),
+            _ if procedural.is_some() => false,
+            Map::Alpha => uses.alpha != AlphaUse::Opaque,
             _ => true,
         })
         .collect();
@@ -92,13 +180,11 @@ pub fn export_materialx(
         .prefix(".veneer-materialx-")
         .tempdir_in(folder)
         .map_err(write_error(folder))?;
-    let stem_name = path
-        .file_stem()
-        .unwrap_or_default()
-        .to_string_lossy()
-        .into_owned();
     let stem = staging.path().join(&stem_name);
-    let baked = bake(gpu, compiled, &bake_settings, &stem, progress)?;
+    let baked = match bake_settings.maps.is_empty() {
+        true => Vec::new(),
+        false => bake(gpu, compiled, &bake_settings, &stem, &mut progress)?,
+    };
     let mut files: Vec<(PathBuf, Vec<u8>)> = Vec::new();
     let mut wired = Vec::new();
     let mut strength = 1.0;
@@ -131,16 +217,138 @@ pub fn export_materialx(
         true => format!("the UV layout of {}", compiled.preview.mesh),
         false => "the preview square".to_string(),
     };
-    let document = document(compiled, settings, &wired, strength, &place);
+    let (document, tier) = match procedural {
+        Some(procedural) => {
+            for (file, bytes) in &procedural.files {
+                files.push((path.with_file_name(file), bytes.clone()));
+            }
+            for baked in &procedural.baked {
+                let texture = bake_node(
+                    gpu,
+                    compiled,
+                    baked,
+                    settings,
+                    staging.path(),
+                    &mut progress,
+                )?;
+                files.push((path.with_file_name(&baked.file), texture));
+            }
+            let functions = functions_path(path);
+            let file_name = functions.file_name().unwrap_or_default().to_string_lossy();
+            let mut definitions = String::new();
+            for definition in &procedural.definitions {
+                definitions.push_str(&definition.xml(&file_name));
+            }
+            if !procedural.definitions.is_empty() {
+                let glsl = custom::glsl_functions(&procedural.definitions)
+                    .map_err(|error| write_error(&functions)(std::io::Error::other(error)))?;
+                files.push((functions, glsl.into_bytes()));
+            }
+            let comment = comment(
+                compiled,
+                "its nodes translated",
+                &wired,
+                settings.size,
+                &place,
+            );
+            let name = element_name(&compiled.checked.name);
+            (
+                xml(&procedural.network, &name, &comment, &definitions),
+                Tier::Procedural,
+            )
+        }
+        None => (
+            document(compiled, settings, &wired, strength, &place),
+            Tier::Baked,
+        ),
+    };
     let mut writes = vec![(path, Naming::Given, document.as_bytes())];
     writes.extend(
         (files.iter()).map(|(target, bytes)| (target.as_path(), Naming::Implied, bytes.as_slice())),
     );
     crate::fsutil::write_together(writes)
         .map_err(|(path, error)| BakeError::Write { path, error })?;
-    Ok(std::iter::once(path.to_path_buf())
-        .chain(files.into_iter().map(|(target, _)| target))
-        .collect())
+    Ok(MaterialxExport {
+        files: std::iter::once(path.to_path_buf())
+            .chain(files.into_iter().map(|(target, _)| target))
+            .collect(),
+        tier,
+        untranslatable,
+    })
+}
+
+/// The texture of `baked`'s output over the preview mesh's UV layout, as float (OpenEXR):
+/// the node alone wired into the height of a material of its own, baked in `staging`.
+fn bake_node(
+    gpu: &crate::render::GpuContext,
+    compiled: &Compiled,
+    baked: &procedural::BakedNode,
+    settings: &MaterialxSettings,
+    staging: &Path,
+    progress: impl FnMut(u64, u64) -> bool,
+) -> Result<Vec<u8>, BakeError> {
+    use crate::graph::{Graph, Node, NodeId, PinRef, Wire};
+    let failed = |error: String| BakeError::Write {
+        path: PathBuf::from(&baked.file),
+        error: std::io::Error::other(error),
+    };
+    let (field, material) = (NodeId(1), NodeId(2));
+    let output = (baked.node.kind.definition().signature().outputs.first())
+        .map(|pin| pin.name)
+        .ok_or_else(|| failed("the node has no output".into()))?;
+    let graph = Graph {
+        name: baked.node.label.clone(),
+        preview: compiled.preview.clone(),
+        nodes: vec![
+            Node {
+                id: field,
+                origin: None,
+                ..baked.node.clone()
+            },
+            Node::new(material, crate::nodes::NodeKind::Material),
+        ],
+        wires: vec![Wire {
+            from: PinRef::new(field, output),
+            to: PinRef::new(material, "height"),
+        }],
+        ..Graph::default()
+    };
+    let options = crate::codegen::CompileOptions::default();
+    let alone = crate::codegen::compile(&graph, &options).map_err(|e| failed(e.to_string()))?;
+    let bake_settings = BakeSettings {
+        surface: BakeSurface::MeshUv(compiled.preview.mesh.clone()),
+        size: settings.size,
+        maps: vec![Map::Height],
+        format: Format::Exr,
+        normal: NormalConvention::OpenGl,
+        time: settings.time,
+    };
+    let stem = staging.join(Path::new(&baked.file).with_extension(""));
+    let written = bake(gpu, &alone, &bake_settings, &stem, progress)?;
+    let file = &written.first().expect("the height map").path;
+    std::fs::read(file).map_err(|error| BakeError::Write {
+        path: file.clone(),
+        error,
+    })
+}
+
+/// The document's opening comment: what made it and how (`how`: "its maps baked"),
+/// with the size and place of any maps baked.
+fn comment(
+    compiled: &Compiled,
+    how: &str,
+    wired: &[(Map, String)],
+    size: u32,
+    place: &str,
+) -> String {
+    let title = attribute(&compiled.checked.name.replace("--", "-"));
+    let version = env!("CARGO_PKG_VERSION");
+    let maps = match wired {
+        [] => String::new(),
+        _ if how.contains("maps") => format!(" at {size}×{size} over {place}"),
+        _ => format!(", its normal map baked at {size}×{size} over {place}"),
+    };
+    format!("{title}: exported by Veneer {version}, {how}{maps}.")
 }
 
 /// `text` escaped for an XML attribute value.
@@ -199,23 +407,34 @@ fn document(
     };
     let network = network(&maps, compiled.uses().alpha, settings.surface);
     let name = element_name(&compiled.checked.name);
-    let title = attribute(&compiled.checked.name.replace("--", "-"));
-    let (version, size) = (env!("CARGO_PKG_VERSION"), settings.size);
-    let comment = format!(
-        "{title}: exported by Veneer {version}, its maps baked at {size}×{size} over {place}."
-    );
-    xml(&network, &name, &comment)
+    let comment = comment(compiled, "its maps baked", wired, settings.size, place);
+    xml(&network, &name, &comment, "")
+}
+
+/// The name of the node graph output that gives `source` (a node's output) to the
+/// surface.
+fn graph_output(source: &Source) -> Option<String> {
+    match source {
+        Source::Node(node) => Some(format!("{node}_output")),
+        Source::Output(node, output) => Some(format!("{node}_{output}_output")),
+        _ => None,
+    }
 }
 
 /// A MaterialX input element's attributes after its name and type: its value, or the
-/// node it reads (`output` names the node graph output where the graph is given).
+/// node it reads (through node graph `graph`'s outputs where the graph is given).
 fn source_attributes(source: &Source, graph: Option<&str>) -> String {
     match (source, graph) {
         (Source::Value(value), _) => format!("value=\"{}\"", attribute(value)),
-        (Source::Node(node), None) => format!("nodename=\"{node}\""),
-        (Source::Node(node), Some(graph)) => {
-            format!("nodegraph=\"{graph}\" output=\"{node}_output\"")
+        (Source::Node(_) | Source::Output(..), Some(graph)) => {
+            let output = graph_output(source).expect("a node's output");
+            format!("nodegraph=\"{graph}\" output=\"{output}\"")
         }
+        (Source::Node(node), None) => format!("nodename=\"{node}\""),
+        (Source::Output(node, output), None) => {
+            format!("nodename=\"{node}\" output=\"{output}\"")
+        }
+        (Source::Interface(name), _) => format!("interfacename=\"{name}\""),
         (Source::File { path, colour_space }, _) => {
             let space = colour_space
                 .map(|s| format!(" colorspace=\"{s}\""))
@@ -225,9 +444,22 @@ fn source_attributes(source: &Source, graph: Option<&str>) -> String {
     }
 }
 
-/// `network` as a MaterialX 1.39 document: the nodes in node graph `NG_<name>` with an
-/// output per node the surface reads, surface shader `SR_<name>` and material `<name>`.
-pub fn xml(network: &Network, name: &str, comment: &str) -> String {
+/// An input element at `indent`.
+fn input_xml(text: &mut String, indent: &str, input: &Input, graph: Option<&str>) {
+    let _ = writeln!(
+        text,
+        "{indent}<input name=\"{}\" type=\"{}\" {} />",
+        input.name,
+        input.ty,
+        source_attributes(&input.source, graph)
+    );
+}
+
+/// `network` as a MaterialX 1.39 document: `definitions` (elements of the document's own
+/// node definitions, if any) first, then the nodes in node graph `NG_<name>` with its
+/// interface inputs and an output per node the surface reads, surface shader `SR_<name>`
+/// and material `<name>`.
+pub fn xml(network: &Network, name: &str, comment: &str, definitions: &str) -> String {
     let mut text = String::new();
     let _ = writeln!(
         text,
@@ -236,8 +468,13 @@ pub fn xml(network: &Network, name: &str, comment: &str) -> String {
     );
     let _ = writeln!(
         text,
-        "<materialx version=\"1.39\" colorspace=\"lin_rec709\">\n  <nodegraph name=\"NG_{name}\">"
+        "<materialx version=\"1.39\" colorspace=\"lin_rec709\">"
     );
+    text.push_str(definitions);
+    let _ = writeln!(text, "  <nodegraph name=\"NG_{name}\">");
+    for input in &network.interface {
+        input_xml(&mut text, "    ", input, None);
+    }
     for node in &network.nodes {
         let _ = writeln!(
             text,
@@ -245,29 +482,32 @@ pub fn xml(network: &Network, name: &str, comment: &str) -> String {
             node.category, node.name, node.ty
         );
         for input in &node.inputs {
-            let _ = writeln!(
-                text,
-                "      <input name=\"{}\" type=\"{}\" {} />",
-                input.name,
-                input.ty,
-                source_attributes(&input.source, None)
-            );
+            input_xml(&mut text, "      ", input, None);
         }
         let _ = writeln!(text, "    </{}>", node.category);
     }
     let graph = format!("NG_{name}");
-    // One output per node the surface reads, however many inputs read it.
+    // One output per node output the surface reads, however many inputs read it.
     let mut given = std::collections::BTreeSet::new();
     for input in &network.surface_inputs {
-        if let Source::Node(node) = input.source
-            && given.insert(node)
+        if let Some(output) = graph_output(&input.source)
+            && given.insert(output.clone())
         {
+            let reads = source_attributes(&input.source, None);
             let _ = writeln!(
                 text,
-                "    <output name=\"{node}_output\" type=\"{}\" nodename=\"{node}\" />",
+                "    <output name=\"{output}\" type=\"{}\" {reads} />",
                 input.ty
             );
         }
+    }
+    for output in &network.outputs {
+        let reads = source_attributes(&output.source, None);
+        let _ = writeln!(
+            text,
+            "    <output name=\"{}\" type=\"{}\" {reads} />",
+            output.name, output.ty
+        );
     }
     let model = network.surface.node();
     let _ = writeln!(
@@ -275,13 +515,7 @@ pub fn xml(network: &Network, name: &str, comment: &str) -> String {
         "  </nodegraph>\n  <{model} name=\"SR_{name}\" type=\"surfaceshader\">"
     );
     for input in &network.surface_inputs {
-        let _ = writeln!(
-            text,
-            "    <input name=\"{}\" type=\"{}\" {} />",
-            input.name,
-            input.ty,
-            source_attributes(&input.source, Some(&graph))
-        );
+        input_xml(&mut text, "    ", input, Some(&graph));
     }
     let _ = writeln!(
         text,
@@ -293,6 +527,14 @@ pub fn xml(network: &Network, name: &str, comment: &str) -> String {
     );
     text.push_str("  </surfacematerial>\n</materialx>\n");
     text
+}
+
+/// Components of a value of type `ty` as MaterialX writes them (`0.1, 0.2, 0.3`).
+pub fn value_text(components: &[f64; 3], ty: crate::nodes::value::ValueType) -> String {
+    (components[..ty.width()].iter())
+        .map(|x| format!("{}", *x as f32))
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 #[cfg(test)]

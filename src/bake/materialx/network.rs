@@ -44,7 +44,11 @@ pub enum Source {
     /// A constant, as MaterialX writes it (`1`, `0.5`).
     Value(String),
     /// The output of another node of the network.
-    Node(&'static str),
+    Node(String),
+    /// Output `output` of a node of the network with several.
+    Output(String, String),
+    /// An input of the node graph's interface (an exposed parameter).
+    Interface(String),
     /// An image file beside the document, and its colour space (none: raw data).
     File {
         path: String,
@@ -55,7 +59,7 @@ pub enum Source {
 /// One input of a node.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Input {
-    pub name: &'static str,
+    pub name: String,
     /// The MaterialX type (`float`, `color3`, `vector3`, `integer`, `filename`).
     pub ty: &'static str,
     pub source: Source,
@@ -63,9 +67,9 @@ pub struct Input {
 
 impl Input {
     /// The node the input reads, if it reads one.
-    pub fn node(&self) -> Option<&'static str> {
-        match self.source {
-            Source::Node(node) => Some(node),
+    pub fn node(&self) -> Option<&str> {
+        match &self.source {
+            Source::Node(node) | Source::Output(node, _) => Some(node),
             _ => None,
         }
     }
@@ -75,10 +79,10 @@ impl Input {
 /// node definition it instantiates (`ND_image_color3`).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Node {
-    pub name: &'static str,
-    pub category: &'static str,
+    pub name: String,
+    pub category: String,
     pub ty: &'static str,
-    pub nodedef: &'static str,
+    pub nodedef: String,
     pub inputs: Vec<Input>,
 }
 
@@ -89,6 +93,10 @@ pub struct Network {
     pub surface: SurfaceModel,
     /// The surface shader's inputs, each a node of `nodes` or a constant.
     pub surface_inputs: Vec<Input>,
+    /// The node graph's inputs (exposed parameters), each with its value.
+    pub interface: Vec<Input>,
+    /// Outputs of the node graph besides those the surface reads, by name.
+    pub outputs: Vec<Input>,
 }
 
 /// Where a baked material's alpha is.
@@ -117,22 +125,28 @@ pub struct Maps {
     pub normal: Option<String>,
 }
 
-fn input(name: &'static str, ty: &'static str, source: Source) -> Input {
-    Input { name, ty, source }
+/// An input of a node.
+pub fn input(name: &str, ty: &'static str, source: Source) -> Input {
+    Input {
+        name: name.to_string(),
+        ty,
+        source,
+    }
 }
 
-fn node(
-    name: &'static str,
-    category: &'static str,
+/// A node of the standard library: its name, category, type, definition and inputs.
+pub fn node(
+    name: &str,
+    category: &str,
     ty: &'static str,
-    nodedef: &'static str,
+    nodedef: &str,
     inputs: Vec<Input>,
 ) -> Node {
     Node {
-        name,
-        category,
+        name: name.to_string(),
+        category: category.to_string(),
         ty,
-        nodedef,
+        nodedef: nodedef.to_string(),
         inputs,
     }
 }
@@ -158,6 +172,25 @@ fn image(
     )
 }
 
+/// The nodes reading OpenGL-convention tangent-space normal map `path` as a shading
+/// normal: `normal_texture` and `normal` (a `normalmap` node).
+pub fn normal_map_nodes(path: &str) -> [Node; 2] {
+    [
+        image("normal_texture", "vector3", "ND_image_vector3", path, None),
+        node(
+            "normal",
+            "normalmap",
+            "vector3",
+            "ND_normalmap_float",
+            vec![input(
+                "in",
+                "vector3",
+                Source::Node("normal_texture".into()),
+            )],
+        ),
+    ]
+}
+
 /// The network wiring `maps` into `surface`, with the material's `alpha` use.
 pub fn network(maps: &Maps, alpha: AlphaUse, surface: SurfaceModel) -> Network {
     let space = Some(maps.colour_space);
@@ -177,7 +210,11 @@ pub fn network(maps: &Maps, alpha: AlphaUse, surface: SurfaceModel) -> Network {
                 "convert",
                 "color3",
                 "ND_convert_color4_color3",
-                vec![input("in", "color4", Source::Node("base_color_texture"))],
+                vec![input(
+                    "in",
+                    "color4",
+                    Source::Node("base_color_texture".into()),
+                )],
             ));
             nodes.push(node(
                 "alpha_texture",
@@ -185,7 +222,7 @@ pub fn network(maps: &Maps, alpha: AlphaUse, surface: SurfaceModel) -> Network {
                 "float",
                 "ND_extract_color4",
                 vec![
-                    input("in", "color4", Source::Node("base_color_texture")),
+                    input("in", "color4", Source::Node("base_color_texture".into())),
                     input("index", "integer", Source::Value("3".into())),
                 ],
             ));
@@ -219,7 +256,7 @@ pub fn network(maps: &Maps, alpha: AlphaUse, surface: SurfaceModel) -> Network {
             "float",
             "ND_extract_vector3",
             vec![
-                input("in", "vector3", Source::Node("orm")),
+                input("in", "vector3", Source::Node("orm".into())),
                 input("index", "integer", Source::Value(index.to_string())),
             ],
         ));
@@ -241,7 +278,7 @@ pub fn network(maps: &Maps, alpha: AlphaUse, surface: SurfaceModel) -> Network {
                 "color3",
                 "ND_multiply_color3FA",
                 vec![
-                    input("in1", "color3", Source::Node("emission_texture")),
+                    input("in1", "color3", Source::Node("emission_texture".into())),
                     input("in2", "float", Source::Value(factor.to_string())),
                 ],
             ));
@@ -249,26 +286,74 @@ pub fn network(maps: &Maps, alpha: AlphaUse, surface: SurfaceModel) -> Network {
         "emission"
     });
     let normal = maps.normal.as_ref().map(|path| {
-        nodes.push(image(
-            "normal_texture",
-            "vector3",
-            "ND_image_vector3",
-            path,
-            None,
-        ));
-        nodes.push(node(
-            "normal",
-            "normalmap",
-            "vector3",
-            "ND_normalmap_float",
-            vec![input("in", "vector3", Source::Node("normal_texture"))],
-        ));
+        nodes.extend(normal_map_nodes(path));
         "normal"
     });
+    let node_source = |name: &str| Source::Node(name.to_string());
+    let fields = SurfaceFields {
+        albedo: node_source("albedo"),
+        roughness: node_source("roughness"),
+        metallic: node_source("metallic"),
+        occlusion: node_source("occlusion"),
+        alpha: alpha_node.map(node_source),
+        emission: emission.map(node_source),
+        normal: normal.map(node_source),
+    };
+    wire(nodes, fields, alpha, surface)
+}
+
+/// Where each input of the surface comes from: a node of the network or a constant.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SurfaceFields {
+    /// The base colour, linear.
+    pub albedo: Source,
+    pub roughness: Source,
+    pub metallic: Source,
+    pub occlusion: Source,
+    /// The opacity, when the material's alpha shows.
+    pub alpha: Option<Source>,
+    /// The light given off, when the material glows.
+    pub emission: Option<Source>,
+    /// The shading normal, when the material perturbs it.
+    pub normal: Option<Source>,
+}
+
+/// The network of `nodes` with `fields` wired into `surface` (the material's `alpha`
+/// use deciding a cut-out), and only the nodes the surface reads kept. A field read from
+/// the node graph's interface passes through a `dot` node, since the surface reads the
+/// graph's outputs.
+pub fn wire(
+    mut nodes: Vec<Node>,
+    fields: SurfaceFields,
+    alpha: AlphaUse,
+    surface: SurfaceModel,
+) -> Network {
+    let mut through = |name: &str, ty: &'static str, source: Source| match source {
+        Source::Interface(_) => {
+            let name = format!("{name}_parameter");
+            let nodedef = format!("ND_dot_{ty}");
+            nodes.push(node(
+                &name,
+                "dot",
+                ty,
+                &nodedef,
+                vec![input("in", ty, source)],
+            ));
+            Source::Node(name)
+        }
+        other => other,
+    };
+    let albedo = through("albedo", "color3", fields.albedo);
+    let roughness = through("roughness", "float", fields.roughness);
+    let metallic = through("metallic", "float", fields.metallic);
+    let occlusion = through("occlusion", "float", fields.occlusion);
+    let mut opacity = fields.alpha.map(|a| through("alpha", "float", a));
+    let emission = fields.emission.map(|e| through("emission", "color3", e));
+    let normal = fields.normal.map(|n| through("normal", "vector3", n));
     // A cut-out keeps what reaches the cutoff and drops the rest, as the preview does
     // (glTF's model has an alpha mode of its own).
-    if let (Some(texture), AlphaUse::Mask(cutoff), false) =
-        (alpha_node, alpha, surface == SurfaceModel::GltfPbr)
+    if let (Some(value), AlphaUse::Mask(cutoff), false) =
+        (opacity.clone(), alpha, surface == SurfaceModel::GltfPbr)
     {
         nodes.push(node(
             "alpha",
@@ -276,43 +361,43 @@ pub fn network(maps: &Maps, alpha: AlphaUse, surface: SurfaceModel) -> Network {
             "float",
             "ND_ifgreatereq_float",
             vec![
-                input("value1", "float", Source::Node(texture)),
+                input("value1", "float", value),
                 input("value2", "float", Source::Value(cutoff.to_string())),
                 input("in1", "float", Source::Value("1".into())),
                 input("in2", "float", Source::Value("0".into())),
             ],
         ));
-        alpha_node = Some("alpha");
+        opacity = Some(Source::Node("alpha".into()));
     }
-    let connect = |name, ty, node| input(name, ty, Source::Node(node));
+    let connect = |name, ty, source: &Source| input(name, ty, source.clone());
     let constant = |name, ty, value: &str| input(name, ty, Source::Value(value.to_string()));
     let mut inputs = Vec::new();
     match surface {
         SurfaceModel::OpenPbr => {
             inputs.extend([
-                connect("base_color", "color3", "albedo"),
-                connect("specular_roughness", "float", "roughness"),
-                connect("base_metalness", "float", "metallic"),
+                connect("base_color", "color3", &albedo),
+                connect("specular_roughness", "float", &roughness),
+                connect("base_metalness", "float", &metallic),
             ]);
-            inputs.extend(normal.map(|n| connect("geometry_normal", "vector3", n)));
-            inputs.extend(alpha_node.map(|a| connect("geometry_opacity", "float", a)));
+            inputs.extend(normal.map(|n| connect("geometry_normal", "vector3", &n)));
+            inputs.extend(opacity.map(|a| connect("geometry_opacity", "float", &a)));
             if let Some(e) = emission {
                 inputs.extend([
-                    connect("emission_color", "color3", e),
+                    connect("emission_color", "color3", &e),
                     constant("emission_luminance", "float", "1"),
                 ]);
             }
         }
         SurfaceModel::GltfPbr => {
             inputs.extend([
-                connect("base_color", "color3", "albedo"),
-                connect("roughness", "float", "roughness"),
-                connect("metallic", "float", "metallic"),
-                connect("occlusion", "float", "occlusion"),
+                connect("base_color", "color3", &albedo),
+                connect("roughness", "float", &roughness),
+                connect("metallic", "float", &metallic),
+                connect("occlusion", "float", &occlusion),
             ]);
-            inputs.extend(normal.map(|n| connect("normal", "vector3", n)));
-            if let Some(a) = alpha_node {
-                inputs.push(connect("alpha", "float", a));
+            inputs.extend(normal.map(|n| connect("normal", "vector3", &n)));
+            if let Some(a) = opacity {
+                inputs.push(connect("alpha", "float", &a));
                 match alpha {
                     AlphaUse::Mask(cutoff) => inputs.extend([
                         constant("alpha_mode", "integer", "1"),
@@ -321,50 +406,59 @@ pub fn network(maps: &Maps, alpha: AlphaUse, surface: SurfaceModel) -> Network {
                     _ => inputs.push(constant("alpha_mode", "integer", "2")),
                 }
             }
-            inputs.extend(emission.map(|e| connect("emissive", "color3", e)));
+            inputs.extend(emission.map(|e| connect("emissive", "color3", &e)));
         }
         SurfaceModel::StandardSurface => {
             inputs.extend([
                 constant("base", "float", "1"),
-                connect("base_color", "color3", "albedo"),
-                connect("specular_roughness", "float", "roughness"),
-                connect("metalness", "float", "metallic"),
+                connect("base_color", "color3", &albedo),
+                connect("specular_roughness", "float", &roughness),
+                connect("metalness", "float", &metallic),
             ]);
-            inputs.extend(normal.map(|n| connect("normal", "vector3", n)));
-            if let Some(a) = alpha_node {
+            inputs.extend(normal.map(|n| connect("normal", "vector3", &n)));
+            if let Some(a) = opacity {
                 // Standard Surface's opacity is a colour.
                 nodes.push(node(
                     "opacity",
                     "convert",
                     "color3",
                     "ND_convert_float_color3",
-                    vec![connect("in", "float", a)],
+                    vec![input("in", "float", a)],
                 ));
-                inputs.push(connect("opacity", "color3", "opacity"));
+                inputs.push(input("opacity", "color3", Source::Node("opacity".into())));
             }
             if let Some(e) = emission {
                 inputs.extend([
-                    connect("emission_color", "color3", e),
+                    connect("emission_color", "color3", &e),
                     constant("emission", "float", "1"),
                 ]);
             }
         }
     }
     // Only what the surface reads (OpenPBR and Standard Surface have no occlusion).
-    let mut needed: Vec<&'static str> = inputs.iter().filter_map(Input::node).collect();
+    let mut needed: Vec<String> = (inputs.iter().filter_map(Input::node))
+        .map(str::to_string)
+        .collect();
     let mut read = std::collections::BTreeSet::new();
     while let Some(name) = needed.pop() {
-        if read.insert(name) {
+        if read.insert(name.clone()) {
             let node =
                 (nodes.iter().find(|node| node.name == name)).expect("a node of the network");
-            needed.extend(node.inputs.iter().filter_map(Input::node));
+            needed.extend(
+                node.inputs
+                    .iter()
+                    .filter_map(Input::node)
+                    .map(str::to_string),
+            );
         }
     }
-    nodes.retain(|node| read.contains(node.name));
+    nodes.retain(|node| read.contains(&node.name));
     Network {
         nodes,
         surface,
         surface_inputs: inputs,
+        interface: Vec::new(),
+        outputs: Vec::new(),
     }
 }
 

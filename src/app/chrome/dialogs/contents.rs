@@ -75,10 +75,20 @@ impl Dialog {
                 path,
                 size,
                 surface,
+                tier,
             } => {
                 ui.heading("Export MaterialX");
-                ui.label("A MaterialX 1.39 document whose surface shader reads the material's maps, baked beside it (wood.mtlx giving wood_albedo.png, wood_orm.png and so on)");
+                ui.label(match tier {
+                    crate::bake::Tier::Baked => "A MaterialX 1.39 document whose surface shader reads the material's maps, baked beside it (wood.mtlx giving wood_albedo.png, wood_orm.png and so on)",
+                    crate::bake::Tier::Procedural => "A MaterialX 1.39 document holding the graph itself, node by node (Veneer's own nodes' GLSL beside it as wood_veneer.glsl); the exposed parameters stay parameters. Refused, naming the nodes, where a node cannot translate",
+                    crate::bake::Tier::Auto => "The graph node by node where every node translates, else its maps baked",
+                });
                 frame.path_field(ui, path);
+                ui.horizontal(|ui| {
+                    for (choice, name) in crate::bake::Tier::ALL {
+                        ui.radio_value(tier, choice, name);
+                    }
+                });
                 ui.horizontal(|ui| {
                     for (model, _, node) in crate::bake::SurfaceModel::ALL {
                         ui.radio_value(surface, model, node);

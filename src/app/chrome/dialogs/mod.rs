@@ -118,6 +118,7 @@ pub enum Dialog {
         path: String,
         size: u32,
         surface: crate::bake::SurfaceModel,
+        tier: crate::bake::Tier,
     },
     /// The maps as files beside each other (`path` names the first, `<stem>_<map>.<ext>`).
     ExportMaps {
@@ -204,6 +205,7 @@ impl Dialog {
             path: default_path(document, "mtlx"),
             size: 1024,
             surface: crate::bake::SurfaceModel::OpenPbr,
+            tier: crate::bake::Tier::Baked,
         }
     }
 
@@ -460,9 +462,11 @@ impl Dialog {
                 path,
                 size,
                 surface,
+                tier,
             } if !path.trim().is_empty() => Action::ExportMaterialx {
                 path: typed_path(path),
                 settings: crate::bake::MaterialxSettings {
+                    tier: *tier,
                     surface: *surface,
                     size: *size,
                     time: 0.0,

@@ -1,0 +1,494 @@
+//! MaterialX export, procedural tier: the checked graph (groups inlined) translated node
+//! by node into one node graph, every kind the standard library means the same thing as
+//! written with standard nodes ([`super::standard`]), every other one that is a function
+//! of its inputs alone as a node definition of Veneer's own ([`super::custom`]); the
+//! graph's exposed parameters become the node graph's interface inputs, so an override
+//! (`--set`) survives as a material parameter. The material's outputs are wired into the
+//! surface as the baked tier wires its maps, except the shading normal, which Veneer
+//! takes from the height across neighbouring texels: that one map is baked.
+
+use super::custom::{CustomDef, mx_type};
+use super::network::{
+    Input, Network, Node, Source, SurfaceFields, SurfaceModel, input, node, wire,
+};
+use super::standard::{Translated, standard};
+use crate::codegen::AlphaUse;
+use crate::graph::check::{CheckedGraph, InputSource};
+use crate::graph::{NodeId, Preview, Shading};
+use crate::nodes::NodeKind;
+use crate::nodes::pins::InputPin;
+use crate::nodes::value::{Value, ValueType};
+use std::collections::BTreeMap;
+
+/// A graph translated into MaterialX: the network and the definitions its nodes use.
+pub struct Procedural {
+    pub network: Network,
+    /// Veneer's own node definitions, each once, in the order first used.
+    pub definitions: Vec<CustomDef>,
+    /// The nodes reading the mesh's fields, each read from a texture to bake.
+    pub baked: Vec<BakedNode>,
+    /// Files the document reads that the translation made (the Image nodes' bitmaps),
+    /// by name beside the document.
+    pub files: Vec<(String, Vec<u8>)>,
+}
+
+/// A node whose output the document reads from a texture baked over the preview mesh's
+/// UV layout (a distance or mesh field).
+#[derive(Clone, Debug)]
+pub struct BakedNode {
+    pub node: crate::graph::Node,
+    /// The texture's file name, beside the document.
+    pub file: String,
+}
+
+/// A node the procedural tier cannot translate: its name in messages and why.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Untranslatable {
+    pub node: String,
+    pub reason: String,
+}
+
+impl std::fmt::Display for Untranslatable {
+    fn fmt(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        write!(f, "node '{}' {}", self.node, self.reason)
+    }
+}
+
+/// The name of the extra node graph output giving the material's albedo as Veneer
+/// computes it (before a Blinn-Phong material's display values are made linear), so the
+/// pattern can be checked against `veneer render --flat`.
+pub const ALBEDO_OUTPUT: &str = "veneer_albedo";
+
+/// The graph's nodes as MaterialX nodes, as they are translated.
+struct Translator<'g> {
+    graph: &'g CheckedGraph,
+    /// Where the surface sits in texture space: Veneer's position is the object's
+    /// times `size` plus `center`.
+    placement: ([f64; 3], f64),
+    /// The document's file stem, which baked textures' names start with.
+    stem: &'g str,
+    baked: Vec<BakedNode>,
+    files: Vec<(String, Vec<u8>)>,
+    nodes: Vec<Node>,
+    definitions: Vec<CustomDef>,
+    /// What gives each output of each translated node.
+    outputs: BTreeMap<NodeId, Vec<Source>>,
+    /// The exposed parameters read, by element name: type and value.
+    interface: BTreeMap<String, Input>,
+    untranslatable: Vec<Untranslatable>,
+}
+
+impl Translator<'_> {
+    /// The source of `pin` of node `id` (read from `source`), converted to the pin's type;
+    /// `None` when it reads a node that did not translate.
+    fn argument(&mut self, id: NodeId, pin: &InputPin, source: &InputSource) -> Option<Source> {
+        Some(match source {
+            InputSource::Wire { node, output, ty } => {
+                let from = self.outputs.get(node)?.get(*output)?.clone();
+                self.convert(from, *ty, pin.ty, &format!("n{}_{}", id.0, pin.name))
+            }
+            InputSource::Const(value) => self.constant(id, pin, value),
+            InputSource::Position => self.surface_position(),
+        })
+    }
+
+    /// Veneer's position of the shaded point: the object-space position placed as the
+    /// preview places the mesh (times `size`, plus `center`), made once.
+    fn surface_position(&mut self) -> Source {
+        const POSITION: &str = "surface_position";
+        if !self.nodes.iter().any(|node| node.name == POSITION) {
+            let (center, size) = self.placement;
+            let constant = |v: [f64; 3], ty| Source::Value(super::value_text(&v, ty));
+            let object = Source::Value("object".into());
+            let mut steps = vec![(
+                "position",
+                "ND_position_vector3",
+                vec![input("space", "string", object)],
+            )];
+            if size != 1.0 {
+                let scale = constant([size; 3], ValueType::Float);
+                steps.push((
+                    "multiply",
+                    "ND_multiply_vector3FA",
+                    vec![input("in2", "float", scale)],
+                ));
+            }
+            if center != [0.0; 3] {
+                let offset = constant(center, ValueType::Vec3);
+                steps.push((
+                    "add",
+                    "ND_add_vector3",
+                    vec![input("in2", "vector3", offset)],
+                ));
+            }
+            let last = steps.len() - 1;
+            let mut previous: Option<String> = None;
+            for (k, (category, nodedef, mut inputs)) in steps.into_iter().enumerate() {
+                let name = match k == last {
+                    true => POSITION.to_string(),
+                    false => format!("{POSITION}_{k}"),
+                };
+                if let Some(previous) = previous.take() {
+                    inputs.insert(0, input("in1", "vector3", Source::Node(previous)));
+                }
+                self.nodes
+                    .push(node(&name, category, "vector3", nodedef, inputs));
+                previous = Some(name);
+            }
+        }
+        Source::Node(POSITION.into())
+    }
+
+    /// A constant input: the exposed parameter it holds, if any, else its value.
+    fn constant(&mut self, id: NodeId, pin: &InputPin, value: &Value) -> Source {
+        let parameter = (self.graph.bindings.get(&(id, pin.name.to_string())))
+            .and_then(|name| self.graph.parameters.iter().find(|p| &p.name == name))
+            .filter(|parameter| parameter.ty == pin.ty);
+        let text = |value: &Value, ty| super::value_text(&value.components(), ty);
+        match parameter {
+            Some(parameter) => {
+                let name = super::element_name(&parameter.name);
+                let value = Source::Value(text(&parameter.value, parameter.ty));
+                let entry = input(&name, mx_type(parameter.ty), value);
+                self.interface.entry(name.clone()).or_insert(entry);
+                Source::Interface(name)
+            }
+            None => Source::Value(text(value, pin.ty)),
+        }
+    }
+
+    /// `source` of type `from` as type `to`, through a `convert` node named `name`.
+    fn convert(&mut self, source: Source, from: ValueType, to: ValueType, name: &str) -> Source {
+        if mx_type(from) == mx_type(to) {
+            return source;
+        }
+        let (from, to) = (mx_type(from), mx_type(to));
+        let nodedef = format!("ND_convert_{from}_{to}");
+        let name = format!("{name}_as_{to}");
+        self.nodes.push(node(
+            &name,
+            "convert",
+            to,
+            &nodedef,
+            vec![input("in", from, source)],
+        ));
+        Source::Node(name)
+    }
+
+    /// Translates checked node `k` of the order.
+    fn node(&mut self, k: usize) {
+        let checked = &self.graph.order[k];
+        let id = checked.node.id;
+        let pins = &checked.signature.inputs;
+        let mut arguments = Vec::with_capacity(pins.len());
+        for (pin, source) in pins.iter().zip(&checked.inputs) {
+            match self.argument(id, pin, source) {
+                Some(argument) => arguments.push(argument),
+                // Reads a node that did not translate: that one is reported.
+                None => return,
+            }
+        }
+        let label = match checked.node.label.is_empty() {
+            true => checked.node.kind.name().to_string(),
+            false => checked.node.label.clone(),
+        };
+        let name = format!("{}_{}", super::element_name(&label), id.0);
+        let kind = &checked.node.kind;
+        let translated = match route(kind) {
+            Route::Standard if *kind == NodeKind::Position => Translated {
+                nodes: Vec::new(),
+                outputs: vec![self.surface_position()],
+            },
+            Route::Standard => standard(kind, &name, &arguments).expect("routed as standard"),
+            Route::Bitmap(settings) => {
+                let bitmap = self
+                    .graph
+                    .bitmaps
+                    .get(&id)
+                    .expect("the checked graph's bitmap");
+                let stem = format!("{}_{name}", self.stem);
+                let (file, bytes, colour_space) = bitmap_texture(bitmap, &stem);
+                self.files.push((file.clone(), bytes));
+                super::standard::image(&name, &settings, &file, colour_space)
+            }
+            Route::Texture => {
+                let file = format!("{}_{name}.exr", self.stem);
+                self.baked.push(BakedNode {
+                    node: checked.node.clone(),
+                    file: file.clone(),
+                });
+                let read = Source::File {
+                    path: file,
+                    colour_space: None,
+                };
+                let inputs = vec![input("file", "filename", read)];
+                Translated {
+                    nodes: vec![node(&name, "image", "float", "ND_image_float", inputs)],
+                    outputs: vec![Source::Node(name.clone())],
+                }
+            }
+            Route::Definition(definition) => {
+                let translated = definition.instance(&name, pins, arguments);
+                if !self
+                    .definitions
+                    .iter()
+                    .any(|d| d.category == definition.category)
+                {
+                    self.definitions.push(*definition);
+                }
+                translated
+            }
+            Route::None(reason) => {
+                self.untranslatable.push(Untranslatable {
+                    node: checked.node.label.clone(),
+                    reason,
+                });
+                return;
+            }
+        };
+        self.nodes.extend(translated.nodes);
+        self.outputs.insert(id, translated.outputs);
+    }
+}
+
+/// How a node kind with its settings reaches MaterialX.
+pub enum Route {
+    /// Standard nodes that mean the same ([`super::standard`]).
+    Standard,
+    /// An `image` node reading the node's bitmap, written beside the document.
+    Bitmap(crate::nodes::bitmap::ImageFile),
+    /// An `image` node reading the node's output baked over the preview mesh's UV
+    /// layout (a distance or mesh field: a property of the mesh, not of the point).
+    Texture,
+    /// A node definition of Veneer's own.
+    Definition(Box<CustomDef>),
+    /// No way: why.
+    None(String),
+}
+
+/// How `kind` is translated.
+pub fn route(kind: &NodeKind) -> Route {
+    let pins = kind.definition().signature().inputs.len();
+    let placeholders = vec![Source::Value("0".into()); pins];
+    match kind {
+        NodeKind::Position => Route::Standard,
+        NodeKind::ImageFile(settings) => Route::Bitmap(settings.clone()),
+        NodeKind::Field(_) | NodeKind::MeshField(_) => Route::Texture,
+        _ if standard(kind, "node", &placeholders).is_some() => Route::Standard,
+        _ => match CustomDef::new(kind) {
+            Ok(definition) => Route::Definition(Box::new(definition)),
+            Err(reason) => Route::None(reason),
+        },
+    }
+}
+
+/// `graph` (shown as `preview` places it) translated for `surface` with the material's
+/// `alpha` use; `normal_map` is the baked normal map's file, when the material perturbs
+/// the normal; baked textures' names start with `stem`. The nodes that cannot be
+/// translated come back instead, each named with the reason.
+pub fn translate(
+    graph: &CheckedGraph,
+    preview: &Preview,
+    stem: &str,
+    alpha: AlphaUse,
+    surface: SurfaceModel,
+    normal_map: Option<&str>,
+) -> Result<Procedural, Vec<Untranslatable>> {
+    let (cx, cy, cz) = preview.center;
+    let mut translator = Translator {
+        graph,
+        placement: ([cx, cy, cz], preview.size),
+        stem,
+        baked: Vec::new(),
+        files: Vec::new(),
+        nodes: Vec::new(),
+        definitions: Vec::new(),
+        outputs: BTreeMap::new(),
+        interface: BTreeMap::new(),
+        untranslatable: Vec::new(),
+    };
+    let material = graph.order.len() - 1;
+    for k in 0..material {
+        translator.node(k);
+    }
+    let checked = graph.material();
+    let mut pins = BTreeMap::new();
+    for (pin, source) in checked.signature.inputs.iter().zip(&checked.inputs) {
+        if let Some(argument) = translator.argument(checked.node.id, pin, source) {
+            pins.insert(pin.name, argument);
+        }
+    }
+    if !translator.untranslatable.is_empty() {
+        return Err(translator.untranslatable);
+    }
+    let pin = |name: &str| pins.get(name).cloned().expect("the material node's pins");
+    let (mut nodes, baked, files) = (translator.nodes, translator.baked, translator.files);
+    // Nodes of the material's own: named apart from the graph's (which end in `_<id>`).
+    let mut add = |name: &str, category: &str, ty: &'static str, nodedef: &str, inputs| {
+        nodes.push(node(name, category, ty, nodedef, inputs));
+        Source::Node(name.to_string())
+    };
+    let raw_albedo = match pin("albedo") {
+        source @ Source::Node(_) | source @ Source::Output(..) => source,
+        other => add(
+            "albedo_value",
+            "constant",
+            "color3",
+            "ND_constant_color3",
+            vec![input("value", "color3", other)],
+        ),
+    };
+    let linear = graph.shading.is_linear();
+    let albedo = match linear {
+        true => raw_albedo.clone(),
+        false => add(
+            "albedo_linear",
+            "srgb_texture_to_lin_rec709",
+            "color3",
+            "ND_srgb_texture_to_lin_rec709_color3",
+            vec![input("in", "color3", raw_albedo.clone())],
+        ),
+    };
+    // Under Blinn-Phong, roughness from the shininess n as sqrt(2 / (n + 2)), as `bake`
+    // makes its roughness map.
+    let roughness = match graph.shading {
+        Shading::MetallicRoughness => pin("roughness"),
+        _ => {
+            let sum = add(
+                "shininess_plus_two",
+                "add",
+                "float",
+                "ND_add_float",
+                vec![
+                    input("in1", "float", pin("shininess")),
+                    input("in2", "float", Source::Value("2".into())),
+                ],
+            );
+            let ratio = add(
+                "two_over_shininess",
+                "divide",
+                "float",
+                "ND_divide_float",
+                vec![
+                    input("in1", "float", Source::Value("2".into())),
+                    input("in2", "float", sum),
+                ],
+            );
+            add(
+                "roughness_from_shininess",
+                "sqrt",
+                "float",
+                "ND_sqrt_float",
+                vec![input("in", "float", ratio)],
+            )
+        }
+    };
+    let black = Source::Value(super::value_text(&[0.0; 3], ValueType::Color));
+    let emission = match (pin("emission"), pin("emission_strength")) {
+        (emission, _) if emission == black => None,
+        (emission, Source::Value(one)) if one == "1" => Some(emission),
+        (emission, strength) => Some(add(
+            "emission_scaled",
+            "multiply",
+            "color3",
+            "ND_multiply_color3FA",
+            vec![
+                input("in1", "color3", emission),
+                input("in2", "float", strength),
+            ],
+        )),
+    };
+    let normal = normal_map.map(|path| {
+        nodes.extend(super::network::normal_map_nodes(path));
+        Source::Node("normal".into())
+    });
+    let fields = SurfaceFields {
+        albedo,
+        roughness,
+        metallic: pin("metallic"),
+        occlusion: pin("occlusion"),
+        alpha: (alpha != AlphaUse::Opaque).then(|| pin("alpha")),
+        emission,
+        normal,
+    };
+    let mut network = wire(nodes, fields, alpha, surface);
+    // Only the textures of nodes the surface still reads (a field that shapes the height
+    // alone is in the baked normal map).
+    let read: Vec<&str> = (network.nodes.iter())
+        .flat_map(|node| &node.inputs)
+        .filter_map(|input| match &input.source {
+            Source::File { path, .. } => Some(path.as_str()),
+            _ => None,
+        })
+        .collect();
+    let baked = (baked.into_iter())
+        .filter(|baked| read.contains(&baked.file.as_str()))
+        .collect();
+    let files = (files.into_iter())
+        .filter(|(file, _)| read.contains(&file.as_str()))
+        .collect();
+    network.interface = translator.interface.into_values().collect();
+    network
+        .outputs
+        .push(input(ALBEDO_OUTPUT, "color3", raw_albedo));
+    Ok(Procedural {
+        network,
+        definitions: translator.definitions,
+        baked,
+        files,
+    })
+}
+
+/// The texels of an Image node's bitmap as a file named `stem` plus its extension, and the
+/// colour space to read it in: an 8-bit PNG where that holds every texel exactly (sRGB
+/// encoded when the file was), else OpenEXR floats, as Veneer reads them.
+fn bitmap_texture(
+    bitmap: &crate::bitmaps::Bitmap,
+    stem: &str,
+) -> (String, Vec<u8>, Option<&'static str>) {
+    use crate::bitmaps::srgb_to_linear;
+    let encode = |lane: f32, k: usize| match bitmap.from_srgb && k < 3 {
+        true => linear_to_srgb(lane),
+        false => lane,
+    };
+    let decode = |byte: u8, k: usize| match bitmap.from_srgb && k < 3 {
+        true => srgb_to_linear(f32::from(byte) / 255.0),
+        false => f32::from(byte) / 255.0,
+    };
+    let bytes: Option<Vec<u8>> = (bitmap.texels.iter())
+        .flat_map(|texel| texel.iter().enumerate())
+        .map(|(k, &lane)| {
+            let byte = (encode(lane, k).clamp(0.0, 1.0) * 255.0).round() as u8;
+            (decode(byte, k) == lane).then_some(byte)
+        })
+        .collect();
+    let (width, height) = (bitmap.width, bitmap.height);
+    let mut out = std::io::Cursor::new(Vec::new());
+    match bytes {
+        Some(bytes) => {
+            let image = image::RgbaImage::from_raw(width, height, bytes).expect("sized");
+            image
+                .write_to(&mut out, image::ImageFormat::Png)
+                .expect("in memory");
+            let space = bitmap.from_srgb.then_some("srgb_texture");
+            (format!("{stem}.png"), out.into_inner(), space)
+        }
+        None => {
+            let floats = bitmap.texels.iter().flatten().copied().collect();
+            let image = image::Rgba32FImage::from_raw(width, height, floats).expect("sized");
+            image
+                .write_to(&mut out, image::ImageFormat::OpenExr)
+                .expect("in memory");
+            (format!("{stem}.exr"), out.into_inner(), None)
+        }
+    }
+}
+
+/// The sRGB encoding of a linear value (the inverse of `bitmaps::srgb_to_linear`).
+fn linear_to_srgb(linear: f32) -> f32 {
+    if linear <= 0.0031308 {
+        linear * 12.92
+    } else {
+        1.055 * linear.powf(1.0 / 2.4) - 0.055
+    }
+}

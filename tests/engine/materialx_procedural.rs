@@ -1,0 +1,306 @@
+//! MaterialX export, procedural tier (`veneer compile --target mtlx --tier procedural`):
+//! every preset translates to a document MaterialX validates and compiles; rendered
+//! through MaterialX's own GLSL generator and renderer (`tests/materialx/render.py`), every
+//! preset without mesh fields draws what Veneer's flat render draws on the same adapter
+//! (llvmpipe through GL); the exposed parameters are the node graph's inputs; a node that
+//! cannot translate is named (and `--tier auto` bakes instead); the README's coverage
+//! table is the registry's.
+
+use crate::materialx::{check_with_materialx, named_files};
+use crate::support::{
+    assert_holds_only, assert_refused, difference, gpu, presets, root, run_veneer, stem, temp_dir,
+    updating, veneer,
+};
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use veneer::bake::{
+    ALBEDO_OUTPUT, MaterialxSettings, SurfaceModel, Tier, coverage_table, export_materialx,
+};
+use veneer::codegen::{Compiled, compile};
+
+fn compiled(path: &Path) -> Compiled {
+    let graph = veneer::graph::load(path).expect("loads");
+    compile(&graph, &Default::default()).expect("compiles")
+}
+
+/// Exports `compiled` in the procedural tier to `path`, the files written coming back.
+fn export(compiled: &Compiled, surface: SurfaceModel, path: &Path) -> Vec<PathBuf> {
+    let settings = MaterialxSettings {
+        tier: Tier::Procedural,
+        surface,
+        size: 16,
+        time: 0.0,
+    };
+    let export = export_materialx(gpu(), compiled, &settings, path, |_, _| true)
+        .unwrap_or_else(|error| panic!("{}: {error}", path.display()));
+    assert_eq!(export.tier, Tier::Procedural);
+    export.files
+}
+
+/// Whether `compiled` reads the mesh (distance or mesh fields): its document reads them
+/// from textures over the mesh's UV layout, which a flat view does not have.
+fn reads_mesh(compiled: &Compiled) -> bool {
+    let uses = compiled.uses();
+    uses.fields.iter().any(|&read| read) || uses.mesh_fields.iter().any(Option::is_some)
+}
+
+#[test]
+fn every_preset_translates_to_a_document_materialx_validates_and_compiles() {
+    let dir = temp_dir("materialx-procedural");
+    let mut documents = Vec::new();
+    let mut own_definitions = 0;
+    for (index, graph) in presets().into_iter().enumerate() {
+        let (surface, _, node) = SurfaceModel::ALL[index % SurfaceModel::ALL.len()];
+        let path = dir.join(format!("{}.mtlx", stem(&graph)));
+        let compiled = compiled(&graph);
+        let written = export(&compiled, surface, &path);
+        let document = std::fs::read_to_string(&path).expect("the document");
+        assert!(
+            document.contains(&format!("<{node} ")),
+            "{}",
+            graph.display()
+        );
+        // Every file it names lies beside it, and it reads no map but the normal's, the
+        // fields' and the bitmaps'.
+        for file in named_files(&document) {
+            assert!(
+                written.contains(&dir.join(&file)),
+                "{}: {file}",
+                graph.display()
+            );
+            assert!(
+                !["_albedo.png", "_orm.png", "_emission.png", "_alpha.png"]
+                    .iter()
+                    .any(|map| file.ends_with(map)),
+                "{}: {file} is baked",
+                graph.display()
+            );
+        }
+        // ... and nothing else is written but the definitions' functions.
+        let definitions = document.contains("<nodedef ");
+        own_definitions += usize::from(definitions);
+        let functions = dir.join(format!("{}_veneer.glsl", stem(&graph)));
+        assert_eq!(
+            written.contains(&functions),
+            definitions,
+            "{}",
+            graph.display()
+        );
+        assert_eq!(
+            written.len(),
+            1 + named_files(&document).len() + usize::from(definitions),
+            "{}: {written:?}",
+            graph.display()
+        );
+        if document.contains(".exr\"") {
+            assert!(reads_mesh(&compiled) || !compiled.checked.bitmaps.is_empty());
+        }
+        documents.push(path);
+    }
+    assert!(own_definitions > 0);
+    check_with_materialx(&documents);
+}
+
+/// A rectangle in Veneer's texture space over `compiled`'s preview square (off the
+/// lattice, so that no pixel centre sits exactly on a pattern's step), and the same
+/// rectangle in the object space MaterialX's `position` reads (the preview places the
+/// mesh at `size` times its position plus `center`).
+fn rectangles(compiled: &Compiled) -> (String, String) {
+    let (cx, cy, cz) = compiled.preview.center;
+    let size = compiled.preview.size;
+    let object = [-0.53, -0.49, 0.47, 0.51, 0.13];
+    let texture = [
+        cx + size * object[0],
+        cz + size * object[1],
+        cx + size * object[2],
+        cz + size * object[3],
+        cy + size * object[4],
+    ];
+    let text = |values: &[f64]| {
+        (values.iter())
+            .map(|v| format!("{v}"))
+            .collect::<Vec<_>>()
+            .join(",")
+    };
+    (text(&texture), text(&object))
+}
+
+fn rgb8(path: &Path) -> Vec<u8> {
+    image::open(path)
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+        .to_rgb8()
+        .into_raw()
+}
+
+#[test]
+fn materialx_glsl_draws_what_veneer_draws_for_every_preset_without_mesh_fields() {
+    let dir = temp_dir("materialx-procedural-renders");
+    let mut compared = Vec::new();
+    for graph in presets() {
+        let compiled = compiled(&graph);
+        if reads_mesh(&compiled) {
+            continue;
+        }
+        let name = stem(&graph);
+        let path = dir.join(format!("{name}.mtlx"));
+        export(&compiled, SurfaceModel::OpenPbr, &path);
+        // Bitmaps are read where they are not minified (MaterialX's renderer samples
+        // mipmaps, Veneer the image itself), at the flat view's uv: the place in the
+        // rectangle.
+        let bitmaps = &compiled.checked.bitmaps;
+        let largest = (bitmaps.values())
+            .map(|bitmap| bitmap.width.max(bitmap.height) + 1)
+            .max();
+        let size = largest.unwrap_or(0).max(160).to_string();
+        let (texture, object) = rectangles(&compiled);
+        let veneer_png = dir.join(format!("{name}.veneer.png"));
+        let rendered = veneer()
+            .args(["render", "--size", &size, "--flat", &texture, "-o"])
+            .arg(&veneer_png)
+            .arg(&graph)
+            .env("WGPU_BACKEND", "gl")
+            .output()
+            .expect("veneer runs");
+        assert!(
+            rendered.status.success(),
+            "{}",
+            String::from_utf8_lossy(&rendered.stderr)
+        );
+        let document = std::fs::read_to_string(&path).unwrap();
+        let graph_name = document
+            .split("<nodegraph name=\"")
+            .nth(1)
+            .and_then(|rest| rest.split('"').next())
+            .expect("a node graph");
+        let materialx_png = dir.join(format!("{name}.materialx.png"));
+        let mut render = Command::new("python3");
+        render
+            .arg(root("tests/materialx/render.py"))
+            .arg(&path)
+            .arg(format!("{graph_name}/{ALBEDO_OUTPUT}"))
+            .args([&object, &size])
+            .arg(&materialx_png)
+            .env("PYTHONPATH", root("target/python"));
+        if !bitmaps.is_empty() {
+            render.arg("domain-uv");
+        }
+        let output = render.output().expect("python3 runs");
+        assert!(
+            output.status.success(),
+            "{name}: MaterialX's render (`.ci/run` installs the package):\n{}",
+            String::from_utf8_lossy(&output.stderr)
+        );
+        let comparison = difference(&rgb8(&veneer_png), &rgb8(&materialx_png), 3, 2);
+        assert!(
+            comparison.share_outside <= 0.01,
+            "{name}: {:.2}% of pixels differ by more than 2/255 (largest {})",
+            100.0 * comparison.share_outside,
+            comparison.max
+        );
+        compared.push(name);
+    }
+    assert!(compared.len() >= 8, "{compared:?}");
+}
+
+#[test]
+fn exposed_parameters_are_the_node_graphs_inputs_and_take_set_values() {
+    let dir = temp_dir("materialx-procedural-parameters");
+    let path = dir.join("brick.mtlx");
+    let output = run_veneer(&[
+        "compile",
+        "graphs/thesis_brick.ron",
+        "--target",
+        "mtlx",
+        "--tier",
+        "procedural",
+        "--size",
+        "8",
+        "--set",
+        "gloss_shininess=50",
+        "-o",
+        path.to_str().unwrap(),
+    ]);
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let document = std::fs::read_to_string(&path).unwrap();
+    assert!(
+        document.contains("<input name=\"gloss_shininess\" type=\"float\" value=\"50\" />"),
+        "{document}"
+    );
+    assert!(
+        document.contains("interfacename=\"gloss_shininess\""),
+        "{document}"
+    );
+}
+
+#[test]
+fn a_node_that_cannot_translate_is_named_and_auto_bakes_the_material() {
+    let dir = temp_dir("materialx-procedural-refused");
+    let graph = root("graphs/texture/blurred_noise.ron");
+    let path = dir.join("blurred.mtlx");
+    let mut command = veneer();
+    command
+        .args([
+            "compile",
+            "--target",
+            "mtlx",
+            "--tier",
+            "procedural",
+            "--size",
+            "8",
+        ])
+        .arg(&graph)
+        .arg("-o")
+        .arg(&path);
+    assert_refused(
+        &mut command,
+        "node 'soft' samples its input around the point",
+    );
+    assert_holds_only(&dir, &[]);
+    let output = veneer()
+        .args([
+            "compile", "--target", "mtlx", "--tier", "auto", "--size", "8",
+        ])
+        .arg(&graph)
+        .arg("-o")
+        .arg(&path)
+        .output()
+        .unwrap();
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let notes = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        notes.contains("baked: cannot translate node 'soft'"),
+        "{notes}"
+    );
+    let document = std::fs::read_to_string(&path).unwrap();
+    assert!(document.contains("blurred_albedo.png"), "{document}");
+}
+
+#[test]
+fn the_readme_coverage_table_is_the_registrys() {
+    const BEGIN: &str =
+        "<!-- materialx coverage: generated by tests/engine/materialx_procedural.rs -->\n";
+    const END: &str = "<!-- end of materialx coverage -->";
+    let readme_path = root("README.md");
+    let readme = std::fs::read_to_string(&readme_path).unwrap();
+    let table = coverage_table();
+    let (before, rest) = readme
+        .split_once(BEGIN)
+        .expect("the README marks the table");
+    let (current, after) = rest.split_once(END).expect("the README ends the table");
+    if updating() {
+        std::fs::write(&readme_path, format!("{before}{BEGIN}{table}{END}{after}")).unwrap();
+        return;
+    }
+    assert_eq!(
+        current, table,
+        "the coverage changed (VENEER_UPDATE_GOLDEN=1 to rewrite)"
+    );
+}
