@@ -23,7 +23,7 @@ pub use gltf::{Packaging, export_gltf, gltf_files};
 pub use maps::{Converter, Map, NormalConvention, fill_uncovered};
 pub use materialx::{
     ALBEDO_OUTPUT, MaterialxExport, MaterialxSettings, SurfaceModel, Tier, coverage_table,
-    export_materialx, materialx_files,
+    export_materialx, import as import_materialx, materialx_files,
 };
 pub use mesh_maps::{
     BakedMeshMap, MOST_POOLING, MeshMap, MeshMapSettings, bake_mesh_maps, mesh_map_path,

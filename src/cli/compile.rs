@@ -106,15 +106,17 @@ pub struct CompileArgs {
     /// Shader language of the output, or `mtlx` for a MaterialX document.
     #[arg(long, value_enum, default_value = "wgsl")]
     target: TargetArg,
-    /// With `--target mtlx`: the surface shader the baked maps are wired into.
-    #[arg(long, value_enum, default_value = "open-pbr")]
-    surface: SurfaceArg,
-    /// With `--target mtlx`: how the material is kept.
-    #[arg(long, value_enum, default_value = "baked")]
-    tier: TierArg,
-    /// With `--target mtlx`: width and height of the baked maps in pixels.
-    #[arg(long, default_value_t = 1024)]
-    size: u32,
+    /// With `--target mtlx`: the surface shader the material is wired into [default:
+    /// open-pbr].
+    #[arg(long, value_enum)]
+    surface: Option<SurfaceArg>,
+    /// With `--target mtlx`: how the material is kept [default: baked].
+    #[arg(long, value_enum)]
+    tier: Option<TierArg>,
+    /// With `--target mtlx`: width and height in pixels of every map baked (the procedural
+    /// tier's normal map and field textures too) [default: 1024].
+    #[arg(long)]
+    size: Option<u32>,
     /// Parameters baked as constants, exposed ones in a named uniform struct, or every
     /// constant in a block of slots.
     #[arg(long, value_enum, default_value = "baked")]
@@ -172,6 +174,11 @@ pub fn run(args: CompileArgs) -> Result<(), Failure> {
         TargetArg::Shader(target) => target,
         TargetArg::Materialx => return run_materialx(&args, &graph),
     };
+    if args.surface.is_some() || args.tier.is_some() || args.size.is_some() {
+        return Err(Failure::new(
+            "--surface, --tier and --size shape a MaterialX export: give them with --target mtlx",
+        ));
+    }
     let params = args.param_mode();
     let compiled = compile(&graph, &CompileOptions::with_params(params))
         .map_err(|error| in_file(&args.graph, error))?;
@@ -244,21 +251,24 @@ fn run_materialx(args: &CompileArgs, graph: &veneer::graph::Graph) -> Result<(),
             )));
         }
     };
-    if args.size == 0 {
+    let size = args.size.unwrap_or(1024);
+    if size == 0 {
         return Err(Failure::new("--size must be at least 1"));
     }
     if args.describe || !matches!(args.params, ParamsArg::Baked) {
         return Err(Failure::new(
-            "--target mtlx bakes the parameters into its maps: leave out --params and --describe",
+            "--target mtlx keeps the parameters in the document (baked into its maps, or as its node graph's inputs): leave out --params and --describe",
         ));
     }
     let compiled =
         compile(graph, &CompileOptions::default()).map_err(|error| in_file(&args.graph, error))?;
     let gpu = veneer::render::GpuContext::new()?;
     let settings = MaterialxSettings {
-        tier: args.tier.0,
-        surface: args.surface.0,
-        size: args.size,
+        tier: args.tier.map_or(Tier::Baked, |tier| tier.0),
+        surface: args
+            .surface
+            .map_or(SurfaceModel::OpenPbr, |surface| surface.0),
+        size,
         time: 0.0,
     };
     let bar = indicatif::ProgressBar::new(0).with_style(

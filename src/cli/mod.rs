@@ -6,6 +6,7 @@ mod check;
 mod compile;
 mod fmt;
 mod geodesic;
+mod import;
 mod mesh;
 mod mesh_field;
 mod output;
@@ -52,6 +53,8 @@ enum Command {
     MeshField(mesh_field::MeshFieldArgs),
     /// Report a mesh's vertices, triangles and defects (degenerate, boundary, non-manifold, components).
     Mesh(mesh::MeshArgs),
+    /// Read a MaterialX document (standard nodes Veneer has, Veneer's own definitions) as a graph.
+    Import(import::ImportArgs),
     /// Rewrite graph files in canonical form (sorted, deterministic bytes).
     Fmt(fmt::FmtArgs),
     /// Render graphs and compare them with approved golden images (exit 1 on a difference).
@@ -79,6 +82,7 @@ impl Command {
             Command::Render(args) => args.plan(plan, job),
             Command::Bake(args) => args.plan(plan, job),
             Command::Compile(args) => args.plan(plan, job),
+            Command::Import(args) => args.plan(plan, job),
             Command::Geodesic(args) => args.plan(plan, job),
             Command::MeshField(args) => args.plan(plan, job),
             Command::Mesh(args) => args.plan(plan, job),
@@ -217,6 +221,7 @@ pub fn execute(cli: Cli) -> Result<(), Failure> {
         Some(Command::Compile(args)) => compile::run(args),
         Some(Command::Check(args)) => check::run(args),
         Some(Command::Fmt(args)) => fmt::run(args),
+        Some(Command::Import(args)) => import::run(args),
         Some(Command::Mesh(args)) => mesh::run(args),
         Some(Command::Geodesic(args)) => geodesic::run(args),
         Some(Command::MeshField(args)) => mesh_field::run(args),

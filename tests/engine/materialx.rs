@@ -231,7 +231,7 @@ fn outputs_a_materialx_export_cannot_write_are_refused_with_nothing_written() {
                 "-o".into(),
                 dir.join("wood.mtlx").display().to_string(),
             ],
-            "bakes the parameters",
+            "keeps the parameters in the document",
         ),
     ];
     for (arguments, expected) in cases {

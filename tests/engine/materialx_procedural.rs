@@ -304,3 +304,102 @@ fn the_readme_coverage_table_is_the_registrys() {
         "the coverage changed (VENEER_UPDATE_GOLDEN=1 to rewrite)"
     );
 }
+
+/// `graph` as an import gives it back: the values its pins hold at their defaults left
+/// out, and what a MaterialX material does not carry (the preview mesh, the named
+/// parameter sets) dropped.
+fn comparable(mut graph: veneer::graph::Graph) -> veneer::graph::Graph {
+    use veneer::nodes::pins::PinDefault;
+    for node in &mut graph.nodes {
+        let pins = node.kind.definition().signature().inputs;
+        node.inputs.retain(|pin, value| {
+            let default = pins.iter().find(|p| p.name == pin).map(|p| &p.default);
+            default != Some(&PinDefault::Const(value.clone()))
+        });
+    }
+    graph.preview.mesh = String::new();
+    graph.presets.clear();
+    graph.folder = Default::default();
+    graph
+}
+
+#[test]
+fn importing_the_procedural_tier_gives_the_graph_back() {
+    let dir = temp_dir("materialx-import");
+    for preset in ["thesis_brick", "rusted_metal", "marble_tiles"] {
+        let graph = root(&format!("graphs/{preset}.ron"));
+        let document = dir.join(format!("{preset}.mtlx"));
+        export(&compiled(&graph), SurfaceModel::OpenPbr, &document);
+        let back = dir.join(format!("{preset}.ron"));
+        let output = veneer()
+            .arg("import")
+            .arg(&document)
+            .arg("-o")
+            .arg(&back)
+            .output()
+            .unwrap();
+        assert!(
+            output.status.success(),
+            "{}",
+            String::from_utf8_lossy(&output.stderr)
+        );
+        let original = veneer::graph::load(&graph).unwrap();
+        let imported = veneer::graph::load(&back).unwrap();
+        assert_eq!(comparable(imported), comparable(original), "{preset}");
+    }
+}
+
+#[test]
+fn documents_import_cannot_read_are_refused_naming_the_node_and_line() {
+    let dir = temp_dir("materialx-import-refused");
+    let graph = |nodes: &str| {
+        format!(
+            "<?xml version=\"1.0\"?>\n<materialx version=\"1.39\">\n  <nodegraph name=\"NG_x\">\n{nodes}    <output name=\"veneer_albedo\" type=\"color3\" nodename=\"a_1\" />\n  </nodegraph>\n</materialx>\n"
+        )
+    };
+    let cases = [
+        (
+            "unknown.mtlx",
+            graph(
+                "    <noise3d name=\"a_1\" type=\"color3\">\n      <input name=\"amplitude\" type=\"vector3\" value=\"1, 1, 1\" />\n    </noise3d>\n",
+            ),
+            "unknown.mtlx:4:5: node 'a_1' (`noise3d`, color3) has no Veneer equal",
+        ),
+        (
+            "cycle.mtlx",
+            graph(
+                "    <add name=\"a_1\" type=\"color3\">\n      <input name=\"in1\" type=\"color3\" nodename=\"b_2\" />\n      <input name=\"in2\" type=\"color3\" value=\"0, 0, 0\" />\n    </add>\n    <add name=\"b_2\" type=\"color3\">\n      <input name=\"in1\" type=\"color3\" nodename=\"a_1\" />\n      <input name=\"in2\" type=\"color3\" value=\"0, 0, 0\" />\n    </add>\n",
+            ),
+            "the nodes form a cycle: a_1 → b_2 → a_1",
+        ),
+        (
+            "broken.mtlx",
+            "<materialx version=\"1.39\">\n  <nodegraph>\n".to_string(),
+            "broken.mtlx:1:1: not XML",
+        ),
+        (
+            "texture.mtlx",
+            graph(
+                "    <image name=\"a_1\" type=\"color3\">\n      <input name=\"file\" type=\"filename\" value=\"a.png\" />\n    </image>\n",
+            ),
+            "node 'a_1' (`image`, color3) has no Veneer equal",
+        ),
+    ];
+    for (name, text, expected) in cases {
+        let document = dir.join(name);
+        std::fs::write(&document, text).unwrap();
+        let mut command = veneer();
+        command
+            .arg("import")
+            .arg(&document)
+            .arg("-o")
+            .arg(dir.join("out.ron"));
+        assert_refused(&mut command, expected);
+    }
+    let mut left: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    left.sort();
+    assert_eq!(left.len(), 4, "nothing written: {left:?}");
+}

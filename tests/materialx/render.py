@@ -145,6 +145,23 @@ def find_output(document, name):
     return output
 
 
+def check_images(document, document_path):
+    """Fails unless every image file the document names loads with the renderer's loader
+    (which reads PNG, JPEG, HDR and the like, not OpenEXR): MaterialX's renderer would
+    otherwise draw black where it failed and go on."""
+    import MaterialX.PyMaterialXRender as mx_render
+
+    loader = mx_render.StbImageLoader.create()
+    folder = os.path.dirname(os.path.abspath(document_path))
+    for element in document.traverseTree():
+        if (element.isA(mx.Input) and element.getType() == "filename"
+                and element.getParent().isA(mx.Node) and element.getValueString()):
+            path = os.path.join(folder, element.getValueString())
+            if loader.loadImage(mx.FilePath(path)) is None:
+                fail(f"{path}: MaterialX's image loader here cannot read it "
+                     f"(it reads {', '.join(sorted(loader.supportedExtensions()))})")
+
+
 def generate(document_path, output_name):
     import MaterialX.PyMaterialXGenGlsl as mx_glsl
     import MaterialX.PyMaterialXGenShader as mx_gen
@@ -162,6 +179,7 @@ def generate(document_path, output_name):
     if not valid:
         fail(f"{document_path} is invalid:\n{message}")
     output = find_output(document, output_name)
+    check_images(document, document_path)
 
     generator = mx_glsl.GlslShaderGenerator.create()
     context = mx_gen.GenContext(generator)

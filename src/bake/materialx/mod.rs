@@ -10,11 +10,13 @@
 
 mod coverage;
 mod custom;
+mod import;
 mod network;
 mod procedural;
 mod standard;
 
 pub use coverage::coverage_table;
+pub use import::import;
 pub use network::{AlphaMap, Input, Maps, Network, Source, SurfaceModel, network};
 pub use procedural::{ALBEDO_OUTPUT, Untranslatable};
 
@@ -444,6 +446,15 @@ fn source_attributes(source: &Source, graph: Option<&str>) -> String {
     }
 }
 
+/// The attributes keeping a Veneer node's label and place (` uiname=… xpos=… ypos=…`).
+fn ui_attributes(ui: &Option<(String, (f32, f32))>) -> String {
+    (ui.as_ref())
+        .map(|(label, (x, y))| {
+            format!(" uiname=\"{}\" xpos=\"{x}\" ypos=\"{y}\"", attribute(label))
+        })
+        .unwrap_or_default()
+}
+
 /// An input element at `indent`.
 fn input_xml(text: &mut String, indent: &str, input: &Input, graph: Option<&str>) {
     let _ = writeln!(
@@ -472,13 +483,23 @@ pub fn xml(network: &Network, name: &str, comment: &str, definitions: &str) -> S
     );
     text.push_str(definitions);
     let _ = writeln!(text, "  <nodegraph name=\"NG_{name}\">");
-    for input in &network.interface {
-        input_xml(&mut text, "    ", input, None);
-    }
-    for node in &network.nodes {
+    for (input, range) in &network.interface {
+        let span = range
+            .map(|(low, high)| format!(" uimin=\"{low}\" uimax=\"{high}\""))
+            .unwrap_or_default();
         let _ = writeln!(
             text,
-            "    <{} name=\"{}\" type=\"{}\">",
+            "    <input name=\"{}\" type=\"{}\" {}{span} />",
+            input.name,
+            input.ty,
+            source_attributes(&input.source, None)
+        );
+    }
+    for node in &network.nodes {
+        let ui = ui_attributes(&node.ui);
+        let _ = writeln!(
+            text,
+            "    <{} name=\"{}\" type=\"{}\"{ui}>",
             node.category, node.name, node.ty
         );
         for input in &node.inputs {
@@ -512,14 +533,18 @@ pub fn xml(network: &Network, name: &str, comment: &str, definitions: &str) -> S
     let model = network.surface.node();
     let _ = writeln!(
         text,
-        "  </nodegraph>\n  <{model} name=\"SR_{name}\" type=\"surfaceshader\">"
+        "  </nodegraph>\n  <{model} name=\"SR_{name}\" type=\"surfaceshader\"{}>",
+        ui_attributes(&network.surface_ui)
     );
     for input in &network.surface_inputs {
         input_xml(&mut text, "    ", input, Some(&graph));
     }
+    let title = (network.title.as_ref())
+        .map(|title| format!(" uiname=\"{}\"", attribute(title)))
+        .unwrap_or_default();
     let _ = writeln!(
         text,
-        "  </{model}>\n  <surfacematerial name=\"{name}\" type=\"material\">"
+        "  </{model}>\n  <surfacematerial name=\"{name}\" type=\"material\"{title}>"
     );
     let _ = writeln!(
         text,
@@ -532,7 +557,7 @@ pub fn xml(network: &Network, name: &str, comment: &str, definitions: &str) -> S
 /// Components of a value of type `ty` as MaterialX writes them (`0.1, 0.2, 0.3`).
 pub fn value_text(components: &[f64; 3], ty: crate::nodes::value::ValueType) -> String {
     (components[..ty.width()].iter())
-        .map(|x| format!("{}", *x as f32))
+        .map(|x| format!("{x}"))
         .collect::<Vec<_>>()
         .join(", ")
 }
@@ -555,6 +580,7 @@ mod tests {
         assert_eq!(files[0], Path::new("out/wood.mtlx"));
         assert!(files.contains(&PathBuf::from("out/wood_albedo.png")));
         assert!(files.contains(&PathBuf::from("out/wood_orm.png")));
-        assert_eq!(files.len(), 1 + MAPS.len());
+        assert!(files.contains(&PathBuf::from("out/wood_veneer.glsl")));
+        assert_eq!(files.len(), 2 + MAPS.len());
     }
 }

@@ -84,6 +84,9 @@ pub struct Node {
     pub ty: &'static str,
     pub nodedef: String,
     pub inputs: Vec<Input>,
+    /// The Veneer node it stands for, when it is that node's head: its label and place
+    /// on the canvas (`uiname`, `xpos`, `ypos`), which an import restores.
+    pub ui: Option<(String, (f32, f32))>,
 }
 
 /// The nodes reading and combining the maps, and the surface shader reading them.
@@ -93,10 +96,16 @@ pub struct Network {
     pub surface: SurfaceModel,
     /// The surface shader's inputs, each a node of `nodes` or a constant.
     pub surface_inputs: Vec<Input>,
-    /// The node graph's inputs (exposed parameters), each with its value.
-    pub interface: Vec<Input>,
+    /// The node graph's inputs (exposed parameters), each with its value and the span
+    /// offered (`uimin`, `uimax`).
+    pub interface: Vec<(Input, Option<(f64, f64)>)>,
     /// Outputs of the node graph besides those the surface reads, by name.
     pub outputs: Vec<Input>,
+    /// The graph's own name, kept as the material's `uiname` (element names are
+    /// identifiers).
+    pub title: Option<String>,
+    /// The material node's label and place, kept on the surface shader.
+    pub surface_ui: Option<(String, (f32, f32))>,
 }
 
 /// Where a baked material's alpha is.
@@ -148,6 +157,7 @@ pub fn node(
         ty,
         nodedef: nodedef.to_string(),
         inputs,
+        ui: None,
     }
 }
 
@@ -299,7 +309,7 @@ pub fn network(maps: &Maps, alpha: AlphaUse, surface: SurfaceModel) -> Network {
         emission: emission.map(node_source),
         normal: normal.map(node_source),
     };
-    wire(nodes, fields, alpha, surface)
+    wire(nodes, fields, alpha, surface, Vec::new())
 }
 
 /// Where each input of the surface comes from: a node of the network or a constant.
@@ -319,7 +329,8 @@ pub struct SurfaceFields {
 }
 
 /// The network of `nodes` with `fields` wired into `surface` (the material's `alpha`
-/// use deciding a cut-out), and only the nodes the surface reads kept. A field read from
+/// use deciding a cut-out) and the node graph's other `outputs`, and only the nodes
+/// these read kept. A field read from
 /// the node graph's interface passes through a `dot` node, since the surface reads the
 /// graph's outputs.
 pub fn wire(
@@ -327,6 +338,7 @@ pub fn wire(
     fields: SurfaceFields,
     alpha: AlphaUse,
     surface: SurfaceModel,
+    outputs: Vec<Input>,
 ) -> Network {
     let mut through = |name: &str, ty: &'static str, source: Source| match source {
         Source::Interface(_) => {
@@ -435,8 +447,9 @@ pub fn wire(
             }
         }
     }
-    // Only what the surface reads (OpenPBR and Standard Surface have no occlusion).
-    let mut needed: Vec<String> = (inputs.iter().filter_map(Input::node))
+    // Only what the surface and the other outputs read (OpenPBR and Standard Surface
+    // have no occlusion).
+    let mut needed: Vec<String> = (inputs.iter().chain(&outputs).filter_map(Input::node))
         .map(str::to_string)
         .collect();
     let mut read = std::collections::BTreeSet::new();
@@ -458,7 +471,9 @@ pub fn wire(
         surface,
         surface_inputs: inputs,
         interface: Vec::new(),
-        outputs: Vec::new(),
+        outputs,
+        title: None,
+        surface_ui: None,
     }
 }
 

@@ -16,7 +16,7 @@ use crate::codegen::AlphaUse;
 use crate::graph::check::{CheckedGraph, InputSource};
 use crate::graph::{NodeId, Preview, Shading};
 use crate::nodes::NodeKind;
-use crate::nodes::pins::InputPin;
+use crate::nodes::pins::{InputPin, PinDefault};
 use crate::nodes::value::{Value, ValueType};
 use std::collections::BTreeMap;
 
@@ -73,8 +73,8 @@ struct Translator<'g> {
     definitions: Vec<CustomDef>,
     /// What gives each output of each translated node.
     outputs: BTreeMap<NodeId, Vec<Source>>,
-    /// The exposed parameters read, by element name: type and value.
-    interface: BTreeMap<String, Input>,
+    /// The exposed parameters read, by element name: type and value, and span.
+    interface: BTreeMap<String, (Input, Option<(f64, f64)>)>,
     untranslatable: Vec<Untranslatable>,
 }
 
@@ -150,7 +150,8 @@ impl Translator<'_> {
                 let name = super::element_name(&parameter.name);
                 let value = Source::Value(text(&parameter.value, parameter.ty));
                 let entry = input(&name, mx_type(parameter.ty), value);
-                self.interface.entry(name.clone()).or_insert(entry);
+                let range = parameter.range;
+                self.interface.entry(name.clone()).or_insert((entry, range));
                 Source::Interface(name)
             }
             None => Source::Value(text(value, pin.ty)),
@@ -195,10 +196,14 @@ impl Translator<'_> {
         let name = format!("{}_{}", super::element_name(&label), id.0);
         let kind = &checked.node.kind;
         let translated = match route(kind) {
-            Route::Standard if *kind == NodeKind::Position => Translated {
-                nodes: Vec::new(),
-                outputs: vec![self.surface_position()],
-            },
+            // The node of its own (a `dot`) keeps the Position node in an import.
+            Route::Standard if *kind == NodeKind::Position => {
+                let position = vec![input("in", "vector3", self.surface_position())];
+                Translated {
+                    nodes: vec![node(&name, "dot", "vector3", "ND_dot_vector3", position)],
+                    outputs: vec![Source::Node(name.clone())],
+                }
+            }
             Route::Standard => standard(kind, &name, &arguments).expect("routed as standard"),
             Route::Bitmap(settings) => {
                 let bitmap = self
@@ -246,7 +251,11 @@ impl Translator<'_> {
                 return;
             }
         };
-        self.nodes.extend(translated.nodes);
+        let mut nodes = translated.nodes;
+        if let Some(head) = nodes.iter_mut().find(|node| node.name == name) {
+            head.ui = Some((checked.node.label.clone(), checked.node.position));
+        }
+        self.nodes.extend(nodes);
         self.outputs.insert(id, translated.outputs);
     }
 }
@@ -328,16 +337,36 @@ pub fn translate(
         nodes.push(node(name, category, ty, nodedef, inputs));
         Source::Node(name.to_string())
     };
-    let raw_albedo = match pin("albedo") {
-        source @ Source::Node(_) | source @ Source::Output(..) => source,
-        other => add(
-            "albedo_value",
-            "constant",
-            "color3",
-            "ND_constant_color3",
-            vec![input("value", "color3", other)],
-        ),
-    };
+    // Each of the material's values that is not its default, as a node graph output
+    // `veneer_<pin>` (a constant or a parameter through a `constant` node), so an import
+    // finds the material; the albedo always.
+    let mut outputs = Vec::new();
+    for material_pin in &checked.signature.inputs {
+        let source = pin(material_pin.name);
+        let ty = mx_type(material_pin.ty);
+        let default = match &material_pin.default {
+            PinDefault::Const(value) => Some(Source::Value(super::value_text(
+                &value.components(),
+                material_pin.ty,
+            ))),
+            _ => None,
+        };
+        if material_pin.name != "albedo" && Some(&source) == default.as_ref() {
+            continue;
+        }
+        let source = match source {
+            Source::Node(_) | Source::Output(..) => source,
+            other => add(
+                &format!("material_{}", material_pin.name),
+                "constant",
+                ty,
+                &format!("ND_constant_{ty}"),
+                vec![input("value", ty, other)],
+            ),
+        };
+        outputs.push(input(&format!("veneer_{}", material_pin.name), ty, source));
+    }
+    let raw_albedo = outputs[0].source.clone();
     let linear = graph.shading.is_linear();
     let albedo = match linear {
         true => raw_albedo.clone(),
@@ -411,7 +440,7 @@ pub fn translate(
         emission,
         normal,
     };
-    let mut network = wire(nodes, fields, alpha, surface);
+    let mut network = wire(nodes, fields, alpha, surface, outputs);
     // Only the textures of nodes the surface still reads (a field that shapes the height
     // alone is in the baked normal map).
     let read: Vec<&str> = (network.nodes.iter())
@@ -428,9 +457,8 @@ pub fn translate(
         .filter(|(file, _)| read.contains(&file.as_str()))
         .collect();
     network.interface = translator.interface.into_values().collect();
-    network
-        .outputs
-        .push(input(ALBEDO_OUTPUT, "color3", raw_albedo));
+    network.title = Some(graph.name.clone());
+    network.surface_ui = Some((checked.node.label.clone(), checked.node.position));
     Ok(Procedural {
         network,
         definitions: translator.definitions,

@@ -281,7 +281,7 @@ pub fn image(
         Filter::Bicubic => "cubic",
     };
     let text = |value: &str| Source::Value(value.to_string());
-    let texture = part("texel");
+    let texture = name.to_string();
     let read = Source::File {
         path: file.to_string(),
         colour_space,
@@ -342,4 +342,63 @@ pub fn image(
             .map(Source::Node)
             .to_vec(),
     }
+}
+
+/// Every kind [`standard`] may translate, with every setting it reads (operations and
+/// value types): the import inverts the translation over these.
+pub fn kinds() -> Vec<NodeKind> {
+    const TYPES: [ValueType; 4] = [
+        ValueType::Float,
+        ValueType::Vec2,
+        ValueType::Vec3,
+        ValueType::Color,
+    ];
+    let mut kinds: Vec<NodeKind> = Vec::new();
+    let mut add = |kind: NodeKind| {
+        if standard(&kind, "kind", &vec![Source::Value("0".into()); 8]).is_some()
+            && !kinds.contains(&kind)
+        {
+            kinds.push(kind);
+        }
+    };
+    for example in NodeKind::examples() {
+        for ty in TYPES {
+            let mut kind = example.clone();
+            match &mut kind {
+                NodeKind::Math(math) => math.ty = ty,
+                NodeKind::Unary(unary) => unary.ty = ty,
+                NodeKind::Mix(mix) => mix.ty = ty,
+                NodeKind::Clamp(clamp) => clamp.ty = ty,
+                NodeKind::Step(step) => step.ty = ty,
+                NodeKind::Length(length) => length.ty = ty,
+                NodeKind::Dot(dot) => dot.ty = ty,
+                NodeKind::Split(split) => split.ty = ty,
+                NodeKind::Combine(combine) => combine.ty = ty,
+                NodeKind::Constant(constant) => constant.ty = ty,
+                _ => {}
+            }
+            match &kind {
+                NodeKind::Math(_) => {
+                    for op in MathOp::ALL {
+                        let mut each = kind.clone();
+                        if let NodeKind::Math(math) = &mut each {
+                            math.op = op;
+                        }
+                        add(each);
+                    }
+                }
+                NodeKind::Unary(_) => {
+                    for op in UnaryOp::ALL {
+                        let mut each = kind.clone();
+                        if let NodeKind::Unary(unary) = &mut each {
+                            unary.op = op;
+                        }
+                        add(each);
+                    }
+                }
+                _ => add(kind),
+            }
+        }
+    }
+    kinds
 }
