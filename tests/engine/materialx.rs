@@ -16,21 +16,34 @@ use std::process::Command;
 use veneer::bake::{MaterialxSettings, SurfaceModel, Tier, export_materialx};
 use veneer::codegen::{AlphaUse, Compiled, compile};
 
-fn compiled(path: &Path) -> Compiled {
+pub fn compiled(path: &Path) -> Compiled {
     let graph = veneer::graph::load(path).expect("loads");
     compile(&graph, &Default::default()).expect("compiles")
 }
 
-fn export(compiled: &Compiled, surface: SurfaceModel, path: &Path) -> Vec<PathBuf> {
+/// Exports `compiled` in `tier` (it must keep that tier) to `path` with maps of `size`,
+/// the files written coming back.
+pub fn export_in(
+    tier: Tier,
+    size: u32,
+    compiled: &Compiled,
+    surface: SurfaceModel,
+    path: &Path,
+) -> Vec<PathBuf> {
     let settings = MaterialxSettings {
-        tier: Tier::Baked,
+        tier,
         surface,
-        size: 8,
+        size,
         time: 0.0,
     };
-    export_materialx(gpu(), compiled, &settings, path, |_, _| true)
-        .unwrap_or_else(|error| panic!("{}: {error}", path.display()))
-        .files
+    let export = export_materialx(gpu(), compiled, &settings, path, |_, _| true)
+        .unwrap_or_else(|error| panic!("{}: {error}", path.display()));
+    assert_eq!(export.tier, tier);
+    export.files
+}
+
+fn export(compiled: &Compiled, surface: SurfaceModel, path: &Path) -> Vec<PathBuf> {
+    export_in(Tier::Baked, 8, compiled, surface, path)
 }
 
 /// The file names a document's `filename` inputs give.

@@ -6,35 +6,19 @@
 //! cannot translate is named (and `--tier auto` bakes instead); the README's coverage
 //! table is the registry's.
 
-use crate::materialx::{check_with_materialx, named_files};
+use crate::materialx::{check_with_materialx, compiled, export_in, named_files};
 use crate::support::{
-    assert_holds_only, assert_refused, difference, gpu, presets, root, run_veneer, stem, temp_dir,
+    assert_holds_only, assert_refused, difference, presets, root, run_veneer, stem, temp_dir,
     updating, veneer,
 };
 use std::path::{Path, PathBuf};
 use std::process::Command;
-use veneer::bake::{
-    ALBEDO_OUTPUT, MaterialxSettings, SurfaceModel, Tier, coverage_table, export_materialx,
-};
-use veneer::codegen::{Compiled, compile};
-
-fn compiled(path: &Path) -> Compiled {
-    let graph = veneer::graph::load(path).expect("loads");
-    compile(&graph, &Default::default()).expect("compiles")
-}
+use veneer::bake::{ALBEDO_OUTPUT, SurfaceModel, Tier, coverage_table};
+use veneer::codegen::Compiled;
 
 /// Exports `compiled` in the procedural tier to `path`, the files written coming back.
 fn export(compiled: &Compiled, surface: SurfaceModel, path: &Path) -> Vec<PathBuf> {
-    let settings = MaterialxSettings {
-        tier: Tier::Procedural,
-        surface,
-        size: 16,
-        time: 0.0,
-    };
-    let export = export_materialx(gpu(), compiled, &settings, path, |_, _| true)
-        .unwrap_or_else(|error| panic!("{}: {error}", path.display()));
-    assert_eq!(export.tier, Tier::Procedural);
-    export.files
+    export_in(Tier::Procedural, 16, compiled, surface, path)
 }
 
 /// Whether `compiled` reads the mesh (distance or mesh fields): its document reads them

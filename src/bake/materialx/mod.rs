@@ -455,11 +455,11 @@ fn ui_attributes(ui: &Option<(String, (f32, f32))>) -> String {
         .unwrap_or_default()
 }
 
-/// An input element at `indent`.
-fn input_xml(text: &mut String, indent: &str, input: &Input, graph: Option<&str>) {
+/// An input element at `indent`, `extra` attributes after its source.
+fn input_xml(text: &mut String, indent: &str, input: &Input, graph: Option<&str>, extra: &str) {
     let _ = writeln!(
         text,
-        "{indent}<input name=\"{}\" type=\"{}\" {} />",
+        "{indent}<input name=\"{}\" type=\"{}\" {}{extra} />",
         input.name,
         input.ty,
         source_attributes(&input.source, graph)
@@ -487,13 +487,7 @@ pub fn xml(network: &Network, name: &str, comment: &str, definitions: &str) -> S
         let span = range
             .map(|(low, high)| format!(" uimin=\"{low}\" uimax=\"{high}\""))
             .unwrap_or_default();
-        let _ = writeln!(
-            text,
-            "    <input name=\"{}\" type=\"{}\" {}{span} />",
-            input.name,
-            input.ty,
-            source_attributes(&input.source, None)
-        );
+        input_xml(&mut text, "    ", input, None, &span);
     }
     for node in &network.nodes {
         let ui = ui_attributes(&node.ui);
@@ -503,7 +497,7 @@ pub fn xml(network: &Network, name: &str, comment: &str, definitions: &str) -> S
             node.category, node.name, node.ty
         );
         for input in &node.inputs {
-            input_xml(&mut text, "      ", input, None);
+            input_xml(&mut text, "      ", input, None, "");
         }
         let _ = writeln!(text, "    </{}>", node.category);
     }
@@ -537,7 +531,7 @@ pub fn xml(network: &Network, name: &str, comment: &str, definitions: &str) -> S
         ui_attributes(&network.surface_ui)
     );
     for input in &network.surface_inputs {
-        input_xml(&mut text, "    ", input, Some(&graph));
+        input_xml(&mut text, "    ", input, Some(&graph), "");
     }
     let title = (network.title.as_ref())
         .map(|title| format!(" uiname=\"{}\"", attribute(title)))
