@@ -305,6 +305,8 @@ pub struct Compiled {
     pub preview: Preview,
     /// The options the module was compiled with.
     pub options: CompileOptions,
+    /// The folder of the graph's file, which its Image nodes' paths are relative to.
+    pub folder: graph::Folder,
     /// The passes that render the buffers the module reads, in order (none for a
     /// graph without sampled inputs).
     pub passes: passes::Passes,
@@ -333,6 +335,7 @@ pub fn compile(graph: &Graph, options: &CompileOptions) -> Result<Compiled, Comp
         module,
         preview: graph.preview.clone(),
         options: *options,
+        folder: graph.folder.clone(),
         passes,
     })
 }

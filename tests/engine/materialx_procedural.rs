@@ -221,7 +221,7 @@ fn exposed_parameters_are_the_node_graphs_inputs_and_take_set_values() {
 }
 
 #[test]
-fn a_node_that_cannot_translate_is_named_and_auto_bakes_the_material() {
+fn a_node_that_cannot_translate_is_named_and_auto_bakes_what_it_gives() {
     let dir = temp_dir("materialx-procedural-refused");
     let graph = root("graphs/texture/blurred_noise.ron");
     let path = dir.join("blurred.mtlx");
@@ -258,13 +258,41 @@ fn a_node_that_cannot_translate_is_named_and_auto_bakes_the_material() {
         "{}",
         String::from_utf8_lossy(&output.stderr)
     );
+    // The blur and the height-to-normal node are read from textures of what they give,
+    // the rest of the graph stays nodes.
+    let document = std::fs::read_to_string(&path).unwrap();
+    assert!(document.contains("<nodedef "), "{document}");
+    for texture in ["blurred_soft_3.exr", "blurred_relief_5.exr"] {
+        assert!(document.contains(texture), "{document}");
+        assert!(dir.join(texture).is_file(), "{texture}");
+    }
+    assert!(!document.contains("blurred_albedo.png"), "{document}");
+    // A node giving a vector2, which no texture holds, makes the whole material baked.
+    let planks = dir.join("planks.mtlx");
+    let output = veneer()
+        .args([
+            "compile", "--target", "mtlx", "--tier", "auto", "--size", "8",
+        ])
+        .arg(root("graphs/texture/planks.ron"))
+        .arg("-o")
+        .arg(&planks)
+        .output()
+        .unwrap();
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
     let notes = String::from_utf8_lossy(&output.stderr);
     assert!(
-        notes.contains("baked: cannot translate node 'soft'"),
+        notes.contains("baked: cannot translate node 'each plank'") && notes.contains("vector2"),
         "{notes}"
     );
-    let document = std::fs::read_to_string(&path).unwrap();
-    assert!(document.contains("blurred_albedo.png"), "{document}");
+    assert!(
+        std::fs::read_to_string(&planks)
+            .unwrap()
+            .contains("planks_albedo.png")
+    );
 }
 
 #[test]

@@ -72,6 +72,6 @@ pub fn coverage_table() -> String {
     }
     let total = standard + mixed + own + textures + untranslated;
     format!(
-        "Of {total} node kinds (besides the material output, groups and graph bakes, which are expanded first), {standard} translate to MaterialX's standard nodes, {mixed} to standard nodes for some settings and to Veneer's own definitions for the rest, {own} to Veneer's own definitions, {textures} to `image` nodes reading textures written beside the document, and {untranslated} do not translate (`--tier auto` bakes such a material).\n\n| Node kind | In MaterialX |\n|---|---|\n{rows}"
+        "Of {total} node kinds (besides the material output, groups and graph bakes, which are expanded first), {standard} translate to MaterialX's standard nodes, {mixed} to standard nodes for some settings and to Veneer's own definitions for the rest, {own} to Veneer's own definitions, {textures} to `image` nodes reading textures written beside the document, and {untranslated} do not translate (`--tier auto` reads what they give from textures baked beside).\n\n| Node kind | In MaterialX |\n|---|---|\n{rows}"
     )
 }

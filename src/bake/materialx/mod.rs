@@ -131,8 +131,9 @@ pub fn export_materialx(
         Tier::Procedural | Tier::Auto => {
             match procedural::translate(
                 &compiled.checked,
-                &compiled.preview,
+                (&compiled.preview, &compiled.folder),
                 &stem_name,
+                settings.tier == Tier::Auto,
                 uses.alpha,
                 settings.surface,
                 normal_map.as_deref(),
@@ -148,8 +149,7 @@ pub fn export_materialx(
             }
         }
     };
-    let on_mesh =
-        uses.fields.iter().any(|&read| read) || uses.mesh_fields.iter().any(Option::is_some);
+    let on_mesh = reads_mesh(compiled);
     let maps: Vec<Map> = MAPS
         .into_iter()
         .filter(|map| match map {
@@ -225,14 +225,7 @@ pub fn export_materialx(
                 files.push((path.with_file_name(file), bytes.clone()));
             }
             for baked in &procedural.baked {
-                let texture = bake_node(
-                    gpu,
-                    compiled,
-                    baked,
-                    settings,
-                    staging.path(),
-                    &mut progress,
-                )?;
+                let texture = bake_node(gpu, baked, settings, staging.path(), &mut progress)?;
                 files.push((path.with_file_name(&baked.file), texture));
             }
             let functions = functions_path(path);
@@ -279,59 +272,50 @@ pub fn export_materialx(
     })
 }
 
-/// The texture of `baked`'s output over the preview mesh's UV layout, as float (OpenEXR):
-/// the node alone wired into the height of a material of its own, baked in `staging`.
+/// The float (OpenEXR) texture of `baked`: its graph's albedo, baked over the preview
+/// mesh's UV layout where the graph reads the mesh's fields, else over the preview
+/// square, in `staging`.
 fn bake_node(
     gpu: &crate::render::GpuContext,
-    compiled: &Compiled,
     baked: &procedural::BakedNode,
     settings: &MaterialxSettings,
     staging: &Path,
     progress: impl FnMut(u64, u64) -> bool,
 ) -> Result<Vec<u8>, BakeError> {
-    use crate::graph::{Graph, Node, NodeId, PinRef, Wire};
-    let failed = |error: String| BakeError::Write {
-        path: PathBuf::from(&baked.file),
-        error: std::io::Error::other(error),
-    };
-    let (field, material) = (NodeId(1), NodeId(2));
-    let output = (baked.node.kind.definition().signature().outputs.first())
-        .map(|pin| pin.name)
-        .ok_or_else(|| failed("the node has no output".into()))?;
-    let graph = Graph {
-        name: baked.node.label.clone(),
-        preview: compiled.preview.clone(),
-        nodes: vec![
-            Node {
-                id: field,
-                origin: None,
-                ..baked.node.clone()
-            },
-            Node::new(material, crate::nodes::NodeKind::Material),
-        ],
-        wires: vec![Wire {
-            from: PinRef::new(field, output),
-            to: PinRef::new(material, "height"),
-        }],
-        ..Graph::default()
-    };
     let options = crate::codegen::CompileOptions::default();
-    let alone = crate::codegen::compile(&graph, &options).map_err(|e| failed(e.to_string()))?;
+    let compiled = crate::codegen::compile(&baked.graph, &options).map_err(|error| {
+        let error = std::io::Error::other(format!("cannot compile what it bakes: {error}"));
+        BakeError::Write {
+            path: PathBuf::from(&baked.file),
+            error,
+        }
+    })?;
+    let surface = match reads_mesh(&compiled) {
+        true => BakeSurface::MeshUv(compiled.preview.mesh.clone()),
+        false => BakeSurface::Plane(None),
+    };
     let bake_settings = BakeSettings {
-        surface: BakeSurface::MeshUv(compiled.preview.mesh.clone()),
+        surface,
         size: settings.size,
-        maps: vec![Map::Height],
+        maps: vec![Map::Albedo],
         format: Format::Exr,
         normal: NormalConvention::OpenGl,
         time: settings.time,
     };
     let stem = staging.join(Path::new(&baked.file).with_extension(""));
-    let written = bake(gpu, &alone, &bake_settings, &stem, progress)?;
-    let file = &written.first().expect("the height map").path;
+    let written = bake(gpu, &compiled, &bake_settings, &stem, progress)?;
+    let file = &written.first().expect("the albedo map").path;
     std::fs::read(file).map_err(|error| BakeError::Write {
         path: file.clone(),
         error,
     })
+}
+
+/// Whether `compiled` reads distance or mesh fields (so bakes go over its preview mesh's
+/// UV layout).
+fn reads_mesh(compiled: &Compiled) -> bool {
+    let uses = compiled.uses();
+    uses.fields.iter().any(|&read| read) || uses.mesh_fields.iter().any(Option::is_some)
 }
 
 /// The document's opening comment: what made it and how (`how`: "its maps baked"),

@@ -32,11 +32,14 @@ pub struct Procedural {
     pub files: Vec<(String, Vec<u8>)>,
 }
 
-/// A node whose output the document reads from a texture baked over the preview mesh's
-/// UV layout (a distance or mesh field).
+/// An output of a node that the document reads from a texture: a distance or mesh field
+/// (over the preview mesh's UV layout), or under `--tier auto` a node that does not
+/// translate (over the preview square), baked as float.
 #[derive(Clone, Debug)]
 pub struct BakedNode {
-    pub node: crate::graph::Node,
+    /// The node and everything upstream of it, the output wired into the albedo of a
+    /// material of its own.
+    pub graph: crate::graph::Graph,
     /// The texture's file name, beside the document.
     pub file: String,
 }
@@ -67,6 +70,13 @@ struct Translator<'g> {
     placement: ([f64; 3], f64),
     /// The document's file stem, which baked textures' names start with.
     stem: &'g str,
+    /// The preview (mesh, fields, placement) and the graph's folder, which baked
+    /// textures' graphs keep.
+    preview: &'g Preview,
+    folder: &'g crate::graph::Folder,
+    /// Whether a node that does not translate is baked into textures (`--tier auto`)
+    /// rather than reported.
+    bake_untranslatable: bool,
     baked: Vec<BakedNode>,
     files: Vec<(String, Vec<u8>)>,
     nodes: Vec<Node>,
@@ -176,6 +186,58 @@ impl Translator<'_> {
         Source::Node(name)
     }
 
+    /// Checked node `k` cannot be translated, for `reason`.
+    fn untranslatable(&mut self, k: usize, reason: String) {
+        self.untranslatable.push(Untranslatable {
+            node: self.graph.order[k].node.label.clone(),
+            reason,
+        });
+    }
+
+    /// Checked node `k` (named `name`) read from textures of its outputs, one per output
+    /// some node reads (`<stem>_<name>.exr`, or `<stem>_<name>_<output>.exr`), each baked
+    /// from the node and its upstream.
+    fn baked_texture(&mut self, k: usize, name: &str) -> Result<Translated, String> {
+        let checked = &self.graph.order[k];
+        let outputs = &checked.signature.outputs;
+        let mut translated = Translated {
+            nodes: Vec::new(),
+            outputs: Vec::new(),
+        };
+        for (j, pin) in outputs.iter().enumerate() {
+            let image = match outputs.len() {
+                1 => name.to_string(),
+                _ => format!("{name}_{}", pin.name),
+            };
+            translated.outputs.push(Source::Node(image.clone()));
+            if !checked.used_outputs.get(j).copied().unwrap_or(true) {
+                continue;
+            }
+            if pin.ty == ValueType::Vec2 {
+                return Err(format!(
+                    "its output '{}' is a vector2, which no baked texture holds",
+                    pin.name
+                ));
+            }
+            let file = format!("{}_{image}.exr", self.stem);
+            let graph = upstream(self.graph, k, j, self.preview, self.folder);
+            self.baked.push(BakedNode {
+                graph,
+                file: file.clone(),
+            });
+            let read = Source::File {
+                path: file,
+                colour_space: None,
+            };
+            let ty = mx_type(pin.ty);
+            let inputs = vec![input("file", "filename", read)];
+            translated
+                .nodes
+                .push(node(&image, "image", ty, &format!("ND_image_{ty}"), inputs));
+        }
+        Ok(translated)
+    }
+
     /// Translates checked node `k` of the order.
     fn node(&mut self, k: usize) {
         let checked = &self.graph.order[k];
@@ -216,22 +278,10 @@ impl Translator<'_> {
                 self.files.push((file.clone(), bytes));
                 super::standard::image(&name, &settings, &file, colour_space)
             }
-            Route::Texture => {
-                let file = format!("{}_{name}.exr", self.stem);
-                self.baked.push(BakedNode {
-                    node: checked.node.clone(),
-                    file: file.clone(),
-                });
-                let read = Source::File {
-                    path: file,
-                    colour_space: None,
-                };
-                let inputs = vec![input("file", "filename", read)];
-                Translated {
-                    nodes: vec![node(&name, "image", "float", "ND_image_float", inputs)],
-                    outputs: vec![Source::Node(name.clone())],
-                }
-            }
+            Route::Texture => match self.baked_texture(k, &name) {
+                Ok(translated) => translated,
+                Err(reason) => return self.untranslatable(k, reason),
+            },
             Route::Definition(definition) => {
                 let translated = definition.instance(&name, pins, arguments);
                 if !self
@@ -243,13 +293,13 @@ impl Translator<'_> {
                 }
                 translated
             }
-            Route::None(reason) => {
-                self.untranslatable.push(Untranslatable {
-                    node: checked.node.label.clone(),
-                    reason,
-                });
-                return;
+            Route::None(reason) if !self.bake_untranslatable => {
+                return self.untranslatable(k, reason);
             }
+            Route::None(reason) => match self.baked_texture(k, &name) {
+                Ok(translated) => translated,
+                Err(why) => return self.untranslatable(k, format!("{reason}, and {why}")),
+            },
         };
         let mut nodes = translated.nodes;
         if let Some(head) = nodes.iter_mut().find(|node| node.name == name) {
@@ -291,23 +341,29 @@ pub fn route(kind: &NodeKind) -> Route {
     }
 }
 
-/// `graph` (shown as `preview` places it) translated for `surface` with the material's
-/// `alpha` use; `normal_map` is the baked normal map's file, when the material perturbs
-/// the normal; baked textures' names start with `stem`. The nodes that cannot be
-/// translated come back instead, each named with the reason.
+/// `graph` (shown as `preview` places it; its file in `folder`: `source`) translated for
+/// `surface` with the material's `alpha` use; `normal_map` is the baked normal map's
+/// file, when the material perturbs the normal; baked textures' names start with
+/// `stem`. The nodes that cannot be translated come back instead, each named with the
+/// reason, unless `bake_untranslatable` asks for their textures.
 pub fn translate(
     graph: &CheckedGraph,
-    preview: &Preview,
+    source: (&Preview, &crate::graph::Folder),
     stem: &str,
+    bake_untranslatable: bool,
     alpha: AlphaUse,
     surface: SurfaceModel,
     normal_map: Option<&str>,
 ) -> Result<Procedural, Vec<Untranslatable>> {
+    let (preview, folder) = source;
     let (cx, cy, cz) = preview.center;
     let mut translator = Translator {
         graph,
         placement: ([cx, cy, cz], preview.size),
         stem,
+        preview,
+        folder,
+        bake_untranslatable,
         baked: Vec::new(),
         files: Vec::new(),
         nodes: Vec::new(),
@@ -518,5 +574,59 @@ fn linear_to_srgb(linear: f32) -> f32 {
         linear * 12.92
     } else {
         1.055 * linear.powf(1.0 / 2.4) - 0.055
+    }
+}
+
+/// The graph baking output `output` of checked node `k`: the node and every node upstream
+/// of it as they are (ids, settings, constants), that output wired into the albedo of a
+/// material of its own, with `graph`'s preview and folder.
+fn upstream(
+    graph: &CheckedGraph,
+    k: usize,
+    output: usize,
+    preview: &Preview,
+    folder: &crate::graph::Folder,
+) -> crate::graph::Graph {
+    use crate::graph::{Graph, PinRef, Wire};
+    let mut needed = vec![k];
+    let mut kept = std::collections::BTreeSet::new();
+    let mut wires = Vec::new();
+    while let Some(k) = needed.pop() {
+        if !kept.insert(k) {
+            continue;
+        }
+        let checked = &graph.order[k];
+        for (_, pin, from, from_output, _) in checked.wired_inputs() {
+            let Some(from_k) = graph.index_of(from) else {
+                continue;
+            };
+            let from_pin = graph.order[from_k].signature.outputs[from_output].name;
+            wires.push(Wire {
+                from: PinRef::new(from, from_pin),
+                to: PinRef::new(checked.node.id, pin.name),
+            });
+            needed.push(from_k);
+        }
+    }
+    let mut nodes: Vec<crate::graph::Node> = (kept.iter())
+        .map(|&k| crate::graph::Node {
+            origin: None,
+            ..graph.order[k].node.clone()
+        })
+        .collect();
+    let material = NodeId(1 + nodes.iter().map(|node| node.id.0).max().unwrap_or(0));
+    nodes.push(crate::graph::Node::new(material, NodeKind::Material));
+    let node = &graph.order[k];
+    wires.push(Wire {
+        from: PinRef::new(node.node.id, node.signature.outputs[output].name),
+        to: PinRef::new(material, "albedo"),
+    });
+    Graph {
+        name: node.node.label.clone(),
+        preview: preview.clone(),
+        nodes,
+        wires,
+        folder: folder.clone(),
+        ..Graph::default()
     }
 }
