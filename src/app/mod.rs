@@ -199,6 +199,12 @@ impl VeneerApp {
 
     /// Opens a graph file; a bad file is refused with a message and loses nothing.
     pub fn open(&mut self, path: PathBuf) {
+        if path
+            .extension()
+            .is_some_and(|extension| extension.eq_ignore_ascii_case("mtlx"))
+        {
+            return self.import_materialx(&path);
+        }
         match crate::graph::load(&path) {
             Ok(mut graph) => {
                 self.remember(&path);
@@ -218,6 +224,23 @@ impl VeneerApp {
                 });
             }
             Err(error) => self.chrome.dialog = Some(Dialog::Message(error.to_string())),
+        }
+    }
+
+    /// Opens MaterialX document `path` as a new graph (unsaved: it has no graph file yet).
+    fn import_materialx(&mut self, path: &std::path::Path) {
+        let name = path.display().to_string();
+        let imported = std::fs::read_to_string(path)
+            .map_err(|error| format!("{name}: cannot read: {error}"))
+            .and_then(|text| crate::bake::import_materialx(&text, &name));
+        match imported {
+            Ok(graph) => {
+                self.load(Document::recovered(graph, None));
+                self.chrome.message = Some(format!(
+                    "imported {name}; save it as a graph file to keep it"
+                ));
+            }
+            Err(error) => self.chrome.dialog = Some(Dialog::Message(error)),
         }
     }
 

@@ -350,6 +350,31 @@ fn enter_confirms_every_dialog() {
     assert!(dir.join("wood_nodes_veneer.glsl").is_file());
     assert!(!dir.join("wood_nodes_albedo.png").exists());
 
+    // Opening the MaterialX document imports it: the graph's nodes, as a new, unsaved
+    // document.
+    let nodes_before = harness.state().document().graph.nodes.len();
+    press(&mut harness, egui::Key::O, true);
+    type_text(&mut harness, &nodes.display().to_string());
+    key(&mut harness, egui::Key::Enter);
+    assert!(!dialog_up(&harness, "Veneer"), "the import succeeds");
+    let imported = &harness.state().document().graph;
+    assert_eq!(imported.name, "Wood");
+    assert!(
+        imported.nodes.len() > nodes_before,
+        "the group comes back inlined"
+    );
+    assert!(shows(&harness, "imported "));
+    // ... which saving keeps as a graph file.
+    press(&mut harness, egui::Key::S, true);
+    let saved = dir.join("wood_imported.ron");
+    type_text(&mut harness, &saved.display().to_string());
+    key(&mut harness, egui::Key::Enter);
+    let graph = veneer::graph::load(&saved).expect("the imported graph saved");
+    assert_eq!(
+        graph.nodes.len(),
+        harness.state().document().graph.nodes.len()
+    );
+
     // Load mesh.
     mesh_dialog(&mut harness);
     let cube = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/meshes/cube_quads.ply");
