@@ -307,6 +307,10 @@ pub struct Compiled {
     pub options: CompileOptions,
     /// The folder of the graph's file, which its Image nodes' paths are relative to.
     pub folder: graph::Folder,
+    /// The graph's named sets of parameter values (exports that keep parameters keep
+    /// them too).
+    pub presets:
+        std::collections::BTreeMap<String, std::collections::BTreeMap<String, graph::Value>>,
     /// The passes that render the buffers the module reads, in order (none for a
     /// graph without sampled inputs).
     pub passes: passes::Passes,
@@ -336,6 +340,7 @@ pub fn compile(graph: &Graph, options: &CompileOptions) -> Result<Compiled, Comp
         preview: graph.preview.clone(),
         options: *options,
         folder: graph.folder.clone(),
+        presets: graph.presets.clone(),
         passes,
     })
 }

@@ -318,8 +318,7 @@ fn the_readme_coverage_table_is_the_registrys() {
 }
 
 /// `graph` as an import gives it back: the values its pins hold at their defaults left
-/// out, and what a MaterialX material does not carry (the preview mesh, the named
-/// parameter sets) dropped.
+/// out, and what a MaterialX material does not carry (the preview mesh) dropped.
 fn comparable(mut graph: veneer::graph::Graph) -> veneer::graph::Graph {
     use veneer::nodes::pins::PinDefault;
     for node in &mut graph.nodes {
@@ -330,7 +329,6 @@ fn comparable(mut graph: veneer::graph::Graph) -> veneer::graph::Graph {
         });
     }
     graph.preview.mesh = String::new();
-    graph.presets.clear();
     graph.folder = Default::default();
     graph
 }

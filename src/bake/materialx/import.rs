@@ -209,6 +209,19 @@ pub fn import(text: &str, file: &str) -> Result<Graph, String> {
         .unwrap_or("imported")
         .to_string();
     graph.shading = shading;
+    // The presets: each variant's values of interface inputs the graph reads.
+    for variant in children(root)
+        .into_iter()
+        .filter(|e| e.tag_name().name() == "variantset")
+        .flat_map(children)
+    {
+        let name = variant.attribute("name").unwrap_or_default().to_string();
+        let values = (children(variant).into_iter())
+            .filter_map(|input| Some((input.attribute("name")?.to_string(), value_of(input).ok()?)))
+            .filter(|(parameter, _)| graph.parameters.iter().any(|p| &p.name == parameter))
+            .collect();
+        graph.presets.insert(name, values);
+    }
     // A document from elsewhere places no node: lay them out.
     if graph.nodes.iter().all(|node| node.position == (0.0, 0.0)) {
         crate::graph::layout::arrange(&mut graph);

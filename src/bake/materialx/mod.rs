@@ -132,6 +132,7 @@ pub fn export_materialx(
             match procedural::translate(
                 &compiled.checked,
                 (&compiled.preview, &compiled.folder),
+                &compiled.presets,
                 &stem_name,
                 settings.tier == Tier::Auto,
                 uses.alpha,
@@ -528,7 +529,19 @@ pub fn xml(network: &Network, name: &str, comment: &str, definitions: &str) -> S
         text,
         "    <input name=\"surfaceshader\" type=\"surfaceshader\" nodename=\"SR_{name}\" />"
     );
-    text.push_str("  </surfacematerial>\n</materialx>\n");
+    text.push_str("  </surfacematerial>\n");
+    if !network.variants.is_empty() {
+        text.push_str("  <variantset name=\"presets\">\n");
+        for (name, inputs) in &network.variants {
+            let _ = writeln!(text, "    <variant name=\"{}\">", element_name(name));
+            for input in inputs {
+                input_xml(&mut text, "      ", input, None, "");
+            }
+            text.push_str("    </variant>\n");
+        }
+        text.push_str("  </variantset>\n");
+    }
+    text.push_str("</materialx>\n");
     text
 }
 

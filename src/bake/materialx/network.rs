@@ -106,6 +106,8 @@ pub struct Network {
     pub title: Option<String>,
     /// The material node's label and place, kept on the surface shader.
     pub surface_ui: Option<(String, (f32, f32))>,
+    /// Named sets of interface values (the graph's presets), as one `variantset`.
+    pub variants: Vec<(String, Vec<Input>)>,
 }
 
 /// Where a baked material's alpha is.
@@ -474,6 +476,7 @@ pub fn wire(
         outputs,
         title: None,
         surface_ui: None,
+        variants: Vec::new(),
     }
 }
 

@@ -341,7 +341,8 @@ pub fn route(kind: &NodeKind) -> Route {
     }
 }
 
-/// `graph` (shown as `preview` places it; its file in `folder`: `source`) translated for
+/// `graph` (shown as `preview` places it; its file in `folder`: `source`; its `presets`
+/// becoming variants of the interface's values) translated for
 /// `surface` with the material's `alpha` use; `normal_map` is the baked normal map's
 /// file, when the material perturbs the normal; baked textures' names start with
 /// `stem`. The nodes that cannot be translated come back instead, each named with the
@@ -349,6 +350,7 @@ pub fn route(kind: &NodeKind) -> Route {
 pub fn translate(
     graph: &CheckedGraph,
     source: (&Preview, &crate::graph::Folder),
+    presets: &BTreeMap<String, BTreeMap<String, Value>>,
     stem: &str,
     bake_untranslatable: bool,
     alpha: AlphaUse,
@@ -514,6 +516,21 @@ pub fn translate(
         .collect();
     network.interface = translator.interface.into_values().collect();
     network.title = Some(graph.name.clone());
+    // The presets, as values of the interface inputs they set.
+    for (preset, values) in presets {
+        let inputs: Vec<Input> = (values.iter())
+            .filter_map(|(parameter, value)| {
+                let name = super::element_name(parameter);
+                let (interface, _) = network.interface.iter().find(|(i, _)| i.name == name)?;
+                let ty = graph.parameters.iter().find(|p| &p.name == parameter)?.ty;
+                let text = super::value_text(&value.convert(ty).components(), ty);
+                Some(input(&name, interface.ty, Source::Value(text)))
+            })
+            .collect();
+        if !inputs.is_empty() {
+            network.variants.push((preset.clone(), inputs));
+        }
+    }
     network.surface_ui = Some((checked.node.label.clone(), checked.node.position));
     Ok(Procedural {
         network,
