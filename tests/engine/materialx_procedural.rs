@@ -325,7 +325,7 @@ fn comparable(mut graph: veneer::graph::Graph) -> veneer::graph::Graph {
         let pins = node.kind.definition().signature().inputs;
         node.inputs.retain(|pin, value| {
             let default = pins.iter().find(|p| p.name == pin).map(|p| &p.default);
-            default != Some(&PinDefault::Const(value.clone()))
+            default != Some(&PinDefault::Const(*value))
         });
     }
     graph.preview.mesh = String::new();

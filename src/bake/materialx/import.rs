@@ -309,7 +309,7 @@ impl<'a, 'i> Importer<'a, 'i, '_> {
                 ));
                 return None;
             };
-            return Some(Feed::Parameter(name.to_string(), value.clone(), *range));
+            return Some(Feed::Parameter(name.to_string(), *value, *range));
         }
         if let Some(name) = element.attribute("nodename") {
             let made = self.make(name, element)?;
@@ -557,7 +557,7 @@ impl<'a, 'i> Importer<'a, 'i, '_> {
             Feed::Constant(value) => value,
         };
         let value = value.convert(pin.ty);
-        if pin.default != PinDefault::Const(value.clone()) {
+        if pin.default != PinDefault::Const(value) {
             if let Some(node) = self.graph.nodes.iter_mut().find(|n| n.id == id) {
                 node.inputs.insert(pin.name.to_string(), value);
             }

@@ -130,12 +130,9 @@ pub fn export_materialx(
         Tier::Baked => None,
         Tier::Procedural | Tier::Auto => {
             match procedural::translate(
-                &compiled.checked,
-                (&compiled.preview, &compiled.folder),
-                &compiled.presets,
+                compiled,
                 &stem_name,
                 settings.tier == Tier::Auto,
-                uses.alpha,
                 settings.surface,
                 normal_map.as_deref(),
             ) {

@@ -341,23 +341,20 @@ pub fn route(kind: &NodeKind) -> Route {
     }
 }
 
-/// `graph` (shown as `preview` places it; its file in `folder`: `source`; its `presets`
-/// becoming variants of the interface's values) translated for
-/// `surface` with the material's `alpha` use; `normal_map` is the baked normal map's
-/// file, when the material perturbs the normal; baked textures' names start with
-/// `stem`. The nodes that cannot be translated come back instead, each named with the
-/// reason, unless `bake_untranslatable` asks for their textures.
+/// `compiled`'s checked graph (shown as its preview places it, its presets becoming
+/// variants of the interface's values) translated for `surface`; `normal_map` is the
+/// baked normal map's file, when the material perturbs the normal; baked textures' names
+/// start with `stem`. The nodes that cannot be translated come back instead, each named
+/// with the reason, unless `bake_untranslatable` asks for their textures.
 pub fn translate(
-    graph: &CheckedGraph,
-    source: (&Preview, &crate::graph::Folder),
-    presets: &BTreeMap<String, BTreeMap<String, Value>>,
+    compiled: &crate::codegen::Compiled,
     stem: &str,
     bake_untranslatable: bool,
-    alpha: AlphaUse,
     surface: SurfaceModel,
     normal_map: Option<&str>,
 ) -> Result<Procedural, Vec<Untranslatable>> {
-    let (preview, folder) = source;
+    let (graph, preview, folder) = (&compiled.checked, &compiled.preview, &compiled.folder);
+    let (presets, alpha) = (&compiled.presets, compiled.uses().alpha);
     let (cx, cy, cz) = preview.center;
     let mut translator = Translator {
         graph,
