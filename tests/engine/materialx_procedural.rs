@@ -388,6 +388,13 @@ fn documents_import_cannot_read_are_refused_naming_the_node_and_line() {
             "broken.mtlx:1:1: not XML",
         ),
         (
+            "output.mtlx",
+            graph(
+                "    <position name=\"p_2\" type=\"vector3\" />\n    <separate3 name=\"s_3\" type=\"multioutput\">\n      <input name=\"in\" type=\"vector3\" nodename=\"p_2\" />\n    </separate3>\n    <combine3 name=\"a_1\" type=\"color3\">\n      <input name=\"in1\" type=\"float\" nodename=\"s_3\" output=\"outq\" />\n    </combine3>\n",
+            ),
+            "reads output 'outq' of node 's_3', which has outx, outy, outz",
+        ),
+        (
             "texture.mtlx",
             graph(
                 "    <image name=\"a_1\" type=\"color3\">\n      <input name=\"file\" type=\"filename\" value=\"a.png\" />\n    </image>\n",
@@ -411,5 +418,5 @@ fn documents_import_cannot_read_are_refused_naming_the_node_and_line() {
         .map(|e| e.unwrap().file_name())
         .collect();
     left.sort();
-    assert_eq!(left.len(), 4, "nothing written: {left:?}");
+    assert_eq!(left.len(), 5, "nothing written: {left:?}");
 }

@@ -317,8 +317,19 @@ impl<'a, 'i> Importer<'a, 'i, '_> {
                 Made::Position => Some(Feed::Position),
                 Made::Through(feed) => Some(feed),
                 Made::Node(id, outputs) => {
-                    let output = element.attribute("output").unwrap_or("out");
-                    let index = outputs.iter().position(|o| o == output).unwrap_or(0);
+                    let index = match element.attribute("output") {
+                        None => Some(0),
+                        Some(output) => outputs.iter().position(|o| o == output),
+                    };
+                    let Some(index) = index else {
+                        let output = element.attribute("output").unwrap_or_default();
+                        let at = (self.at)(element);
+                        self.errors.push(format!(
+                            "{at}: reads output '{output}' of node '{name}', which has {}",
+                            outputs.join(", ")
+                        ));
+                        return None;
+                    };
                     Some(Feed::Wire(id, index))
                 }
             };
