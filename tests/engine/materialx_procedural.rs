@@ -8,8 +8,7 @@
 
 use crate::materialx::{check_with_materialx, compiled, export_in, named_files};
 use crate::support::{
-    assert_holds_only, assert_refused, difference, presets, root, run_veneer, stem, temp_dir,
-    updating, veneer,
+    assert_holds_only, assert_refused, difference, presets, root, stem, temp_dir, updating, veneer,
 };
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -190,25 +189,8 @@ fn materialx_glsl_draws_what_veneer_draws_for_every_preset_without_mesh_fields()
 fn exposed_parameters_are_the_node_graphs_inputs_and_take_set_values() {
     let dir = temp_dir("materialx-procedural-parameters");
     let path = dir.join("brick.mtlx");
-    let output = run_veneer(&[
-        "compile",
-        "graphs/thesis_brick.ron",
-        "--target",
-        "mtlx",
-        "--tier",
-        "procedural",
-        "--size",
-        "8",
-        "--set",
-        "gloss_shininess=50",
-        "-o",
-        path.to_str().unwrap(),
-    ]);
-    assert!(
-        output.status.success(),
-        "{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
+    let graph = root("graphs/thesis_brick.ron");
+    succeeds(compile_mtlx("procedural", &graph, &path).args(["--set", "gloss_shininess=50"]));
     let document = std::fs::read_to_string(&path).unwrap();
     assert!(
         document.contains("<input name=\"gloss_shininess\" type=\"float\" value=\"50\" />"),
@@ -220,44 +202,36 @@ fn exposed_parameters_are_the_node_graphs_inputs_and_take_set_values() {
     );
 }
 
+/// `veneer compile --target mtlx --tier TIER --size 8 GRAPH -o OUT`, ready to run.
+fn compile_mtlx(tier: &str, graph: &Path, out: &Path) -> Command {
+    let mut command = veneer();
+    command
+        .args(["compile", "--target", "mtlx", "--tier", tier, "--size", "8"])
+        .arg(graph)
+        .arg("-o")
+        .arg(out);
+    command
+}
+
+/// Runs `command`, which must succeed, and gives what it said on stderr.
+fn succeeds(command: &mut Command) -> String {
+    let output = command.output().expect("the command runs");
+    let stderr = String::from_utf8_lossy(&output.stderr).into_owned();
+    assert!(output.status.success(), "{command:?}: {stderr}");
+    stderr
+}
+
 #[test]
 fn a_node_that_cannot_translate_is_named_and_auto_bakes_what_it_gives() {
     let dir = temp_dir("materialx-procedural-refused");
     let graph = root("graphs/texture/blurred_noise.ron");
     let path = dir.join("blurred.mtlx");
-    let mut command = veneer();
-    command
-        .args([
-            "compile",
-            "--target",
-            "mtlx",
-            "--tier",
-            "procedural",
-            "--size",
-            "8",
-        ])
-        .arg(&graph)
-        .arg("-o")
-        .arg(&path);
     assert_refused(
-        &mut command,
+        &mut compile_mtlx("procedural", &graph, &path),
         "node 'soft' samples its input around the point",
     );
     assert_holds_only(&dir, &[]);
-    let output = veneer()
-        .args([
-            "compile", "--target", "mtlx", "--tier", "auto", "--size", "8",
-        ])
-        .arg(&graph)
-        .arg("-o")
-        .arg(&path)
-        .output()
-        .unwrap();
-    assert!(
-        output.status.success(),
-        "{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
+    succeeds(&mut compile_mtlx("auto", &graph, &path));
     // The blur and the height-to-normal node are read from textures of what they give,
     // the rest of the graph stays nodes.
     let document = std::fs::read_to_string(&path).unwrap();
@@ -269,21 +243,11 @@ fn a_node_that_cannot_translate_is_named_and_auto_bakes_what_it_gives() {
     assert!(!document.contains("blurred_albedo.png"), "{document}");
     // A node giving a vector2, which no texture holds, makes the whole material baked.
     let planks = dir.join("planks.mtlx");
-    let output = veneer()
-        .args([
-            "compile", "--target", "mtlx", "--tier", "auto", "--size", "8",
-        ])
-        .arg(root("graphs/texture/planks.ron"))
-        .arg("-o")
-        .arg(&planks)
-        .output()
-        .unwrap();
-    assert!(
-        output.status.success(),
-        "{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
-    let notes = String::from_utf8_lossy(&output.stderr);
+    let notes = succeeds(&mut compile_mtlx(
+        "auto",
+        &root("graphs/texture/planks.ron"),
+        &planks,
+    ));
     assert!(
         notes.contains("baked: cannot translate node 'each plank'") && notes.contains("vector2"),
         "{notes}"
@@ -341,18 +305,7 @@ fn importing_the_procedural_tier_gives_the_graph_back() {
         let document = dir.join(format!("{preset}.mtlx"));
         export(&compiled(&graph), SurfaceModel::OpenPbr, &document);
         let back = dir.join(format!("{preset}.ron"));
-        let output = veneer()
-            .arg("import")
-            .arg(&document)
-            .arg("-o")
-            .arg(&back)
-            .output()
-            .unwrap();
-        assert!(
-            output.status.success(),
-            "{}",
-            String::from_utf8_lossy(&output.stderr)
-        );
+        succeeds(veneer().arg("import").arg(&document).arg("-o").arg(&back));
         let original = veneer::graph::load(&graph).unwrap();
         let imported = veneer::graph::load(&back).unwrap();
         assert_eq!(comparable(imported), comparable(original), "{preset}");
