@@ -330,11 +330,10 @@ pub struct SurfaceFields {
     pub normal: Option<Source>,
 }
 
-/// The network of `nodes` with `fields` wired into `surface` (the material's `alpha`
-/// use deciding a cut-out) and the node graph's other `outputs`, and only the nodes
-/// these read kept. A field read from
-/// the node graph's interface passes through a `dot` node, since the surface reads the
-/// graph's outputs.
+/// The network of `nodes` with `fields` (nodes' outputs or constants: the surface reads
+/// the node graph's outputs, never its interface) wired into `surface` (the material's
+/// `alpha` use deciding a cut-out) and the node graph's other `outputs`, and only the
+/// nodes these read kept.
 pub fn wire(
     mut nodes: Vec<Node>,
     fields: SurfaceFields,
@@ -342,28 +341,15 @@ pub fn wire(
     surface: SurfaceModel,
     outputs: Vec<Input>,
 ) -> Network {
-    let mut through = |name: &str, ty: &'static str, source: Source| match source {
-        Source::Interface(_) => {
-            let name = format!("{name}_parameter");
-            let nodedef = format!("ND_dot_{ty}");
-            nodes.push(node(
-                &name,
-                "dot",
-                ty,
-                &nodedef,
-                vec![input("in", ty, source)],
-            ));
-            Source::Node(name)
-        }
-        other => other,
-    };
-    let albedo = through("albedo", "color3", fields.albedo);
-    let roughness = through("roughness", "float", fields.roughness);
-    let metallic = through("metallic", "float", fields.metallic);
-    let occlusion = through("occlusion", "float", fields.occlusion);
-    let mut opacity = fields.alpha.map(|a| through("alpha", "float", a));
-    let emission = fields.emission.map(|e| through("emission", "color3", e));
-    let normal = fields.normal.map(|n| through("normal", "vector3", n));
+    let SurfaceFields {
+        albedo,
+        roughness,
+        metallic,
+        occlusion,
+        alpha: mut opacity,
+        emission,
+        normal,
+    } = fields;
     // A cut-out keeps what reaches the cutoff and drops the rest, as the preview does
     // (glTF's model has an alpha mode of its own).
     if let (Some(value), AlphaUse::Mask(cutoff), false) =

@@ -421,7 +421,13 @@ pub fn translate(
         };
         outputs.push(input(&format!("veneer_{}", material_pin.name), ty, source));
     }
-    let raw_albedo = outputs[0].source.clone();
+    // What the surface reads of a material value: its output's node, or its default.
+    let value = |name: &str| {
+        (outputs.iter())
+            .find(|output| output.name.strip_prefix("veneer_") == Some(name))
+            .map_or_else(|| pin(name), |output| output.source.clone())
+    };
+    let raw_albedo = value("albedo");
     let linear = graph.shading.is_linear();
     let albedo = match linear {
         true => raw_albedo.clone(),
@@ -436,7 +442,7 @@ pub fn translate(
     // Under Blinn-Phong, roughness from the shininess n as sqrt(2 / (n + 2)), as `bake`
     // makes its roughness map.
     let roughness = match graph.shading {
-        Shading::MetallicRoughness => pin("roughness"),
+        Shading::MetallicRoughness => value("roughness"),
         _ => {
             let sum = add(
                 "shininess_plus_two",
@@ -444,7 +450,7 @@ pub fn translate(
                 "float",
                 "ND_add_float",
                 vec![
-                    input("in1", "float", pin("shininess")),
+                    input("in1", "float", value("shininess")),
                     input("in2", "float", Source::Value("2".into())),
                 ],
             );
@@ -468,7 +474,7 @@ pub fn translate(
         }
     };
     let black = Source::Value(super::value_text(&[0.0; 3], ValueType::Color));
-    let emission = match (pin("emission"), pin("emission_strength")) {
+    let emission = match (value("emission"), value("emission_strength")) {
         (emission, _) if emission == black => None,
         (emission, Source::Value(one)) if one == "1" => Some(emission),
         (emission, strength) => Some(add(
@@ -489,9 +495,9 @@ pub fn translate(
     let fields = SurfaceFields {
         albedo,
         roughness,
-        metallic: pin("metallic"),
-        occlusion: pin("occlusion"),
-        alpha: (alpha != AlphaUse::Opaque).then(|| pin("alpha")),
+        metallic: value("metallic"),
+        occlusion: value("occlusion"),
+        alpha: (alpha != AlphaUse::Opaque).then(|| value("alpha")),
         emission,
         normal,
     };
