@@ -101,7 +101,7 @@ pub fn import(text: &str, file: &str) -> Result<Graph, String> {
     }
     importer.next_id = 1
         + (importer.elements.keys())
-            .filter_map(|name| name.rsplit_once('_')?.1.parse::<u32>().ok())
+            .filter_map(|name| exported_id(name))
             .max()
             .unwrap_or(0);
     // The material: from the `veneer_<pin>` outputs, else from what the surface reads.
@@ -234,6 +234,11 @@ pub fn import(text: &str, file: &str) -> Result<Graph, String> {
         )
     })?;
     Ok(graph)
+}
+
+/// The node id a name the procedural tier wrote ends with (`rings_12`).
+fn exported_id(name: &str) -> Option<u32> {
+    name.rsplit_once('_')?.1.parse().ok()
 }
 
 /// The child elements of `element`.
@@ -422,9 +427,7 @@ impl<'a, 'i> Importer<'a, 'i, '_> {
                 return None;
             }
         };
-        let id = name
-            .rsplit_once('_')
-            .and_then(|(_, id)| id.parse::<u32>().ok())
+        let id = exported_id(name)
             .filter(|id| !self.graph.nodes.iter().any(|n| n.id.0 == *id))
             .map(NodeId)
             .unwrap_or_else(|| {
@@ -478,7 +481,7 @@ impl<'a, 'i> Importer<'a, 'i, '_> {
         // The standard translation of every kind the registry knows, inverted; of the
         // kinds that match, the one fixing most inputs (`subtract` from 0 is a negation).
         let ty = element.attribute("type").unwrap_or_default();
-        let matches = super::standard::kinds().into_iter().filter_map(|kind| {
+        let matches = super::standard::kinds().iter().filter_map(|kind| {
             let pins = kind.definition().signature().inputs;
             let markers: Vec<Source> = (0..pins.len())
                 .map(|k| Source::Value(format!("#{k}")))
@@ -520,7 +523,8 @@ impl<'a, 'i> Importer<'a, 'i, '_> {
                 .collect();
             Some((fixed, (kind, outputs, inputs)))
         });
-        (matches.min_by_key(|(fixed, _)| std::cmp::Reverse(*fixed))).map(|(_, found)| found)
+        (matches.min_by_key(|(fixed, _)| std::cmp::Reverse(*fixed)))
+            .map(|(_, (kind, outputs, inputs))| (kind.clone(), outputs, inputs))
     }
 
     /// Pin `pin` of node `id` fed by `feed`: a wire, a constant where it is not the

@@ -345,8 +345,13 @@ pub fn image(
 }
 
 /// Every kind [`standard`] may translate, with every setting it reads (operations and
-/// value types): the import inverts the translation over these.
-pub fn kinds() -> Vec<NodeKind> {
+/// value types): the import inverts the translation over these. Made once.
+pub fn kinds() -> &'static [NodeKind] {
+    static KINDS: std::sync::OnceLock<Vec<NodeKind>> = std::sync::OnceLock::new();
+    KINDS.get_or_init(translated_kinds)
+}
+
+fn translated_kinds() -> Vec<NodeKind> {
     const TYPES: [ValueType; 4] = [
         ValueType::Float,
         ValueType::Vec2,
