@@ -14,28 +14,19 @@ do); they are left beside the document.
 
 import sys
 
-import MaterialX as mx
 import MaterialX.PyMaterialXGenGlsl as glsl
 import MaterialX.PyMaterialXGenShader as shadergen
 
+import documents
+
 
 def main():
-    search = mx.getDefaultDataSearchPath()
-    libraries = mx.createDocument()
-    mx.loadLibraries(mx.getDefaultDataLibraryFolders(), search, libraries)
+    standard, search = documents.libraries()
     failed = False
     for path in sys.argv[1:]:
-        document = mx.createDocument()
-        try:
-            mx.readFromXmlFile(document, path)
-        except mx.Exception as error:
-            print(f"{path}: does not read: {error}")
-            failed = True
-            continue
-        document.importLibrary(libraries)
-        valid, message = document.validate()
-        if not valid:
-            print(f"{path}: invalid: {message}")
+        document, problem = documents.read_validated(path, standard)
+        if problem:
+            print(f"{path}: {problem}")
             failed = True
             continue
         generator = glsl.GlslShaderGenerator.create()

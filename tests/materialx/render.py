@@ -49,6 +49,8 @@ import zlib
 
 import MaterialX as mx
 
+import documents
+
 
 def fail(message):
     print(f"render.py: {message}", file=sys.stderr)
@@ -166,18 +168,10 @@ def generate(document_path, output_name):
     import MaterialX.PyMaterialXGenGlsl as mx_glsl
     import MaterialX.PyMaterialXGenShader as mx_gen
 
-    search = mx.getDefaultDataSearchPath()
-    libraries = mx.createDocument()
-    mx.loadLibraries(mx.getDefaultDataLibraryFolders(), search, libraries)
-    document = mx.createDocument()
-    try:
-        mx.readFromXmlFile(document, document_path)
-    except Exception as error:
-        fail(f"{document_path} does not read: {error}")
-    document.importLibrary(libraries)
-    valid, message = document.validate()
-    if not valid:
-        fail(f"{document_path} is invalid:\n{message}")
+    standard, search = documents.libraries()
+    document, problem = documents.read_validated(document_path, standard)
+    if problem:
+        fail(f"{document_path}: {problem}")
     output = find_output(document, output_name)
     check_images(document, document_path)
 
