@@ -125,15 +125,7 @@ pub(super) fn translate(
     fragment: &str,
 ) -> Result<Vec<u8>, ExportError> {
     let fail = |message: String| ExportError::Backend { target, message };
-    validate(source).map_err(|error| fail(error.to_string()))?;
-    let naga_module =
-        naga::front::wgsl::parse_str(source).map_err(|error| fail(error.emit_to_string(source)))?;
-    let info = naga::valid::Validator::new(
-        naga::valid::ValidationFlags::all(),
-        naga::valid::Capabilities::default(),
-    )
-    .validate(&naga_module)
-    .map_err(|error| fail(error.emit_to_string(source)))?;
+    let (naga_module, info) = validated(source).map_err(fail)?;
     match target {
         Target::Wgsl => Ok(source.as_bytes().to_vec()),
         Target::Glsl | Target::GlslEs => {
@@ -169,17 +161,7 @@ pub(super) fn translate(
                 .map_err(|e| fail(e.to_string()))?;
             Ok(text.into_bytes())
         }
-        Target::Msl => {
-            let options = naga::back::msl::Options {
-                lang_version: (2, 0),
-                fake_missing_bindings: true,
-                ..Default::default()
-            };
-            let pipeline = naga::back::msl::PipelineOptions::default();
-            let (text, _) = naga::back::msl::write_string(&naga_module, &info, &options, &pipeline)
-                .map_err(|e| fail(e.to_string()))?;
-            Ok(text.into_bytes())
-        }
+        Target::Msl => Ok(write_msl(&naga_module, &info).map_err(fail)?.into_bytes()),
         Target::Spirv => {
             let options = naga::back::spv::Options::default();
             let words = naga::back::spv::write_vec(&naga_module, &info, &options, None)
@@ -235,6 +217,35 @@ fn write_glsl(
 /// `source`, a WGSL module with one fragment entry point, validated and written as GLSL
 /// of `version` (MaterialX's node functions: see `bake::materialx`).
 pub(crate) fn glsl(source: &str, version: naga::back::glsl::Version) -> Result<String, String> {
+    let (module, info) = validated(source)?;
+    let entry = (module.entry_points.first())
+        .map(|entry| entry.name.clone())
+        .ok_or("the module has no entry point")?;
+    write_glsl(&module, &info, version, &entry)
+}
+
+/// `module` as Metal Shading Language 2.0, bindings it lacks made up.
+fn write_msl(module: &naga::Module, info: &naga::valid::ModuleInfo) -> Result<String, String> {
+    let options = naga::back::msl::Options {
+        lang_version: (2, 0),
+        fake_missing_bindings: true,
+        ..Default::default()
+    };
+    let pipeline = naga::back::msl::PipelineOptions::default();
+    let (text, _) = naga::back::msl::write_string(module, info, &options, &pipeline)
+        .map_err(|e| e.to_string())?;
+    Ok(text)
+}
+
+/// `source`, a validated WGSL module, written as Metal Shading Language 2.0 (MaterialX's
+/// node functions: see `bake::materialx`).
+pub(crate) fn msl(source: &str) -> Result<String, String> {
+    let (module, info) = validated(source)?;
+    write_msl(&module, &info)
+}
+
+/// `source` parsed and validated by naga, with what validation found out about it.
+fn validated(source: &str) -> Result<(naga::Module, naga::valid::ModuleInfo), String> {
     let module = validate(source).map_err(|error| error.to_string())?;
     let info = naga::valid::Validator::new(
         naga::valid::ValidationFlags::all(),
@@ -242,10 +253,7 @@ pub(crate) fn glsl(source: &str, version: naga::back::glsl::Version) -> Result<S
     )
     .validate(&module)
     .map_err(|error| error.emit_to_string(source))?;
-    let entry = (module.entry_points.first())
-        .map(|entry| entry.name.clone())
-        .ok_or("the module has no entry point")?;
-    write_glsl(&module, &info, version, &entry)
+    Ok((module, info))
 }
 
 /// GLSL output parsed back and validated by naga.

@@ -56,8 +56,28 @@ pub fn named_files(document: &str) -> Vec<String> {
         .collect()
 }
 
-/// Runs MaterialX's own validation and GLSL generation on `documents`, then
-/// glslangValidator on every shader stage it wrote.
+/// The shader stages MaterialX's generators wrote beside `document`
+/// (`<document>.<element>.<extension>`) whose extension is one of `extensions`.
+fn stages(document: &Path, extensions: &[&str]) -> Vec<PathBuf> {
+    let folder = document.parent().expect("a folder");
+    let prefix = format!("{}.", document.file_name().unwrap().to_string_lossy());
+    let mut stages: Vec<PathBuf> = std::fs::read_dir(folder)
+        .expect("the export folder")
+        .map(|entry| entry.expect("an entry").path())
+        .filter(|path| {
+            let name = path.file_name().unwrap().to_string_lossy().into_owned();
+            let extension = path.extension().unwrap_or_default().to_string_lossy();
+            name.starts_with(&prefix) && extensions.contains(&extension.as_ref())
+        })
+        .collect();
+    stages.sort();
+    stages
+}
+
+/// Runs MaterialX's own validation and GLSL and Metal generation on `documents`, then
+/// glslangValidator on every GLSL stage it wrote. Metal has no compiler here: its pixel
+/// stage must define each function the document's implementations name (Veneer's own node
+/// functions, in naga's Metal) that the GLSL pixel stage defines.
 pub fn check_with_materialx(documents: &[PathBuf]) {
     python_check(
         "tests/materialx/check.py",
@@ -66,23 +86,14 @@ pub fn check_with_materialx(documents: &[PathBuf]) {
         "MaterialX",
     );
     for document in documents {
-        let folder = document.parent().expect("a folder");
-        let prefix = format!("{}.", document.file_name().unwrap().to_string_lossy());
-        let stages: Vec<PathBuf> = std::fs::read_dir(folder)
-            .expect("the export folder")
-            .map(|entry| entry.expect("an entry").path())
-            .filter(|path| {
-                let name = path.file_name().unwrap().to_string_lossy().into_owned();
-                name.starts_with(&prefix) && (name.ends_with(".frag") || name.ends_with(".vert"))
-            })
-            .collect();
+        let glsl = stages(document, &["frag", "vert"]);
         assert_eq!(
-            stages.len(),
+            glsl.len(),
             2,
             "{}: a pixel and a vertex stage",
             document.display()
         );
-        for stage in stages {
+        for stage in glsl {
             let result = Command::new("glslangValidator")
                 .arg(&stage)
                 .output()
@@ -92,6 +103,22 @@ pub fn check_with_materialx(documents: &[PathBuf]) {
                 "{}: {}",
                 stage.display(),
                 String::from_utf8_lossy(&result.stdout)
+            );
+        }
+        let metal = stages(document, &["metal"]);
+        assert_eq!(metal.len(), 1, "{}: a Metal stage", document.display());
+        let metal = std::fs::read_to_string(&metal[0]).expect("the Metal stage");
+        let pixel =
+            std::fs::read_to_string(&stages(document, &["frag"])[0]).expect("the pixel stage");
+        let text = std::fs::read_to_string(document).expect("the document");
+        for function in text.split("function=\"").skip(1) {
+            let function = function.split('"').next().expect("a closing quote");
+            let defined = format!("void {function}(");
+            assert_eq!(
+                metal.contains(&defined),
+                pixel.contains(&defined),
+                "{}: {function} is not in the Metal stage",
+                document.display()
             );
         }
     }

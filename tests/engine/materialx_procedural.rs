@@ -1,5 +1,6 @@
 //! MaterialX export, procedural tier (`veneer compile --target mtlx --tier procedural`):
-//! every preset translates to a document MaterialX validates and compiles; rendered
+//! every preset translates to a document MaterialX validates and compiles (GLSL and Metal
+//! implementations of Veneer's own nodes beside it); rendered
 //! through MaterialX's own GLSL generator and renderer (`tests/materialx/render.py`), every
 //! preset without mesh fields draws what Veneer's flat render draws on the same adapter
 //! (llvmpipe through GL); the exposed parameters are the node graph's inputs; a node that
@@ -62,16 +63,18 @@ fn every_preset_translates_to_a_document_materialx_validates_and_compiles() {
         // ... and nothing else is written but the definitions' functions.
         let definitions = document.contains("<nodedef ");
         own_definitions += usize::from(definitions);
-        let functions = dir.join(format!("{}_veneer.glsl", stem(&graph)));
-        assert_eq!(
-            written.contains(&functions),
-            definitions,
-            "{}",
-            graph.display()
-        );
+        for language in ["glsl", "metal"] {
+            let functions = dir.join(format!("{}_veneer.{language}", stem(&graph)));
+            assert_eq!(
+                written.contains(&functions),
+                definitions,
+                "{}",
+                graph.display()
+            );
+        }
         assert_eq!(
             written.len(),
-            1 + named_files(&document).len() + usize::from(definitions),
+            1 + named_files(&document).len() + 2 * usize::from(definitions),
             "{}: {written:?}",
             graph.display()
         );

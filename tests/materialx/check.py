@@ -3,7 +3,8 @@
 `.ci/run` installs into target/python): each file is read, validated against the
 standard data libraries, and every renderable element in it is given to MaterialX's GLSL
 shader generator, whose pixel and vertex stages are written beside the file as
-`<file>.<element>.frag` and `.vert` for glslangValidator.
+`<file>.<element>.frag` and `.vert` for glslangValidator, and to its Metal generator, whose
+pixel stage is written as `<file>.<element>.metal`.
 
     PYTHONPATH=target/python python3 tests/materialx/check.py FILE.mtlx...
 
@@ -15,6 +16,7 @@ do); they are left beside the document.
 import sys
 
 import MaterialX.PyMaterialXGenGlsl as glsl
+import MaterialX.PyMaterialXGenMsl as msl
 import MaterialX.PyMaterialXGenShader as shadergen
 
 import documents
@@ -29,15 +31,20 @@ def main():
             print(f"{path}: {problem}")
             failed = True
             continue
-        generator = glsl.GlslShaderGenerator.create()
-        context = shadergen.GenContext(generator)
-        context.registerSourceCodeSearchPath(search)
         elements = shadergen.findRenderableElements(document)
-        for element in elements:
-            shader = generator.generate(element.getName(), element, context)
-            for stage, extension in ((shadergen.PIXEL_STAGE, "frag"), (shadergen.VERTEX_STAGE, "vert")):
-                with open(f"{path}.{element.getName()}.{extension}", "w") as out:
-                    out.write(shader.getSourceCode(stage))
+        targets = (
+            (glsl.GlslShaderGenerator, ((shadergen.PIXEL_STAGE, "frag"), (shadergen.VERTEX_STAGE, "vert"))),
+            (msl.MslShaderGenerator, ((shadergen.PIXEL_STAGE, "metal"),)),
+        )
+        for generator_class, stages in targets:
+            generator = generator_class.create()
+            context = shadergen.GenContext(generator)
+            context.registerSourceCodeSearchPath(search)
+            for element in elements:
+                shader = generator.generate(element.getName(), element, context)
+                for stage, extension in stages:
+                    with open(f"{path}.{element.getName()}.{extension}", "w") as out:
+                        out.write(shader.getSourceCode(stage))
         if not elements:
             print(f"{path}: nothing renderable")
             failed = True

@@ -22,7 +22,7 @@ use std::fmt::Write;
 #[derive(Clone, Debug, PartialEq)]
 pub struct CustomDef {
     /// The node's category in MaterialX (`veneer_fbm_1a2b3c4d`); the definition is
-    /// `ND_<category>`, the implementation `IM_<category>_genglsl`.
+    /// `ND_<category>`, the implementations `IM_<category>_genglsl` and `_genmsl`.
     pub category: String,
     /// The kind, with its settings.
     pub kind: NodeKind,
@@ -128,7 +128,10 @@ impl CustomDef {
             wrapper,
             library: code.library,
         };
-        glsl_functions(std::slice::from_ref(&definition)).map(|_| definition)
+        for language in Language::ALL {
+            functions(std::slice::from_ref(&definition), language)?;
+        }
+        Ok(definition)
     }
 
     /// The name of output `k` in MaterialX: `out` for the only one, else the pin's name
@@ -170,9 +173,9 @@ impl CustomDef {
         function_name(&self.category)
     }
 
-    /// The `<nodedef>` element and one `<implementation>` per target, the GLSL one reading
-    /// `glsl_file` (a file beside the document).
-    pub fn xml(&self, glsl_file: &str) -> String {
+    /// The `<nodedef>` element and one `<implementation>` per language, each reading the
+    /// functions from `file(language)` (a file beside the document).
+    pub fn xml(&self, file: impl Fn(Language) -> String) -> String {
         let category = &self.category;
         let mut text = format!(
             "  <nodedef name=\"ND_{category}\" node=\"{category}\" nodegroup=\"procedural\" doc=\"{}\">\n",
@@ -209,12 +212,15 @@ impl CustomDef {
             );
         }
         text.push_str("  </nodedef>\n");
-        let _ = writeln!(
-            text,
-            "  <implementation name=\"IM_{category}_genglsl\" nodedef=\"ND_{category}\" target=\"genglsl\" file=\"{}\" function=\"{}\" />",
-            super::attribute(glsl_file),
-            self.function()
-        );
+        for language in Language::ALL {
+            let target = language.target();
+            let _ = writeln!(
+                text,
+                "  <implementation name=\"IM_{category}_{target}\" nodedef=\"ND_{category}\" target=\"{target}\" file=\"{}\" function=\"{}\" />",
+                super::attribute(&file(language)),
+                self.function()
+            );
+        }
         text
     }
 }
@@ -225,11 +231,79 @@ fn function_name(category: &str) -> String {
     format!("{category}_node")
 }
 
-/// The GLSL file of `definitions`: their functions and every library function they call,
-/// translated from WGSL by naga (GLSL 4.00, MaterialX's version), inside one include
-/// guard named after the text's digest, so MaterialX may paste it once per definition
-/// and a shader still holds each function once.
-pub fn glsl_functions(definitions: &[CustomDef]) -> Result<String, String> {
+/// A shading language MaterialX's generators read Veneer's node functions in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Language {
+    /// GLSL 4.00, MaterialX's version (`genglsl`).
+    Glsl,
+    /// Metal Shading Language 2.0 (`genmsl`).
+    Msl,
+}
+
+impl Language {
+    /// Every language a document carries implementations in.
+    pub const ALL: [Language; 2] = [Language::Glsl, Language::Msl];
+
+    /// MaterialX's name of the generator target.
+    pub fn target(self) -> &'static str {
+        match self {
+            Language::Glsl => "genglsl",
+            Language::Msl => "genmsl",
+        }
+    }
+
+    /// The extension of the file holding the functions.
+    pub fn extension(self) -> &'static str {
+        match self {
+            Language::Glsl => "glsl",
+            Language::Msl => "metal",
+        }
+    }
+
+    /// The language's name in the file's opening comment.
+    fn title(self) -> &'static str {
+        match self {
+            Language::Glsl => "GLSL 4.00",
+            Language::Msl => "Metal Shading Language 2.0",
+        }
+    }
+
+    /// The module as naga writes it in this language.
+    fn translate(self, source: &str) -> Result<String, String> {
+        match self {
+            Language::Glsl => {
+                crate::codegen::export::glsl(source, naga::back::glsl::Version::Desktop(400))
+            }
+            Language::Msl => crate::codegen::export::msl(source),
+        }
+    }
+
+    /// Where naga's output of the module starts the entry point, after every function.
+    fn entry(self) -> String {
+        match self {
+            Language::Glsl => "void main()".to_string(),
+            Language::Msl => format!("struct {ENTRY}Output"),
+        }
+    }
+
+    /// Whether a line of naga's output before the entry point belongs to the whole
+    /// shader rather than the functions (the version, includes, namespace, the stage's
+    /// output).
+    fn is_preamble(self, line: &str) -> bool {
+        match self {
+            Language::Glsl => line.starts_with('#') || line.starts_with("layout("),
+            Language::Msl => {
+                line.starts_with('#') || line.starts_with("using ") || line.starts_with("//")
+            }
+        }
+    }
+}
+
+/// The file of `definitions` in `language`: their functions and every library function
+/// they call, translated from WGSL by naga, inside one include guard named after the
+/// text's digest, so MaterialX may paste it once per definition and a shader still
+/// holds each function once.
+pub fn functions(definitions: &[CustomDef], language: Language) -> Result<String, String> {
     let roots = definitions.iter().flat_map(|d| d.library.iter());
     let mut source = String::new();
     for item in crate::codegen::library::closure(roots.map(String::as_str)) {
@@ -241,7 +315,7 @@ pub fn glsl_functions(definitions: &[CustomDef]) -> Result<String, String> {
         source.push('\n');
     }
     // naga writes the functions its entry point reaches: the entry calls each once.
-    source.push_str("@fragment\nfn veneer_materialx_entry() -> @location(0) vec4f {\n");
+    let _ = writeln!(source, "@fragment\nfn {ENTRY}() -> @location(0) vec4f {{");
     for (k, definition) in definitions.iter().enumerate() {
         let mut arguments: Vec<String> = (definition.inputs.iter())
             .map(|pin| format!("{}()", pin.ty.wgsl()))
@@ -258,14 +332,18 @@ pub fn glsl_functions(definitions: &[CustomDef]) -> Result<String, String> {
         );
     }
     source.push_str("    return vec4f(0.0);\n}\n");
-    let text = crate::codegen::export::glsl(&source, naga::back::glsl::Version::Desktop(400))
-        .map_err(|error| format!("its code does not translate to GLSL: {error}"))?;
-    // naga writes a whole shader: keep its structs and functions, not the version, the
-    // stage's output or the entry point.
-    let end = text.find(ENTRY).unwrap_or(text.len());
+    let text = (language.translate(&source)).map_err(|error| {
+        format!(
+            "its code does not translate to {}: {error}",
+            language.title()
+        )
+    })?;
+    // naga writes a whole shader: keep its structs and functions, not what belongs to
+    // the shader (see `is_preamble`) or the entry point.
+    let end = text.find(&language.entry()).unwrap_or(text.len());
     let body: String = text[..end]
         .lines()
-        .filter(|line| !line.starts_with('#') && !line.starts_with("layout("))
+        .filter(|line| !language.is_preamble(line))
         .map(|line| format!("{line}\n"))
         .collect();
     for definition in definitions {
@@ -278,13 +356,14 @@ pub fn glsl_functions(definitions: &[CustomDef]) -> Result<String, String> {
     }
     let guard = format!("VENEER_{:08X}", crc32fast::hash(body.as_bytes()));
     Ok(format!(
-        "// Veneer's node functions for MaterialX (GLSL 4.00), translated from its WGSL by naga.\n#ifndef {guard}\n#define {guard}\n{}#endif\n",
+        "// Veneer's node functions for MaterialX ({}), translated from its WGSL by naga.\n#ifndef {guard}\n#define {guard}\n{}#endif\n",
+        language.title(),
         body.trim_start_matches('\n')
     ))
 }
 
-/// Where naga's GLSL writes the entry point, after every function.
-const ENTRY: &str = "void main()";
+/// The entry point through which naga reaches the functions.
+const ENTRY: &str = "veneer_materialx_entry";
 
 #[cfg(test)]
 mod tests {
@@ -300,10 +379,12 @@ mod tests {
             let definition =
                 CustomDef::new(&kind).unwrap_or_else(|e| panic!("{}: {e}", kind.name()));
             categories.insert(definition.category.clone());
-            let text = glsl_functions(std::slice::from_ref(&definition)).unwrap();
-            assert!(text.contains(&format!("void {}(", definition.function())));
-            if kind.name() == "Worley" && std::env::var_os("VENEER_SHOW_GLSL").is_some() {
-                println!("{}\n{text}", definition.xml("x.glsl"));
+            for language in Language::ALL {
+                let text = functions(std::slice::from_ref(&definition), language).unwrap();
+                assert!(text.contains(&format!("void {}(", definition.function())));
+                if kind.name() == "Worley" && std::env::var_os("VENEER_SHOW_FUNCTIONS").is_some() {
+                    println!("{text}");
+                }
             }
         }
         assert!(categories.len() > 20, "{categories:?}");

@@ -24,6 +24,7 @@ use super::{BakeError, BakeSettings, BakeSurface, Format, Map, NormalConvention,
 use crate::codegen::{AlphaUse, Compiled};
 use crate::fsutil::Naming;
 use crate::graph::Shading;
+use custom::Language;
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
 
@@ -78,19 +79,20 @@ const MAPS: [Map; 5] = [
 
 /// Every file an export to `path` may write, `path` itself first: the maps go beside it
 /// as `<stem>_<map>.png` (alpha, emission and normal only when the material has them),
-/// the procedural tier's node functions as `<stem>_veneer.glsl`.
+/// the procedural tier's node functions as `<stem>_veneer.glsl` and `.metal`.
 pub fn materialx_files(path: &Path) -> Vec<PathBuf> {
     let stem = path.with_extension("");
     std::iter::once(path.to_path_buf())
         .chain(MAPS.map(|map| super::map_path(&stem, map, Format::Png8)))
-        .chain([functions_path(path)])
+        .chain(Language::ALL.map(|language| functions_path(path, language)))
         .collect()
 }
 
-/// Where the procedural tier's GLSL node functions go: `<stem>_veneer.glsl`.
-fn functions_path(path: &Path) -> PathBuf {
+/// Where the procedural tier's node functions in `language` go: `<stem>_veneer.glsl`,
+/// `<stem>_veneer.metal`.
+fn functions_path(path: &Path, language: Language) -> PathBuf {
     let stem = path.file_stem().unwrap_or_default().to_string_lossy();
-    path.with_file_name(format!("{stem}_veneer.glsl"))
+    path.with_file_name(format!("{stem}_veneer.{}", language.extension()))
 }
 
 /// What a MaterialX export wrote.
@@ -226,16 +228,23 @@ pub fn export_materialx(
                 let texture = bake_node(gpu, baked, settings, staging.path(), &mut progress)?;
                 files.push((path.with_file_name(&baked.file), texture));
             }
-            let functions = functions_path(path);
-            let file_name = functions.file_name().unwrap_or_default().to_string_lossy();
+            let file_name = |language| {
+                let file = functions_path(path, language);
+                file.file_name()
+                    .unwrap_or_default()
+                    .to_string_lossy()
+                    .into_owned()
+            };
             let mut definitions = String::new();
             for definition in &procedural.definitions {
-                definitions.push_str(&definition.xml(&file_name));
+                definitions.push_str(&definition.xml(file_name));
             }
-            if !procedural.definitions.is_empty() {
-                let glsl = custom::glsl_functions(&procedural.definitions)
-                    .map_err(|error| write_error(&functions)(std::io::Error::other(error)))?;
-                files.push((functions, glsl.into_bytes()));
+            let used = !procedural.definitions.is_empty();
+            for language in Language::ALL.into_iter().filter(|_| used) {
+                let file = functions_path(path, language);
+                let text = custom::functions(&procedural.definitions, language)
+                    .map_err(|error| write_error(&file)(std::io::Error::other(error)))?;
+                files.push((file, text.into_bytes()));
             }
             let comment = comment(
                 compiled,
@@ -569,6 +578,7 @@ mod tests {
         assert!(files.contains(&PathBuf::from("out/wood_albedo.png")));
         assert!(files.contains(&PathBuf::from("out/wood_orm.png")));
         assert!(files.contains(&PathBuf::from("out/wood_veneer.glsl")));
-        assert_eq!(files.len(), 2 + MAPS.len());
+        assert!(files.contains(&PathBuf::from("out/wood_veneer.metal")));
+        assert_eq!(files.len(), 3 + MAPS.len());
     }
 }

@@ -80,7 +80,7 @@ impl Dialog {
                 ui.heading("Export MaterialX");
                 ui.label(match tier {
                     crate::bake::Tier::Baked => "A MaterialX 1.39 document whose surface shader reads the material's maps, baked beside it (wood.mtlx giving wood_albedo.png, wood_orm.png and so on)",
-                    crate::bake::Tier::Procedural => "A MaterialX 1.39 document holding the graph itself, node by node (Veneer's own nodes' GLSL beside it as wood_veneer.glsl); the exposed parameters stay parameters. Refused, naming the nodes, where a node cannot translate",
+                    crate::bake::Tier::Procedural => "A MaterialX 1.39 document holding the graph itself, node by node (Veneer's own nodes' GLSL and Metal beside it as wood_veneer.glsl and .metal); the exposed parameters stay parameters. Refused, naming the nodes, where a node cannot translate",
                     crate::bake::Tier::Auto => "The graph node by node where every node translates, else its maps baked",
                 });
                 frame.path_field(ui, path);
