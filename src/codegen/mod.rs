@@ -314,6 +314,8 @@ pub struct Compiled {
     /// The passes that render the buffers the module reads, in order (none for a
     /// graph without sampled inputs).
     pub passes: passes::Passes,
+    /// The graph's groups as they were before inlining (a MaterialX export keeps them).
+    pub groups: std::sync::Arc<graph::group::GroupSource>,
 }
 
 impl Compiled {
@@ -342,6 +344,7 @@ pub fn compile(graph: &Graph, options: &CompileOptions) -> Result<Compiled, Comp
         folder: graph.folder.clone(),
         presets: graph.presets.clone(),
         passes,
+        groups: std::sync::Arc::new(graph::group::GroupSource::of(graph)),
     })
 }
 

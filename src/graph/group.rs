@@ -49,6 +49,29 @@ impl GroupDef {
     }
 }
 
+/// A graph's group definitions and its top-level group nodes: what the stages that keep
+/// groups after inlining need (a MaterialX export writes each group as a node graph).
+#[derive(Clone, Debug, Default)]
+pub struct GroupSource {
+    /// The definitions, by name.
+    pub definitions: BTreeMap<String, GroupDef>,
+    /// The top-level group nodes, by id.
+    pub instances: BTreeMap<NodeId, Node>,
+}
+
+impl GroupSource {
+    /// The groups of `graph`.
+    pub fn of(graph: &Graph) -> GroupSource {
+        GroupSource {
+            definitions: graph.groups.clone(),
+            instances: (graph.nodes.iter())
+                .filter(|node| group_name(node).is_some())
+                .map(|node| (node.id, node.clone()))
+                .collect(),
+        }
+    }
+}
+
 /// One declared input of a group: an exposed parameter of every instance that leaves
 /// it unwired.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]

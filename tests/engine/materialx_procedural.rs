@@ -118,6 +118,75 @@ fn rgb8(path: &Path) -> Vec<u8> {
         .into_raw()
 }
 
+/// Exports `graph` (named `name`) in the procedural tier into `dir` and renders its
+/// `veneer_albedo` through MaterialX's GLSL over a flat rectangle, which must match
+/// `veneer render --flat` of the same rectangle on the same adapter (llvmpipe through GL):
+/// at most 1% of pixels more than 2/255 apart.
+fn assert_materialx_draws_what_veneer_draws(graph: &Path, compiled: &Compiled, dir: &Path) {
+    let name = stem(graph);
+    let path = dir.join(format!("{name}.mtlx"));
+    export(compiled, SurfaceModel::OpenPbr, &path);
+    // Bitmaps are read where they are not minified (MaterialX's renderer samples
+    // mipmaps, Veneer the image itself), at the flat view's uv: the place in the
+    // rectangle.
+    let bitmaps = &compiled.checked.bitmaps;
+    let largest = (bitmaps.values())
+        .map(|bitmap| bitmap.width.max(bitmap.height) + 1)
+        .max();
+    let size = largest.unwrap_or(0).max(160).to_string();
+    let (texture, object) = rectangles(compiled);
+    let veneer_png = dir.join(format!("{name}.veneer.png"));
+    let rendered = veneer()
+        .args(["render", "--size", &size, "--flat", &texture, "-o"])
+        .arg(&veneer_png)
+        .arg(graph)
+        .env("WGPU_BACKEND", "gl")
+        .output()
+        .expect("veneer runs");
+    assert!(
+        rendered.status.success(),
+        "{}",
+        String::from_utf8_lossy(&rendered.stderr)
+    );
+    let document = std::fs::read_to_string(&path).unwrap();
+    // The material's node graph, not a group's (which implements a definition).
+    let graph_name = (document.split("<nodegraph name=\"").skip(1))
+        .find(|rest| {
+            !rest
+                .split('>')
+                .next()
+                .unwrap_or_default()
+                .contains("nodedef=")
+        })
+        .and_then(|rest| rest.split('"').next())
+        .expect("a node graph");
+    let materialx_png = dir.join(format!("{name}.materialx.png"));
+    let mut render = Command::new("python3");
+    render
+        .arg(root("tests/materialx/render.py"))
+        .arg(&path)
+        .arg(format!("{graph_name}/{ALBEDO_OUTPUT}"))
+        .args([&object, &size])
+        .arg(&materialx_png)
+        .env("PYTHONPATH", root("target/python"));
+    if !bitmaps.is_empty() {
+        render.arg("domain-uv");
+    }
+    let output = render.output().expect("python3 runs");
+    assert!(
+        output.status.success(),
+        "{name}: MaterialX's render (`.ci/run` installs the package):\n{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let comparison = difference(&rgb8(&veneer_png), &rgb8(&materialx_png), 3, 2);
+    assert!(
+        comparison.share_outside <= 0.01,
+        "{name}: {:.2}% of pixels differ by more than 2/255 (largest {})",
+        100.0 * comparison.share_outside,
+        comparison.max
+    );
+}
+
 #[test]
 fn materialx_glsl_draws_what_veneer_draws_for_every_preset_without_mesh_fields() {
     let dir = temp_dir("materialx-procedural-renders");
@@ -127,65 +196,97 @@ fn materialx_glsl_draws_what_veneer_draws_for_every_preset_without_mesh_fields()
         if reads_mesh(&compiled) {
             continue;
         }
-        let name = stem(&graph);
-        let path = dir.join(format!("{name}.mtlx"));
-        export(&compiled, SurfaceModel::OpenPbr, &path);
-        // Bitmaps are read where they are not minified (MaterialX's renderer samples
-        // mipmaps, Veneer the image itself), at the flat view's uv: the place in the
-        // rectangle.
-        let bitmaps = &compiled.checked.bitmaps;
-        let largest = (bitmaps.values())
-            .map(|bitmap| bitmap.width.max(bitmap.height) + 1)
-            .max();
-        let size = largest.unwrap_or(0).max(160).to_string();
-        let (texture, object) = rectangles(&compiled);
-        let veneer_png = dir.join(format!("{name}.veneer.png"));
-        let rendered = veneer()
-            .args(["render", "--size", &size, "--flat", &texture, "-o"])
-            .arg(&veneer_png)
-            .arg(&graph)
-            .env("WGPU_BACKEND", "gl")
-            .output()
-            .expect("veneer runs");
-        assert!(
-            rendered.status.success(),
-            "{}",
-            String::from_utf8_lossy(&rendered.stderr)
-        );
-        let document = std::fs::read_to_string(&path).unwrap();
-        let graph_name = document
-            .split("<nodegraph name=\"")
-            .nth(1)
-            .and_then(|rest| rest.split('"').next())
-            .expect("a node graph");
-        let materialx_png = dir.join(format!("{name}.materialx.png"));
-        let mut render = Command::new("python3");
-        render
-            .arg(root("tests/materialx/render.py"))
-            .arg(&path)
-            .arg(format!("{graph_name}/{ALBEDO_OUTPUT}"))
-            .args([&object, &size])
-            .arg(&materialx_png)
-            .env("PYTHONPATH", root("target/python"));
-        if !bitmaps.is_empty() {
-            render.arg("domain-uv");
-        }
-        let output = render.output().expect("python3 runs");
-        assert!(
-            output.status.success(),
-            "{name}: MaterialX's render (`.ci/run` installs the package):\n{}",
-            String::from_utf8_lossy(&output.stderr)
-        );
-        let comparison = difference(&rgb8(&veneer_png), &rgb8(&materialx_png), 3, 2);
-        assert!(
-            comparison.share_outside <= 0.01,
-            "{name}: {:.2}% of pixels differ by more than 2/255 (largest {})",
-            100.0 * comparison.share_outside,
-            comparison.max
-        );
-        compared.push(name);
+        assert_materialx_draws_what_veneer_draws(&graph, &compiled, &dir);
+        compared.push(stem(&graph));
     }
     assert!(compared.len() >= 8, "{compared:?}");
+}
+
+/// Wood with a second instance of its group, set apart (`ring_frequency` 1.3) and
+/// blended with the first by its rings, saved into `dir`.
+fn two_woods(dir: &Path) -> PathBuf {
+    use veneer::graph::{Node, NodeId, NodeKind, PinRef, Value, Wire};
+    let mut graph = veneer::graph::load(&root("graphs/wood.ron")).unwrap();
+    for group in graph.groups.values_mut() {
+        group.linked = false;
+    }
+    let mut second = Node::new(
+        NodeId(3),
+        NodeKind::Group(veneer::nodes::Group::named("ring_wood".into())),
+    );
+    second.label = "second wood".into();
+    second.position = (0.0, 300.0);
+    second
+        .inputs
+        .insert("ring_frequency".into(), Value::Float(1.3));
+    let mut blend = Node::new(
+        NodeId(4),
+        NodeKind::Mix(veneer::nodes::Mix {
+            ty: veneer::nodes::value::ValueType::Color,
+        }),
+    );
+    blend.label = "blend".into();
+    blend.position = (206.0, 150.0);
+    graph.nodes.extend([second, blend]);
+    let wire = |from: u32, from_pin: &str, to: u32, to_pin: &str| Wire {
+        from: PinRef::new(NodeId(from), from_pin),
+        to: PinRef::new(NodeId(to), to_pin),
+    };
+    graph.wires = vec![
+        wire(1, "albedo", 4, "a"),
+        wire(3, "albedo", 4, "b"),
+        wire(3, "rings", 4, "factor"),
+        wire(4, "result", 2, "albedo"),
+    ];
+    let path = dir.join("two_woods.ron");
+    veneer::graph::save(&graph, &path).unwrap();
+    path
+}
+
+#[test]
+fn groups_become_node_graphs_shared_by_their_instances_and_draw_the_same() {
+    let dir = temp_dir("materialx-procedural-groups");
+    let graph = two_woods(&dir);
+    let path = dir.join("two_woods.mtlx");
+    succeeds(
+        compile_mtlx("procedural", &graph, &path).args(["--set", "second wood.ring_frequency=1.7"]),
+    );
+    let document = std::fs::read_to_string(&path).unwrap();
+    // One definition, implemented by a node graph, for both instances.
+    assert_eq!(
+        document
+            .matches("<nodedef name=\"ND_veneer_group_ring_wood\"")
+            .count(),
+        1,
+        "{document}"
+    );
+    assert!(document.contains(
+        "<nodegraph name=\"NG_veneer_group_ring_wood\" nodedef=\"ND_veneer_group_ring_wood\">"
+    ));
+    assert_eq!(document.matches("<veneer_group_ring_wood ").count(), 2);
+    // The group's inputs are the definition's, with its defaults and spans, and each
+    // instance reads the material's parameters, the override among them.
+    assert!(document.contains(
+        "<input name=\"ring_frequency\" type=\"float\" value=\"0.5\" uimin=\"0.05\" uimax=\"5\" />"
+    ));
+    assert!(
+        document
+            .contains("<input name=\"second_wood_ring_frequency\" type=\"float\" value=\"1.7\""),
+        "{document}"
+    );
+    assert!(document.contains(
+        "<input name=\"ring_frequency\" type=\"float\" interfacename=\"second_wood_ring_frequency\" />"
+    ));
+    check_with_materialx(&[path]);
+    // Drawn through MaterialX's GLSL as Veneer draws it (exported again, as it is), and
+    // imported back as it was.
+    assert_materialx_draws_what_veneer_draws(&graph, &compiled(&graph), &dir);
+    let back = dir.join("back.ron");
+    let document = dir.join("two_woods.mtlx");
+    succeeds(veneer().arg("import").arg(&document).arg("-o").arg(&back));
+    let original = veneer::graph::load(&graph).unwrap();
+    let imported = veneer::graph::load(&back).unwrap();
+    assert_eq!(comparable(imported), comparable(original));
 }
 
 #[test]
@@ -288,7 +389,11 @@ fn the_readme_coverage_table_is_the_registrys() {
 /// out, and what a MaterialX material does not carry (the preview mesh) dropped.
 fn comparable(mut graph: veneer::graph::Graph) -> veneer::graph::Graph {
     use veneer::nodes::pins::PinDefault;
-    for node in &mut graph.nodes {
+    let group_nodes = graph
+        .groups
+        .values_mut()
+        .flat_map(|group| group.nodes.iter_mut());
+    for node in graph.nodes.iter_mut().chain(group_nodes) {
         let pins = node.kind.definition().signature().inputs;
         node.inputs.retain(|pin, value| {
             let default = pins.iter().find(|p| p.name == pin).map(|p| &p.default);
@@ -297,13 +402,24 @@ fn comparable(mut graph: veneer::graph::Graph) -> veneer::graph::Graph {
     }
     graph.preview.mesh = String::new();
     graph.folder = Default::default();
+    // Whether a group follows the library's is Veneer's to know.
+    for group in graph.groups.values_mut() {
+        group.linked = false;
+    }
     graph
 }
 
 #[test]
 fn importing_the_procedural_tier_gives_the_graph_back() {
     let dir = temp_dir("materialx-import");
-    for preset in ["thesis_brick", "rusted_metal", "marble_tiles"] {
+    // Wood and marble keep their groups (as node graphs of their own).
+    for preset in [
+        "thesis_brick",
+        "rusted_metal",
+        "marble_tiles",
+        "wood",
+        "marble",
+    ] {
         let graph = root(&format!("graphs/{preset}.ron"));
         let document = dir.join(format!("{preset}.mtlx"));
         export(&compiled(&graph), SurfaceModel::OpenPbr, &document);

@@ -32,7 +32,9 @@ pub fn coverage_table() -> String {
         };
         let structural = match *name {
             "Material" => Some("the surface shader's inputs (see above)"),
-            "Group" => Some("inlined before translation: its nodes translate one by one"),
+            "Group" => Some(
+                "a node definition of its own (`ND_veneer_group_<name>`, its inputs and outputs the group's) implemented by a node graph of the group's nodes, translated one by one; groups nested in it are inlined into that node graph",
+            ),
             "GraphBake" => Some("expanded into a Buffer node before translation (not translated)"),
             _ => None,
         };
@@ -72,6 +74,6 @@ pub fn coverage_table() -> String {
     }
     let total = standard + mixed + own + textures + untranslated;
     format!(
-        "Of {total} node kinds (besides the material output, groups and graph bakes, which are expanded first), {standard} translate to MaterialX's standard nodes, {mixed} to standard nodes for some settings and to Veneer's own definitions for the rest, {own} to Veneer's own definitions, {textures} to `image` nodes reading textures written beside the document, and {untranslated} do not translate (`--tier auto` reads what they give from textures baked beside).\n\n| Node kind | In MaterialX |\n|---|---|\n{rows}"
+        "Of {total} node kinds (besides the material output, groups and graph bakes), {standard} translate to MaterialX's standard nodes, {mixed} to standard nodes for some settings and to Veneer's own definitions for the rest, {own} to Veneer's own definitions, {textures} to `image` nodes reading textures written beside the document, and {untranslated} do not translate (`--tier auto` reads what they give from textures baked beside).\n\n| Node kind | In MaterialX |\n|---|---|\n{rows}"
     )
 }

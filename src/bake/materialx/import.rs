@@ -28,6 +28,8 @@ enum Feed {
     Parameter(String, Value, Option<(f64, f64)>),
     /// The shaded point's position.
     Position,
+    /// An input of the group whose node graph is being read.
+    Boundary(String),
 }
 
 /// What a MaterialX node became.
@@ -71,17 +73,7 @@ pub fn import(text: &str, file: &str) -> Result<Graph, String> {
                 && graph_name.is_none_or(|name| e.attribute("name") == Some(name))
         })
         .ok_or_else(|| format!("{}: the document has no node graph to import", at(root)))?;
-    let mut importer = Importer {
-        definitions: definitions(root),
-        elements: BTreeMap::new(),
-        interface: BTreeMap::new(),
-        made: BTreeMap::new(),
-        visiting: Vec::new(),
-        graph: Graph::default(),
-        errors: Vec::new(),
-        at: &at,
-        next_id: 1,
-    };
+    let mut importer = Importer::new(definitions(root), group_definitions(root), &at, None);
     for element in children(node_graph) {
         let name = element.attribute("name").unwrap_or_default().to_string();
         match element.tag_name().name() {
@@ -203,6 +195,8 @@ pub fn import(text: &str, file: &str) -> Result<Graph, String> {
         return Err(importer.errors.join("\n"));
     }
     let mut graph = importer.graph;
+    crate::graph::group::resolve(&mut graph);
+    let exposed = crate::graph::parameters::exposed(&graph);
     graph.name = (children(root).into_iter())
         .find(|e| e.tag_name().name() == "surfacematerial")
         .and_then(|e| e.attribute("uiname").or(e.attribute("name")))
@@ -218,7 +212,7 @@ pub fn import(text: &str, file: &str) -> Result<Graph, String> {
         let name = variant.attribute("name").unwrap_or_default().to_string();
         let values = (children(variant).into_iter())
             .filter_map(|input| Some((input.attribute("name")?.to_string(), value_of(input).ok()?)))
-            .filter(|(parameter, _)| graph.parameters.iter().any(|p| &p.name == parameter))
+            .filter(|(parameter, _)| exposed.iter().any(|p| &p.name == parameter))
             .collect();
         graph.presets.insert(name, values);
     }
@@ -290,8 +284,41 @@ fn value_of(element: Element) -> Result<Value, String> {
     }
 }
 
+/// The document's node definitions implemented by a node graph (Veneer's groups):
+/// node category → the definition and its node graph.
+fn group_definitions<'a, 'i>(
+    root: Element<'a, 'i>,
+) -> BTreeMap<String, (Element<'a, 'i>, Element<'a, 'i>)> {
+    let elements = children(root);
+    (elements.iter())
+        .filter(|e| e.tag_name().name() == "nodegraph")
+        .filter_map(|graph| {
+            let nodedef = graph.attribute("nodedef")?;
+            let definition = (elements.iter()).find(|e| {
+                e.tag_name().name() == "nodedef" && e.attribute("name") == Some(nodedef)
+            })?;
+            Some((
+                definition.attribute("node")?.to_string(),
+                (*definition, *graph),
+            ))
+        })
+        .collect()
+}
+
+/// Whether a node definition's input is the shaded point's position.
+fn is_position(input: Element) -> bool {
+    input.attribute("defaultgeomprop") == Some("Pobject")
+}
+
 struct Importer<'a, 'i, 'f> {
     definitions: BTreeMap<String, (NodeKind, Vec<String>)>,
+    /// Node graphs implementing definitions (groups), by node category.
+    group_definitions: BTreeMap<String, (Element<'a, 'i>, Element<'a, 'i>)>,
+    /// The group whose node graph this reads (its interface inputs are the group's), or
+    /// none for the document's own node graph.
+    group: Option<String>,
+    /// The group's inputs that are the shaded point's position.
+    position_inputs: Vec<String>,
     elements: BTreeMap<String, Element<'a, 'i>>,
     interface: BTreeMap<String, (Value, Option<(f64, f64)>)>,
     made: BTreeMap<String, Made>,
@@ -303,10 +330,39 @@ struct Importer<'a, 'i, 'f> {
     next_id: u32,
 }
 
-impl<'a, 'i> Importer<'a, 'i, '_> {
+impl<'a, 'i, 'f> Importer<'a, 'i, 'f> {
+    /// An importer of a node graph: the document's (`group` none) or a group's.
+    fn new(
+        definitions: BTreeMap<String, (NodeKind, Vec<String>)>,
+        group_definitions: BTreeMap<String, (Element<'a, 'i>, Element<'a, 'i>)>,
+        at: &'f dyn Fn(Element) -> String,
+        group: Option<String>,
+    ) -> Self {
+        Importer {
+            definitions,
+            group_definitions,
+            group,
+            position_inputs: Vec::new(),
+            elements: BTreeMap::new(),
+            interface: BTreeMap::new(),
+            made: BTreeMap::new(),
+            visiting: Vec::new(),
+            graph: Graph::default(),
+            errors: Vec::new(),
+            at,
+            next_id: 1,
+        }
+    }
+
     /// What input (or output) `element` feeds a pin.
     fn feed(&mut self, element: Element<'a, 'i>) -> Option<Feed> {
         if let Some(name) = element.attribute("interfacename") {
+            if self.group.is_some() && self.interface.contains_key(name) {
+                return Some(Feed::Boundary(name.to_string()));
+            }
+            if self.position_inputs.iter().any(|input| input == name) {
+                return Some(Feed::Position);
+            }
             let Some((value, range)) = self.interface.get(name) else {
                 let at = (self.at)(element);
                 self.errors.push(format!(
@@ -419,7 +475,17 @@ impl<'a, 'i> Importer<'a, 'i, '_> {
             // A Position node's own `dot` reads the placed position: take the placement.
             let _ = first(self, "in");
         }
-        let (kind, outputs, mx_inputs) = match self.kind_of(element) {
+        // So does a group node's position input.
+        if let Some(&(definition, _)) = self.group_definitions.get(category) {
+            for position in children(definition).into_iter().filter(|e| is_position(*e)) {
+                let _ = first(self, position.attribute("name").unwrap_or_default());
+            }
+        }
+        let found = match self.group_definitions.get(category) {
+            Some(&(definition, graph)) => self.import_group(category, definition, graph),
+            None => self.kind_of(element),
+        };
+        let (kind, outputs, mx_inputs) = match found {
             Some(found) => found,
             None => {
                 let at = (self.at)(element);
@@ -434,7 +500,7 @@ impl<'a, 'i> Importer<'a, 'i, '_> {
                 self.next_id += 1;
                 NodeId(self.next_id - 1)
             });
-        let mut node = Node::new(id, kind.clone());
+        let mut node = Node::new(id, kind);
         node.label = element.attribute("uiname").unwrap_or(name).to_string();
         let place = |attribute| {
             element
@@ -443,6 +509,9 @@ impl<'a, 'i> Importer<'a, 'i, '_> {
         };
         node.position = (place("xpos").unwrap_or(0.0), place("ypos").unwrap_or(0.0));
         self.graph.nodes.push(node);
+        // A group node's pins are its definition's.
+        crate::graph::group::resolve(&mut self.graph);
+        let kind = &self.graph.nodes.last().expect("just pushed").kind;
         let pins = kind.definition().signature().inputs;
         for (pin, mx_input) in pins.iter().zip(mx_inputs) {
             let Some(input) = mx_input.and_then(|name| self.input(element, &name)) else {
@@ -486,7 +555,7 @@ impl<'a, 'i> Importer<'a, 'i, '_> {
             let markers: Vec<Source> = (0..pins.len())
                 .map(|k| Source::Value(format!("#{k}")))
                 .collect();
-            let translated = standard(&kind, "probe", &markers)?;
+            let translated = standard(kind, "probe", &markers)?;
             let [node] = translated.nodes.as_slice() else {
                 return None;
             };
@@ -545,6 +614,13 @@ impl<'a, 'i> Importer<'a, 'i, '_> {
                 });
                 return;
             }
+            Feed::Boundary(name) => {
+                self.graph.wires.push(Wire {
+                    from: PinRef::new(crate::graph::group::BOUNDARY, &name),
+                    to: PinRef::new(id, pin.name),
+                });
+                return;
+            }
             Feed::Position if pin.default == PinDefault::Position => return,
             Feed::Position => {
                 let position = self.position_node();
@@ -554,6 +630,8 @@ impl<'a, 'i> Importer<'a, 'i, '_> {
                 });
                 return;
             }
+            // A group node's unwired inputs are exposed parameters already.
+            Feed::Parameter(_, value, _) if self.is_group_node(id) => value,
             Feed::Parameter(name, value, range) => {
                 // A colour is picked with a colour picker, anything else with sliders.
                 let hint = match pin.ty {
@@ -577,6 +655,138 @@ impl<'a, 'i> Importer<'a, 'i, '_> {
                 node.inputs.insert(pin.name.to_string(), value);
             }
         }
+    }
+
+    /// Whether node `id` is a group node.
+    fn is_group_node(&self, id: NodeId) -> bool {
+        (self.graph.nodes.iter())
+            .any(|node| node.id == id && matches!(node.kind, NodeKind::Group(_)))
+    }
+
+    /// The group that node definition `definition` (node `category`) implemented by
+    /// `graph` stands for, read into the graph's groups once (named after the group its
+    /// `doc` names, else the category): its node kind, output names and, per input pin,
+    /// the input feeding it.
+    #[allow(clippy::type_complexity)]
+    fn import_group(
+        &mut self,
+        category: &str,
+        definition: Element<'a, 'i>,
+        graph: Element<'a, 'i>,
+    ) -> Option<(NodeKind, Vec<String>, Vec<Option<String>>)> {
+        let name = (definition.attribute("doc"))
+            .and_then(|doc| doc.strip_prefix("Veneer's group '")?.strip_suffix('\''))
+            .unwrap_or(category)
+            .to_string();
+        let declared = children(definition);
+        let outputs: Vec<String> = (declared.iter())
+            .filter(|e| e.tag_name().name() == "output")
+            .filter_map(|e| e.attribute("name").map(str::to_string))
+            .collect();
+        let (positions, inputs): (Vec<Element>, Vec<Element>) = (declared.iter())
+            .filter(|e| e.tag_name().name() == "input")
+            .partition(|e| is_position(**e));
+        let kind = NodeKind::Group(crate::nodes::Group::named(name.clone()));
+        let pins = inputs
+            .iter()
+            .map(|e| e.attribute("name").map(str::to_string));
+        let found = (kind.clone(), outputs.clone(), pins.collect());
+        if self.graph.groups.contains_key(&name) {
+            return Some(found);
+        }
+        if self.group.as_deref() == Some(name.as_str()) {
+            let at = (self.at)(graph);
+            self.errors
+                .push(format!("{at}: group '{name}' contains itself"));
+            return None;
+        }
+        let mut inner = Importer::new(
+            self.definitions.clone(),
+            self.group_definitions.clone(),
+            self.at,
+            Some(name.clone()),
+        );
+        inner.position_inputs = (positions.iter())
+            .filter_map(|e| e.attribute("name").map(str::to_string))
+            .collect();
+        let mut group = crate::graph::group::GroupDef {
+            linked: false,
+            inputs: Vec::new(),
+            outputs: Vec::new(),
+            nodes: Vec::new(),
+            wires: Vec::new(),
+        };
+        for input in inputs {
+            let input_name = input.attribute("name").unwrap_or_default().to_string();
+            let value = match value_of(input) {
+                Ok(value) => value,
+                Err(error) => {
+                    self.errors.push(format!("{}: {error}", (self.at)(input)));
+                    return None;
+                }
+            };
+            let bound = |attribute| input.attribute(attribute)?.parse::<f64>().ok();
+            let range = bound("uimin").zip(bound("uimax"));
+            inner.interface.insert(input_name.clone(), (value, range));
+            group.inputs.push(crate::graph::group::GroupInput {
+                name: input_name,
+                ty: value.ty(),
+                default: value,
+                range,
+                hint: match value.ty() {
+                    crate::nodes::value::ValueType::Color => Hint::Colour,
+                    _ => Hint::default(),
+                },
+            });
+        }
+        for element in children(graph) {
+            if !matches!(element.tag_name().name(), "input" | "output") {
+                let element_name = element.attribute("name").unwrap_or_default().to_string();
+                inner.elements.insert(element_name, element);
+            }
+        }
+        inner.next_id = 1
+            + (inner.elements.keys())
+                .filter_map(|n| exported_id(n))
+                .max()
+                .unwrap_or(0);
+        for output in children(graph)
+            .into_iter()
+            .filter(|e| e.tag_name().name() == "output")
+        {
+            let output_name = output.attribute("name").unwrap_or_default().to_string();
+            match inner.feed(output) {
+                Some(Feed::Wire(from, index)) => {
+                    let pins = (inner.graph.nodes.iter())
+                        .find(|node| node.id == from)
+                        .map(|node| node.kind.definition().signature().outputs)
+                        .unwrap_or_default();
+                    let Some(pin) = pins.get(index) else {
+                        continue;
+                    };
+                    group.outputs.push(crate::graph::group::GroupOutput {
+                        name: output_name.clone(),
+                        ty: pin.ty,
+                    });
+                    inner.graph.wires.push(Wire {
+                        from: PinRef::new(from, pin.name),
+                        to: PinRef::new(crate::graph::group::BOUNDARY, &output_name),
+                    });
+                }
+                Some(_) => inner.errors.push(format!(
+                    "{}: output '{output_name}' of group '{name}' reads no node",
+                    (self.at)(output)
+                )),
+                None => {}
+            }
+        }
+        self.errors.append(&mut inner.errors);
+        self.graph.groups.append(&mut inner.graph.groups);
+        group.nodes = inner.graph.nodes;
+        group.wires = inner.graph.wires;
+        group.canonicalize();
+        self.graph.groups.insert(name, group);
+        Some(found)
     }
 
     /// A Position node for pins that read the position without defaulting to it.

@@ -10,6 +10,7 @@
 
 mod coverage;
 mod custom;
+mod groups;
 mod import;
 mod network;
 mod procedural;
@@ -239,6 +240,9 @@ pub fn export_materialx(
             for definition in &procedural.definitions {
                 definitions.push_str(&definition.xml(file_name));
             }
+            for group in groups::definitions(&procedural.groups) {
+                definitions.push_str(&group.definition_xml());
+            }
             let used = !procedural.definitions.is_empty();
             for language in Language::ALL.into_iter().filter(|_| used) {
                 let file = functions_path(path, language);
@@ -457,6 +461,22 @@ fn input_xml(text: &mut String, indent: &str, input: &Input, graph: Option<&str>
     );
 }
 
+/// `nodes` as the elements of a node graph.
+fn nodes_xml(text: &mut String, nodes: &[network::Node]) {
+    for node in nodes {
+        let ui = ui_attributes(&node.ui);
+        let _ = writeln!(
+            text,
+            "    <{} name=\"{}\" type=\"{}\"{ui}>",
+            node.category, node.name, node.ty
+        );
+        for input in &node.inputs {
+            input_xml(text, "      ", input, None, "");
+        }
+        let _ = writeln!(text, "    </{}>", node.category);
+    }
+}
+
 /// `network` as a MaterialX 1.39 document: `definitions` (elements of the document's own
 /// node definitions, if any) first, then the nodes in node graph `NG_<name>` with its
 /// interface inputs and an output per node the surface reads, surface shader `SR_<name>`
@@ -480,18 +500,7 @@ pub fn xml(network: &Network, name: &str, comment: &str, definitions: &str) -> S
             .unwrap_or_default();
         input_xml(&mut text, "    ", input, None, &span);
     }
-    for node in &network.nodes {
-        let ui = ui_attributes(&node.ui);
-        let _ = writeln!(
-            text,
-            "    <{} name=\"{}\" type=\"{}\"{ui}>",
-            node.category, node.name, node.ty
-        );
-        for input in &node.inputs {
-            input_xml(&mut text, "      ", input, None, "");
-        }
-        let _ = writeln!(text, "    </{}>", node.category);
-    }
+    nodes_xml(&mut text, &network.nodes);
     let graph = format!("NG_{name}");
     // One output per node output the surface reads, however many inputs read it.
     let mut given = std::collections::BTreeSet::new();

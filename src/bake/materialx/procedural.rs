@@ -8,12 +8,14 @@
 //! takes from the height across neighbouring texels: that one map is baked.
 
 use super::custom::{CustomDef, mx_type};
+use super::groups::{Default, GroupGraph};
 use super::network::{
     Input, Network, Node, Source, SurfaceFields, SurfaceModel, input, node, wire,
 };
 use super::standard::{Translated, standard};
 use crate::codegen::AlphaUse;
 use crate::graph::check::{CheckedGraph, InputSource};
+use crate::graph::group::{BOUNDARY, GroupSource};
 use crate::graph::{NodeId, Preview, Shading};
 use crate::nodes::NodeKind;
 use crate::nodes::pins::{InputPin, PinDefault};
@@ -30,6 +32,8 @@ pub struct Procedural {
     /// Files the document reads that the translation made (the Image nodes' bitmaps),
     /// by name beside the document.
     pub files: Vec<(String, Vec<u8>)>,
+    /// The top-level group nodes' node graphs, their categories assigned.
+    pub groups: Vec<GroupGraph>,
 }
 
 /// An output of a node that the document reads from a texture: a distance or mesh field
@@ -57,6 +61,9 @@ impl std::fmt::Display for Untranslatable {
     }
 }
 
+/// The node giving Veneer's position of the shaded point in the document's node graph.
+const POSITION: &str = "surface_position";
+
 /// The name of the extra node graph output giving the material's albedo as Veneer
 /// computes it (before a Blinn-Phong material's display values are made linear), so the
 /// pattern can be checked against `veneer render --flat`.
@@ -77,9 +84,14 @@ struct Translator<'g> {
     /// Whether a node that does not translate is baked into textures (`--tier auto`)
     /// rather than reported.
     bake_untranslatable: bool,
+    /// The graph's groups before inlining.
+    groups: &'g GroupSource,
     baked: Vec<BakedNode>,
     files: Vec<(String, Vec<u8>)>,
+    /// The nodes of the document's node graph.
     nodes: Vec<Node>,
+    /// The nodes inlined from each top-level group node, as a node graph, by its id.
+    parts: BTreeMap<NodeId, GroupGraph>,
     definitions: Vec<CustomDef>,
     /// What gives each output of each translated node.
     outputs: BTreeMap<NodeId, Vec<Source>>,
@@ -89,23 +101,196 @@ struct Translator<'g> {
 }
 
 impl Translator<'_> {
-    /// The source of `pin` of node `id` (read from `source`), converted to the pin's type;
-    /// `None` when it reads a node that did not translate.
-    fn argument(&mut self, id: NodeId, pin: &InputPin, source: &InputSource) -> Option<Source> {
+    /// The top-level group node whose node graph node `id` goes into, if any.
+    fn owner(&self, id: NodeId) -> Option<NodeId> {
+        let k = self.graph.index_of(id)?;
+        let origin = self.graph.order[k].node.origin.as_ref()?;
+        self.groups
+            .instances
+            .contains_key(&origin.top)
+            .then_some(origin.top)
+    }
+
+    /// The node graph of top-level group node `instance`, made when first met.
+    fn part(&mut self, instance: NodeId) -> &mut GroupGraph {
+        let groups = self.groups;
+        self.parts.entry(instance).or_insert_with(|| {
+            let node = &groups.instances[&instance];
+            let group = crate::graph::group::group_name(node).unwrap_or_default();
+            let label = match node.label.is_empty() {
+                true => group,
+                false => node.label.as_str(),
+            };
+            let name = format!("{}_{}", super::element_name(label), instance.0);
+            let ui = Some((node.label.clone(), node.position));
+            GroupGraph::new(group, instance, name, ui)
+        })
+    }
+
+    /// Where the nodes of `owner` (a top-level group node, or none) go.
+    fn nodes_of(&mut self, owner: Option<NodeId>) -> &mut Vec<Node> {
+        match owner {
+            Some(instance) => &mut self.part(instance).nodes,
+            None => &mut self.nodes,
+        }
+    }
+
+    /// The group definition node `id` sits directly in (not in a group nested in it),
+    /// with its id there.
+    fn definition_of(&self, id: NodeId) -> Option<(&crate::graph::group::GroupDef, NodeId)> {
+        let k = self.graph.index_of(id)?;
+        let origin = self.graph.order[k].node.origin.as_ref()?;
+        if origin.groups.instances().len() != 1 {
+            return None;
+        }
+        let definition = self.groups.definitions.get(&origin.definition)?;
+        Some((definition, origin.id))
+    }
+
+    /// The name of the group output that output `output` of node `id` gives: the
+    /// definition's, where a wire takes it to the group's boundary, else the node's
+    /// name and the pin's.
+    fn group_output_name(&self, id: NodeId, output: usize) -> String {
+        let k = self.graph.index_of(id).expect("a checked node");
+        let checked = &self.graph.order[k];
+        let pin = checked.signature.outputs[output].name;
+        let declared = self.definition_of(id).and_then(|(definition, inner)| {
+            (definition.wires.iter())
+                .find(|w| w.from.node == inner && w.from.pin == pin && w.to.node == BOUNDARY)
+                .map(|w| w.to.pin.clone())
+        });
+        declared.unwrap_or_else(|| format!("{}_{pin}", node_label(&checked.node)))
+    }
+
+    /// The name of the group input that pin `pin` of node `id` (named `name` in the
+    /// document) reads: the definition's, where a wire brings it from the group's
+    /// boundary, else the node's name and the pin's.
+    fn group_input_name(&self, id: NodeId, name: &str, pin: &str) -> String {
+        let declared = self.definition_of(id).and_then(|(definition, inner)| {
+            (definition.wires.iter())
+                .find(|w| w.to.node == inner && w.to.pin == pin && w.from.node == BOUNDARY)
+                .map(|w| w.from.pin.clone())
+        });
+        declared.unwrap_or_else(|| format!("{name}_{pin}"))
+    }
+
+    /// `source` (a source in the document's node graph) as an input of `owner`'s node
+    /// graph named `wanted`, of type `ty`; as it is where `owner` is the document's.
+    fn carry_into(
+        &mut self,
+        owner: Option<NodeId>,
+        wanted: &str,
+        ty: ValueType,
+        source: Source,
+    ) -> Source {
+        let Some(instance) = owner else {
+            return source;
+        };
+        let groups = self.groups;
+        let group = self.part(instance).group.clone();
+        let declared = (groups.definitions.get(&group))
+            .and_then(|definition| definition.inputs.iter().find(|input| input.name == wanted));
+        let (default, range) = match (&source, declared) {
+            (_, Some(declared)) => (
+                Default::Value(super::value_text(&declared.default.components(), ty)),
+                declared.range,
+            ),
+            (Source::Node(node), None) if node == POSITION => (Default::Position, None),
+            _ => (Default::Zero, None),
+        };
+        self.part(instance)
+            .input(wanted, mx_type(ty), source, default, range)
+    }
+
+    /// The source of `pin` of node `id` (named `name` in the document; read from
+    /// `source`), converted to the pin's type; `None` when it reads a node that did not
+    /// translate.
+    fn argument(
+        &mut self,
+        id: NodeId,
+        name: &str,
+        pin: &InputPin,
+        source: &InputSource,
+    ) -> Option<Source> {
+        let owner = self.owner(id);
         Some(match source {
             InputSource::Wire { node, output, ty } => {
                 let from = self.outputs.get(node)?.get(*output)?.clone();
-                self.convert(from, *ty, pin.ty, &format!("n{}_{}", id.0, pin.name))
+                let from_owner = self.owner(*node);
+                let source = match from_owner {
+                    Some(instance) if from_owner != owner => {
+                        let wanted = self.group_output_name(*node, *output);
+                        self.part(instance).output(&wanted, mx_type(*ty), from)
+                    }
+                    _ => from,
+                };
+                let source = match from_owner == owner {
+                    true => source,
+                    false => {
+                        let wanted = self.group_input_name(id, name, pin.name);
+                        self.carry_into(owner, &wanted, *ty, source)
+                    }
+                };
+                let converted = format!("{name}_{}", pin.name);
+                self.convert(source, *ty, pin.ty, &converted, owner)
             }
-            InputSource::Const(value) => self.constant(id, pin, value),
-            InputSource::Position => self.surface_position(),
+            InputSource::Const(value) => self.constant(id, pin, value, owner),
+            InputSource::Position => {
+                let position = self.surface_position();
+                self.carry_into(owner, "position", ValueType::Vec3, position)
+            }
         })
+    }
+
+    /// Gives each group's node graph every output its definition declares that the
+    /// translated nodes give (so an import gets the group's interface back), and puts
+    /// its inputs and outputs in the definition's order.
+    fn complete_parts(&mut self) {
+        let (graph, groups) = (self.graph, self.groups);
+        for checked in &graph.order {
+            let Some(origin) = checked.node.origin.as_deref() else {
+                continue;
+            };
+            let definition = groups.definitions.get(&origin.definition);
+            let (Some(definition), true) = (
+                definition.filter(|_| self.parts.contains_key(&origin.top)),
+                origin.groups.instances().len() == 1,
+            ) else {
+                continue;
+            };
+            let declared = (definition.wires.iter())
+                .filter(|wire| wire.from.node == origin.id && wire.to.node == BOUNDARY);
+            for wire in declared {
+                let outputs = &checked.signature.outputs;
+                let Some(j) = outputs.iter().position(|pin| pin.name == wire.from.pin) else {
+                    continue;
+                };
+                let given = self.outputs.get(&checked.node.id).and_then(|o| o.get(j));
+                if let Some(source) = given.cloned() {
+                    let ty = mx_type(outputs[j].ty);
+                    self.part(origin.top).output(&wire.to.pin, ty, source);
+                }
+            }
+        }
+        for part in self.parts.values_mut() {
+            let Some(definition) = groups.definitions.get(&part.group) else {
+                continue;
+            };
+            let input_rank =
+                |name: &str| (definition.inputs.iter()).position(|input| input.name == name);
+            let output_rank =
+                |name: &str| (definition.outputs.iter()).position(|output| output.name == name);
+            // Declared ones first, the others as met.
+            part.inputs
+                .sort_by_key(|given| input_rank(&given.input.name).map_or(usize::MAX, |k| k));
+            part.outputs
+                .sort_by_key(|output| output_rank(&output.name).map_or(usize::MAX, |k| k));
+        }
     }
 
     /// Veneer's position of the shaded point: the object-space position placed as the
     /// preview places the mesh (times `size`, plus `center`), made once.
     fn surface_position(&mut self) -> Source {
-        const POSITION: &str = "surface_position";
         if !self.nodes.iter().any(|node| node.name == POSITION) {
             let (center, size) = self.placement;
             let constant = |v: [f64; 3], ty| Source::Value(super::value_text(&v, ty));
@@ -149,8 +334,15 @@ impl Translator<'_> {
         Source::Node(POSITION.into())
     }
 
-    /// A constant input: the exposed parameter it holds, if any, else its value.
-    fn constant(&mut self, id: NodeId, pin: &InputPin, value: &Value) -> Source {
+    /// A constant input of node `id` (in `owner`'s node graph): the exposed parameter it
+    /// holds, if any, else its value.
+    fn constant(
+        &mut self,
+        id: NodeId,
+        pin: &InputPin,
+        value: &Value,
+        owner: Option<NodeId>,
+    ) -> Source {
         let parameter = (self.graph.bindings.get(&(id, pin.name.to_string())))
             .and_then(|name| self.graph.parameters.iter().find(|p| &p.name == name))
             .filter(|parameter| parameter.ty == pin.ty);
@@ -162,21 +354,35 @@ impl Translator<'_> {
                 let entry = input(&name, mx_type(parameter.ty), value);
                 let range = parameter.range;
                 self.interface.entry(name.clone()).or_insert((entry, range));
-                Source::Interface(name)
+                // In a group's node graph, the group input holding it.
+                let wanted = match parameter.target.node {
+                    target if Some(target) == owner => parameter.target.pin.clone(),
+                    _ => name.clone(),
+                };
+                let ty = parameter.ty;
+                self.carry_into(owner, &wanted, ty, Source::Interface(name))
             }
             None => Source::Value(text(value, pin.ty)),
         }
     }
 
-    /// `source` of type `from` as type `to`, through a `convert` node named `name`.
-    fn convert(&mut self, source: Source, from: ValueType, to: ValueType, name: &str) -> Source {
+    /// `source` of type `from` as type `to`, through a `convert` node named `name` in
+    /// `owner`'s node graph.
+    fn convert(
+        &mut self,
+        source: Source,
+        from: ValueType,
+        to: ValueType,
+        name: &str,
+        owner: Option<NodeId>,
+    ) -> Source {
         if mx_type(from) == mx_type(to) {
             return source;
         }
         let (from, to) = (mx_type(from), mx_type(to));
         let nodedef = format!("ND_convert_{from}_{to}");
         let name = format!("{name}_as_{to}");
-        self.nodes.push(node(
+        self.nodes_of(owner).push(node(
             &name,
             "convert",
             to,
@@ -194,10 +400,29 @@ impl Translator<'_> {
         });
     }
 
-    /// Checked node `k` (named `name`) read from textures of its outputs, one per output
-    /// some node reads (`<stem>_<name>.exr`, or `<stem>_<name>_<output>.exr`), each baked
-    /// from the node and its upstream.
-    fn baked_texture(&mut self, k: usize, name: &str) -> Result<Translated, String> {
+    /// How the names of files beside the document made for nodes of `owner` start: the
+    /// document's stem, and in a group's node graph the instance's name too (the files
+    /// of two instances may differ).
+    fn file_stem(&mut self, owner: Option<NodeId>) -> String {
+        match owner {
+            Some(instance) => {
+                let stem = self.stem;
+                format!("{stem}_{}", self.part(instance).instance_name)
+            }
+            None => self.stem.to_string(),
+        }
+    }
+
+    /// Checked node `k` (named `name`, in `owner`'s node graph) read from textures of its
+    /// outputs, one per output some node reads (`<stem>_<name>.exr`, or
+    /// `<stem>_<name>_<output>.exr`), each baked from the node and its upstream.
+    fn baked_texture(
+        &mut self,
+        k: usize,
+        name: &str,
+        owner: Option<NodeId>,
+    ) -> Result<Translated, String> {
+        let stem = self.file_stem(owner);
         let checked = &self.graph.order[k];
         let outputs = &checked.signature.outputs;
         let mut translated = Translated {
@@ -219,7 +444,7 @@ impl Translator<'_> {
                     pin.name
                 ));
             }
-            let file = format!("{}_{image}.exr", self.stem);
+            let file = format!("{stem}_{image}.exr");
             let graph = upstream(self.graph, k, j, self.preview, self.folder);
             self.baked.push(BakedNode {
                 graph,
@@ -238,29 +463,46 @@ impl Translator<'_> {
         Ok(translated)
     }
 
+    /// The name of checked node `k` in `owner`'s node graph: its label and its id, in
+    /// a group's node graph its id in the group's definition (so instances of one group
+    /// translate alike), made unique where nested groups give two nodes one.
+    fn node_name(&mut self, k: usize, owner: Option<NodeId>) -> String {
+        let node = &self.graph.order[k].node;
+        let label = node_label(node);
+        let Some(origin) = node.origin.as_ref().filter(|_| owner.is_some()) else {
+            return format!("{label}_{}", node.id.0);
+        };
+        let local = format!("{label}_{}", origin.id.0);
+        let flat = format!("{local}_{}", node.id.0);
+        match self.nodes_of(owner).iter().any(|node| node.name == local) {
+            true => flat,
+            false => local,
+        }
+    }
+
     /// Translates checked node `k` of the order.
     fn node(&mut self, k: usize) {
-        let checked = &self.graph.order[k];
+        let graph = self.graph;
+        let checked = &graph.order[k];
         let id = checked.node.id;
+        let owner = self.owner(id);
+        let name = self.node_name(k, owner);
         let pins = &checked.signature.inputs;
         let mut arguments = Vec::with_capacity(pins.len());
         for (pin, source) in pins.iter().zip(&checked.inputs) {
-            match self.argument(id, pin, source) {
+            match self.argument(id, &name, pin, source) {
                 Some(argument) => arguments.push(argument),
                 // Reads a node that did not translate: that one is reported.
                 None => return,
             }
         }
-        let label = match checked.node.label.is_empty() {
-            true => checked.node.kind.name().to_string(),
-            false => checked.node.label.clone(),
-        };
-        let name = format!("{}_{}", super::element_name(&label), id.0);
         let kind = &checked.node.kind;
         let translated = match route(kind) {
             // The node of its own (a `dot`) keeps the Position node in an import.
             Route::Standard if *kind == NodeKind::Position => {
-                let position = vec![input("in", "vector3", self.surface_position())];
+                let position = self.surface_position();
+                let position = self.carry_into(owner, "position", ValueType::Vec3, position);
+                let position = vec![input("in", "vector3", position)];
                 Translated {
                     nodes: vec![node(&name, "dot", "vector3", "ND_dot_vector3", position)],
                     outputs: vec![Source::Node(name.clone())],
@@ -273,12 +515,12 @@ impl Translator<'_> {
                     .bitmaps
                     .get(&id)
                     .expect("the checked graph's bitmap");
-                let stem = format!("{}_{name}", self.stem);
+                let stem = format!("{}_{name}", self.file_stem(owner));
                 let (file, bytes, colour_space) = bitmap_texture(bitmap, &stem);
                 self.files.push((file.clone(), bytes));
                 super::standard::image(&name, &settings, &file, colour_space)
             }
-            Route::Texture => match self.baked_texture(k, &name) {
+            Route::Texture => match self.baked_texture(k, &name, owner) {
                 Ok(translated) => translated,
                 Err(reason) => return self.untranslatable(k, reason),
             },
@@ -296,17 +538,30 @@ impl Translator<'_> {
             Route::None(reason) if !self.bake_untranslatable => {
                 return self.untranslatable(k, reason);
             }
-            Route::None(reason) => match self.baked_texture(k, &name) {
+            Route::None(reason) => match self.baked_texture(k, &name, owner) {
                 Ok(translated) => translated,
                 Err(why) => return self.untranslatable(k, format!("{reason}, and {why}")),
             },
         };
         let mut nodes = translated.nodes;
+        // Inlined nodes sit where their group node does: inside a group's node graph,
+        // where they sit in the definition.
+        let place = (self.definition_of(id).filter(|_| owner.is_some()))
+            .and_then(|(definition, inner)| definition.nodes.iter().find(|n| n.id == inner))
+            .map_or(checked.node.position, |node| node.position);
         if let Some(head) = nodes.iter_mut().find(|node| node.name == name) {
-            head.ui = Some((checked.node.label.clone(), checked.node.position));
+            head.ui = Some((checked.node.label.clone(), place));
         }
-        self.nodes.extend(nodes);
+        self.nodes_of(owner).extend(nodes);
         self.outputs.insert(id, translated.outputs);
+    }
+}
+
+/// A node's label as an element name, its kind's name where it has none.
+fn node_label(node: &crate::graph::Node) -> String {
+    match node.label.is_empty() {
+        true => super::element_name(node.kind.name()),
+        false => super::element_name(&node.label),
     }
 }
 
@@ -363,9 +618,11 @@ pub fn translate(
         preview,
         folder,
         bake_untranslatable,
+        groups: &compiled.groups,
         baked: Vec::new(),
         files: Vec::new(),
         nodes: Vec::new(),
+        parts: BTreeMap::new(),
         definitions: Vec::new(),
         outputs: BTreeMap::new(),
         interface: BTreeMap::new(),
@@ -378,15 +635,20 @@ pub fn translate(
     let checked = graph.material();
     let mut pins = BTreeMap::new();
     for (pin, source) in checked.signature.inputs.iter().zip(&checked.inputs) {
-        if let Some(argument) = translator.argument(checked.node.id, pin, source) {
+        if let Some(argument) = translator.argument(checked.node.id, "material", pin, source) {
             pins.insert(pin.name, argument);
         }
     }
     if !translator.untranslatable.is_empty() {
         return Err(translator.untranslatable);
     }
-    let pin = |name: &str| pins.get(name).cloned().expect("the material node's pins");
+    translator.complete_parts();
     let (mut nodes, baked, files) = (translator.nodes, translator.baked, translator.files);
+    let mut groups: Vec<GroupGraph> = translator.parts.into_values().collect();
+    super::groups::assign_categories(&mut groups);
+    super::groups::name_single_outputs(&mut groups, &mut nodes, pins.values_mut());
+    nodes.extend(groups.iter().map(GroupGraph::instance_node));
+    let pin = |name: &str| pins.get(name).cloned().expect("the material node's pins");
     // Nodes of the material's own: named apart from the graph's (which end in `_<id>`).
     let mut add = |name: &str, category: &str, ty: &'static str, nodedef: &str, inputs| {
         nodes.push(node(name, category, ty, nodedef, inputs));
@@ -505,6 +767,7 @@ pub fn translate(
     // Only the textures of nodes the surface still reads (a field that shapes the height
     // alone is in the baked normal map).
     let read: Vec<&str> = (network.nodes.iter())
+        .chain(groups.iter().flat_map(|group| &group.nodes))
         .flat_map(|node| &node.inputs)
         .filter_map(|input| match &input.source {
             Source::File { path, .. } => Some(path.as_str()),
@@ -540,6 +803,7 @@ pub fn translate(
         definitions: translator.definitions,
         baked,
         files,
+        groups,
     })
 }
 
