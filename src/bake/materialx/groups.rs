@@ -7,7 +7,7 @@
 //! it). Instances of one group whose translations are equal share one definition.
 
 use super::network::{Input, Node, Source, input, node};
-use super::{attribute, nodes_xml, source_attributes};
+use super::{attribute, nodes_xml, output_xml};
 use crate::graph::NodeId;
 use std::fmt::Write;
 
@@ -199,12 +199,7 @@ impl GroupGraph {
         );
         nodes_xml(&mut text, &self.nodes);
         for output in &self.outputs {
-            let reads = source_attributes(&output.source, None);
-            let _ = writeln!(
-                text,
-                "    <output name=\"{}\" type=\"{}\" {reads} />",
-                output.name, output.ty
-            );
+            output_xml(&mut text, output);
         }
         text.push_str("  </nodegraph>\n");
         text

@@ -596,16 +596,23 @@ impl<'a, 'i, 'f> Importer<'a, 'i, 'f> {
             .map(|(_, (kind, outputs, inputs))| (kind.clone(), outputs, inputs))
     }
 
+    /// Output `index` of node `id` made already.
+    fn output_pin(&self, id: NodeId, index: usize) -> Option<crate::nodes::pins::OutputPin> {
+        let node = self.graph.nodes.iter().find(|node| node.id == id)?;
+        node.kind
+            .definition()
+            .signature()
+            .outputs
+            .get(index)
+            .cloned()
+    }
+
     /// Pin `pin` of node `id` fed by `feed`: a wire, a constant where it is not the
     /// default, a parameter, or nothing for the position where that is the default.
     fn connect(&mut self, id: NodeId, pin: &crate::nodes::pins::InputPin, feed: Feed) {
         let value = match feed {
             Feed::Wire(from, output) => {
-                let outputs = (self.graph.nodes.iter())
-                    .find(|n| n.id == from)
-                    .map(|n| n.kind.definition().signature().outputs)
-                    .unwrap_or_default();
-                let Some(output) = outputs.get(output) else {
+                let Some(output) = self.output_pin(from, output) else {
                     return;
                 };
                 self.graph.wires.push(Wire {
@@ -757,11 +764,7 @@ impl<'a, 'i, 'f> Importer<'a, 'i, 'f> {
             let output_name = output.attribute("name").unwrap_or_default().to_string();
             match inner.feed(output) {
                 Some(Feed::Wire(from, index)) => {
-                    let pins = (inner.graph.nodes.iter())
-                        .find(|node| node.id == from)
-                        .map(|node| node.kind.definition().signature().outputs)
-                        .unwrap_or_default();
-                    let Some(pin) = pins.get(index) else {
+                    let Some(pin) = inner.output_pin(from, index) else {
                         continue;
                     };
                     group.outputs.push(crate::graph::group::GroupOutput {

@@ -461,6 +461,16 @@ fn input_xml(text: &mut String, indent: &str, input: &Input, graph: Option<&str>
     );
 }
 
+/// A node graph's output element: `output`'s name, type and the node output it gives.
+fn output_xml(text: &mut String, output: &Input) {
+    let reads = source_attributes(&output.source, None);
+    let _ = writeln!(
+        text,
+        "    <output name=\"{}\" type=\"{}\" {reads} />",
+        output.name, output.ty
+    );
+}
+
 /// `nodes` as the elements of a node graph.
 fn nodes_xml(text: &mut String, nodes: &[network::Node]) {
     for node in nodes {
@@ -517,12 +527,7 @@ pub fn xml(network: &Network, name: &str, comment: &str, definitions: &str) -> S
         }
     }
     for output in &network.outputs {
-        let reads = source_attributes(&output.source, None);
-        let _ = writeln!(
-            text,
-            "    <output name=\"{}\" type=\"{}\" {reads} />",
-            output.name, output.ty
-        );
+        output_xml(&mut text, output);
     }
     let model = network.surface.node();
     let _ = writeln!(
