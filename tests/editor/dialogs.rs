@@ -348,10 +348,11 @@ fn enter_confirms_every_dialog() {
     let document = std::fs::read_to_string(&nodes).expect("the procedural document");
     assert!(document.contains("<nodedef "), "{document}");
     assert!(dir.join("wood_nodes_veneer.glsl").is_file());
+    assert!(dir.join("wood_nodes_veneer.metal").is_file());
     assert!(!dir.join("wood_nodes_albedo.png").exists());
 
-    // Opening the MaterialX document imports it: the graph's nodes, as a new, unsaved
-    // document.
+    // Opening the MaterialX document imports it: the graph's nodes and its group, as a
+    // new, unsaved document.
     let nodes_before = harness.state().document().graph.nodes.len();
     press(&mut harness, egui::Key::O, true);
     type_text(&mut harness, &nodes.display().to_string());
@@ -359,10 +360,12 @@ fn enter_confirms_every_dialog() {
     assert!(!dialog_up(&harness, "Veneer"), "the import succeeds");
     let imported = &harness.state().document().graph;
     assert_eq!(imported.name, "Wood");
-    assert!(
-        imported.nodes.len() > nodes_before,
-        "the group comes back inlined"
+    assert_eq!(
+        imported.nodes.len(),
+        nodes_before,
+        "the group comes back a group"
     );
+    assert!(imported.groups.contains_key("ring_wood"));
     assert!(shows(&harness, "imported "));
     // ... which saving keeps as a graph file.
     press(&mut harness, egui::Key::S, true);
