@@ -7,6 +7,7 @@ pub mod bake;
 pub mod bitmaps;
 pub mod codegen;
 pub mod eval;
+pub mod fit;
 pub mod fsutil;
 pub mod geodesic;
 pub mod graph;

@@ -22,17 +22,11 @@ pub fn value_gradient<R: Real>(p: V3<R>) -> R {
     R::c(0.5) * (value(p, lattice_pcg, None) + gradient(p, None))
 }
 
-/// WGSL's exp. Rounded from f64, so the f32 result is the correctly rounded one (a GPU's
-/// is within a few ulps of it).
-fn exp<R: Real>(x: R) -> R {
-    R::c(x.to_f64().exp())
-}
-
 /// `veneer_gabor_kernel`: the Hann-windowed unit Gaussian times the sine of a plane wave.
 /// (The WGSL's 3.14159265 and 6.28318531 are pi and tau rounded to the same f32.)
 pub fn gabor_kernel<R: Real>(x: V3<R>, frequency: R, direction: V3<R>) -> R {
     let r2 = dot(x, x, 3);
-    let envelope = exp(R::c(-PI) * r2) * (R::c(0.5) + R::c(0.5) * (R::c(PI) * r2).cos());
+    let envelope = (R::c(-PI) * r2).exp() * (R::c(0.5) + R::c(0.5) * (R::c(PI) * r2).cos());
     let phase = (frequency * dot(x, direction, 3) + R::c(0.5)).fract() - R::c(0.5);
     envelope * (R::c(TAU) * phase).sin()
 }

@@ -24,6 +24,9 @@ pub trait Real:
     fn abs(self) -> Self;
     fn atan2(self, x: Self) -> Self;
     fn powf(self, e: Self) -> Self;
+    /// eˣ, rounded from f64 (so an f32 result is the correctly rounded one; a GPU's is
+    /// within a few ulps of it).
+    fn exp(self) -> Self;
     /// The largest finite value.
     fn max_finite() -> Self;
 
@@ -83,6 +86,9 @@ macro_rules! impl_real {
             }
             fn powf(self, e: Self) -> Self {
                 <$t>::powf(self, e)
+            }
+            fn exp(self) -> Self {
+                (self as f64).exp() as $t
             }
             fn max_finite() -> Self {
                 <$t>::MAX
