@@ -4,6 +4,7 @@
 mod allocator;
 mod canvas;
 mod chrome;
+mod fitting;
 mod inspector;
 mod preview;
 mod priority;
@@ -70,6 +71,8 @@ pub struct VeneerApp {
     thumbnails: thumbnails::Thumbnails,
     /// Messages, dialogs, the file browser, the frame clock.
     chrome: chrome::Chrome,
+    /// *Fit to image…*: the fit under way and its window.
+    fitting: fitting::Fitting,
 }
 
 impl VeneerApp {
@@ -98,6 +101,7 @@ impl VeneerApp {
             session: session::Session::new(Document::new(wood, None), recovery_file),
             thumbnails: Default::default(),
             chrome: Default::default(),
+            fitting: Default::default(),
         };
         app.canvas.navigation.frame(Framing::Open);
         if let Some(path) = path {
@@ -595,6 +599,7 @@ impl eframe::App for VeneerApp {
             self.chrome.dialog = self.chrome.dialog.take().or(still_open);
         }
         self.file_setting_browser(&ctx);
+        self.fit_to_image_window(&ctx);
         self.poll_export();
         // After the dialogs too, so that what their buttons did (save, open) shows now.
         self.after_edits(&ctx);

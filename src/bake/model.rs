@@ -156,12 +156,9 @@ pub struct BakedModel {
 /// stored as they are.
 fn encode_colour(shading: Shading, linear: f32) -> f32 {
     let c = linear.clamp(0.0, 1.0);
-    if !shading.is_linear() {
-        c
-    } else if c <= 0.003_130_8 {
-        12.92 * c
-    } else {
-        1.055 * c.powf(1.0 / 2.4) - 0.055
+    match shading.is_linear() {
+        true => crate::bitmaps::linear_to_srgb(c),
+        false => c,
     }
 }
 

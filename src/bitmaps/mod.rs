@@ -194,6 +194,15 @@ fn clean(value: f32) -> f32 {
     }
 }
 
+/// The sRGB encoding of a linear value (0..1; the inverse of [`srgb_to_linear`]).
+pub fn linear_to_srgb(linear: f32) -> f32 {
+    if linear <= 0.003_130_8 {
+        linear * 12.92
+    } else {
+        1.055 * linear.powf(1.0 / 2.4) - 0.055
+    }
+}
+
 /// An sRGB-encoded value (0..1) as linear light (IEC 61966-2-1).
 pub fn srgb_to_linear(encoded: f32) -> f32 {
     if encoded <= 0.04045 {

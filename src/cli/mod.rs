@@ -4,6 +4,7 @@ mod bake;
 mod batch;
 mod check;
 mod compile;
+mod fit;
 mod fmt;
 mod geodesic;
 mod import;
@@ -55,6 +56,8 @@ enum Command {
     Mesh(mesh::MeshArgs),
     /// Read a MaterialX document (standard nodes Veneer has, Veneer's own definitions) as a graph.
     Import(import::ImportArgs),
+    /// Fit a graph's exposed parameters so that its albedo looks like a photo.
+    Fit(fit::FitArgs),
     /// Rewrite graph files in canonical form (sorted, deterministic bytes).
     Fmt(fmt::FmtArgs),
     /// Render graphs and compare them with approved golden images (exit 1 on a difference).
@@ -83,6 +86,7 @@ impl Command {
             Command::Bake(args) => args.plan(plan, job),
             Command::Compile(args) => args.plan(plan, job),
             Command::Import(args) => args.plan(plan, job),
+            Command::Fit(args) => args.plan(plan, job),
             Command::Geodesic(args) => args.plan(plan, job),
             Command::MeshField(args) => args.plan(plan, job),
             Command::Mesh(args) => args.plan(plan, job),
@@ -222,6 +226,7 @@ pub fn execute(cli: Cli) -> Result<(), Failure> {
         Some(Command::Check(args)) => check::run(args),
         Some(Command::Fmt(args)) => fmt::run(args),
         Some(Command::Import(args)) => import::run(args),
+        Some(Command::Fit(args)) => fit::run(args),
         Some(Command::Mesh(args)) => mesh::run(args),
         Some(Command::Geodesic(args)) => geodesic::run(args),
         Some(Command::MeshField(args)) => mesh_field::run(args),

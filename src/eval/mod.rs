@@ -75,6 +75,9 @@ pub struct Evaluator {
     frames: Frames,
     /// Whether the node at each position is evaluated at the shaded point.
     in_main: Vec<bool>,
+    /// The exposed parameter each constant input holds: (position in the order, input
+    /// index) → index in `graph.parameters`, where the types agree.
+    parameter_inputs: BTreeMap<(usize, usize), usize>,
 }
 
 impl Evaluator {
@@ -97,7 +100,20 @@ impl Evaluator {
         for &at in &frames.main {
             in_main[at] = true;
         }
+        let mut parameter_inputs = BTreeMap::new();
+        for (at, checked) in graph.order.iter().enumerate() {
+            for (k, pin) in checked.signature.inputs.iter().enumerate() {
+                let bound = graph.bindings.get(&(checked.node.id, pin.name.to_string()));
+                let parameter = bound.and_then(|name| {
+                    (graph.parameters.iter()).position(|p| &p.name == name && p.ty == pin.ty)
+                });
+                if let Some(parameter) = parameter {
+                    parameter_inputs.insert((at, k), parameter);
+                }
+            }
+        }
         Evaluator {
+            parameter_inputs,
             frames,
             in_main,
             mesh_lanes: crate::codegen::mesh_lanes(&graph),
@@ -126,15 +142,38 @@ impl Evaluator {
     /// The material at one point, its sampled inputs reading `buffers` (the passes
     /// rendered by [`Evaluator::render_passes`]).
     pub fn eval_reading<R: Real>(&self, surface: &Surface<R>, buffers: &Buffers) -> Material<R> {
+        self.eval_parameters(surface, buffers, None)
+    }
+
+    /// The material at one point (a graph without sampled inputs), its exposed
+    /// parameters holding `parameters` (one value per parameter of the checked graph, in
+    /// its order) rather than their values: what a fit differentiates by.
+    pub fn eval_with<R: Real>(&self, surface: &Surface<R>, parameters: &[V3<R>]) -> Material<R> {
+        self.eval_parameters(surface, &self.bitmaps, Some(parameters))
+    }
+
+    /// The checked graph evaluated.
+    pub fn graph(&self) -> &CheckedGraph {
+        &self.graph
+    }
+
+    /// [`Evaluator::eval_reading`], the exposed parameters holding `parameters` if given.
+    fn eval_parameters<R: Real>(
+        &self,
+        surface: &Surface<R>,
+        buffers: &Buffers,
+        parameters: Option<&[V3<R>]>,
+    ) -> Material<R> {
         let material = self.graph.order.len() - 1;
         let values = if buffers.material_nodes.is_empty() {
-            self.values(surface, buffers, 0..material, None)
+            self.values(surface, buffers, 0..material, None, parameters)
         } else {
             let part = buffers.material_nodes.iter().copied();
-            self.values(surface, buffers, part.filter(|&at| at != material), None)
+            let part = part.filter(|&at| at != material);
+            self.values(surface, buffers, part, None, parameters)
         };
         let checked = &self.graph.order[material];
-        let inputs = self.inputs(checked, &values, surface);
+        let inputs = self.inputs(material, &values, surface, parameters);
         Material::from_inputs(&Eval::new(&checked.signature.inputs, &inputs, surface))
     }
 
@@ -147,6 +186,7 @@ impl Evaluator {
         buffers: &Buffers,
         positions: impl IntoIterator<Item = usize>,
         instance: Option<&Instance<R>>,
+        parameters: Option<&[V3<R>]>,
     ) -> Vec<Vec<V3<R>>> {
         let mut values: Vec<Vec<V3<R>>> = vec![Vec::new(); self.graph.order.len()];
         for at in positions {
@@ -154,7 +194,7 @@ impl Evaluator {
                 continue;
             }
             let checked = &self.graph.order[at];
-            let inputs = self.inputs(checked, &values, surface);
+            let inputs = self.inputs(at, &values, surface, parameters);
             let images = buffers.of(checked);
             let reevaluate = |k: usize, surface: &Surface<R>, instance: &Instance<R>| {
                 let frame = self.frames.sites.get(&(at, k))?;
@@ -180,27 +220,34 @@ impl Evaluator {
     ) -> V3<R> {
         let local = &self.frames.locals[frame];
         let nodes = local.nodes.iter().copied();
-        let values = self.values(surface, buffers, nodes, Some(instance));
+        let values = self.values(surface, buffers, nodes, Some(instance), None);
         (values[local.source].get(local.output).copied()).unwrap_or([R::c(0.0); 3])
     }
 
-    /// The input values of `checked`, its wires reading `values`.
+    /// The input values of the node at position `at`, its wires reading `values`, its
+    /// inputs holding exposed parameters reading `parameters` if given.
     fn inputs<R: Real>(
         &self,
-        checked: &CheckedNode,
+        at: usize,
         values: &[Vec<V3<R>>],
         surface: &Surface<R>,
+        parameters: Option<&[V3<R>]>,
     ) -> Vec<V3<R>> {
-        checked
-            .inputs
-            .iter()
-            .map(|source| match source {
+        let checked = &self.graph.order[at];
+        (checked.inputs.iter().enumerate())
+            .map(|(k, source)| match source {
                 // A sampled input's upstream is in another pass: the node reads its
                 // buffer instead.
                 InputSource::Wire { node, output, .. } => (values[self.index[node]].get(*output))
                     .copied()
                     .unwrap_or([R::c(0.0); 3]),
-                InputSource::Const(value) => value.components().map(R::c),
+                InputSource::Const(value) => {
+                    let given = parameters.zip(self.parameter_inputs.get(&(at, k)));
+                    match given {
+                        Some((parameters, &index)) => parameters[index],
+                        None => value.components().map(R::c),
+                    }
+                }
                 InputSource::Position => surface.position,
             })
             .collect()

@@ -99,7 +99,7 @@ impl Evaluator {
                             // (the instance is the shaded point's: none).
                             let none = crate::nodes::cpu::Instance::none();
                             let nodes = nodes.iter().copied();
-                            let values = self.values(&surface, &buffers, nodes, Some(&none));
+                            let values = self.values(&surface, &buffers, nodes, Some(&none), None);
                             let value = values[*node][*output];
                             let lanes = match ty.width() {
                                 1 => [value[0], value[0], value[0], 1.0],

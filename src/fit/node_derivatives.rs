@@ -1,11 +1,12 @@
 //! Every node kind's recorded derivatives against central finite differences: at random
 //! inputs within each pin's soft range, the derivative of every output lane by every
-//! input lane, taken on the tape, must match the central difference in f64 to 1e-4
+//! input lane, taken on a tape in f64, must match the central difference in f64 to 1e-4
 //! (relative, or absolute below 1) wherever the node is smooth there. Where it is not —
 //! a floor, a step, a cell border or a hash within the difference's reach, seen as the
 //! central differences at two step sizes disagreeing — the sample is skipped. Every kind
 //! with inputs and outputs must be compared somewhere, and the skipped samples stay few.
 
+use super::Draws;
 use super::tape::{Recording, Var};
 use crate::nodes::NodeKind;
 use crate::nodes::cpu::{Eval, Surface};
@@ -14,19 +15,6 @@ use crate::nodes::pins::InputPin;
 
 /// Inputs drawn per kind.
 const SAMPLES: usize = 12;
-
-/// A small deterministic generator of numbers in [0, 1).
-struct Draws(u64);
-
-impl Draws {
-    fn next(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
 
 /// Whether the node can be evaluated from its input pins alone.
 fn evaluable(kind: &NodeKind) -> bool {
@@ -45,7 +33,7 @@ fn outputs(kind: &NodeKind, pins: &[InputPin], inputs: &[V3<f64>]) -> Vec<V3<f64
 
 #[test]
 fn every_kinds_derivatives_match_central_differences_where_it_is_smooth() {
-    let mut draws = Draws(7);
+    let mut draws = Draws::new(7);
     let mut failures = Vec::new();
     let (mut compared_kinds, mut all_compared, mut all_skipped) = (0, 0, 0);
     for kind in NodeKind::examples() {
@@ -64,13 +52,13 @@ fn every_kinds_derivatives_match_central_differences_where_it_is_smooth() {
                     };
                     let mut lanes = [0.0; 3];
                     for lane in lanes.iter_mut().take(pin.ty.width()) {
-                        *lane = low + (high - low) * draws.next();
+                        *lane = low + (high - low) * draws.uniform();
                     }
                     lanes
                 })
                 .collect();
             let mut recording = Recording::start();
-            let leaves: Vec<V3<Var>> = (inputs.iter().zip(&pins))
+            let leaves: Vec<V3<Var<f64>>> = (inputs.iter().zip(&pins))
                 .map(|(lanes, pin)| {
                     let mut vars = lanes.map(Var::constant);
                     for lane in 0..pin.ty.width() {
@@ -79,7 +67,7 @@ fn every_kinds_derivatives_match_central_differences_where_it_is_smooth() {
                     vars
                 })
                 .collect();
-            let surface = Surface::<Var>::at([0.3, 0.2, 0.1]);
+            let surface = Surface::<Var<f64>>::at([0.3, 0.2, 0.1]);
             let recorded = kind.eval(&Eval::new(&pins, &leaves, &surface));
             let signature_outputs = kind.definition().signature().outputs;
             // Leaf k is lane `lane` of pin `pin`.
@@ -87,8 +75,9 @@ fn every_kinds_derivatives_match_central_differences_where_it_is_smooth() {
                 .flat_map(|(pin, p)| (0..p.ty.width()).map(move |lane| (pin, lane)))
                 .collect();
             for (j, output) in signature_outputs.iter().enumerate() {
-                for out_lane in 0..output.ty.width() {
-                    let gradient = recording.gradient(&[(recorded[j][out_lane], 1.0)]);
+                let width = output.ty.width();
+                for (out_lane, &value) in recorded[j].iter().enumerate().take(width) {
+                    let gradient = recording.gradient(&[(value, 1.0)]);
                     for (k, &(pin, lane)) in places.iter().enumerate() {
                         let x = inputs[pin][lane];
                         let difference = |h: f64| {

@@ -8,6 +8,7 @@ mod big_graphs;
 mod dialogs;
 mod editing;
 mod files;
+mod fitting;
 mod footprints;
 mod geotextures;
 mod groups;

@@ -15,6 +15,7 @@ mod errors;
 mod export;
 mod extreme_cases;
 mod extreme_settings;
+mod fit;
 mod flood_fill;
 mod fuzz_regressions;
 mod geodesic;

@@ -45,6 +45,7 @@ impl VeneerApp {
                         self.chrome.message = Some(format!("applied preset '{name}'"));
                     }
                 }
+                self.fit_to_image_button(ui);
                 egui::Grid::new("parameters")
                     .num_columns(2)
                     .striped(true)

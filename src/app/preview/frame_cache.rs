@@ -11,6 +11,10 @@ use std::sync::Arc;
 /// one for the graph's material of the same generation.
 pub(in crate::app) const FIELD_VIEW_GENERATIONS: u64 = 1 << 48;
 
+/// Set in the revision of the values a fit tries (the preview's while *Fit to image*
+/// runs), so they never share a cache entry with a revision of the document.
+pub(in crate::app) const FIT_REVISIONS: u64 = 1 << 62;
+
 /// What a preview's material is made of, kept between frames: the code (shared until
 /// it changes) and the parameter values (worked out again only when the graph changes).
 #[derive(Default)]

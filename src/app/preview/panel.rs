@@ -1,7 +1,7 @@
 //! The right-hand panel: the live material on its mesh, time and light, the distance
 //! fields and picking their sources, and the selected node's thumbnail.
 
-use crate::app::preview::frame_cache::{FIELD_VIEW_GENERATIONS, material_frame};
+use crate::app::preview::frame_cache::{FIELD_VIEW_GENERATIONS, FIT_REVISIONS, material_frame};
 use crate::app::preview::{fields, probe, state};
 use crate::app::*;
 use crate::graph::NodeKind;
@@ -148,12 +148,20 @@ impl VeneerApp {
                     frame
                 })
             }
-            (true, None) => material_frame(
-                &self.preview.live,
-                &mut self.preview.frames[Slot::Main as usize],
-                &self.session.document.graph,
-                self.session.revision.number,
-            )
+            (true, None) => {
+                // While a fit runs, the values it tries.
+                let candidate = (self.fitting.run.as_ref()).and_then(|run| run.candidate.as_ref());
+                let (graph, revision) = match candidate {
+                    Some((graph, number)) => (graph, FIT_REVISIONS | number),
+                    None => (&self.session.document.graph, self.session.revision.number),
+                };
+                material_frame(
+                    &self.preview.live,
+                    &mut self.preview.frames[Slot::Main as usize],
+                    graph,
+                    revision,
+                )
+            }
             .map(|mut frame| {
                 frame.tessellation = self.tessellation_input(&frame);
                 frame

@@ -13,6 +13,7 @@ use super::network::{
     Input, Network, Node, Source, SurfaceFields, SurfaceModel, input, node, wire,
 };
 use super::standard::{Translated, standard};
+use crate::bitmaps::linear_to_srgb;
 use crate::codegen::AlphaUse;
 use crate::graph::check::{CheckedGraph, InputSource};
 use crate::graph::group::{BOUNDARY, GroupSource};
@@ -849,15 +850,6 @@ fn bitmap_texture(
                 .expect("in memory");
             (format!("{stem}.exr"), out.into_inner(), None)
         }
-    }
-}
-
-/// The sRGB encoding of a linear value (the inverse of `bitmaps::srgb_to_linear`).
-fn linear_to_srgb(linear: f32) -> f32 {
-    if linear <= 0.0031308 {
-        linear * 12.92
-    } else {
-        1.055 * linear.powf(1.0 / 2.4) - 0.055
     }
 }
 

@@ -1,0 +1,142 @@
+//! Fitting, measured in one run:
+//! - **Recovery**: every preset in `graphs/` with at least three exposed continuous
+//!   parameters that reach the albedo is rendered (on the CPU, in f32 as the GPU
+//!   renders) at values drawn at random (seeded, away from the ranges' ends), then
+//!   fitted from its own values with the default settings and a 60 s budget: the median
+//!   normalised parameter error and the loss left, against **random search** over the
+//!   same parameters given the same wall time.
+//! - **Gradient cost**: the derivative of a loss by every parameter of wood's full graph
+//!   at 128² against rendering it.
+//!
+//! `cargo bench --bench fit` prints both as Markdown tables (the README's).
+
+use std::time::{Duration, Instant};
+use veneer::fit::image::Canvas;
+use veneer::fit::recovery::{draw_truth, median_error};
+use veneer::fit::{FitSettings, Prepared, fit, prepare, random_search};
+
+/// The seed of the drawn values.
+const SEED: u64 = 11;
+/// The side of the compared images.
+const SIZE: u32 = 128;
+
+/// The prepared presets that qualify, by file name.
+fn presets() -> Vec<(String, Prepared)> {
+    let mut paths: Vec<_> = std::fs::read_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/graphs"))
+        .expect("graphs/")
+        .filter_map(|entry| entry.ok().map(|entry| entry.path()))
+        .filter(|path| path.extension().is_some_and(|e| e == "ron"))
+        .collect();
+    paths.sort();
+    paths
+        .into_iter()
+        .filter_map(|path| {
+            let graph = veneer::graph::load(&path).ok()?;
+            let prepared = prepare(&graph, None).ok()?;
+            let names = (prepared.space.coordinates.iter()).map(|c| c.parameter);
+            let parameters: std::collections::BTreeSet<usize> = names.collect();
+            let name = path.file_name()?.to_string_lossy().into_owned();
+            (parameters.len() >= 3).then_some((name, prepared))
+        })
+        .collect()
+}
+
+/// The image as the photo a fit reads.
+fn as_photo(image: &veneer::fit::image::Image) -> image::Rgb32FImage {
+    let lanes = image.pixels.iter().flat_map(|p| p.map(|v| v as f32));
+    image::Rgb32FImage::from_raw(image.size, image.size, lanes.collect()).expect("a square")
+}
+
+fn recovery() {
+    println!(
+        "| graph | coordinates | median error | loss left | fit s | random search loss left (draws) |"
+    );
+    println!("|---|---|---|---|---|---|");
+    for (name, prepared) in presets() {
+        let Prepared {
+            evaluator,
+            space,
+            rect,
+        } = &prepared;
+        let canvas = Canvas {
+            evaluator,
+            rect: *rect,
+            size: SIZE,
+        };
+        let truth = draw_truth(space, SEED);
+        let photo = as_photo(&canvas.render(space, &truth));
+        let settings = FitSettings {
+            budget: Some(Duration::from_secs(60)),
+            ..FitSettings::default()
+        };
+        let clock = Instant::now();
+        let fitted = fit(evaluator, *rect, space, &photo, &settings, |_| true);
+        let seconds = clock.elapsed();
+        let searched = random_search(evaluator, *rect, space, &photo, &settings, seconds);
+        let start = fitted.initial.total();
+        println!(
+            "| {name} | {} | {:.3} | {:.1}% | {:.1} | {:.1}% ({}) |",
+            space.coordinates.len(),
+            median_error(&fitted.places, &truth),
+            100.0 * fitted.parts.total() / start,
+            seconds.as_secs_f64(),
+            100.0 * searched.loss / start,
+            searched.draws
+        );
+    }
+}
+
+fn gradient_cost() {
+    let graph = veneer::graph::load(std::path::Path::new(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/graphs/wood.ron"
+    )))
+    .expect("wood loads");
+    let Prepared {
+        evaluator,
+        space,
+        rect,
+    } = prepare(&graph, None).expect("wood fits");
+    let canvas = Canvas {
+        evaluator: &evaluator,
+        rect,
+        size: SIZE,
+    };
+    let places = space.start();
+    let weights = vec![[1.0, 1.0, 1.0]; (SIZE * SIZE) as usize];
+    let time = |work: &dyn Fn()| {
+        work();
+        let clock = Instant::now();
+        for _ in 0..5 {
+            work();
+        }
+        clock.elapsed().as_secs_f64() / 5.0
+    };
+    let render = time(&|| {
+        std::hint::black_box(canvas.render(&space, &places));
+    });
+    let gradient = time(&|| {
+        std::hint::black_box(canvas.pull_back(&space, &places, &weights));
+    });
+    println!();
+    println!(
+        "| wood at {SIZE}², {} coordinates | ms | × render |",
+        space.coordinates.len()
+    );
+    println!("|---|---|---|");
+    println!("| render (f32) | {:.1} | 1.0 |", 1e3 * render);
+    println!(
+        "| gradient (taped, reverse mode) | {:.1} | {:.1} |",
+        1e3 * gradient,
+        gradient / render
+    );
+}
+
+fn main() {
+    // `cargo test --benches` runs this with `--bench` absent: nothing to measure then.
+    if !std::env::args().any(|arg| arg == "--bench") {
+        return;
+    }
+    recovery();
+    gradient_cost();
+}

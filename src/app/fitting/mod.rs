@@ -1,0 +1,272 @@
+//! *Fit to image…*: the graph's exposed parameters fitted to a photo (`veneer fit`'s
+//! work) on a thread of its own. While it runs the preview shows each step's values and
+//! the window the photo beside the fitted albedo and the loss falling; it can be stopped
+//! at any step, and its values kept (one undo step) or discarded.
+
+pub(in crate::app) mod window;
+
+use crate::fit::image::{Canvas, Image};
+use crate::fit::{FitSettings, Prepared, Progress, fit, photo_pixels, prepare, read_photo};
+use crate::graph::edit::{GraphEdit, Level};
+use crate::graph::parameters::{Exposed, Given};
+use crate::graph::{Graph, PinRef, Value};
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, mpsc};
+use std::time::{Duration, Instant};
+
+/// The side of the pictures the window shows, in pixels.
+pub(in crate::app) const PICTURE_SIDE: u32 = 128;
+/// The least time between two pictures of the fitted albedo.
+const PICTURE_INTERVAL: Duration = Duration::from_millis(300);
+
+/// A value the fit gives a parameter: the top-level input it stands for, and the value.
+pub(in crate::app) type Assignment = (PinRef, Value);
+
+/// What the fit's thread tells the window.
+enum Update {
+    /// The photo's compared square, to show.
+    Photo(egui::ColorImage),
+    /// A step: where the fit is, the values it tries, and (now and then) their albedo.
+    Step {
+        progress: Progress,
+        values: Vec<Assignment>,
+        picture: Option<egui::ColorImage>,
+    },
+    /// The fit ended: the best values found (with their albedo), or why it could not run.
+    Ended(Result<(Vec<Assignment>, egui::ColorImage), String>),
+}
+
+/// *Fit to image…*'s part of the editor.
+#[derive(Default)]
+pub(in crate::app) struct Fitting {
+    /// Whether the file browser is choosing the photo.
+    pub choosing_photo: bool,
+    /// The fit under way or ended, while its window is open.
+    pub run: Option<FitRun>,
+}
+
+/// One fit, from its start until its window closes.
+pub(in crate::app) struct FitRun {
+    pub photo_path: PathBuf,
+    pub photo: Option<egui::TextureHandle>,
+    pub albedo: Option<egui::TextureHandle>,
+    /// (seconds, loss) at every step so far.
+    pub losses: Vec<[f64; 2]>,
+    /// The step reached and the steps in all.
+    pub step: (usize, usize),
+    /// The values the latest step tried, or the best found once it ended.
+    pub values: Vec<Assignment>,
+    /// The document's graph with `values`, which the preview draws meanwhile, and a
+    /// number that changes with it.
+    pub candidate: Option<(Graph, u64)>,
+    /// `None` while it runs; then whether it found values or why it could not run.
+    pub ended: Option<Result<(), String>>,
+    stop: Arc<AtomicBool>,
+    updates: mpsc::Receiver<Update>,
+}
+
+impl FitRun {
+    /// Starts fitting `graph` to the photo at `photo_path` on a thread of its own,
+    /// waking `ctx` whenever there is news.
+    pub fn start(ctx: &egui::Context, graph: Graph, photo_path: PathBuf) -> FitRun {
+        let stop = Arc::new(AtomicBool::new(false));
+        let (sender, updates) = mpsc::channel();
+        let (wake, asked_to_stop, path) = (ctx.clone(), Arc::clone(&stop), photo_path.clone());
+        std::thread::Builder::new()
+            .name("fit to image".into())
+            .spawn(move || {
+                let send = |update: Update| {
+                    let _ = sender.send(update);
+                    wake.request_repaint();
+                };
+                let ended = fit_on_thread(&graph, &path, &asked_to_stop, &send);
+                send(Update::Ended(ended));
+            })
+            .expect("the fit's thread starts");
+        FitRun {
+            photo_path,
+            photo: None,
+            albedo: None,
+            losses: Vec::new(),
+            step: (0, 0),
+            values: Vec::new(),
+            candidate: None,
+            ended: None,
+            stop,
+            updates,
+        }
+    }
+
+    /// Asks the fit to stop at its next step, keeping the best values found.
+    pub fn stop(&self) {
+        self.stop.store(true, Ordering::Relaxed);
+    }
+
+    /// Takes in what the thread sent since the last frame; `graph` is the document's.
+    pub fn receive(&mut self, ctx: &egui::Context, graph: &Graph) {
+        let mut values_changed = false;
+        loop {
+            let update = match self.updates.try_recv() {
+                Ok(update) => update,
+                Err(mpsc::TryRecvError::Empty) => break,
+                Err(mpsc::TryRecvError::Disconnected) => {
+                    if self.ended.is_none() {
+                        self.ended = Some(Err("the fit stopped unexpectedly".into()));
+                    }
+                    break;
+                }
+            };
+            match update {
+                Update::Photo(image) => self.photo = Some(texture(ctx, "fit photo", image)),
+                Update::Step {
+                    progress,
+                    values,
+                    picture,
+                } => {
+                    self.losses.push([progress.seconds, progress.loss]);
+                    self.step = (progress.step, progress.total_steps);
+                    self.values = values;
+                    values_changed = true;
+                    if let Some(picture) = picture {
+                        self.albedo = Some(texture(ctx, "fit albedo", picture));
+                    }
+                }
+                Update::Ended(Ok((values, picture))) => {
+                    self.values = values;
+                    values_changed = true;
+                    self.albedo = Some(texture(ctx, "fit albedo", picture));
+                    self.step.0 = self.step.1;
+                    self.ended = Some(Ok(()));
+                }
+                Update::Ended(Err(error)) => self.ended = Some(Err(error)),
+            }
+        }
+        if values_changed {
+            let number = self.candidate.as_ref().map_or(0, |(_, n)| n + 1);
+            let mut candidate = graph.clone();
+            for (target, value) in &self.values {
+                candidate.set_input(target.node, &target.pin, *value);
+            }
+            self.candidate = Some((candidate, number));
+        }
+    }
+
+    /// The edit that keeps the values found: one undo step.
+    pub fn keep(&self) -> GraphEdit {
+        GraphEdit::Batch(
+            (self.values.iter())
+                .map(|(target, value)| GraphEdit::SetInput {
+                    level: Level::Top,
+                    node: target.node,
+                    pin: target.pin.clone(),
+                    value: Some(*value),
+                })
+                .collect(),
+        )
+    }
+}
+
+/// `image` as a texture of the window's.
+fn texture(ctx: &egui::Context, name: &str, image: egui::ColorImage) -> egui::TextureHandle {
+    ctx.load_texture(name, image, egui::TextureOptions::NEAREST)
+}
+
+/// The fit itself, on its thread: the photo read and shown, the graph prepared, the fit
+/// run with the default settings, each step's values (and now and then their albedo)
+/// sent, stopping when asked.
+fn fit_on_thread(
+    graph: &Graph,
+    path: &Path,
+    stop: &AtomicBool,
+    send: &dyn Fn(Update),
+) -> Result<(Vec<Assignment>, egui::ColorImage), String> {
+    let shown = |error: String| format!("{}: {error}", path.display());
+    let photo = read_photo(path).map_err(shown)?;
+    send(Update::Photo(photo_picture(&photo)));
+    let Prepared {
+        evaluator,
+        space,
+        rect,
+    } = prepare(graph, None).map_err(|error| error.to_string())?;
+    let checked = evaluator.graph();
+    let linear = checked.shading.is_linear();
+    let pixels = photo_pixels(&photo, linear);
+    let canvas = Canvas {
+        evaluator: &evaluator,
+        rect,
+        size: PICTURE_SIDE,
+    };
+    let assignments = |places: &[f64]| -> Vec<Assignment> {
+        (space.fitted_values(places).into_iter())
+            .filter_map(|(index, _, lanes)| assignment(&checked.parameters[index], lanes))
+            .collect()
+    };
+    let mut pictured: Option<Instant> = None;
+    let fitted = fit(
+        &evaluator,
+        rect,
+        &space,
+        &pixels,
+        &FitSettings::default(),
+        |progress| {
+            let due = pictured.is_none_or(|at| at.elapsed() >= PICTURE_INTERVAL);
+            let picture = due.then(|| {
+                pictured = Some(Instant::now());
+                albedo_picture(&canvas.render(&space, &progress.places), linear)
+            });
+            send(Update::Step {
+                progress: progress.clone(),
+                values: assignments(&progress.places),
+                picture,
+            });
+            !stop.load(Ordering::Relaxed)
+        },
+    );
+    let picture = albedo_picture(&canvas.render(&space, &fitted.places), linear);
+    Ok((assignments(&fitted.places), picture))
+}
+
+/// The value `lanes` give exposed parameter `parameter`, as the input it stands for
+/// takes it.
+fn assignment(parameter: &Exposed, lanes: Vec<f64>) -> Option<Assignment> {
+    let given = match lanes[..] {
+        [number] => Given::Number(number),
+        _ => Given::List(lanes),
+    };
+    let value = parameter.value_of(&given).ok()?;
+    Some((parameter.target.clone(), value))
+}
+
+/// The photo's middle square, as the fit compares it, at [`PICTURE_SIDE`].
+fn photo_picture(photo: &image::DynamicImage) -> egui::ColorImage {
+    let rgb = photo.to_rgb8();
+    let side = rgb.width().min(rgb.height());
+    let (x, y) = ((rgb.width() - side) / 2, (rgb.height() - side) / 2);
+    let square = image::imageops::crop_imm(&rgb, x, y, side, side).to_image();
+    let small = image::imageops::resize(
+        &square,
+        PICTURE_SIDE,
+        PICTURE_SIDE,
+        image::imageops::FilterType::Triangle,
+    );
+    egui::ColorImage::from_rgb([small.width() as usize, small.height() as usize], &small)
+}
+
+/// A fitted albedo for display (encoded as sRGB where the albedo is linear).
+fn albedo_picture(image: &Image, linear: bool) -> egui::ColorImage {
+    let bytes: Vec<u8> = (image.pixels.iter())
+        .flat_map(|pixel| {
+            pixel.map(|lane| {
+                let lane = (lane as f32).clamp(0.0, 1.0);
+                let shown = match linear {
+                    true => crate::bitmaps::linear_to_srgb(lane),
+                    false => lane,
+                };
+                (shown * 255.0).round() as u8
+            })
+        })
+        .collect();
+    let side = image.size as usize;
+    egui::ColorImage::from_rgb([side, side], &bytes)
+}

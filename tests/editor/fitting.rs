@@ -1,0 +1,108 @@
+//! *Fit to image…*: the Parameters panel's button opens the file browser; a fit runs on
+//! its thread while the window answers and the preview shows the values it tries; its
+//! result is kept in one undo step or discarded. Twice, as a person would.
+
+use crate::support::{editor, press, preview_pixels, scratch, screen, shows};
+use egui_kittest::kittest::Queryable;
+use veneer::fit::image::Canvas;
+use veneer::fit::prepare;
+use veneer::graph::Value;
+use veneer::graph::parameters::exposed;
+
+/// The marble preset's albedo with red veins (`vein_colour` 0.8, 0.1, 0.1) over its
+/// preview square, as a photo.
+fn red_veined_marble(path: &std::path::Path) {
+    let marble = veneer::graph::preset("marble").expect("the marble preset");
+    let names = ["vein_colour".to_string()];
+    let prepared = prepare(&marble, Some(&names)).expect("marble fits");
+    let canvas = Canvas {
+        evaluator: &prepared.evaluator,
+        rect: prepared.rect,
+        size: 96,
+    };
+    let image = canvas.render(&prepared.space, &[0.8, 0.1, 0.1]);
+    let bytes = (image.pixels.iter())
+        .flat_map(|p| p.map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8))
+        .collect();
+    image::RgbImage::from_raw(96, 96, bytes)
+        .expect("a square")
+        .save(path)
+        .expect("the photo is written");
+}
+
+/// The marble's exposed parameters' values, by name.
+fn values(harness: &crate::add_node::Editor) -> Vec<(String, Value)> {
+    let graph = &harness.state().document().graph;
+    exposed(graph)
+        .into_iter()
+        .map(|p| (p.name, p.value))
+        .collect()
+}
+
+/// Steps the editor until its fit has ended.
+fn wait_for_the_fit(harness: &mut crate::add_node::Editor) {
+    let started = std::time::Instant::now();
+    while harness.state().fitting() == Some(false) {
+        assert!(started.elapsed().as_secs() < 180, "the fit never ended");
+        std::thread::sleep(std::time::Duration::from_millis(20));
+        harness.step();
+    }
+    harness.step();
+}
+
+#[test]
+fn fit_to_image_runs_beside_the_editor_and_is_kept_in_one_undo_step_or_discarded() {
+    let dir = scratch("fit-to-image");
+    let photo = dir.join("red marble.png");
+    red_veined_marble(&photo);
+    let marble = dir.join("marble.ron");
+    let preset = veneer::graph::preset("marble").expect("the marble preset");
+    veneer::graph::save(&preset, &marble).expect("the graph is written");
+    let mut harness = editor(&dir, Some(marble));
+    let original = values(&harness);
+    let before = preview_pixels(&screen(&mut harness));
+
+    // The button opens the file browser on the graph's folder.
+    harness.get_by_label("Fit to image…").click();
+    harness.run_steps(3);
+    assert!(shows(&harness, "Fit to image: choose a photo"));
+    press(&mut harness, egui::Key::Escape, false);
+
+    for (round, keep) in [(1, false), (2, true)] {
+        let ctx = harness.ctx.clone();
+        harness.state_mut().fit_to_image(&ctx, photo.clone());
+        harness.step();
+        assert_eq!(
+            harness.state().fitting(),
+            Some(false),
+            "round {round}: it runs"
+        );
+        assert!(shows(&harness, "Fit to image"), "round {round}: its window");
+        assert!(shows(&harness, "Stop"), "round {round}");
+        wait_for_the_fit(&mut harness);
+        assert!(shows(&harness, "fitted albedo"), "round {round}");
+        assert!(shows(&harness, "Keep") && shows(&harness, "Discard"));
+        // The preview shows the values found; the document is not changed yet.
+        let shown = preview_pixels(&screen(&mut harness));
+        assert_ne!(shown, before, "round {round}: the preview shows the fit");
+        assert_eq!(values(&harness), original, "round {round}: not kept yet");
+        harness
+            .get_by_label(if keep { "Keep" } else { "Discard" })
+            .click();
+        harness.run_steps(3);
+        assert_eq!(harness.state().fitting(), None, "round {round}: closed");
+        if !keep {
+            assert_eq!(values(&harness), original, "discarded");
+            assert_eq!(preview_pixels(&screen(&mut harness)), before);
+        }
+    }
+    // Kept: the veins turned red, and one undo takes every value back.
+    let kept = values(&harness);
+    let veins = kept.iter().find(|(name, _)| name == "vein_colour");
+    let Some((_, Value::Color(r, g, b))) = veins else {
+        panic!("{kept:?}")
+    };
+    assert!(*r > g + 0.3 && *r > b + 0.3, "red veins: {kept:?}");
+    press(&mut harness, egui::Key::Z, true);
+    assert_eq!(values(&harness), original, "one undo step");
+}

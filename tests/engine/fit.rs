@@ -1,0 +1,217 @@
+//! `veneer fit`, as a user runs it: a preset rendered flat at parameter values drawn at
+//! random is fitted back from the preset's own values (the parameters a statistical
+//! loss can tell apart), and every kind of bad input is refused with nothing written.
+
+use crate::support::{run_veneer, temp_dir};
+use veneer::eval::Evaluator;
+use veneer::fit::recovery::{assignments, draw_truth, median_error};
+use veneer::fit::space::Space;
+
+/// The fit's JSON summary, with the fitted places of `space`'s coordinates.
+struct Summary {
+    initial: f64,
+    fitted: f64,
+    places: Vec<f64>,
+}
+
+fn summary(json: &[u8], space: &Space) -> Summary {
+    let value: serde_json::Value = serde_json::from_slice(json).expect("the summary is JSON");
+    let places = (space.coordinates.iter())
+        .map(|c| {
+            let name = &space.names[c.parameter];
+            let lane = value["parameters"][name][c.lane].as_f64();
+            c.place(lane.unwrap_or_else(|| panic!("{name}.{} in {value}", c.lane)))
+        })
+        .collect();
+    Summary {
+        initial: value["initial_total"].as_f64().expect("initial_total"),
+        fitted: value["fitted_total"].as_f64().expect("fitted_total"),
+        places,
+    }
+}
+
+/// Renders `graph` flat over its preview square with `fitted` drawn at random, fits
+/// those parameters back, and returns the median normalised error and the loss's
+/// fraction left.
+fn recover(graph: &str, fitted: &[&str], seed: u64) -> (f64, f64) {
+    let dir = temp_dir(&format!("fit-{seed}"));
+    let loaded = veneer::graph::load(&crate::support::root(graph)).expect("the preset loads");
+    let evaluator = Evaluator::new(&loaded).expect("the preset checks");
+    let names: Vec<String> = fitted.iter().map(ToString::to_string).collect();
+    let space =
+        Space::of(&evaluator.graph().parameters, |_| true, Some(&names)).expect("the names");
+    let truth = draw_truth(&space, seed);
+    let rect = veneer::render::preview_rect(&loaded.preview);
+    let flat = format!(
+        "--flat={},{},{},{},{}",
+        rect.x0, rect.z0, rect.x1, rect.z1, rect.y
+    );
+    let target = dir.join("target.png");
+    let mut render = vec!["render", graph, &flat, "--size", "128"];
+    let sets = assignments(&space, &truth);
+    for set in &sets {
+        render.extend(["--set", set]);
+    }
+    render.extend(["-o", target.to_str().expect("a UTF-8 path")]);
+    let rendered = run_veneer(&render);
+    assert!(rendered.status.success(), "{rendered:?}");
+    let output = dir.join("fitted.ron");
+    let params = fitted.join(",");
+    let fit = run_veneer(&[
+        "fit",
+        graph,
+        target.to_str().expect("a UTF-8 path"),
+        "--params",
+        &params,
+        "--size",
+        "64",
+        "--json",
+        "-o",
+        output.to_str().expect("a UTF-8 path"),
+    ]);
+    assert!(fit.status.success(), "{fit:?}");
+    let result = summary(&fit.stdout, &space);
+    // The written graph carries the values, and the `fit` preset too.
+    let written = std::fs::read_to_string(&output).expect("the fitted graph");
+    assert!(written.contains("\"fit\": {"), "{written}");
+    (
+        median_error(&result.places, &truth),
+        result.fitted / result.initial,
+    )
+}
+
+#[test]
+fn fitting_recovers_the_values_a_preset_was_rendered_at() {
+    for (graph, fitted, seed) in [
+        (
+            "graphs/marble.ron",
+            &["vein_frequency", "vein_colour", "stone_colour"][..],
+            3,
+        ),
+        (
+            "graphs/wood.ron",
+            &["ring_frequency", "early_wood", "grain_stretch"][..],
+            5,
+        ),
+    ] {
+        let (error, left) = recover(graph, fitted, seed);
+        assert!(error <= 0.05, "{graph}: median normalised error {error}");
+        assert!(left <= 0.1, "{graph}: {left} of the starting loss left");
+    }
+}
+
+/// The CRC-32 of PNG chunks (of the type and data).
+fn crc32(bytes: &[u8]) -> u32 {
+    let mut crc = !0u32;
+    for &byte in bytes {
+        crc ^= u32::from(byte);
+        for _ in 0..8 {
+            crc = (crc >> 1) ^ (0xEDB8_8320 & (crc & 1).wrapping_neg());
+        }
+    }
+    !crc
+}
+
+/// A PNG whose header says `width`×`height`, with no pixel data (the size is read from
+/// the header, so its pixels are never asked for).
+fn png_header(width: u32, height: u32) -> Vec<u8> {
+    let mut header = Vec::new();
+    header.extend(width.to_be_bytes());
+    header.extend(height.to_be_bytes());
+    header.extend([8, 2, 0, 0, 0]);
+    let mut png = b"\x89PNG\r\n\x1a\n".to_vec();
+    for (kind, data) in [
+        (b"IHDR", header),
+        (b"IDAT", Vec::new()),
+        (b"IEND", Vec::new()),
+    ] {
+        let chunk = [&kind[..], &data].concat();
+        png.extend(
+            u32::try_from(data.len())
+                .expect("a small chunk")
+                .to_be_bytes(),
+        );
+        png.extend(&chunk);
+        png.extend(crc32(&chunk).to_be_bytes());
+    }
+    png
+}
+
+#[test]
+fn bad_photos_graphs_and_names_are_refused_with_nothing_written() {
+    let dir = temp_dir("fit-refusals");
+    let photo = dir.join("photo.png");
+    image::RgbImage::from_pixel(48, 48, image::Rgb([120, 90, 60]))
+        .save(&photo)
+        .expect("a photo");
+    let garbage = dir.join("garbage.png");
+    std::fs::write(&garbage, "not a picture").expect("a file");
+    let tiny = dir.join("tiny.png");
+    image::RgbImage::new(20, 20)
+        .save(&tiny)
+        .expect("a tiny photo");
+    let huge = dir.join("huge.png");
+    std::fs::write(&huge, png_header(20_000, 20_000)).expect("a huge header");
+    let output = dir.join("fitted.ron");
+    let text = |path: &std::path::Path| path.to_str().expect("a UTF-8 path").to_string();
+    let cases: [(&str, String, &[&str], &str); 8] = [
+        (
+            "graphs/marble.ron",
+            text(&garbage),
+            &[],
+            "garbage.png: cannot read the photo",
+        ),
+        (
+            "graphs/marble.ron",
+            text(&tiny),
+            &[],
+            "is 20×20 pixels: give one at least 32",
+        ),
+        (
+            "graphs/marble.ron",
+            text(&huge),
+            &[],
+            "is 20000×20000 pixels: give one of at most",
+        ),
+        (
+            "graphs/wood_classic.ron",
+            text(&photo),
+            &[],
+            "exposes no continuous parameter (float, vector or colour) that reaches the albedo",
+        ),
+        (
+            "graphs/wood_classic.ron",
+            text(&photo),
+            &["--params", "gloss_shininess"],
+            "parameter 'gloss_shininess' does not reach the albedo",
+        ),
+        (
+            "graphs/marble.ron",
+            text(&photo),
+            &["--params", "vein_frequency,veins_everywhere"],
+            "the graph exposes no parameter 'veins_everywhere' (it exposes vein_frequency,",
+        ),
+        (
+            "graphs/thesis_c4_paint_metal_rust.ron",
+            text(&photo),
+            &[],
+            "reads a field of the mesh",
+        ),
+        (
+            "graphs/texture/worn_bricks.ron",
+            text(&photo),
+            &[],
+            "is a buffered pass",
+        ),
+    ];
+    for (graph, photo, extra, expected) in cases {
+        let mut args = vec!["fit", graph, &photo];
+        args.extend(extra);
+        args.extend(["-o", output.to_str().expect("a UTF-8 path")]);
+        let run = run_veneer(&args);
+        let stderr = String::from_utf8_lossy(&run.stderr);
+        assert_eq!(run.status.code(), Some(1), "{args:?}: {stderr}");
+        assert!(stderr.contains(expected), "{args:?}: {stderr}");
+        assert!(!output.exists(), "{args:?} wrote {}", output.display());
+    }
+}
