@@ -33,8 +33,25 @@ enum Update {
         values: Vec<Assignment>,
         picture: Option<egui::ColorImage>,
     },
-    /// The fit ended: the best values found (with their albedo), or why it could not run.
-    Ended(Result<(Vec<Assignment>, egui::ColorImage), String>),
+    /// The fit ended: the best values found, or why it could not run.
+    Ended(Result<Found, String>),
+}
+
+/// What a fit found: the best values, their albedo, their loss, and whether it was
+/// stopped before its last step.
+struct Found {
+    values: Vec<Assignment>,
+    picture: egui::ColorImage,
+    loss: f64,
+    stopped: bool,
+}
+
+/// How a fit ended.
+pub(in crate::app) enum Ended {
+    /// It found values of this loss (at the full size), stopped early or not.
+    Found { loss: f64, stopped: bool },
+    /// It could not run.
+    Failed(String),
 }
 
 /// *Fit to image…*'s part of the editor.
@@ -60,8 +77,8 @@ pub(in crate::app) struct FitRun {
     /// The document's graph with `values`, which the preview draws meanwhile, and a
     /// number that changes with it.
     pub candidate: Option<(Graph, u64)>,
-    /// `None` while it runs; then whether it found values or why it could not run.
-    pub ended: Option<Result<(), String>>,
+    /// `None` while it runs; then what it found or why it could not run.
+    pub ended: Option<Ended>,
     stop: Arc<AtomicBool>,
     updates: mpsc::Receiver<Update>,
 }
@@ -112,7 +129,8 @@ impl FitRun {
                 Err(mpsc::TryRecvError::Empty) => break,
                 Err(mpsc::TryRecvError::Disconnected) => {
                     if self.ended.is_none() {
-                        self.ended = Some(Err("the fit stopped unexpectedly".into()));
+                        let error = "the fit stopped unexpectedly".to_string();
+                        self.ended = Some(Ended::Failed(error));
                     }
                     break;
                 }
@@ -132,14 +150,19 @@ impl FitRun {
                         self.albedo = Some(texture(ctx, "fit albedo", picture));
                     }
                 }
-                Update::Ended(Ok((values, picture))) => {
-                    self.values = values;
+                Update::Ended(Ok(found)) => {
+                    self.values = found.values;
                     values_changed = true;
-                    self.albedo = Some(texture(ctx, "fit albedo", picture));
-                    self.step.0 = self.step.1;
-                    self.ended = Some(Ok(()));
+                    self.albedo = Some(texture(ctx, "fit albedo", found.picture));
+                    if !found.stopped {
+                        self.step.0 = self.step.1;
+                    }
+                    self.ended = Some(Ended::Found {
+                        loss: found.loss,
+                        stopped: found.stopped,
+                    });
                 }
-                Update::Ended(Err(error)) => self.ended = Some(Err(error)),
+                Update::Ended(Err(error)) => self.ended = Some(Ended::Failed(error)),
             }
         }
         if values_changed {
@@ -180,7 +203,7 @@ fn fit_on_thread(
     path: &Path,
     stop: &AtomicBool,
     send: &dyn Fn(Update),
-) -> Result<(Vec<Assignment>, egui::ColorImage), String> {
+) -> Result<Found, String> {
     let shown = |error: String| format!("{}: {error}", path.display());
     let photo = read_photo(path).map_err(shown)?;
     send(Update::Photo(photo_picture(&photo)));
@@ -223,8 +246,12 @@ fn fit_on_thread(
             !stop.load(Ordering::Relaxed)
         },
     );
-    let picture = albedo_picture(&canvas.render(&space, &fitted.places), linear);
-    Ok((assignments(&fitted.places), picture))
+    Ok(Found {
+        values: assignments(&fitted.places),
+        picture: albedo_picture(&canvas.render(&space, &fitted.places), linear),
+        loss: fitted.parts.total(),
+        stopped: fitted.cut_short,
+    })
 }
 
 /// The value `lanes` give exposed parameter `parameter`, as the input it stands for

@@ -1,9 +1,10 @@
 //! The *Fit to image* window: the photo beside the fitted albedo, the loss curve and
 //! the step reached, *Stop* while it runs, *Keep* or *Discard* once it ended.
 
-use super::{FitRun, PICTURE_SIDE};
+use super::{Ended, FitRun, PICTURE_SIDE};
 use crate::app::VeneerApp;
 use crate::app::chrome::file_browser::{Browsed, Purpose};
+use crate::fit::FitSettings;
 use egui::Ui;
 
 /// The photos the file browser offers.
@@ -141,8 +142,15 @@ fn contents(ui: &mut Ui, run: &FitRun) -> Option<Choice> {
             ui.weak("the preview shows each step's values");
             ui.button("Stop").clicked().then_some(Choice::Stop)
         }
-        Some(Ok(())) => {
-            ui.label("done: the preview shows the best values found");
+        Some(Ended::Found { loss, stopped }) => {
+            let how = match stopped {
+                true => format!("stopped at step {step}"),
+                false => "done".to_string(),
+            };
+            ui.label(format!(
+                "{how}: the preview shows the best values found (loss {loss:.5} at {side}²)",
+                side = FitSettings::default().size
+            ));
             ui.horizontal(|ui| {
                 if ui.button("Keep").clicked() {
                     Some(Choice::Keep)
@@ -154,14 +162,15 @@ fn contents(ui: &mut Ui, run: &FitRun) -> Option<Choice> {
             })
             .inner
         }
-        Some(Err(error)) => {
+        Some(Ended::Failed(error)) => {
             ui.colored_label(ui.visuals().error_fg_color, error);
             ui.button("Close").clicked().then_some(Choice::Discard)
         }
     }
 }
 
-/// The loss against the step, on a logarithmic scale.
+/// The loss against the step, on a logarithmic scale, and the lowest so far (each start
+/// begins high again).
 fn loss_curve(ui: &mut Ui, losses: &[[f64; 2]]) {
     let (rect, _) = ui.allocate_exact_size(CURVE_SIZE, egui::Sense::hover());
     let painter = ui.painter_at(rect);
@@ -179,21 +188,33 @@ fn loss_curve(ui: &mut Ui, losses: &[[f64; 2]]) {
     }
     let span = (high - low).max(1e-6);
     let last = (logs.len() - 1) as f32;
-    let points: Vec<egui::Pos2> = (logs.iter().enumerate())
-        .map(|(k, &v)| {
-            let x = rect.left() + rect.width() * k as f32 / last;
-            let y = rect.bottom() - rect.height() * ((v - low) / span) as f32;
-            egui::pos2(x, y)
-        })
-        .collect();
-    painter.add(egui::Shape::line(
-        points,
-        egui::Stroke::new(1.5, ui.visuals().selection.bg_fill),
-    ));
+    let point = |k: usize, v: f64| {
+        let x = rect.left() + rect.width() * k as f32 / last;
+        let y = rect.bottom() - rect.height() * ((v - low) / span) as f32;
+        egui::pos2(x, y)
+    };
+    let steps = logs.iter().enumerate().map(|(k, &v)| point(k, v));
+    let lowest = (logs.iter().enumerate()).scan(f64::INFINITY, |lowest, (k, &v)| {
+        *lowest = lowest.min(v);
+        Some(point(k, *lowest))
+    });
+    let visuals = ui.visuals();
+    for (points, stroke) in [
+        (
+            steps.collect(),
+            egui::Stroke::new(1.0, visuals.selection.bg_fill),
+        ),
+        (
+            lowest.collect(),
+            egui::Stroke::new(1.5, visuals.strong_text_color()),
+        ),
+    ] {
+        painter.add(egui::Shape::line(points, stroke));
+    }
     painter.text(
         rect.left_top() + egui::vec2(4.0, 2.0),
         egui::Align2::LEFT_TOP,
-        "loss (log scale)",
+        "loss (log scale), lowest so far",
         egui::FontId::proportional(11.0),
         ui.visuals().weak_text_color(),
     );
