@@ -25,8 +25,8 @@ pub struct FitArgs {
     #[arg(long, default_value_t = FitSettings::default().steps)]
     steps: usize,
     /// Starts: the graph's own values, then random draws within the ranges.
-    #[arg(long, default_value_t = FitSettings::default().starts)]
-    starts: usize,
+    #[arg(long, default_value_t = FitSettings::default().starts as u32, value_parser = clap::value_parser!(u32).range(1..))]
+    starts: u32,
     /// The side in pixels of the images compared at the end (the fit starts at 64).
     #[arg(long, default_value_t = FitSettings::default().size)]
     size: u32,
@@ -87,13 +87,39 @@ pub fn run(args: FitArgs) -> Result<(), Failure> {
                 "--budget {seconds}: give a positive number of seconds"
             )));
         }
-        budget => budget.map(std::time::Duration::from_secs_f64),
+        Some(seconds) => Some(
+            std::time::Duration::try_from_secs_f64(seconds)
+                .map_err(|_| Failure::new(format!("--budget {seconds}: too many seconds")))?,
+        ),
+        None => None,
     };
+    // The output's place is checked before the work, not after it.
+    if super::names_folder(&args.output) {
+        return Err(Failure::new(format!(
+            "{}: is a folder; give the output a file name",
+            args.output.display()
+        )));
+    }
+    let folder = args.output.parent().filter(|f| !f.as_os_str().is_empty());
+    if let Some(folder) = folder.filter(|folder| !folder.is_dir()) {
+        return Err(Failure::new(format!(
+            "{}: the folder {} does not exist",
+            args.output.display(),
+            folder.display()
+        )));
+    }
+    // Names as typed, spaces around them or a trailing comma forgiven.
+    let params: Option<Vec<String>> = (args.params.as_ref()).map(|names| {
+        (names.iter())
+            .map(|name| name.trim().to_string())
+            .filter(|name| !name.is_empty())
+            .collect()
+    });
     let photo = read_photo(&args.photo).map_err(|error| in_file(&args.photo, error))?;
     let settings = FitSettings {
         size: args.size,
         steps: args.steps,
-        starts: args.starts,
+        starts: args.starts as usize,
         budget,
         seed: args.seed,
         aligned: args.aligned,
@@ -105,22 +131,16 @@ pub fn run(args: FitArgs) -> Result<(), Failure> {
         .expect("valid template"),
     );
     bar.set_prefix("fit");
-    let result = fit_graph(
-        &graph,
-        &photo,
-        args.params.as_deref(),
-        &settings,
-        |progress| {
-            bar.set_length(progress.total_steps as u64);
-            bar.set_position(progress.step as u64);
-            let start = match progress.start {
-                Some(start) => format!("start {}", start + 1),
-                None => "refining".to_string(),
-            };
-            bar.set_message(format!("{start}, loss {:.5}", progress.loss));
-            true
-        },
-    )
+    let result = fit_graph(&graph, &photo, params.as_deref(), &settings, |progress| {
+        bar.set_length(progress.total_steps as u64);
+        bar.set_position(progress.step as u64);
+        let start = match progress.start {
+            Some(start) => format!("start {}", start + 1),
+            None => "refining".to_string(),
+        };
+        bar.set_message(format!("{start}, loss {:.5}", progress.loss));
+        true
+    })
     .map_err(|error| in_file(&args.graph, error))?;
     bar.finish_and_clear();
     write_output(

@@ -199,16 +199,18 @@ pub fn fit_graph(
     let pixels = photo_pixels(photo, checked.shading.is_linear());
     let fitted = fit(&evaluator, rect, &space, &pixels, settings, progress);
     let mut graph = graph.clone();
-    let mut preset = std::collections::BTreeMap::new();
-    for (index, name, lanes) in space.fitted_values(&fitted.places) {
+    for (_, name, lanes) in space.fitted_values(&fitted.places) {
         let given = match lanes[..] {
             [number] => Given::Number(number),
             _ => Given::List(lanes),
         };
         set(&mut graph, name, &given).map_err(FitError::Parameter)?;
-        let value = (checked.parameters[index].value_of(&given)).map_err(FitError::Parameter)?;
-        preset.insert(name.to_string(), value);
     }
+    // Every exposed value, the fitted ones and those it started from (a preset or
+    // `--set` applied before), so that the preset gives the fitted look on its own.
+    let preset = (crate::graph::parameters::exposed(&graph).into_iter())
+        .map(|parameter| (parameter.name, parameter.value))
+        .collect();
     graph.presets.insert(FIT_PRESET.to_string(), preset);
     Ok(FittedGraph {
         graph,

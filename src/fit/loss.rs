@@ -321,12 +321,16 @@ impl Loss {
                     }
                 }
             }
-            // What the coarser level passed down: each of its pixels averaged four.
+            // What the coarser level passed down: each of its pixels averaged four (an
+            // odd side's last row and column averaged into none).
             if !carried.is_empty() {
                 let half = n / 2;
                 for (p, g) in gradient.iter_mut().enumerate() {
-                    let (x, y) = (p as u32 % n, p as u32 / n);
-                    let parent = carried[((y / 2) * half + x / 2) as usize];
+                    let (x, y) = (p as u32 % n / 2, p as u32 / n / 2);
+                    if x >= half || y >= half {
+                        continue;
+                    }
+                    let parent = carried[(y * half + x) as usize];
                     for c in 0..3 {
                         g[c] += parent[c] / 4.0;
                     }

@@ -52,6 +52,9 @@ impl Default for FitSettings {
 const LEARNING_RATE: f64 = 0.03;
 /// The side of the coarse stage's images (or the full size, if smaller).
 const COARSE: u32 = 64;
+/// The step, in normalised units, of the loss's central difference where the tape
+/// gives no derivative.
+const STEP: f64 = 0.02;
 /// Random draws screened for each random start.
 const SCREENED_PER_START: usize = 16;
 
@@ -150,9 +153,29 @@ impl<'e> Stage<'e> {
     }
 
     /// The derivative by each of `places` of the loss whose derivative by each pixel
-    /// there is `by_pixel`.
-    fn gradient(&self, space: &Space, places: &[f64], by_pixel: &[[f64; 3]]) -> Vec<f64> {
-        self.canvas.pull_back(space, places, by_pixel)
+    /// there is `by_pixel`: exact through the tape; where the tape has none for a
+    /// coordinate (it only moves steps, floors or cells: a tile's size, a threshold with
+    /// no softness), the loss's central difference instead.
+    fn gradient(
+        &self,
+        loss: &Loss,
+        space: &Space,
+        places: &[f64],
+        by_pixel: &[[f64; 3]],
+    ) -> Vec<f64> {
+        let mut gradient = self.canvas.pull_back(space, places, by_pixel);
+        for (k, derivative) in gradient.iter_mut().enumerate() {
+            if *derivative == 0.0 {
+                let at = |t: f64| {
+                    let mut moved = places.to_vec();
+                    moved[k] = t.clamp(0.0, 1.0);
+                    (self.loss(loss, space, &moved).0.total(), moved[k])
+                };
+                let ((up, high), (down, low)) = (at(places[k] + STEP), at(places[k] - STEP));
+                *derivative = (up - down) / (high - low);
+            }
+        }
+        gradient
     }
 }
 
@@ -227,7 +250,7 @@ fn descend(
                 stopped,
             };
         }
-        let gradient = stage.gradient(space, &places, &by_pixel);
+        let gradient = stage.gradient(loss, space, &places, &by_pixel);
         adam.step(&mut places, &gradient);
     }
     unreachable!("the last step returns")
@@ -273,12 +296,20 @@ pub fn fit(
         within && progress(&report)
     };
     let mut draws = Draws::new(settings.seed);
-    let mut screened: Vec<(f64, Vec<f64>)> = (0..SCREENED_PER_START * (start_count - 1))
-        .map(|_| {
-            let places: Vec<f64> = space.coordinates.iter().map(|_| draws.uniform()).collect();
-            (coarse.loss(&loss, space, &places).0.total(), places)
-        })
+    // Screening takes at most half the budget, leaving the rest to the steps.
+    let screening = || (settings.budget).is_none_or(|budget| clock.elapsed() < budget / 2);
+    // The random draws, screened while the budget allows (the rest keep their order).
+    let draws: Vec<Vec<f64>> = (0..SCREENED_PER_START * (start_count - 1))
+        .map(|_| space.coordinates.iter().map(|_| draws.uniform()).collect())
         .collect();
+    let mut screened: Vec<(f64, Vec<f64>)> = Vec::new();
+    for places in draws {
+        let total = match screening() {
+            true => coarse.loss(&loss, space, &places).0.total(),
+            false => f64::INFINITY,
+        };
+        screened.push((total, places));
+    }
     screened.sort_by(|a, b| a.0.total_cmp(&b.0));
     let mut screened = screened.into_iter().map(|(_, places)| places);
     let mut starts = Vec::new();
@@ -325,9 +356,16 @@ pub fn fit(
         places = descent.places;
     }
     let stage = fine.as_ref().unwrap_or(&coarse);
+    let initial = stage.loss(&loss, space, &space.start()).0;
+    let mut parts = stage.loss(&loss, space, &places).0;
+    // Never worse than where it started (a start chosen at the coarse size may be, at
+    // the full size, when the budget cut its refinement short).
+    if parts.total() > initial.total() {
+        (places, parts) = (space.start(), initial);
+    }
     Fitted {
-        parts: stage.loss(&loss, space, &places).0,
-        initial: stage.loss(&loss, space, &space.start()).0,
+        parts,
+        initial,
         places,
         starts,
         steps: taken,

@@ -3,7 +3,7 @@
 use super::Graph;
 
 /// Every preset: its file stem and RON text.
-pub const PRESETS: [(&str, &str); 26] = [
+pub const PRESETS: [(&str, &str); 27] = [
     ("wood", include_str!("../../graphs/wood.ron")),
     ("marble", include_str!("../../graphs/marble.ron")),
     (
@@ -78,6 +78,7 @@ pub const PRESETS: [(&str, &str); 26] = [
     ),
     // Materials that read what the mesh knows about itself.
     ("worn_paint", include_str!("../../graphs/worn_paint.ron")),
+    ("gravel", include_str!("../../graphs/gravel.ron")),
     ("mossy_stone", include_str!("../../graphs/mossy_stone.ron")),
     ("wax_candle", include_str!("../../graphs/wax_candle.ron")),
 ];

@@ -7,6 +7,26 @@ use veneer::eval::Evaluator;
 use veneer::fit::recovery::{assignments, draw_truth, median_error};
 use veneer::fit::space::Space;
 
+/// Runs `veneer fit graph photo --size size` with `extra` arguments, writing `output`,
+/// and returns its JSON summary.
+fn fit_json(
+    graph: &str,
+    photo: &std::path::Path,
+    size: &str,
+    extra: &[&str],
+    output: &std::path::Path,
+) -> serde_json::Value {
+    let (photo, output) = (
+        photo.to_str().expect("a UTF-8 path"),
+        output.to_str().expect("a UTF-8 path"),
+    );
+    let mut args = vec!["fit", graph, photo, "--size", size, "--json", "-o", output];
+    args.extend(extra);
+    let fit = run_veneer(&args);
+    assert!(fit.status.success(), "{fit:?}");
+    serde_json::from_slice(&fit.stdout).expect("the summary is JSON")
+}
+
 /// The fit's JSON summary, with the fitted places of `space`'s coordinates.
 struct Summary {
     initial: f64,
@@ -14,8 +34,7 @@ struct Summary {
     places: Vec<f64>,
 }
 
-fn summary(json: &[u8], space: &Space) -> Summary {
-    let value: serde_json::Value = serde_json::from_slice(json).expect("the summary is JSON");
+fn summary(value: &serde_json::Value, space: &Space) -> Summary {
     let places = (space.coordinates.iter())
         .map(|c| {
             let name = &space.names[c.parameter];
@@ -57,20 +76,10 @@ fn recover(graph: &str, fitted: &[&str], seed: u64) -> (f64, f64) {
     assert!(rendered.status.success(), "{rendered:?}");
     let output = dir.join("fitted.ron");
     let params = fitted.join(",");
-    let fit = run_veneer(&[
-        "fit",
-        graph,
-        target.to_str().expect("a UTF-8 path"),
-        "--params",
-        &params,
-        "--size",
-        "64",
-        "--json",
-        "-o",
-        output.to_str().expect("a UTF-8 path"),
-    ]);
-    assert!(fit.status.success(), "{fit:?}");
-    let result = summary(&fit.stdout, &space);
+    let result = summary(
+        &fit_json(graph, &target, "64", &["--params", &params], &output),
+        &space,
+    );
     // The written graph carries the values, and the `fit` preset too.
     let written = std::fs::read_to_string(&output).expect("the fitted graph");
     assert!(written.contains("\"fit\": {"), "{written}");
@@ -154,7 +163,7 @@ fn bad_photos_graphs_and_names_are_refused_with_nothing_written() {
     std::fs::write(&huge, png_header(20_000, 20_000)).expect("a huge header");
     let output = dir.join("fitted.ron");
     let text = |path: &std::path::Path| path.to_str().expect("a UTF-8 path").to_string();
-    let cases: [(&str, String, &[&str], &str); 8] = [
+    let cases: [(&str, String, &[&str], &str); 9] = [
         (
             "graphs/marble.ron",
             text(&garbage),
@@ -203,7 +212,30 @@ fn bad_photos_graphs_and_names_are_refused_with_nothing_written() {
             &[],
             "is a buffered pass",
         ),
+        (
+            "graphs/marble.ron",
+            text(&photo),
+            &["--budget", "1e20"],
+            "--budget 100000000000000000000: too many seconds",
+        ),
     ];
+    // Outputs that cannot be written are refused before the work.
+    let missing = dir.join("no such folder").join("fitted.ron");
+    for (out, expected) in [
+        (missing.to_str().expect("a UTF-8 path"), "does not exist"),
+        (dir.to_str().expect("a UTF-8 path"), "is a folder"),
+    ] {
+        let started = std::time::Instant::now();
+        let photo = text(&photo);
+        let run = run_veneer(&["fit", "graphs/marble.ron", &photo, "-o", out]);
+        let stderr = String::from_utf8_lossy(&run.stderr);
+        assert_eq!(run.status.code(), Some(1), "{out}: {stderr}");
+        assert!(stderr.contains(expected), "{out}: {stderr}");
+        assert!(
+            started.elapsed().as_secs() < 5,
+            "{out}: refused only after fitting"
+        );
+    }
     for (graph, photo, extra, expected) in cases {
         let mut args = vec!["fit", graph, &photo];
         args.extend(extra);
@@ -213,5 +245,47 @@ fn bad_photos_graphs_and_names_are_refused_with_nothing_written() {
         assert_eq!(run.status.code(), Some(1), "{args:?}: {stderr}");
         assert!(stderr.contains(expected), "{args:?}: {stderr}");
         assert!(!output.exists(), "{args:?} wrote {}", output.display());
+    }
+}
+
+#[test]
+fn photographs_of_gravel_and_brick_lower_their_presets_loss_by_half() {
+    for (graph, photo) in [
+        ("graphs/gravel.ron", "target/photos/gravel.png"),
+        ("graphs/thesis_brick.ron", "target/photos/brick.png"),
+    ] {
+        let photo = crate::support::root(photo);
+        assert!(
+            photo.exists(),
+            "{}: one of the CC0 photographs `.ci/run` takes out of scikit-image's package",
+            photo.display()
+        );
+        let dir = temp_dir("fit-photos");
+        let output = dir.join("fitted.ron");
+        let value = fit_json(graph, &photo, "64", &[], &output);
+        let (initial, fitted) = (
+            value["initial_total"].as_f64(),
+            value["fitted_total"].as_f64(),
+        );
+        let (initial, fitted) = (initial.expect("initial"), fitted.expect("fitted"));
+        assert!(fitted <= 0.5 * initial, "{graph}: {initial} → {fitted}");
+    }
+}
+
+#[test]
+fn images_of_any_side_in_range_fit_odd_ones_included() {
+    let dir = temp_dir("fit-odd");
+    let photo = dir.join("photo.png");
+    image::RgbImage::from_fn(40, 40, |x, y| {
+        image::Rgb([(x * 6) as u8, (y * 6) as u8, 90])
+    })
+    .save(&photo)
+    .expect("a photo");
+    // Pyramid levels of odd sides (17 → 8, 65 → 32 → 16) pass their derivatives down.
+    for size in ["17", "65"] {
+        let output = dir.join(format!("fitted {size}.ron"));
+        let steps = ["--steps", "2", "--starts", "1"];
+        let value = fit_json("graphs/marble.ron", &photo, size, &steps, &output);
+        assert!(value["fitted_total"].as_f64().is_some(), "{value}");
     }
 }
