@@ -169,6 +169,14 @@ impl RenderArgs {
 }
 
 pub fn run(args: RenderArgs) -> Result<(), Failure> {
+    // A render is a PNG: another image's extension would name a file it is not.
+    let extension = args.output.extension().map(|e| e.to_string_lossy().to_lowercase());
+    if let Some(extension) = extension.filter(|e| e != "png") {
+        return Err(Failure::new(format!(
+            "{}: render writes PNG images, not .{extension}; name the output .png",
+            args.output.display()
+        )));
+    }
     let mut graph = load_graph(&args.graph)?;
     args.parameters.apply(&mut graph, &args.graph)?;
     let options = CompileOptions::with_detail(args.detail.into());

@@ -300,6 +300,14 @@ fn outputs_that_name_folders_are_explained() {
 #[test]
 fn usage_errors_exit_with_the_documented_codes() {
     assert_refused(&run_veneer(&["render", "graphs/wood.ron"]), 1, "--output");
+    let exr = temp_dir("render-exr").join("wood.exr");
+    let exr = exr.to_string_lossy();
+    assert_refused(
+        &run_veneer(&["render", "graphs/wood.ron", "-o", &exr]),
+        1,
+        "render writes PNG images, not .exr; name the output .png",
+    );
+    assert!(!std::path::Path::new(exr.as_ref()).exists());
     assert_refused(
         &run_veneer(&["no-such-command"]),
         1,
