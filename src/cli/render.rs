@@ -170,7 +170,10 @@ impl RenderArgs {
 
 pub fn run(args: RenderArgs) -> Result<(), Failure> {
     // A render is a PNG: another image's extension would name a file it is not.
-    let extension = args.output.extension().map(|e| e.to_string_lossy().to_lowercase());
+    let extension = args
+        .output
+        .extension()
+        .map(|e| e.to_string_lossy().to_lowercase());
     if let Some(extension) = extension.filter(|e| e != "png") {
         return Err(Failure::new(format!(
             "{}: render writes PNG images, not .{extension}; name the output .png",
