@@ -21,13 +21,15 @@ pub struct FitArgs {
     /// Stop after this many seconds, keeping the best values found.
     #[arg(long, value_name = "SECONDS")]
     budget: Option<f64>,
-    /// Adam steps per start at the coarse size (half as many refine the best).
+    /// Adam steps per start at 64² (half as many refine the best at 128², a quarter at
+    /// 256², … up to --size).
     #[arg(long, default_value_t = FitSettings::default().steps)]
     steps: usize,
     /// Starts: the graph's own values, then random draws within the ranges.
     #[arg(long, default_value_t = FitSettings::default().starts as u32, value_parser = clap::value_parser!(u32).range(1..))]
     starts: u32,
-    /// The side in pixels of the images compared at the end (the fit starts at 64).
+    /// The side in pixels of the images compared at the end, from 8 to 2048 (the fit
+    /// starts at 64 and doubles up to it).
     #[arg(long, default_value_t = FitSettings::default().size)]
     size: u32,
     /// Draws the random starts and the loss's directions.

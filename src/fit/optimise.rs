@@ -1,7 +1,7 @@
 //! The fit itself: Adam on the normalised coordinates (kept within [0, 1]), from the
 //! graph's own values and from the best of many random draws (screened by their loss
 //! alone, which costs a fraction of a step), each run at a coarse size first; the best
-//! start is then refined at the full size. The best places seen are kept, the time
+//! start is then refined at twice the side, and twice again, up to the full size. The best places seen are kept, the time
 //! budget is respected (checked before every step) and the caller may stop it at any
 //! step. For a given seed, step count and size, the result is the same on every run
 //! (a budget that cuts it short makes it depend on the machine's speed).
@@ -19,8 +19,8 @@ use std::time::{Duration, Instant};
 pub struct FitSettings {
     /// The side of the final images, in pixels.
     pub size: u32,
-    /// Adam steps per start at the coarse size (half as many refine the best at the
-    /// full size).
+    /// Adam steps per start at the coarse size (half as many refine the best at twice
+    /// the side, a quarter at four times, … up to the full size).
     pub steps: usize,
     /// Starts: the graph's values, then random draws.
     pub starts: usize,
@@ -274,9 +274,25 @@ pub fn fit(
     // brought it near, so it joins in the last stage.
     let coarse_aligned = settings.aligned && settings.size <= coarse_size;
     let coarse = Stage::new(evaluator, rect, coarse_size, photo, &loss, coarse_aligned);
-    let fine =
-        (settings.size > coarse_size).then(|| Stage::full(evaluator, rect, photo, &loss, settings));
-    let refine_steps = fine.as_ref().map_or(0, |_| settings.steps / 2);
+    // The refinements: twice the side each time up to the full size, each with half the
+    // steps of the one before (at least two), the aligned part in the last.
+    let mut sides = Vec::new();
+    let mut side = coarse_size;
+    while side < settings.size {
+        side = (2 * side).min(settings.size);
+        sides.push(side);
+    }
+    let refinements: Vec<(Stage, usize)> = (sides.iter().enumerate())
+        .map(|(k, &side)| {
+            let aligned = settings.aligned && side == settings.size;
+            let steps = (settings.steps >> (k + 1)).max(2);
+            (
+                Stage::new(evaluator, rect, side, photo, &loss, aligned),
+                steps,
+            )
+        })
+        .collect();
+    let refine_steps: usize = refinements.iter().map(|(_, steps)| steps).sum();
     let start_count = settings.starts.max(1);
     let total_steps = settings.steps * start_count + refine_steps;
     let mut taken = 0;
@@ -342,20 +358,18 @@ pub fn fit(
         }
     }
     let mut places = best.expect("one start at least").places;
-    if let Some(fine) = fine.as_ref().filter(|_| !stopped) {
-        let descent = descend(
-            fine,
-            &loss,
-            space,
-            places,
-            refine_steps,
-            |step, loss, at| go_on(None, taken + step, loss, at),
-        );
+    for (stage, steps) in &refinements {
+        if stopped {
+            break;
+        }
+        let descent = descend(stage, &loss, space, places, *steps, |step, loss, at| {
+            go_on(None, taken + step, loss, at)
+        });
         taken += descent.steps;
         stopped = descent.stopped;
         places = descent.places;
     }
-    let stage = fine.as_ref().unwrap_or(&coarse);
+    let stage = refinements.last().map_or(&coarse, |(stage, _)| stage);
     let initial = stage.loss(&loss, space, &space.start()).0;
     let mut parts = stage.loss(&loss, space, &places).0;
     // Never worse than where it started (a start chosen at the coarse size may be, at
