@@ -15,7 +15,7 @@ pub struct FitArgs {
     /// compared with the graph's albedo over the preview square.
     photo: PathBuf,
     /// The parameters to fit, separated by commas [default: every float, vector and
-    /// colour the graph exposes].
+    /// colour the graph exposes that reaches the albedo, toggles and choices searched].
     #[arg(long, value_delimiter = ',', value_name = "NAMES")]
     params: Option<Vec<String>>,
     /// Stop after this many seconds, keeping the best values found.

@@ -198,6 +198,7 @@ pub fn fit_graph(
     let checked = evaluator.graph();
     let pixels = photo_pixels(photo, checked.shading.is_linear());
     let fitted = fit(&evaluator, rect, &space, &pixels, settings, progress);
+    let space = space.with_choices(&fitted.choices);
     let mut graph = graph.clone();
     for (_, name, lanes) in space.fitted_values(&fitted.places) {
         let given = match lanes[..] {

@@ -85,6 +85,9 @@ pub struct StartResult {
 pub struct Fitted {
     /// The best normalised places.
     pub places: Vec<f64>,
+    /// The toggles' and choices' values found, in the order of the space's `discrete`
+    /// (apply them with [`Space::with_choices`]).
+    pub choices: Vec<f64>,
     /// The loss there, at the full size.
     pub parts: LossParts,
     /// The loss at the graph's own values, at the full size.
@@ -256,6 +259,34 @@ fn descend(
     unreachable!("the last step returns")
 }
 
+/// The toggles' and choices' values (in the order of `space.discrete`) that lower the
+/// loss on `stage` most at `places`: each tried option by option, the others as found so
+/// far, twice over (so that two which depend on each other settle).
+fn search_choices(stage: &Stage, loss: &Loss, space: &Space, places: &[f64]) -> Vec<f64> {
+    let mut choices = space.choices();
+    let total = |choices: &[f64]| {
+        let space = space.with_choices(choices);
+        stage.loss(loss, &space, places).0.total()
+    };
+    let mut lowest = total(&choices);
+    for _ in 0..2 {
+        for (k, discrete) in space.discrete.iter().enumerate() {
+            for &option in &discrete.options {
+                if option == choices[k] {
+                    continue;
+                }
+                let mut tried = choices.clone();
+                tried[k] = option;
+                let value = total(&tried);
+                if value < lowest {
+                    (lowest, choices) = (value, tried);
+                }
+            }
+        }
+    }
+    choices
+}
+
 /// Fits `space` (of the graph `evaluator` evaluates) so that its albedo over `rect`
 /// looks like `photo` (in the albedo's own encoding), calling `progress` before every
 /// step (answering `false` stops it, keeping the best found).
@@ -294,7 +325,13 @@ pub fn fit(
         .collect();
     let refine_steps: usize = refinements.iter().map(|(_, steps)| steps).sum();
     let start_count = settings.starts.max(1);
-    let total_steps = settings.steps * start_count + refine_steps;
+    // A search that changes a toggle or choice after the starts adds half a start.
+    let follow_steps = if space.discrete.is_empty() {
+        0
+    } else {
+        settings.steps / 2
+    };
+    let total_steps = settings.steps * start_count + follow_steps + refine_steps;
     let mut taken = 0;
     // Whether another step may run: the budget and the caller allow it.
     let mut go_on = |start: Option<usize>, taken: usize, loss: f64, places: &[f64]| {
@@ -311,6 +348,10 @@ pub fn fit(
             .is_none_or(|budget| clock.elapsed() < budget);
         within && progress(&report)
     };
+    // The toggles and choices searched at the graph's own values first, so that the
+    // starts descend with them.
+    let first_choices = search_choices(&coarse, &loss, space, &space.start());
+    let chosen = space.with_choices(&first_choices);
     let mut draws = Draws::new(settings.seed);
     // Screening takes at most half the budget, leaving the rest to the steps.
     let screening = || (settings.budget).is_none_or(|budget| clock.elapsed() < budget / 2);
@@ -321,7 +362,7 @@ pub fn fit(
     let mut screened: Vec<(f64, Vec<f64>)> = Vec::new();
     for places in draws {
         let total = match screening() {
-            true => coarse.loss(&loss, space, &places).0.total(),
+            true => coarse.loss(&loss, &chosen, &places).0.total(),
             false => f64::INFINITY,
         };
         screened.push((total, places));
@@ -339,7 +380,7 @@ pub fn fit(
         let descent = descend(
             &coarse,
             &loss,
-            space,
+            &chosen,
             places,
             settings.steps,
             |step, loss, places| go_on(Some(start), taken + step, loss, places),
@@ -358,11 +399,29 @@ pub fn fit(
         }
     }
     let mut places = best.expect("one start at least").places;
+    // Searched again at the best start's places; where that changes them, the
+    // continuous ones follow at the coarse size before the refinements.
+    let choices = search_choices(&coarse, &loss, &chosen, &places);
+    let searched = space.with_choices(&choices);
+    if choices != first_choices && !stopped {
+        let steps = settings.steps / 2;
+        let descent = descend(
+            &coarse,
+            &loss,
+            &searched,
+            places,
+            steps,
+            |step, loss, at| go_on(None, taken + step, loss, at),
+        );
+        taken += descent.steps;
+        stopped = descent.stopped;
+        places = descent.places;
+    }
     for (stage, steps) in &refinements {
         if stopped {
             break;
         }
-        let descent = descend(stage, &loss, space, places, *steps, |step, loss, at| {
+        let descent = descend(stage, &loss, &searched, places, *steps, |step, loss, at| {
             go_on(None, taken + step, loss, at)
         });
         taken += descent.steps;
@@ -371,16 +430,18 @@ pub fn fit(
     }
     let stage = refinements.last().map_or(&coarse, |(stage, _)| stage);
     let initial = stage.loss(&loss, space, &space.start()).0;
-    let mut parts = stage.loss(&loss, space, &places).0;
+    let mut parts = stage.loss(&loss, &searched, &places).0;
+    let mut choices = choices;
     // Never worse than where it started (a start chosen at the coarse size may be, at
     // the full size, when the budget cut its refinement short).
     if parts.total() > initial.total() {
-        (places, parts) = (space.start(), initial);
+        (places, parts, choices) = (space.start(), initial, space.choices());
     }
     Fitted {
         parts,
         initial,
         places,
+        choices,
         starts,
         steps: taken,
         seconds: clock.elapsed().as_secs_f64(),

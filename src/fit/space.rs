@@ -1,6 +1,6 @@
 //! What a fit adjusts: the continuous lanes of a graph's exposed parameters (floats,
 //! vectors, colours), each mapped to [0, 1] over its range so that one step size suits
-//! them all.
+//! them all; and its toggles and choices, searched option by option.
 
 use crate::graph::group::Hint;
 use crate::graph::parameters::Exposed;
@@ -29,10 +29,20 @@ impl Coordinate {
     }
 }
 
-/// The coordinates a fit moves and the parameters' values it starts from.
+/// A toggle or choice a fit searches: the parameter's index, and the values it may
+/// take (0 and 1; each option's index).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Discrete {
+    pub parameter: usize,
+    pub options: Vec<f64>,
+}
+
+/// The coordinates a fit moves, the toggles and choices it searches, and the
+/// parameters' values it starts from.
 #[derive(Clone, Debug)]
 pub struct Space {
     pub coordinates: Vec<Coordinate>,
+    pub discrete: Vec<Discrete>,
     /// Every exposed parameter's value, the fitted ones' included.
     pub base: Vec<V3<f64>>,
     /// The parameters' names, by index.
@@ -44,8 +54,6 @@ pub struct Space {
 pub enum SpaceError {
     /// A parameter `--params` names that the graph does not expose.
     Unknown { name: String, exposed: Vec<String> },
-    /// A named parameter that is not continuous (a toggle or a choice).
-    NotContinuous(String),
     /// A named parameter that does not reach the albedo (which is what a fit compares).
     Unseen(String),
     /// No continuous parameter that reaches the albedo, to fit.
@@ -63,24 +71,24 @@ impl std::fmt::Display for SpaceError {
                     false => exposed.join(", "),
                 }
             ),
-            SpaceError::NotContinuous(name) => write!(
-                f,
-                "parameter '{name}' is a toggle or a choice, which a fit does not move"
-            ),
             SpaceError::Unseen(name) => write!(
                 f,
                 "parameter '{name}' does not reach the albedo, which is what a fit compares with the photo"
             ),
             SpaceError::Nothing => f.write_str(
-                "the graph exposes no continuous parameter (float, vector or colour) that reaches the albedo, to fit",
+                "the graph exposes no parameter (float, vector, colour, toggle or choice) that reaches the albedo, to fit",
             ),
         }
     }
 }
 
-/// Whether a parameter is moved continuously (not a toggle or a choice).
-fn continuous(parameter: &Exposed) -> bool {
-    matches!(parameter.hint, Hint::Slider | Hint::Colour)
+/// The values a toggle or choice may take; `None` for a parameter moved continuously.
+fn options(parameter: &Exposed) -> Option<Vec<f64>> {
+    match &parameter.hint {
+        Hint::Slider | Hint::Colour => None,
+        Hint::Toggle => Some(vec![0.0, 1.0]),
+        Hint::Choice(names) => Some((0..names.len()).map(|k| k as f64).collect()),
+    }
 }
 
 /// The span a lane of `parameter` moves in: its range, [0, 1] for a colour without one,
@@ -97,8 +105,8 @@ fn span(parameter: &Exposed, value: f64) -> (f64, f64) {
 }
 
 impl Space {
-    /// The space of `parameters` (a checked graph's), all continuous ones that `seen`
-    /// (the albedo reaches them) or those `only` names.
+    /// The space of `parameters` (a checked graph's), all that `seen` (the albedo
+    /// reaches them) or those `only` names.
     pub fn of(
         parameters: &[Exposed],
         seen: impl Fn(&Exposed) -> bool,
@@ -113,9 +121,6 @@ impl Space {
                             exposed: parameters.iter().map(|p| p.name.clone()).collect(),
                         });
                     }
-                    Some(parameter) if !continuous(parameter) => {
-                        return Err(SpaceError::NotContinuous(name.clone()));
-                    }
                     Some(parameter) if !seen(parameter) => {
                         return Err(SpaceError::Unseen(name.clone()));
                     }
@@ -124,10 +129,17 @@ impl Space {
             }
         }
         let base: Vec<V3<f64>> = parameters.iter().map(|p| p.value.components()).collect();
-        let mut coordinates = Vec::new();
+        let (mut coordinates, mut discrete) = (Vec::new(), Vec::new());
         for (index, parameter) in parameters.iter().enumerate() {
             let chosen = only.is_none_or(|only| only.contains(&parameter.name));
-            if !chosen || !continuous(parameter) || !seen(parameter) {
+            if !chosen || !seen(parameter) {
+                continue;
+            }
+            if let Some(options) = options(parameter) {
+                discrete.push(Discrete {
+                    parameter: index,
+                    options,
+                });
                 continue;
             }
             for (lane, &value) in base[index].iter().enumerate().take(parameter.ty.width()) {
@@ -140,28 +152,48 @@ impl Space {
                 });
             }
         }
-        if coordinates.is_empty() {
+        if coordinates.is_empty() && discrete.is_empty() {
             return Err(SpaceError::Nothing);
         }
         Ok(Space {
             coordinates,
+            discrete,
             base,
             names: parameters.iter().map(|p| p.name.clone()).collect(),
         })
     }
 
-    /// The fitted parameters' values at `places`: each moved parameter's index, name
-    /// and lanes (as many as its type has).
+    /// The fitted parameters' values at `places`: each moved or searched parameter's
+    /// index, name and lanes (as many as its type has).
     pub fn fitted_values(&self, places: &[f64]) -> Vec<(usize, &str, Vec<f64>)> {
         let values = self.values(places);
         (self.names.iter().enumerate())
             .filter_map(|(index, name)| {
-                let width = (self.coordinates.iter())
+                let lanes = (self.coordinates.iter())
                     .filter(|c| c.parameter == index)
                     .count();
+                let searched = self.discrete.iter().any(|d| d.parameter == index);
+                let width = if searched { 1 } else { lanes };
                 (width > 0).then(|| (index, name.as_str(), values[index][..width].to_vec()))
             })
             .collect()
+    }
+
+    /// The toggles' and choices' values now, in the order of `discrete`.
+    pub fn choices(&self) -> Vec<f64> {
+        (self.discrete.iter())
+            .map(|d| self.base[d.parameter][0])
+            .collect()
+    }
+
+    /// This space with the toggles and choices at `choices` (in the order of
+    /// `discrete`).
+    pub fn with_choices(&self, choices: &[f64]) -> Space {
+        let mut space = self.clone();
+        for (discrete, &value) in self.discrete.iter().zip(choices) {
+            space.base[discrete.parameter][0] = value;
+        }
+        space
     }
 
     /// The normalised places of the base values.

@@ -109,6 +109,81 @@ fn fitting_recovers_the_values_a_preset_was_rendered_at() {
     }
 }
 
+/// A graph whose albedo is one of three colours (red, green, blue: the choice `look`)
+/// times the colour `tint`.
+fn three_looks() -> veneer::graph::Graph {
+    use veneer::graph::group::Hint;
+    use veneer::graph::parameters::Parameter;
+    use veneer::graph::{Graph, NodeKind, Value, ValueType};
+    let mut graph = Graph::default();
+    let switch = graph.add(
+        "look",
+        NodeKind::Switch(veneer::nodes::Switch {
+            ty: ValueType::Color,
+        }),
+    );
+    for (pin, colour) in [
+        ("a", (1.0, 0.0, 0.0)),
+        ("b", (0.0, 1.0, 0.0)),
+        ("c", (0.0, 0.0, 1.0)),
+    ] {
+        graph.set_input(switch, pin, Value::Color(colour.0, colour.1, colour.2));
+    }
+    graph.set_input(switch, "choice", Value::Float(0.0));
+    let tint = graph.add(
+        "tint",
+        NodeKind::Math(veneer::nodes::Math {
+            op: veneer::graph::MathOp::Multiply,
+            ty: ValueType::Color,
+        }),
+    );
+    graph.set_input(tint, "b", Value::Color(1.0, 1.0, 1.0));
+    let material = graph.add("material", NodeKind::Material);
+    graph.connect(switch, "result", tint, "a");
+    graph.connect(tint, "result", material, "albedo");
+    graph.parameters = vec![
+        Parameter {
+            name: "look".into(),
+            node: switch,
+            pin: "choice".into(),
+            range: None,
+            hint: Hint::Choice(vec!["red".into(), "green".into(), "blue".into()]),
+        },
+        Parameter {
+            name: "tint".into(),
+            node: tint,
+            pin: "b".into(),
+            range: None,
+            hint: Hint::Colour,
+        },
+    ];
+    graph
+}
+
+#[test]
+fn choices_are_searched_with_the_continuous_parameters() {
+    let dir = temp_dir("fit-choices");
+    let graph = dir.join("three looks.ron");
+    veneer::graph::save(&three_looks(), &graph).expect("the graph is written");
+    // A photo of the blue look at half strength.
+    let photo = dir.join("dim blue.png");
+    image::RgbImage::from_pixel(48, 48, image::Rgb([0, 0, 128]))
+        .save(&photo)
+        .expect("a photo");
+    let output = dir.join("fitted.ron");
+    let graph = graph.to_str().expect("a UTF-8 path");
+    let value = fit_json(graph, &photo, "32", &[], &output);
+    assert_eq!(
+        value["parameters"]["look"][0].as_f64(),
+        Some(2.0),
+        "{value}"
+    );
+    let blue = value["parameters"]["tint"][2].as_f64().expect("the tint");
+    assert!((blue - 0.5).abs() < 0.05, "{value}");
+    let fitted = value["fitted_total"].as_f64().expect("fitted_total");
+    assert!(fitted < 1e-3, "{value}");
+}
+
 /// The CRC-32 of PNG chunks (of the type and data).
 fn crc32(bytes: &[u8]) -> u32 {
     let mut crc = !0u32;
@@ -186,7 +261,7 @@ fn bad_photos_graphs_and_names_are_refused_with_nothing_written() {
             "graphs/wood_classic.ron",
             text(&photo),
             &[],
-            "exposes no continuous parameter (float, vector or colour) that reaches the albedo",
+            "exposes no parameter (float, vector, colour, toggle or choice) that reaches the albedo",
         ),
         (
             "graphs/wood_classic.ron",

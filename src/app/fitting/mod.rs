@@ -6,6 +6,7 @@
 pub(in crate::app) mod window;
 
 use crate::fit::image::{Canvas, Image};
+use crate::fit::space::Space;
 use crate::fit::{FitSettings, Prepared, Progress, fit, photo_pixels, prepare, read_photo};
 use crate::graph::edit::{GraphEdit, Level};
 use crate::graph::parameters::{Exposed, Given};
@@ -220,7 +221,7 @@ fn fit_on_thread(
         rect,
         size: PICTURE_SIDE,
     };
-    let assignments = |places: &[f64]| -> Vec<Assignment> {
+    let assignments = |space: &Space, places: &[f64]| -> Vec<Assignment> {
         (space.fitted_values(places).into_iter())
             .filter_map(|(index, _, lanes)| assignment(&checked.parameters[index], lanes))
             .collect()
@@ -240,15 +241,16 @@ fn fit_on_thread(
             });
             send(Update::Step {
                 progress: progress.clone(),
-                values: assignments(&progress.places),
+                values: assignments(&space, &progress.places),
                 picture,
             });
             !stop.load(Ordering::Relaxed)
         },
     );
+    let found = space.with_choices(&fitted.choices);
     Ok(Found {
-        values: assignments(&fitted.places),
-        picture: albedo_picture(&canvas.render(&space, &fitted.places), linear),
+        values: assignments(&found, &fitted.places),
+        picture: albedo_picture(&canvas.render(&found, &fitted.places), linear),
         loss: fitted.parts.total(),
         stopped: fitted.cut_short,
     })
