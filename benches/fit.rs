@@ -41,12 +41,6 @@ fn presets() -> Vec<(String, Prepared)> {
         .collect()
 }
 
-/// The image as the photo a fit reads.
-fn as_photo(image: &veneer::fit::image::Image) -> image::Rgb32FImage {
-    let lanes = image.pixels.iter().flat_map(|p| p.map(|v| v as f32));
-    image::Rgb32FImage::from_raw(image.size, image.size, lanes.collect()).expect("a square")
-}
-
 fn recovery() {
     println!(
         "| graph | coordinates | median error | loss left | fit s | random search loss left (draws) |"
@@ -64,7 +58,7 @@ fn recovery() {
             size: SIZE,
         };
         let truth = draw_truth(space, SEED);
-        let photo = as_photo(&canvas.render(space, &truth));
+        let photo = canvas.render(space, &truth).to_photo();
         let settings = FitSettings {
             budget: Some(Duration::from_secs(60)),
             ..FitSettings::default()

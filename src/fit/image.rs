@@ -16,6 +16,14 @@ pub struct Image {
     pub pixels: Vec<[f64; 3]>,
 }
 
+impl Image {
+    /// The image as a photo a fit reads (for fitting one render to another).
+    pub fn to_photo(&self) -> image::Rgb32FImage {
+        let lanes = self.pixels.iter().flat_map(|p| p.map(|v| v as f32));
+        image::Rgb32FImage::from_raw(self.size, self.size, lanes.collect()).expect("a square")
+    }
+}
+
 /// Pixels per task handed to a thread.
 const CHUNK: usize = 256;
 

@@ -1,6 +1,7 @@
 //! `veneer report`: measures where Veneer trades accuracy for speed and writes a report
 //! (Markdown, a CSV per table, a PNG plot of error against time per section).
 
+mod fitting;
 mod geodesics;
 pub mod level_of_detail;
 mod materials;
@@ -58,14 +59,22 @@ pub fn steps(settings: &Settings) -> u64 {
     // precision cases (presets, noise and fBm of each basis, Worley) + hash rows + octave
     // kinds + detail materials + geodesic meshes + thesis models (field times, frames)
     let precision = crate::graph::PRESETS.len() + 2 * crate::graph::Basis::ALL.len() + 1;
-    // ... + mesh fields (occlusion per vertex and per texel, curvature, thickness)
+    // ... + mesh fields (occlusion per vertex and per texel, curvature, thickness) + the
+    // fitted presets
     let detail = level_of_detail::cases().len() as u64;
-    precision as u64 + 6 + 2 + detail + meshes + 2 * thesis::MODELS.len() as u64 + 4
+    precision as u64
+        + 6
+        + 2
+        + detail
+        + meshes
+        + 2 * thesis::MODELS.len() as u64
+        + 4
+        + fitting::steps(settings.quick)
 }
 
 /// The sections' slugs, in the order they are measured and appear: each gives its
 /// section's table, `<slug>.csv`, and plot, `<slug>.png`.
-const SLUGS: [&str; 8] = [
+const SLUGS: [&str; 9] = [
     "precision",
     "hashes",
     "octaves",
@@ -74,6 +83,7 @@ const SLUGS: [&str; 8] = [
     "distance_times",
     "frame_rates",
     "mesh_fields",
+    "fitting",
 ];
 
 /// The report's own page, beside the tables and plots.
@@ -149,6 +159,7 @@ fn measure_and_write(
         thesis::distance_times(&ctx)?,
         thesis::frame_rates(&ctx)?,
         mesh_fields::mesh_fields(&ctx, settings.quick)?,
+        fitting::fitting(&ctx, settings.quick)?,
     ];
     let mut contents: Vec<Vec<u8>> = Vec::new();
     let mut markdown = format!(
