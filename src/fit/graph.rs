@@ -5,8 +5,10 @@
 use super::optimise::{FitSettings, Fitted, Progress, fit};
 use super::space::{Space, SpaceError};
 use crate::eval::Evaluator;
+use crate::graph::group::{BOUNDARY, GroupDef};
 use crate::graph::parameters::{Given, ParameterError, set};
 use crate::graph::{Graph, NodeId, NodeKind, PinRef};
+use rustc_hash::{FxHashMap, FxHashSet};
 
 /// The preset a fit records its values as.
 pub const FIT_PRESET: &str = "fit";
@@ -103,31 +105,97 @@ pub fn photo_pixels(photo: &image::DynamicImage, linear_albedo: bool) -> image::
     pixels
 }
 
-/// The nodes of a graph its albedo reads, and its material nodes.
+/// What a graph's albedo reads: the nodes every input of which can change it, the
+/// inputs of group nodes that can (only those the outputs it reads depend on), and the
+/// material nodes.
 struct AlbedoReach {
-    upstream: rustc_hash::FxHashSet<NodeId>,
+    whole: FxHashSet<NodeId>,
+    group_inputs: FxHashSet<(NodeId, String)>,
     materials: Vec<NodeId>,
 }
 
+/// The inputs of group `definition` that output `output` depends on (nodes inside it,
+/// nested groups included, taken whole).
+fn group_inputs_reaching(definition: &GroupDef, output: &str) -> Vec<String> {
+    let into = |node: NodeId| (definition.wires.iter()).filter(move |w| w.to.node == node);
+    let mut inside = FxHashSet::default();
+    let mut stack: Vec<NodeId> = (into(BOUNDARY))
+        .filter(|wire| wire.to.pin == output)
+        .map(|wire| wire.from.node)
+        .collect();
+    while let Some(node) = stack.pop() {
+        if node != BOUNDARY && inside.insert(node) {
+            stack.extend(into(node).map(|wire| wire.from.node));
+        }
+    }
+    (definition.wires.iter())
+        .filter(|wire| wire.from.node == BOUNDARY)
+        .filter(|wire| {
+            inside.contains(&wire.to.node) || (wire.to.node == BOUNDARY && wire.to.pin == output)
+        })
+        .map(|wire| wire.from.pin.clone())
+        .collect()
+}
+
 impl AlbedoReach {
+    /// Walks back from the materials' albedo pins, output by output.
     fn of(graph: &Graph) -> AlbedoReach {
         let materials: Vec<_> = (graph.nodes.iter())
             .filter(|node| matches!(node.kind, NodeKind::Material))
             .map(|node| node.id)
             .collect();
-        let feeding = (graph.wires.iter())
-            .filter(|wire| materials.contains(&wire.to.node) && wire.to.pin == "albedo")
-            .map(|wire| wire.from.node);
+        let definitions: FxHashMap<NodeId, &GroupDef> = (graph.nodes.iter())
+            .filter_map(|node| match &node.kind {
+                NodeKind::Group(group) => Some((node.id, graph.groups.get(&group.name)?)),
+                _ => None,
+            })
+            .collect();
+        // The outputs wired into `pin` of `node` (every pin of it for `None`).
+        let sources = |node: NodeId, pin: Option<&str>| -> Vec<(NodeId, String)> {
+            (graph.wires.iter())
+                .filter(|w| w.to.node == node && pin.is_none_or(|pin| w.to.pin == pin))
+                .map(|w| (w.from.node, w.from.pin.clone()))
+                .collect()
+        };
+        let mut queue: Vec<(NodeId, String)> = (materials.iter())
+            .flat_map(|&material| sources(material, Some("albedo")))
+            .collect();
+        let (mut whole, mut group_inputs) = (FxHashSet::default(), FxHashSet::default());
+        let mut seen = FxHashSet::default();
+        while let Some((node, output)) = queue.pop() {
+            if !seen.insert((node, output.clone())) {
+                continue;
+            }
+            match definitions.get(&node) {
+                Some(definition) => {
+                    for input in group_inputs_reaching(definition, &output) {
+                        queue.extend(sources(node, Some(&input)));
+                        group_inputs.insert((node, input));
+                    }
+                }
+                None => {
+                    whole.insert(node);
+                    queue.extend(sources(node, None));
+                }
+            }
+        }
         AlbedoReach {
-            upstream: graph.upstream(feeding),
+            whole,
+            group_inputs,
             materials,
         }
     }
 
-    /// Whether `pin` can change the albedo: the material's albedo pin, or any input of a
-    /// node upstream of it.
+    /// Whether node `node` is read by the albedo (whole, or some of its inputs).
+    fn reads(&self, node: NodeId) -> bool {
+        self.whole.contains(&node) || self.group_inputs.iter().any(|(n, _)| *n == node)
+    }
+
+    /// Whether `pin` can change the albedo: the material's albedo pin, an input of a
+    /// node the albedo reads, or a group's input its read outputs depend on.
     fn reaches(&self, pin: &PinRef) -> bool {
-        self.upstream.contains(&pin.node)
+        self.whole.contains(&pin.node)
+            || self.group_inputs.contains(&(pin.node, pin.pin.clone()))
             || (self.materials.contains(&pin.node) && pin.pin == "albedo")
     }
 }
@@ -162,7 +230,7 @@ pub fn prepare(graph: &Graph, only: Option<&[String]>) -> Result<Prepared, FitEr
     let reach = AlbedoReach::of(graph);
     let surface_field = (checked.order.iter()).find(|checked| {
         let kind = std::slice::from_ref(&checked.node.kind);
-        reach.upstream.contains(&checked.node.id)
+        reach.reads(checked.node.id)
             && (matches!(checked.node.kind, NodeKind::Field(_))
                 || !crate::nodes::mesh_field::fields_read(kind).is_empty())
     });

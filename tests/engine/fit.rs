@@ -184,6 +184,56 @@ fn choices_are_searched_with_the_continuous_parameters() {
     assert!(fitted < 1e-3, "{value}");
 }
 
+#[test]
+fn a_group_input_its_read_outputs_do_not_use_is_not_fitted() {
+    use veneer::graph::group::{GroupInput, Hint};
+    let dir = temp_dir("fit-unused-input");
+    let mut marble = veneer::graph::preset("marble").expect("the marble preset");
+    let definition = marble
+        .groups
+        .get_mut("veined_marble")
+        .expect("marble's group");
+    definition.linked = false;
+    definition.inputs.push(GroupInput {
+        name: "unused".into(),
+        ty: veneer::graph::ValueType::Float,
+        default: veneer::graph::Value::Float(0.5),
+        range: Some((0.0, 1.0)),
+        hint: Hint::Slider,
+    });
+    let graph = dir.join("marble with an unused input.ron");
+    veneer::graph::save(&marble, &graph).expect("the graph is written");
+    let graph = graph.to_str().expect("a UTF-8 path");
+    let photo = dir.join("photo.png");
+    image::RgbImage::from_pixel(40, 40, image::Rgb([200, 190, 180]))
+        .save(&photo)
+        .expect("a photo");
+    let output = dir.join("fitted.ron");
+    let refused = run_veneer(&[
+        "fit",
+        graph,
+        photo.to_str().expect("a UTF-8 path"),
+        "--params",
+        "unused",
+        "-o",
+        output.to_str().expect("a UTF-8 path"),
+    ]);
+    let stderr = String::from_utf8_lossy(&refused.stderr);
+    assert_eq!(refused.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("parameter 'unused' does not reach the albedo"),
+        "{stderr}"
+    );
+    // Fitting everything leaves it out and keeps the others.
+    let steps = ["--steps", "1", "--starts", "1"];
+    let value = fit_json(graph, &photo, "32", &steps, &output);
+    let fitted = value["parameters"].as_object().expect("the parameters");
+    assert!(
+        !fitted.contains_key("unused") && fitted.contains_key("vein_colour"),
+        "{value}"
+    );
+}
+
 /// The CRC-32 of PNG chunks (of the type and data).
 fn crc32(bytes: &[u8]) -> u32 {
     let mut crc = !0u32;
