@@ -55,13 +55,28 @@ pub(in crate::app) enum Ended {
     Failed(String),
 }
 
+/// The time budget a fit starts with, in seconds (`veneer fit`'s benchmark gives each
+/// graph a minute).
+pub(in crate::app) const DEFAULT_BUDGET: f64 = 60.0;
+
 /// *Fit to image…*'s part of the editor.
-#[derive(Default)]
 pub(in crate::app) struct Fitting {
     /// Whether the file browser is choosing the photo.
     pub choosing_photo: bool,
     /// The fit under way or ended, while its window is open.
     pub run: Option<FitRun>,
+    /// The most seconds the next fit may take.
+    pub budget: f64,
+}
+
+impl Default for Fitting {
+    fn default() -> Fitting {
+        Fitting {
+            choosing_photo: false,
+            run: None,
+            budget: DEFAULT_BUDGET,
+        }
+    }
 }
 
 /// One fit, from its start until its window closes.
@@ -85,9 +100,14 @@ pub(in crate::app) struct FitRun {
 }
 
 impl FitRun {
-    /// Starts fitting `graph` to the photo at `photo_path` on a thread of its own,
-    /// waking `ctx` whenever there is news.
-    pub fn start(ctx: &egui::Context, graph: Graph, photo_path: PathBuf) -> FitRun {
+    /// Starts fitting `graph` to the photo at `photo_path` on a thread of its own, for
+    /// at most `budget`, waking `ctx` whenever there is news.
+    pub fn start(
+        ctx: &egui::Context,
+        graph: Graph,
+        photo_path: PathBuf,
+        budget: Duration,
+    ) -> FitRun {
         let stop = Arc::new(AtomicBool::new(false));
         let (sender, updates) = mpsc::channel();
         let (wake, asked_to_stop, path) = (ctx.clone(), Arc::clone(&stop), photo_path.clone());
@@ -98,7 +118,7 @@ impl FitRun {
                     let _ = sender.send(update);
                     wake.request_repaint();
                 };
-                let ended = fit_on_thread(&graph, &path, &asked_to_stop, &send);
+                let ended = fit_on_thread(&graph, &path, budget, &asked_to_stop, &send);
                 send(Update::Ended(ended));
             })
             .expect("the fit's thread starts");
@@ -119,6 +139,11 @@ impl FitRun {
     /// Asks the fit to stop at its next step, keeping the best values found.
     pub fn stop(&self) {
         self.stop.store(true, Ordering::Relaxed);
+    }
+
+    /// Whether [`FitRun::stop`] was asked.
+    pub fn stop_asked(&self) -> bool {
+        self.stop.load(Ordering::Relaxed)
     }
 
     /// Takes in what the thread sent since the last frame; `graph` is the document's.
@@ -197,11 +222,12 @@ fn texture(ctx: &egui::Context, name: &str, image: egui::ColorImage) -> egui::Te
 }
 
 /// The fit itself, on its thread: the photo read and shown, the graph prepared, the fit
-/// run with the default settings, each step's values (and now and then their albedo)
+/// run with the default settings and `budget`, each step's values (and now and then their albedo)
 /// sent, stopping when asked.
 fn fit_on_thread(
     graph: &Graph,
     path: &Path,
+    budget: Duration,
     stop: &AtomicBool,
     send: &dyn Fn(Update),
 ) -> Result<Found, String> {
@@ -232,7 +258,10 @@ fn fit_on_thread(
         rect,
         &space,
         &pixels,
-        &FitSettings::default(),
+        &FitSettings {
+            budget: Some(budget),
+            ..FitSettings::default()
+        },
         |progress| {
             let due = pictured.is_none_or(|at| at.elapsed() >= PICTURE_INTERVAL);
             let picture = due.then(|| {

@@ -25,11 +25,24 @@ impl VeneerApp {
     pub(in crate::app) fn fit_to_image_button(&mut self, ui: &mut Ui) {
         let running = self.fitting.run.is_some();
         let button = ui
-            .add_enabled(!running, egui::Button::new("Fit to image…"))
-            .on_hover_text(
-                "fit the float, vector and colour parameters so the albedo looks like a photo (veneer fit)",
-            )
-            .on_disabled_hover_text("a fit is open");
+            .horizontal(|ui| {
+                let button = ui
+                    .add_enabled(!running, egui::Button::new("Fit to image…"))
+                    .on_hover_text(
+                        "fit the parameters so the albedo looks like a photo (veneer fit)",
+                    )
+                    .on_disabled_hover_text("a fit is open");
+                ui.label("within");
+                ui.add(
+                    egui::DragValue::new(&mut self.fitting.budget)
+                        .range(1.0..=3600.0)
+                        .speed(1.0)
+                        .suffix(" s"),
+                )
+                .on_hover_text("the most time the fit may take (veneer fit --budget)");
+                button
+            })
+            .inner;
         if button.clicked() {
             let folder = self.session.document.graph.folder.path().to_path_buf();
             self.chrome.browser.open(
@@ -52,7 +65,8 @@ impl VeneerApp {
             run.stop();
         }
         let graph = self.session.document.graph.clone();
-        self.fitting.run = Some(FitRun::start(ctx, graph, path));
+        let budget = std::time::Duration::from_secs_f64(self.fitting.budget);
+        self.fitting.run = Some(FitRun::start(ctx, graph, path, budget));
     }
 
     /// Whether a fit's window is open, and whether its fit has ended.
@@ -143,9 +157,10 @@ fn contents(ui: &mut Ui, run: &FitRun) -> Option<Choice> {
             ui.button("Stop").clicked().then_some(Choice::Stop)
         }
         Some(Ended::Found { loss, stopped }) => {
-            let how = match stopped {
-                true => format!("stopped at step {step}"),
-                false => "done".to_string(),
+            let how = match (stopped, run.stop_asked()) {
+                (true, true) => format!("stopped at step {step}"),
+                (true, false) => format!("the time ran out at step {step}"),
+                (false, _) => "done".to_string(),
             };
             ui.label(format!(
                 "{how}: the preview shows the best values found (loss {loss:.5} at {side}²)",
