@@ -241,13 +241,11 @@ impl Evaluator {
                 InputSource::Wire { node, output, .. } => (values[self.index[node]].get(*output))
                     .copied()
                     .unwrap_or([R::c(0.0); 3]),
-                InputSource::Const(value) => {
-                    let given = parameters.zip(self.parameter_inputs.get(&(at, k)));
-                    match given {
-                        Some((parameters, &index)) => parameters[index],
-                        None => value.components().map(R::c),
-                    }
-                }
+                // Looked up only when parameters are given: every other evaluation
+                // reads the constant as it is.
+                InputSource::Const(value) => (parameters)
+                    .and_then(|given| Some(given[*self.parameter_inputs.get(&(at, k))?]))
+                    .unwrap_or_else(|| value.components().map(R::c)),
                 InputSource::Position => surface.position,
             })
             .collect()

@@ -87,7 +87,7 @@ pub fn read_photo(path: &std::path::Path) -> Result<image::DynamicImage, String>
 /// 8-bit file decoded from sRGB; a float file, OpenEXR or Radiance, is linear already and
 /// is encoded for display where the albedo is).
 pub fn photo_pixels(photo: &image::DynamicImage, linear_albedo: bool) -> image::Rgb32FImage {
-    use crate::bitmaps::srgb_to_linear;
+    use crate::bitmaps::{linear_to_srgb, srgb_to_linear};
     let float_file = matches!(
         photo,
         image::DynamicImage::ImageRgb32F(_) | image::DynamicImage::ImageRgba32F(_)
@@ -97,7 +97,7 @@ pub fn photo_pixels(photo: &image::DynamicImage, linear_albedo: bool) -> image::
         for lane in &mut pixel.0 {
             *lane = match (float_file, linear_albedo) {
                 (false, true) => srgb_to_linear(*lane),
-                (true, false) => lane.max(0.0).powf(1.0 / 2.2),
+                (true, false) => linear_to_srgb(lane.clamp(0.0, 1.0)),
                 _ => *lane,
             };
         }
@@ -230,7 +230,13 @@ pub fn prepare(graph: &Graph, only: Option<&[String]>) -> Result<Prepared, FitEr
     let reach = AlbedoReach::of(graph);
     let surface_field = (checked.order.iter()).find(|checked| {
         let kind = std::slice::from_ref(&checked.node.kind);
-        reach.reads(checked.node.id)
+        // A node inlined from a group counts as its top-level group node.
+        let top = checked
+            .node
+            .origin
+            .as_ref()
+            .map_or(checked.node.id, |o| o.top);
+        reach.reads(top)
             && (matches!(checked.node.kind, NodeKind::Field(_))
                 || !crate::nodes::mesh_field::fields_read(kind).is_empty())
     });

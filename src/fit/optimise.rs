@@ -264,6 +264,9 @@ fn descend(
 /// far, twice over (so that two which depend on each other settle).
 fn search_choices(stage: &Stage, loss: &Loss, space: &Space, places: &[f64]) -> Vec<f64> {
     let mut choices = space.choices();
+    if choices.is_empty() {
+        return choices;
+    }
     let total = |choices: &[f64]| {
         let space = space.with_choices(choices);
         stage.loss(loss, &space, places).0.total()
@@ -403,25 +406,15 @@ pub fn fit(
     // continuous ones follow at the coarse size before the refinements.
     let choices = search_choices(&coarse, &loss, &chosen, &places);
     let searched = space.with_choices(&choices);
-    if choices != first_choices && !stopped {
-        let steps = settings.steps / 2;
-        let descent = descend(
-            &coarse,
-            &loss,
-            &searched,
-            places,
-            steps,
-            |step, loss, at| go_on(None, taken + step, loss, at),
-        );
-        taken += descent.steps;
-        stopped = descent.stopped;
-        places = descent.places;
-    }
-    for (stage, steps) in &refinements {
+    let follow = (choices != first_choices).then_some((&coarse, settings.steps / 2));
+    let stages = follow
+        .into_iter()
+        .chain(refinements.iter().map(|(stage, n)| (stage, *n)));
+    for (stage, steps) in stages {
         if stopped {
             break;
         }
-        let descent = descend(stage, &loss, &searched, places, *steps, |step, loss, at| {
+        let descent = descend(stage, &loss, &searched, places, steps, |step, loss, at| {
             go_on(None, taken + step, loss, at)
         });
         taken += descent.steps;
