@@ -149,10 +149,9 @@ fn neighbour(n: u32, x: u32, y: u32, dx: i64, dy: i64) -> usize {
     (wrap(i64::from(y) + dy) * n + wrap(i64::from(x) + dx)) as usize
 }
 
-/// The 3×3 luminance patch around each pixel (wrapping: textures repeat).
-fn patches(image: &Image) -> Vec<[f64; PATCH]> {
-    let lum = luminance(image);
-    let n = image.size;
+/// The 3×3 patch around each pixel of `lum`, an image of side `n`'s luminance
+/// (wrapping: textures repeat).
+fn patches(lum: &[f64], n: u32) -> Vec<[f64; PATCH]> {
     (0..n * n)
         .map(|k| {
             let (x, y) = (k % n, k / n);
@@ -230,7 +229,10 @@ impl Loss {
                     .collect()
             })
             .collect();
-        let features: Vec<Vec<[f64; PATCH]>> = levels.iter().map(patches).collect();
+        let lums: Vec<Vec<f64>> = levels.iter().map(luminance).collect();
+        let features: Vec<Vec<[f64; PATCH]>> = (levels.iter().zip(&lums))
+            .map(|(level, lum)| patches(lum, level.size))
+            .collect();
         let sorted_on = |directions: &[[f64; PATCH]]| -> Vec<Vec<Vec<f64>>> {
             (features.iter())
                 .map(|features| {
@@ -240,13 +242,13 @@ impl Loss {
                 })
                 .collect()
         };
-        let level = &levels[spectrum_level(&levels)];
+        let spectral = spectrum_level(&levels);
         Target {
             size: image.size,
             colours,
             patches: sorted_on(&self.patch_directions),
             gradients: sorted_on(&self.orientations),
-            spectrum: Spectrum::of(&luminance(level), level.size as usize),
+            spectrum: Spectrum::of(&lums[spectral], levels[spectral].size as usize),
             aligned: aligned.then(|| levels.iter().map(|l| l.pixels.clone()).collect()),
         }
     }
@@ -278,7 +280,8 @@ impl Loss {
             // The derivative by each luminance value, from the patches, the gradients
             // and the spectrum.
             let mut by_luminance = vec![0.0; level.pixels.len()];
-            let features = patches(level);
+            let lum = luminance(level);
+            let features = patches(&lum, n);
             for (directions, sorted, part) in [
                 (
                     &self.patch_directions,
@@ -301,8 +304,7 @@ impl Loss {
                 }
             }
             if k == spectral {
-                let (distance, by_value) =
-                    (target.spectrum).distance(&luminance(level), n as usize);
+                let (distance, by_value) = (target.spectrum).distance(&lum, n as usize);
                 parts.spectrum = SPECTRUM_WEIGHT * distance;
                 for (total, g) in by_luminance.iter_mut().zip(by_value) {
                     *total += SPECTRUM_WEIGHT * g * count;

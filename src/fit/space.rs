@@ -196,6 +196,14 @@ impl Space {
         space
     }
 
+    /// This space with its base values at `places` (a fit from there starts there).
+    pub fn starting_at(&self, places: &[f64]) -> Space {
+        Space {
+            base: self.values(places),
+            ..self.clone()
+        }
+    }
+
     /// The normalised places of the base values.
     pub fn start(&self) -> Vec<f64> {
         (self.coordinates.iter())

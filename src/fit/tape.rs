@@ -66,18 +66,26 @@ impl<F: Real> Var<F> {
                 index: CONSTANT,
             };
         }
-        TAPE.with(|tape| {
-            let mut tape = tape.borrow_mut();
-            let index = u32::try_from(tape.len()).expect("a tape of fewer than 2³² entries");
-            tape.push(Entry { operands });
-            Var { value, index }
-        })
+        Var {
+            value,
+            index: push(Entry { operands }),
+        }
     }
 
     /// A result of one operand.
     fn unary(value: F, operand: Var<F>, partial: f64) -> Var<F> {
         Var::record(value, [(operand, partial), (Var::constant(0.0), 0.0)])
     }
+}
+
+/// Appends `entry` to this thread's tape, returning its index.
+fn push(entry: Entry) -> u32 {
+    TAPE.with(|tape| {
+        let mut tape = tape.borrow_mut();
+        let index = u32::try_from(tape.len()).expect("a tape of fewer than 2³² entries");
+        tape.push(entry);
+        index
+    })
 }
 
 /// A recording: the leaves made for it, and the tape cleared when it starts.
@@ -95,17 +103,12 @@ impl Recording {
     /// A new leaf holding `value` (rounded to `F`): a variable the derivatives are taken
     /// by.
     pub fn leaf<F: Real>(&mut self, value: f64) -> Var<F> {
-        let var = TAPE.with(|tape| {
-            let mut tape = tape.borrow_mut();
-            let index = u32::try_from(tape.len()).expect("a tape of fewer than 2³² entries");
-            tape.push(Entry {
+        let var = Var {
+            value: F::c(value),
+            index: push(Entry {
                 operands: [(CONSTANT, 0.0); 2],
-            });
-            Var {
-                value: F::c(value),
-                index,
-            }
-        });
+            }),
+        };
         self.leaves.push(var.index);
         var
     }

@@ -109,6 +109,42 @@ fn fitting_recovers_the_values_a_preset_was_rendered_at() {
     }
 }
 
+#[test]
+fn basins_are_measured_along_each_coordinate_from_the_truth() {
+    use veneer::fit::image::Canvas;
+    use veneer::fit::loss::Loss;
+    use veneer::fit::recovery::{basin_width, near};
+    let loaded =
+        veneer::graph::load(&crate::support::root("graphs/marble.ron")).expect("marble loads");
+    let evaluator = Evaluator::new(&loaded).expect("marble checks");
+    let names = ["vein_frequency".to_string(), "stone_colour".to_string()];
+    let space = Space::of(&evaluator.graph().parameters, |_| true, Some(&names)).expect("names");
+    let canvas = Canvas {
+        evaluator: &evaluator,
+        rect: veneer::render::preview_rect(&loaded.preview),
+        size: 16,
+    };
+    let truth = draw_truth(&space, 4);
+    let loss = Loss::new(1);
+    let target = loss.target(&canvas.render(&space, &truth), true);
+    // A colour lane's loss rises all the way to both ends of its span.
+    let red = (space.coordinates.iter())
+        .position(|c| space.names[c.parameter] == "stone_colour")
+        .expect("the stone colour");
+    let width = basin_width(&canvas, (&loss, &target), &space, &truth, red, 0.0);
+    assert_eq!(width, Some(1.0));
+    // The frequency's does not: other vein counts line up with the target elsewhere.
+    let width = basin_width(&canvas, (&loss, &target), &space, &truth, 0, 0.0);
+    assert!(width.is_some_and(|w| w < 1.0), "{width:?}");
+    // Nothing changes by more than a huge loss: flat.
+    let width = basin_width(&canvas, (&loss, &target), &space, &truth, red, 1e9);
+    assert_eq!(width, None);
+    // Nearby starts stay within reach of the truth and within the span.
+    for (start, true_place) in near(&truth, 0.1, 7).iter().zip(&truth) {
+        assert!((start - true_place).abs() <= 0.1 && (0.0..=1.0).contains(start));
+    }
+}
+
 /// A graph whose albedo is one of three colours (red, green, blue: the choice `look`)
 /// times the colour `tint`.
 fn three_looks() -> veneer::graph::Graph {
