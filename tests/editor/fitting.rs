@@ -3,7 +3,7 @@
 //! stops when asked; its result is kept in one undo step or discarded. Twice, as a
 //! person would.
 
-use crate::support::{editor, press, preview_pixels, scratch, screen, shows};
+use crate::support::{editor, press, preview_pixels, retype_drag_value, scratch, screen, shows};
 use egui_kittest::kittest::Queryable;
 use veneer::fit::image::Canvas;
 use veneer::fit::prepare;
@@ -68,6 +68,10 @@ fn fit_to_image_runs_beside_the_editor_and_is_kept_in_one_undo_step_or_discarded
     harness.run_steps(3);
     assert!(shows(&harness, "Fit to image: choose a photo"));
     press(&mut harness, egui::Key::Escape, false);
+    // Its size and starts beside it: one start at 64², as `--starts 1 --size 64` does.
+    retype_drag_value(&mut harness, "starts 3", "1");
+    retype_drag_value(&mut harness, "128 px", "64");
+    assert!(shows(&harness, "starts 1") && shows(&harness, "64 px"));
 
     for (round, keep) in [(1, false), (2, true)] {
         let ctx = harness.ctx.clone();
@@ -88,6 +92,7 @@ fn fit_to_image_runs_beside_the_editor_and_is_kept_in_one_undo_step_or_discarded
         wait_for_the_fit(&mut harness);
         assert_eq!(shows(&harness, "stopped at step"), !keep, "round {round}");
         assert!(shows(&harness, "fitted albedo"), "round {round}");
+        assert!(shows(&harness, "at 64²"), "round {round}: the size chosen");
         assert!(shows(&harness, "Keep") && shows(&harness, "Discard"));
         // The preview shows the values found (stopped at once: the graph's own, or
         // nearly); the document is not changed yet.

@@ -263,10 +263,12 @@ pub fn retype_drag_value(harness: &mut Harness<'static, VeneerApp>, shown: &str,
         .expect("a drag value shows the value")
         .focus();
     harness.run();
+    // Typed into the field being edited (it shows the bare number, without the
+    // drag value's prefix or suffix).
     harness
-        .get_all_by_value(shown)
+        .query_all_by(|node| node.is_focused())
         .next()
-        .expect("the focused field shows it too")
+        .expect("the drag value is being edited")
         .type_text(text);
     harness.run();
     press(harness, egui::Key::Enter, false);

@@ -67,14 +67,35 @@ pub(in crate::app) struct Fitting {
     pub run: Option<FitRun>,
     /// The most seconds the next fit may take.
     pub budget: f64,
+    /// The side in pixels of the images the next fit compares at the end
+    /// (`veneer fit --size`).
+    pub size: u32,
+    /// How many starts the next fit descends from (`veneer fit --starts`).
+    pub starts: usize,
+}
+
+impl Fitting {
+    /// The settings the next fit runs with: `veneer fit`'s defaults but for the budget,
+    /// size and starts chosen beside the button.
+    pub fn settings(&self) -> FitSettings {
+        FitSettings {
+            budget: Some(Duration::from_secs_f64(self.budget)),
+            size: self.size,
+            starts: self.starts,
+            ..FitSettings::default()
+        }
+    }
 }
 
 impl Default for Fitting {
     fn default() -> Fitting {
+        let defaults = FitSettings::default();
         Fitting {
             choosing_photo: false,
             run: None,
             budget: DEFAULT_BUDGET,
+            size: defaults.size,
+            starts: defaults.starts,
         }
     }
 }
@@ -82,6 +103,8 @@ impl Default for Fitting {
 /// One fit, from its start until its window closes.
 pub(in crate::app) struct FitRun {
     pub photo_path: PathBuf,
+    /// The side in pixels of the images it compares at the end.
+    pub size: u32,
     pub photo: Option<egui::TextureHandle>,
     pub albedo: Option<egui::TextureHandle>,
     /// (seconds, loss) at every step so far.
@@ -100,17 +123,18 @@ pub(in crate::app) struct FitRun {
 }
 
 impl FitRun {
-    /// Starts fitting `graph` to the photo at `photo_path` on a thread of its own, for
-    /// at most `budget`, waking `ctx` whenever there is news.
+    /// Starts fitting `graph` to the photo at `photo_path` on a thread of its own, as
+    /// `settings` say, waking `ctx` whenever there is news.
     pub fn start(
         ctx: &egui::Context,
         graph: Graph,
         photo_path: PathBuf,
-        budget: Duration,
+        settings: FitSettings,
     ) -> FitRun {
         let stop = Arc::new(AtomicBool::new(false));
         let (sender, updates) = mpsc::channel();
         let (wake, asked_to_stop, path) = (ctx.clone(), Arc::clone(&stop), photo_path.clone());
+        let size = settings.size;
         std::thread::Builder::new()
             .name("fit to image".into())
             .spawn(move || {
@@ -118,12 +142,13 @@ impl FitRun {
                     let _ = sender.send(update);
                     wake.request_repaint();
                 };
-                let ended = fit_on_thread(&graph, &path, budget, &asked_to_stop, &send);
+                let ended = fit_on_thread(&graph, &path, &settings, &asked_to_stop, &send);
                 send(Update::Ended(ended));
             })
             .expect("the fit's thread starts");
         FitRun {
             photo_path,
+            size,
             photo: None,
             albedo: None,
             losses: Vec::new(),
@@ -222,12 +247,12 @@ fn texture(ctx: &egui::Context, name: &str, image: egui::ColorImage) -> egui::Te
 }
 
 /// The fit itself, on its thread: the photo read and shown, the graph prepared, the fit
-/// run with the default settings and `budget`, each step's values (and now and then their albedo)
-/// sent, stopping when asked.
+/// run as `settings` say, each step's values (and now and then their albedo) sent,
+/// stopping when asked.
 fn fit_on_thread(
     graph: &Graph,
     path: &Path,
-    budget: Duration,
+    settings: &FitSettings,
     stop: &AtomicBool,
     send: &dyn Fn(Update),
 ) -> Result<Found, String> {
@@ -253,29 +278,19 @@ fn fit_on_thread(
             .collect()
     };
     let mut pictured: Option<Instant> = None;
-    let fitted = fit(
-        &evaluator,
-        rect,
-        &space,
-        &pixels,
-        &FitSettings {
-            budget: Some(budget),
-            ..FitSettings::default()
-        },
-        |progress| {
-            let due = pictured.is_none_or(|at| at.elapsed() >= PICTURE_INTERVAL);
-            let picture = due.then(|| {
-                pictured = Some(Instant::now());
-                albedo_picture(&canvas.render(&space, &progress.places), linear)
-            });
-            send(Update::Step {
-                progress: progress.clone(),
-                values: assignments(&space, &progress.places),
-                picture,
-            });
-            !stop.load(Ordering::Relaxed)
-        },
-    );
+    let fitted = fit(&evaluator, rect, &space, &pixels, settings, |progress| {
+        let due = pictured.is_none_or(|at| at.elapsed() >= PICTURE_INTERVAL);
+        let picture = due.then(|| {
+            pictured = Some(Instant::now());
+            albedo_picture(&canvas.render(&space, &progress.places), linear)
+        });
+        send(Update::Step {
+            progress: progress.clone(),
+            values: assignments(&space, &progress.places),
+            picture,
+        });
+        !stop.load(Ordering::Relaxed)
+    });
     let found = space.with_choices(&fitted.choices);
     Ok(Found {
         values: assignments(&found, &fitted.places),

@@ -4,7 +4,6 @@
 use super::{Ended, FitRun, PICTURE_SIDE};
 use crate::app::VeneerApp;
 use crate::app::chrome::file_browser::{Browsed, Purpose};
-use crate::fit::FitSettings;
 use egui::Ui;
 
 /// The photos the file browser offers.
@@ -40,6 +39,25 @@ impl VeneerApp {
                         .suffix(" s"),
                 )
                 .on_hover_text("the most time the fit may take (veneer fit --budget)");
+                ui.label("at");
+                ui.add(
+                    egui::DragValue::new(&mut self.fitting.size)
+                        .range(8..=2048)
+                        .speed(4.0)
+                        .suffix(" px"),
+                )
+                .on_hover_text(
+                    "the side of the images compared at the end; larger sees finer detail and takes longer (veneer fit --size)",
+                );
+                ui.add(
+                    egui::DragValue::new(&mut self.fitting.starts)
+                        .range(1..=64)
+                        .speed(0.1)
+                        .prefix("starts "),
+                )
+                .on_hover_text(
+                    "the graph's own values, then random draws; more starts search wider and take longer (veneer fit --starts)",
+                );
                 button
             })
             .inner;
@@ -65,8 +83,8 @@ impl VeneerApp {
             run.stop();
         }
         let graph = self.session.document.graph.clone();
-        let budget = std::time::Duration::from_secs_f64(self.fitting.budget);
-        self.fitting.run = Some(FitRun::start(ctx, graph, path, budget));
+        let settings = self.fitting.settings();
+        self.fitting.run = Some(FitRun::start(ctx, graph, path, settings));
     }
 
     /// Whether a fit's window is open, and whether its fit has ended.
@@ -164,7 +182,7 @@ fn contents(ui: &mut Ui, run: &FitRun) -> Option<Choice> {
             };
             ui.label(format!(
                 "{how}: the preview shows the best values found (loss {loss:.5} at {side}²)",
-                side = FitSettings::default().size
+                side = run.size
             ));
             ui.horizontal(|ui| {
                 if ui.button("Keep").clicked() {
