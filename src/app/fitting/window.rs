@@ -18,6 +18,21 @@ enum Choice {
     Discard,
 }
 
+/// One of the fit's settings beside its button: a drag value within `range`, its
+/// number between `prefix` and `suffix`, and what it does.
+fn setting<N: egui::emath::Numeric>(
+    ui: &mut Ui,
+    value: &mut N,
+    range: std::ops::RangeInclusive<N>,
+    speed: f64,
+    (prefix, suffix): (&str, &str),
+    hover: &str,
+) {
+    let drag = egui::DragValue::new(value).range(range).speed(speed);
+    ui.add(drag.prefix(prefix).suffix(suffix))
+        .on_hover_text(hover);
+}
+
 impl VeneerApp {
     /// The *Fit to image…* button of the Parameters panel: opens the file browser on the
     /// graph's folder to choose the photo.
@@ -32,32 +47,14 @@ impl VeneerApp {
                     )
                     .on_disabled_hover_text("a fit is open");
                 ui.label("within");
-                ui.add(
-                    egui::DragValue::new(&mut self.fitting.budget)
-                        .range(1.0..=3600.0)
-                        .speed(1.0)
-                        .suffix(" s"),
-                )
-                .on_hover_text("the most time the fit may take (veneer fit --budget)");
+                let budget = &mut self.fitting.budget;
+                let hover = "the most time the fit may take (veneer fit --budget)";
+                setting(ui, budget, 1.0..=3600.0, 1.0, ("", " s"), hover);
                 ui.label("at");
-                ui.add(
-                    egui::DragValue::new(&mut self.fitting.size)
-                        .range(8..=2048)
-                        .speed(4.0)
-                        .suffix(" px"),
-                )
-                .on_hover_text(
-                    "the side of the images compared at the end; larger sees finer detail and takes longer (veneer fit --size)",
-                );
-                ui.add(
-                    egui::DragValue::new(&mut self.fitting.starts)
-                        .range(1..=64)
-                        .speed(0.1)
-                        .prefix("starts "),
-                )
-                .on_hover_text(
-                    "the graph's own values, then random draws; more starts search wider and take longer (veneer fit --starts)",
-                );
+                let hover = "the side of the images compared at the end; larger sees finer detail and takes longer (veneer fit --size)";
+                setting(ui, &mut self.fitting.size, 8..=2048, 4.0, ("", " px"), hover);
+                let hover = "the graph's own values, then random draws; more starts search wider and take longer (veneer fit --starts)";
+                setting(ui, &mut self.fitting.starts, 1..=64, 0.1, ("starts ", ""), hover);
                 button
             })
             .inner;
