@@ -64,13 +64,16 @@ fn basins(prepared: &Prepared, truth: &[f64]) -> (f64, usize, usize) {
     let loss = Loss::new(1);
     let target = loss.target(&canvas.render(space, truth), true);
     let evaluate = |places: &[f64]| loss.evaluate(&canvas.render(space, places), &target).0;
-    let flat = 1e-6 * evaluate(&space.start()).total();
+    let flat_below = 1e-6 * evaluate(&space.start()).total();
     let widths: Vec<Option<f64>> = (0..truth.len())
-        .map(|k| basin_width(&canvas, (&loss, &target), space, truth, k, flat))
+        .map(|k| basin_width(&canvas, (&loss, &target), space, truth, k, flat_below))
         .collect();
     let shown: Vec<f64> = widths.iter().flatten().copied().collect();
-    let narrow = shown.iter().filter(|&&w| w < NARROW).count();
-    (median(shown.clone()), narrow, widths.len() - shown.len())
+    let (narrow, flat) = (
+        shown.iter().filter(|&&w| w < NARROW).count(),
+        widths.len() - shown.len(),
+    );
+    (median(shown), narrow, flat)
 }
 
 fn recovery() {

@@ -76,9 +76,10 @@ pub const PRESETS: [(&str, &str); 27] = [
         "thesis_brick",
         include_str!("../../graphs/thesis_brick.ron"),
     ),
+    // Worley stones, made to be fitted to a photograph of gravel (`veneer fit`).
+    ("gravel", include_str!("../../graphs/gravel.ron")),
     // Materials that read what the mesh knows about itself.
     ("worn_paint", include_str!("../../graphs/worn_paint.ron")),
-    ("gravel", include_str!("../../graphs/gravel.ron")),
     ("mossy_stone", include_str!("../../graphs/mossy_stone.ron")),
     ("wax_candle", include_str!("../../graphs/wax_candle.ron")),
 ];
