@@ -1,7 +1,9 @@
 //! Geodesic distance fields on a ~100k-triangle torus (`torus:160`, 102,400 triangles)
 //! and the genus-2 surface, method against method in the same run:
-//! - the heat method's set-up (cotangent Laplacian, mass matrix, two sparse Cholesky
-//!   factorisations) and one re-solve with new sources, plain and robust;
+//! - the heat method's set-up (intrinsic Delaunay refinement, cotangent Laplacian, mass
+//!   matrix, two sparse Cholesky factorisations) and one re-solve with new sources: on
+//!   the mesh's own triangles (the method before refinement), refined (the default) and
+//!   robust;
 //! - the exact method (window propagation), the accuracy reference;
 //! - Dijkstra along edges, the cheap baseline.
 //!
@@ -22,14 +24,14 @@ fn fields(c: &mut Criterion) {
         let mesh =
             geodesic::welded_for_distances(&veneer::mesh::primitive(name).expect("primitive")).0;
         let exact = geodesic::distances(&mesh, &[0], Method::Exact, |_, _| {}).expect("exact");
-        for method in [
-            Method::Heat(HeatOptions::default()),
-            Method::Heat(HeatOptions {
-                robust: true,
+        let heat_variants =
+            [(false, false), (false, true), (true, true)].map(|(robust, refine)| HeatOptions {
+                robust,
+                refine,
                 ..HeatOptions::default()
-            }),
-            Method::Dijkstra,
-        ] {
+            });
+        let methods = heat_variants.map(Method::Heat).into_iter();
+        for method in methods.chain([Method::Dijkstra]) {
             let field = geodesic::distances(&mesh, &[0], method, |_, _| {}).expect("solvable");
             println!(
                 "{name} ({} triangles): {} mean relative error against exact {:.3}%",
@@ -43,11 +45,7 @@ fn fields(c: &mut Criterion) {
             mesh.triangle_count()
         ));
         group.sample_size(10);
-        for robust in [false, true] {
-            let options = HeatOptions {
-                robust,
-                ..HeatOptions::default()
-            };
+        for options in heat_variants {
             let label = Method::Heat(options).name();
             group.bench_function(format!("{label}: set-up (factorisation)"), |b| {
                 b.iter(|| {

@@ -6,7 +6,8 @@ scans it did not, in one run.
     pip install potpourri3d pygeodesic
     cargo build --release
     python3 benches/heat_accuracy_compare.py [--veneer target/release/veneer] [--runs 3]
-        [--time-factors 0.5 1 2] [--meshes genus2:40 torus:64 bunny dragon] [--scans DIR]
+        [--baseline OTHER_VENEER] [--time-factors 0.5 1 2]
+        [--meshes genus2:40 torus:64 bunny dragon] [--scans DIR]
 
 Meshes: `genus2:40` (marching tetrahedra: slivers, 7% of angles past 120°) and
 `torus:64` (a clean grid) are Veneer primitives written out by `veneer mesh --write`.
@@ -27,9 +28,14 @@ missed), over all vertices.
 
 Errors are the mean relative error over the vertices farther than 10% of the largest
 distance, from vertex 0, for each heat time `t = factor · (mean edge length)²` (both
-tools define t so). Set-up is the median over `--runs` runs: for Veneer the set-up
-`veneer geodesic` reports (building the triangulation and factoring), for potpourri3d
-constructing its solver.
+tools define t so; Veneer's refined methods take the mean edge length of the refined
+triangulation). Veneer runs four ways: on its intrinsic Delaunay refinement (the
+default) and on the mesh's own triangles (`--no-refine`, the method before refinement),
+each plain and robust (mollified). Set-up is the median over `--runs` runs, Veneer's
+interleaved: for Veneer the set-up `veneer geodesic` reports (building the triangulation,
+flipping and refining, and factoring), for potpourri3d constructing its solver (of the
+variant with the lower error). `--baseline` times another Veneer build's default heat
+method beside (e.g. the build before refinement, whose set-up is "today's" in issue #36).
 """
 
 import argparse
@@ -183,13 +189,27 @@ def mesh_obj(veneer, name, folder, scans):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--veneer", default="target/release/veneer")
+    parser.add_argument("--baseline", help="another veneer build whose (unrefined) set-up to time beside, e.g. the one before refinement")
     parser.add_argument("--runs", type=int, default=3)
     parser.add_argument("--time-factors", nargs="+", type=float, default=[0.5, 1.0, 2.0])
     parser.add_argument("--meshes", nargs="+", default=MESHES, help="primitives, bunny, dragon (default: %(default)s)")
     parser.add_argument("--scans", help="folder to install the scan packages in (default: a temporary one)")
     args = parser.parse_args()
-    print("| mesh | triangles | exact checked | t / h² | Veneer plain | Veneer robust | potpourri3d plain | potpourri3d robust | best: Veneer / potpourri3d | set-up (t = h²): Veneer plain, robust / potpourri3d plain, robust |")
-    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
+    ours = ["refined", "refined robust", "unrefined", "unrefined robust"]
+    flags = {
+        "refined": [],
+        "refined robust": ["--robust"],
+        "unrefined": ["--no-refine"],
+        "unrefined robust": ["--no-refine", "--robust"],
+    }
+    before = " / before" if args.baseline else ""
+    print(
+        "| mesh | triangles | exact checked | t / h² | "
+        + " | ".join(f"Veneer {name}" for name in ours)
+        + " | potpourri3d plain | potpourri3d robust | refined / best potpourri3d "
+        + f"| set-up (t = h², ms): refined / unrefined{before} / best potpourri3d |"
+    )
+    print("| --- " * 12 + "|")
     with tempfile.TemporaryDirectory() as folder:
         scans = args.scans or folder
         for name in args.meshes:
@@ -199,22 +219,32 @@ def main():
             exact, _ = veneer_field(args.veneer, obj, csv, "--method", "exact")
             check = pygeodesic_check(obj, exact)
             for factor in args.time_factors:
-                ours, theirs, setups = [], [], []
+                time = ["--method", "heat", "--time-factor", str(factor)]
+                errors, setups = {}, {}
+                # Interleaved runs, so that a slow spell of the machine falls on every method.
+                runs = {name: [] for name in ours + ["before"]}
+                for _ in range(args.runs):
+                    for method in ours:
+                        runs[method].append(veneer_field(args.veneer, obj, csv, *time, *flags[method]))
+                    if args.baseline:
+                        runs["before"].append(veneer_field(args.baseline, obj, csv, *time))
+                for method, done in runs.items():
+                    if done:
+                        errors[method] = mean_relative_error(done[-1][0], exact)
+                        setups[method] = statistics.median(r[1] for r in done)
+                theirs = []
                 for robust in (False, True):
-                    flags = ["--method", "heat", "--time-factor", str(factor)] + (["--robust"] if robust else [])
-                    runs = [veneer_field(args.veneer, obj, csv, *flags) for _ in range(args.runs)]
-                    ours.append(mean_relative_error(runs[-1][0], exact))
                     their_runs = [their_field(vertices, faces, factor, robust) for _ in range(args.runs)]
-                    theirs.append(mean_relative_error(their_runs[-1][0], exact))
-                    setups.append((statistics.median(r[1] for r in runs), statistics.median(r[1] for r in their_runs)))
-                setup = (
-                    f"{setups[0][0]:.0f}, {setups[1][0]:.0f} / {setups[0][1]:.0f}, {setups[1][1]:.0f} ms"
-                    if factor == 1.0
-                    else ""
-                )
+                    theirs.append((mean_relative_error(their_runs[-1][0], exact), statistics.median(r[1] for r in their_runs)))
+                best = min(theirs)
+                setup = ""
+                if factor == 1.0:
+                    baseline = f" / {setups['before']:.0f}" if args.baseline else ""
+                    setup = f"{setups['refined']:.0f} / {setups['unrefined']:.0f}{baseline} / {best[1]:.0f}"
                 print(
-                    f"| `{name}` | {len(faces):,} | {check} | {factor:g} | {ours[0]:.2%} | {ours[1]:.2%} | {theirs[0]:.2%} "
-                    f"| {theirs[1]:.2%} | {min(ours) / min(theirs):.2f}× | {setup} |",
+                    f"| `{name}` | {len(faces):,} | {check} | {factor:g} | "
+                    + " | ".join(f"{errors[method]:.2%}" for method in ours)
+                    + f" | {theirs[0][0]:.2%} | {theirs[1][0]:.2%} | {errors['refined'] / best[0]:.2f}× | {setup} |",
                     flush=True,
                 )
 

@@ -25,10 +25,16 @@ impl Triangulation {
     /// Flips edges until every interior edge is Delaunay (the two angles across it sum
     /// to at most π), returning the number of flips.
     pub fn flip_to_delaunay(&mut self) -> usize {
-        let mut queue: Vec<u32> = (0..self.twins.len() as u32)
-            .filter(|&h| self.twins[h as usize] != NO_TWIN)
-            .collect();
-        let mut queued = vec![true; self.twins.len()];
+        let all = (0..self.twins.len() as u32).collect();
+        self.flip_from(all)
+    }
+
+    /// Flips the edges of `suspects` that are not Delaunay, and then those each flip
+    /// leaves not Delaunay, until none is; the rest of the triangulation must be Delaunay
+    /// already. Returns the number of flips.
+    pub(super) fn flip_from(&mut self, mut queue: Vec<u32>) -> usize {
+        let mut queued = vec![false; self.twins.len()];
+        queue.retain(|&h| !std::mem::replace(&mut queued[h as usize], true));
         let mut flips = 0;
         // Each flip strictly lowers a bounded energy; the cap only guards rounding.
         let cap = 50 * self.twins.len() + 1000;

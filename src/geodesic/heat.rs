@@ -9,7 +9,7 @@ use super::triangulation::Triangulation;
 use crate::graph::{HeatOptions, TimeFactorError};
 use faer::linalg::solvers::Solve;
 use faer::sparse::{
-    SparseColMat, Triplet,
+    SparseColMat, SymbolicSparseColMat, Triplet,
     linalg::solvers::{Llt, SymbolicLlt},
 };
 use glam::DVec2;
@@ -43,8 +43,13 @@ pub struct HeatSetup {
     pub time_step: f64,
     /// How much every edge was lengthened by mollification (robust only).
     pub mollified_by: f64,
-    /// How many intrinsic edge flips the Delaunay retriangulation took (robust only).
+    /// How many intrinsic edge flips the Delaunay retriangulation took (robust or
+    /// refined).
     pub flips: usize,
+    /// How many vertices intrinsic refinement added (refined only).
+    pub added_vertices: usize,
+    /// Time spent flipping and refining (part of `factor_time`).
+    pub refine_time: Duration,
     /// Time spent building and factoring the matrices.
     pub factor_time: Duration,
 }
@@ -68,6 +73,8 @@ struct Restricted {
 
 /// A heat-method solver for one mesh, reusable for any set of sources.
 pub struct HeatSolver {
+    /// The mesh's vertices, which come first (refinement numbers its own after them).
+    mesh_vertices: usize,
     vertex_count: usize,
     faces: Vec<[u32; 3]>,
     corners: Vec<Corner>,
@@ -96,38 +103,42 @@ impl HeatSolver {
     fn build(mut triangulation: Triangulation, options: HeatOptions) -> Result<Self, HeatError> {
         let started = Instant::now();
         let mut setup = HeatSetup::default();
+        let mesh_vertices = triangulation.vertex_count;
         if options.robust {
             setup.mollified_by = triangulation.mollify(1.0e-5);
+        }
+        if options.robust || options.refine {
             setup.flips = triangulation.flip_to_delaunay();
         }
+        if options.refine {
+            let (added, flips) = triangulation.refine(triangulation.used_vertex_count() * 3 / 2);
+            setup.added_vertices = added;
+            setup.flips += flips;
+        }
+        setup.refine_time = started.elapsed();
         let n = triangulation.vertex_count;
         let corners = corners(&triangulation);
-        let (laplacian, mass) = operators(n, &triangulation.faces, &corners);
-        let dead: Vec<bool> = mass.iter().map(|&m| m <= 0.0).collect();
+        let operators = Operators::new(n, &triangulation.faces, &corners);
         let h = triangulation.mean_edge_length();
         setup.time_step = options.time_factor * h * h;
         let t = setup.time_step;
         let regularisation = 1.0e-8 / (h * h).max(f64::MIN_POSITIVE);
+        let heat_matrix = operators.combine(t, 1.0);
         let [heat, poisson] = factor_alike(
             ["heat", "Poisson"],
-            n,
-            [
-                combine(&laplacian, t, &mass, 1.0, &dead),
-                combine(&laplacian, 1.0, &mass, regularisation, &dead),
-            ],
+            [&heat_matrix, &operators.combine(1.0, regularisation)],
         )?;
         let boundary = triangulation.boundary_vertices();
+        let dead = operators.dead;
         let dirichlet = if boundary.iter().zip(&dead).any(|(&b, &d)| b && !d) {
             let keep: Vec<bool> = boundary.iter().map(|&b| !b).collect();
-            Some(restricted(
-                &combine(&laplacian, t, &mass, 1.0, &dead),
-                &keep,
-            )?)
+            Some(restricted(&heat_matrix, &keep)?)
         } else {
             None
         };
         setup.factor_time = started.elapsed();
         Ok(HeatSolver {
+            mesh_vertices,
             vertex_count: n,
             components: triangulation.components(),
             faces: triangulation.faces,
@@ -145,14 +156,14 @@ impl HeatSolver {
         self.setup
     }
 
-    /// The distance from the nearest of `sources` to every vertex; `inf` for vertices no
-    /// source reaches. Sources out of range are ignored.
+    /// The distance from the nearest of `sources` to every vertex of the mesh; `inf` for
+    /// vertices no source reaches. Sources out of range are ignored.
     pub fn distances(&self, sources: &[u32]) -> Vec<f64> {
         let n = self.vertex_count;
         let sources: Vec<usize> = sources
             .iter()
             .map(|&s| s as usize)
-            .filter(|&s| s < n)
+            .filter(|&s| s < self.mesh_vertices)
             .collect();
         let mut heat = vec![0.0; n];
         for &s in &sources {
@@ -176,7 +187,9 @@ impl HeatSolver {
         }
         let mut potential = self.divergence_of_normalised_gradient(&heat);
         solve(&self.poisson, &mut potential);
-        self.shift_to_sources(potential, &sources)
+        let mut distances = self.shift_to_sources(potential, &sources);
+        distances.truncate(self.mesh_vertices);
+        distances
     }
 
     /// `−∇·X` at each vertex, where `X = −∇u/|∇u|` on each triangle (zero where the
@@ -308,114 +321,152 @@ pub fn diffuse(
     amount: impl Fn(usize, f64) -> f64,
 ) -> Result<Vec<f64>, HeatError> {
     let n = triangulation.vertex_count;
-    let (laplacian, mass) = operators(n, &triangulation.faces, &corners(triangulation));
-    let dead: Vec<bool> = mass.iter().map(|&m| m <= 0.0).collect();
-    let system = factor("diffusion", n, combine(&laplacian, time, &mass, 1.0, &dead))?;
+    let operators = Operators::new(n, &triangulation.faces, &corners(triangulation));
+    let system = factor("diffusion", &operators.combine(time, 1.0))?;
     let mut smoothed: Vec<f64> = (0..n)
-        .map(|v| if dead[v] { 0.0 } else { amount(v, mass[v]) })
+        .map(|v| {
+            if operators.dead[v] {
+                0.0
+            } else {
+                amount(v, operators.mass[v])
+            }
+        })
         .collect();
     solve(&system, &mut smoothed);
     Ok(smoothed)
 }
 
-/// The cotangent Laplacian `L` (lower triangle, repeated positions add up) and the
-/// lumped mass `M` (a third of each triangle's area at each of its corners).
-fn operators(
-    n: usize,
-    faces: &[[u32; 3]],
-    corners: &[Corner],
-) -> (Vec<(usize, usize, f64)>, Vec<f64>) {
-    let mut mass = vec![0.0; n];
-    let mut laplacian = Vec::with_capacity(faces.len() * 9);
-    for (face, corner) in faces.iter().zip(corners) {
-        if corner.area <= 0.0 {
-            continue;
-        }
-        for k in 0..3 {
-            mass[face[k] as usize] += corner.area / 3.0;
-            let weight = 0.5 * corner.cotans[(k + 2) % 3];
-            let (a, b) = (face[k] as usize, face[(k + 1) % 3] as usize);
-            laplacian.extend([
-                (a, a, weight),
-                (b, b, weight),
-                (a.max(b), a.min(b), -weight),
-            ]);
-        }
-    }
-    (laplacian, mass)
+/// The cotangent Laplacian `L` and the lumped mass `M` (a third of each triangle's area
+/// at each of its corners) of a triangulation.
+struct Operators {
+    /// The lower triangle of `L`, every diagonal entry present (first in its column).
+    laplacian: SparseColMat<u32, f64>,
+    mass: Vec<f64>,
+    /// Vertices with no area around them (in no triangle, or only degenerate ones).
+    dead: Vec<bool>,
 }
 
-/// `a·L + b·M` as lower-triangle triplets, with 1 on the diagonal of dead vertices.
-fn combine(
-    laplacian: &[(usize, usize, f64)],
-    a: f64,
-    mass: &[f64],
-    b: f64,
-    dead: &[bool],
-) -> Vec<Triplet<u32, u32, f64>> {
-    laplacian
-        .iter()
-        .map(|&(row, col, value)| Triplet::new(row as u32, col as u32, a * value))
-        .chain(mass.iter().enumerate().map(|(v, &m)| {
-            let diagonal = if dead[v] { 1.0 } else { b * m };
-            Triplet::new(v as u32, v as u32, diagonal)
-        }))
-        .collect()
+impl Operators {
+    /// Assembles `L` column by column: each edge's weight is half the sum of the
+    /// cotangents across it, summed over the triangles on it (and over the edges joining
+    /// the same two vertices, which an intrinsic triangulation may have), in triangle
+    /// order, so the matrix is the same on every run.
+    fn new(n: usize, faces: &[[u32; 3]], corners: &[Corner]) -> Operators {
+        let mut mass = vec![0.0; n];
+        let mut diagonal = vec![0.0; n];
+        // (column, row, weight) below the diagonal: column < row.
+        let mut below: Vec<(u32, u32, f64)> = Vec::with_capacity(faces.len() * 3);
+        for (face, corner) in faces.iter().zip(corners) {
+            if corner.area <= 0.0 {
+                continue;
+            }
+            for k in 0..3 {
+                mass[face[k] as usize] += corner.area / 3.0;
+                let weight = 0.5 * corner.cotans[(k + 2) % 3];
+                let (a, b) = (face[k], face[(k + 1) % 3]);
+                diagonal[a as usize] += weight;
+                diagonal[b as usize] += weight;
+                below.push((a.min(b), a.max(b), -weight));
+            }
+        }
+        // Stable: contributions to one entry stay in triangle order.
+        below.sort_by_key(|&(col, row, _)| (col, row));
+        let mut col_ptr = Vec::with_capacity(n + 1);
+        let mut row_idx = Vec::with_capacity(n + below.len());
+        let mut values = Vec::with_capacity(n + below.len());
+        let mut next = below.iter().peekable();
+        for col in 0..n as u32 {
+            col_ptr.push(row_idx.len() as u32);
+            row_idx.push(col);
+            values.push(diagonal[col as usize]);
+            while let Some(&&(_, row, weight)) = next.peek().filter(|entry| entry.0 == col) {
+                next.next();
+                if row_idx.last() == Some(&row) {
+                    *values.last_mut().expect("a value per row") += weight;
+                } else {
+                    row_idx.push(row);
+                    values.push(weight);
+                }
+            }
+        }
+        col_ptr.push(row_idx.len() as u32);
+        let pattern = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
+        let dead = mass.iter().map(|&m| m <= 0.0).collect();
+        Operators {
+            laplacian: SparseColMat::new(pattern, values),
+            mass,
+            dead,
+        }
+    }
+
+    /// `a·L + b·M` (lower triangle), with 1 on the diagonal of dead vertices.
+    fn combine(&self, a: f64, b: f64) -> SparseColMat<u32, f64> {
+        let mut matrix = self.laplacian.clone();
+        let diagonal: Vec<usize> = matrix.symbolic().col_ptr()[..self.mass.len()]
+            .iter()
+            .map(|&start| start as usize)
+            .collect();
+        let values = matrix.val_mut();
+        for value in values.iter_mut() {
+            *value *= a;
+        }
+        for (v, &at) in diagonal.iter().enumerate() {
+            values[at] = if self.dead[v] {
+                1.0
+            } else {
+                values[at] + b * self.mass[v]
+            };
+        }
+        matrix
+    }
 }
 
 /// Sparse Cholesky factorisation of the symmetric matrix given by its lower triangle.
-fn factor(
-    name: &'static str,
-    n: usize,
-    triplets: Vec<Triplet<u32, u32, f64>>,
-) -> Result<Llt<u32, f64>, HeatError> {
-    let matrix = assemble(name, n, &triplets)?;
+fn factor(name: &'static str, matrix: &SparseColMat<u32, f64>) -> Result<Llt<u32, f64>, HeatError> {
     matrix
         .sp_cholesky(faer::Side::Lower)
         .map_err(|e| HeatError::Factorisation(name, e.to_string(), false))
 }
 
-/// Factors two matrices with the same pattern of non-zeros, analysing the pattern once.
+/// Factors two matrices with the same pattern of non-zeros, analysing the pattern once
+/// and computing both factors at the same time.
 fn factor_alike(
     names: [&'static str; 2],
-    n: usize,
-    triplets: [Vec<Triplet<u32, u32, f64>>; 2],
+    matrices: [&SparseColMat<u32, f64>; 2],
 ) -> Result<[Llt<u32, f64>; 2], HeatError> {
-    let [first, second] = [0, 1].map(|i| assemble(names[i], n, &triplets[i]));
-    let (first, second) = (first?, second?);
-    let symbolic = SymbolicLlt::try_new(first.symbolic(), faer::Side::Lower)
+    let symbolic = SymbolicLlt::try_new(matrices[0].symbolic(), faer::Side::Lower)
         .map_err(|e| HeatError::Factorisation(names[0], format!("{e:?}"), false))?;
-    let numeric = |name: &'static str, matrix: &SparseColMat<u32, f64>| {
-        Llt::try_new_with_symbolic(symbolic.clone(), matrix.as_ref(), faer::Side::Lower)
-            .map_err(|e| HeatError::Factorisation(name, e.to_string(), false))
+    let numeric = |i: usize| {
+        Llt::try_new_with_symbolic(symbolic.clone(), matrices[i].as_ref(), faer::Side::Lower)
+            .map_err(|e| HeatError::Factorisation(names[i], e.to_string(), false))
     };
-    Ok([numeric(names[0], &first)?, numeric(names[1], &second)?])
+    let (first, second) = rayon::join(|| numeric(0), || numeric(1));
+    Ok([first?, second?])
 }
 
-/// A sparse matrix from triplets (repeated positions add up).
-fn assemble(
-    name: &'static str,
-    n: usize,
-    triplets: &[Triplet<u32, u32, f64>],
-) -> Result<SparseColMat<u32, f64>, HeatError> {
-    SparseColMat::<u32, f64>::try_new_from_triplets(n, n, triplets)
-        .map_err(|e| HeatError::Factorisation(name, format!("{e:?}"), false))
-}
-
-/// The system of `triplets` restricted to the vertices marked `keep`, factored.
-fn restricted(triplets: &[Triplet<u32, u32, f64>], keep: &[bool]) -> Result<Restricted, HeatError> {
+/// The system `matrix` (lower triangle) restricted to the vertices marked `keep`,
+/// factored.
+fn restricted(matrix: &SparseColMat<u32, f64>, keep: &[bool]) -> Result<Restricted, HeatError> {
     let mut index = vec![u32::MAX; keep.len()];
     let mut rows = Vec::new();
     for (v, _) in keep.iter().enumerate().filter(|(_, k)| **k) {
         index[v] = rows.len() as u32;
         rows.push(v as u32);
     }
-    let kept = triplets
-        .iter()
-        .filter(|t| keep[t.row as usize] && keep[t.col as usize])
-        .map(|t| Triplet::new(index[t.row as usize], index[t.col as usize], t.val))
-        .collect();
-    let llt = factor("boundary heat", rows.len(), kept)?;
+    let (pattern, values) = (matrix.symbolic(), matrix.val());
+    let mut kept = Vec::new();
+    for col in (0..keep.len()).filter(|&c| keep[c]) {
+        let range = pattern.col_ptr()[col] as usize..pattern.col_ptr()[col + 1] as usize;
+        for at in range {
+            let row = pattern.row_idx()[at] as usize;
+            if keep[row] {
+                kept.push(Triplet::new(index[row], index[col], values[at]));
+            }
+        }
+    }
+    let matrix = SparseColMat::try_new_from_triplets(rows.len(), rows.len(), &kept)
+        .map_err(|e| HeatError::Factorisation("boundary heat", format!("{e:?}"), false))?;
+    let llt = factor("boundary heat", &matrix)?;
     Ok(Restricted { llt, rows })
 }
 
@@ -472,7 +523,7 @@ mod tests {
         for factor in [0.0, -1.0, 1e-4, 2e6, f64::NAN, f64::INFINITY] {
             let options = HeatOptions {
                 time_factor: factor,
-                robust: false,
+                ..HeatOptions::default()
             };
             let mesh = crate::mesh::primitive("torus:8").expect("a primitive");
             let result = HeatSolver::new(Triangulation::from_mesh(&mesh), options);

@@ -14,6 +14,7 @@ mod exact;
 mod fallback;
 mod file_order;
 mod heat;
+mod refine;
 mod triangulation;
 
 pub use crate::graph::{HeatOptions, Method};

@@ -135,6 +135,15 @@ impl Triangulation {
         }
     }
 
+    /// How many vertices some triangle uses.
+    pub fn used_vertex_count(&self) -> usize {
+        let mut used = vec![false; self.vertex_count];
+        for &v in self.faces.iter().flatten() {
+            used[v as usize] = true;
+        }
+        used.iter().filter(|&&u| u).count()
+    }
+
     /// Whether each vertex lies on a boundary (or non-manifold) edge.
     pub fn boundary_vertices(&self) -> Vec<bool> {
         let mut boundary = vec![false; self.vertex_count];

@@ -63,7 +63,7 @@ mod tests {
                 sources: vec![0],
                 method: Method::Heat(HeatOptions {
                     time_factor: 0.0,
-                    robust: false,
+                    ..HeatOptions::default()
                 }),
             };
             5

@@ -18,10 +18,18 @@ fn solve(mesh: &Mesh, sources: &[u32], method: Method) -> Vec<f64> {
 const HEAT: Method = Method::Heat(HeatOptions {
     time_factor: 1.0,
     robust: false,
+    refine: true,
 });
 const ROBUST: Method = Method::Heat(HeatOptions {
     time_factor: 1.0,
     robust: true,
+    refine: true,
+});
+/// The heat method on the mesh's own triangles, as before refinement.
+const UNREFINED: Method = Method::Heat(HeatOptions {
+    time_factor: 1.0,
+    robust: false,
+    refine: false,
 });
 
 #[test]
@@ -167,14 +175,22 @@ fn jittered_grid(n: u32, jitter: f32) -> Mesh {
 }
 
 #[test]
-fn the_robust_heat_method_repairs_what_obtuse_triangles_spoil() {
+fn the_intrinsic_delaunay_refinement_repairs_what_obtuse_triangles_spoil() {
     let grid = jittered_grid(40, 0.3);
     let center = (20 * 41 + 20) as u32;
     let exact = solve(&grid, &[center], Method::Exact);
-    let (plain, _) = relative_error(&solve(&grid, &[center], HEAT), &exact, 0.1);
-    let (robust, _) = relative_error(&solve(&grid, &[center], ROBUST), &exact, 0.1);
-    println!("jittered grid: plain heat {plain:.4}, robust {robust:.4}");
-    assert!(robust < 0.75 * plain, "plain {plain}, robust {robust}");
+    let (unrefined, _) = relative_error(&solve(&grid, &[center], UNREFINED), &exact, 0.1);
+    for method in [HEAT, ROBUST] {
+        let (refined, _) = relative_error(&solve(&grid, &[center], method), &exact, 0.1);
+        println!(
+            "jittered grid: unrefined heat {unrefined:.4}, {} {refined:.4}",
+            method.name()
+        );
+        assert!(
+            refined < 0.75 * unrefined,
+            "unrefined {unrefined}, refined {refined}"
+        );
+    }
 }
 
 #[test]
@@ -188,6 +204,7 @@ fn stiff_and_slack_time_steps_stay_finite_and_bounded() {
             let method = Method::Heat(HeatOptions {
                 time_factor,
                 robust,
+                ..HeatOptions::default()
             });
             let field = solve(&torus, &[0], method);
             assert!(
@@ -212,7 +229,12 @@ fn far_from_the_origin_the_field_is_the_same() {
     for p in &mut far.positions {
         p[0] += 1.0e6;
     }
-    for method in [HEAT, Method::Exact] {
+    // The positions are f32: a million units out, each is rounded by up to 0.03 (of
+    // edges 80 long), which moves the field by less than 10⁻³ of its size. Refinement
+    // splits the edges longer than the mean, so that rounding may split an edge in one
+    // mesh and not in the other: the two fields then differ by the method's own error
+    // (its mean on this torus is under 1%), not by a loss of precision.
+    for (method, tolerance) in [(UNREFINED, 1e-3), (Method::Exact, 1e-3), (HEAT, 1e-2)] {
         let (a, b) = (solve(&near, &[7], method), solve(&far, &[7], method));
         let scale = geodesic::max_finite(&a);
         let worst = a
@@ -221,7 +243,7 @@ fn far_from_the_origin_the_field_is_the_same() {
             .map(|(x, y)| (x - y).abs())
             .fold(0.0, f64::max);
         assert!(
-            worst < 1e-3 * scale,
+            worst < tolerance * scale,
             "{}: {worst} of {scale}",
             method.name()
         );

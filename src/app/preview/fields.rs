@@ -222,12 +222,13 @@ pub fn toggle_source(field: &mut FieldSource, vertex: u32) {
     }
 }
 
-const METHODS: [(&str, Method); 4] = [
+const METHODS: [(&str, Method); 5] = [
     (
         "heat",
         Method::Heat(HeatOptions {
             time_factor: 1.0,
             robust: false,
+            refine: true,
         }),
     ),
     (
@@ -235,6 +236,15 @@ const METHODS: [(&str, Method); 4] = [
         Method::Heat(HeatOptions {
             time_factor: 1.0,
             robust: true,
+            refine: true,
+        }),
+    ),
+    (
+        "heat, unrefined",
+        Method::Heat(HeatOptions {
+            time_factor: 1.0,
+            robust: false,
+            refine: false,
         }),
     ),
     ("exact", Method::Exact),
