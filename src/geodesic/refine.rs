@@ -163,14 +163,7 @@ pub const REFINE_ROUNDS: usize = 8;
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::mesh::Mesh;
-
-    /// The unit square in the xz plane as two triangles sharing the diagonal (0,0)–(1,1).
-    fn square() -> Triangulation {
-        let mut mesh = Mesh::default();
-        mesh.push_grid(1, 1, |u, v| ([u, 0.0, v], [0.0, 1.0, 0.0]));
-        Triangulation::from_mesh(&mesh)
-    }
+    use crate::geodesic::triangulation::tests::square;
 
     fn total_area(t: &Triangulation) -> f64 {
         (0..t.faces.len()).map(|f| t.area(f)).sum()

@@ -215,10 +215,11 @@ fn pair_half_edges(faces: &[[u32; 3]]) -> Vec<u32> {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
 
-    fn square() -> Triangulation {
+    /// The unit square in the xz plane as two triangles sharing a diagonal.
+    pub(in crate::geodesic) fn square() -> Triangulation {
         let mut mesh = Mesh::default();
         mesh.push_grid(1, 1, |u, v| ([u, 0.0, v], [0.0, 1.0, 0.0]));
         Triangulation::from_mesh(&mesh)
