@@ -36,7 +36,8 @@ pub struct GeodesicArgs {
     robust: bool,
     /// Heat method: solve on the mesh's own triangles and vertices instead of its
     /// intrinsic Delaunay refinement (flipped to Delaunay, edges longer than the mean
-    /// split, at most 1.5 new vertices per vertex): less accurate, about half the set-up.
+    /// split, at most 1.5 new vertices per vertex; meshes of more than 100,000 vertices
+    /// are never refined): less accurate, about half the set-up.
     #[arg(long)]
     no_refine: bool,
     /// Heat method: diffusion time as a multiple of the mean edge length squared.
@@ -103,7 +104,14 @@ pub fn run(args: GeodesicArgs) -> Result<(), Failure> {
                 heat.mollified_by
             ))?;
         }
-        if options.robust || options.refine {
+        if heat.refinement_skipped {
+            note(format!(
+                "intrinsic refinement skipped: more than {} vertices (solved unrefined; \
+                 refining would cost the set-up more than twice)",
+                geodesic::REFINE_UP_TO
+            ))?;
+        }
+        if options.robust || heat.added_vertices > 0 || heat.flips > 0 {
             note(format!(
                 "intrinsic: {} flips, {} vertices added by refinement, in {:.1} ms of the set-up",
                 heat.flips,

@@ -23,7 +23,7 @@ pub use dijkstra::edge_distances;
 pub use exact::exact_distances;
 pub use fallback::{Fallback, heat_solver};
 pub use file_order::WeldedMesh;
-pub use heat::{HeatError, HeatSetup, HeatSolver, diffuse};
+pub use heat::{HeatError, HeatSetup, HeatSolver, REFINE_UP_TO, diffuse};
 pub use triangulation::{NO_TWIN, Triangulation, split};
 
 use crate::mesh::Mesh;

@@ -71,8 +71,9 @@ pub struct HeatOptions {
     /// Solve on an intrinsic Delaunay refinement of the mesh: edges flipped to Delaunay,
     /// those longer than the mean split at their midpoints (at most 1.5 new vertices per
     /// vertex a triangle uses), the same surface sampled more finely and evenly. More accurate, at up
-    /// to twice the set-up. Files leave it out when on (files from before it existed
-    /// load refined).
+    /// to twice the set-up. Meshes of more than 100,000 vertices are solved unrefined
+    /// (`geodesic::REFINE_UP_TO`: there refining costs more than twice). Files leave it
+    /// out when on (files from before it existed load refined).
     #[serde(skip_serializing_if = "is_on")]
     pub refine: bool,
 }

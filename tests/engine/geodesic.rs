@@ -220,6 +220,24 @@ fn stiff_and_slack_time_steps_stay_finite_and_bounded() {
 }
 
 #[test]
+fn meshes_past_the_refinement_limit_are_solved_unrefined_and_say_so() {
+    for (name, skipped) in [("torus:64", false), ("torus:256", true)] {
+        let torus = welded(&mesh::primitive(name).expect("a primitive"));
+        let used = torus.positions.len();
+        assert_eq!(
+            used > geodesic::REFINE_UP_TO,
+            skipped,
+            "{name}: {used} vertices"
+        );
+        let solver = HeatSolver::new(Triangulation::from_mesh(&torus), HeatOptions::default())
+            .expect("factors");
+        let setup = solver.setup();
+        assert_eq!(setup.refinement_skipped, skipped, "{name}");
+        assert_eq!(setup.added_vertices == 0, skipped, "{name}");
+    }
+}
+
+#[test]
 fn far_from_the_origin_the_field_is_the_same() {
     let mut near = welded(&mesh::torus(0.7, 0.3, 48, 24));
     for p in &mut near.positions {
