@@ -56,7 +56,8 @@ pub fn check_field_sources(
 /// them in `mesh.fields`, each divided by its largest finite distance. Vertices a field
 /// never reaches read 1 (the material never gets there); unused or missing slots read 0.
 /// Nothing is solved, and `mesh.fields` stays empty, when no slot is used. Returns a
-/// note for each field the robust heat method solved in place of the plain one.
+/// note for each field the robust heat method solved in place of the plain one, and for
+/// each the heat method solved unrefined because the mesh is too large to refine.
 pub fn attach_fields(
     mesh: &mut Mesh,
     sources: &[FieldSource],
@@ -98,6 +99,13 @@ pub fn attach_fields(
         for (&slot, field) in slots.iter().zip(&solved.fields) {
             if let Some(fallback) = &solved.fallback {
                 notes.push(format!("field {slot}: {fallback}"));
+            }
+            if solved.heat.is_some_and(|heat| heat.refinement_skipped) {
+                notes.push(format!(
+                    "field {slot}: solved unrefined: the mesh has more than {} vertices, \
+                     where refining would more than double the set-up",
+                    super::REFINE_UP_TO
+                ));
             }
             let farthest = max_finite(field);
             for (vertex, &target) in welded.of_vertex.iter().enumerate() {

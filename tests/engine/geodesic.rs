@@ -234,6 +234,21 @@ fn meshes_past_the_refinement_limit_are_solved_unrefined_and_say_so() {
         let setup = solver.setup();
         assert_eq!(setup.refinement_skipped, skipped, "{name}");
         assert_eq!(setup.added_vertices == 0, skipped, "{name}");
+        // Attached to a preview, the field says so (the editor shows the note).
+        let mut preview = mesh::primitive(name).expect("a primitive");
+        let field = veneer::graph::FieldSource {
+            sources: vec![0],
+            method: Method::Heat(HeatOptions::default()),
+        };
+        let notes = geodesic::attach_fields(
+            &mut preview,
+            &[field],
+            [true, false, false, false],
+            |_, _| {},
+        )
+        .expect("solves");
+        let said = notes.iter().any(|note| note.contains("solved unrefined"));
+        assert_eq!(said, skipped, "{name}: {notes:?}");
     }
 }
 

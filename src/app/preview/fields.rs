@@ -25,7 +25,7 @@ pub struct FieldState {
     /// Why the newest solve failed.
     pub error: Option<String>,
     /// What the newest solve had to do differently (the robust heat method in place of
-    /// the plain one).
+    /// the plain one, no refinement on a large mesh).
     pub notes: Vec<String>,
     /// The field whose sources clicks on the preview add or remove.
     pub picking: Option<usize>,
