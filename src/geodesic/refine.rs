@@ -73,7 +73,7 @@ impl Triangulation {
         let mut flips = 0;
         for _ in 0..REFINE_ROUNDS {
             let chosen = self.longer_edges_apart(&ranks);
-            if chosen.is_empty() {
+            if chosen.is_empty() || self.vertex_count - before >= budget {
                 break;
             }
             let mut suspects = Vec::new();
