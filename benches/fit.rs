@@ -4,7 +4,8 @@
 //!   renders) at values drawn at random (seeded, away from the ranges' ends), then
 //!   fitted from its own values with the default settings and a 60 s budget: the median
 //!   normalised parameter error and the loss left, against **random search** over the
-//!   same parameters given the same wall time. Beside them, why a fit from afar misses:
+//!   same parameters given the same wall time, and against the fit with `--global` (its
+//!   later starts searched by an evolution strategy first). Beside them, why a fit from afar misses:
 //!   each coordinate's **basin** at the truth (how far along it a start may lie and
 //!   still slide back, the others true; [`basin_width`]), and the median error of a fit
 //!   (`--aligned`, the target being the graph's own render) started within ±0.1 of the
@@ -78,9 +79,9 @@ fn basins(prepared: &Prepared, truth: &[f64]) -> (f64, usize, usize) {
 
 fn recovery() {
     println!(
-        "| graph | coordinates | basin width: median (< {NARROW} / flat) | median error | loss left | fit s | random search loss left (draws) | median error from ±{NEAR} of the truth |"
+        "| graph | coordinates | basin width: median (< {NARROW} / flat) | median error | loss left | fit s | random search loss left (draws) | `--global`: median error | loss left | s | median error from ±{NEAR} of the truth |"
     );
-    println!("|---|---|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|");
     for (name, prepared) in presets() {
         let Prepared {
             evaluator,
@@ -103,6 +104,13 @@ fn recovery() {
         let seconds = clock.elapsed();
         let searched = random_search(evaluator, *rect, space, &photo, &settings, seconds);
         let start = fitted.initial.total();
+        let global = FitSettings {
+            global: true,
+            ..settings.clone()
+        };
+        let clock = Instant::now();
+        let searched_globally = fit(evaluator, *rect, space, &photo, &global, |_| true);
+        let global_seconds = clock.elapsed().as_secs_f64();
         let (width, narrow, flat) = basins(&prepared, &truth);
         let nearby = space.starting_at(&near(&truth, NEAR, SEED));
         let aligned = FitSettings {
@@ -111,13 +119,15 @@ fn recovery() {
         };
         let from_near = fit(evaluator, *rect, &nearby, &photo, &aligned, |_| true);
         println!(
-            "| {name} | {} | {width:.3} ({narrow} / {flat}) | {:.3} | {:.1}% | {:.1} | {:.1}% ({}) | {:.3} |",
+            "| {name} | {} | {width:.3} ({narrow} / {flat}) | {:.3} | {:.1}% | {:.1} | {:.1}% ({}) | {:.3} | {:.1}% | {global_seconds:.1} | {:.3} |",
             space.coordinates.len(),
             median_error(&fitted.places, &truth),
             100.0 * fitted.parts.total() / start,
             seconds.as_secs_f64(),
             100.0 * searched.loss / start,
             searched.draws,
+            median_error(&searched_globally.places, &truth),
+            100.0 * searched_globally.parts.total() / start,
             median_error(&from_near.places, &truth),
         );
     }

@@ -39,6 +39,12 @@ pub struct FitArgs {
     /// --flat`): compare pixel by pixel too.
     #[arg(long)]
     aligned: bool,
+    /// The starts after the first search globally before descending (an evolution
+    /// strategy, sep-CMA-ES, for half --steps generations at 64²: the second from the
+    /// graph's values, the others from random draws). Slower, and it finds lower losses
+    /// where descent alone stops in a near local minimum.
+    #[arg(long)]
+    global: bool,
     /// Print a JSON summary on stdout.
     #[arg(long)]
     json: bool,
@@ -125,6 +131,7 @@ pub fn run(args: FitArgs) -> Result<(), Failure> {
         budget,
         seed: args.seed,
         aligned: args.aligned,
+        global: args.global,
     };
     let bar = indicatif::ProgressBar::new(0).with_style(
         indicatif::ProgressStyle::with_template(

@@ -4,6 +4,7 @@
 //! scales ([`loss`]); the loss's derivative by every parameter is taken in reverse mode
 //! through the CPU evaluator ([`tape`], [`image`]).
 
+pub mod evolution;
 pub mod graph;
 pub mod image;
 pub mod loss;

@@ -1,12 +1,15 @@
-//! The fit itself: Adam on the normalised coordinates (kept within [0, 1]), from the
-//! graph's own values and from the best of many random draws (screened by their loss
-//! alone, which costs a fraction of a step), each run at a coarse size first; the best
-//! start is then refined at twice the side, and twice again, up to the full size. The best places seen are kept, the time
-//! budget is respected (checked before every step) and the caller may stop it at any
-//! step. For a given seed, step count and size, the result is the same on every run
+//! The fit itself: Adam on the normalised coordinates (kept within [0, 1]), at a coarse
+//! size first, from several starts: the graph's own values, then the best of many random
+//! draws (screened by their loss alone, which costs a fraction of a step) — or, with
+//! `global`, the best of a search without derivatives ([`evolution`]) from the graph's
+//! values and from screened draws. The best start is then refined at twice the side,
+//! and twice again, up to the full size. The best places seen are kept, the time budget
+//! is respected (checked before every step and generation) and the caller may stop it at
+//! any step. For a given seed, step count and size, the result is the same on every run
 //! (a budget that cuts it short makes it depend on the machine's speed).
 
 use super::Draws;
+use super::evolution;
 use super::image::{Canvas, Image};
 use super::loss::{Loss, LossParts, Target};
 use super::space::Space;
@@ -20,9 +23,11 @@ pub struct FitSettings {
     /// The side of the final images, in pixels.
     pub size: u32,
     /// Adam steps per start at the coarse size (half as many refine the best at twice
-    /// the side, a quarter at four times, … up to the full size).
+    /// the side, a quarter at four times, … up to the full size); with `global`, each
+    /// start after the first searches for half as many generations before its steps.
     pub steps: usize,
-    /// Starts: the graph's values, then random draws.
+    /// Starts: the graph's values, then random draws (with `global`: a global search
+    /// from the graph's values, then from random draws).
     pub starts: usize,
     /// Stop when this much time has passed.
     pub budget: Option<Duration>,
@@ -31,11 +36,14 @@ pub struct FitSettings {
     /// Whether the photo is the graph's own render over the same square (adds the
     /// pixel-aligned part).
     pub aligned: bool,
+    /// Whether the starts after the first search globally ([`evolution`]) before their
+    /// steps; otherwise they descend from screened random draws.
+    pub global: bool,
 }
 
 impl Default for FitSettings {
     /// 40 steps from each of 3 starts at the coarse size, refined at 128², seed 1, no
-    /// budget, the photo not aligned.
+    /// budget, the photo not aligned, no global search.
     fn default() -> FitSettings {
         FitSettings {
             size: 128,
@@ -44,6 +52,7 @@ impl Default for FitSettings {
             budget: None,
             seed: 1,
             aligned: false,
+            global: false,
         }
     }
 }
@@ -334,7 +343,15 @@ pub fn fit(
     } else {
         settings.steps / 2
     };
-    let total_steps = settings.steps * start_count + follow_steps + refine_steps;
+    // With `global`, each later start's search runs half as many generations as it has
+    // steps, and the second start searches from the graph's values (one draw fewer).
+    let (generations, searched_starts) = match settings.global {
+        true => (settings.steps / 2, start_count - 1),
+        false => (0, 0),
+    };
+    let total_steps =
+        settings.steps * start_count + generations * searched_starts + follow_steps + refine_steps;
+    let random_starts = start_count - 1 - usize::from(settings.global && start_count > 1);
     let mut taken = 0;
     // Whether another step may run: the budget and the caller allow it.
     let mut go_on = |start: Option<usize>, taken: usize, loss: f64, places: &[f64]| {
@@ -359,7 +376,7 @@ pub fn fit(
     // Screening takes at most half the budget, leaving the rest to the steps.
     let screening = || (settings.budget).is_none_or(|budget| clock.elapsed() < budget / 2);
     // The random draws, screened while the budget allows (the rest keep their order).
-    let draws: Vec<Vec<f64>> = (0..SCREENED_PER_START * (start_count - 1))
+    let draws: Vec<Vec<f64>> = (0..SCREENED_PER_START * random_starts)
         .map(|_| space.coordinates.iter().map(|_| draws.uniform()).collect())
         .collect();
     let mut screened: Vec<(f64, Vec<f64>)> = Vec::new();
@@ -376,9 +393,28 @@ pub fn fit(
     let mut best: Option<Descent> = None;
     let mut stopped = false;
     for start in 0..start_count {
+        // The first start descends from the graph's values, the others from screened
+        // draws; with `global` they search first, the second from the graph's values.
+        let mut initial = None;
         let places = match start {
             0 => space.start(),
-            _ => screened.next().expect("a screened draw per random start"),
+            _ if !settings.global => screened.next().expect("a screened draw per start"),
+            _ => {
+                let mean = match start {
+                    1 => space.start(),
+                    _ => screened.next().expect("a screened draw per later start"),
+                };
+                let evolved = evolution::search(
+                    mean,
+                    generations,
+                    settings.seed ^ start as u64,
+                    |places| coarse.loss(&loss, &chosen, places).0.total(),
+                    |generation, best, places| go_on(Some(start), taken + generation, best, places),
+                );
+                taken += evolved.generations;
+                initial = Some(evolved.initial);
+                evolved.places
+            }
         };
         let descent = descend(
             &coarse,
@@ -390,7 +426,7 @@ pub fn fit(
         );
         taken += descent.steps;
         starts.push(StartResult {
-            initial: descent.initial,
+            initial: initial.unwrap_or(descent.initial),
             best: descent.best,
         });
         stopped = descent.stopped;

@@ -1,7 +1,8 @@
 //! The report's fitting section: presets rendered at parameter values drawn at random
 //! (seeded) and fitted back from their own values, the loss against seconds for Adam
-//! from one start and from three, and for random search given the same time; the loss
-//! left and the median normalised parameter error each reached.
+//! from one start and from three (with and without the global search), and for random
+//! search given the same time; the loss left and the median normalised parameter error
+//! each reached.
 
 use super::plot::{Plot, Series};
 use super::table::{Table, number};
@@ -53,10 +54,11 @@ pub fn fitting(ctx: &Context, quick: bool) -> Result<Section, String> {
         let truth = draw_truth(&space, SEED);
         let photo = canvas.render(&space, &truth).to_photo();
         let (mut longest, mut start_loss) = (Duration::ZERO, f64::MIN_POSITIVE);
-        for starts in [1, 3] {
+        for (starts, global) in [(1, false), (3, false), (3, true)] {
             let settings = FitSettings {
                 size,
                 starts,
+                global,
                 ..FitSettings::default()
             };
             let mut curve = Vec::new();
@@ -79,8 +81,9 @@ pub fn fitting(ctx: &Context, quick: bool) -> Result<Section, String> {
                 .chain([(seconds.as_secs_f64(), fitted.parts.total() / start)])
                 .collect();
             let method = format!(
-                "Adam from {starts} start{}",
-                if starts == 1 { "" } else { "s" }
+                "Adam from {starts} start{}{}",
+                if starts == 1 { "" } else { "s" },
+                if global { " with global search" } else { "" }
             );
             table.push(vec![
                 name.to_string(),
@@ -117,7 +120,7 @@ pub fn fitting(ctx: &Context, quick: bool) -> Result<Section, String> {
     Ok(Section {
         title: "Fitting: loss against time".into(),
         text: format!(
-            "Each preset rendered on the CPU at {size}² with its exposed parameters drawn at random (seed {SEED}, away from the ranges' ends), then fitted back from its own values by `veneer fit`'s method (Adam on normalised parameters, 40 steps a start at 64², refined up to {size}²) from one start and from three, and by random search given as long as the longer fit. Loss left is the final loss over the loss at the preset's own values; the parameter error is the median, over the parameters' lanes, of the distance to the drawn values in units of each range. The plot shows the lowest loss so far against the time."
+            "Each preset rendered on the CPU at {size}² with its exposed parameters drawn at random (seed {SEED}, away from the ranges' ends), then fitted back from its own values by `veneer fit`'s method (Adam on normalised parameters, 40 steps a start at 64², refined up to {size}²) from one start and from three, from three with the later two searched globally first (`--global`: sep-CMA-ES, 20 generations at 64², then Adam), and by random search given as long as the longest fit. Loss left is the final loss over the loss at the preset's own values; the parameter error is the median, over the parameters' lanes, of the distance to the drawn values in units of each range. The plot shows the lowest loss so far against the time."
         ),
         table,
         plot: Plot {

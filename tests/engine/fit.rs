@@ -450,3 +450,50 @@ fn images_of_any_side_in_range_fit_odd_ones_included() {
         assert!(value["fitted_total"].as_f64().is_some(), "{value}");
     }
 }
+
+#[test]
+fn a_global_search_starts_at_the_graphs_values_and_gives_the_same_file_twice() {
+    let dir = temp_dir("fit-global");
+    let photo = dir.join("photo.png");
+    let render = [
+        "render",
+        "graphs/marble.ron",
+        "--flat=-8,-8,8,8,0.5",
+        "--size",
+        "64",
+        "--set",
+        "vein_frequency=14",
+        "--set",
+        "stone_colour=0.6,0.5,0.4",
+        "-o",
+        photo.to_str().expect("a UTF-8 path"),
+    ];
+    let rendered = run_veneer(&render);
+    assert!(rendered.status.success(), "{rendered:?}");
+    let extra = [
+        "--global",
+        "--steps",
+        "8",
+        "--starts",
+        "3",
+        "--params",
+        "vein_frequency,stone_colour",
+    ];
+    let outputs = [dir.join("first.ron"), dir.join("second.ron")];
+    let values: Vec<serde_json::Value> = (outputs.iter())
+        .map(|output| fit_json("graphs/marble.ron", &photo, "32", &extra, output))
+        .collect();
+    let value = &values[0];
+    let initial = value["initial_total"].as_f64().expect("initial_total");
+    let fitted = value["fitted_total"].as_f64().expect("fitted_total");
+    assert!(fitted < initial, "{value}");
+    // At 32² the coarse stage is the last: the second start's search began where the
+    // first start did, at the graph's values; the third at a random draw.
+    let starts = value["starts"].as_array().expect("starts");
+    assert_eq!(starts.len(), 3, "{value}");
+    assert_eq!(starts[1]["initial"], value["initial_total"], "{value}");
+    assert_ne!(starts[2]["initial"], value["initial_total"], "{value}");
+    assert_eq!(values[0]["parameters"], values[1]["parameters"]);
+    let files = outputs.map(|output| std::fs::read(output).expect("a fitted graph"));
+    assert_eq!(files[0], files[1]);
+}

@@ -69,12 +69,13 @@ fn a_quick_report_writes_every_section_and_the_thesis_tables_hold_finite_figures
 
     let read = |name: &str| rows(&std::fs::read_to_string(dir.join(name)).expect(name));
 
-    // Fitting: Adam from one start and from three and random search, each with finite
-    // figures; the fit ends below the start.
+    // Fitting: Adam from one start and from three (with and without the global search)
+    // and random search, each with finite figures; the fit ends below the start.
     let fitting = read("fitting.csv");
     let methods: Vec<&str> = fitting[1..].iter().map(|row| row[1].as_str()).collect();
-    assert_eq!(methods.len(), 3, "{fitting:?}");
-    assert!(methods[2].starts_with("random search ("), "{methods:?}");
+    assert_eq!(methods.len(), 4, "{fitting:?}");
+    assert!(methods[2].ends_with("with global search"), "{methods:?}");
+    assert!(methods[3].starts_with("random search ("), "{methods:?}");
     for row in &fitting[1..] {
         let (seconds, left, error) = (finite(&row[2]), finite(&row[3]), finite(&row[4]));
         assert!(seconds > 0.0 && (0.0..=1.0).contains(&error), "{row:?}");

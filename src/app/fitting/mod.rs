@@ -72,16 +72,20 @@ pub(in crate::app) struct Fitting {
     pub size: u32,
     /// How many starts the next fit descends from (`veneer fit --starts`).
     pub starts: usize,
+    /// Whether the next fit's later starts search globally first (`veneer fit
+    /// --global`).
+    pub global: bool,
 }
 
 impl Fitting {
     /// The settings the next fit runs with: `veneer fit`'s defaults but for the budget,
-    /// size and starts chosen beside the button.
+    /// size, starts and global search chosen beside the button.
     pub fn settings(&self) -> FitSettings {
         FitSettings {
             budget: Some(Duration::from_secs_f64(self.budget)),
             size: self.size,
             starts: self.starts,
+            global: self.global,
             ..FitSettings::default()
         }
     }
@@ -96,6 +100,7 @@ impl Default for Fitting {
             budget: DEFAULT_BUDGET,
             size: defaults.size,
             starts: defaults.starts,
+            global: defaults.global,
         }
     }
 }

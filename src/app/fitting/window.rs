@@ -55,6 +55,9 @@ impl VeneerApp {
                 setting(ui, &mut self.fitting.size, 8..=2048, 4.0, ("", " px"), hover);
                 let hover = "the graph's own values, then random draws; more starts search wider and take longer (veneer fit --starts)";
                 setting(ui, &mut self.fitting.starts, 1..=64, 0.1, ("starts ", ""), hover);
+                ui.checkbox(&mut self.fitting.global, "global").on_hover_text(
+                    "the starts after the first search the whole range before descending: slower, finds lower losses (veneer fit --global)",
+                );
                 button
             })
             .inner;
