@@ -227,7 +227,10 @@ fn a_numerical_hazard_is_marked_on_its_node_without_blocking_the_material() {
         app.live().warnings
     );
     assert!(app.live().errors.is_empty(), "a warning is not an error");
-    assert!(shows(&harness, "numerical warnings"));
+    assert!(shows(
+        &harness,
+        "1 numerical warning (see the marked nodes)"
+    ));
 }
 
 #[test]

@@ -313,7 +313,10 @@ impl VeneerApp {
                     ui.label("✔ material compiles");
                     ui.colored_label(
                         egui::Color32::from_rgb(230, 180, 60),
-                        format!("⚠ {count} numerical warnings (see the marked nodes)"),
+                        format!(
+                            "⚠ {count} numerical warning{} (see the marked nodes)",
+                            if count == 1 { "" } else { "s" }
+                        ),
                     );
                 }
             }
