@@ -104,12 +104,8 @@ pub fn run(args: GeodesicArgs) -> Result<(), Failure> {
                 heat.mollified_by
             ))?;
         }
-        if heat.refinement_skipped {
-            note(format!(
-                "intrinsic refinement skipped: more than {} vertices (solved unrefined; \
-                 refining would cost the set-up more than twice)",
-                geodesic::REFINE_UP_TO
-            ))?;
+        if let Some(skipped) = heat.refinement_note() {
+            note(skipped)?;
         }
         if options.robust || heat.added_vertices > 0 || heat.flips > 0 {
             note(format!(

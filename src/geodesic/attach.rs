@@ -100,12 +100,8 @@ pub fn attach_fields(
             if let Some(fallback) = &solved.fallback {
                 notes.push(format!("field {slot}: {fallback}"));
             }
-            if solved.heat.is_some_and(|heat| heat.refinement_skipped) {
-                notes.push(format!(
-                    "field {slot}: solved unrefined: the mesh has more than {} vertices, \
-                     where refining would more than double the set-up",
-                    super::REFINE_UP_TO
-                ));
+            if let Some(note) = solved.heat.and_then(|heat| heat.refinement_note()) {
+                notes.push(format!("field {slot}: {note}"));
             }
             let farthest = max_finite(field);
             for (vertex, &target) in welded.of_vertex.iter().enumerate() {

@@ -62,6 +62,19 @@ pub struct HeatSetup {
     pub factor_time: Duration,
 }
 
+impl HeatSetup {
+    /// Why the field was solved unrefined, where refinement was skipped for the mesh's
+    /// size (the note `veneer geodesic` prints and the editor shows under the field).
+    pub fn refinement_note(&self) -> Option<String> {
+        self.refinement_skipped.then(|| {
+            format!(
+                "solved unrefined: the mesh has more than {REFINE_UP_TO} vertices, where \
+                 refining would more than double the set-up"
+            )
+        })
+    }
+}
+
 /// The per-triangle quantities the gradient and divergence need.
 struct Corner {
     layout: [DVec2; 3],
