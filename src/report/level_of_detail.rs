@@ -261,9 +261,17 @@ pub(super) fn detail(ctx: &Context) -> Result<Section, String> {
                 gpu_albedo(ctx.gpu, &footprint, rect, size).map_err(|e| e.to_string())?;
             let (_, full_error) = errors(&full_values, &reference);
             let (_, footprint_error) = errors(&footprint_values, &reference);
+            // Timed at the timing size over a square widened as much, so that each
+            // pixel covers what it covers in the view the errors are measured on (the
+            // same rectangle at the timing size would time a view that many times
+            // nearer).
+            let timed = view(
+                &case.graph,
+                width * f64::from(ctx.timing_size) / f64::from(size),
+            );
             let (full_ms, footprint_ms) = (
-                gpu_ms_per_megapixel(ctx, &full, rect),
-                gpu_ms_per_megapixel(ctx, &footprint, rect),
+                gpu_ms_per_megapixel(ctx, &full, timed),
+                gpu_ms_per_megapixel(ctx, &footprint, timed),
             );
             full_points.push((full_ms, full_error.max(1e-6)));
             footprint_points.push((footprint_ms, footprint_error.max(1e-6)));
@@ -281,9 +289,12 @@ pub(super) fn detail(ctx: &Context) -> Result<Section, String> {
     Ok(Section {
         title: "Level of detail: footprint detail against full evaluation".into(),
         text: format!(
-            "Flat renders at {size}² of each node kind (a period or cell of 0.0973, over squares 1, 4 and 16 wide: a period over 13 pixels, over 3, and 1.25 periods a pixel) and of three materials (their preview square widened 1×, 10× and 100×); the error is the mean absolute difference from the same view rendered in full at {}² and box-filtered down ({} samples a pixel: the truly filtered pattern). Footprint detail filters over each pixel's footprint, measured by screen-space derivatives of the variable a pattern is drawn along: fractal nodes leave out octaves finer than half a pixel, fading the last; sine bands, rings, triangle waves, tiles, steps, smoothsteps and stepped ranges are box-filtered analytically, the periodic ones fading to their mean past Nyquist. Far away that is both closer to the filtered pattern and no slower; near by it changes almost nothing but costs the derivatives. A threshold of a filtered value is not the filtered threshold: where a step or smoothstep reads a pattern that has faded to its mean, the footprint view shows the threshold of the mean.",
+            "Flat renders at {size}² of each node kind (a period or cell of 0.0973, over squares 1, 4 and 16 wide: a period over 13 pixels, over 3, and 1.25 periods a pixel) and of three materials (their preview square widened 1×, 10× and 100×); the error is the mean absolute difference from the same view rendered in full at {}² and box-filtered down ({} samples a pixel: the truly filtered pattern). The time is per megapixel of the same view: rendered at {}² over a square {}× as wide, so that each pixel covers as much of the pattern as in the {size}² view (timing the {size}² square itself at that size would time a view {}× nearer). Footprint detail filters over each pixel's footprint, measured by screen-space derivatives of the variable a pattern is drawn along: fractal nodes leave out octaves finer than half a pixel, fading the last; sine bands, rings, triangle waves, tiles, steps, smoothsteps and stepped ranges are box-filtered analytically, the periodic ones fading to their mean past Nyquist. Far away that is both closer to the filtered pattern and no slower; near by it changes almost nothing but costs the derivatives. A threshold of a filtered value is not the filtered threshold: where a step or smoothstep reads a pattern that has faded to its mean, the footprint view shows the threshold of the mean.",
             size * factor,
-            factor * factor
+            factor * factor,
+            ctx.timing_size,
+            ctx.timing_size / size,
+            ctx.timing_size / size,
         ),
         table,
         plot: Plot {
