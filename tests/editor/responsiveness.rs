@@ -1,8 +1,9 @@
 //! The editor stays responsive: frames without input do no whole-graph work, a drag
-//! draws drafts and never recompiles, the UI keeps answering (showing the last good
-//! material) while a new one compiles on the preview thread, time plays by the clock
-//! and starts again with another graph, and graphs of thousands of nodes (more
-//! parameters than a uniform block holds) open and show their material.
+//! draws drafts and never recompiles (and a box selection, which changes nothing drawn,
+//! draws none), the UI keeps answering (showing the last good material) while a new one
+//! compiles on the preview thread, time plays by the clock and starts again with another
+//! graph, and graphs of thousands of nodes (more parameters than a uniform block holds)
+//! open and show their material.
 
 use crate::support::{
     chain_editor, editor, preview_pixels, scratch, screen, select_node, settle_previews,
@@ -117,6 +118,41 @@ fn a_drag_draws_drafts_without_recompiling_and_refines_when_let_go() {
         harness.state().document().is_dirty(),
         "the drag changed the shininess"
     );
+}
+
+#[test]
+fn a_box_selection_over_empty_canvas_keeps_the_full_picture() {
+    let mut harness = editor(&scratch("box-no-draft"), None);
+    settle_previews(&mut harness);
+    assert!(harness.state().preview_settled());
+    // Below the material node, where no node lies.
+    let material = crate::navigation::on_screen(&harness, "material");
+    let from = material.left_bottom() + egui::vec2(0.0, 120.0);
+    assert!(crate::navigation::GRAPH_AREA.contains(from + egui::vec2(160.0, 100.0)));
+    let press = |pos, pressed| Event::PointerButton {
+        pos,
+        button: PointerButton::Primary,
+        pressed,
+        modifiers: Default::default(),
+    };
+    harness.event(Event::PointerMoved(from));
+    harness.step();
+    harness.event(press(from, true));
+    harness.step();
+    for step in 1..=20 {
+        harness.event(Event::PointerMoved(
+            from + egui::vec2(8.0, 5.0) * step as f32,
+        ));
+        harness.step();
+        assert!(
+            harness.state().preview_settled(),
+            "step {step}: a box dragged over nothing posted a draft"
+        );
+    }
+    harness.event(press(from + egui::vec2(160.0, 100.0), false));
+    harness.step();
+    assert!(harness.state().preview_settled());
+    assert_eq!(harness.state().preview_quality(), Some(Quality::Full));
 }
 
 #[test]

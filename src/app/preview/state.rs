@@ -301,7 +301,7 @@ impl Previews {
         }
     }
 
-    /// Posts `request` for `slot` unless it is what was posted last.
+    /// Posts `request` for `slot` unless what was posted last already shows it.
     fn post(&mut self, slot: Slot, request: Request) {
         let Some(worker) = &self.worker else {
             return;
@@ -310,7 +310,7 @@ impl Previews {
         if shown
             .posted
             .as_ref()
-            .is_some_and(|(_, posted)| *posted == request)
+            .is_some_and(|(_, posted)| request.shown_by(posted))
         {
             return;
         }
@@ -466,7 +466,8 @@ fn draft_note(pixels: f32, width: usize, took: std::time::Duration) -> String {
 }
 
 /// What to draw of `state` with `material` into `rect`: a draft while any pointer
-/// button is held (a slider, an orbit, a node being moved), else the full picture.
+/// button is held (a slider, an orbit, a node being moved), else the full picture (a
+/// drag that changes nothing drawn posts nothing: [`Request::shown_by`]).
 fn request(ui: &Ui, state: &PreviewState, material: MaterialFrame, rect: egui::Rect) -> Request {
     let pixels = (rect.size() * ui.ctx().pixels_per_point()).round();
     let dragging = ui.input(|input| input.pointer.any_down());

@@ -99,6 +99,21 @@ pub struct Request {
     pub quality: Quality,
 }
 
+impl Request {
+    /// Whether `posted` already shows what this asks for, as finely or finer: the same
+    /// request, or this one a draft of that full picture (a drag that changes nothing
+    /// drawn, such as a box selection, keeps the full picture rather than a draft).
+    pub fn shown_by(&self, posted: &Request) -> bool {
+        self == posted
+            || (self.quality == Quality::Draft
+                && posted.quality == Quality::Full
+                && Request {
+                    quality: Quality::Full,
+                    ..self.clone()
+                } == *posted)
+    }
+}
+
 /// A frame drawn, or why it could not be.
 pub struct Drawn {
     pub slot: Slot,
