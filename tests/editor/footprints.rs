@@ -33,19 +33,30 @@ fn zoom_to_legible(harness: &mut Harness<'static, VeneerApp>) {
     harness.run_steps(12);
 }
 
-/// Where each node of the level shown was drawn (canvas units), found by its position:
-/// a node's frame is the largest widget whose top-left corner is its footprint's (the
-/// frame's margin up and left of the node's position).
-fn drawn(harness: &Harness<'static, VeneerApp>, nodes: &[Node]) -> Vec<(NodeId, Rect)> {
-    let widgets: Vec<Rect> = harness
+/// A widget's rectangle (canvas units).
+fn rect_of(node: &egui_kittest::Node<'_>) -> Option<Rect> {
+    let b = node.accesskit_node().bounding_box()?;
+    Some(Rect::from_min_max(
+        pos2(b.x0 as f32, b.y0 as f32),
+        pos2(b.x1 as f32, b.y1 as f32),
+    ))
+}
+
+/// One node as the editor drew it: its frame, and its thumbnail where it has one.
+struct Drawn {
+    id: NodeId,
+    frame: Rect,
+    thumbnail: Option<Rect>,
+}
+
+/// Where each node of the level shown was drawn, found by its position: a node's frame
+/// is the largest widget whose top-left corner is its footprint's (the frame's margin up
+/// and left of the node's position); its thumbnail is the picture named after it that
+/// starts within the frame's width.
+fn drawn(harness: &Harness<'static, VeneerApp>, nodes: &[Node]) -> Vec<Drawn> {
+    let frames: Vec<Rect> = harness
         .query_all_by(|node| node.role() == egui::accesskit::Role::Unknown)
-        .filter_map(|node| {
-            let b = node.accesskit_node().bounding_box()?;
-            Some(Rect::from_min_max(
-                pos2(b.x0 as f32, b.y0 as f32),
-                pos2(b.x1 as f32, b.y1 as f32),
-            ))
-        })
+        .filter_map(|node| rect_of(&node))
         .collect();
     // A footprint's corner does not depend on the node's wires.
     let corners = bounds(nodes, &[]);
@@ -54,12 +65,20 @@ fn drawn(harness: &Harness<'static, VeneerApp>, nodes: &[Node]) -> Vec<(NodeId, 
         .zip(corners)
         .map(|(node, footprint)| {
             let corner = pos2(footprint.min.0, footprint.min.1);
-            let rect = widgets
+            let frame = *frames
                 .iter()
                 .filter(|rect| (rect.min - corner).length() < 0.5)
                 .max_by(|a, b| a.area().total_cmp(&b.area()))
                 .unwrap_or_else(|| panic!("{node} is not drawn at {:?}", node.position));
-            (node.id, *rect)
+            let thumbnail = harness
+                .query_all_by_label(&format!("{} thumbnail", node.title()))
+                .filter_map(|picture| rect_of(&picture))
+                .find(|rect| frame.x_range().contains(rect.min.x));
+            Drawn {
+                id: node.id,
+                frame,
+                thumbnail,
+            }
         })
         .collect()
 }
@@ -76,15 +95,26 @@ fn check_level(
     let rects = drawn(harness, nodes);
     let reckoned = footprints(nodes, wires);
     let mut spare = (0.0f32, 0.0f32);
-    for ((id, rect), footprint) in rects.iter().zip(&reckoned) {
-        let node = nodes.iter().find(|node| node.id == *id).expect("a node");
+    for (drawn, footprint) in rects.iter().zip(&reckoned) {
+        let node = nodes
+            .iter()
+            .find(|node| node.id == drawn.id)
+            .expect("a node");
         let Bounds { min, max } = footprint.at(node.position);
-        let holds = min.0 <= rect.min.x
-            && min.1 <= rect.min.y
-            && rect.max.x <= max.0
-            && rect.max.y <= max.1;
+        let inside = |rect: &Rect| {
+            min.0 <= rect.min.x && min.1 <= rect.min.y && rect.max.x <= max.0 && rect.max.y <= max.1
+        };
+        // The thumbnail under the pins too (a picture beside the pins once pushed it a
+        // thumbnail's height down, out of the frame and over the next node).
+        if let Some(thumbnail) = drawn.thumbnail {
+            assert!(
+                inside(&thumbnail),
+                "{level}: {node}'s thumbnail is drawn at {thumbnail:?}, outside its footprint"
+            );
+        }
+        let rect = drawn.frame;
         assert!(
-            holds,
+            inside(&rect),
             "{level}: {node} is drawn {:.1} × {:.1}, its footprint is {} × {}",
             rect.width(),
             rect.height(),
@@ -99,9 +129,22 @@ fn check_level(
 }
 
 /// Checks that no two of the drawn nodes `rects` overlap.
-fn assert_apart(level: &str, rects: &[(NodeId, Rect)]) {
-    for (k, (a, first)) in rects.iter().enumerate() {
-        for (b, second) in &rects[k + 1..] {
+fn assert_apart(level: &str, rects: &[Drawn]) {
+    for (
+        k,
+        Drawn {
+            id: a,
+            frame: first,
+            ..
+        },
+    ) in rects.iter().enumerate()
+    {
+        for Drawn {
+            id: b,
+            frame: second,
+            ..
+        } in &rects[k + 1..]
+        {
             assert!(
                 !first.intersects(*second),
                 "{level}: nodes {a} and {b} are drawn over each other: {first:?}, {second:?}"

@@ -455,12 +455,17 @@ pub fn show_tile(ui: &mut egui::Ui, thumbnails: &Thumbnails, node: &crate::graph
     let size = egui::Vec2::splat(TILE_PIXELS as f32);
     let output = node.kind.signature().outputs.first().map(|o| o.name);
     let tile = output.and_then(|output| thumbnails.tile(&PinRef::new(node.id, output)));
+    // Named for screen readers (and the editor's tests), drawn or not yet.
+    let name = format!("{} thumbnail", node.title());
     match tile {
         Some((texture, uv)) => {
-            ui.add(egui::Image::new((texture, size)).uv(uv));
+            ui.add(egui::Image::new((texture, size)).uv(uv).alt_text(name));
         }
         None => {
             let (_, square) = ui.allocate_exact_size(size, egui::Sense::hover());
+            square.widget_info(|| {
+                egui::WidgetInfo::labeled(egui::WidgetType::Image, true, name.clone())
+            });
             if thumbnails.too_deep(node.id) {
                 square.on_hover_text(format!(
                     "No thumbnail: with the thumbnails before it, it needs more than \

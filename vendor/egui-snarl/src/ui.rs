@@ -2279,7 +2279,10 @@ where
                     new_pins_size.x += r.final_rect.width() + ui.spacing().item_spacing.x;
                     new_pins_size.y = f32::max(new_pins_size.y, r.final_rect.height());
 
-                    pins_rect = pins_rect.union(body_rect);
+                    // Veneer's patch: the body as drawn, not the room it was offered,
+                    // which reaches down to the node's bottom (footer included) and so
+                    // pushed the footer down by its own height.
+                    pins_rect = pins_rect.union(r.final_rect);
 
                     if !snarl.nodes.contains(node.0) {
                         // If removed
