@@ -98,10 +98,16 @@ impl VeneerApp {
                 &wood.preview,
                 cc.wgpu_render_state.clone(),
             ),
+            fitting: fitting::Fitting {
+                choices: session::recovery::load_kept::<fitting::FitChoices>(
+                    &session::recovery::choices_path(&recovery_file),
+                )
+                .within_ranges(),
+                ..Default::default()
+            },
             session: session::Session::new(Document::new(wood, None), recovery_file),
             thumbnails: Default::default(),
             chrome: Default::default(),
-            fitting: Default::default(),
         };
         app.canvas.navigation.frame(Framing::Open);
         if let Some(path) = path {

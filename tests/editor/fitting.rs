@@ -72,6 +72,13 @@ fn fit_to_image_runs_beside_the_editor_and_is_kept_in_one_undo_step_or_discarded
     retype_drag_value(&mut harness, "starts 3", "1");
     retype_drag_value(&mut harness, "128 px", "64");
     assert!(shows(&harness, "starts 1") && shows(&harness, "64 px"));
+    // Kept for the next session: an editor opened afterwards offers the same.
+    let again = editor(&dir, None);
+    assert!(
+        shows(&again, "starts 1") && shows(&again, "64 px"),
+        "the fit's settings are kept across sessions"
+    );
+    drop(again);
 
     for (round, keep) in [(1, false), (2, true)] {
         let ctx = harness.ctx.clone();

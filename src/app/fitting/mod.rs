@@ -60,11 +60,37 @@ pub(in crate::app) enum Ended {
 pub(in crate::app) const DEFAULT_BUDGET: f64 = 60.0;
 
 /// *Fit to image…*'s part of the editor.
+#[derive(Default)]
 pub(in crate::app) struct Fitting {
     /// Whether the file browser is choosing the photo.
     pub choosing_photo: bool,
     /// The fit under way or ended, while its window is open.
     pub run: Option<FitRun>,
+    /// What the next fit runs with, chosen beside the button.
+    pub choices: FitChoices,
+    /// Whether `choices` changed since they were last kept for later sessions.
+    pub choices_unkept: bool,
+}
+
+/// The ranges the editor offers for each of [`FitChoices`].
+pub(in crate::app) struct ChoiceRanges {
+    pub budget: std::ops::RangeInclusive<f64>,
+    pub size: std::ops::RangeInclusive<u32>,
+    pub starts: std::ops::RangeInclusive<usize>,
+}
+
+/// The seconds, sides and starts a fit may be given in the editor.
+pub(in crate::app) const RANGES: ChoiceRanges = ChoiceRanges {
+    budget: 1.0..=3600.0,
+    size: 8..=2048,
+    starts: 1..=64,
+};
+
+/// The settings chosen beside *Fit to image…*, kept across sessions
+/// ([`crate::app::session::recovery::choices_path`]).
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(default)]
+pub(in crate::app) struct FitChoices {
     /// The most seconds the next fit may take.
     pub budget: f64,
     /// The side in pixels of the images the next fit compares at the end
@@ -77,9 +103,9 @@ pub(in crate::app) struct Fitting {
     pub global: bool,
 }
 
-impl Fitting {
+impl FitChoices {
     /// The settings the next fit runs with: `veneer fit`'s defaults but for the budget,
-    /// size, starts and global search chosen beside the button.
+    /// size, starts and global search chosen.
     pub fn settings(&self) -> FitSettings {
         FitSettings {
             budget: Some(Duration::from_secs_f64(self.budget)),
@@ -89,14 +115,31 @@ impl Fitting {
             ..FitSettings::default()
         }
     }
+
+    /// The choices as kept in a file written by hand or by another version, each
+    /// brought within the range the editor offers (the default where not a number).
+    pub fn within_ranges(self) -> FitChoices {
+        let defaults = FitChoices::default();
+        FitChoices {
+            budget: if self.budget.is_finite() {
+                self.budget
+                    .clamp(*RANGES.budget.start(), *RANGES.budget.end())
+            } else {
+                defaults.budget
+            },
+            size: self.size.clamp(*RANGES.size.start(), *RANGES.size.end()),
+            starts: self
+                .starts
+                .clamp(*RANGES.starts.start(), *RANGES.starts.end()),
+            global: self.global,
+        }
+    }
 }
 
-impl Default for Fitting {
-    fn default() -> Fitting {
+impl Default for FitChoices {
+    fn default() -> FitChoices {
         let defaults = FitSettings::default();
-        Fitting {
-            choosing_photo: false,
-            run: None,
+        FitChoices {
             budget: DEFAULT_BUDGET,
             size: defaults.size,
             starts: defaults.starts,
@@ -347,4 +390,32 @@ fn albedo_picture(image: &Image, linear: bool) -> egui::ColorImage {
         .collect();
     let side = image.size as usize;
     egui::ColorImage::from_rgb([side, side], &bytes)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn kept_choices_written_by_hand_are_brought_within_range() {
+        let dir = std::env::temp_dir().join(format!("veneer-choices-{}", std::process::id()));
+        let path = dir.join("choices.ron");
+        std::fs::create_dir_all(&dir).expect("a folder");
+        std::fs::write(&path, "(budget: 1e9, starts: 0, global: true)").expect("written");
+        let kept = crate::app::session::recovery::load_kept::<FitChoices>(&path).within_ranges();
+        let defaults = FitChoices::default();
+        assert_eq!(
+            kept,
+            FitChoices {
+                budget: 3600.0,
+                size: defaults.size,
+                starts: 1,
+                global: true,
+            }
+        );
+        std::fs::write(&path, "not ron").expect("written");
+        let unreadable = crate::app::session::recovery::load_kept::<FitChoices>(&path);
+        assert_eq!(unreadable, defaults);
+        let _ = std::fs::remove_dir_all(&dir);
+    }
 }

@@ -1,9 +1,10 @@
 //! The *Fit to image* window: the photo beside the fitted albedo, the loss curve and
 //! the step reached, *Stop* while it runs, *Keep* or *Discard* once it ended.
 
-use super::{Ended, FitRun, PICTURE_SIDE};
+use super::{Ended, FitRun, PICTURE_SIDE, RANGES};
 use crate::app::VeneerApp;
 use crate::app::chrome::file_browser::{Browsed, Purpose};
+use crate::app::session::recovery;
 use egui::Ui;
 
 /// The photos the file browser offers.
@@ -47,20 +48,30 @@ impl VeneerApp {
                     )
                     .on_disabled_hover_text("a fit is open");
                 ui.label("within");
-                let budget = &mut self.fitting.budget;
+                let before = self.fitting.choices.clone();
+                let choices = &mut self.fitting.choices;
                 let hover = "the most time the fit may take (veneer fit --budget)";
-                setting(ui, budget, 1.0..=3600.0, 1.0, ("", " s"), hover);
+                setting(ui, &mut choices.budget, RANGES.budget, 1.0, ("", " s"), hover);
                 ui.label("at");
                 let hover = "the side of the images compared at the end; larger sees finer detail and takes longer (veneer fit --size)";
-                setting(ui, &mut self.fitting.size, 8..=2048, 4.0, ("", " px"), hover);
+                setting(ui, &mut choices.size, RANGES.size, 4.0, ("", " px"), hover);
                 let hover = "the graph's own values, then random draws; more starts search wider and take longer (veneer fit --starts)";
-                setting(ui, &mut self.fitting.starts, 1..=64, 0.1, ("starts ", ""), hover);
-                ui.checkbox(&mut self.fitting.global, "global").on_hover_text(
+                setting(ui, &mut choices.starts, RANGES.starts, 0.1, ("starts ", ""), hover);
+                ui.checkbox(&mut choices.global, "global").on_hover_text(
                     "the starts after the first search the whole range before descending: slower, finds lower losses (veneer fit --global)",
                 );
+                self.fitting.choices_unkept |= self.fitting.choices != before;
                 button
             })
             .inner;
+        // Kept once a drag of one of them is let go.
+        if self.fitting.choices_unkept && !ui.input(|input| input.pointer.any_down()) {
+            self.fitting.choices_unkept = false;
+            let path = recovery::choices_path(&self.session.recovery_file);
+            if let Err(error) = recovery::save_kept(&path, &self.fitting.choices) {
+                self.chrome.message = Some(format!("cannot keep the fit's settings: {error}"));
+            }
+        }
         if button.clicked() {
             let folder = self.session.document.graph.folder.path().to_path_buf();
             self.chrome.browser.open(
@@ -83,7 +94,7 @@ impl VeneerApp {
             run.stop();
         }
         let graph = self.session.document.graph.clone();
-        let settings = self.fitting.settings();
+        let settings = self.fitting.choices.settings();
         self.fitting.run = Some(FitRun::start(ctx, graph, path, settings));
     }
 

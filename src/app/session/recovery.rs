@@ -180,9 +180,9 @@ fn autosave(
     Ok(hash)
 }
 
-/// Writes one of the editor's own files (a recovery file, the recent list), making its
-/// folder when missing; it is never written through a link nor into a FIFO or device
-/// that stands at its path ([`crate::fsutil::Naming::Implied`]).
+/// Writes one of the editor's own files (a recovery file, the recent list, the kept
+/// choices), making its folder when missing; it is never written through a link nor
+/// into a FIFO or device that stands at its path ([`crate::fsutil::Naming::Implied`]).
 fn write_own_file(path: &Path, text: &str) -> std::io::Result<()> {
     if let Some(folder) = path.parent() {
         std::fs::create_dir_all(folder)?;
@@ -440,16 +440,32 @@ pub fn recent_path(recovery_file: &Path) -> PathBuf {
 
 /// The recent files saved by an earlier session (none if unreadable).
 pub fn load_recent(recovery_file: &Path) -> Vec<PathBuf> {
-    read_ron(&recent_path(recovery_file))
-        .and_then(|text| ron::from_str(&text).ok())
-        .unwrap_or_default()
+    load_kept(&recent_path(recovery_file))
 }
 
 /// Saves the recent-files list (as [`autosave`] writes).
 pub fn save_recent(recovery_file: &Path, recent: &[PathBuf]) -> std::io::Result<()> {
-    let text = ron::ser::to_string_pretty(&recent, ron::ser::PrettyConfig::new())
+    save_kept(&recent_path(recovery_file), &recent)
+}
+
+/// The editor's choices kept beside the recovery file (*Fit to image…*'s settings).
+pub fn choices_path(recovery_file: &Path) -> PathBuf {
+    recovery_file.with_file_name("choices.ron")
+}
+
+/// Something an earlier session kept at `path` (the default if it is missing or
+/// unreadable: a choice is not worth refusing to start over).
+pub fn load_kept<T: serde::de::DeserializeOwned + Default>(path: &Path) -> T {
+    read_ron(path)
+        .and_then(|text| ron::from_str(&text).ok())
+        .unwrap_or_default()
+}
+
+/// Keeps `value` at `path` for later sessions (as [`autosave`] writes).
+pub fn save_kept<T: Serialize + ?Sized>(path: &Path, value: &T) -> std::io::Result<()> {
+    let text = ron::ser::to_string_pretty(value, ron::ser::PrettyConfig::new())
         .map_err(std::io::Error::other)?;
-    write_own_file(&recent_path(recovery_file), &text)
+    write_own_file(path, &text)
 }
 
 /// The text of a RON file of ours, if it is a readable regular file within the limit
@@ -485,6 +501,7 @@ mod tests {
         assert_ne!(window_file(base), file, "each window has its own file");
         assert_eq!(window_pid(base, "recovery.ron"), None);
         assert_eq!(window_pid(base, "recent.ron"), None);
+        assert_eq!(window_pid(base, "choices.ron"), None);
         assert_eq!(window_pid(base, "recovery-12-x.ron"), None);
     }
 
