@@ -5,6 +5,15 @@
 use std::borrow::Cow;
 use std::collections::HashMap;
 
+/// `count` and `noun`, plural but for exactly one: "1 node", "2 nodes", "0 nodes".
+pub fn counted(count: usize, noun: &str) -> String {
+    if count == 1 {
+        format!("1 {noun}")
+    } else {
+        format!("{count} {noun}s")
+    }
+}
+
 /// The most different lines a summary keeps; the rest are counted in its last line.
 pub const MAX_LINES: usize = 100;
 

@@ -233,11 +233,10 @@ pub fn run(args: BatchArgs) -> Result<(), Failure> {
     }
     bar.finish_and_clear();
     let summary = format!(
-        "shard {}/{}: {} job{} run, {failed} failed",
+        "shard {}/{}: {} run, {failed} failed",
         shard.index,
         shard.count,
-        jobs.len(),
-        if jobs.len() == 1 { "" } else { "s" }
+        veneer::messages::counted(jobs.len(), "job")
     );
     if failed == 0 {
         note(summary)

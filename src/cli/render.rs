@@ -210,10 +210,9 @@ pub fn run(args: RenderArgs) -> Result<(), Failure> {
     if let Some(tessellated) = rendered.tessellated {
         let (before, after) = tessellated.triangles;
         note(format!(
-            "{}: tessellated {before} triangles into {after} ({} level{}){}",
+            "{}: tessellated {before} triangles into {after} ({}){}",
             args.graph.display(),
-            tessellated.levels,
-            if tessellated.levels == 1 { "" } else { "s" },
+            veneer::messages::counted(tessellated.levels as usize, "level"),
             if tessellated.limited {
                 "; warning: stopped at the triangle limit, short of the tolerance"
             } else {

@@ -81,8 +81,8 @@ pub fn fitting(ctx: &Context, quick: bool) -> Result<Section, String> {
                 .chain([(seconds.as_secs_f64(), fitted.parts.total() / start)])
                 .collect();
             let method = format!(
-                "Adam from {starts} start{}{}",
-                if starts == 1 { "" } else { "s" },
+                "Adam from {}{}",
+                crate::messages::counted(starts, "start"),
                 if global { " with global search" } else { "" }
             );
             table.push(vec![

@@ -78,7 +78,7 @@ impl VeneerApp {
             self.select(instance);
             self.chrome.message = Some(format!(
                 "grouped {} into '{name}': Tab edits it, Alt+G ungroups it",
-                crate::app::chrome::menus::counted(count, "node")
+                crate::messages::counted(count, "node")
             ));
         }
     }

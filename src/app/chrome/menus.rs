@@ -2,6 +2,7 @@
 
 use crate::app::canvas::clipboard;
 use crate::app::*;
+use crate::messages::counted;
 
 const fn command(key: Key) -> KeyboardShortcut {
     KeyboardShortcut::new(Modifiers::COMMAND, key)
@@ -314,8 +315,8 @@ impl VeneerApp {
                     ui.colored_label(
                         egui::Color32::from_rgb(230, 180, 60),
                         format!(
-                            "⚠ {count} numerical warning{} (see the marked nodes)",
-                            if count == 1 { "" } else { "s" }
+                            "⚠ {} (see the marked nodes)",
+                            counted(count, "numerical warning")
                         ),
                     );
                 }
@@ -403,14 +404,5 @@ impl VeneerApp {
         if stale {
             self.chrome.message = None;
         }
-    }
-}
-
-/// "1 node", "2 nodes".
-pub(in crate::app) fn counted(count: usize, noun: &str) -> String {
-    if count == 1 {
-        format!("1 {noun}")
-    } else {
-        format!("{count} {noun}s")
     }
 }
