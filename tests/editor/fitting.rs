@@ -132,3 +132,21 @@ fn fit_to_image_runs_beside_the_editor_and_is_kept_in_one_undo_step_or_discarded
     press(&mut harness, egui::Key::Z, true);
     assert_eq!(values(&harness), original, "one undo step");
 }
+
+/// Where the graph exposes no parameter (only a preset is left, as after its group was
+/// deleted), *Fit to image…* is greyed rather than opening a fit that can only fail.
+#[test]
+fn fit_to_image_is_greyed_where_the_graph_exposes_no_parameter() {
+    use egui_kittest::kittest::NodeT;
+    let dir = scratch("fit-to-image-nothing-exposed");
+    let mut graph = veneer::graph::preset("isolines").expect("the isolines preset");
+    graph.parameters.clear();
+    graph.presets = [("empty".to_string(), Default::default())].into();
+    assert!(exposed(&graph).is_empty(), "no group inputs either");
+    let path = dir.join("bare isolines.ron");
+    veneer::graph::save(&graph, &path).expect("the graph is written");
+    let mut harness = editor(&dir, Some(path));
+    harness.run_steps(3);
+    let button = harness.get_by_label("Fit to image…");
+    assert!(button.accesskit_node().is_disabled(), "greyed with nothing to fit");
+}

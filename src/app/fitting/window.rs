@@ -36,17 +36,21 @@ fn setting<N: egui::emath::Numeric>(
 
 impl VeneerApp {
     /// The *Fit to image…* button of the Parameters panel: opens the file browser on the
-    /// graph's folder to choose the photo.
-    pub(in crate::app) fn fit_to_image_button(&mut self, ui: &mut Ui) {
+    /// graph's folder to choose the photo (greyed while a fit is open, or where the graph
+    /// exposes no parameter, as when only presets are left).
+    pub(in crate::app) fn fit_to_image_button(&mut self, ui: &mut Ui, exposes_any: bool) {
         let running = self.fitting.run.is_some();
         let button = ui
             .horizontal(|ui| {
                 let button = ui
-                    .add_enabled(!running, egui::Button::new("Fit to image…"))
+                    .add_enabled(!running && exposes_any, egui::Button::new("Fit to image…"))
                     .on_hover_text(
                         "fit the parameters so the albedo looks like a photo (veneer fit)",
                     )
-                    .on_disabled_hover_text("a fit is open");
+                    .on_disabled_hover_text(match running {
+                        true => "a fit is open",
+                        false => "the graph exposes no parameter to fit",
+                    });
                 ui.label("within");
                 let before = self.fitting.choices.clone();
                 let choices = &mut self.fitting.choices;

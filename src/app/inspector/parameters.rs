@@ -45,7 +45,7 @@ impl VeneerApp {
                         self.chrome.message = Some(format!("applied preset '{name}'"));
                     }
                 }
-                self.fit_to_image_button(ui);
+                self.fit_to_image_button(ui, !exposed.is_empty());
                 egui::Grid::new("parameters")
                     .num_columns(2)
                     .striped(true)
