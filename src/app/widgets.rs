@@ -13,6 +13,18 @@ pub fn type_color(ty: ValueType) -> Color32 {
     }
 }
 
+/// Reads a typed number as egui does (spaces ignored, `−` taken for a minus), refusing
+/// what a shader cannot compute with (`inf`, `nan`): the field then keeps its value, as
+/// it does for any text that is not a number. Every field that edits a graph's values
+/// parses with it.
+pub fn finite_number(text: &str) -> Option<f64> {
+    let text: String = (text.chars())
+        .filter(|c| !c.is_whitespace())
+        .map(|c| if c == '−' { '-' } else { c })
+        .collect();
+    text.parse::<f64>().ok().filter(|x| x.is_finite())
+}
+
 /// An editor for one value offered within `range`: dragging steps by the range's step
 /// for the value (Shift ten times finer, Ctrl snapping to [`PinRange::snap`]), dragged
 /// and typed values stop at the hard limits (a value from a file outside them is kept
@@ -22,6 +34,7 @@ pub fn value_editor(ui: &mut Ui, value: &mut Value, range: PinRange) -> bool {
         let step = range.step(*x);
         let response = ui.add(
             DragValue::new(x)
+                .custom_parser(finite_number)
                 .speed(step)
                 .range(range.min..=range.max)
                 .clamp_existing_to_range(false)
@@ -63,8 +76,10 @@ pub fn input_value(node: &Node, pin: &str) -> Option<(Value, PinRange)> {
 
 /// An editor for the constant of input `pin` of `node`: the value, when edited.
 pub fn input_editor(ui: &mut Ui, node: &Node, pin: &str) -> Option<Value> {
-    let (mut value, range) = input_value(node, pin)?;
-    value_editor(ui, &mut value, range).then_some(value)
+    let (shown, range) = input_value(node, pin)?;
+    let mut value = shown;
+    // A field left with text that is no number reports a change but keeps its value.
+    (value_editor(ui, &mut value, range) && value != shown).then_some(value)
 }
 
 /// Stores `value`, edited by [`input_editor`], as the constant of input `pin` of node
@@ -77,5 +92,19 @@ pub fn store_input(
 ) {
     if let Some(value) = value {
         snarl[id].inputs.insert(pin.to_string(), value);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::finite_number;
+
+    #[test]
+    fn typed_numbers_read_as_egui_reads_them_but_only_finite_ones() {
+        assert_eq!(finite_number(" 1 000.5 "), Some(1000.5));
+        assert_eq!(finite_number("−2"), Some(-2.0));
+        for refused in ["inf", "-inf", "NaN", "1e400", "abc", ""] {
+            assert_eq!(finite_number(refused), None, "{refused:?}");
+        }
     }
 }

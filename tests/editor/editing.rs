@@ -259,3 +259,26 @@ fn the_material_node_names_its_shading_beside_its_title() {
     assert!(beside_title(&harness, "metallic-roughness"));
     assert!(!beside_title(&harness, "Blinn-Phong"));
 }
+
+/// Text a shader cannot compute with (`inf`, `nan`) or that is no number at all, typed
+/// into a node's field or a parameter's, leaves the value, the file's saved state and the
+/// undo history as they were (before, `inf` was stored and saved, and `veneer check`
+/// then refused the file; `nan` in a parameter's slider became its maximum).
+#[test]
+fn typing_what_is_not_a_finite_number_changes_nothing() {
+    let dir = scratch("not-finite");
+    let marble = dir.join("marble.ron");
+    let preset = veneer::graph::preset("marble").expect("the marble preset");
+    veneer::graph::save(&preset, &marble).expect("the graph is written");
+    let mut harness = editor(&dir, Some(marble));
+    let original = harness.state().document().graph.clone();
+    select_node(&mut harness, "material");
+    for text in ["inf", "nan", "abc"] {
+        retype_drag_value(&mut harness, "64.0", text);
+        retype_drag_value(&mut harness, "3.0", text);
+        let document = harness.state().document();
+        assert_eq!(document.graph, original, "'{text}' changes no value");
+        assert!(!document.is_dirty(), "'{text}' leaves the file saved");
+        assert!(!document.history.can_undo(), "'{text}' adds no undo step");
+    }
+}

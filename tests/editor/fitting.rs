@@ -148,5 +148,8 @@ fn fit_to_image_is_greyed_where_the_graph_exposes_no_parameter() {
     let mut harness = editor(&dir, Some(path));
     harness.run_steps(3);
     let button = harness.get_by_label("Fit to image…");
-    assert!(button.accesskit_node().is_disabled(), "greyed with nothing to fit");
+    assert!(
+        button.accesskit_node().is_disabled(),
+        "greyed with nothing to fit"
+    );
 }

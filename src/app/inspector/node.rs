@@ -2,7 +2,7 @@
 //! values, colour pickers, enum choices, colour-ramp stops, and a "connect from" choice
 //! per input.
 
-use crate::app::widgets::{input_editor, store_input, type_color};
+use crate::app::widgets::{finite_number, input_editor, store_input, type_color};
 use crate::graph::{Node, PinDefault, RampInterpolation, RampStop, ValueType};
 use crate::nodes::settings::{RAMP_INTERPOLATIONS, Setting};
 use egui::{ComboBox, RichText, Ui};
@@ -111,6 +111,7 @@ fn ramp_editor(ui: &mut Ui, stops: &mut Vec<RampStop>, interpolation: &mut RampI
         ui.horizontal(|ui| {
             ui.add(
                 egui::DragValue::new(&mut stop.position)
+                    .custom_parser(finite_number)
                     .range(0.0..=1.0)
                     .speed(0.005)
                     .max_decimals(3),

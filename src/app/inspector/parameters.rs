@@ -3,6 +3,7 @@
 //! parameter presets. Values go through `graph::parameters`, as the command line's do.
 
 use crate::app::VeneerApp;
+use crate::app::widgets::finite_number;
 use crate::graph::edit::{GraphEdit, Level};
 use crate::graph::group::Hint;
 use crate::graph::parameters::{self, Exposed, Given};
@@ -54,7 +55,9 @@ impl VeneerApp {
                             ui.label(&entry.name)
                                 .on_hover_text(format!("--set {}=…", entry.name));
                             let mut value = entry.value;
-                            if parameter_editor(ui, entry, &mut value) {
+                            // A field left with text that is no number reports a
+                            // change but keeps its value.
+                            if parameter_editor(ui, entry, &mut value) && value != entry.value {
                                 self.set_parameter(entry, &value);
                             }
                             ui.end_row();
@@ -122,8 +125,14 @@ fn parameter_editor(ui: &mut Ui, entry: &Exposed, value: &mut Value) -> bool {
             ui.horizontal(|ui| {
                 for x in components {
                     let response = match entry.range {
-                        Some((min, max)) => ui.add(egui::Slider::new(x, min..=max)),
-                        None => ui.add(egui::DragValue::new(x).speed(0.01)),
+                        Some((min, max)) => {
+                            ui.add(egui::Slider::new(x, min..=max).custom_parser(finite_number))
+                        }
+                        None => ui.add(
+                            egui::DragValue::new(x)
+                                .custom_parser(finite_number)
+                                .speed(0.01),
+                        ),
                     };
                     changed |= response.changed();
                 }
