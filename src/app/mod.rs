@@ -192,6 +192,9 @@ impl VeneerApp {
     /// Replaces the document (after open, new, preset or recovery).
     fn load(&mut self, document: Document) {
         self.preview.state.follow(&document.graph.preview);
+        // Picking sources and viewing a field are modes of the graph they were chosen on.
+        self.preview.fields.picking = None;
+        self.preview.fields.view = None;
         let mesh = document.graph.preview.mesh.clone();
         if crate::mesh::primitive(&mesh).is_some() || self.load_mesh(&mesh).is_err() {
             self.preview.state.mesh = mesh;

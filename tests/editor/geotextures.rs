@@ -92,3 +92,30 @@ fn fields_that_cannot_be_solved_on_the_shown_mesh_are_said_over_the_preview() {
     }
     panic!("no word over the preview that the fields cannot be solved on the cube");
 }
+
+/// Picking sources and viewing a field belong to the graph they were turned on for:
+/// opening a file (here the same one again) starts with both off. Before, "pick" stayed
+/// on into a graph without fields, and a field added there began in it.
+#[test]
+fn opening_a_file_turns_picking_and_the_field_view_off() {
+    use egui_kittest::kittest::NodeT;
+    let mut harness = isolines("modes");
+    let toggled = |harness: &Harness<'static, VeneerApp>, label: &str| {
+        let toggle = harness.get_by_label(label);
+        toggle.accesskit_node().toggled() == Some(egui::accesskit::Toggled::True)
+    };
+    for label in ["pick", "view"] {
+        harness.get_by_label(label).click();
+        harness.run();
+        assert!(toggled(&harness, label), "'{label}' turned on");
+    }
+    let graph = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("graphs/isolines.ron");
+    harness.state_mut().open(graph);
+    wait_for_fields(&mut harness);
+    for label in ["pick", "view"] {
+        assert!(
+            !toggled(&harness, label),
+            "'{label}' is off in the file opened"
+        );
+    }
+}

@@ -7,6 +7,7 @@ use crate::geodesic::{HeatOptions, Method};
 use crate::graph::{FieldSource, Graph, NodeKind, RampInterpolation, RampStop, Value};
 use crate::mesh::Mesh;
 use crate::mesh_fields::{MeshField, MeshLanes};
+use crate::messages::counted;
 use crate::nodes::{ColorRamp, Field, MapRange, MapRangeMode, Mix};
 use egui::Ui;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -281,7 +282,10 @@ pub fn fields_panel(
     let mut remove = None;
     for (slot, field) in fields.iter_mut().enumerate() {
         ui.horizontal(|ui| {
-            ui.label(format!("{slot}: {} sources", field.sources.len()));
+            ui.label(format!(
+                "{slot}: {}",
+                counted(field.sources.len(), "source")
+            ));
             let name = METHODS
                 .iter()
                 .find(|(_, m)| *m == field.method)

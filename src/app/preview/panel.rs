@@ -6,6 +6,7 @@ use crate::app::preview::{fields, probe, state};
 use crate::app::*;
 use crate::graph::NodeKind;
 use crate::graph::edit::{GraphEdit, GraphSetting};
+use crate::messages::counted;
 use crate::render::{Backdrop, ToneMap};
 
 impl VeneerApp {
@@ -564,7 +565,10 @@ impl VeneerApp {
             fields.get_mut(slot),
         ) {
             fields::toggle_source(field, mesh.file_vertex(vertex));
-            self.chrome.message = Some(format!("field {slot}: {} sources", field.sources.len()));
+            self.chrome.message = Some(format!(
+                "field {slot}: {}",
+                counted(field.sources.len(), "source")
+            ));
             self.set_preview(|preview| preview.fields = fields);
         }
     }
