@@ -207,6 +207,8 @@ impl VeneerApp {
         self.session.revision.outside = None;
         self.session.revision.gesture = false;
         self.session.revision.replaced();
+        self.preview.live.forget();
+        self.preview.previews.forget();
         self.preview.live.update(&self.session.document.graph);
     }
 

@@ -2,8 +2,8 @@
 //! message, presets from the menu, and unsaved work recovered after a crash.
 
 use crate::support::{
-    child_editor, child_folder, editor, press, run_until_killed, scratch, select_node, shows,
-    type_into_field,
+    child_editor, child_folder, editor, press, preview_pixels, run_until_killed, scratch, screen,
+    select_node, shows, type_into_field,
 };
 use egui_kittest::kittest::Queryable;
 
@@ -298,4 +298,35 @@ fn an_image_node_takes_a_typed_path_and_keeps_its_file_when_saved_elsewhere() {
     assert_eq!(path_of(&harness), "../../pic.png");
     let saved = veneer::graph::load(&moved).expect("the saved graph loads");
     veneer::graph::check(&saved).expect("its image is found from the new folder");
+}
+
+/// A graph that does not compile, opened in place of one that does, shows none of the
+/// other graph's material: the preview is what it is when that graph is opened first
+/// (the background, with a note over it), not the last good material of another file.
+#[test]
+fn a_graph_that_does_not_compile_shows_no_material_of_the_graph_before() {
+    let dir = scratch("opened-broken");
+    let marble = dir.join("marble.ron");
+    let preset = veneer::graph::preset("marble").expect("the marble preset");
+    veneer::graph::save(&preset, &marble).expect("the graph is written");
+    let broken = dir.join("broken.ron");
+    let mut wood = veneer::graph::preset("wood").expect("the wood preset");
+    wood.wires[0].to.pin = "nonexistent_pin".into();
+    veneer::graph::save(&wood, &broken).expect("the graph is written");
+
+    let mut first = editor(&dir, Some(broken.clone()));
+    let alone = preview_pixels(&screen(&mut first));
+    assert!(shows(&first, "nothing to show: the graph does not compile"));
+
+    let mut harness = editor(&dir, Some(marble));
+    let before = preview_pixels(&screen(&mut harness));
+    harness.state_mut().open(broken);
+    harness.run();
+    let after = preview_pixels(&screen(&mut harness));
+    assert_ne!(after, before, "marble is no longer shown");
+    assert_eq!(after, alone, "as if the broken graph had been opened first");
+    assert!(shows(
+        &harness,
+        "nothing to show: the graph does not compile"
+    ));
 }

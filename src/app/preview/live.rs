@@ -208,6 +208,17 @@ impl LiveMaterial {
         true
     }
 
+    /// Forgets the material shown, so that a graph opened in place of another shows its
+    /// own material or none, never the other graph's (a failed compile keeps the last
+    /// good material only while the same document is edited).
+    pub fn forget(&mut self) {
+        self.compiling.forget();
+        self.structure = None;
+        self.compiled = None;
+        self.errors.clear();
+        self.generation += 1;
+    }
+
     /// Compiles the graph, known to have changed its structure (no comparison made).
     pub fn recompile(&mut self, snapshot: &Snapshot) {
         self.compile(snapshot, None);

@@ -194,6 +194,7 @@ impl VeneerApp {
                 );
                 self.pick_source(&response);
                 self.fields_warning(ui, response.rect);
+                self.no_material_note(ui, response.rect);
                 if tile {
                     ui.vertical(|ui| self.tile_beside_the_mesh(ui, side));
                 }
@@ -475,17 +476,26 @@ impl VeneerApp {
     /// solved on this mesh (a GeoTexture then shows as if no front had reached anywhere,
     /// which can look like an empty preview).
     fn fields_warning(&self, ui: &mut Ui, preview: egui::Rect) {
-        let Some(error) = &self.preview.fields.error else {
-            return;
-        };
-        let text = egui::RichText::new(format!("⚠ fields not solved on this mesh: {error}"))
-            .color(egui::Color32::from_rgb(255, 170, 120))
-            .background_color(egui::Color32::from_black_alpha(200));
-        let band = egui::Rect::from_min_max(
-            preview.left_bottom() - egui::vec2(-6.0, 48.0),
-            preview.right_bottom() - egui::vec2(6.0, 6.0),
-        );
-        ui.put(band, egui::Label::new(text).wrap());
+        if let Some(error) = &self.preview.fields.error {
+            warn_over(
+                ui,
+                preview,
+                format!("⚠ fields not solved on this mesh: {error}"),
+            );
+        }
+    }
+
+    /// Says over the preview why it is empty, where the graph opened has never compiled
+    /// (its error is in the status bar and on the node at fault).
+    fn no_material_note(&self, ui: &mut Ui, preview: egui::Rect) {
+        let live = &self.preview.live;
+        if live.compiled.is_none() && !live.errors.is_empty() && !live.is_compiling() {
+            warn_over(
+                ui,
+                preview,
+                "⚠ nothing to show: the graph does not compile".into(),
+            );
+        }
     }
 
     /// Keeps the preview mesh's fields in step with the graph (solving in the background)
@@ -593,4 +603,16 @@ fn choice<T: Copy + PartialEq>(
             }
         })
         .response
+}
+
+/// A warning in a band along the bottom of the preview at `preview`.
+fn warn_over(ui: &mut Ui, preview: egui::Rect, warning: String) {
+    let text = egui::RichText::new(warning)
+        .color(egui::Color32::from_rgb(255, 170, 120))
+        .background_color(egui::Color32::from_black_alpha(200));
+    let band = egui::Rect::from_min_max(
+        preview.left_bottom() - egui::vec2(-6.0, 48.0),
+        preview.right_bottom() - egui::vec2(6.0, 6.0),
+    );
+    ui.put(band, egui::Label::new(text).wrap());
 }

@@ -254,6 +254,9 @@ pub struct Previews {
     worker: Option<Worker>,
     shown: [Shown; Slot::ALL.len()],
     next_id: u64,
+    /// Pictures of requests numbered below this were forgotten: one still being drawn
+    /// is dropped when it arrives.
+    forgotten_below: u64,
 }
 
 impl Previews {
@@ -265,6 +268,7 @@ impl Previews {
             worker: gpu.then(|| Worker::start(move || wake.request_repaint())),
             shown: Default::default(),
             next_id: 1,
+            forgotten_below: 0,
         }
     }
 
@@ -279,6 +283,9 @@ impl Previews {
             return;
         };
         for drawn in worker.drawn() {
+            if drawn.id < self.forgotten_below {
+                continue;
+            }
             let shown = &mut self.shown[drawn.slot as usize];
             shown.materials_built = drawn.materials_built;
             shown.shown = shown.shown.max(drawn.id);
@@ -299,6 +306,13 @@ impl Previews {
                 Err(error) => shown.error = Some(error),
             }
         }
+    }
+
+    /// Drops every preview's picture, and any being drawn: the background shows until
+    /// the next is drawn.
+    pub fn forget(&mut self) {
+        self.shown = Default::default();
+        self.forgotten_below = self.next_id;
     }
 
     /// Posts `request` for `slot` unless what was posted last already shows it.
