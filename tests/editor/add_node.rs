@@ -307,6 +307,8 @@ fn pasted_and_duplicated_nodes_land_at_the_mouse_in_their_layout() {
     let mouse = Pos2::new(200.0, 680.0);
     hover(&mut harness, mouse);
     key(&mut harness, Modifiers::COMMAND, Key::D, None);
+    let hint = "click to put them down";
+    assert!(shows(&harness, hint), "the status bar says how the copy is placed");
     harness.drag_at(mouse);
     harness.run();
     harness.event(Event::PointerButton {
@@ -316,6 +318,7 @@ fn pasted_and_duplicated_nodes_land_at_the_mouse_in_their_layout() {
         modifiers: Modifiers::NONE,
     });
     harness.run();
+    assert!(!shows(&harness, hint), "not once it is put down");
     let duplicate = newest(&harness);
     assert_ne!(duplicate.id, original.id, "Ctrl+D added a node");
     assert_eq!(duplicate.kind, original.kind);

@@ -351,6 +351,10 @@ impl VeneerApp {
                         ));
                 }
             }
+            if self.canvas.grab.is_moving() {
+                ui.separator();
+                ui.label("moving the copies with the mouse: click to put them down, Escape to leave them beside the originals");
+            }
             if let Some(job) = &self.session.export {
                 ui.separator();
                 let bar = egui::ProgressBar::new(job.fraction().unwrap_or(0.0))
