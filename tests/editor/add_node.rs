@@ -41,6 +41,19 @@ pub fn hover(harness: &mut Editor, pos: Pos2) {
     harness.run();
 }
 
+/// A click of the primary button at `pos` (pressed and let go where the mouse is).
+fn click_at(harness: &mut Editor, pos: Pos2) {
+    harness.drag_at(pos);
+    harness.run();
+    harness.event(Event::PointerButton {
+        pos,
+        button: egui::PointerButton::Primary,
+        pressed: false,
+        modifiers: Modifiers::NONE,
+    });
+    harness.run();
+}
+
 /// Ctrl+C: the text the editor put on the clipboard (the selected nodes as RON).
 pub fn copy(harness: &mut Editor) -> String {
     harness.event(Event::Copy);
@@ -312,15 +325,7 @@ fn pasted_and_duplicated_nodes_land_at_the_mouse_in_their_layout() {
         shows(&harness, hint),
         "the status bar says how the copy is placed"
     );
-    harness.drag_at(mouse);
-    harness.run();
-    harness.event(Event::PointerButton {
-        pos: mouse,
-        button: egui::PointerButton::Primary,
-        pressed: false,
-        modifiers: Modifiers::NONE,
-    });
-    harness.run();
+    click_at(&mut harness, mouse);
     assert!(!shows(&harness, hint), "not once it is put down");
     let duplicate = newest(&harness);
     assert_ne!(duplicate.id, original.id, "Ctrl+D added a node");
@@ -334,15 +339,7 @@ fn pasted_and_duplicated_nodes_land_at_the_mouse_in_their_layout() {
     // Ctrl+C copies the clicked node as text (not its title); Ctrl+V pastes it at the mouse.
     let title = on_screen(&harness, original.position) + egui::vec2(40.0, 12.0);
     hover(&mut harness, title);
-    harness.drag_at(title);
-    harness.run();
-    harness.event(Event::PointerButton {
-        pos: title,
-        button: egui::PointerButton::Primary,
-        pressed: false,
-        modifiers: Modifiers::NONE,
-    });
-    harness.run();
+    click_at(&mut harness, title);
     let copied = copy(&mut harness);
     assert!(
         copied.contains("nodes"),
@@ -529,15 +526,7 @@ fn a_copy_made_over_its_original_follows_the_pointer() {
     for step in 1..=4 {
         hover(&mut harness, title + (drop - title) * step as f32 / 4.0);
     }
-    harness.drag_at(drop);
-    harness.run();
-    harness.event(Event::PointerButton {
-        pos: drop,
-        button: egui::PointerButton::Primary,
-        pressed: false,
-        modifiers: Modifiers::NONE,
-    });
-    harness.run();
+    click_at(&mut harness, drop);
     let copy = newest(&harness);
     assert_ne!(copy.id, original.id, "Ctrl+D added a node");
     let corner = on_screen(&harness, copy.position);

@@ -3,8 +3,8 @@
 //! restores it, and compile errors land on the node that caused them.
 
 use crate::support::{
-    add_node, editor, flat_wood_editor, press, preview_pixels, retype_drag_value, scratch, screen,
-    select_node, shows, wire_into_alpha,
+    add_node, editor, flat_wood_editor, press, preview_pixels, retype_drag_value, saved_preset,
+    scratch, screen, select_node, shows, wire_into_alpha,
 };
 use egui_kittest::kittest::Queryable;
 use veneer::graph::NodeKind;
@@ -267,9 +267,7 @@ fn the_material_node_names_its_shading_beside_its_title() {
 #[test]
 fn typing_what_is_not_a_finite_number_changes_nothing() {
     let dir = scratch("not-finite");
-    let marble = dir.join("marble.ron");
-    let preset = veneer::graph::preset("marble").expect("the marble preset");
-    veneer::graph::save(&preset, &marble).expect("the graph is written");
+    let marble = saved_preset(&dir, "marble");
     let mut harness = editor(&dir, Some(marble));
     let original = harness.state().document().graph.clone();
     select_node(&mut harness, "material");

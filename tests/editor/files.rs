@@ -2,8 +2,8 @@
 //! message, presets from the menu, and unsaved work recovered after a crash.
 
 use crate::support::{
-    child_editor, child_folder, editor, press, preview_pixels, run_until_killed, scratch, screen,
-    select_node, shows, type_into_field,
+    child_editor, child_folder, editor, press, preview_pixels, run_until_killed, saved_preset,
+    scratch, screen, select_node, shows, type_into_field,
 };
 use egui_kittest::kittest::Queryable;
 
@@ -306,9 +306,7 @@ fn an_image_node_takes_a_typed_path_and_keeps_its_file_when_saved_elsewhere() {
 #[test]
 fn a_graph_that_does_not_compile_shows_no_material_of_the_graph_before() {
     let dir = scratch("opened-broken");
-    let marble = dir.join("marble.ron");
-    let preset = veneer::graph::preset("marble").expect("the marble preset");
-    veneer::graph::save(&preset, &marble).expect("the graph is written");
+    let marble = saved_preset(&dir, "marble");
     let broken = dir.join("broken.ron");
     let mut wood = veneer::graph::preset("wood").expect("the wood preset");
     wood.wires[0].to.pin = "nonexistent_pin".into();

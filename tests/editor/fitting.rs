@@ -3,7 +3,9 @@
 //! stops when asked; its result is kept in one undo step or discarded. Twice, as a
 //! person would.
 
-use crate::support::{editor, press, preview_pixels, retype_drag_value, scratch, screen, shows};
+use crate::support::{
+    editor, press, preview_pixels, retype_drag_value, saved_preset, scratch, screen, shows,
+};
 use egui_kittest::kittest::Queryable;
 use veneer::fit::image::Canvas;
 use veneer::fit::prepare;
@@ -56,9 +58,7 @@ fn fit_to_image_runs_beside_the_editor_and_is_kept_in_one_undo_step_or_discarded
     let dir = scratch("fit-to-image");
     let photo = dir.join("red marble.png");
     red_veined_marble(&photo);
-    let marble = dir.join("marble.ron");
-    let preset = veneer::graph::preset("marble").expect("the marble preset");
-    veneer::graph::save(&preset, &marble).expect("the graph is written");
+    let marble = saved_preset(&dir, "marble");
     let mut harness = editor(&dir, Some(marble));
     let original = values(&harness);
     let before = preview_pixels(&screen(&mut harness));

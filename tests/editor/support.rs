@@ -25,6 +25,14 @@ pub fn chain_editor(dir: &Path, nodes: usize, width: f32) -> Harness<'static, Ve
 
 /// The editor in a 1400×900 window, rendering through wgpu, on `graph` (or the wood
 /// preset), autosaving into `dir`.
+/// Preset `name` saved as `<name>.ron` in `dir`, for an editor to open: its path.
+pub fn saved_preset(dir: &Path, name: &str) -> PathBuf {
+    let path = dir.join(format!("{name}.ron"));
+    let graph = veneer::graph::preset(name).expect("a shipped preset");
+    veneer::graph::save(&graph, &path).expect("the graph is written");
+    path
+}
+
 pub fn editor(dir: &Path, graph: Option<PathBuf>) -> Harness<'static, VeneerApp> {
     let recovery = dir.join("recovery.ron");
     // A graph just opened is framed again over its first frames, as its nodes' sizes
