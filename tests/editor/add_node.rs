@@ -507,31 +507,3 @@ fn a_wire_dropped_on_empty_canvas_offers_the_nodes_it_fits_and_connects_the_pick
         .expect("the new node is wired");
     assert_eq!(wire.from.node, noise.id);
 }
-
-/// Ctrl+D with the mouse over the node just clicked (the usual way to select it): the
-/// copy, placed clear of its original, then follows the pointer with its corner under
-/// it, and lands where the click puts it. Before, it kept placement's offset and
-/// followed a node's height below the pointer, out of the canvas near its bottom.
-#[test]
-fn a_copy_made_over_its_original_follows_the_pointer() {
-    let dir = scratch("duplicate-over");
-    let mut harness = editor(&dir, None);
-    new_graph(&mut harness);
-    add_by_keyboard(&mut harness, Pos2::new(120.0, 150.0), SPACE, "worley");
-    let original = newest(&harness);
-    let title = on_screen(&harness, original.position) + egui::vec2(40.0, 12.0);
-    hover(&mut harness, title);
-    key(&mut harness, Modifiers::COMMAND, Key::D, None);
-    let drop = Pos2::new(420.0, 300.0);
-    for step in 1..=4 {
-        hover(&mut harness, title + (drop - title) * step as f32 / 4.0);
-    }
-    click_at(&mut harness, drop);
-    let copy = newest(&harness);
-    assert_ne!(copy.id, original.id, "Ctrl+D added a node");
-    let corner = on_screen(&harness, copy.position);
-    assert!(
-        (corner - drop).length() < 2.0,
-        "the copy's corner {corner:?} is not where it was put down, {drop:?}"
-    );
-}

@@ -403,7 +403,7 @@ impl VeneerApp {
             groups,
         );
         if !copies.is_empty() {
-            self.grab_new(copies);
+            self.grab_new(ctx, copies);
         }
     }
 }

@@ -79,7 +79,7 @@ impl VeneerApp {
             self.chrome.message = asked.hint;
         }
         if let Some(copies) = asked.duplicated {
-            self.grab_new(copies);
+            self.grab_new(&ctx, copies);
         }
         let exposed = asked.expose.and_then(|pin| self.expose_input(pin));
         asked.declared.extend(exposed);
@@ -96,19 +96,15 @@ impl VeneerApp {
         self.add_node_popup(&ctx);
     }
 
-    /// Duplicates: placed clear of the others (where Escape leaves them), selected, and
-    /// following the mouse with their top left corner under it, as Blender's grab does
-    /// (kept where placement moved them, a copy made over its original followed the
-    /// pointer a node's height below it, out of the canvas at its bottom).
-    pub(in crate::app) fn grab_new(&mut self, copies: Vec<egui_snarl::NodeId>) {
+    /// Duplicates: placed clear of the others, selected, and following the mouse.
+    pub(in crate::app) fn grab_new(&mut self, ctx: &Context, copies: Vec<egui_snarl::NodeId>) {
+        let to_graph = self.canvas.navigation.transform.inverse();
+        let mouse = match ctx.pointer_latest_pos() {
+            Some(pointer) => to_graph * pointer,
+            None => self.placement(ctx).1,
+        };
         self.canvas.placed(copies.clone());
-        let snarl = &self.canvas.snarl;
-        let corner = (copies.iter())
-            .filter_map(|id| Some(snarl.get_node_info(*id)?.pos))
-            .reduce(|a, b| a.min(b));
-        if let Some(corner) = corner {
-            self.canvas.grab.start(snarl, &copies, corner);
-        }
+        self.canvas.grab.start(&self.canvas.snarl, &copies, mouse);
     }
 }
 
