@@ -31,6 +31,7 @@ pub fn finite_number(text: &str) -> Option<f64> {
 /// until edited); returns whether it changed.
 pub fn value_editor(ui: &mut Ui, value: &mut Value, range: PinRange) -> bool {
     let drag = |ui: &mut Ui, x: &mut f64| {
+        let before = *x;
         let step = range.step(*x);
         let response = ui.add(
             DragValue::new(x)
@@ -45,7 +46,8 @@ pub fn value_editor(ui: &mut Ui, value: &mut Value, range: PinRange) -> bool {
             let snap = range.snap();
             *x = ((*x / snap).round() * snap).clamp(range.min, range.max);
         }
-        response.changed()
+        // A field left with text that is no number reports a change but keeps its value.
+        response.changed() && *x != before
     };
     match value {
         Value::Float(x) => drag(ui, x),
@@ -76,10 +78,8 @@ pub fn input_value(node: &Node, pin: &str) -> Option<(Value, PinRange)> {
 
 /// An editor for the constant of input `pin` of `node`: the value, when edited.
 pub fn input_editor(ui: &mut Ui, node: &Node, pin: &str) -> Option<Value> {
-    let (shown, range) = input_value(node, pin)?;
-    let mut value = shown;
-    // A field left with text that is no number reports a change but keeps its value.
-    (value_editor(ui, &mut value, range) && value != shown).then_some(value)
+    let (mut value, range) = input_value(node, pin)?;
+    value_editor(ui, &mut value, range).then_some(value)
 }
 
 /// Stores `value`, edited by [`input_editor`], as the constant of input `pin` of node

@@ -55,9 +55,7 @@ impl VeneerApp {
                             ui.label(&entry.name)
                                 .on_hover_text(format!("--set {}=…", entry.name));
                             let mut value = entry.value;
-                            // A field left with text that is no number reports a
-                            // change but keeps its value.
-                            if parameter_editor(ui, entry, &mut value) && value != entry.value {
+                            if parameter_editor(ui, entry, &mut value) {
                                 self.set_parameter(entry, &value);
                             }
                             ui.end_row();
@@ -124,6 +122,7 @@ fn parameter_editor(ui: &mut Ui, entry: &Exposed, value: &mut Value) -> bool {
             let mut changed = false;
             ui.horizontal(|ui| {
                 for x in components {
+                    let before = *x;
                     let response = match entry.range {
                         Some((min, max)) => {
                             ui.add(egui::Slider::new(x, min..=max).custom_parser(finite_number))
@@ -134,7 +133,9 @@ fn parameter_editor(ui: &mut Ui, entry: &Exposed, value: &mut Value) -> bool {
                                 .speed(0.01),
                         ),
                     };
-                    changed |= response.changed();
+                    // A field left with text that is no number reports a change but
+                    // keeps its value.
+                    changed |= response.changed() && *x != before;
                 }
             });
             changed
